@@ -1,0 +1,84 @@
+/* cholmod_shim.h: the C glue between contact2d and CHOLMOD.
+ *
+ * One handle owns one cholmod_common and at most one factor L of a symmetric
+ * positive definite matrix A (upper triangle given, compressed columns).  The
+ * Fortran side sees the handle as an opaque type(c_ptr); src/cholmod_binding.f90
+ * holds the matching bind(c) interfaces and src/sparse_cholesky.f90 the API.
+ *
+ * Index convention: every index that crosses this interface is 1-based, as
+ * Fortran holds it (column pointers, row indices, dofs, equation numbers).
+ *
+ * Factorization: supernodal LL' = P A P' with P from METIS, or, when a block of
+ * nlast dofs is given, P = [METIS order of the remaining dofs, the given block]
+ * with no postordering, so that the block occupies the last nlast pivots.
+ *
+ * Return codes: CHOLMOD's own status (CHOLMOD_OK = 0, warnings > 0, errors < 0)
+ * or one of the C2D_CHOL_* codes below (all <= -100).
+ */
+#ifndef CONTACT2D_CHOLMOD_SHIM_H
+#define CONTACT2D_CHOLMOD_SHIM_H
+
+#include <stdint.h>
+
+#define C2D_CHOL_NO_HANDLE      (-100) /* handle is NULL (not created) */
+#define C2D_CHOL_NO_FACTOR      (-101) /* no valid numeric factor held */
+#define C2D_CHOL_NOT_SUPER_LL   (-102) /* factor is not stored as supernodal LL' */
+#define C2D_CHOL_BLOCK_MOVED    (-103) /* the last block is not at the last pivots */
+#define C2D_CHOL_BAD_ARGUMENT   (-104) /* inconsistent argument (size, index range) */
+
+/* New handle with contact2d's CHOLMOD settings; NULL when out of memory. */
+void *c2d_chol_create(void);
+
+/* Free the factor, finish the common and free the handle (NULL is a no-op). */
+void c2d_chol_destroy(void *h);
+
+/* Analyze and factorize A = P' L L' P; any previous factor is freed first.
+ *   n       order of A, n >= 1
+ *   colptr  [n+1] 1-based column pointers, colptr[0] = 1
+ *   rowind  [colptr[n]-1] 1-based row indices, upper triangle, sorted per column
+ *   val     [colptr[n]-1] values
+ *   nlast   number of dofs to order last, 0 <= nlast <= n
+ *   last    [nlast] 1-based distinct dofs, in pivot order (NULL when nlast = 0)
+ * Returns CHOLMOD's status: CHOLMOD_OK, CHOLMOD_NOT_POSDEF (then
+ * c2d_chol_minor tells where), another CHOLMOD code, or C2D_CHOL_BLOCK_MOVED
+ * when the analysis did not keep the given block last. */
+int c2d_chol_factorize(void *h, int n, const int *colptr, const int *rowind,
+                       const double *val, int nlast, const int *last);
+
+/* Where the last factorization failed: *column = 1-based pivot (column of the
+ * permuted matrix), *equation = the 1-based dof of A at that pivot; both 0 when
+ * the factorization succeeded or no factor is held. */
+void c2d_chol_minor(const void *h, int *column, int *equation);
+
+/* Statistics of the last analysis and factorization: nnz(L) without the zeros
+ * of supernodal amalgamation, flop count of LL', peak memory of CHOLMOD in
+ * bytes, wall seconds of the analysis (ordering included) and of the numeric
+ * factorization. */
+void c2d_chol_stats(const void *h, int64_t *lnz, double *flops, int64_t *memory_peak,
+                    double *time_analyze, double *time_factorize);
+
+/* Smallest ratio L(k,k)^2 / A(p_k,p_k) over the pivots k (p_k the dof at pivot
+ * k): the fraction of a dof's own stiffness left after eliminating the dofs
+ * before it.  *ratio = 0 and *column = *equation = 0 when no factor is held. */
+void c2d_chol_min_pivot_ratio(const void *h, double *ratio, int *column, int *equation);
+
+/* Name of the ordering used, NUL-terminated in buf[len]: "metis",
+ * "metis+last", or the name CHOLMOD reports ("amd" when it fell back). */
+void c2d_chol_ordering_name(const void *h, char *buf, int len);
+
+/* Name of a status code, NUL-terminated in buf[len]: "CHOLMOD_OUT_OF_MEMORY",
+ * ..., or one of the C2D_CHOL_* names. */
+void c2d_chol_status_name(int status, char *buf, int len);
+
+/* X = A \ B for nrhs dense columns (column-major, leading dimension n) in one
+ * cholmod_solve call.  Returns CHOLMOD_OK or an error code. */
+int c2d_chol_solve(void *h, int n, int nrhs, const double *b, double *x);
+
+/* The trailing nlast-by-nlast block of L (pivots n-nlast+1..n, i.e. the dofs
+ * `last` in the order given to c2d_chol_factorize), written dense and
+ * column-major into lcc[nlast*nlast], zero above the diagonal.  Read directly
+ * from the supernodes that hold those columns.  Returns 0, C2D_CHOL_NO_FACTOR,
+ * C2D_CHOL_NOT_SUPER_LL, C2D_CHOL_BLOCK_MOVED or C2D_CHOL_BAD_ARGUMENT. */
+int c2d_chol_trailing_block(const void *h, int nlast, double *lcc);
+
+#endif /* CONTACT2D_CHOLMOD_SHIM_H */

@@ -1,0 +1,325 @@
+!> body: elastic bodies and the global system of plane elasticity, eq. (1) and
+!> the bilinear form a(.,.) of (6), discretized by (7).  Knows no deck.
+!>
+!> Global dofs: body b's node a, component c (1 = x, 2 = y) is dof
+!> bodies(b)%dof0 + 2 (a - 1) + c.  Dirichlet dofs (fixed(dof)) are eliminated
+!> symmetrically: the free equations eq(dof) = 1..nfree number the free dofs in
+!> dof order, and
+!>     K_ff u_f = f_f - K_fd ubar_d.
+!> K_ff is stored as the upper triangle of a compressed-column matrix whose
+!> pattern comes from the node adjacency of each mesh (no triplets, no dense N x N).
+!>
+!> Programming interface
+!>   type(body_t)                      one body: name, mesh, law, thickness, dof0
+!>   number_equations(fixed, eq, nfree)
+!>   build_pattern(bodies, eq, nfree, k)            pattern of K_ff, values 0
+!>   assemble_stiffness(bodies, eq, ubar, k, rhs)   add K_ff to k, subtract K_fd ubar from rhs
+!>   internal_forces(bodies, u, fint)               fint = K u (all dofs, element by element)
+!>   element_stresses(bodies, u, stress, vm)        per element (3, nelem_total) and von Mises
+!>   node_elements(mesh, ptr, list)                 elements around each node (CSR)
+!>   edge_outward_normal(mesh, eptr, elist, a, b, nrm, owner)  unit normal of edge a-b
+!>        pointing out of its element; owner = that element, 0 when no element has
+!>        the edge, -1 when two do (an interior edge)
+module body
+  use kinds, only: dp
+  use mesh, only: mesh_t
+  use material, only: elasticity_t, von_mises
+  use elements, only: element_stiffness, element_strain
+  use sparse_matrix, only: csc_t
+  implicit none
+  private
+  public :: body_t, number_equations, build_pattern, assemble_stiffness, internal_forces
+  public :: element_stresses, node_elements, element_dofs, edge_outward_normal
+
+  type :: body_t
+    character(len=:), allocatable :: name  !< as in the deck
+    type(mesh_t) :: mesh                   !< its mesh
+    type(elasticity_t) :: law              !< elasticity tensor
+    real(dp) :: thick = 1.0_dp             !< thickness (1 in plane strain)
+    integer :: dof0 = 0                    !< global dof offset
+    integer :: elem0 = 0                   !< global element offset (output order)
+  end type body_t
+
+contains
+
+  !> Free equation numbers: eq(dof) = rank among free dofs, 0 for fixed dofs.
+  subroutine number_equations(fixed, eq, nfree)
+    logical, intent(in) :: fixed(:)
+    integer, allocatable, intent(out) :: eq(:)
+    integer, intent(out) :: nfree
+    integer :: i
+    allocate(eq(size(fixed)))
+    nfree = 0
+    do i = 1, size(fixed)
+      if (fixed(i)) then
+        eq(i) = 0
+      else
+        nfree = nfree + 1
+        eq(i) = nfree
+      end if
+    end do
+  end subroutine number_equations
+
+  !> Global dofs of element e of body bd, (2 nen).
+  pure subroutine element_dofs(bd, e, dofs)
+    type(body_t), intent(in) :: bd
+    integer, intent(in) :: e
+    integer, intent(out) :: dofs(:)
+    integer :: a
+    do a = 1, bd%mesh%nen(e)
+      dofs(2 * a - 1) = bd%dof0 + 2 * (bd%mesh%conn(a, e) - 1) + 1
+      dofs(2 * a) = dofs(2 * a - 1) + 1
+    end do
+  end subroutine element_dofs
+
+  !> Elements around each node: list(ptr(a):ptr(a+1)-1).
+  subroutine node_elements(mesh, ptr, list)
+    type(mesh_t), intent(in) :: mesh
+    integer, allocatable, intent(out) :: ptr(:), list(:)
+    integer :: e, k, a
+    integer, allocatable :: next(:)
+    allocate(ptr(mesh%nnode + 1), source=0)
+    do e = 1, mesh%nelem
+      do k = 1, mesh%nen(e)
+        a = mesh%conn(k, e)
+        ptr(a + 1) = ptr(a + 1) + 1
+      end do
+    end do
+    ptr(1) = 1
+    do a = 1, mesh%nnode
+      ptr(a + 1) = ptr(a + 1) + ptr(a)
+    end do
+    allocate(list(ptr(mesh%nnode + 1) - 1), next(mesh%nnode))
+    next = ptr(1:mesh%nnode)
+    do e = 1, mesh%nelem
+      do k = 1, mesh%nen(e)
+        a = mesh%conn(k, e)
+        list(next(a)) = e
+        next(a) = next(a) + 1
+      end do
+    end do
+  end subroutine node_elements
+
+  !> Pattern of the upper triangle of K_ff from the node adjacency of every mesh.
+  !>   bodies (in)  the bodies, dof0 set
+  !>   eq     (in)  (ndof) free equation numbers
+  !>   nfree  (in)  number of free equations
+  !>   k      (out) n = nfree, colptr, rowind (sorted), val = 0
+  subroutine build_pattern(bodies, eq, nfree, k)
+    type(body_t), intent(in) :: bodies(:)
+    integer, intent(in) :: eq(:), nfree
+    type(csc_t), intent(out) :: k
+    integer :: b, pass, a, j, c, cb, col, row, nb, p, e, ie, nnz
+    integer, allocatable :: eptr(:), elist(:), mark(:), nbr(:)
+
+    k%n = nfree
+    allocate(k%colptr(nfree + 1))
+    k%colptr = 0
+    ! pass 1 counts entries per column, pass 2 fills the row indices
+    do pass = 1, 2
+      if (pass == 2) then
+        k%colptr(1) = 1
+        do col = 1, nfree
+          k%colptr(col + 1) = k%colptr(col + 1) + k%colptr(col)
+        end do
+        nnz = k%colptr(nfree + 1) - 1
+        allocate(k%rowind(nnz), k%val(nnz))
+        k%val = 0.0_dp
+      end if
+      do b = 1, size(bodies)
+        associate(m => bodies(b)%mesh, d0 => bodies(b)%dof0)
+          call node_elements(m, eptr, elist)
+          if (allocated(mark)) deallocate(mark)
+          allocate(mark(m%nnode), nbr(64))
+          mark = 0
+          do a = 1, m%nnode
+            ! distinct neighbour nodes of a (a included), ascending
+            nb = 0
+            do ie = eptr(a), eptr(a + 1) - 1
+              e = elist(ie)
+              do j = 1, m%nen(e)
+                if (mark(m%conn(j, e)) /= a) then
+                  mark(m%conn(j, e)) = a
+                  nb = nb + 1
+                  if (nb > size(nbr)) call grow(nbr)
+                  nbr(nb) = m%conn(j, e)
+                end if
+              end do
+            end do
+            call sort_small(nbr(1:nb))
+            do c = 1, 2
+              col = eq(d0 + 2 * (a - 1) + c)
+              if (col == 0) cycle
+              p = k%colptr(col)
+              do j = 1, nb
+                do cb = 1, 2
+                  row = eq(d0 + 2 * (nbr(j) - 1) + cb)
+                  if (row == 0 .or. row > col) cycle
+                  if (pass == 1) then
+                    k%colptr(col + 1) = k%colptr(col + 1) + 1
+                  else
+                    k%rowind(p) = row
+                    p = p + 1
+                  end if
+                end do
+              end do
+            end do
+          end do
+          deallocate(mark, nbr)
+        end associate
+      end do
+    end do
+  end subroutine build_pattern
+
+  subroutine grow(a)
+    integer, allocatable, intent(inout) :: a(:)
+    integer, allocatable :: t(:)
+    allocate(t(2 * size(a)))
+    t(1:size(a)) = a
+    call move_alloc(t, a)
+  end subroutine grow
+
+  pure subroutine sort_small(a)
+    integer, intent(inout) :: a(:)
+    integer :: i, j, t
+    do i = 2, size(a)
+      t = a(i)
+      j = i - 1
+      do while (j >= 1)
+        if (a(j) <= t) exit
+        a(j + 1) = a(j)
+        j = j - 1
+      end do
+      a(j + 1) = t
+    end do
+  end subroutine sort_small
+
+  !> Add the element stiffnesses into k (pattern from build_pattern) and move
+  !> the prescribed values to the right-hand side: rhs_f -= K_fd ubar_d.
+  !>   bodies (in) ; eq (in) (ndof) ; ubar (in) (ndof) prescribed values (fixed dofs)
+  !>   k      (inout) values accumulated
+  !>   rhs    (inout) (nfree) right-hand side
+  subroutine assemble_stiffness(bodies, eq, ubar, k, rhs)
+    type(body_t), intent(in) :: bodies(:)
+    integer, intent(in) :: eq(:)
+    real(dp), intent(in) :: ubar(:)
+    type(csc_t), intent(inout) :: k
+    real(dp), intent(inout) :: rhs(:)
+    integer :: b, e, nen, p, q, ep, eq_q, pos
+    integer :: dofs(8)
+    real(dp) :: ke(8, 8)
+    do b = 1, size(bodies)
+      associate(m => bodies(b)%mesh)
+        do e = 1, m%nelem
+          nen = m%nen(e)
+          call element_stiffness(nen, m%x(:, m%conn(1:nen, e)), bodies(b)%law%d, bodies(b)%thick, &
+                                 ke(1:2 * nen, 1:2 * nen))
+          call element_dofs(bodies(b), e, dofs)
+          do q = 1, 2 * nen
+            eq_q = eq(dofs(q))
+            do p = 1, 2 * nen
+              ep = eq(dofs(p))
+              if (ep == 0) cycle
+              if (eq_q == 0) then
+                rhs(ep) = rhs(ep) - ke(p, q) * ubar(dofs(q))      ! f_f -= K_fd ubar_d
+              else if (ep <= eq_q) then
+                pos = find_row(k, ep, eq_q)
+                k%val(pos) = k%val(pos) + ke(p, q)
+              end if
+            end do
+          end do
+        end do
+      end associate
+    end do
+  end subroutine assemble_stiffness
+
+  !> Position of (row, col) in k by bisection over the sorted column.
+  pure integer function find_row(k, row, col) result(pos)
+    type(csc_t), intent(in) :: k
+    integer, intent(in) :: row, col
+    integer :: lo, hi, mid
+    lo = k%colptr(col)
+    hi = k%colptr(col + 1) - 1
+    do while (lo < hi)
+      mid = (lo + hi) / 2
+      if (k%rowind(mid) < row) then
+        lo = mid + 1
+      else
+        hi = mid
+      end if
+    end do
+    pos = lo
+  end function find_row
+
+  !> fint = K u over all dofs, element by element (reactions, energy).
+  subroutine internal_forces(bodies, u, fint)
+    type(body_t), intent(in) :: bodies(:)
+    real(dp), intent(in) :: u(:)
+    real(dp), intent(out) :: fint(:)
+    integer :: b, e, nen
+    integer :: dofs(8)
+    real(dp) :: ke(8, 8)
+    fint = 0.0_dp
+    do b = 1, size(bodies)
+      associate(m => bodies(b)%mesh)
+        do e = 1, m%nelem
+          nen = m%nen(e)
+          call element_stiffness(nen, m%x(:, m%conn(1:nen, e)), bodies(b)%law%d, bodies(b)%thick, &
+                                 ke(1:2 * nen, 1:2 * nen))
+          call element_dofs(bodies(b), e, dofs)
+          fint(dofs(1:2 * nen)) = fint(dofs(1:2 * nen)) + matmul(ke(1:2 * nen, 1:2 * nen), u(dofs(1:2 * nen)))
+        end do
+      end associate
+    end do
+  end subroutine internal_forces
+
+  !> Stress (sxx, syy, sxy) at each element centre and its von Mises value,
+  !> elements numbered body after body (elem0 + e).
+  subroutine element_stresses(bodies, u, stress, vm)
+    type(body_t), intent(in) :: bodies(:)
+    real(dp), intent(in) :: u(:)
+    real(dp), intent(out) :: stress(:,:), vm(:)
+    integer :: b, e, nen
+    integer :: dofs(8)
+    real(dp) :: eps(3)
+    do b = 1, size(bodies)
+      associate(m => bodies(b)%mesh)
+        do e = 1, m%nelem
+          nen = m%nen(e)
+          call element_dofs(bodies(b), e, dofs)
+          call element_strain(nen, m%x(:, m%conn(1:nen, e)), u(dofs(1:2 * nen)), eps)
+          stress(:, bodies(b)%elem0 + e) = matmul(bodies(b)%law%d, eps)
+          vm(bodies(b)%elem0 + e) = von_mises(bodies(b)%law, stress(:, bodies(b)%elem0 + e))
+        end do
+      end associate
+    end do
+  end subroutine element_stresses
+
+  !> Outward unit normal of the edge a-b (see the module header).
+  subroutine edge_outward_normal(mesh, eptr, elist, a, b, nrm, owner)
+    type(mesh_t), intent(in) :: mesh
+    integer, intent(in) :: eptr(:), elist(:), a, b
+    real(dp), intent(out) :: nrm(2)
+    integer, intent(out) :: owner
+    integer :: ie, e
+    real(dp) :: t(2), xc(2)
+    owner = 0
+    nrm = 0.0_dp
+    do ie = eptr(a), eptr(a + 1) - 1
+      e = elist(ie)
+      if (any(mesh%conn(1:mesh%nen(e), e) == b)) then
+        if (owner /= 0) then
+          owner = -1
+          return
+        end if
+        owner = e
+      end if
+    end do
+    if (owner == 0) return
+    t = mesh%x(:, b) - mesh%x(:, a)
+    nrm = [t(2), -t(1)] / norm2(t)
+    xc = sum(mesh%x(:, mesh%conn(1:mesh%nen(owner), owner)), dim=2) / mesh%nen(owner)
+    if (dot_product(nrm, xc - mesh%x(:, a)) > 0.0_dp) nrm = -nrm
+  end subroutine edge_outward_normal
+
+end module body

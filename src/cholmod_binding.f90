@@ -1,0 +1,139 @@
+!> cholmod_binding: raw bind(c) interfaces to the C shim over CHOLMOD
+!> (src/cholmod_shim.c, include/cholmod_shim.h), and the status codes it returns.
+!>
+!> This is the lowest of three layers: C shim, these interfaces, and the
+!> Fortran API in sparse_cholesky.  Use sparse_cholesky; only it should call
+!> these routines.  Every index passed here is 1-based; arrays are passed by
+!> address, scalars by value; character results come back as NUL-terminated
+!> c_char arrays.
+!>
+!> Ownership: c2d_chol_create returns a handle that owns a cholmod_common and
+!> the factor; exactly one c2d_chol_destroy must release it.
+!>
+!> Programming interface (see include/cholmod_shim.h for the details)
+!>   c2d_chol_create() -> handle          c2d_chol_destroy(handle)
+!>   c2d_chol_factorize(handle, n, colptr, rowind, val, nlast, last) -> status
+!>   c2d_chol_minor(handle, column, equation)
+!>   c2d_chol_stats(handle, lnz, flops, memory_peak, time_analyze, time_factorize)
+!>   c2d_chol_min_pivot_ratio(handle, ratio, column, equation)
+!>   c2d_chol_ordering_name(handle, buf, len)   c2d_chol_status_name(status, buf, len)
+!>   c2d_chol_solve(handle, n, nrhs, b, x) -> status
+!>   c2d_chol_trailing_block(handle, nlast, lcc) -> status
+!>   status codes: cholmod_ok, cholmod_not_posdef, c2d_chol_* (shim codes)
+module cholmod_binding
+  use, intrinsic :: iso_c_binding, only: c_ptr, c_int, c_double, c_int64_t, c_char
+  implicit none
+  private
+  public :: c2d_chol_create, c2d_chol_destroy, c2d_chol_factorize, c2d_chol_minor
+  public :: c2d_chol_stats, c2d_chol_min_pivot_ratio, c2d_chol_ordering_name
+  public :: c2d_chol_status_name, c2d_chol_solve, c2d_chol_trailing_block
+  public :: cholmod_ok, cholmod_not_posdef, cholmod_out_of_memory, cholmod_too_large
+  public :: c2d_chol_no_handle, c2d_chol_no_factor, c2d_chol_not_super_ll
+  public :: c2d_chol_block_moved, c2d_chol_bad_argument
+
+  ! CHOLMOD status codes (cholmod_core.h)
+  integer(c_int), parameter :: cholmod_ok = 0             !< success
+  integer(c_int), parameter :: cholmod_not_posdef = 1     !< warning: matrix not positive definite
+  integer(c_int), parameter :: cholmod_out_of_memory = -2 !< failure: out of memory
+  integer(c_int), parameter :: cholmod_too_large = -3     !< failure: integer overflow
+  ! shim codes (cholmod_shim.h)
+  integer(c_int), parameter :: c2d_chol_no_handle = -100     !< handle not created
+  integer(c_int), parameter :: c2d_chol_no_factor = -101     !< no valid numeric factor
+  integer(c_int), parameter :: c2d_chol_not_super_ll = -102  !< L not supernodal LL'
+  integer(c_int), parameter :: c2d_chol_block_moved = -103   !< last block not at the last pivots
+  integer(c_int), parameter :: c2d_chol_bad_argument = -104  !< inconsistent argument
+
+  interface
+
+    !> New handle (cholmod_start, supernodal settings); c_null_ptr when out of memory.
+    function c2d_chol_create() bind(c, name='c2d_chol_create') result(handle)
+      import :: c_ptr
+      type(c_ptr) :: handle
+    end function c2d_chol_create
+
+    !> Free factor and common; a null handle is a no-op.
+    subroutine c2d_chol_destroy(handle) bind(c, name='c2d_chol_destroy')
+      import :: c_ptr
+      type(c_ptr), value :: handle
+    end subroutine c2d_chol_destroy
+
+    !> Analyze and factorize; returns the status (cholmod_ok on success).
+    function c2d_chol_factorize(handle, n, colptr, rowind, val, nlast, last) &
+        bind(c, name='c2d_chol_factorize') result(status)
+      import :: c_ptr, c_int, c_double
+      type(c_ptr), value :: handle
+      integer(c_int), value :: n
+      integer(c_int), intent(in) :: colptr(*)
+      integer(c_int), intent(in) :: rowind(*)
+      real(c_double), intent(in) :: val(*)
+      integer(c_int), value :: nlast
+      integer(c_int), intent(in) :: last(*)
+      integer(c_int) :: status
+    end function c2d_chol_factorize
+
+    !> Failing pivot (column of P A P') and its dof; 0, 0 when none.
+    subroutine c2d_chol_minor(handle, column, equation) bind(c, name='c2d_chol_minor')
+      import :: c_ptr, c_int
+      type(c_ptr), value :: handle
+      integer(c_int), intent(out) :: column, equation
+    end subroutine c2d_chol_minor
+
+    !> nnz(L), flop count, peak memory (bytes), analysis and factorization seconds.
+    subroutine c2d_chol_stats(handle, lnz, flops, memory_peak, time_analyze, time_factorize) &
+        bind(c, name='c2d_chol_stats')
+      import :: c_ptr, c_int64_t, c_double
+      type(c_ptr), value :: handle
+      integer(c_int64_t), intent(out) :: lnz
+      real(c_double), intent(out) :: flops
+      integer(c_int64_t), intent(out) :: memory_peak
+      real(c_double), intent(out) :: time_analyze, time_factorize
+    end subroutine c2d_chol_stats
+
+    !> min_k L(k,k)^2 / A(p_k,p_k), its pivot and dof (NaN ratio: non-finite L(k,k)).
+    subroutine c2d_chol_min_pivot_ratio(handle, ratio, column, equation) &
+        bind(c, name='c2d_chol_min_pivot_ratio')
+      import :: c_ptr, c_int, c_double
+      type(c_ptr), value :: handle
+      real(c_double), intent(out) :: ratio
+      integer(c_int), intent(out) :: column, equation
+    end subroutine c2d_chol_min_pivot_ratio
+
+    !> Name of the ordering used, NUL-terminated in buf(1:len).
+    subroutine c2d_chol_ordering_name(handle, buf, len) bind(c, name='c2d_chol_ordering_name')
+      import :: c_ptr, c_int, c_char
+      type(c_ptr), value :: handle
+      character(kind=c_char), intent(out) :: buf(*)
+      integer(c_int), value :: len
+    end subroutine c2d_chol_ordering_name
+
+    !> Name of a status code, NUL-terminated in buf(1:len).
+    subroutine c2d_chol_status_name(status, buf, len) bind(c, name='c2d_chol_status_name')
+      import :: c_int, c_char
+      integer(c_int), value :: status
+      character(kind=c_char), intent(out) :: buf(*)
+      integer(c_int), value :: len
+    end subroutine c2d_chol_status_name
+
+    !> x = A \ b for b(n, nrhs) column-major; returns the status.
+    function c2d_chol_solve(handle, n, nrhs, b, x) bind(c, name='c2d_chol_solve') result(status)
+      import :: c_ptr, c_int, c_double
+      type(c_ptr), value :: handle
+      integer(c_int), value :: n, nrhs
+      real(c_double), intent(in) :: b(*)
+      real(c_double), intent(inout) :: x(*)
+      integer(c_int) :: status
+    end function c2d_chol_solve
+
+    !> Dense trailing block L_cc (nlast, nlast) of L; returns the status.
+    function c2d_chol_trailing_block(handle, nlast, lcc) bind(c, name='c2d_chol_trailing_block') &
+        result(status)
+      import :: c_ptr, c_int, c_double
+      type(c_ptr), value :: handle
+      integer(c_int), value :: nlast
+      real(c_double), intent(inout) :: lcc(*)
+      integer(c_int) :: status
+    end function c2d_chol_trailing_block
+
+  end interface
+
+end module cholmod_binding

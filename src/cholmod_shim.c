@@ -1,0 +1,555 @@
+/* cholmod_shim.c: the C glue between contact2d and CHOLMOD (see
+ * include/cholmod_shim.h for the interface and its index convention).
+ *
+ * Ownership: a handle (struct c2d_chol) is created by c2d_chol_create and
+ * freed by c2d_chol_destroy; it owns its cholmod_common and the factor L.
+ * Nothing else here allocates memory that outlives a call.  Every CHOLMOD
+ * allocation goes through the handle's common, so Common->memory_usage is
+ * the peak memory of this factor's whole life (ordering, analysis, factor,
+ * solves).
+ *
+ * Why a C layer at all: cholmod_common and cholmod_factor are large structs
+ * whose layout changes between CHOLMOD versions; reading L->super, L->px,
+ * L->Perm and the status fields is simple in C against the installed header,
+ * and fragile through Fortran interoperable types.
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cholmod.h"
+#include "cholmod_shim.h"
+
+/* One factorization and the CHOLMOD workspace that built it. */
+struct c2d_chol
+{
+    cholmod_common common;  /* CHOLMOD parameters, statistics, workspace */
+    cholmod_factor *L;      /* the factor of the last factorization, or NULL */
+    int valid;              /* 1 when L holds a complete numeric LL' */
+    int n;                  /* order of A */
+    int nlast;              /* size of the block ordered last (0: none) */
+    int minor_column;       /* 1-based failing pivot, 0 if none */
+    int minor_equation;     /* 1-based dof at that pivot, 0 if none */
+    double pivot_ratio;     /* min_k L(k,k)^2 / A(p_k,p_k) */
+    int pivot_column;       /* 1-based pivot where the minimum occurs */
+    int pivot_equation;     /* 1-based dof at that pivot */
+    double time_analyze;    /* wall seconds: ordering and symbolic analysis */
+    double time_factorize;  /* wall seconds: numeric factorization */
+};
+
+/* Copy a C string into buf[len], truncated and NUL-terminated. */
+static void copy_name(const char *name, char *buf, int len)
+{
+    size_t m;
+    if (buf == NULL || len <= 0) return;
+    m = strlen(name);
+    if (m > (size_t) (len - 1)) m = (size_t) (len - 1);
+    memcpy(buf, name, m);
+    buf[m] = '\0';
+}
+
+/* Free the factor held by h and forget everything derived from it. */
+static void clear_factor(struct c2d_chol *h)
+{
+    if (h->L != NULL) cholmod_free_factor(&h->L, &h->common);
+    h->valid = 0;
+    h->n = 0;
+    h->nlast = 0;
+    h->minor_column = 0;
+    h->minor_equation = 0;
+    h->pivot_ratio = 0.0;
+    h->pivot_column = 0;
+    h->pivot_equation = 0;
+}
+
+void *c2d_chol_create(void)
+{
+    struct c2d_chol *h = malloc(sizeof(struct c2d_chol));
+    if (h == NULL) return NULL;
+    memset(h, 0, sizeof(struct c2d_chol));
+    if (!cholmod_start(&h->common))
+    {
+        free(h);
+        return NULL;
+    }
+    h->common.print = 0;                       /* library code prints nothing */
+    h->common.supernodal = CHOLMOD_SUPERNODAL; /* always supernodal LL' */
+    h->common.final_asis = 1;                  /* keep L as factorized */
+    h->common.quick_return_if_not_posdef = 0;  /* refactor up to L->minor */
+    h->L = NULL;
+    clear_factor(h);
+    return h;
+}
+
+void c2d_chol_destroy(void *handle)
+{
+    struct c2d_chol *h = handle;
+    if (h == NULL) return;
+    clear_factor(h);
+    cholmod_finish(&h->common);
+    free(h);
+}
+
+/* Build the CHOLMOD copy of A (0-based, stype = 1: upper triangle) and the
+ * diagonal of A in adiag[n].  Returns NULL on a malformed matrix (status
+ * C2D_CHOL_BAD_ARGUMENT in *status) or when out of memory. */
+static cholmod_sparse *copy_matrix(int n, const int *colptr, const int *rowind,
+                                   const double *val, double *adiag,
+                                   cholmod_common *c, int *status)
+{
+    cholmod_sparse *A;
+    int *Ap, *Ai;
+    double *Ax;
+    int j, p, nnz;
+
+    *status = C2D_CHOL_BAD_ARGUMENT;
+    if (colptr[0] != 1) return NULL;
+    for (j = 0; j < n; j++)
+    {
+        if (colptr[j + 1] < colptr[j]) return NULL;
+    }
+    nnz = colptr[n] - 1;
+    for (p = 0; p < nnz; p++)
+    {
+        if (rowind[p] < 1 || rowind[p] > n) return NULL;
+    }
+    A = cholmod_allocate_sparse((size_t) n, (size_t) n, (size_t) (nnz > 0 ? nnz : 1),
+                                1, 1, 1, CHOLMOD_REAL, c);
+    if (A == NULL)
+    {
+        *status = c->status;
+        return NULL;
+    }
+    Ap = A->p;
+    Ai = A->i;
+    Ax = A->x;
+    for (j = 0; j <= n; j++) Ap[j] = colptr[j] - 1;
+    for (j = 0; j < n; j++)
+    {
+        adiag[j] = 0.0;
+        for (p = Ap[j]; p < Ap[j + 1]; p++)
+        {
+            Ai[p] = rowind[p] - 1;
+            Ax[p] = val[p];
+            if (Ai[p] == j) adiag[j] += val[p];
+        }
+    }
+    *status = CHOLMOD_OK;
+    return A;
+}
+
+/* S = A(R,R) as a pattern (0-based, upper triangle), R the dofs with
+ * map[i] >= 0; map is monotone on R, so S stays upper triangular. */
+static cholmod_sparse *remaining_pattern(const cholmod_sparse *A, const int *map, int nr,
+                                         cholmod_common *c)
+{
+    const int *Ap = A->p, *Ai = A->i;
+    int n = (int) A->ncol;
+    cholmod_sparse *S;
+    int *Sp, *Si;
+    int j, p, nzs = 0;
+
+    for (j = 0; j < n; j++)
+    {
+        if (map[j] < 0) continue;
+        for (p = Ap[j]; p < Ap[j + 1]; p++) nzs += (map[Ai[p]] >= 0);
+    }
+    S = cholmod_allocate_sparse((size_t) nr, (size_t) nr, (size_t) (nzs > 0 ? nzs : 1),
+                                1, 1, 1, CHOLMOD_PATTERN, c);
+    if (S == NULL) return NULL;
+    Sp = S->p;
+    Si = S->i;
+    nzs = 0;
+    for (j = 0; j < n; j++)
+    {
+        if (map[j] < 0) continue;
+        Sp[map[j]] = nzs;
+        for (p = Ap[j]; p < Ap[j + 1]; p++)
+        {
+            if (map[Ai[p]] >= 0) Si[nzs++] = map[Ai[p]];
+        }
+    }
+    Sp[nr] = nzs;
+    return S;
+}
+
+/* perm = [METIS order of the remaining dofs R, last(:)] (0-based), the METIS
+ * order computed on the submatrix A(R,R) alone.  Workspace: map[n], rem[n],
+ * permS[n].  Returns CHOLMOD_OK, C2D_CHOL_BAD_ARGUMENT (a dof of `last` out
+ * of range or repeated) or CHOLMOD's error status. */
+static int order_block_last(const cholmod_sparse *A, int nlast, const int *last, int *perm,
+                            int *map, int *rem, int *permS, cholmod_common *c)
+{
+    int n = (int) A->ncol;
+    int nr = n - nlast;
+    cholmod_sparse *S;
+    int i, k, ok;
+
+    /* map[i] = position of dof i in R (monotone), -1 for the dofs of `last` */
+    for (i = 0; i < n; i++) map[i] = 0;
+    for (k = 0; k < nlast; k++)
+    {
+        i = last[k] - 1;
+        if (i < 0 || i >= n || map[i] != 0) return C2D_CHOL_BAD_ARGUMENT;
+        map[i] = -1;
+    }
+    for (i = 0, k = 0; i < n; i++)
+    {
+        if (map[i] == 0)
+        {
+            rem[k] = i;
+            map[i] = k++;
+        }
+    }
+
+    if (nr > 0)
+    {
+        S = remaining_pattern(A, map, nr, c);
+        if (S == NULL) return (c->status < 0) ? c->status : CHOLMOD_OUT_OF_MEMORY;
+        /* METIS nested dissection of S, followed by its etree postorder */
+        ok = cholmod_metis(S, NULL, 0, 1, permS, c);
+        cholmod_free_sparse(&S, c);
+        if (!ok) return (c->status < 0) ? c->status : CHOLMOD_INVALID;
+    }
+    for (k = 0; k < nr; k++) perm[k] = rem[permS[k]];      /* remaining dofs */
+    for (k = 0; k < nlast; k++) perm[nr + k] = last[k] - 1; /* then the block */
+    return CHOLMOD_OK;
+}
+
+/* Analysis with the block last: the given permutation, not postordered (a
+ * postorder of the elimination tree could move the block away from the last
+ * pivots).  Returns the symbolic factor or NULL with the status in *status. */
+static cholmod_factor *analyze_block_last(cholmod_sparse *A, int nlast, const int *last,
+                                          cholmod_common *c, int *status)
+{
+    size_t n = A->ncol;
+    int *work = cholmod_malloc(4 * n, sizeof(int), c); /* perm, map, rem, permS */
+    cholmod_factor *L = NULL;
+
+    if (work == NULL)
+    {
+        *status = (c->status < 0) ? c->status : CHOLMOD_OUT_OF_MEMORY;
+        return NULL;
+    }
+    *status = order_block_last(A, nlast, last, work, work + n, work + 2 * n, work + 3 * n, c);
+    if (*status == CHOLMOD_OK)
+    {
+        c->nmethods = 1;
+        c->method[0].ordering = CHOLMOD_GIVEN;
+        c->postorder = 0;
+        L = cholmod_analyze_p(A, work, NULL, 0, c);
+        c->postorder = 1;
+        if (L == NULL) *status = (c->status < 0) ? c->status : CHOLMOD_INVALID;
+    }
+    cholmod_free(4 * n, sizeof(int), work, c);
+    return L;
+}
+
+/* After a successful factorization: min_k L(k,k)^2 / A(p_k,p_k), and the
+ * first non-finite diagonal of L if any (then the ratio is NaN there). */
+static void scan_pivots(struct c2d_chol *h, const double *adiag)
+{
+    cholmod_factor *L = h->L;
+    const int *Super = L->super, *Lpi = L->pi, *Lpx = L->px, *Perm = L->Perm;
+    const double *Lx = L->x;
+    int s, k, k1, k2, nsrow;
+    double lkk, ratio;
+
+    h->pivot_ratio = HUGE_VAL;
+    h->pivot_column = 0;
+    h->pivot_equation = 0;
+    for (s = 0; s < (int) L->nsuper; s++)
+    {
+        k1 = Super[s];
+        k2 = Super[s + 1];
+        nsrow = Lpi[s + 1] - Lpi[s];
+        for (k = k1; k < k2; k++)
+        {
+            lkk = Lx[Lpx[s] + (size_t) (k - k1) * (size_t) nsrow + (size_t) (k - k1)];
+            if (!isfinite(lkk))
+            {
+                h->pivot_ratio = lkk - lkk; /* NaN */
+                h->pivot_column = k + 1;
+                h->pivot_equation = Perm[k] + 1;
+                return;
+            }
+            ratio = (adiag[Perm[k]] > 0.0) ? lkk * lkk / adiag[Perm[k]] : 0.0;
+            if (ratio < h->pivot_ratio)
+            {
+                h->pivot_ratio = ratio;
+                h->pivot_column = k + 1;
+                h->pivot_equation = Perm[k] + 1;
+            }
+        }
+    }
+}
+
+/* The analysis and factorization of A into h->L; returns the status. */
+static int analyze_and_factorize(struct c2d_chol *h, cholmod_sparse *A, const double *adiag,
+                                 int nlast, const int *last)
+{
+    cholmod_common *c = &h->common;
+    int n = (int) A->ncol;
+    int k, status = CHOLMOD_OK;
+    double t0, t1, t2;
+    const int *Perm;
+
+    /* ordering and symbolic analysis */
+    t0 = SuiteSparse_time();
+    if (nlast == 0)
+    {
+        c->nmethods = 1;
+        c->method[0].ordering = CHOLMOD_METIS;
+        c->postorder = 1;
+        h->L = cholmod_analyze(A, c);
+        if (h->L == NULL) status = (c->status < 0) ? c->status : CHOLMOD_INVALID;
+    }
+    else
+    {
+        h->L = analyze_block_last(A, nlast, last, c, &status);
+    }
+    t1 = SuiteSparse_time();
+    h->time_analyze = t1 - t0;
+    if (h->L == NULL) return status;
+    h->n = n;
+    h->nlast = nlast;
+
+    /* verify that the block sits at pivots n-nlast..n-1, in the given order */
+    Perm = h->L->Perm;
+    for (k = 0; k < nlast; k++)
+    {
+        if (Perm[n - nlast + k] != last[k] - 1) return C2D_CHOL_BLOCK_MOVED;
+    }
+
+    /* numeric factorization P A P' = L L' */
+    cholmod_factorize(A, h->L, c);
+    t2 = SuiteSparse_time();
+    h->time_factorize = t2 - t1;
+    status = c->status;
+
+    /* "not positive definite" is a warning: CHOLMOD returns TRUE, sets
+     * Common->status = CHOLMOD_NOT_POSDEF and L->minor < n.  Check both. */
+    if (status >= CHOLMOD_OK && h->L->minor < (size_t) n)
+    {
+        h->minor_column = (int) h->L->minor + 1;
+        h->minor_equation = Perm[h->L->minor] + 1;
+        return (status == CHOLMOD_OK) ? CHOLMOD_NOT_POSDEF : status;
+    }
+    if (status != CHOLMOD_OK) return status;
+    if (!h->L->is_ll || !h->L->is_super || h->L->xtype != CHOLMOD_REAL)
+    {
+        return C2D_CHOL_NOT_SUPER_LL; /* LDL' or simplicial: not what was asked */
+    }
+    h->valid = 1;
+    scan_pivots(h, adiag);
+    return CHOLMOD_OK;
+}
+
+int c2d_chol_factorize(void *handle, int n, const int *colptr, const int *rowind,
+                       const double *val, int nlast, const int *last)
+{
+    struct c2d_chol *h = handle;
+    cholmod_common *c;
+    cholmod_sparse *A;
+    double *adiag;
+    int status;
+
+    if (h == NULL) return C2D_CHOL_NO_HANDLE;
+    c = &h->common;
+    clear_factor(h);
+    if (n < 1 || nlast < 0 || nlast > n || (nlast > 0 && last == NULL))
+    {
+        return C2D_CHOL_BAD_ARGUMENT;
+    }
+
+    adiag = cholmod_malloc((size_t) n, sizeof(double), c);
+    if (adiag == NULL) return (c->status < 0) ? c->status : CHOLMOD_OUT_OF_MEMORY;
+    A = copy_matrix(n, colptr, rowind, val, adiag, c, &status);
+    if (A != NULL)
+    {
+        status = analyze_and_factorize(h, A, adiag, nlast, last);
+        cholmod_free_sparse(&A, c);
+    }
+    cholmod_free((size_t) n, sizeof(double), adiag, c);
+    if (status != CHOLMOD_OK)
+    {
+        h->valid = 0;
+        if (h->L != NULL) cholmod_free_factor(&h->L, c);
+    }
+    return status;
+}
+
+void c2d_chol_minor(const void *handle, int *column, int *equation)
+{
+    const struct c2d_chol *h = handle;
+    *column = (h == NULL) ? 0 : h->minor_column;
+    *equation = (h == NULL) ? 0 : h->minor_equation;
+}
+
+void c2d_chol_stats(const void *handle, int64_t *lnz, double *flops, int64_t *memory_peak,
+                    double *time_analyze, double *time_factorize)
+{
+    const struct c2d_chol *h = handle;
+    if (h == NULL)
+    {
+        *lnz = 0;
+        *flops = 0.0;
+        *memory_peak = 0;
+        *time_analyze = 0.0;
+        *time_factorize = 0.0;
+        return;
+    }
+    *lnz = (int64_t) h->common.lnz;
+    *flops = h->common.fl;
+    *memory_peak = (int64_t) h->common.memory_usage;
+    *time_analyze = h->time_analyze;
+    *time_factorize = h->time_factorize;
+}
+
+void c2d_chol_min_pivot_ratio(const void *handle, double *ratio, int *column, int *equation)
+{
+    const struct c2d_chol *h = handle;
+    if (h == NULL || !h->valid)
+    {
+        *ratio = 0.0;
+        *column = 0;
+        *equation = 0;
+        return;
+    }
+    *ratio = h->pivot_ratio;
+    *column = h->pivot_column;
+    *equation = h->pivot_equation;
+}
+
+void c2d_chol_ordering_name(const void *handle, char *buf, int len)
+{
+    const struct c2d_chol *h = handle;
+    const char *name = "none";
+    if (h != NULL && h->L != NULL)
+    {
+        if (h->nlast > 0)
+        {
+            name = "metis+last";
+        }
+        else
+        {
+            switch (h->L->ordering)
+            {
+            case CHOLMOD_NATURAL: name = "natural"; break;
+            case CHOLMOD_GIVEN: name = "given"; break;
+            case CHOLMOD_AMD: name = "amd"; break;
+            case CHOLMOD_METIS: name = "metis"; break;
+            case CHOLMOD_NESDIS: name = "nesdis"; break;
+            case CHOLMOD_COLAMD: name = "colamd"; break;
+            case CHOLMOD_POSTORDERED: name = "postordered"; break;
+            default: name = "unknown"; break;
+            }
+        }
+    }
+    copy_name(name, buf, len);
+}
+
+void c2d_chol_status_name(int status, char *buf, int len)
+{
+    const char *name;
+    switch (status)
+    {
+    case CHOLMOD_OK: name = "CHOLMOD_OK"; break;
+    case CHOLMOD_NOT_INSTALLED: name = "CHOLMOD_NOT_INSTALLED"; break;
+    case CHOLMOD_OUT_OF_MEMORY: name = "CHOLMOD_OUT_OF_MEMORY"; break;
+    case CHOLMOD_TOO_LARGE: name = "CHOLMOD_TOO_LARGE"; break;
+    case CHOLMOD_INVALID: name = "CHOLMOD_INVALID"; break;
+    case CHOLMOD_GPU_PROBLEM: name = "CHOLMOD_GPU_PROBLEM"; break;
+    case CHOLMOD_NOT_POSDEF: name = "CHOLMOD_NOT_POSDEF"; break;
+    case CHOLMOD_DSMALL: name = "CHOLMOD_DSMALL"; break;
+    case C2D_CHOL_NO_HANDLE: name = "C2D_CHOL_NO_HANDLE"; break;
+    case C2D_CHOL_NO_FACTOR: name = "C2D_CHOL_NO_FACTOR"; break;
+    case C2D_CHOL_NOT_SUPER_LL: name = "C2D_CHOL_NOT_SUPER_LL"; break;
+    case C2D_CHOL_BLOCK_MOVED: name = "C2D_CHOL_BLOCK_MOVED"; break;
+    case C2D_CHOL_BAD_ARGUMENT: name = "C2D_CHOL_BAD_ARGUMENT"; break;
+    default: name = "unknown status"; break;
+    }
+    copy_name(name, buf, len);
+}
+
+int c2d_chol_solve(void *handle, int n, int nrhs, const double *b, double *x)
+{
+    struct c2d_chol *h = handle;
+    cholmod_dense B, *X;
+    int status;
+
+    if (h == NULL) return C2D_CHOL_NO_HANDLE;
+    if (!h->valid || h->L == NULL) return C2D_CHOL_NO_FACTOR;
+    if (n != h->n || nrhs < 0) return C2D_CHOL_BAD_ARGUMENT;
+    if (nrhs == 0) return CHOLMOD_OK;
+
+    /* B: a header over the caller's array, not a copy (only read) */
+    memset(&B, 0, sizeof(B));
+    B.nrow = (size_t) n;
+    B.ncol = (size_t) nrhs;
+    B.nzmax = (size_t) n * (size_t) nrhs;
+    B.d = (size_t) n;
+    B.x = (void *) b;
+    B.z = NULL;
+    B.xtype = CHOLMOD_REAL;
+    B.dtype = CHOLMOD_DOUBLE;
+
+    X = cholmod_solve(CHOLMOD_A, h->L, &B, &h->common); /* X = A \ B */
+    if (X == NULL)
+    {
+        status = h->common.status;
+        return (status < 0) ? status : CHOLMOD_INVALID;
+    }
+    memcpy(x, X->x, (size_t) n * (size_t) nrhs * sizeof(double));
+    cholmod_free_dense(&X, &h->common);
+    return CHOLMOD_OK;
+}
+
+int c2d_chol_trailing_block(const void *handle, int nlast, double *lcc)
+{
+    const struct c2d_chol *h = handle;
+    const cholmod_factor *L;
+    const int *Super, *Lpi, *Lpx, *Ls;
+    const double *Lx;
+    int n, c0, s, k1, k2, nsrow, j, q, i;
+
+    if (h == NULL) return C2D_CHOL_NO_HANDLE;
+    if (!h->valid || h->L == NULL) return C2D_CHOL_NO_FACTOR;
+    L = h->L;
+    if (!L->is_ll || !L->is_super || L->xtype != CHOLMOD_REAL) return C2D_CHOL_NOT_SUPER_LL;
+    if (nlast < 1 || nlast != h->nlast) return C2D_CHOL_BAD_ARGUMENT;
+    /* the factorization verified that Perm ends with `last`, in order; a
+     * factor analyzed with any other ordering cannot hold the block there */
+    if (L->ordering != CHOLMOD_GIVEN) return C2D_CHOL_BLOCK_MOVED;
+
+    n = h->n;
+    c0 = n - nlast; /* first pivot of the block, 0-based */
+    Super = L->super;
+    Lpi = L->pi;
+    Lpx = L->px;
+    Ls = L->s;
+    Lx = L->x;
+    memset(lcc, 0, (size_t) nlast * (size_t) nlast * sizeof(double));
+
+    /* Supernode s holds columns k1..k2-1 of L as a dense nsrow-by-(k2-k1)
+     * column-major block at Lx + Lpx[s]; its row indices are Ls[Lpi[s]..],
+     * the first k2-k1 of them being k1..k2-1.  Walk back from the last
+     * supernode while it still has columns >= c0. */
+    for (s = (int) L->nsuper - 1; s >= 0 && Super[s + 1] > c0; s--)
+    {
+        k1 = Super[s];
+        k2 = Super[s + 1];
+        nsrow = Lpi[s + 1] - Lpi[s];
+        for (j = (k1 > c0 ? k1 : c0); j < k2; j++)
+        {
+            for (q = j - k1; q < nsrow; q++) /* rows j.. of column j */
+            {
+                i = Ls[Lpi[s] + q];
+                /* L_cc(i-c0, j-c0) = L(i, j), i >= j >= c0 */
+                lcc[(size_t) (j - c0) * (size_t) nlast + (size_t) (i - c0)] =
+                    Lx[Lpx[s] + (size_t) (j - k1) * (size_t) nsrow + (size_t) q];
+            }
+        }
+    }
+    return CHOLMOD_OK;
+}

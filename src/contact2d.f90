@@ -1,0 +1,442 @@
+!> contact2d: unilateral (Signorini) contact between elastic bodies in 2D by
+!> the mortar finite element method (Ben Belgacem, Hild, Laborde).
+!>
+!> The run reads like the algorithm:
+!>   read the deck -> build the scene (meshes, laws, loads, contact pairs)
+!>   -> assemble K_ff, f_f -> factorize (contact dofs last) -> u0 = K^-1 f
+!>   -> condense the contact problem onto the slave nodes: W, q
+!>   -> solve LCP(W, q) (Lemke or projected Gauss-Seidel) -> recover u
+!>   -> stresses, reactions, energy -> VTK, contact table, summary.
+program contact2d
+  use kinds, only: dp, i8
+  use diagnostics, only: diag_t, add_error, stop_input_errors, fail_numerical, exit_program, error_t, int_to_str
+  use deck_reader, only: deck_t, read_deck
+  use scene, only: scene_t, build_scene
+  use body, only: number_equations, build_pattern, assemble_stiffness, internal_forces, element_stresses
+  use sparse_matrix, only: csc_t
+  use sparse_cholesky, only: factor_t, factorize, solve, factor_nnz
+  use contact_set, only: contact_set_t, build_contact_set
+  use contact_condensation, only: contact_equations, condense, contact_forces, recover
+  use lcp_solvers, only: lcp_options_t, lcp_report_t, solve_lcp_lemke, solve_lcp_pgs
+  use results_writer, only: results_t, write_vtk, write_contact_csv, write_summary, commit_outputs, &
+                            discard_outputs, phase_names, nphase
+  use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+  implicit none
+
+  character(len=*), parameter :: version = '1.0.0'
+  integer, parameter :: ph_mesh = 1, ph_assemble = 2, ph_factor = 3, ph_condense = 4, ph_lcp = 5, &
+                        ph_recover = 6, ph_output = 7, ph_total = 8
+
+  character(len=:), allocatable :: deck_path, outdir
+  logical :: check_only, quiet
+  type(diag_t) :: diag
+  type(deck_t) :: deck
+  type(scene_t) :: sc
+  type(contact_set_t) :: cs
+  type(csc_t) :: k
+  type(factor_t) :: factor
+  type(results_t) :: res
+  type(error_t), allocatable :: err
+  integer, allocatable :: eq(:), last(:)
+  integer :: nfree, i, nlabel
+  integer(i8) :: t_start, t_phase
+  real(dp), allocatable :: rhs(:,:), x(:,:), u0(:), w(:,:), q(:), fint(:), fc(:)
+
+  call parse_command_line(deck_path, outdir, check_only, quiet)
+  call system_clock(t_start)
+  t_phase = t_start
+
+  ! --- deck and scene ---------------------------------------------------
+  call read_deck(deck_path, deck, diag)
+  call stop_input_errors(diag)
+  call make_folder(outdir, diag)
+  call stop_input_errors(diag)
+  call build_scene(deck, outdir, sc, diag)
+  call stop_input_errors(diag)
+  call build_contact_set(sc%bodies, sc%specs, cs, err)
+  if (allocated(err)) call contact_error(err)
+  call number_equations(sc%fixed, eq, nfree)
+  res%effects = sc%effects
+  res%nfree = nfree
+  call report_scene()
+  if (check_only) then
+    call say('check: the deck and its meshes are valid; nothing solved, nothing written')
+    call exit_program(0)
+  end if
+  call lap(ph_mesh)
+
+  ! --- assembly ---------------------------------------------------------
+  if (nfree == 0) call fail_numerical('every dof is fixed: there is nothing to solve')
+  call build_pattern(sc%bodies, eq, nfree, k)
+  allocate(rhs(nfree, 1), x(nfree, 1))
+  rhs = 0.0_dp
+  do i = 1, sc%ndof
+    if (eq(i) > 0) rhs(eq(i), 1) = sc%fext(i)
+  end do
+  call assemble_stiffness(sc%bodies, eq, sc%ubar, k, rhs(:, 1))
+  call lap(ph_assemble)
+
+  ! --- factorization (contact dofs last) ----------------------------------
+  call contact_equations(cs, eq, last)
+  if (size(last) > 0) then
+    call factorize(factor, k, err, last=last)
+  else
+    call factorize(factor, k, err)
+  end if
+  if (allocated(err)) call fail_numerical(err%message)
+  res%factor_nnz = factor_nnz(factor)
+  call lap(ph_factor)
+
+  ! --- u0 = K^-1 f ------------------------------------------------------
+  call solve(factor, rhs, x)
+  allocate(u0(sc%ndof))
+  u0 = sc%ubar
+  do i = 1, sc%ndof
+    if (eq(i) > 0) u0(i) = x(eq(i), 1)
+  end do
+  deallocate(rhs, x)
+
+  allocate(fc(sc%ndof))
+  fc = 0.0_dp
+  res%lcp_method = 'none'
+  if (cs%nrow > 0) then
+    call condense(cs, eq, factor, u0, w, q, err)
+    if (allocated(err)) call fail_numerical(err%message)
+    call lap(ph_condense)
+    call solve_contact_lcp()
+    call lap(ph_lcp)
+    allocate(res%u(sc%ndof))
+    call recover(cs, eq, factor, u0, res%mu, res%u)
+    call contact_forces(cs, res%mu, fc)
+  else
+    call lap(ph_condense)
+    call lap(ph_lcp)
+    res%u = u0
+  end if
+  if (.not. all(ieee_is_finite(res%u))) call fail_numerical('the displacement is not finite (overflow in the solve)')
+
+  ! --- stresses, reactions, energy -----------------------------------------
+  allocate(res%stress(3, sc%nelem), res%vm(sc%nelem), fint(sc%ndof))
+  call element_stresses(sc%bodies, res%u, res%stress, res%vm)
+  call internal_forces(sc%bodies, res%u, fint)
+  res%energy = 0.5_dp * dot_product(res%u, fint)
+  allocate(res%reaction(2, size(sc%fixes)), source=0.0_dp)
+  nlabel = 1
+  do i = 1, size(sc%fixes)
+    nlabel = max(nlabel, len(sc%fixes(i)%label))
+  end do
+  allocate(character(len=nlabel) :: res%fix_label(size(sc%fixes)))
+  do i = 1, size(sc%fixes)
+    res%fix_label(i) = sc%fixes(i)%label
+  end do
+  do i = 1, sc%ndof
+    if (sc%fix_owner(i) > 0) then
+      ! R = K u - f_ext - f_contact on a fixed dof
+      res%reaction(2 - mod(i, 2), sc%fix_owner(i)) = res%reaction(2 - mod(i, 2), sc%fix_owner(i)) &
+        + fint(i) - sc%fext(i) - fc(i)
+    end if
+  end do
+  call nodal_contact_fields()
+  call lap(ph_recover)
+
+  ! --- outputs ------------------------------------------------------------
+  call write_outputs()
+  call lap(ph_output)
+  call report_run()
+  call exit_program(0)
+
+contains
+
+  !> Seconds since the last lap go to phase ph; the total is kept up to date.
+  subroutine lap(ph)
+    integer, intent(in) :: ph
+    integer(i8) :: now, rate
+    call system_clock(now, rate)
+    res%time(ph) = res%time(ph) + real(now - t_phase, dp) / real(rate, dp)
+    res%time(ph_total) = real(now - t_start, dp) / real(rate, dp)
+    t_phase = now
+  end subroutine lap
+
+  subroutine say(text)
+    character(len=*), intent(in) :: text
+    if (.not. quiet) write(output_unit, '(a)') text
+  end subroutine say
+
+  !> A contact-set error belongs to its CONTACT statement.
+  subroutine contact_error(e)
+    type(error_t), intent(in) :: e
+    integer :: ip, colon
+    ip = 0
+    colon = index(e%message, ':')
+    if (e%message(1:min(8, len(e%message))) == 'CONTACT ' .and. colon > 9) read(e%message(9:colon - 1), *) ip
+    if (e%status == 2 .and. ip >= 1 .and. ip <= size(deck%contacts)) then
+      call add_error(diag, deck%file, deck%contacts(ip)%line, e%message(colon + 2:))
+      call stop_input_errors(diag)
+    end if
+    call fail_numerical(e%message)
+  end subroutine contact_error
+
+  !> LCP(W, q) by the chosen method; mu, gaps, pressures, status.
+  subroutine solve_contact_lcp()
+    type(lcp_options_t) :: opts
+    type(lcp_report_t) :: rep
+    character(len=:), allocatable :: method
+    integer :: r, ip, node
+    real(dp) :: dmax, pmax, gmax
+
+    opts%tol = deck%solver%tol
+    opts%maxit = deck%solver%maxit
+    opts%omega = deck%solver%omega
+    method = deck%solver%lcp
+    if (method == 'auto') then
+      if (cs%nrow <= 1000) then
+        method = 'lemke'
+      else
+        method = 'pgs'
+      end if
+    end if
+    allocate(res%mu(cs%nrow))
+    res%mu = 0.0_dp
+    if (method == 'lemke') then
+      call solve_lcp_lemke(w, q, res%mu, opts, rep)
+    else
+      call solve_lcp_pgs(w, q, res%mu, opts, rep)
+    end if
+    res%lcp_method = method
+    res%lcp_iterations = rep%iterations
+    res%lcp_residual = rep%residual
+    if (rep%info /= 0) then
+      if (allocated(rep%message)) then
+        call fail_numerical('contact problem not solved: ' // rep%message)
+      else
+        call fail_numerical('contact problem not solved by ' // method // ' (info ' // int_to_str(rep%info) // ')')
+      end if
+    end if
+    if (.not. all(ieee_is_finite(res%mu))) call fail_numerical('the contact multipliers are not finite')
+
+    dmax = 0.0_dp
+    do r = 1, cs%nrow
+      dmax = max(dmax, w(r, r))
+    end do
+    res%redundant = count([(w(r, r) <= 1.0e-14_dp * dmax, r = 1, cs%nrow)])
+    allocate(res%gap(cs%nrow), res%pressure(cs%nrow), res%status(cs%nrow))
+    res%gap = q + matmul(w, res%mu)                 ! final gap = q + W mu
+    pmax = 0.0_dp
+    do r = 1, cs%nrow
+      ip = cs%row_pair(r)
+      node = cs%row_node(r)
+      res%pressure(r) = res%mu(r) / cs%pair(ip)%mortar%covered_weight(node)   ! p = mu / int(phi_i)
+      pmax = max(pmax, abs(res%pressure(r)))
+    end do
+    res%contact_nodes = cs%nrow
+    do r = 1, cs%nrow
+      res%status(r) = merge(1, 0, res%mu(r) > 1.0e-12_dp * maxval(abs(res%mu)) .and. res%mu(r) > 0.0_dp)
+    end do
+    res%active_nodes = count(res%status == 1)
+    ! length scale: the initial gaps, or the gaps the loads open without contact forces (q)
+    gmax = max(maxval(abs(cs%g)), maxval(abs(q)))
+    if (pmax > 0.0_dp .and. gmax > 0.0_dp) then
+      res%complementarity = maxval(abs(res%pressure * res%gap)) / (pmax * gmax)
+    else
+      res%complementarity = 0.0_dp
+    end if
+    res%min_gap = min(0.0_dp, minval(res%gap))
+    res%min_pressure = minval(res%pressure)
+  end subroutine solve_contact_lcp
+
+  !> contact_pressure and gap on the nodes, for the VTK file.
+  subroutine nodal_contact_fields()
+    integer :: r, ip, node, gnode
+    allocate(res%node_pressure(sc%ndof / 2), res%node_gap(sc%ndof / 2))
+    res%node_pressure = 0.0_dp
+    res%node_gap = 0.0_dp
+    do r = 1, cs%nrow
+      ip = cs%row_pair(r)
+      node = cs%row_node(r)
+      gnode = sc%bodies(cs%pair(ip)%spec%slave_body)%dof0 / 2 + cs%pair(ip)%snode(node)
+      res%node_pressure(gnode) = res%pressure(r)
+      res%node_gap(gnode) = res%gap(r)
+    end do
+  end subroutine nodal_contact_fields
+
+  !> Write every output to a temporary name, then rename them all.
+  subroutine write_outputs()
+    character(len=512) :: tmp(3), final(3)
+    logical :: ok
+    final(1) = outdir // '/' // deck%output%vtk
+    final(2) = outdir // '/' // deck%output%contact
+    final(3) = outdir // '/' // deck%output%summary
+    do i = 1, 3
+      tmp(i) = trim(final(i)) // '.part'
+    end do
+    if (cs%npair == 0) tmp(2) = ''
+    call write_vtk(trim(tmp(1)), deck%title, sc%bodies, res, ok)
+    if (ok .and. cs%npair > 0) call write_contact_csv(trim(tmp(2)), cs, res, ok)
+    if (ok) then
+      call lap(ph_output)
+      call write_summary(trim(tmp(3)), res, ok)
+    end if
+    if (ok) call commit_outputs(tmp, final, ok)
+    if (.not. ok) then
+      call discard_outputs(tmp)
+      write(error_unit, '(a)') 'contact2d: error: ' // outdir // ': cannot write the output files (a writable folder expected)'
+      call exit_program(2)
+    end if
+  end subroutine write_outputs
+
+  subroutine report_scene()
+    integer :: b, ip
+    character(len=160) :: line
+    call say('contact2d ' // version // ': ' // deck%file)
+    if (len(deck%title) > 0) call say('title    ' // deck%title)
+    call say('effects  ' // sc%effects)
+    if (deck%plane_stress) then
+      call say('model    plane stress, P1/Q1 elasticity, small deformation')
+    else
+      call say('model    plane strain, P1/Q1 elasticity, small deformation')
+    end if
+    do b = 1, size(sc%bodies)
+      write(line, '(a,i0,a,i0,a,i0,a)') 'body     ' // sc%bodies(b)%name // ': ', sc%bodies(b)%mesh%nnode, &
+        ' nodes, ', sc%bodies(b)%mesh%nelem, ' elements (', count(sc%bodies(b)%mesh%nen == 4), ' quadrilaterals)'
+      call say(trim(line))
+    end do
+    do ip = 1, cs%npair
+      write(line, '(a,i0,a,i0,a,i0,a,i0,a)') 'contact  pair ', ip, ': ', size(cs%pair(ip)%snode), &
+        ' slave nodes, ', size(cs%pair(ip)%mnode), ' master nodes, ', cs%pair(ip)%nrow, &
+        ' constrained (mortar, frictionless)'
+      call say(trim(line))
+    end do
+    write(line, '(a,i0,a,i0,a,i0,a)') 'sizes    ', sc%ndof, ' dofs, ', nfree, ' free, ', cs%nrow, ' contact constraints'
+    call say(trim(line))
+  end subroutine report_scene
+
+  subroutine report_run()
+    character(len=160) :: line
+    integer :: p
+    if (cs%nrow > 0) then
+      write(line, '(a,i0,a,i0,a,es10.3,a,es10.3)') 'lcp      ' // res%lcp_method // ': ', res%lcp_iterations, &
+        ' iterations, ', res%active_nodes, ' active nodes, residual ', res%lcp_residual, &
+        ', complementarity ', res%complementarity
+      call say(trim(line))
+      write(line, '(a,es12.4,a,es12.4)') 'contact  min gap ', res%min_gap, ', min pressure ', res%min_pressure
+      call say(trim(line))
+    end if
+    write(line, '(a,es16.8,a,i0)') 'energy  ', res%energy, ',  nnz(L) ', res%factor_nnz
+    call say(trim(line))
+    call say('phase        seconds')
+    do p = 1, nphase
+      write(line, '(a,f12.4)') phase_names(p), res%time(p)
+      call say(trim(line))
+    end do
+    call say('wrote    ' // outdir // '/' // deck%output%vtk // ', ' // trim(merge(deck%output%contact // ', ', &
+             repeat(' ', len(deck%output%contact) + 2), cs%npair > 0)) // ' ' // deck%output%summary)
+  end subroutine report_run
+
+  !> Create the output folder (and its parents) when missing.
+  subroutine make_folder(path, d)
+    character(len=*), intent(in) :: path
+    type(diag_t), intent(inout) :: d
+    integer :: stat, cstat
+    logical :: there
+    inquire(file=path // '/.', exist=there)
+    if (there) return
+    call execute_command_line("mkdir -p -- '" // path // "' 2>/dev/null", exitstat=stat, cmdstat=cstat)
+    inquire(file=path // '/.', exist=there)
+    if (.not. there) call add_error(d, path, 0, 'cannot create the output folder (a writable path expected)')
+  end subroutine make_folder
+
+  subroutine parse_command_line(deck_path, outdir, check_only, quiet)
+    character(len=:), allocatable, intent(out) :: deck_path, outdir
+    logical, intent(out) :: check_only, quiet
+    integer :: n, j, length
+    character(len=:), allocatable :: arg
+    check_only = .false.
+    quiet = .false.
+    outdir = '.'
+    deck_path = ''
+    n = command_argument_count()
+    j = 0
+    do while (j < n)
+      j = j + 1
+      call get_command_argument(j, length=length)
+      allocate(character(len=length) :: arg)
+      call get_command_argument(j, arg)
+      select case (arg)
+      case ('-h', '--help')
+        call print_help()
+        call exit_program(0)
+      case ('--version')
+        write(output_unit, '(a)') 'contact2d ' // version
+        call exit_program(0)
+      case ('--check')
+        check_only = .true.
+      case ('-q')
+        quiet = .true.
+      case ('-o')
+        if (j == n) call usage_error('option -o needs a folder (-o DIR)')
+        j = j + 1
+        call get_command_argument(j, length=length)
+        deallocate(outdir)
+        allocate(character(len=length) :: outdir)
+        call get_command_argument(j, outdir)
+        if (length == 0) call usage_error('option -o needs a folder (-o DIR)')
+      case default
+        if (len(arg) > 0) then
+          if (arg(1:1) == '-') call usage_error('unknown option "' // arg // '" (expected -o DIR, --check, -q, ' // &
+                                                '--version, -h)')
+        end if
+        if (len(deck_path) > 0) call usage_error('more than one deck given ("' // deck_path // '" and "' // arg // &
+                                                  '"; one DECK expected)')
+        deck_path = arg
+      end select
+      deallocate(arg)
+    end do
+    if (len(deck_path) == 0) call usage_error('no deck given (usage: contact2d [options] DECK)')
+  end subroutine parse_command_line
+
+  subroutine usage_error(text)
+    character(len=*), intent(in) :: text
+    write(error_unit, '(a)') 'contact2d: error: ' // text
+    call exit_program(2)
+  end subroutine usage_error
+
+  subroutine print_help()
+    write(output_unit, '(a)') &
+      'usage: contact2d [options] DECK', &
+      '', &
+      'Unilateral (Signorini) contact between elastic bodies in 2D by the mortar', &
+      'finite element method (P1/Q1 plane elasticity, frictionless contact,', &
+      'condensed LCP solved by Lemke or projected Gauss-Seidel).', &
+      '', &
+      'options:', &
+      '  -o DIR       write all outputs into DIR (created if missing; default .)', &
+      '  --check      read and validate the deck and meshes, print the scene, solve nothing', &
+      '  -q           quiet: only errors on stderr (the summary file is still written)', &
+      '  --version    print the version', &
+      '  -h, --help   this help', &
+      '', &
+      'deck statements (keywords and keys case-insensitive; ! and # start comments):', &
+      '  TITLE text', &
+      '  PLANE strain | PLANE stress thickness=T', &
+      '  BODY name ... END', &
+      '    MESH rect x0= y0= x1= y1= nx= ny= [elem=tri3|quad4] [diag=right|left|alt]', &
+      '    MESH gmsh file=F.msh              (MSH 2.2 or 4.1 ASCII; physical groups name boundaries)', &
+      '    MESH gmsh file=F.geo [name=value ...]   (meshed by gmsh -2 -setnumber name value)', &
+      '    MATERIAL isotropic E= nu=', &
+      '    MATERIAL orthotropic E1= E2= nu12= G12= [angle=0] [E3= nu13= nu23=]', &
+      '    DENSITY rho=', &
+      '    FIX boundary [ux=] [uy=]', &
+      '    TRACTION boundary tx= ty=', &
+      '    PRESSURE boundary p=', &
+      '    BODYFORCE fx= fy=', &
+      '  GRAVITY gx= gy=', &
+      '  CONTACT slave=body:boundary master=body:boundary [gap=geometry|zero]', &
+      '  SOLVER lcp=auto|lemke|pgs [tol=1e-10] [maxit=N] [omega=1.0]', &
+      '  OUTPUT [vtk=FILE] [contact=FILE.csv] [summary=FILE]', &
+      '', &
+      'exit status: 0 solved, 1 solver failure (diagnostic on stderr), 2 bad input.', &
+      'See doc/deck.md for every statement, default and output.'
+  end subroutine print_help
+
+end program contact2d

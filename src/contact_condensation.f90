@@ -1,0 +1,165 @@
+!> contact_condensation: the contact problem condensed onto the constraint rows
+!> (the Delassus matrix) and the recovery of the displacement.
+!>
+!> With K u = f - B' mu (the KKT system of min 1/2 u'Ku - f'u, B u <= g) and
+!> u0 = K^-1 f, the final gap is  g - B u = q + W mu  with
+!>     W = B K^-1 B'      q = g - B u0
+!> and (mu, q + W mu) solve LCP(W, q).  Only the contact dofs C enter B, so
+!> W = B_C (K^-1)_CC B_C'.  The contact dofs are ordered last in the Cholesky
+!> factorization, K = L L' with L = [L_rr 0; L_cr L_cc], hence
+!> (K^-1)_CC = (L_cc L_cc')^-1 and
+!>     X = L_cc^-1 B_C'  (dtrsm),   W = X' X  (dsyrk)
+!> at the cost of a dense triangular solve, not of ncdof sparse solves.
+!>
+!> Programming interface
+!>   contact_equations(cs, eq, last)        free equations of the contact dofs, in
+!>                                          the order to be factorized last
+!>   condense(cs, eq, factor, u0, w, q, err)   W (nrow, nrow), q (nrow)
+!>   contact_forces(cs, mu, fc)             fc = -B' mu on every dof (fc sized ndof)
+!>   recover(cs, eq, factor, u0, mu, u)     u = u0 + K^-1 (-B' mu) on free dofs
+module contact_condensation
+  use kinds, only: dp
+  use diagnostics, only: error_t, set_error
+  use contact_set, only: contact_set_t
+  use sparse_cholesky, only: factor_t, trailing_factor_block, solve
+  implicit none
+  private
+  public :: contact_equations, condense, contact_forces, recover
+
+  interface
+    subroutine dtrsm(side, uplo, transa, diag, m, n, alpha, a, lda, b, ldb)
+      import :: dp
+      character, intent(in) :: side, uplo, transa, diag
+      integer, intent(in) :: m, n, lda, ldb
+      real(dp), intent(in) :: alpha, a(lda, *)
+      real(dp), intent(inout) :: b(ldb, *)
+    end subroutine dtrsm
+    subroutine dsyrk(uplo, trans, n, k, alpha, a, lda, beta, c, ldc)
+      import :: dp
+      character, intent(in) :: uplo, trans
+      integer, intent(in) :: n, k, lda, ldc
+      real(dp), intent(in) :: alpha, a(lda, *), beta
+      real(dp), intent(inout) :: c(ldc, *)
+    end subroutine dsyrk
+  end interface
+
+contains
+
+  !> Free equations of the contact dofs (ascending dof order): the block
+  !> ordered last in the factorization.
+  subroutine contact_equations(cs, eq, last)
+    type(contact_set_t), intent(in) :: cs
+    integer, intent(in) :: eq(:)
+    integer, allocatable, intent(out) :: last(:)
+    integer :: k, n
+    n = count(eq(cs%cdof) > 0)
+    allocate(last(n))
+    n = 0
+    do k = 1, cs%ncdof
+      if (eq(cs%cdof(k)) > 0) then
+        n = n + 1
+        last(n) = eq(cs%cdof(k))
+      end if
+    end do
+  end subroutine contact_equations
+
+  !> W = B_C (K^-1)_CC B_C' and q = g - B u0.
+  !>   cs     (in)  constraint rows; factor (in) K = L L' with contact_equations last
+  !>   eq     (in)  (ndof) free equation numbers
+  !>   u0     (in)  (ndof) solution without contact (prescribed values on fixed dofs)
+  !>   w      (out) (nrow, nrow) symmetric positive semi-definite
+  !>   q      (out) (nrow)
+  !>   err    (out) allocated when the trailing block cannot be had
+  subroutine condense(cs, eq, factor, u0, w, q, err)
+    type(contact_set_t), intent(in) :: cs
+    integer, intent(in) :: eq(:)
+    type(factor_t), intent(inout) :: factor
+    real(dp), intent(in) :: u0(:)
+    real(dp), allocatable, intent(out) :: w(:,:), q(:)
+    type(error_t), allocatable, intent(out) :: err
+    integer :: nc, nfc, r, k, col, i, j
+    integer, allocatable :: fcol(:)
+    real(dp), allocatable :: x(:,:), lcc(:,:)
+
+    nc = cs%nrow
+    allocate(w(nc, nc), q(nc))
+    ! q = g - B u0 (fixed contact dofs carry their prescribed values)
+    do r = 1, nc
+      q(r) = cs%g(r)
+      do k = cs%bptr(r), cs%bptr(r + 1) - 1
+        q(r) = q(r) - cs%bval(k) * u0(cs%cdof(cs%bcol(k)))
+      end do
+    end do
+    ! column of each contact dof in the free block (0 when fixed)
+    allocate(fcol(cs%ncdof))
+    nfc = 0
+    do k = 1, cs%ncdof
+      if (eq(cs%cdof(k)) > 0) then
+        nfc = nfc + 1
+        fcol(k) = nfc
+      else
+        fcol(k) = 0
+      end if
+    end do
+    w = 0.0_dp
+    if (nfc == 0 .or. nc == 0) return
+    ! X = B_C' restricted to free contact dofs, (nfc, nc)
+    allocate(x(nfc, nc), source=0.0_dp)
+    do r = 1, nc
+      do k = cs%bptr(r), cs%bptr(r + 1) - 1
+        col = fcol(cs%bcol(k))
+        if (col > 0) x(col, r) = x(col, r) + cs%bval(k)
+      end do
+    end do
+    call trailing_factor_block(factor, nfc, lcc)
+    if (.not. allocated(lcc)) then
+      call set_error(err, 'cannot extract the contact block of the Cholesky factor', 1)
+      return
+    end if
+    call dtrsm('L', 'L', 'N', 'N', nfc, nc, 1.0_dp, lcc, nfc, x, nfc)      ! X = L_cc^-1 B_C'
+    call dsyrk('U', 'T', nc, nfc, 1.0_dp, x, nfc, 0.0_dp, w, nc)           ! W = X' X (upper)
+    do j = 1, nc
+      do i = j + 1, nc
+        w(i, j) = w(j, i)
+      end do
+    end do
+  end subroutine condense
+
+  !> Nodal contact forces fc = -B' mu on all dofs (zero away from contact).
+  subroutine contact_forces(cs, mu, fc)
+    type(contact_set_t), intent(in) :: cs
+    real(dp), intent(in) :: mu(:)
+    real(dp), intent(inout) :: fc(:)
+    integer :: r, k
+    fc = 0.0_dp
+    do r = 1, cs%nrow
+      do k = cs%bptr(r), cs%bptr(r + 1) - 1
+        fc(cs%cdof(cs%bcol(k))) = fc(cs%cdof(cs%bcol(k))) - cs%bval(k) * mu(r)
+      end do
+    end do
+  end subroutine contact_forces
+
+  !> u = u0 + K^-1 (fc)_f with fc = -B' mu: one more solve.
+  subroutine recover(cs, eq, factor, u0, mu, u)
+    type(contact_set_t), intent(in) :: cs
+    integer, intent(in) :: eq(:)
+    type(factor_t), intent(inout) :: factor
+    real(dp), intent(in) :: u0(:), mu(:)
+    real(dp), intent(out) :: u(:)
+    real(dp), allocatable :: fc(:), rhs(:,:), du(:,:)
+    integer :: i, nfree
+    nfree = maxval(eq)
+    allocate(fc(size(u0)), rhs(nfree, 1), du(nfree, 1))
+    call contact_forces(cs, mu, fc)
+    rhs = 0.0_dp
+    do i = 1, size(eq)
+      if (eq(i) > 0) rhs(eq(i), 1) = fc(i)
+    end do
+    call solve(factor, rhs, du)
+    u = u0
+    do i = 1, size(eq)
+      if (eq(i) > 0) u(i) = u0(i) + du(eq(i), 1)
+    end do
+  end subroutine recover
+
+end module contact_condensation

@@ -1,0 +1,318 @@
+!> contact_set: the discrete contact constraints of all CONTACT pairs, the
+!> paper's K_h = { v_h : v1.n1 + pi_h^1(v2.n2) <= 0 on Gamma_c } (eq. (10))
+!> extended to an initial gap, in matrix form  B u <= g.
+!>
+!> Row i of B belongs to a slave node x_i of the effective contact zone of its
+!> pair (see mortar_operator):
+!>     B_i u = n_i . u1(x_i) - n_i . sum_j P_ij u2(y_j)      (n2 = -n1)
+!> with n_i the slave nodal normal and P the matrix of pi_h^1; g_i = gap0_i.
+!> B is kept sparse by rows over a compact list of "contact dofs" (the global
+!> dofs of the slave and master boundary nodes that B touches); entries of P
+!> below 1e-16 of their row's largest entry are dropped (pi_h^1 decays
+!> exponentially away from the diagonal; the dropped part is below round-off).
+!>
+!> Programming interface
+!>   type(contact_set_t)   pairs, rows, B in CSR over contact dofs, g
+!>   chain_boundary(mesh, ib, nodes, why)   order the edges of boundary ib into
+!>        one open polyline; why is set (non-empty) when they do not form one
+!>   boundary_polyline(bd, ib, nodes, x, nout, why)  polyline, coordinates and
+!>        outward unit normals of its segments
+!>   build_contact_set(bodies, specs, cs, err)   all pairs -> rows of B, g
+module contact_set
+  use kinds, only: dp
+  use diagnostics, only: error_t, set_error, int_to_str
+  use mesh, only: mesh_t
+  use body, only: body_t, node_elements, edge_outward_normal
+  use mortar_operator, only: mortar_t, build_mortar
+  implicit none
+  private
+  public :: contact_set_t, pair_spec_t, contact_pair_t, chain_boundary, boundary_polyline
+  public :: build_contact_set
+
+  !> What a CONTACT statement says, resolved to indices.
+  type :: pair_spec_t
+    integer :: slave_body = 0, slave_bnd = 0   !< body index, boundary index in its mesh
+    integer :: master_body = 0, master_bnd = 0
+    logical :: gap_zero = .false.
+  end type pair_spec_t
+
+  type :: contact_pair_t
+    type(pair_spec_t) :: spec
+    integer, allocatable :: snode(:)       !< (ns) slave polyline, node ids of the slave mesh
+    integer, allocatable :: mnode(:)       !< (nm) master polyline, node ids of the master mesh
+    real(dp), allocatable :: xs(:,:)       !< (2, ns) slave node coordinates
+    type(mortar_t) :: mortar               !< pi_h^1, normals, gap0, weights
+    integer :: row0 = 0                    !< rows row0+1 .. row0+nrow of B
+    integer :: nrow = 0                    !< constrained slave nodes (effective zone)
+  end type contact_pair_t
+
+  type :: contact_set_t
+    integer :: npair = 0
+    type(contact_pair_t), allocatable :: pair(:)
+    integer :: nrow = 0                     !< constraints, all pairs
+    integer, allocatable :: row_pair(:)     !< (nrow) pair of each row
+    integer, allocatable :: row_node(:)     !< (nrow) index into the pair's slave polyline
+    integer :: ncdof = 0                    !< contact dofs
+    integer, allocatable :: cdof(:)         !< (ncdof) their global dofs, ascending
+    integer, allocatable :: bptr(:)         !< (nrow+1) CSR row pointers of B
+    integer, allocatable :: bcol(:)         !< column = index into cdof
+    real(dp), allocatable :: bval(:)        !< values
+    real(dp), allocatable :: g(:)           !< (nrow) initial gaps
+  end type contact_set_t
+
+contains
+
+  !> Order the edges of boundary ib of mesh into one open chain of nodes.
+  !>   nodes (out) the chain (nseg + 1 nodes), in the edges' own direction when
+  !>               possible; why (out) '' on success, else the reason
+  subroutine chain_boundary(mesh, ib, nodes, why)
+    type(mesh_t), intent(in) :: mesh
+    integer, intent(in) :: ib
+    integer, allocatable, intent(out) :: nodes(:)
+    character(len=:), allocatable, intent(out) :: why
+    integer, allocatable :: deg(:), ptr(:), adj(:), fill(:)
+    integer :: nseg, s, a, b, start, prev, cur, k, nxt, nends
+    logical, allocatable :: used(:)
+
+    why = ''
+    nseg = mesh%bnd(ib)%nseg
+    if (nseg < 1) then
+      why = 'it has no edges (a boundary curve expected, not a point set)'
+      return
+    end if
+    allocate(deg(mesh%nnode), source=0)
+    do s = 1, nseg
+      a = mesh%bnd(ib)%seg(1, s); b = mesh%bnd(ib)%seg(2, s)
+      if (a == b) then
+        why = 'it has a zero-length edge'
+        return
+      end if
+      deg(a) = deg(a) + 1; deg(b) = deg(b) + 1
+    end do
+    if (any(deg > 2)) then
+      why = 'it branches (three or more edges meet at a node)'
+      return
+    end if
+    nends = count(deg == 1)
+    if (nends == 0) then
+      why = 'it is a closed curve (an open curve with two ends expected)'
+      return
+    end if
+    if (nends > 2) then
+      why = 'it is made of ' // int_to_str(nends / 2) // ' separate pieces (one connected curve expected)'
+      return
+    end if
+    ! adjacency lists (two at most per node)
+    allocate(ptr(mesh%nnode + 1), fill(mesh%nnode))
+    ptr(1) = 1
+    do a = 1, mesh%nnode
+      ptr(a + 1) = ptr(a) + deg(a)
+    end do
+    allocate(adj(2 * nseg))
+    fill = ptr(1:mesh%nnode)
+    do s = 1, nseg
+      a = mesh%bnd(ib)%seg(1, s); b = mesh%bnd(ib)%seg(2, s)
+      adj(fill(a)) = s; fill(a) = fill(a) + 1
+      adj(fill(b)) = s; fill(b) = fill(b) + 1
+    end do
+    ! start at the end node that is the first node of its edge, if any
+    start = 0
+    do s = 1, nseg
+      a = mesh%bnd(ib)%seg(1, s)
+      if (deg(a) == 1) then
+        start = a
+        exit
+      end if
+    end do
+    if (start == 0) then
+      do a = 1, mesh%nnode
+        if (deg(a) == 1) then
+          start = a
+          exit
+        end if
+      end do
+    end if
+    allocate(nodes(nseg + 1), used(nseg))
+    used = .false.
+    nodes(1) = start
+    prev = 0
+    cur = start
+    do k = 1, nseg
+      nxt = 0
+      do s = ptr(cur), ptr(cur + 1) - 1
+        if (.not. used(adj(s))) then
+          nxt = adj(s)
+          exit
+        end if
+      end do
+      if (nxt == 0) then
+        why = 'it is made of separate pieces (one connected curve expected)'
+        return
+      end if
+      used(nxt) = .true.
+      if (mesh%bnd(ib)%seg(1, nxt) == cur) then
+        cur = mesh%bnd(ib)%seg(2, nxt)
+      else
+        cur = mesh%bnd(ib)%seg(1, nxt)
+      end if
+      nodes(k + 1) = cur
+    end do
+    if (prev /= 0) why = ''
+  end subroutine chain_boundary
+
+  !> Polyline of boundary ib of body bd with the outward unit normal of each
+  !> segment (pointing away from the element that owns the edge).
+  subroutine boundary_polyline(bd, ib, nodes, x, nout, why)
+    type(body_t), intent(in) :: bd
+    integer, intent(in) :: ib
+    integer, allocatable, intent(out) :: nodes(:)
+    real(dp), allocatable, intent(out) :: x(:,:), nout(:,:)
+    character(len=:), allocatable, intent(out) :: why
+    integer, allocatable :: eptr(:), elist(:)
+    integer :: s, owner, n
+
+    call chain_boundary(bd%mesh, ib, nodes, why)
+    if (len(why) > 0) return
+    n = size(nodes)
+    x = bd%mesh%x(:, nodes)
+    allocate(nout(2, n - 1))
+    call node_elements(bd%mesh, eptr, elist)
+    do s = 1, n - 1
+      call edge_outward_normal(bd%mesh, eptr, elist, nodes(s), nodes(s + 1), nout(:, s), owner)
+      if (owner < 0) then
+        why = 'an edge lies inside the body (edges on the body''s outer boundary expected)'
+        return
+      else if (owner == 0) then
+        why = 'an edge is not an edge of any element'
+        return
+      end if
+    end do
+  end subroutine boundary_polyline
+
+  !> Build the constraint rows of every pair.
+  !>   bodies (in)  the bodies, dof0 set
+  !>   specs  (in)  (npair) the CONTACT statements, resolved
+  !>   cs     (out) the contact set
+  !>   err    (out) allocated on failure; message says which pair (1-based)
+  subroutine build_contact_set(bodies, specs, cs, err)
+    type(body_t), intent(in) :: bodies(:)
+    type(pair_spec_t), intent(in) :: specs(:)
+    type(contact_set_t), intent(out) :: cs
+    type(error_t), allocatable, intent(out) :: err
+    integer :: ip, i, j, r, ns, nm, nnz, k, c, d0s, d0m, maxdof
+    integer, allocatable :: mnodes(:), colmap(:)
+    real(dp), allocatable :: xm(:,:), nsl(:,:), nms(:,:)
+    character(len=:), allocatable :: why
+    type(error_t), allocatable :: merr
+    real(dp) :: pmax, drop
+    logical, allocatable :: touched(:)
+
+    cs%npair = size(specs)
+    allocate(cs%pair(cs%npair))
+    cs%nrow = 0
+    do ip = 1, cs%npair
+      associate(pr => cs%pair(ip), sp => specs(ip))
+        pr%spec = sp
+        call boundary_polyline(bodies(sp%slave_body), sp%slave_bnd, pr%snode, pr%xs, nsl, why)
+        if (len(why) > 0) then
+          call set_error(err, 'CONTACT ' // int_to_str(ip) // ': the slave boundary cannot be used: ' // why, 2)
+          return
+        end if
+        call boundary_polyline(bodies(sp%master_body), sp%master_bnd, mnodes, xm, nms, why)
+        if (len(why) > 0) then
+          call set_error(err, 'CONTACT ' // int_to_str(ip) // ': the master boundary cannot be used: ' // why, 2)
+          return
+        end if
+        pr%mnode = mnodes
+        call build_mortar(pr%xs, nsl, xm, nms, sp%gap_zero, pr%mortar, merr)
+        if (allocated(merr)) then
+          call set_error(err, 'CONTACT ' // int_to_str(ip) // ': ' // merr%message, merr%status)
+          return
+        end if
+        pr%row0 = cs%nrow
+        if (pr%mortar%first > 0) then
+          pr%nrow = pr%mortar%last - pr%mortar%first + 1
+        else
+          pr%nrow = 0
+        end if
+        cs%nrow = cs%nrow + pr%nrow
+      end associate
+    end do
+
+    ! contact dofs: mark every dof B touches
+    maxdof = 0
+    do i = 1, size(bodies)
+      maxdof = max(maxdof, bodies(i)%dof0 + 2 * bodies(i)%mesh%nnode)
+    end do
+    allocate(touched(maxdof), source=.false.)
+    allocate(cs%row_pair(cs%nrow), cs%row_node(cs%nrow), cs%g(cs%nrow), cs%bptr(cs%nrow + 1))
+    nnz = 0
+    do ip = 1, cs%npair
+      associate(pr => cs%pair(ip), mo => cs%pair(ip)%mortar)
+        if (pr%nrow == 0) cycle
+        d0s = bodies(pr%spec%slave_body)%dof0
+        d0m = bodies(pr%spec%master_body)%dof0
+        ns = size(pr%snode); nm = size(pr%mnode)
+        do i = mo%first, mo%last
+          touched(d0s + 2 * (pr%snode(i) - 1) + [1, 2]) = .true.
+          pmax = maxval(abs(mo%p(i, :)))
+          drop = 1.0e-16_dp * pmax
+          do j = 1, nm
+            if (abs(mo%p(i, j)) > drop) then
+              touched(d0m + 2 * (pr%mnode(j) - 1) + [1, 2]) = .true.
+              nnz = nnz + 2
+            end if
+          end do
+          nnz = nnz + 2
+        end do
+      end associate
+    end do
+    cs%ncdof = count(touched)
+    allocate(cs%cdof(cs%ncdof), colmap(maxdof))
+    colmap = 0
+    k = 0
+    do i = 1, maxdof
+      if (touched(i)) then
+        k = k + 1
+        cs%cdof(k) = i
+        colmap(i) = k
+      end if
+    end do
+
+    ! rows of B (CSR over contact dofs)
+    allocate(cs%bcol(nnz), cs%bval(nnz))
+    k = 0
+    cs%bptr(1) = 1
+    do ip = 1, cs%npair
+      associate(pr => cs%pair(ip), mo => cs%pair(ip)%mortar)
+        if (pr%nrow == 0) cycle
+        d0s = bodies(pr%spec%slave_body)%dof0
+        d0m = bodies(pr%spec%master_body)%dof0
+        nm = size(pr%mnode)
+        do i = mo%first, mo%last
+          r = pr%row0 + i - mo%first + 1
+          cs%row_pair(r) = ip
+          cs%row_node(r) = i
+          cs%g(r) = mo%gap0(i)
+          do c = 1, 2                                   ! + n_i . u1(x_i)
+            k = k + 1
+            cs%bcol(k) = colmap(d0s + 2 * (pr%snode(i) - 1) + c)
+            cs%bval(k) = mo%normal(c, i)
+          end do
+          pmax = maxval(abs(mo%p(i, :)))
+          drop = 1.0e-16_dp * pmax
+          do j = 1, nm                                  ! - n_i . sum_j P_ij u2(y_j)
+            if (abs(mo%p(i, j)) <= drop) cycle
+            do c = 1, 2
+              k = k + 1
+              cs%bcol(k) = colmap(d0m + 2 * (pr%mnode(j) - 1) + c)
+              cs%bval(k) = -mo%normal(c, i) * mo%p(i, j)
+            end do
+          end do
+          cs%bptr(r + 1) = k + 1
+        end do
+      end associate
+    end do
+  end subroutine build_contact_set
+
+end module contact_set

@@ -1,0 +1,1951 @@
+!> deck_reader: read a contact2d input deck (doc/deck.md, DECK.md) into deck_t and
+!> check everything that can be checked without reading the meshes.
+!>
+!> Syntax.  One statement per line: a keyword, then positional words and key=value
+!> pairs separated by blanks or tabs.  Keywords, keys and the fixed words (rect, gmsh,
+!> isotropic, strain, tri3, ...) are case-insensitive; names of bodies, boundaries and
+!> files are case-sensitive.  '!' and '#' start a comment anywhere on a line, TITLE
+!> included.  Blank lines are ignored, CRLF line endings and a UTF-8 byte-order mark
+!> are accepted.  Blanks around '=' are allowed (`E = 2e5`) when unambiguous.
+!> Numbers are Fortran or C reals (200000, 2e5, 2.0d5, -1.5E-3, .5, 5.) with
+!> |x| < 1e308; NaN, Inf, hexadecimal and trailing characters are rejected.
+!> Names (bodies, boundaries, output files) are made of [A-Za-z0-9_.-].
+!>
+!> Statements (keys in brackets are optional, with their default):
+!>   TITLE free text                                     default ''
+!>   PLANE strain | PLANE stress [thickness=1]           default strain
+!>   BODY name ... END                                    at least one
+!>     MESH rect [x0=0] [y0=0] [x1=1] [y1=1] nx= ny= [elem=tri3|quad4] [diag=right|left|alt]
+!>                                      (diag only with tri3; boundaries left, right, bottom, top)
+!>     MESH gmsh file=NAME.msh | file=NAME.geo [name=number ...]
+!>     MATERIAL isotropic E= nu=
+!>     MATERIAL orthotropic E1= E2= nu12= G12= [angle=0] [E3=E2] [nu13=nu12] [nu23=nu12]
+!>     DENSITY rho=
+!>     FIX boundary [ux=] [uy=]          (neither: ux = uy = 0)
+!>     TRACTION boundary [tx=0] [ty=0]   (at least one)
+!>     PRESSURE boundary p=
+!>     BODYFORCE [fx=0] [fy=0]           (at least one)
+!>   GRAVITY [gx=0] [gy=0]               (at least one)
+!>   CONTACT slave=body:boundary master=body:boundary [gap=geometry|zero]
+!>   SOLVER [lcp=auto|lemke|pgs] [tol=1e-10] [maxit=0] [omega=1]
+!>   OUTPUT [vtk=NAME.vtk] [contact=NAME_contact.csv] [summary=NAME.summary]
+!>                                      (NAME: deck file name without folder and
+!>                                      extension; '.vtk' is appended to vtk= if missing)
+!> TITLE, PLANE, GRAVITY, SOLVER, OUTPUT: at most once each, outside BODY blocks.
+!> MESH, MATERIAL, DENSITY, BODYFORCE: at most once per body; FIX, TRACTION, PRESSURE:
+!> any number.  Statements may come in any order (CONTACT before the BODY it names).
+!>
+!> Checks beyond the syntax: value ranges (E > 0, -1 < nu < 0.5, orthotropic
+!> compliance positive definite, in plane strain with the out-of-plane terms too,
+!> x1 > x0, nx, ny positive integers, 0 < omega < 2, ...); one MESH and one MATERIAL per
+!> body; block structure; gmsh files exist; boundary names of rect meshes; CONTACT
+!> bodies exist and the two sides differ; every body is held by a FIX, directly or
+!> through CONTACT with a held body.  Errors are collected (at most max_errors), sorted
+!> by line and handed to diag as `FILE:LINE: what is wrong (what was expected)` with
+!> the line echoed.
+!>
+!> Programming interface
+!>   types fix_t, load_t, mesh_spec_t, material_t, body_deck_t, contact_deck_t,
+!>         solver_deck_t, output_deck_t, deck_t (see their component comments)
+!>   load_traction, load_pressure   values of load_t%kind
+!>   read_deck(path, deck, diag)    parse and check the deck file `path`
+module deck_reader
+  use kinds, only: dp
+  use diagnostics, only: diag_t, add_error, int_to_str
+  use, intrinsic :: iso_fortran_env, only: iostat_eor, iostat_end, int64
+  implicit none
+  private
+  public :: fix_t, load_t, mesh_spec_t, material_t, body_deck_t, contact_deck_t
+  public :: solver_deck_t, output_deck_t, deck_t, read_deck
+  public :: load_traction, load_pressure
+
+  integer, parameter :: load_traction = 1   !< load_t%kind of TRACTION
+  integer, parameter :: load_pressure = 2   !< load_t%kind of PRESSURE
+
+  !> FIX boundary [ux=] [uy=]
+  type :: fix_t
+    character(len=:), allocatable :: boundary   !< boundary or point-set name
+    logical :: has_ux = .false., has_uy = .false.
+    real(dp) :: ux = 0, uy = 0                  !< prescribed displacements
+    integer :: line = 0                         !< deck line
+  end type fix_t
+
+  !> TRACTION or PRESSURE on a boundary
+  type :: load_t
+    integer :: kind = 0                         !< load_traction or load_pressure
+    character(len=:), allocatable :: boundary
+    real(dp) :: tx = 0, ty = 0, p = 0           !< force per unit length; pressure
+    integer :: line = 0
+  end type load_t
+
+  !> MESH rect ... or MESH gmsh file=...
+  type :: mesh_spec_t
+    character(len=:), allocatable :: kind       !< 'rect' or 'gmsh' ('' when the statement was bad)
+    real(dp) :: x0 = 0, y0 = 0, x1 = 1, y1 = 1  !< rect: corners
+    integer :: nx = 0, ny = 0                   !< rect: cells along x and y
+    character(len=:), allocatable :: elem       !< rect: 'tri3' (default) or 'quad4'; gmsh: ''
+    character(len=:), allocatable :: diag       !< rect: 'right' (default), 'left' or 'alt'; gmsh: ''
+    character(len=:), allocatable :: file       !< gmsh: path as written in the deck; rect: ''
+    character(len=:), allocatable :: path       !< gmsh: path resolved against the deck's folder
+    logical :: is_geo = .false.                 !< gmsh: file ends in .geo (mesh with gmsh -2)
+    character(len=64), allocatable :: set_names(:)  !< (nset) .geo parameters, case as written
+    real(dp), allocatable :: set_values(:)      !< (nset) their values
+    integer :: line = 0                         !< line of the MESH statement (0: none)
+  end type mesh_spec_t
+
+  !> MATERIAL isotropic ... or MATERIAL orthotropic ...
+  type :: material_t
+    character(len=:), allocatable :: kind       !< 'isotropic', 'orthotropic' ('' when bad)
+    real(dp) :: e = 0, nu = 0                   !< isotropic
+    real(dp) :: e1 = 0, e2 = 0, nu12 = 0, g12 = 0, angle = 0   !< orthotropic; angle in degrees
+    real(dp) :: e3 = 0, nu13 = 0, nu23 = 0      !< out-of-plane; defaults E3=E2, nu13=nu23=nu12
+    integer :: line = 0                         !< line of the MATERIAL statement (0: none)
+  end type material_t
+
+  !> One BODY ... END block.
+  type :: body_deck_t
+    character(len=:), allocatable :: name
+    integer :: line = 0                         !< line of the BODY statement
+    type(mesh_spec_t) :: mesh
+    type(material_t) :: material
+    logical :: has_density = .false.; real(dp) :: rho = 0; integer :: density_line = 0
+    type(fix_t), allocatable :: fixes(:)        !< (nfix), always allocated
+    type(load_t), allocatable :: loads(:)       !< (nload), always allocated
+    logical :: has_bodyforce = .false.; real(dp) :: fx = 0, fy = 0; integer :: bodyforce_line = 0
+  end type body_deck_t
+
+  !> CONTACT slave=body:boundary master=body:boundary [gap=]
+  type :: contact_deck_t
+    integer :: slave_body = 0, master_body = 0  !< indices into deck%bodies
+    character(len=:), allocatable :: slave_boundary, master_boundary
+    logical :: gap_zero = .false.               !< gap=zero; default gap=geometry
+    integer :: line = 0
+  end type contact_deck_t
+
+  !> SOLVER [lcp=] [tol=] [maxit=] [omega=]
+  type :: solver_deck_t
+    character(len=:), allocatable :: lcp        !< 'auto' (default), 'lemke', 'pgs'
+    real(dp) :: tol = 1.0e-10_dp
+    integer :: maxit = 0                        !< 0: the solver's default
+    real(dp) :: omega = 1.0_dp
+    integer :: line = 0
+  end type solver_deck_t
+
+  !> OUTPUT [vtk=] [contact=] [summary=]; names relative to the output folder
+  type :: output_deck_t
+    character(len=:), allocatable :: vtk, contact, summary
+    integer :: line = 0
+  end type output_deck_t
+
+  !> The whole deck.
+  type :: deck_t
+    character(len=:), allocatable :: file       !< the deck path as given (used in messages)
+    character(len=:), allocatable :: dir        !< its folder ('.' when none)
+    character(len=:), allocatable :: name       !< file name without folder and extension
+    character(len=:), allocatable :: title      !< '' when none
+    logical :: plane_stress = .false.; real(dp) :: thickness = 1.0_dp
+    type(body_deck_t), allocatable :: bodies(:) !< (nbody), always allocated
+    logical :: has_gravity = .false.; real(dp) :: gx = 0, gy = 0; integer :: gravity_line = 0
+    type(contact_deck_t), allocatable :: contacts(:)   !< (ncontact), always allocated
+    type(solver_deck_t) :: solver
+    type(output_deck_t) :: output
+  end type deck_t
+
+  ! ---------------------------------------------------------------- internal types
+
+  integer, parameter :: max_errors = 100    ! stop reading after this many errors
+  integer, parameter :: echo_len = 160      ! echoed lines are cut after this many chars
+  integer, parameter :: quote_len = 40      ! quoted user text is cut after this many chars
+
+  type :: text_t
+    character(len=:), allocatable :: s
+  end type text_t
+
+  !> One error before sorting by line.
+  type :: err_t
+    integer :: line = 0
+    logical :: echo = .true.                  ! echo the deck line under the message
+    character(len=:), allocatable :: text
+  end type err_t
+
+  !> One statement split into words.
+  type :: stmt_t
+    integer :: line = 0
+    character(len=:), allocatable :: keyword   ! as written
+    character(len=:), allocatable :: rest      ! text after the keyword (TITLE)
+    integer :: nword = 0                       ! positional words after the keyword
+    type(text_t), allocatable :: word(:)
+    integer :: npair = 0                       ! key=value pairs
+    type(text_t), allocatable :: key(:), value(:)
+  end type stmt_t
+
+  !> Reader state, local to one read_deck call.
+  type :: state_t
+    integer :: nerr = 0
+    type(err_t), allocatable :: errs(:)
+    logical :: gave_up = .false.
+    integer :: nline = 0
+    type(text_t), allocatable :: echo(:)      ! (nline) cut lines for echoing
+    integer :: nbody = 0, ncontact = 0
+    integer :: cur = 0                        ! body whose block is open, 0 outside
+    logical :: end_hinted = .false.           ! a "missing END?" was said for cur
+    integer :: title_line = 0, plane_line = 0, solver_line = 0, output_line = 0
+    logical :: contact_bad = .false.          ! some CONTACT statement had an error
+    type(text_t), allocatable :: slave_name(:), master_name(:)   ! (ncontact) body names
+  end type state_t
+
+contains
+
+  ! ================================================================ entry point
+
+  !> Read and check the deck file `path`.
+  !>   path  (in)    deck file as given on the command line
+  !>   deck  (out)   the parsed deck; every allocatable component is allocated on
+  !>                 return, also when errors were found (then the values are partial)
+  !>   diag  (inout) receives every error, sorted by line; file-level errors
+  !>                 (cannot open, no BODY) have line 0
+  subroutine read_deck(path, deck, diag)
+    character(len=*), intent(in) :: path
+    type(deck_t), intent(out) :: deck
+    type(diag_t), intent(inout) :: diag
+    type(state_t) :: s
+    character(len=:), allocatable :: line
+    integer :: u, ios
+    integer(int64) :: fsize
+    logical :: exists, readable
+
+    deck%file = path
+    call split_path(path, deck%dir, deck%name)
+    allocate(deck%bodies(0), deck%contacts(0))
+    allocate(s%errs(16), s%echo(64), s%slave_name(4), s%master_name(4))
+
+    readable = .false.
+    inquire(file=path, exist=exists)
+    if (.not. exists) then
+      call report(s, 0, 'cannot open the deck: no such file (expected an existing deck file)')
+    else
+      open(newunit=u, file=path, status='old', action='read', form='formatted', &
+           access='sequential', iostat=ios)
+      if (ios /= 0) then
+        call report(s, 0, 'cannot open the deck (expected a readable file)')
+      else
+        readable = .true.
+        do
+          call read_line(u, line, ios)
+          if (ios == iostat_end) exit
+          if (ios /= 0) then
+            call report(s, 0, 'cannot read the deck after line ' // int_to_str(s%nline) // &
+                        ' (expected a readable text file)')
+            readable = .false.
+            exit
+          end if
+          call process_line(s, deck, line)
+          if (s%gave_up) exit
+        end do
+        close(u)
+        if (s%nline == 0 .and. s%nerr == 0) then
+          inquire(file=path, size=fsize)
+          if (fsize /= 0) then
+            call report(s, 0, 'cannot read the deck (expected a text file, not a folder)')
+            readable = .false.
+          end if
+        end if
+      end if
+    end if
+    if (readable .and. .not. s%gave_up) call finish_checks(s, deck)
+    call fill_defaults(deck)
+    call hand_over(s, deck%file, diag)
+  end subroutine read_deck
+
+  !> Read one line of any length (non-advancing, in chunks); strip a final CR.
+  !>   u     (in)  connected formatted unit
+  !>   line  (out) the line without its end-of-line characters
+  !>   ios   (out) 0 a line was read, iostat_end no more lines, other: read error
+  subroutine read_line(u, line, ios)
+    integer, intent(in) :: u
+    character(len=:), allocatable, intent(out) :: line
+    integer, intent(out) :: ios
+    character(len=4096) :: chunk
+    character(len=:), allocatable :: buf, grown
+    integer :: n, used
+
+    allocate(character(len=4096) :: buf)
+    used = 0
+    do
+      read(u, '(a)', advance='no', size=n, iostat=ios) chunk
+      if (ios /= 0 .and. ios /= iostat_eor .and. ios /= iostat_end) return
+      if (used + n > len(buf)) then
+        allocate(character(len=2 * (used + n)) :: grown)
+        grown(1:used) = buf(1:used)
+        call move_alloc(grown, buf)
+      end if
+      buf(used + 1:used + n) = chunk(1:n)
+      used = used + n
+      if (ios == 0) cycle
+      if (ios == iostat_end .and. used == 0) return
+      exit
+    end do
+    ios = 0
+    if (used > 0) then
+      if (buf(used:used) == achar(13)) used = used - 1
+    end if
+    line = buf(1:used)
+  end subroutine read_line
+
+  !> Folder and bare name of a path: 'a/b/c.deck' -> 'a/b', 'c'; 'c.deck' -> '.', 'c'.
+  subroutine split_path(path, dir, name)
+    character(len=*), intent(in) :: path
+    character(len=:), allocatable, intent(out) :: dir, name
+    integer :: slash, dot
+    slash = index(path, '/', back=.true.)
+    if (slash == 0) then
+      dir = '.'
+    else if (slash == 1) then
+      dir = '/'
+    else
+      dir = path(1:slash - 1)
+    end if
+    name = path(slash + 1:)
+    dot = index(name, '.', back=.true.)
+    if (dot > 1) name = name(1:dot - 1)
+    if (len(name) == 0) name = 'contact2d'
+  end subroutine split_path
+
+  ! ================================================================ lines and words
+
+  !> Split one line into a statement and dispatch it.
+  subroutine process_line(s, deck, raw)
+    type(state_t), intent(inout) :: s
+    type(deck_t), intent(inout) :: deck
+    character(len=*), intent(in) :: raw
+    character(len=:), allocatable :: text
+    type(text_t), allocatable :: tok(:)
+    type(stmt_t) :: st
+    character(len=:), allocatable :: kw
+    integer :: i, ntok, kwend
+
+    text = raw
+    if (s%nline == 0 .and. len(text) >= 3) then    ! UTF-8 byte-order mark
+      if (text(1:3) == char(239) // char(187) // char(191)) text = text(4:)
+    end if
+    call store_echo(s, text)
+    if (index(text, achar(0)) > 0) then            ! binary file: one message, stop
+      call report(s, s%nline, 'NUL byte in the deck (expected a text file; is this a binary file?)')
+      s%gave_up = .true.
+      return
+    end if
+    i = scan(text, '!#')
+    if (i > 0) text = text(1:i - 1)
+    do i = 1, len(text)
+      if (is_blank(text(i:i))) text(i:i) = ' '
+    end do
+    call split_words(text, tok, ntok)
+    if (ntok == 0) return
+
+    st%line = s%nline
+    st%keyword = tok(1)%s
+    kwend = index(text, tok(1)%s) + len(tok(1)%s)
+    st%rest = trim(adjustl(text(kwend:)))
+    call join_equals(tok, ntok)
+    call classify_words(tok, ntok, st)
+    kw = upper(st%keyword)
+
+    select case (kw)
+    case ('TITLE', 'PLANE', 'GRAVITY', 'CONTACT', 'SOLVER', 'OUTPUT')
+      if (s%cur /= 0 .and. .not. s%end_hinted) then
+        call report(s, st%line, 'statement ' // kw // ' inside BODY ' // quoted(deck%bodies(s%cur)%name) // &
+                    ' opened at line ' // int_to_str(deck%bodies(s%cur)%line) // &
+                    ' (expected after the END of the body block; missing END?)')
+        s%end_hinted = .true.
+      end if
+      select case (kw)
+      case ('TITLE');   call do_title(s, deck, st)
+      case ('PLANE');   call do_plane(s, deck, st)
+      case ('GRAVITY'); call do_gravity(s, deck, st)
+      case ('CONTACT'); call do_contact(s, deck, st)
+      case ('SOLVER');  call do_solver(s, deck, st)
+      case ('OUTPUT');  call do_output(s, deck, st)
+      end select
+    case ('BODY')
+      call do_body(s, deck, st)
+    case ('END')
+      call do_end(s, st)
+    case ('MESH', 'MATERIAL', 'DENSITY', 'FIX', 'TRACTION', 'PRESSURE', 'BODYFORCE')
+      if (s%cur == 0) then
+        call report(s, st%line, 'statement ' // kw // ' outside a BODY block (expected inside BODY ... END)')
+        return
+      end if
+      select case (kw)
+      case ('MESH');      call do_mesh(s, deck%dir, deck%bodies(s%cur), st)
+      case ('MATERIAL');  call do_material(s, deck%bodies(s%cur), st)
+      case ('DENSITY');   call do_density(s, deck%bodies(s%cur), st)
+      case ('FIX');       call do_fix(s, deck%bodies(s%cur), st)
+      case ('TRACTION', 'PRESSURE'); call do_load(s, deck%bodies(s%cur), st, kw)
+      case ('BODYFORCE'); call do_bodyforce(s, deck%bodies(s%cur), st)
+      end select
+    case default
+      call report(s, st%line, 'unknown keyword ' // quoted(st%keyword) // ' (expected one of TITLE, PLANE, ' // &
+                  'BODY, MESH, MATERIAL, DENSITY, FIX, TRACTION, PRESSURE, BODYFORCE, END, GRAVITY, ' // &
+                  'CONTACT, SOLVER, OUTPUT)')
+    end select
+  end subroutine process_line
+
+  !> Keep a printable, cut copy of the current line for echoing under messages.
+  subroutine store_echo(s, raw)
+    type(state_t), intent(inout) :: s
+    character(len=*), intent(in) :: raw
+    type(text_t), allocatable :: grown(:)
+    character(len=:), allocatable :: e
+    integer :: i
+
+    s%nline = s%nline + 1
+    if (s%nline > size(s%echo)) then
+      allocate(grown(2 * size(s%echo)))
+      do i = 1, size(s%echo)
+        call move_alloc(s%echo(i)%s, grown(i)%s)
+      end do
+      call move_alloc(grown, s%echo)
+    end if
+    if (len(raw) > echo_len) then
+      e = raw(1:echo_len) // ' ...'
+    else
+      e = raw
+    end if
+    do i = 1, len(e)
+      if (e(i:i) == achar(9)) e(i:i) = ' '
+    end do
+    s%echo(s%nline)%s = e
+  end subroutine store_echo
+
+  !> Blank-separated words of text (blanks only: other white space is already blank).
+  subroutine split_words(text, tok, ntok)
+    character(len=*), intent(in) :: text
+    type(text_t), allocatable, intent(out) :: tok(:)
+    integer, intent(out) :: ntok
+    integer :: i, j, n
+
+    n = 0
+    do i = 1, len(text)
+      if (text(i:i) /= ' ') then
+        if (i == 1) then
+          n = n + 1
+        else if (text(i - 1:i - 1) == ' ') then
+          n = n + 1
+        end if
+      end if
+    end do
+    allocate(tok(n))
+    ntok = 0
+    i = 1
+    do while (i <= len(text))
+      if (text(i:i) == ' ') then
+        i = i + 1
+        cycle
+      end if
+      j = i
+      do while (j < len(text))
+        if (text(j + 1:j + 1) == ' ') exit
+        j = j + 1
+      end do
+      ntok = ntok + 1
+      tok(ntok)%s = text(i:j)
+      i = j + 1
+    end do
+  end subroutine split_words
+
+  !> Join `key = value`, `key= value` and `key =value` into one word key=value,
+  !> when that is unambiguous (the neighbours carry no '=' of their own); the
+  !> keyword tok(1) is never joined.
+  subroutine join_equals(tok, ntok)
+    type(text_t), intent(inout) :: tok(:)
+    integer, intent(inout) :: ntok
+    type(text_t), allocatable :: out(:)
+    integer :: i, n
+    logical :: prev_plain, next_plain
+
+    allocate(out(ntok))
+    n = 1
+    out(1)%s = tok(1)%s
+    i = 2
+    do while (i <= ntok)
+      prev_plain = n >= 2
+      if (prev_plain) prev_plain = index(out(n)%s, '=') == 0
+      next_plain = i < ntok
+      if (next_plain) next_plain = index(tok(i + 1)%s, '=') == 0
+      if (tok(i)%s == '=' .and. prev_plain .and. next_plain) then          ! key = value
+        out(n)%s = out(n)%s // '=' // tok(i + 1)%s
+        i = i + 2
+      else if (tok(i)%s(1:1) == '=' .and. prev_plain) then                ! key =value, key =
+        out(n)%s = out(n)%s // tok(i)%s
+        i = i + 1
+      else if (ends_with_lone_equals(tok(i)%s) .and. next_plain) then     ! key= value
+        n = n + 1
+        out(n)%s = tok(i)%s // tok(i + 1)%s
+        i = i + 2
+      else
+        n = n + 1
+        out(n)%s = tok(i)%s
+        i = i + 1
+      end if
+    end do
+    do i = 1, n
+      call move_alloc(out(i)%s, tok(i)%s)
+    end do
+    ntok = n
+  end subroutine join_equals
+
+  !> True for 'key=' (one '=', at the end, after at least one character).
+  pure logical function ends_with_lone_equals(w)
+    character(len=*), intent(in) :: w
+    ends_with_lone_equals = .false.
+    if (len(w) < 2) return
+    ends_with_lone_equals = index(w, '=') == len(w)
+  end function ends_with_lone_equals
+
+  !> Sort the words after the keyword into positional words and key=value pairs.
+  subroutine classify_words(tok, ntok, st)
+    type(text_t), intent(in) :: tok(:)
+    integer, intent(in) :: ntok
+    type(stmt_t), intent(inout) :: st
+    integer :: i, eq
+
+    allocate(st%word(ntok), st%key(ntok), st%value(ntok))
+    do i = 2, ntok
+      eq = index(tok(i)%s, '=')
+      if (eq == 0) then
+        st%nword = st%nword + 1
+        st%word(st%nword)%s = tok(i)%s
+      else
+        st%npair = st%npair + 1
+        st%key(st%npair)%s = tok(i)%s(1:eq - 1)
+        st%value(st%npair)%s = tok(i)%s(eq + 1:)
+      end if
+    end do
+  end subroutine classify_words
+
+  ! ================================================================ errors
+
+  !> Collect one error at `line` (0: file level); the line is echoed under it.
+  subroutine report(s, line, text, echo)
+    type(state_t), intent(inout) :: s
+    integer, intent(in) :: line
+    character(len=*), intent(in) :: text
+    logical, intent(in), optional :: echo
+    type(err_t), allocatable :: grown(:)
+    integer :: i
+
+    if (s%gave_up) return
+    if (s%nerr + 2 > size(s%errs)) then
+      allocate(grown(2 * size(s%errs)))
+      do i = 1, s%nerr
+        grown(i)%line = s%errs(i)%line
+        grown(i)%echo = s%errs(i)%echo
+        call move_alloc(s%errs(i)%text, grown(i)%text)
+      end do
+      call move_alloc(grown, s%errs)
+    end if
+    s%nerr = s%nerr + 1
+    s%errs(s%nerr)%line = line
+    s%errs(s%nerr)%text = text
+    if (present(echo)) s%errs(s%nerr)%echo = echo
+    if (s%nerr == max_errors) then
+      s%nerr = s%nerr + 1
+      s%errs(s%nerr)%line = line
+      s%errs(s%nerr)%text = 'too many errors, stopped reading the deck (fix these first)'
+      s%gave_up = .true.
+    end if
+  end subroutine report
+
+  !> Hand the collected errors to diag, stably sorted by line.
+  subroutine hand_over(s, file, diag)
+    type(state_t), intent(inout) :: s
+    character(len=*), intent(in) :: file
+    type(diag_t), intent(inout) :: diag
+    integer, allocatable :: order(:)
+    integer :: i, j, k, ln
+
+    allocate(order(s%nerr))
+    do i = 1, s%nerr
+      order(i) = i
+    end do
+    do i = 2, s%nerr                       ! insertion sort: stable, few items
+      k = order(i)
+      j = i - 1
+      do while (j >= 1)
+        if (s%errs(order(j))%line <= s%errs(k)%line) exit
+        order(j + 1) = order(j)
+        j = j - 1
+      end do
+      order(j + 1) = k
+    end do
+    do i = 1, s%nerr
+      k = order(i)
+      ln = s%errs(k)%line
+      if (ln > 0 .and. ln <= s%nline .and. s%errs(k)%echo) then
+        call add_error(diag, file, ln, s%errs(k)%text, echo=s%echo(ln)%s)
+      else
+        call add_error(diag, file, ln, s%errs(k)%text)
+      end if
+    end do
+  end subroutine hand_over
+
+  ! ================================================================ helpers for statements
+
+  !> Match the key=value pairs of st against the allowed keys names(:) (canonical
+  !> spelling, compared case-insensitively).  Reports empty keys, unknown keys,
+  !> duplicates and empty values.
+  !>   names  (in)  allowed keys
+  !>   forms  (in)  value form for messages ('number', 'tri3|quad4', ...)
+  !>   what   (in)  statement for messages, e.g. 'MESH rect'
+  !>   seen   (out) key k was written (possibly without a value)
+  !>   val    (out) val(k)%s the value of key k, allocated when given and non-empty
+  subroutine match_keys(s, st, names, forms, what, seen, val)
+    type(state_t), intent(inout) :: s
+    type(stmt_t), intent(in) :: st
+    character(len=*), intent(in) :: names(:), forms(:), what
+    logical, intent(out) :: seen(:)
+    type(text_t), intent(out) :: val(:)
+    integer :: i, k
+
+    seen = .false.
+    do i = 1, st%npair
+      if (len(st%key(i)%s) == 0) then
+        call report(s, st%line, 'missing key before ' // quoted('=' // st%value(i)%s) // ' (expected key=value)')
+        cycle
+      end if
+      k = find_key(st%key(i)%s, names)
+      if (k == 0) then
+        call report(s, st%line, 'unknown key ' // quoted(st%key(i)%s) // ' for ' // what // ' (expected ' // &
+                    join_list(names) // ')')
+        cycle
+      end if
+      if (seen(k)) then
+        call report(s, st%line, 'duplicate key ' // quoted(trim(names(k))) // ' (expected each key at most once)')
+        cycle
+      end if
+      seen(k) = .true.
+      if (len(st%value(i)%s) == 0) then
+        call report(s, st%line, 'missing value for ' // quoted(trim(names(k))) // ' (expected ' // &
+                    trim(names(k)) // '=' // trim(forms(k)) // ')')
+        cycle
+      end if
+      val(k)%s = st%value(i)%s
+    end do
+  end subroutine match_keys
+
+  !> Index of key (case-insensitive) in names, 0 when absent.
+  pure integer function find_key(key, names) result(k)
+    character(len=*), intent(in) :: key, names(:)
+    do k = 1, size(names)
+      if (lower(key) == lower(trim(names(k)))) return
+    end do
+    k = 0
+  end function find_key
+
+  !> 'a, b, c' from a list of padded names.
+  pure function join_list(names) result(s)
+    character(len=*), intent(in) :: names(:)
+    character(len=:), allocatable :: s
+    integer :: k
+    s = ''
+    do k = 1, size(names)
+      if (k > 1) s = s // ', '
+      s = s // trim(names(k))
+    end do
+  end function join_list
+
+  !> Report a missing required key.
+  subroutine require_key(s, st, seen, name, what, usage)
+    type(state_t), intent(inout) :: s
+    type(stmt_t), intent(in) :: st
+    logical, intent(in) :: seen
+    character(len=*), intent(in) :: name, what, usage
+    if (.not. seen) call report(s, st%line, 'missing key ' // quoted(name) // ' for ' // what // &
+                                ' (expected ' // usage // ')')
+  end subroutine require_key
+
+  !> Report words after the first nmax positional words, and (when nmax = 0) any.
+  subroutine check_extra_words(s, st, nmax, usage)
+    type(state_t), intent(inout) :: s
+    type(stmt_t), intent(in) :: st
+    integer, intent(in) :: nmax
+    character(len=*), intent(in) :: usage
+    if (st%nword > nmax) call report(s, st%line, 'unexpected word ' // quoted(st%word(nmax + 1)%s) // &
+                                     ' (expected ' // usage // ')')
+  end subroutine check_extra_words
+
+  !> Convert val to a real; report a bad number.  ok is false when absent or bad.
+  subroutine get_real(s, st, val, name, x, ok)
+    type(state_t), intent(inout) :: s
+    type(stmt_t), intent(in) :: st
+    type(text_t), intent(in) :: val
+    character(len=*), intent(in) :: name
+    real(dp), intent(inout) :: x
+    logical, intent(out) :: ok
+    real(dp) :: y
+    ok = .false.
+    if (.not. allocated(val%s)) return
+    call parse_real(val%s, y, ok)
+    if (ok) then
+      x = y
+    else
+      call report(s, st%line, 'bad number ' // quoted(val%s) // ' for ' // quoted(name) // &
+                  ' (expected a finite number)')
+    end if
+  end subroutine get_real
+
+  !> As get_real, and also require x > 0.
+  subroutine get_positive(s, st, val, name, x, ok)
+    type(state_t), intent(inout) :: s
+    type(stmt_t), intent(in) :: st
+    type(text_t), intent(in) :: val
+    character(len=*), intent(in) :: name
+    real(dp), intent(inout) :: x
+    logical, intent(out) :: ok
+    call get_real(s, st, val, name, x, ok)
+    if (ok .and. .not. x > 0) then
+      call report(s, st%line, 'bad value ' // name // '=' // cut(val%s) // ' (expected ' // name // ' > 0)')
+      ok = .false.
+    end if
+  end subroutine get_positive
+
+  !> Convert val to an integer >= lo; report otherwise.  ok false when absent or bad.
+  subroutine get_integer(s, st, val, name, lo, k, ok)
+    type(state_t), intent(inout) :: s
+    type(stmt_t), intent(in) :: st
+    type(text_t), intent(in) :: val
+    character(len=*), intent(in) :: name
+    integer, intent(in) :: lo
+    integer, intent(inout) :: k
+    logical, intent(out) :: ok
+    integer :: j
+    ok = .false.
+    if (.not. allocated(val%s)) return
+    call parse_integer(val%s, j, ok)
+    if (ok) ok = j >= lo
+    if (ok) then
+      k = j
+    else if (lo == 1) then
+      call report(s, st%line, 'bad value ' // name // '=' // cut(val%s) // ' (expected a positive integer)')
+    else
+      call report(s, st%line, 'bad value ' // name // '=' // cut(val%s) // ' (expected an integer >= ' // &
+                  int_to_str(lo) // ')')
+    end if
+  end subroutine get_integer
+
+  !> Lower-case value val checked against the choices (padded); '' when absent or bad.
+  function get_choice(s, st, val, name, choices) result(c)
+    type(state_t), intent(inout) :: s
+    type(stmt_t), intent(in) :: st
+    type(text_t), intent(in) :: val
+    character(len=*), intent(in) :: name, choices(:)
+    character(len=:), allocatable :: c
+    integer :: k
+    c = ''
+    if (.not. allocated(val%s)) return
+    k = find_key(val%s, choices)
+    if (k > 0) then
+      c = trim(choices(k))
+    else
+      call report(s, st%line, 'bad value ' // name // '=' // cut(val%s) // ' (expected ' // name // '=' // &
+                  join_bar(choices) // ')')
+    end if
+  end function get_choice
+
+  pure function join_bar(names) result(s)
+    character(len=*), intent(in) :: names(:)
+    character(len=:), allocatable :: s
+    integer :: k
+    s = ''
+    do k = 1, size(names)
+      if (k > 1) s = s // '|'
+      s = s // trim(names(k))
+    end do
+  end function join_bar
+
+  !> Check a name (body, boundary) and report when bad; ok false when bad.
+  subroutine check_name(s, st, name, what, ok)
+    type(state_t), intent(inout) :: s
+    type(stmt_t), intent(in) :: st
+    character(len=*), intent(in) :: name, what
+    logical, intent(out) :: ok
+    ok = is_name(name)
+    if (.not. ok) call report(s, st%line, 'bad ' // what // ' name ' // quoted(name) // &
+                              ' (expected letters, digits, _ . - only)')
+  end subroutine check_name
+
+  ! ================================================================ statements
+
+  !> TITLE free text
+  subroutine do_title(s, deck, st)
+    type(state_t), intent(inout) :: s
+    type(deck_t), intent(inout) :: deck
+    type(stmt_t), intent(in) :: st
+    integer :: i
+    if (s%title_line > 0) then
+      call report(s, st%line, 'second TITLE (first at line ' // int_to_str(s%title_line) // '; expected at most one)')
+      return
+    end if
+    s%title_line = st%line
+    deck%title = st%rest
+    do i = 1, len(deck%title)
+      if (iachar(deck%title(i:i)) < 32 .or. iachar(deck%title(i:i)) == 127) deck%title(i:i) = '?'
+    end do
+  end subroutine do_title
+
+  !> PLANE strain | PLANE stress [thickness=]
+  subroutine do_plane(s, deck, st)
+    type(state_t), intent(inout) :: s
+    type(deck_t), intent(inout) :: deck
+    type(stmt_t), intent(in) :: st
+    character(len=*), parameter :: usage = 'PLANE strain or PLANE stress [thickness=number]'
+    logical :: seen(1), ok
+    type(text_t) :: val(1)
+    character(len=:), allocatable :: kind
+
+    if (s%plane_line > 0) then
+      call report(s, st%line, 'second PLANE (first at line ' // int_to_str(s%plane_line) // '; expected at most one)')
+      return
+    end if
+    s%plane_line = st%line
+    if (st%nword == 0) then
+      call report(s, st%line, 'missing plane kind (expected ' // usage // ')')
+      return
+    end if
+    kind = lower(st%word(1)%s)
+    if (kind /= 'strain' .and. kind /= 'stress') then
+      call report(s, st%line, 'unknown plane kind ' // quoted(st%word(1)%s) // ' (expected ' // usage // ')')
+      return
+    end if
+    call check_extra_words(s, st, 1, usage)
+    call match_keys(s, st, ['thickness'], ['number'], 'PLANE ' // kind, seen, val)
+    if (kind == 'strain') then
+      deck%plane_stress = .false.
+      if (seen(1)) call report(s, st%line, 'thickness= only with PLANE stress (PLANE strain is per unit thickness)')
+    else
+      deck%plane_stress = .true.
+      call get_positive(s, st, val(1), 'thickness', deck%thickness, ok)
+    end if
+  end subroutine do_plane
+
+  !> BODY name
+  subroutine do_body(s, deck, st)
+    type(state_t), intent(inout) :: s
+    type(deck_t), intent(inout) :: deck
+    type(stmt_t), intent(in) :: st
+    type(body_deck_t), allocatable :: grown(:)
+    character(len=*), parameter :: usage = 'BODY name'
+    integer :: b
+    logical :: ok
+
+    if (s%cur /= 0 .and. .not. s%end_hinted) then
+      call report(s, st%line, 'BODY inside BODY ' // quoted(deck%bodies(s%cur)%name) // ' opened at line ' // &
+                  int_to_str(deck%bodies(s%cur)%line) // ' (missing END?)')
+    end if
+    allocate(grown(s%nbody + 1))
+    do b = 1, s%nbody
+      grown(b) = deck%bodies(b)
+    end do
+    call move_alloc(grown, deck%bodies)
+    s%nbody = s%nbody + 1
+    s%cur = s%nbody
+    s%end_hinted = .false.
+    associate (body => deck%bodies(s%nbody))
+      body%line = st%line
+      body%name = ''
+      allocate(body%fixes(0), body%loads(0))
+      if (st%nword == 0) then
+        call report(s, st%line, 'missing body name (expected ' // usage // ')')
+      else
+        body%name = st%word(1)%s
+        call check_name(s, st, body%name, 'body', ok)
+        if (ok) then
+          do b = 1, s%nbody - 1
+            if (deck%bodies(b)%name == body%name) then
+              call report(s, st%line, 'duplicate BODY name ' // quoted(body%name) // ' (first at line ' // &
+                          int_to_str(deck%bodies(b)%line) // '; expected a new name)')
+              exit
+            end if
+          end do
+        end if
+        call check_extra_words(s, st, 1, usage)
+      end if
+      if (st%npair > 0) call report(s, st%line, 'unexpected ' // quoted(st%key(1)%s // '=' // st%value(1)%s) // &
+                                    ' (expected ' // usage // ')')
+    end associate
+  end subroutine do_body
+
+  !> END
+  subroutine do_end(s, st)
+    type(state_t), intent(inout) :: s
+    type(stmt_t), intent(in) :: st
+    if (s%cur == 0) then
+      call report(s, st%line, 'END without an open BODY (expected END only to close a BODY block)')
+      return
+    end if
+    if (st%nword > 0) then
+      call report(s, st%line, 'unexpected word ' // quoted(st%word(1)%s) // ' after END (expected END alone)')
+    else if (st%npair > 0) then
+      call report(s, st%line, 'unexpected ' // quoted(st%key(1)%s // '=' // st%value(1)%s) // &
+                  ' after END (expected END alone)')
+    end if
+    s%cur = 0
+    s%end_hinted = .false.
+  end subroutine do_end
+
+  !> MESH rect ... | MESH gmsh file=...
+  subroutine do_mesh(s, dir, body, st)
+    type(state_t), intent(inout) :: s
+    character(len=*), intent(in) :: dir
+    type(body_deck_t), intent(inout) :: body
+    type(stmt_t), intent(in) :: st
+    character(len=*), parameter :: usage = 'MESH rect x0= y0= x1= y1= nx= ny= or MESH gmsh file=NAME.msh|NAME.geo'
+    character(len=:), allocatable :: kind
+
+    if (body%mesh%line > 0) then
+      call report(s, st%line, 'second MESH in BODY ' // quoted(body%name) // ' (first at line ' // &
+                  int_to_str(body%mesh%line) // '; expected one MESH per body)')
+      return
+    end if
+    body%mesh%line = st%line
+    if (st%nword == 0) then
+      call report(s, st%line, 'missing mesh kind (expected ' // usage // ')')
+      return
+    end if
+    kind = lower(st%word(1)%s)
+    select case (kind)
+    case ('rect')
+      body%mesh%kind = 'rect'
+      call do_mesh_rect(s, body%mesh, st)
+    case ('gmsh')
+      body%mesh%kind = 'gmsh'
+      call do_mesh_gmsh(s, dir, body%mesh, st)
+    case default
+      call report(s, st%line, 'unknown mesh kind ' // quoted(st%word(1)%s) // ' (expected rect or gmsh)')
+    end select
+  end subroutine do_mesh
+
+  !> MESH rect [x0=] [y0=] [x1=] [y1=] nx= ny= [elem=] [diag=]
+  subroutine do_mesh_rect(s, m, st)
+    type(state_t), intent(inout) :: s
+    type(mesh_spec_t), intent(inout) :: m
+    type(stmt_t), intent(in) :: st
+    character(len=*), parameter :: usage = 'MESH rect x0=number y0=number x1=number y1=number nx=integer ' // &
+                                           'ny=integer [elem=tri3|quad4] [diag=right|left|alt]'
+    character(len=4), parameter :: names(8) = [character(len=4) :: 'x0', 'y0', 'x1', 'y1', 'nx', 'ny', 'elem', 'diag']
+    character(len=14), parameter :: forms(8) = [character(len=14) :: 'number', 'number', 'number', 'number', &
+                                                'integer', 'integer', 'tri3|quad4', 'right|left|alt']
+    logical :: seen(8), okx0, oky0, okx1, oky1, ok
+    type(text_t) :: val(8)
+
+    call check_extra_words(s, st, 1, usage)
+    call match_keys(s, st, names, forms, 'MESH rect', seen, val)
+    call get_real(s, st, val(1), 'x0', m%x0, okx0)
+    call get_real(s, st, val(2), 'y0', m%y0, oky0)
+    call get_real(s, st, val(3), 'x1', m%x1, okx1)
+    call get_real(s, st, val(4), 'y1', m%y1, oky1)
+    okx0 = okx0 .or. .not. seen(1)
+    oky0 = oky0 .or. .not. seen(2)
+    okx1 = okx1 .or. .not. seen(3)
+    oky1 = oky1 .or. .not. seen(4)
+    if (okx0 .and. okx1 .and. .not. m%x1 > m%x0) &
+      call report(s, st%line, 'bad rectangle x0=' // shown(val(1), '0') // ' x1=' // shown(val(3), '1') // &
+                  ' (expected x1 > x0)')
+    if (oky0 .and. oky1 .and. .not. m%y1 > m%y0) &
+      call report(s, st%line, 'bad rectangle y0=' // shown(val(2), '0') // ' y1=' // shown(val(4), '1') // &
+                  ' (expected y1 > y0)')
+    call require_key(s, st, seen(5), 'nx', 'MESH rect', usage)
+    call require_key(s, st, seen(6), 'ny', 'MESH rect', usage)
+    call get_integer(s, st, val(5), 'nx', 1, m%nx, ok)
+    call get_integer(s, st, val(6), 'ny', 1, m%ny, ok)
+    if (m%nx > 0 .and. m%ny > 0) then
+      if (int(m%nx, int64) * int(m%ny, int64) > 100000000_int64) &
+        call report(s, st%line, 'rect mesh too large (expected nx*ny <= 100000000)')
+    end if
+    m%elem = 'tri3'
+    m%diag = 'right'
+    if (allocated(val(7)%s)) m%elem = get_choice(s, st, val(7), 'elem', ['tri3 ', 'quad4'])
+    if (allocated(val(8)%s)) then
+      m%diag = get_choice(s, st, val(8), 'diag', ['right', 'left ', 'alt  '])
+      if (m%elem == 'quad4') call report(s, st%line, 'diag= applies only to elem=tri3 (got elem=quad4)')
+    end if
+  end subroutine do_mesh_rect
+
+  !> Value as written, or a default text when not given.
+  pure function shown(val, default) result(t)
+    type(text_t), intent(in) :: val
+    character(len=*), intent(in) :: default
+    character(len=:), allocatable :: t
+    if (allocated(val%s)) then
+      t = cut(val%s)
+    else
+      t = default
+    end if
+  end function shown
+
+  !> MESH gmsh file=NAME.msh | file=NAME.geo [name=number ...]
+  subroutine do_mesh_gmsh(s, dir, m, st)
+    type(state_t), intent(inout) :: s
+    character(len=*), intent(in) :: dir
+    type(mesh_spec_t), intent(inout) :: m
+    type(stmt_t), intent(in) :: st
+    character(len=*), parameter :: usage = 'MESH gmsh file=NAME.msh or file=NAME.geo [name=number ...]'
+    integer :: i, j, nset, ifile
+    logical :: exists, ok, is_msh
+    real(dp) :: x
+
+    m%elem = ''
+    m%diag = ''
+    call check_extra_words(s, st, 1, usage)
+    ifile = 0
+    do i = 1, st%npair
+      if (lower(st%key(i)%s) /= 'file') cycle
+      if (ifile > 0) then
+        call report(s, st%line, 'duplicate key "file" (expected each key at most once)')
+      else
+        ifile = i
+      end if
+    end do
+    if (ifile == 0) then
+      call report(s, st%line, 'missing key "file" for MESH gmsh (expected ' // usage // ')')
+      return
+    end if
+    m%file = st%value(ifile)%s
+    if (len(m%file) == 0) then
+      call report(s, st%line, 'missing value for "file" (expected file=NAME.msh or file=NAME.geo)')
+      return
+    end if
+    is_msh = ends_with_ci(m%file, '.msh')
+    m%is_geo = ends_with_ci(m%file, '.geo')
+    if (.not. (is_msh .or. m%is_geo) .or. len(m%file) < 5 .or. .not. is_printable(m%file)) then
+      call report(s, st%line, 'bad mesh file name ' // quoted(m%file) // ' (expected a name ending in .msh or .geo)')
+      return
+    end if
+    if (m%file(1:1) == '/' .or. dir == '.') then
+      m%path = m%file
+    else if (dir == '/') then
+      m%path = '/' // m%file
+    else
+      m%path = dir // '/' // m%file
+    end if
+    inquire(file=m%path, exist=exists)
+    if (.not. exists) call report(s, st%line, 'cannot find mesh file ' // quoted(m%file) // ' (looked for ' // &
+                                  cut(m%path) // ')')
+
+    nset = 0
+    allocate(m%set_names(st%npair), m%set_values(st%npair))
+    do i = 1, st%npair
+      if (i == ifile .or. lower(st%key(i)%s) == 'file') cycle
+      if (len(st%key(i)%s) == 0) then
+        call report(s, st%line, 'missing key before ' // quoted('=' // st%value(i)%s) // ' (expected key=value)')
+        cycle
+      end if
+      if (is_msh) then
+        call report(s, st%line, 'unknown key ' // quoted(st%key(i)%s) // ' for MESH gmsh with a .msh file ' // &
+                    '(expected file= only; name=number pairs are for .geo files)')
+        cycle
+      end if
+      if (.not. is_identifier(st%key(i)%s)) then
+        call report(s, st%line, 'bad parameter name ' // quoted(st%key(i)%s) // ' for MESH gmsh (expected a ' // &
+                    '.geo variable: a letter or _, then letters, digits or _, at most 64 characters)')
+        cycle
+      end if
+      do j = 1, nset
+        if (trim(m%set_names(j)) == st%key(i)%s) exit
+      end do
+      if (j <= nset) then
+        call report(s, st%line, 'duplicate key ' // quoted(st%key(i)%s) // ' (expected each key at most once)')
+        cycle
+      end if
+      if (len(st%value(i)%s) == 0) then
+        call report(s, st%line, 'missing value for ' // quoted(st%key(i)%s) // ' (expected ' // st%key(i)%s // &
+                    '=number)')
+        cycle
+      end if
+      call parse_real(st%value(i)%s, x, ok)
+      if (.not. ok) then
+        call report(s, st%line, 'bad number ' // quoted(st%value(i)%s) // ' for ' // quoted(st%key(i)%s) // &
+                    ' (expected a finite number)')
+        cycle
+      end if
+      nset = nset + 1
+      m%set_names(nset) = st%key(i)%s
+      m%set_values(nset) = x
+    end do
+    m%set_names = m%set_names(1:nset)
+    m%set_values = m%set_values(1:nset)
+  end subroutine do_mesh_gmsh
+
+  !> MATERIAL isotropic E= nu= | MATERIAL orthotropic E1= E2= nu12= G12= [angle=] [E3=] [nu13=] [nu23=]
+  subroutine do_material(s, body, st)
+    type(state_t), intent(inout) :: s
+    type(body_deck_t), intent(inout) :: body
+    type(stmt_t), intent(in) :: st
+    character(len=*), parameter :: usage_iso = 'MATERIAL isotropic E=number nu=number'
+    character(len=*), parameter :: usage_ortho = 'MATERIAL orthotropic E1=number E2=number nu12=number ' // &
+                                                 'G12=number [angle=degrees] [E3=number] [nu13=number] [nu23=number]'
+    character(len=5), parameter :: iso_names(2) = [character(len=5) :: 'E', 'nu']
+    character(len=5), parameter :: ortho_names(8) = [character(len=5) :: 'E1', 'E2', 'nu12', 'G12', 'angle', &
+                                                     'E3', 'nu13', 'nu23']
+    character(len=6), parameter :: forms(8) = [character(len=6) :: 'number', 'number', 'number', 'number', &
+                                               'number', 'number', 'number', 'number']
+    logical :: seen(8), ok(8)
+    type(text_t) :: val(8)
+    integer :: nerr0
+    character(len=:), allocatable :: kind
+    type(material_t) :: mat
+
+    if (body%material%line > 0) then
+      call report(s, st%line, 'second MATERIAL in BODY ' // quoted(body%name) // ' (first at line ' // &
+                  int_to_str(body%material%line) // '; expected one MATERIAL per body)')
+      return
+    end if
+    body%material%line = st%line
+    body%material%kind = ''
+    if (st%nword == 0) then
+      call report(s, st%line, 'missing material kind (expected ' // usage_iso // ' or MATERIAL orthotropic ...)')
+      return
+    end if
+    kind = lower(st%word(1)%s)
+    nerr0 = s%nerr
+    mat%line = st%line
+    select case (kind)
+    case ('isotropic')
+      call check_extra_words(s, st, 1, usage_iso)
+      call match_keys(s, st, iso_names, forms(1:2), 'MATERIAL isotropic', seen(1:2), val(1:2))
+      call require_key(s, st, seen(1), 'E', 'MATERIAL isotropic', usage_iso)
+      call require_key(s, st, seen(2), 'nu', 'MATERIAL isotropic', usage_iso)
+      call get_positive(s, st, val(1), 'E', mat%e, ok(1))
+      call get_real(s, st, val(2), 'nu', mat%nu, ok(2))
+      if (ok(2) .and. .not. (mat%nu > -1.0_dp .and. mat%nu < 0.5_dp)) &
+        call report(s, st%line, 'bad value nu=' // cut(val(2)%s) // ' (expected -1 < nu < 0.5)')
+    case ('orthotropic')
+      call check_extra_words(s, st, 1, usage_ortho)
+      call match_keys(s, st, ortho_names, forms, 'MATERIAL orthotropic', seen, val)
+      call require_key(s, st, seen(1), 'E1', 'MATERIAL orthotropic', usage_ortho)
+      call require_key(s, st, seen(2), 'E2', 'MATERIAL orthotropic', usage_ortho)
+      call require_key(s, st, seen(3), 'nu12', 'MATERIAL orthotropic', usage_ortho)
+      call require_key(s, st, seen(4), 'G12', 'MATERIAL orthotropic', usage_ortho)
+      call get_positive(s, st, val(1), 'E1', mat%e1, ok(1))
+      call get_positive(s, st, val(2), 'E2', mat%e2, ok(2))
+      call get_real(s, st, val(3), 'nu12', mat%nu12, ok(3))
+      call get_positive(s, st, val(4), 'G12', mat%g12, ok(4))
+      call get_real(s, st, val(5), 'angle', mat%angle, ok(5))
+      mat%e3 = mat%e2
+      mat%nu13 = mat%nu12
+      mat%nu23 = mat%nu12
+      call get_positive(s, st, val(6), 'E3', mat%e3, ok(6))
+      call get_real(s, st, val(7), 'nu13', mat%nu13, ok(7))
+      call get_real(s, st, val(8), 'nu23', mat%nu23, ok(8))
+      if (all(ok(1:3))) then
+        if (.not. plane_compliance_ok(mat)) call report(s, st%line, 'orthotropic in-plane compliance not ' // &
+                                                        'positive definite (expected nu12^2 < E1/E2)')
+      end if
+    case default
+      call report(s, st%line, 'unknown material kind ' // quoted(st%word(1)%s) // ' (expected isotropic or orthotropic)')
+      return
+    end select
+    if (s%nerr == nerr0) then
+      mat%kind = kind
+      body%material = mat
+    end if
+  end subroutine do_material
+
+  !> 1 - nu12^2 E2/E1 > 0, computed without overflow.
+  pure logical function plane_compliance_ok(m) result(ok)
+    type(material_t), intent(in) :: m
+    ok = 1.0_dp - ratio_term(2, [m%nu12], m%e2, m%e1) > 0
+  end function plane_compliance_ok
+
+  !> det of the normal 3x3 compliance (times E1 E2 E3 / E1 ...) > 0 in the form
+  !> 1 - nu12^2 E2/E1 - nu23^2 E3/E2 - nu13^2 E3/E1 - 2 nu12 nu23 nu13 E3/E1 > 0.
+  pure logical function strain_compliance_ok(m) result(ok)
+    type(material_t), intent(in) :: m
+    real(dp) :: det
+    det = 1.0_dp - ratio_term(2, [m%nu12], m%e2, m%e1) - ratio_term(2, [m%nu23], m%e3, m%e2) &
+          - ratio_term(2, [m%nu13], m%e3, m%e1) - 2.0_dp * ratio_term(1, [m%nu12, m%nu23, m%nu13], m%e3, m%e1)
+    ok = det > 0
+  end function strain_compliance_ok
+
+  !> prod(nu)^power * num/den with num, den > 0, through logarithms and clamped at
+  !> 1e250 in magnitude, so that no input overflows.
+  pure real(dp) function ratio_term(power, nu, num, den) result(t)
+    integer, intent(in) :: power
+    real(dp), intent(in) :: nu(:), num, den
+    real(dp) :: lg, sgn
+    integer :: i
+    t = 0
+    if (any(nu == 0) .or. .not. (num > 0 .and. den > 0)) return
+    lg = log(num) - log(den)
+    sgn = 1
+    do i = 1, size(nu)
+      lg = lg + power * log(abs(nu(i)))
+      if (nu(i) < 0) sgn = -sgn
+    end do
+    if (power == 2) sgn = 1
+    t = sgn * exp(min(lg, 575.0_dp))
+  end function ratio_term
+
+  !> DENSITY rho=
+  subroutine do_density(s, body, st)
+    type(state_t), intent(inout) :: s
+    type(body_deck_t), intent(inout) :: body
+    type(stmt_t), intent(in) :: st
+    character(len=*), parameter :: usage = 'DENSITY rho=number'
+    logical :: seen(1), ok
+    type(text_t) :: val(1)
+
+    if (body%density_line > 0) then
+      call report(s, st%line, 'second DENSITY in BODY ' // quoted(body%name) // ' (first at line ' // &
+                  int_to_str(body%density_line) // '; expected at most one)')
+      return
+    end if
+    body%density_line = st%line
+    call check_extra_words(s, st, 0, usage)
+    call match_keys(s, st, ['rho'], ['number'], 'DENSITY', seen, val)
+    call require_key(s, st, seen(1), 'rho', 'DENSITY', usage)
+    call get_positive(s, st, val(1), 'rho', body%rho, ok)
+    body%has_density = ok
+  end subroutine do_density
+
+  !> FIX boundary [ux=] [uy=]
+  subroutine do_fix(s, body, st)
+    type(state_t), intent(inout) :: s
+    type(body_deck_t), intent(inout) :: body
+    type(stmt_t), intent(in) :: st
+    character(len=*), parameter :: usage = 'FIX boundary [ux=number] [uy=number]'
+    type(fix_t), allocatable :: grown(:)
+    type(fix_t) :: fix
+    logical :: seen(2), ok
+    type(text_t) :: val(2)
+    integer :: i
+
+    fix%line = st%line
+    fix%boundary = ''
+    if (st%nword == 0) then
+      call report(s, st%line, 'missing boundary name (expected ' // usage // ')')
+    else
+      call check_name(s, st, st%word(1)%s, 'boundary', ok)
+      if (ok) fix%boundary = st%word(1)%s
+      call check_extra_words(s, st, 1, usage)
+    end if
+    call match_keys(s, st, ['ux', 'uy'], ['number', 'number'], 'FIX', seen, val)
+    call get_real(s, st, val(1), 'ux', fix%ux, ok)
+    call get_real(s, st, val(2), 'uy', fix%uy, ok)
+    fix%has_ux = seen(1)
+    fix%has_uy = seen(2)
+    if (.not. (seen(1) .or. seen(2))) then          ! FIX boundary: clamp both
+      fix%has_ux = .true.
+      fix%has_uy = .true.
+    end if
+    allocate(grown(size(body%fixes) + 1))
+    do i = 1, size(body%fixes)
+      grown(i) = body%fixes(i)
+    end do
+    grown(size(grown)) = fix
+    call move_alloc(grown, body%fixes)
+  end subroutine do_fix
+
+  !> TRACTION boundary tx= ty= | PRESSURE boundary p=
+  subroutine do_load(s, body, st, kw)
+    type(state_t), intent(inout) :: s
+    type(body_deck_t), intent(inout) :: body
+    type(stmt_t), intent(in) :: st
+    character(len=*), intent(in) :: kw
+    character(len=:), allocatable :: usage
+    type(load_t), allocatable :: grown(:)
+    type(load_t) :: load
+    logical :: seen(2), ok
+    type(text_t) :: val(2)
+    integer :: i, nerr0
+
+    if (kw == 'TRACTION') then
+      usage = 'TRACTION boundary tx=number ty=number'
+      load%kind = load_traction
+    else
+      usage = 'PRESSURE boundary p=number'
+      load%kind = load_pressure
+    end if
+    load%line = st%line
+    load%boundary = ''
+    nerr0 = s%nerr
+    if (st%nword == 0) then
+      call report(s, st%line, 'missing boundary name (expected ' // usage // ')')
+    else
+      call check_name(s, st, st%word(1)%s, 'boundary', ok)
+      if (ok) load%boundary = st%word(1)%s
+      call check_extra_words(s, st, 1, usage)
+    end if
+    if (kw == 'TRACTION') then
+      call match_keys(s, st, ['tx', 'ty'], ['number', 'number'], 'TRACTION', seen, val)
+      if (.not. (seen(1) .or. seen(2))) call report(s, st%line, 'missing tx= and ty= (expected ' // usage // ')')
+      call get_real(s, st, val(1), 'tx', load%tx, ok)
+      call get_real(s, st, val(2), 'ty', load%ty, ok)
+    else
+      call match_keys(s, st, ['p'], ['number'], 'PRESSURE', seen(1:1), val(1:1))
+      call require_key(s, st, seen(1), 'p', 'PRESSURE', usage)
+      call get_real(s, st, val(1), 'p', load%p, ok)
+    end if
+    if (s%nerr /= nerr0) return
+    allocate(grown(size(body%loads) + 1))
+    do i = 1, size(body%loads)
+      grown(i) = body%loads(i)
+    end do
+    grown(size(grown)) = load
+    call move_alloc(grown, body%loads)
+  end subroutine do_load
+
+  !> BODYFORCE fx= fy=
+  subroutine do_bodyforce(s, body, st)
+    type(state_t), intent(inout) :: s
+    type(body_deck_t), intent(inout) :: body
+    type(stmt_t), intent(in) :: st
+    character(len=*), parameter :: usage = 'BODYFORCE fx=number fy=number'
+    logical :: seen(2), ok1, ok2
+    type(text_t) :: val(2)
+
+    if (body%bodyforce_line > 0) then
+      call report(s, st%line, 'second BODYFORCE in BODY ' // quoted(body%name) // ' (first at line ' // &
+                  int_to_str(body%bodyforce_line) // '; expected at most one)')
+      return
+    end if
+    body%bodyforce_line = st%line
+    call check_extra_words(s, st, 0, usage)
+    call match_keys(s, st, ['fx', 'fy'], ['number', 'number'], 'BODYFORCE', seen, val)
+    if (.not. (seen(1) .or. seen(2))) call report(s, st%line, 'missing fx= and fy= (expected ' // usage // ')')
+    call get_real(s, st, val(1), 'fx', body%fx, ok1)
+    call get_real(s, st, val(2), 'fy', body%fy, ok2)
+    body%has_bodyforce = (ok1 .or. .not. seen(1)) .and. (ok2 .or. .not. seen(2)) .and. (seen(1) .or. seen(2))
+  end subroutine do_bodyforce
+
+  !> GRAVITY gx= gy=
+  subroutine do_gravity(s, deck, st)
+    type(state_t), intent(inout) :: s
+    type(deck_t), intent(inout) :: deck
+    type(stmt_t), intent(in) :: st
+    character(len=*), parameter :: usage = 'GRAVITY gx=number gy=number'
+    logical :: seen(2), ok1, ok2
+    type(text_t) :: val(2)
+
+    if (deck%gravity_line > 0) then
+      call report(s, st%line, 'second GRAVITY (first at line ' // int_to_str(deck%gravity_line) // &
+                  '; expected at most one)')
+      return
+    end if
+    deck%gravity_line = st%line
+    call check_extra_words(s, st, 0, usage)
+    call match_keys(s, st, ['gx', 'gy'], ['number', 'number'], 'GRAVITY', seen, val)
+    if (.not. (seen(1) .or. seen(2))) call report(s, st%line, 'missing gx= and gy= (expected ' // usage // ')')
+    call get_real(s, st, val(1), 'gx', deck%gx, ok1)
+    call get_real(s, st, val(2), 'gy', deck%gy, ok2)
+    deck%has_gravity = (ok1 .or. .not. seen(1)) .and. (ok2 .or. .not. seen(2)) .and. (seen(1) .or. seen(2))
+  end subroutine do_gravity
+
+  !> CONTACT slave=body:boundary master=body:boundary [gap=geometry|zero]
+  subroutine do_contact(s, deck, st)
+    type(state_t), intent(inout) :: s
+    type(deck_t), intent(inout) :: deck
+    type(stmt_t), intent(in) :: st
+    character(len=*), parameter :: usage = 'CONTACT slave=body:boundary master=body:boundary [gap=geometry|zero]'
+    character(len=6), parameter :: names(3) = [character(len=6) :: 'slave', 'master', 'gap']
+    character(len=13), parameter :: forms(3) = [character(len=13) :: 'body:boundary', 'body:boundary', &
+                                                'geometry|zero']
+    logical :: seen(3), ok_s, ok_m
+    type(text_t) :: val(3)
+    type(contact_deck_t) :: c
+    type(contact_deck_t), allocatable :: grown(:)
+    type(text_t), allocatable :: gs(:), gm(:)
+    character(len=:), allocatable :: sbody, mbody, gap
+    integer :: nerr0, i
+
+    nerr0 = s%nerr
+    call check_extra_words(s, st, 0, usage)
+    call match_keys(s, st, names, forms, 'CONTACT', seen, val)
+    call require_key(s, st, seen(1), 'slave', 'CONTACT', usage)
+    call require_key(s, st, seen(2), 'master', 'CONTACT', usage)
+    call split_side(s, st, val(1), 'slave', sbody, c%slave_boundary, ok_s)
+    call split_side(s, st, val(2), 'master', mbody, c%master_boundary, ok_m)
+    if (ok_s .and. ok_m) then
+      if (sbody == mbody .and. c%slave_boundary == c%master_boundary) &
+        call report(s, st%line, 'slave and master must be different boundaries (both are ' // &
+                    cut(sbody // ':' // c%slave_boundary) // ')')
+    end if
+    gap = 'geometry'
+    if (allocated(val(3)%s)) gap = get_choice(s, st, val(3), 'gap', ['geometry', 'zero    '])
+    c%gap_zero = gap == 'zero'
+    c%line = st%line
+    if (s%nerr /= nerr0) then
+      s%contact_bad = .true.
+      return
+    end if
+    allocate(grown(s%ncontact + 1))
+    do i = 1, s%ncontact
+      grown(i) = deck%contacts(i)
+    end do
+    grown(s%ncontact + 1) = c
+    call move_alloc(grown, deck%contacts)
+    if (s%ncontact + 1 > size(s%slave_name)) then
+      allocate(gs(2 * size(s%slave_name)), gm(2 * size(s%slave_name)))
+      do i = 1, s%ncontact
+        call move_alloc(s%slave_name(i)%s, gs(i)%s)
+        call move_alloc(s%master_name(i)%s, gm(i)%s)
+      end do
+      call move_alloc(gs, s%slave_name)
+      call move_alloc(gm, s%master_name)
+    end if
+    s%ncontact = s%ncontact + 1
+    s%slave_name(s%ncontact)%s = sbody
+    s%master_name(s%ncontact)%s = mbody
+  end subroutine do_contact
+
+  !> Split 'body:boundary'; report a bad form.  ok false when absent or bad.
+  subroutine split_side(s, st, val, name, body, boundary, ok)
+    type(state_t), intent(inout) :: s
+    type(stmt_t), intent(in) :: st
+    type(text_t), intent(in) :: val
+    character(len=*), intent(in) :: name
+    character(len=:), allocatable, intent(out) :: body
+    character(len=:), allocatable, intent(inout) :: boundary
+    logical, intent(out) :: ok
+    integer :: colon
+    body = ''
+    boundary = ''
+    ok = .false.
+    if (.not. allocated(val%s)) return
+    colon = index(val%s, ':')
+    if (colon > 1 .and. colon < len(val%s)) then
+      body = val%s(1:colon - 1)
+      boundary = val%s(colon + 1:)
+      ok = is_name(body) .and. is_name(boundary)
+    end if
+    if (.not. ok) call report(s, st%line, 'bad value ' // name // '=' // cut(val%s) // ' (expected ' // name // &
+                              '=body:boundary, names made of letters, digits, _ . -)')
+  end subroutine split_side
+
+  !> SOLVER [lcp=] [tol=] [maxit=] [omega=]
+  subroutine do_solver(s, deck, st)
+    type(state_t), intent(inout) :: s
+    type(deck_t), intent(inout) :: deck
+    type(stmt_t), intent(in) :: st
+    character(len=*), parameter :: usage = 'SOLVER [lcp=auto|lemke|pgs] [tol=number] [maxit=integer] [omega=number]'
+    character(len=5), parameter :: names(4) = [character(len=5) :: 'lcp', 'tol', 'maxit', 'omega']
+    character(len=14), parameter :: forms(4) = [character(len=14) :: 'auto|lemke|pgs', 'number', 'integer', &
+                                                'number']
+    logical :: seen(4), ok
+    type(text_t) :: val(4)
+    character(len=:), allocatable :: lcp
+
+    if (s%solver_line > 0) then
+      call report(s, st%line, 'second SOLVER (first at line ' // int_to_str(s%solver_line) // &
+                  '; expected at most one)')
+      return
+    end if
+    s%solver_line = st%line
+    deck%solver%line = st%line
+    call check_extra_words(s, st, 0, usage)
+    call match_keys(s, st, names, forms, 'SOLVER', seen, val)
+    if (allocated(val(1)%s)) then
+      lcp = get_choice(s, st, val(1), 'lcp', ['auto ', 'lemke', 'pgs  '])
+      if (len(lcp) > 0) deck%solver%lcp = lcp
+    end if
+    call get_positive(s, st, val(2), 'tol', deck%solver%tol, ok)
+    call get_integer(s, st, val(3), 'maxit', 0, deck%solver%maxit, ok)
+    call get_real(s, st, val(4), 'omega', deck%solver%omega, ok)
+    if (ok .and. .not. (deck%solver%omega > 0 .and. deck%solver%omega < 2)) &
+      call report(s, st%line, 'bad value omega=' // cut(val(4)%s) // ' (expected 0 < omega < 2)')
+  end subroutine do_solver
+
+  !> OUTPUT [vtk=] [contact=] [summary=]
+  subroutine do_output(s, deck, st)
+    type(state_t), intent(inout) :: s
+    type(deck_t), intent(inout) :: deck
+    type(stmt_t), intent(in) :: st
+    character(len=*), parameter :: usage = 'OUTPUT [vtk=NAME] [contact=NAME] [summary=NAME]'
+    character(len=7), parameter :: names(3) = [character(len=7) :: 'vtk', 'contact', 'summary']
+    logical :: seen(3)
+    type(text_t) :: val(3)
+    integer :: k
+
+    if (s%output_line > 0) then
+      call report(s, st%line, 'second OUTPUT (first at line ' // int_to_str(s%output_line) // &
+                  '; expected at most one)')
+      return
+    end if
+    s%output_line = st%line
+    deck%output%line = st%line
+    call check_extra_words(s, st, 0, usage)
+    call match_keys(s, st, names, ['NAME', 'NAME', 'NAME'], 'OUTPUT', seen, val)
+    do k = 1, 3
+      if (.not. allocated(val(k)%s)) cycle
+      if (.not. is_name(val(k)%s) .or. val(k)%s == '.' .or. val(k)%s == '..') then
+        call report(s, st%line, 'bad file name ' // trim(names(k)) // '=' // cut(val(k)%s) // ' (expected a ' // &
+                    'name in the output folder: letters, digits, _ . - only, no /)')
+        cycle
+      end if
+      select case (k)
+      case (1)
+        deck%output%vtk = val(k)%s
+        if (.not. ends_with_ci(val(k)%s, '.vtk')) deck%output%vtk = val(k)%s // '.vtk'
+      case (2)
+        deck%output%contact = val(k)%s
+      case (3)
+        deck%output%summary = val(k)%s
+      end select
+    end do
+  end subroutine do_output
+
+  ! ================================================================ whole-deck checks
+
+  !> Checks that need the whole deck: open block, bodies complete, rect boundary
+  !> names, plane-strain compliance, CONTACT bodies, rigid-body modes, output names.
+  subroutine finish_checks(s, deck)
+    type(state_t), intent(inout) :: s
+    type(deck_t), intent(inout) :: deck
+    integer :: b, i
+    logical :: resolved
+
+    if (s%cur /= 0 .and. .not. s%end_hinted) &
+      call report(s, s%nline, 'missing END for BODY ' // quoted(deck%bodies(s%cur)%name) // &
+                  ' opened at line ' // int_to_str(deck%bodies(s%cur)%line) // &
+                  ' (expected END before the end of the file)', echo=.false.)
+    if (s%nbody == 0) then
+      call report(s, 0, 'deck has no BODY (at least one BODY ... END block expected)')
+      return
+    end if
+
+    do b = 1, s%nbody
+      associate (body => deck%bodies(b))
+        if (.not. is_name(body%name)) cycle
+        if (body%mesh%line == 0) call report(s, body%line, 'body ' // quoted(body%name) // &
+                                             ' has no MESH (expected a MESH statement in its BODY block)')
+        if (body%material%line == 0) call report(s, body%line, 'body ' // quoted(body%name) // &
+                                                 ' has no MATERIAL (expected a MATERIAL statement in its BODY block)')
+        if (.not. deck%plane_stress .and. allocated(body%material%kind)) then
+          if (body%material%kind == 'orthotropic') then
+            if (plane_compliance_ok(body%material) .and. .not. strain_compliance_ok(body%material)) &
+              call report(s, body%material%line, 'orthotropic compliance not positive definite for PLANE ' // &
+                          'strain (expected 1 - nu12^2 E2/E1 - nu23^2 E3/E2 - nu13^2 E3/E1 - ' // &
+                          '2 nu12 nu23 nu13 E3/E1 > 0)')
+          end if
+        end if
+        if (allocated(body%mesh%kind)) then
+          if (body%mesh%kind == 'rect') then
+            do i = 1, size(body%fixes)
+              call check_rect_boundary(s, body, body%fixes(i)%boundary, body%fixes(i)%line)
+            end do
+            do i = 1, size(body%loads)
+              call check_rect_boundary(s, body, body%loads(i)%boundary, body%loads(i)%line)
+            end do
+          end if
+        end if
+      end associate
+    end do
+
+    call resolve_contacts(s, deck, resolved)
+    if (resolved .and. .not. s%contact_bad) call check_rigid_modes(s, deck)
+    call check_output_names(s, deck)
+  end subroutine finish_checks
+
+  !> A rect mesh names its boundaries left, right, bottom, top.
+  subroutine check_rect_boundary(s, body, name, line)
+    type(state_t), intent(inout) :: s
+    type(body_deck_t), intent(in) :: body
+    character(len=*), intent(in) :: name
+    integer, intent(in) :: line
+    if (len(name) == 0) return
+    select case (name)
+    case ('left', 'right', 'bottom', 'top')
+    case default
+      call report(s, line, 'unknown boundary ' // quoted(name) // ' of BODY ' // quoted(body%name) // &
+                  ' (expected one of left, right, bottom, top for MESH rect)')
+    end select
+  end subroutine check_rect_boundary
+
+  !> Body indices of the CONTACT statements; duplicates; rect boundary names.
+  subroutine resolve_contacts(s, deck, resolved)
+    type(state_t), intent(inout) :: s
+    type(deck_t), intent(inout) :: deck
+    logical, intent(out) :: resolved
+    integer :: i, j, b
+    character(len=:), allocatable :: known
+
+    resolved = .true.
+    known = ''
+    do b = 1, s%nbody
+      if (.not. is_name(deck%bodies(b)%name)) cycle
+      if (len(known) > 0) known = known // ', '
+      known = known // deck%bodies(b)%name
+    end do
+    if (len(known) > 200) known = known(1:200) // ' ...'
+    do i = 1, s%ncontact
+      associate (c => deck%contacts(i))
+        c%slave_body = find_body(deck, s%nbody, s%slave_name(i)%s)
+        c%master_body = find_body(deck, s%nbody, s%master_name(i)%s)
+        if (c%slave_body == 0) call report(s, c%line, 'unknown body ' // quoted(s%slave_name(i)%s) // &
+                                           ' in CONTACT (expected one of ' // known // ')')
+        if (c%master_body == 0 .and. s%master_name(i)%s /= s%slave_name(i)%s) &
+          call report(s, c%line, 'unknown body ' // quoted(s%master_name(i)%s) // ' in CONTACT (expected one of ' // &
+                      known // ')')
+        if (c%slave_body == 0 .or. c%master_body == 0) then
+          resolved = .false.
+          cycle
+        end if
+        call check_contact_side(s, deck%bodies(c%slave_body), c%slave_boundary, c%line)
+        call check_contact_side(s, deck%bodies(c%master_body), c%master_boundary, c%line)
+        do j = 1, i - 1
+          if (same_pair(c, deck%contacts(j))) then
+            call report(s, c%line, 'duplicate CONTACT (same two boundaries as at line ' // &
+                        int_to_str(deck%contacts(j)%line) // '; expected each pair once)')
+            exit
+          end if
+        end do
+      end associate
+    end do
+  end subroutine resolve_contacts
+
+  subroutine check_contact_side(s, body, boundary, line)
+    type(state_t), intent(inout) :: s
+    type(body_deck_t), intent(in) :: body
+    character(len=*), intent(in) :: boundary
+    integer, intent(in) :: line
+    if (.not. allocated(body%mesh%kind)) return
+    if (body%mesh%kind == 'rect') call check_rect_boundary(s, body, boundary, line)
+  end subroutine check_contact_side
+
+  !> Two CONTACTs join the same two boundaries (in either role).
+  pure logical function same_pair(a, b)
+    type(contact_deck_t), intent(in) :: a, b
+    same_pair = (a%slave_body == b%slave_body .and. a%slave_boundary == b%slave_boundary .and. &
+                 a%master_body == b%master_body .and. a%master_boundary == b%master_boundary) .or. &
+                (a%slave_body == b%master_body .and. a%slave_boundary == b%master_boundary .and. &
+                 a%master_body == b%slave_body .and. a%master_boundary == b%slave_boundary)
+  end function same_pair
+
+  pure integer function find_body(deck, nbody, name) result(b)
+    type(deck_t), intent(in) :: deck
+    integer, intent(in) :: nbody
+    character(len=*), intent(in) :: name
+    do b = 1, nbody
+      if (deck%bodies(b)%name == name .and. len(deck%bodies(b)%name) == len(name)) return
+    end do
+    b = 0
+  end function find_body
+
+  !> Every body must be held: a FIX of its own, or a CONTACT chain to a body with a
+  !> FIX.  A body with neither FIX nor CONTACT, and a group of bodies joined by
+  !> CONTACT none of which has a FIX, has rigid-body modes.
+  subroutine check_rigid_modes(s, deck)
+    type(state_t), intent(inout) :: s
+    type(deck_t), intent(in) :: deck
+    integer, allocatable :: group(:)
+    logical, allocatable :: in_contact(:)
+    integer :: b, i, g, a, c, nmem
+    logical :: held, changed
+    character(len=:), allocatable :: members
+
+    allocate(group(s%nbody), in_contact(s%nbody))
+    in_contact = .false.
+    do b = 1, s%nbody
+      group(b) = b
+    end do
+    do i = 1, s%ncontact
+      in_contact(deck%contacts(i)%slave_body) = .true.
+      in_contact(deck%contacts(i)%master_body) = .true.
+    end do
+    changed = .true.                          ! label propagation: group = smallest member
+    do while (changed)
+      changed = .false.
+      do i = 1, s%ncontact
+        a = deck%contacts(i)%slave_body
+        c = deck%contacts(i)%master_body
+        if (group(a) /= group(c)) then
+          group(a) = min(group(a), group(c))
+          group(c) = group(a)
+          changed = .true.
+        end if
+      end do
+    end do
+    do b = 1, s%nbody
+      if (.not. is_name(deck%bodies(b)%name)) cycle
+      if (size(deck%bodies(b)%fixes) > 0) cycle
+      if (.not. in_contact(b)) then
+        call report(s, deck%bodies(b)%line, 'body ' // quoted(deck%bodies(b)%name) // ' has no FIX and is in no ' // &
+                    'CONTACT (rigid-body modes: expected FIX on a boundary, or a CONTACT that holds the body)')
+        cycle
+      end if
+      g = group(b)
+      if (g /= b) cycle                      ! report each group once, at its first body
+      held = .false.
+      members = ''
+      nmem = 0
+      do a = 1, s%nbody
+        if (group(a) /= g) cycle
+        if (size(deck%bodies(a)%fixes) > 0) held = .true.
+        nmem = nmem + 1
+        if (nmem > 1) members = members // ', '
+        members = members // quoted(deck%bodies(a)%name)
+      end do
+      if (.not. held) call report(s, deck%bodies(b)%line, 'no FIX on any of the bodies ' // members // &
+                                  ' held together by CONTACT (rigid-body modes: expected FIX on a boundary ' // &
+                                  'of at least one of them)')
+    end do
+  end subroutine check_rigid_modes
+
+  !> The three output files must have different names.
+  subroutine check_output_names(s, deck)
+    type(state_t), intent(inout) :: s
+    type(deck_t), intent(inout) :: deck
+    character(len=:), allocatable :: v, c, m
+    integer :: line
+    call fill_defaults(deck)
+    v = deck%output%vtk
+    c = deck%output%contact
+    m = deck%output%summary
+    line = deck%output%line
+    if (v == c .and. len(v) == len(c)) then
+      call report(s, line, 'OUTPUT files must differ (vtk and contact are both ' // quoted(v) // ')')
+    else if (v == m .and. len(v) == len(m)) then
+      call report(s, line, 'OUTPUT files must differ (vtk and summary are both ' // quoted(v) // ')')
+    else if (c == m .and. len(c) == len(m)) then
+      call report(s, line, 'OUTPUT files must differ (contact and summary are both ' // quoted(c) // ')')
+    end if
+  end subroutine check_output_names
+
+  !> Allocate every character component left unset.
+  subroutine fill_defaults(deck)
+    type(deck_t), intent(inout) :: deck
+    integer :: b, i
+    if (.not. allocated(deck%title)) deck%title = ''
+    if (.not. allocated(deck%solver%lcp)) deck%solver%lcp = 'auto'
+    if (.not. allocated(deck%output%vtk)) deck%output%vtk = deck%name // '.vtk'
+    if (.not. allocated(deck%output%contact)) deck%output%contact = deck%name // '_contact.csv'
+    if (.not. allocated(deck%output%summary)) deck%output%summary = deck%name // '.summary'
+    do b = 1, size(deck%bodies)
+      associate (body => deck%bodies(b), m => deck%bodies(b)%mesh)
+        if (.not. allocated(body%name)) body%name = ''
+        if (.not. allocated(m%kind)) m%kind = ''
+        if (.not. allocated(m%elem)) m%elem = ''
+        if (.not. allocated(m%diag)) m%diag = ''
+        if (.not. allocated(m%file)) m%file = ''
+        if (.not. allocated(m%path)) m%path = ''
+        if (.not. allocated(m%set_names)) allocate(m%set_names(0))
+        if (.not. allocated(m%set_values)) allocate(m%set_values(0))
+        if (.not. allocated(body%material%kind)) body%material%kind = ''
+        if (.not. allocated(body%fixes)) allocate(body%fixes(0))
+        if (.not. allocated(body%loads)) allocate(body%loads(0))
+        do i = 1, size(body%fixes)
+          if (.not. allocated(body%fixes(i)%boundary)) body%fixes(i)%boundary = ''
+        end do
+      end associate
+    end do
+    do i = 1, size(deck%contacts)
+      if (.not. allocated(deck%contacts(i)%slave_boundary)) deck%contacts(i)%slave_boundary = ''
+      if (.not. allocated(deck%contacts(i)%master_boundary)) deck%contacts(i)%master_boundary = ''
+    end do
+  end subroutine fill_defaults
+
+  ! ================================================================ numbers and text
+
+  !> Read a Fortran or C real: [sign] digits [. [digits]] | [sign] . digits, then an
+  !> optional exponent [eEdD] [sign] digits, nothing else.  Values with |x| >= 1e308
+  !> are refused before conversion (conversion would overflow); underflow gives 0.
+  !>   str (in)  the text
+  !>   x   (out) the value when ok
+  !>   ok  (out) str is such a number
+  subroutine parse_real(str, x, ok)
+    character(len=*), intent(in) :: str
+    real(dp), intent(out) :: x
+    logical, intent(out) :: ok
+    integer :: i, n, nint, nfrac, first_int, first_frac, power, expo, ios
+    logical :: neg_exp
+    character(len=:), allocatable :: buf
+
+    x = 0
+    ok = .false.
+    n = len(str)
+    if (n == 0 .or. n > 400) return
+    i = 1
+    if (str(1:1) == '+' .or. str(1:1) == '-') i = 2
+    nint = 0                                      ! integer digits
+    first_int = 0                                 ! position of the first non-zero one
+    do while (i <= n)
+      if (.not. is_digit(str(i:i))) exit
+      nint = nint + 1
+      if (str(i:i) /= '0' .and. first_int == 0) first_int = nint
+      i = i + 1
+    end do
+    nfrac = 0                                     ! fraction digits
+    first_frac = 0
+    if (i <= n) then
+      if (str(i:i) == '.') then
+        i = i + 1
+        do while (i <= n)
+          if (.not. is_digit(str(i:i))) exit
+          nfrac = nfrac + 1
+          if (str(i:i) /= '0' .and. first_frac == 0) first_frac = nfrac
+          i = i + 1
+        end do
+      end if
+    end if
+    if (nint + nfrac == 0) return
+    expo = 0
+    if (i <= n) then
+      if (index('eEdD', str(i:i)) == 0) return
+      i = i + 1
+      neg_exp = .false.
+      if (i <= n) then
+        if (str(i:i) == '+' .or. str(i:i) == '-') then
+          neg_exp = str(i:i) == '-'
+          i = i + 1
+        end if
+      end if
+      if (i > n) return
+      do while (i <= n)
+        if (.not. is_digit(str(i:i))) return
+        if (expo < 100000) expo = 10 * expo + (iachar(str(i:i)) - iachar('0'))
+        i = i + 1
+      end do
+      if (neg_exp) expo = -expo
+    end if
+    ! |x| lies in [10^power, 10^(power+1)) with power that of the first non-zero digit
+    if (first_int > 0) then
+      power = nint - first_int + expo
+    else if (first_frac > 0) then
+      power = -first_frac + expo
+    else
+      power = -huge(1)                            ! x = 0
+    end if
+    if (power >= 308) return
+    buf = str
+    do i = 1, n
+      if (buf(i:i) == 'd' .or. buf(i:i) == 'D') buf(i:i) = 'e'
+    end do
+    read(buf, *, iostat=ios) x
+    ok = ios == 0
+    if (ok) ok = x == x .and. abs(x) <= huge(x)
+    if (.not. ok) x = 0
+  end subroutine parse_real
+
+  !> Read an integer: [sign] digits, at most 9 significant digits.
+  subroutine parse_integer(str, k, ok)
+    character(len=*), intent(in) :: str
+    integer, intent(out) :: k
+    logical, intent(out) :: ok
+    integer :: i, i0, nsig, ios
+    k = 0
+    ok = .false.
+    if (len(str) == 0) return
+    i0 = 1
+    if (str(1:1) == '+' .or. str(1:1) == '-') i0 = 2
+    if (i0 > len(str)) return
+    nsig = 0
+    do i = i0, len(str)
+      if (.not. is_digit(str(i:i))) return
+      if (nsig > 0 .or. str(i:i) /= '0') nsig = nsig + 1
+    end do
+    if (nsig > 9) return
+    read(str, *, iostat=ios) k
+    ok = ios == 0
+  end subroutine parse_integer
+
+  pure logical function is_digit(c)
+    character, intent(in) :: c
+    is_digit = c >= '0' .and. c <= '9'
+  end function is_digit
+
+  pure logical function is_blank(c)
+    character, intent(in) :: c
+    is_blank = c == ' ' .or. c == achar(9) .or. c == achar(10) .or. c == achar(11) .or. c == achar(12) &
+               .or. c == achar(13)
+  end function is_blank
+
+  !> Names: [A-Za-z0-9_.-]+
+  pure logical function is_name(s)
+    character(len=*), intent(in) :: s
+    integer :: i
+    is_name = len(s) > 0
+    do i = 1, len(s)
+      if (.not. (is_digit(s(i:i)) .or. is_letter(s(i:i)) .or. index('_.-', s(i:i)) > 0)) then
+        is_name = .false.
+        return
+      end if
+    end do
+  end function is_name
+
+  !> .geo variable: [A-Za-z_][A-Za-z0-9_]*, at most 64 characters.
+  pure logical function is_identifier(s)
+    character(len=*), intent(in) :: s
+    integer :: i
+    is_identifier = len(s) > 0 .and. len(s) <= 64
+    if (.not. is_identifier) return
+    is_identifier = is_letter(s(1:1)) .or. s(1:1) == '_'
+    do i = 2, len(s)
+      if (.not. (is_digit(s(i:i)) .or. is_letter(s(i:i)) .or. s(i:i) == '_')) is_identifier = .false.
+    end do
+  end function is_identifier
+
+  pure logical function is_letter(c)
+    character, intent(in) :: c
+    is_letter = (c >= 'a' .and. c <= 'z') .or. (c >= 'A' .and. c <= 'Z')
+  end function is_letter
+
+  !> No control characters (bytes >= 128 allowed).
+  pure logical function is_printable(s)
+    character(len=*), intent(in) :: s
+    integer :: i
+    is_printable = .true.
+    do i = 1, len(s)
+      if (iachar(s(i:i)) < 32 .or. iachar(s(i:i)) == 127) is_printable = .false.
+    end do
+  end function is_printable
+
+  pure logical function ends_with_ci(s, suffix)
+    character(len=*), intent(in) :: s, suffix
+    ends_with_ci = .false.
+    if (len(s) < len(suffix)) return
+    ends_with_ci = lower(s(len(s) - len(suffix) + 1:)) == lower(suffix)
+  end function ends_with_ci
+
+  pure function upper(s) result(t)
+    character(len=*), intent(in) :: s
+    character(len=len(s)) :: t
+    integer :: i
+    t = s
+    do i = 1, len(t)
+      if (t(i:i) >= 'a' .and. t(i:i) <= 'z') t(i:i) = achar(iachar(t(i:i)) - 32)
+    end do
+  end function upper
+
+  pure function lower(s) result(t)
+    character(len=*), intent(in) :: s
+    character(len=len(s)) :: t
+    integer :: i
+    t = s
+    do i = 1, len(t)
+      if (t(i:i) >= 'A' .and. t(i:i) <= 'Z') t(i:i) = achar(iachar(t(i:i)) + 32)
+    end do
+  end function lower
+
+  !> User text for a message: control and non-ASCII bytes as '?', cut after quote_len.
+  pure function cut(s) result(t)
+    character(len=*), intent(in) :: s
+    character(len=:), allocatable :: t
+    integer :: i
+    if (len(s) > quote_len) then
+      t = s(1:quote_len) // '...'
+    else
+      t = s
+    end if
+    do i = 1, len(t)
+      if (iachar(t(i:i)) < 32 .or. iachar(t(i:i)) > 126) t(i:i) = '?'
+    end do
+  end function cut
+
+  !> "text", printable and cut.
+  pure function quoted(s) result(t)
+    character(len=*), intent(in) :: s
+    character(len=:), allocatable :: t
+    t = '"' // cut(s) // '"'
+  end function quoted
+
+end module deck_reader

@@ -1,0 +1,185 @@
+!> elements: pure element kernels of plane elasticity for the P1 triangle (the
+!> paper's element, eq. (7)) and the Q1 quadrilateral.
+!>
+!> Element nodes xe(2, nen), counter-clockwise; element dofs ordered
+!> (u1x, u1y, u2x, u2y, ...).  Strain eps = B u in Voigt form (exx, eyy, gxy).
+!>
+!> Programming interface
+!>   quadrature_rule(nen, order, xi, w)    points xi(2, nq) and weights w(nq) on the
+!>        reference element: order 1 (P1: 1 point; Q1: 2x2 Gauss) or 2 (P1:
+!>        3-point degree-2 rule; Q1: 3x3 Gauss), for loads and error integrals
+!>   shape_at(nen, xe, xi, n, dndx, detj)  shape functions, their x-y gradients
+!>        and the Jacobian determinant at a reference point
+!>   element_stiffness(nen, xe, d, thick, ke)    ke = int B' D B t dA
+!>   element_body_load(nen, xe, b, thick, fe)    fe = int N' b t dA (constant b)
+!>   element_strain(nen, xe, ue, eps)            strain at the element centre
+!>   edge_load(xa, xb, t, thick, fe)             fe(4) = int N' t t_h ds, constant
+!>        traction t on the straight edge xa-xb
+module elements
+  use kinds, only: dp
+  implicit none
+  private
+  public :: quadrature_rule, shape_at, element_stiffness, element_body_load, element_strain
+  public :: edge_load, strain_operator
+
+contains
+
+  !> Quadrature on the reference triangle (0,0),(1,0),(0,1) or square [-1,1]^2.
+  !>   nen   (in)  3 or 4
+  !>   order (in)  1: exact for the stiffness; 2: one degree more, for loads/errors
+  !>   xi    (out) (2, nq) points
+  !>   w     (out) (nq) weights (sum: 1/2 for the triangle, 4 for the square)
+  pure subroutine quadrature_rule(nen, order, xi, w)
+    integer, intent(in) :: nen, order
+    real(dp), allocatable, intent(out) :: xi(:,:), w(:)
+    real(dp), parameter :: g2 = 1.0_dp / sqrt(3.0_dp), g3 = sqrt(0.6_dp)
+    real(dp) :: p(3), pw(3)
+    integer :: i, j, k, m
+    if (nen == 3) then
+      if (order <= 1) then
+        allocate(xi(2, 1), w(1))
+        xi(:, 1) = [1.0_dp, 1.0_dp] / 3.0_dp
+        w = 0.5_dp
+      else
+        allocate(xi(2, 3), w(3))
+        xi(:, 1) = [1.0_dp / 6.0_dp, 1.0_dp / 6.0_dp]
+        xi(:, 2) = [2.0_dp / 3.0_dp, 1.0_dp / 6.0_dp]
+        xi(:, 3) = [1.0_dp / 6.0_dp, 2.0_dp / 3.0_dp]
+        w = 1.0_dp / 6.0_dp
+      end if
+    else
+      if (order <= 1) then
+        m = 2
+        p(1:2) = [-g2, g2]
+        pw(1:2) = 1.0_dp
+      else
+        m = 3
+        p = [-g3, 0.0_dp, g3]
+        pw = [5.0_dp, 8.0_dp, 5.0_dp] / 9.0_dp
+      end if
+      allocate(xi(2, m * m), w(m * m))
+      k = 0
+      do j = 1, m
+        do i = 1, m
+          k = k + 1
+          xi(:, k) = [p(i), p(j)]
+          w(k) = pw(i) * pw(j)
+        end do
+      end do
+    end if
+  end subroutine quadrature_rule
+
+  !> Shape functions and x-y derivatives at reference point xi.
+  !>   nen  (in)  3 or 4
+  !>   xe   (in)  (2, nen) node coordinates
+  !>   xi   (in)  (2) reference point
+  !>   n    (out) (nen) shape function values
+  !>   dndx (out) (2, nen) gradients in x, y
+  !>   detj (out) Jacobian determinant (> 0 for a valid element)
+  pure subroutine shape_at(nen, xe, xi, n, dndx, detj)
+    integer, intent(in) :: nen
+    real(dp), intent(in) :: xe(2, nen), xi(2)
+    real(dp), intent(out) :: n(nen), dndx(2, nen), detj
+    real(dp) :: dndxi(2, nen), jac(2, 2), jinv(2, 2)
+    if (nen == 3) then
+      n = [1.0_dp - xi(1) - xi(2), xi(1), xi(2)]
+      dndxi(:, 1) = [-1.0_dp, -1.0_dp]
+      dndxi(:, 2) = [1.0_dp, 0.0_dp]
+      dndxi(:, 3) = [0.0_dp, 1.0_dp]
+    else
+      n = 0.25_dp * [(1 - xi(1)) * (1 - xi(2)), (1 + xi(1)) * (1 - xi(2)), &
+                     (1 + xi(1)) * (1 + xi(2)), (1 - xi(1)) * (1 + xi(2))]
+      dndxi(:, 1) = 0.25_dp * [-(1 - xi(2)), -(1 - xi(1))]
+      dndxi(:, 2) = 0.25_dp * [(1 - xi(2)), -(1 + xi(1))]
+      dndxi(:, 3) = 0.25_dp * [(1 + xi(2)), (1 + xi(1))]
+      dndxi(:, 4) = 0.25_dp * [-(1 + xi(2)), (1 - xi(1))]
+    end if
+    jac = matmul(xe, transpose(dndxi))          ! jac(i,j) = d x_i / d xi_j
+    detj = jac(1, 1) * jac(2, 2) - jac(1, 2) * jac(2, 1)
+    jinv(1, 1) = jac(2, 2) / detj
+    jinv(2, 2) = jac(1, 1) / detj
+    jinv(1, 2) = -jac(1, 2) / detj
+    jinv(2, 1) = -jac(2, 1) / detj
+    dndx = matmul(transpose(jinv), dndxi)       ! dN/dx = J^-T dN/dxi
+  end subroutine shape_at
+
+  !> Strain operator B(3, 2 nen) from shape gradients: eps = B u.
+  pure subroutine strain_operator(nen, dndx, b)
+    integer, intent(in) :: nen
+    real(dp), intent(in) :: dndx(2, nen)
+    real(dp), intent(out) :: b(3, 2 * nen)
+    integer :: a
+    b = 0.0_dp
+    do a = 1, nen
+      b(1, 2 * a - 1) = dndx(1, a)
+      b(2, 2 * a) = dndx(2, a)
+      b(3, 2 * a - 1) = dndx(2, a)
+      b(3, 2 * a) = dndx(1, a)
+    end do
+  end subroutine strain_operator
+
+  !> Element stiffness ke = sum_q w_q detJ_q t B_q' D B_q (exact: 1 point for P1,
+  !> 2x2 Gauss for Q1).
+  pure subroutine element_stiffness(nen, xe, d, thick, ke)
+    integer, intent(in) :: nen
+    real(dp), intent(in) :: xe(2, nen), d(3, 3), thick
+    real(dp), intent(out) :: ke(2 * nen, 2 * nen)
+    real(dp), allocatable :: xi(:,:), w(:)
+    real(dp) :: n(nen), dndx(2, nen), detj, b(3, 2 * nen), db(3, 2 * nen)
+    integer :: q
+    call quadrature_rule(nen, 1, xi, w)
+    ke = 0.0_dp
+    do q = 1, size(w)
+      call shape_at(nen, xe, xi(:, q), n, dndx, detj)
+      call strain_operator(nen, dndx, b)
+      db = matmul(d, b)
+      ke = ke + (w(q) * detj * thick) * matmul(transpose(b), db)
+    end do
+  end subroutine element_stiffness
+
+  !> Consistent nodal forces of a constant body force b (force per unit volume).
+  pure subroutine element_body_load(nen, xe, bf, thick, fe)
+    integer, intent(in) :: nen
+    real(dp), intent(in) :: xe(2, nen), bf(2), thick
+    real(dp), intent(out) :: fe(2 * nen)
+    real(dp), allocatable :: xi(:,:), w(:)
+    real(dp) :: n(nen), dndx(2, nen), detj
+    integer :: q, a
+    call quadrature_rule(nen, 2, xi, w)
+    fe = 0.0_dp
+    do q = 1, size(w)
+      call shape_at(nen, xe, xi(:, q), n, dndx, detj)
+      do a = 1, nen
+        fe(2 * a - 1:2 * a) = fe(2 * a - 1:2 * a) + (w(q) * detj * thick * n(a)) * bf
+      end do
+    end do
+  end subroutine element_body_load
+
+  !> Strain at the element centre (exact for P1; the centre value for Q1).
+  pure subroutine element_strain(nen, xe, ue, eps)
+    integer, intent(in) :: nen
+    real(dp), intent(in) :: xe(2, nen), ue(2 * nen)
+    real(dp), intent(out) :: eps(3)
+    real(dp) :: n(nen), dndx(2, nen), detj, b(3, 2 * nen), xc(2)
+    if (nen == 3) then
+      xc = [1.0_dp, 1.0_dp] / 3.0_dp
+    else
+      xc = 0.0_dp
+    end if
+    call shape_at(nen, xe, xc, n, dndx, detj)
+    call strain_operator(nen, dndx, b)
+    eps = matmul(b, ue)
+  end subroutine element_strain
+
+  !> Nodal forces of a constant traction t on the straight edge xa-xb (2-node
+  !> line, linear shape functions): half of t |xb - xa| thick to each node.
+  pure subroutine edge_load(xa, xb, t, thick, fe)
+    real(dp), intent(in) :: xa(2), xb(2), t(2), thick
+    real(dp), intent(out) :: fe(4)
+    real(dp) :: l
+    l = norm2(xb - xa)
+    fe(1:2) = 0.5_dp * l * thick * t
+    fe(3:4) = fe(1:2)
+  end subroutine edge_load
+
+end module elements

@@ -1,0 +1,2020 @@
+!> gmsh_reader: read a gmsh mesh file (MSH ASCII, format 2.2 or 4.1) into a
+!> mesh_t, and run gmsh on a .geo file.
+!>
+!> What is read
+!>   - nodes: tags may be sparse and in any order; node k of the mesh is the k-th
+!>     node of the file, x(1:2, k) its coordinates; every z must vanish up to
+!>     1e-10 of the mesh extent max(xmax - xmin, ymax - ymin);
+!>   - 2D elements: 3-node triangles (type 2) and 4-node quadrangles (type 3), all
+!>     of them, in the file's node order; MSH 2.2 repeats an element once per
+!>     physical group holding it, so elements with the same node set are merged
+!>     (sort of the sorted node sets, O(n log n));
+!>   - physical groups: a physical curve gives a boundary_t whose edges are its
+!>     2-node lines (type 1); a physical point gives a boundary_t whose points are
+!>     its point elements (type 15); a physical surface gives a region_t of element
+!>     indices.  A group is named from $PhysicalNames, else by its number ("3");
+!>     groups of the same name (e.g. a physical point and a physical curve) make
+!>     one boundary_t.  Boundaries and regions come in order of (dimension, tag).
+!>   - MSH 4.1: the physical tags of an element are those of its entity, listed in
+!>     $Entities; node blocks with parametric coordinates are accepted.
+!>   Unknown sections ($Periodic, $NodeData, ...) are skipped.  The mesh is left as
+!>   read: compaction of unused nodes, orientation and quality checks are the
+!>   caller's (finalize_mesh of module mesh).
+!>
+!> Errors
+!>   The whole file is read into memory and split into lines first, so any line
+!>   length and any byte are safe and every count read from the file is checked
+!>   against the number of lines left before anything is allocated from it.
+!>   Numbers are validated character by character before an internal read (so
+!>   that no overflow can occur in the conversion) and must be finite and of
+!>   magnitude below 1e100.  The first defect found is reported to diag as
+!>   `FILE:LINE: what is wrong (what was expected)` with the line echoed, and
+!>   reading stops; the mesh is then returned empty.
+!>
+!> Programming interface
+!>   read_gmsh_file(path, mesh, diag)
+!>        read the MSH file path into mesh; errors go to diag
+!>   mesh_geo_file(geo_path, names, values, msh_path, log_path, ok, message)
+!>        run `gmsh -2 -order 1 -format msh41 -v 2 [-setnumber NAME VALUE]... GEO
+!>        -o MSH > LOG 2>&1`; ok when gmsh exits 0 and wrote MSH, else message
+!>        holds gmsh's first error lines
+module gmsh_reader
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+  use kinds, only: dp, i8
+  use diagnostics, only: diag_t, add_error, int_to_str
+  use mesh, only: mesh_t, boundary_t, region_t
+  implicit none
+  private
+  public :: read_gmsh_file, mesh_geo_file
+
+  real(dp), parameter :: z_tolerance = 1.0e-10_dp  !< |z| / extent allowed
+  integer, parameter :: max_decimal_exponent = 99  !< numbers below 1e100 in magnitude
+  integer, parameter :: max_number_length = 200    !< longest accepted number item
+  integer, parameter :: echo_length = 100          !< characters of a line echoed
+  integer, parameter :: quote_length = 40          !< characters of an item quoted
+  character(len=*), parameter :: order_hint = &
+    'P1 triangles/Q1 quads and 2-node lines expected; mesh with gmsh -order 1'
+
+  !> A character string of any length.
+  type :: string_t
+    character(len=:), allocatable :: s
+  end type string_t
+
+  !> A growing table of integer records of a fixed width.
+  type :: record_list_t
+    integer :: n = 0                          !< number of records held
+    integer(i8), allocatable :: v(:,:)        !< (width, capacity) the records
+  end type record_list_t
+
+  !> The file in memory, split into lines, and the reading position.
+  type :: msh_text_t
+    character(len=:), allocatable :: path     !< file name for messages
+    character(len=:), allocatable :: buf      !< the whole file
+    integer(i8), allocatable :: lbeg(:)       !< (nline) first byte of each line
+    integer(i8), allocatable :: lend(:)       !< (nline) last byte, lbeg - 1 when empty
+    integer :: nline = 0                      !< number of lines
+    integer :: ln = 0                         !< current line, 0 before the first
+    integer :: ntok = 0                       !< number of items on the current line
+    integer(i8), allocatable :: tbeg(:)       !< (capacity) first byte of each item
+    integer(i8), allocatable :: tend(:)       !< (capacity) last byte of each item
+  end type msh_text_t
+
+  !> What the sections hold, as read.
+  type :: msh_data_t
+    logical :: v41 = .false.                  !< format 4.1 (else 2.2)
+    logical :: have_names = .false.           !< $PhysicalNames seen
+    logical :: have_entities = .false.        !< $Entities seen
+    logical :: have_nodes = .false.           !< $Nodes seen
+    logical :: have_elements = .false.        !< $Elements seen
+    integer :: nnode = 0                      !< number of nodes
+    real(dp), allocatable :: x(:,:)           !< (2, nnode) coordinates x, y
+    real(dp), allocatable :: z(:)             !< (nnode) coordinate z
+    integer(i8), allocatable :: ntag(:,:)     !< (1, nnode) node tags
+    integer, allocatable :: tag_line(:)       !< (nnode) line of each node tag
+    integer, allocatable :: coord_line(:)     !< (nnode) line of each node's coordinates
+    integer, allocatable :: tag_perm(:)       !< (nnode) ntag(1, tag_perm) ascending
+    integer(i8), allocatable :: name_key(:,:) !< (2, nname) dimension, tag of each name
+    type(string_t), allocatable :: name_text(:) !< (nname) physical names
+    integer, allocatable :: name_perm(:)      !< (nname) name_key sorted
+    integer(i8), allocatable :: ent_key(:,:)  !< (2, nent) dimension, tag of each entity
+    integer, allocatable :: ent_first(:)      !< (nent) first physical in ent_phys
+    integer, allocatable :: ent_count(:)      !< (nent) number of physical tags
+    integer, allocatable :: ent_perm(:)       !< (nent) ent_key sorted
+    type(record_list_t) :: ent_phys           !< (1, *) physical tags of the entities
+    type(record_list_t) :: raw                !< (5, *) nen, nodes of each 2D element read
+    type(record_list_t) :: region_pairs       !< (2, *) physical tag, raw element
+    type(record_list_t) :: edges              !< (3, *) physical tag, node, node
+    type(record_list_t) :: points             !< (2, *) physical tag, node
+  end type msh_data_t
+
+contains
+
+  ! ---------------------------------------------------------------------------
+  ! Reading a mesh file
+  ! ---------------------------------------------------------------------------
+
+  !> Read a gmsh MSH ASCII file (format 2.2 or 4.1) into a mesh.
+  !>   path (in)    file to open; also the name used in messages
+  !>   mesh (out)   nodes, elements, named boundaries and regions as in the file;
+  !>                empty (nnode = nelem = 0) when an error was found
+  !>   diag (inout) receives one message for the first defect of the file
+  subroutine read_gmsh_file(path, mesh, diag)
+    character(len=*), intent(in) :: path
+    type(mesh_t), intent(out) :: mesh
+    type(diag_t), intent(inout) :: diag
+    type(msh_text_t) :: t
+    type(msh_data_t) :: d
+    logical :: ok
+
+    t%path = path
+    call load_text(t, diag, ok)
+    if (.not. ok) return
+    call read_sections(t, d, diag, ok)
+    if (.not. ok) return
+    call build_mesh(d, mesh)
+  end subroutine read_gmsh_file
+
+  !> Read the file into t%buf and find its lines (LF or CRLF ends).
+  subroutine load_text(t, diag, ok)
+    type(msh_text_t), intent(inout) :: t
+    type(diag_t), intent(inout) :: diag
+    logical, intent(out) :: ok
+    integer :: status, n, k
+    integer(i8) :: p, q, nbytes, nlf
+
+    ok = .false.
+    call read_whole_file(t%path, t%buf, status)
+    select case (status)
+    case (1)
+      call add_error(diag, t%path, 0, 'cannot open the mesh file (an existing, readable gmsh .msh file expected)')
+      return
+    case (2)
+      call add_error(diag, t%path, 0, 'cannot read the mesh file (a readable regular file expected)')
+      return
+    case (3)
+      call add_error(diag, t%path, 0, 'mesh file too large to hold in memory (a smaller mesh expected)')
+      return
+    end select
+    nbytes = len(t%buf, kind=i8)
+    if (nbytes == 0) then
+      call add_error(diag, t%path, 0, 'the mesh file is empty (a gmsh MSH file starting with $MeshFormat expected)')
+      return
+    end if
+
+    ! Count the lines: one per LF, plus an unterminated last line.
+    nlf = 0
+    p = 1
+    do
+      q = index(t%buf(p:), achar(10), kind=i8)
+      if (q == 0) exit
+      nlf = nlf + 1
+      p = p + q
+      if (p > nbytes) exit
+    end do
+    if (t%buf(nbytes:nbytes) /= achar(10)) nlf = nlf + 1
+    if (nlf > int(huge(1), i8) - 4_i8) then
+      call add_error(diag, t%path, 0, 'mesh file has too many lines (fewer than 2**31 expected)')
+      return
+    end if
+    n = int(nlf)
+    allocate(t%lbeg(n), t%lend(n))
+    p = 1
+    do k = 1, n
+      t%lbeg(k) = p
+      if (p > nbytes) then
+        q = 0
+      else
+        q = index(t%buf(p:), achar(10), kind=i8)
+      end if
+      if (q == 0) then
+        t%lend(k) = nbytes
+      else
+        t%lend(k) = p + q - 2
+      end if
+      if (t%lend(k) >= t%lbeg(k)) then
+        if (t%buf(t%lend(k):t%lend(k)) == achar(13)) t%lend(k) = t%lend(k) - 1
+      end if
+      p = p + q
+    end do
+    t%nline = n
+    t%ln = 0
+    allocate(t%tbeg(16), t%tend(16))
+    ok = .true.
+  end subroutine load_text
+
+  !> Read every section of the file into d, checking each line.
+  subroutine read_sections(t, d, diag, ok)
+    type(msh_text_t), intent(inout) :: t
+    type(msh_data_t), intent(inout) :: d
+    type(diag_t), intent(inout) :: diag
+    logical, intent(out) :: ok
+    logical :: more
+    character(len=:), allocatable :: w
+
+    ok = .false.
+    ! The first line that is not blank must open $MeshFormat.
+    do
+      call advance_line(t, more)
+      if (.not. more) then
+        call add_error(diag, t%path, 0, 'the mesh file holds only blank lines (a gmsh MSH file starting with '// &
+          '$MeshFormat expected)')
+        return
+      end if
+      if (t%ntok > 0) exit
+    end do
+    if (t%ntok /= 1 .or. item(t, 1) /= '$MeshFormat') then
+      call fail(t, diag, 'not a gmsh MSH file ($MeshFormat expected on the first line)')
+      return
+    end if
+    call read_mesh_format(t, d, diag, ok)
+    if (.not. ok) return
+
+    ok = .false.
+    do
+      call advance_line(t, more)
+      if (.not. more) exit
+      if (t%ntok == 0) cycle
+      w = item(t, 1)
+      if (w(1:1) /= '$') then
+        call fail(t, diag, 'unexpected text outside a section (a section header such as $Nodes expected)')
+        return
+      end if
+      if (t%ntok /= 1) then
+        call fail(t, diag, 'wrong number of items: ' // int_to_str(t%ntok) // ' (a section header alone on its line expected)')
+        return
+      end if
+      select case (w)
+      case ('$MeshFormat')
+        call fail(t, diag, 'second $MeshFormat section (one per file expected)')
+        return
+      case ('$PhysicalNames')
+        if (d%have_names) then
+          call fail(t, diag, 'second $PhysicalNames section (one per file expected)')
+          return
+        end if
+        d%have_names = .true.
+        call read_physical_names(t, d, diag, ok)
+      case ('$Entities')
+        if (.not. d%v41) then
+          call skip_section(t, diag, 'Entities', ok)
+        else if (d%have_entities) then
+          call fail(t, diag, 'second $Entities section (one per file expected)')
+          return
+        else if (d%have_nodes .or. d%have_elements) then
+          call fail(t, diag, '$Entities after $Nodes or $Elements ($Entities expected before them)')
+          return
+        else
+          d%have_entities = .true.
+          call read_entities(t, d, diag, ok)
+        end if
+      case ('$Nodes')
+        if (d%have_nodes) then
+          call fail(t, diag, 'second $Nodes section (one per file expected)')
+          return
+        end if
+        d%have_nodes = .true.
+        if (d%v41) then
+          call read_nodes_41(t, d, diag, ok)
+        else
+          call read_nodes_22(t, d, diag, ok)
+        end if
+        if (ok) call check_nodes(t, d, diag, ok)
+      case ('$Elements')
+        if (d%have_elements) then
+          call fail(t, diag, 'second $Elements section (one per file expected)')
+          return
+        end if
+        if (.not. d%have_nodes) then
+          call fail(t, diag, '$Elements before $Nodes (the $Nodes section expected first)')
+          return
+        end if
+        d%have_elements = .true.
+        if (d%v41) then
+          call read_elements_41(t, d, diag, ok)
+        else
+          call read_elements_22(t, d, diag, ok)
+        end if
+      case default
+        if (len(w) >= 4) then
+          if (w(2:4) == 'End') then
+            call fail(t, diag, 'unexpected ' // quoted_item(t, 1) // ' (no section of that name is open)')
+            return
+          end if
+        end if
+        call skip_section(t, diag, w(2:), ok)
+      end select
+      if (.not. ok) return
+      ok = .false.
+    end do
+
+    if (.not. d%have_nodes) then
+      call add_error(diag, t%path, 0, 'no $Nodes section (a gmsh mesh with $Nodes and $Elements sections expected)')
+      return
+    end if
+    if (.not. d%have_elements) then
+      call add_error(diag, t%path, 0, 'no $Elements section (a 2D mesh expected: mesh with gmsh -2)')
+      return
+    end if
+    ok = .true.
+  end subroutine read_sections
+
+  !> $MeshFormat: `version file-type data-size`, then $EndMeshFormat.
+  subroutine read_mesh_format(t, d, diag, ok)
+    type(msh_text_t), intent(inout) :: t
+    type(msh_data_t), intent(inout) :: d
+    type(diag_t), intent(inout) :: diag
+    logical, intent(out) :: ok
+    real(dp) :: version
+    integer(i8) :: filetype, datasize
+
+    call read_data_line(t, diag, 'MeshFormat', 3, 'version file-type data-size, e.g. 4.1 0 8', ok)
+    if (.not. ok) return
+    ok = .false.
+    if (parse_real(item(t, 1), version) /= 0) then
+      call fail(t, diag, 'bad MSH version ' // quoted_item(t, 1) // ' (2.2 or 4.1 expected)')
+      return
+    end if
+    if (abs(version - 2.2_dp) < 1.0e-9_dp) then
+      d%v41 = .false.
+    else if (abs(version - 4.1_dp) < 1.0e-9_dp) then
+      d%v41 = .true.
+    else
+      call fail(t, diag, 'unsupported MSH version ' // quoted_item(t, 1) // &
+        ' (2.2 or 4.1 expected: gmsh -format msh22 or -format msh41)')
+      return
+    end if
+    if (.not. parse_integer(item(t, 2), filetype)) filetype = -1
+    if (filetype == 1) then
+      call fail(t, diag, 'binary MSH file (ASCII expected: gmsh -format msh22 or -format msh41 without -bin)')
+      return
+    else if (filetype /= 0) then
+      call fail(t, diag, 'bad file type ' // quoted_item(t, 2) // ' (0 for ASCII expected)')
+      return
+    end if
+    if (.not. parse_integer(item(t, 3), datasize)) datasize = -1
+    if (datasize <= 0) then
+      call fail(t, diag, 'bad data size ' // quoted_item(t, 3) // ' (a positive integer, usually 8, expected)')
+      return
+    end if
+    call expect_section_end(t, diag, 'MeshFormat', ok)
+  end subroutine read_mesh_format
+
+  !> $PhysicalNames: count, then `dimension tag "name"` lines.
+  subroutine read_physical_names(t, d, diag, ok)
+    type(msh_text_t), intent(inout) :: t
+    type(msh_data_t), intent(inout) :: d
+    type(diag_t), intent(inout) :: diag
+    logical, intent(out) :: ok
+    integer :: n, k
+    integer(i8) :: dim, tag, q1, q2
+
+    call read_data_line(t, diag, 'PhysicalNames', 1, 'the number of physical names', ok)
+    if (.not. ok) return
+    call get_count(t, diag, 1, 'number of physical names', remaining_lines(t), n, ok)
+    if (.not. ok) return
+    allocate(d%name_key(2, n), d%name_text(n))
+    do k = 1, n
+      call read_data_line(t, diag, 'PhysicalNames', 0, 'dimension tag "name"', ok)
+      if (.not. ok) return
+      if (t%ntok < 3) then
+        call fail(t, diag, 'wrong number of items: ' // int_to_str(t%ntok) // ' (3 expected: dimension tag "name")')
+        ok = .false.
+        return
+      end if
+      call get_integer(t, diag, 1, 'physical dimension', 0_i8, 3_i8, dim, ok)
+      if (.not. ok) return
+      call get_integer(t, diag, 2, 'physical tag', -huge(1_i8), huge(1_i8), tag, ok)
+      if (.not. ok) return
+      q1 = t%tbeg(3)
+      q2 = t%tend(t%ntok)
+      if (t%buf(q1:q1) /= '"' .or. q2 <= q1 .or. t%buf(q2:q2) /= '"') then
+        call fail(t, diag, 'bad physical name (a name in double quotes expected)')
+        ok = .false.
+        return
+      end if
+      d%name_key(:, k) = [dim, tag]
+      d%name_text(k)%s = t%buf(q1 + 1:q2 - 1)
+    end do
+    call sort_columns(d%name_key, d%name_perm)
+    call expect_section_end(t, diag, 'PhysicalNames', ok)
+  end subroutine read_physical_names
+
+  !> $Entities (4.1): the physical tags of every point, curve, surface, volume.
+  subroutine read_entities(t, d, diag, ok)
+    type(msh_text_t), intent(inout) :: t
+    type(msh_data_t), intent(inout) :: d
+    type(diag_t), intent(inout) :: diag
+    logical, intent(out) :: ok
+    character(len=*), parameter :: what(0:3) = [character(len=18) :: 'number of points', &
+      'number of curves', 'number of surfaces', 'number of volumes']
+    character(len=*), parameter :: point_line = 'tag x y z numPhysicalTags physicalTags'
+    character(len=*), parameter :: entity_line = &
+      'tag minX minY minZ maxX maxY maxZ numPhysicalTags physicalTags numBounding boundingTags'
+    integer :: counts(0:3), dim, k, j, nent, nfixed, left
+    integer(i8) :: nphys, nbound, tag, btag, phys
+    real(dp) :: r
+    character(len=:), allocatable :: line_what
+
+    call read_data_line(t, diag, 'Entities', 4, 'numPoints numCurves numSurfaces numVolumes', ok)
+    if (.not. ok) return
+    left = remaining_lines(t)
+    do dim = 0, 3
+      call get_count(t, diag, dim + 1, trim(what(dim)), left, counts(dim), ok)
+      if (.not. ok) return
+    end do
+    if (sum(int(counts, i8)) > int(left, i8)) then
+      call fail(t, diag, 'entity counts are more than the rest of the file holds (at most ' // int_to_str(left) // &
+        ' entities in all expected; truncated file?)')
+      ok = .false.
+      return
+    end if
+    nent = sum(counts)
+    allocate(d%ent_key(2, nent), d%ent_first(nent), d%ent_count(nent))
+    nent = 0
+    do dim = 0, 3
+      nfixed = merge(4, 7, dim == 0)
+      do k = 1, counts(dim)
+        if (dim == 0) then
+          line_what = point_line
+        else
+          line_what = entity_line
+        end if
+        call read_data_line(t, diag, 'Entities', 0, line_what, ok)
+        if (.not. ok) return
+        ok = .false.
+        if (t%ntok < nfixed + 1) then
+          call fail(t, diag, 'wrong number of items: ' // int_to_str(t%ntok) // ' (at least ' // &
+            int_to_str(nfixed + 1) // ' expected: ' // line_what // ')')
+          return
+        end if
+        call get_integer(t, diag, 1, 'entity tag', -huge(1_i8), huge(1_i8), tag, ok)
+        if (.not. ok) return
+        do j = 2, nfixed
+          call get_real(t, diag, j, 'a coordinate', r, ok)
+          if (.not. ok) return
+        end do
+        call get_integer(t, diag, nfixed + 1, 'number of physical tags', 0_i8, int(t%ntok - nfixed - 1, i8), nphys, ok)
+        if (.not. ok) return
+        if (dim == 0) then
+          if (t%ntok /= nfixed + 1 + nphys) then
+            call fail(t, diag, 'wrong number of items: ' // int_to_str(t%ntok) // ' (' // &
+              int_to_str(nfixed + 1 + int(nphys)) // ' expected: ' // point_line // ')')
+            ok = .false.
+            return
+          end if
+        else
+          if (t%ntok < nfixed + 2 + nphys) then
+            call fail(t, diag, 'wrong number of items: ' // int_to_str(t%ntok) // ' (at least ' // &
+              int_to_str(nfixed + 2 + int(nphys)) // ' expected: ' // entity_line // ')')
+            ok = .false.
+            return
+          end if
+          call get_integer(t, diag, nfixed + 2 + int(nphys), 'number of bounding entities', 0_i8, &
+            huge(1_i8), nbound, ok)
+          if (.not. ok) return
+          if (t%ntok /= nfixed + 2 + nphys + nbound) then
+            call fail(t, diag, 'wrong number of items: ' // int_to_str(t%ntok) // ' (' // &
+              trim(i8_to_str(nfixed + 2 + nphys + nbound)) // ' expected: ' // entity_line // ')')
+            ok = .false.
+            return
+          end if
+          do j = nfixed + 3 + int(nphys), t%ntok
+            call get_integer(t, diag, j, 'bounding entity tag', -huge(1_i8), huge(1_i8), btag, ok)
+            if (.not. ok) return
+          end do
+        end if
+        nent = nent + 1
+        d%ent_key(:, nent) = [int(dim, i8), tag]
+        d%ent_first(nent) = d%ent_phys%n + 1
+        d%ent_count(nent) = int(nphys)
+        do j = nfixed + 2, nfixed + 1 + int(nphys)
+          call get_integer(t, diag, j, 'physical tag', -huge(1_i8), huge(1_i8), phys, ok)
+          if (.not. ok) return
+          call push_record(d%ent_phys, [phys])
+        end do
+      end do
+    end do
+    call sort_columns(d%ent_key, d%ent_perm)
+    call expect_section_end(t, diag, 'Entities', ok)
+  end subroutine read_entities
+
+  !> $Nodes of MSH 2.2: count, then `tag x y z` lines.
+  subroutine read_nodes_22(t, d, diag, ok)
+    type(msh_text_t), intent(inout) :: t
+    type(msh_data_t), intent(inout) :: d
+    type(diag_t), intent(inout) :: diag
+    logical, intent(out) :: ok
+    integer :: n, k
+
+    call read_data_line(t, diag, 'Nodes', 1, 'the number of nodes', ok)
+    if (.not. ok) return
+    call get_count(t, diag, 1, 'number of nodes', remaining_lines(t), n, ok)
+    if (.not. ok) return
+    call allocate_nodes(d, n)
+    do k = 1, n
+      call read_data_line(t, diag, 'Nodes', 4, 'node-tag x y z', ok)
+      if (.not. ok) return
+      call get_integer(t, diag, 1, 'node tag', 1_i8, huge(1_i8), d%ntag(1, k), ok)
+      if (.not. ok) return
+      d%tag_line(k) = t%ln
+      call get_coordinates(t, diag, 2, d%x(:, k), d%z(k), ok)
+      if (.not. ok) return
+      d%coord_line(k) = t%ln
+    end do
+    call expect_section_end(t, diag, 'Nodes', ok)
+  end subroutine read_nodes_22
+
+  !> $Nodes of MSH 4.1: `numEntityBlocks numNodes minNodeTag maxNodeTag`, then
+  !> per block `entityDim entityTag parametric numNodesInBlock`, the tags one per
+  !> line, then the coordinates `x y z` followed by entityDim parametric
+  !> coordinates when parametric = 1.
+  subroutine read_nodes_41(t, d, diag, ok)
+    type(msh_text_t), intent(inout) :: t
+    type(msh_data_t), intent(inout) :: d
+    type(diag_t), intent(inout) :: diag
+    logical, intent(out) :: ok
+    integer :: nblock, n, b, m, k, j, i, left, header, nitem
+    integer(i8) :: dim, param, tag
+    real(dp) :: r
+
+    call read_data_line(t, diag, 'Nodes', 4, 'numEntityBlocks numNodes minNodeTag maxNodeTag', ok)
+    if (.not. ok) return
+    header = t%ln
+    left = remaining_lines(t)
+    call get_count(t, diag, 1, 'number of node blocks', left, nblock, ok)
+    if (.not. ok) return
+    call get_count(t, diag, 2, 'number of nodes', left, n, ok)
+    if (.not. ok) return
+    if (int(nblock, i8) + 2_i8 * n > int(left, i8)) then
+      call fail(t, diag, 'node counts are more than the rest of the file holds (numEntityBlocks + 2 numNodes <= ' // &
+        int_to_str(left) // ' expected; truncated file?)')
+      ok = .false.
+      return
+    end if
+    call get_integer(t, diag, 3, 'minimum node tag', -huge(1_i8), huge(1_i8), tag, ok)
+    if (.not. ok) return
+    call get_integer(t, diag, 4, 'maximum node tag', -huge(1_i8), huge(1_i8), tag, ok)
+    if (.not. ok) return
+    call allocate_nodes(d, n)
+    k = 0
+    do b = 1, nblock
+      call read_data_line(t, diag, 'Nodes', 4, 'entityDim entityTag parametric numNodesInBlock', ok)
+      if (.not. ok) return
+      call get_integer(t, diag, 1, 'entity dimension', 0_i8, 3_i8, dim, ok)
+      if (.not. ok) return
+      call get_integer(t, diag, 2, 'entity tag', -huge(1_i8), huge(1_i8), tag, ok)
+      if (.not. ok) return
+      call get_integer(t, diag, 3, 'parametric flag', 0_i8, 1_i8, param, ok)
+      if (.not. ok) return
+      call get_count(t, diag, 4, 'number of nodes in the block', n - k, m, ok)
+      if (.not. ok) return
+      do j = k + 1, k + m
+        call read_data_line(t, diag, 'Nodes', 1, 'node-tag', ok)
+        if (.not. ok) return
+        call get_integer(t, diag, 1, 'node tag', 1_i8, huge(1_i8), d%ntag(1, j), ok)
+        if (.not. ok) return
+        d%tag_line(j) = t%ln
+      end do
+      nitem = 3 + int(param * dim)
+      do j = k + 1, k + m
+        if (nitem == 3) then
+          call read_data_line(t, diag, 'Nodes', nitem, 'x y z', ok)
+        else
+          call read_data_line(t, diag, 'Nodes', nitem, 'x y z and ' // i8_to_str(dim) // &
+            ' parametric coordinates', ok)
+        end if
+        if (.not. ok) return
+        call get_coordinates(t, diag, 1, d%x(:, j), d%z(j), ok)
+        if (.not. ok) return
+        do i = 4, nitem
+          call get_real(t, diag, i, 'a parametric coordinate', r, ok)
+          if (.not. ok) return
+        end do
+        d%coord_line(j) = t%ln
+      end do
+      k = k + m
+    end do
+    if (k /= n) then
+      call fail_at(t, diag, header, 'the node blocks hold ' // int_to_str(k) // ' nodes, the header announces ' // &
+        int_to_str(n) // ' (equal counts expected)')
+      ok = .false.
+      return
+    end if
+    call expect_section_end(t, diag, 'Nodes', ok)
+  end subroutine read_nodes_41
+
+  subroutine allocate_nodes(d, n)
+    type(msh_data_t), intent(inout) :: d
+    integer, intent(in) :: n
+    d%nnode = n
+    allocate(d%x(2, n), d%z(n), d%ntag(1, n), d%tag_line(n), d%coord_line(n))
+  end subroutine allocate_nodes
+
+  !> x, y, z from items k, k+1, k+2 of the current line.
+  subroutine get_coordinates(t, diag, k, xy, z, ok)
+    type(msh_text_t), intent(in) :: t
+    type(diag_t), intent(inout) :: diag
+    integer, intent(in) :: k
+    real(dp), intent(out) :: xy(2), z
+    logical, intent(out) :: ok
+    call get_real(t, diag, k, 'x', xy(1), ok)
+    if (.not. ok) return
+    call get_real(t, diag, k + 1, 'y', xy(2), ok)
+    if (.not. ok) return
+    call get_real(t, diag, k + 2, 'z', z, ok)
+  end subroutine get_coordinates
+
+  !> After $Nodes: index the tags, report the first duplicate tag or the first
+  !> node off the plane z = 0, whichever comes first in the file.
+  subroutine check_nodes(t, d, diag, ok)
+    type(msh_text_t), intent(in) :: t
+    type(msh_data_t), intent(inout) :: d
+    type(diag_t), intent(inout) :: diag
+    logical, intent(out) :: ok
+    integer :: i, dup_line, z_line, dup_node, z_node
+    real(dp) :: extent
+    character(len=16) :: zbuf
+
+    call sort_columns(d%ntag, d%tag_perm)
+    dup_line = huge(1)
+    dup_node = 0
+    do i = 2, d%nnode
+      if (d%ntag(1, d%tag_perm(i)) == d%ntag(1, d%tag_perm(i - 1))) then
+        if (d%tag_line(d%tag_perm(i)) < dup_line) then
+          dup_line = d%tag_line(d%tag_perm(i))
+          dup_node = d%tag_perm(i)
+        end if
+      end if
+    end do
+    z_line = huge(1)
+    z_node = 0
+    if (d%nnode > 0) then
+      extent = max(maxval(d%x(1, :)) - minval(d%x(1, :)), maxval(d%x(2, :)) - minval(d%x(2, :)))
+      do i = 1, d%nnode
+        if (abs(d%z(i)) > z_tolerance * extent) then
+          z_line = d%coord_line(i)
+          z_node = i
+          exit
+        end if
+      end do
+    end if
+    ok = dup_node == 0 .and. z_node == 0
+    if (ok) return
+    if (dup_line < z_line) then
+      call fail_at(t, diag, dup_line, 'duplicate node tag ' // i8_to_str(d%ntag(1, dup_node)) // &
+        ' (each node tag defined once expected)')
+    else
+      write(zbuf, '(es11.3)') d%z(z_node)
+      call fail_at(t, diag, z_line, 'node ' // i8_to_str(d%ntag(1, z_node)) // ' has z = ' // trim(adjustl(zbuf)) // &
+        ' (a planar mesh in z = 0 expected)')
+    end if
+  end subroutine check_nodes
+
+  !> $Elements of MSH 2.2: count, then `number type ntags tags... nodes...`.
+  subroutine read_elements_22(t, d, diag, ok)
+    type(msh_text_t), intent(inout) :: t
+    type(msh_data_t), intent(inout) :: d
+    type(diag_t), intent(inout) :: diag
+    logical, intent(out) :: ok
+    character(len=*), parameter :: what = 'elm-number elm-type number-of-tags tags node-tags'
+    integer :: n, k, header, etype, nn, j
+    integer(i8) :: v, ntags, phys(1)
+
+    phys = 0
+
+    call read_data_line(t, diag, 'Elements', 1, 'the number of elements', ok)
+    if (.not. ok) return
+    header = t%ln
+    call get_count(t, diag, 1, 'number of elements', remaining_lines(t), n, ok)
+    if (.not. ok) return
+    do k = 1, n
+      call read_data_line(t, diag, 'Elements', 0, what, ok)
+      if (.not. ok) return
+      ok = .false.
+      if (t%ntok < 3) then
+        call fail(t, diag, 'wrong number of items: ' // int_to_str(t%ntok) // ' (at least 3 expected: ' // what // ')')
+        return
+      end if
+      call get_integer(t, diag, 1, 'element number', -huge(1_i8), huge(1_i8), v, ok)
+      if (.not. ok) return
+      call get_element_type(t, diag, 2, -1, etype, nn, ok)
+      if (.not. ok) return
+      call get_integer(t, diag, 3, 'number of tags', 0_i8, huge(1_i8), ntags, ok)
+      if (.not. ok) return
+      if (3_i8 + ntags + nn /= t%ntok) then
+        call fail(t, diag, 'wrong number of items: ' // int_to_str(t%ntok) // ' (' // &
+          trim(i8_to_str(3_i8 + ntags + nn)) // ' expected: 3 + ' // trim(i8_to_str(ntags)) // ' tags + ' // &
+          int_to_str(nn) // ' nodes for element type ' // int_to_str(etype) // ')')
+        ok = .false.
+        return
+      end if
+      do j = 4, 3 + int(ntags)
+        call get_integer(t, diag, j, 'tag', -huge(1_i8), huge(1_i8), v, ok)
+        if (.not. ok) return
+        if (j == 4) phys(1) = v
+      end do
+      if (ntags >= 1 .and. phys(1) /= 0) then
+        call add_element(t, d, diag, etype, 4 + int(ntags), phys, ok)
+      else
+        call add_element(t, d, diag, etype, 4 + int(ntags), phys(1:0), ok)
+      end if
+      if (.not. ok) return
+    end do
+    call expect_section_end(t, diag, 'Elements', ok)
+    if (.not. ok) return
+    call check_some_2d(t, d, diag, header - 1, ok)
+  end subroutine read_elements_22
+
+  !> $Elements of MSH 4.1: `numEntityBlocks numElements minTag maxTag`, then per
+  !> block `entityDim entityTag elementType numElementsInBlock` and the elements
+  !> `tag node-tags`.
+  subroutine read_elements_41(t, d, diag, ok)
+    type(msh_text_t), intent(inout) :: t
+    type(msh_data_t), intent(inout) :: d
+    type(diag_t), intent(inout) :: diag
+    logical, intent(out) :: ok
+    integer :: nblock, n, b, m, k, j, left, header, etype, nn, ient, first, count
+    integer(i8) :: dim, tag, v
+    integer(i8), allocatable :: phys(:)
+
+    call read_data_line(t, diag, 'Elements', 4, 'numEntityBlocks numElements minElementTag maxElementTag', ok)
+    if (.not. ok) return
+    header = t%ln
+    left = remaining_lines(t)
+    call get_count(t, diag, 1, 'number of element blocks', left, nblock, ok)
+    if (.not. ok) return
+    call get_count(t, diag, 2, 'number of elements', left, n, ok)
+    if (.not. ok) return
+    if (int(nblock, i8) + n > int(left, i8)) then
+      call fail(t, diag, 'element counts are more than the rest of the file holds (numEntityBlocks + numElements <= ' // &
+        int_to_str(left) // ' expected; truncated file?)')
+      ok = .false.
+      return
+    end if
+    call get_integer(t, diag, 3, 'minimum element tag', -huge(1_i8), huge(1_i8), tag, ok)
+    if (.not. ok) return
+    call get_integer(t, diag, 4, 'maximum element tag', -huge(1_i8), huge(1_i8), tag, ok)
+    if (.not. ok) return
+    k = 0
+    do b = 1, nblock
+      call read_data_line(t, diag, 'Elements', 4, 'entityDim entityTag elementType numElementsInBlock', ok)
+      if (.not. ok) return
+      call get_integer(t, diag, 1, 'entity dimension', 0_i8, 3_i8, dim, ok)
+      if (.not. ok) return
+      call get_integer(t, diag, 2, 'entity tag', -huge(1_i8), huge(1_i8), tag, ok)
+      if (.not. ok) return
+      call get_element_type(t, diag, 3, int(dim), etype, nn, ok)
+      if (.not. ok) return
+      call get_count(t, diag, 4, 'number of elements in the block', n - k, m, ok)
+      if (.not. ok) return
+      ! The physical tags of the block: those of its entity.
+      allocate(phys(0))
+      if (d%have_entities) then
+        ient = search_columns(d%ent_key, d%ent_perm, [dim, tag])
+        if (ient == 0) then
+          call fail(t, diag, 'element block on undefined entity ' // i8_to_str(tag) // ' of dimension ' // &
+            i8_to_str(dim) // ' (an entity listed in $Entities expected)')
+          ok = .false.
+          return
+        end if
+        first = d%ent_first(ient)
+        count = d%ent_count(ient)
+        if (count > 0) phys = d%ent_phys%v(1, first:first + count - 1)
+      end if
+      do j = 1, m
+        call read_data_line(t, diag, 'Elements', 1 + nn, 'element-tag and ' // int_to_str(nn) // ' node tags', ok)
+        if (.not. ok) return
+        call get_integer(t, diag, 1, 'element tag', -huge(1_i8), huge(1_i8), v, ok)
+        if (.not. ok) return
+        call add_element(t, d, diag, etype, 2, phys, ok)
+        if (.not. ok) return
+      end do
+      deallocate(phys)
+      k = k + m
+    end do
+    if (k /= n) then
+      call fail_at(t, diag, header, 'the element blocks hold ' // int_to_str(k) // ' elements, the header announces ' // &
+        int_to_str(n) // ' (equal counts expected)')
+      ok = .false.
+      return
+    end if
+    call expect_section_end(t, diag, 'Elements', ok)
+    if (.not. ok) return
+    call check_some_2d(t, d, diag, header - 1, ok)
+  end subroutine read_elements_41
+
+  !> Report a mesh without 2D elements at the $Elements line.
+  subroutine check_some_2d(t, d, diag, header, ok)
+    type(msh_text_t), intent(in) :: t
+    type(msh_data_t), intent(in) :: d
+    type(diag_t), intent(inout) :: diag
+    integer, intent(in) :: header
+    logical, intent(out) :: ok
+    ok = d%raw%n > 0
+    if (.not. ok) call fail_at(t, diag, header, &
+      'no 2D elements (triangles or quadrilaterals expected: mesh with gmsh -2)')
+  end subroutine check_some_2d
+
+  !> Element type from item k: a supported type (1, 2, 3, 15) of dimension dim
+  !> (any when dim < 0); nn its number of nodes.
+  subroutine get_element_type(t, diag, k, dim, etype, nn, ok)
+    type(msh_text_t), intent(in) :: t
+    type(diag_t), intent(inout) :: diag
+    integer, intent(in) :: k, dim
+    integer, intent(out) :: etype, nn
+    logical, intent(out) :: ok
+    integer(i8) :: v
+    character(len=:), allocatable :: kind_text
+
+    etype = 0
+    nn = 0
+    call get_integer(t, diag, k, 'element type', -huge(1_i8), huge(1_i8), v, ok)
+    if (.not. ok) return
+    ok = .false.
+    if (v < 0 .or. v > 1000) then
+      call fail(t, diag, 'unsupported element type ' // quoted_item(t, k) // ' (' // order_hint // ')')
+      return
+    end if
+    etype = int(v)
+    select case (etype)
+    case (1)
+      nn = 2
+    case (2)
+      nn = 3
+    case (3)
+      nn = 4
+    case (15)
+      nn = 1
+    case default
+      kind_text = element_description(etype)
+      if (len(kind_text) == 0) then
+        call fail(t, diag, 'unsupported element type ' // int_to_str(etype) // ' (' // order_hint // ')')
+      else if (element_is_3d(etype)) then
+        call fail(t, diag, 'unsupported element type ' // int_to_str(etype) // ', a ' // kind_text // &
+          ' (a 2D mesh expected: mesh with gmsh -2)')
+      else
+        call fail(t, diag, 'unsupported element type ' // int_to_str(etype) // ', a ' // kind_text // &
+          ' (' // order_hint // ')')
+      end if
+      return
+    end select
+    if (dim >= 0 .and. dim /= element_dimension(etype)) then
+      call fail(t, diag, 'element type ' // int_to_str(etype) // ' in a block of dimension ' // int_to_str(dim) // &
+        ' (the dimension of the element type expected)')
+      return
+    end if
+    ok = .true.
+  end subroutine get_element_type
+
+  !> Record one element of a supported type whose node tags are items
+  !> kfirst.. of the current line; phys are its physical tags.
+  subroutine add_element(t, d, diag, etype, kfirst, phys, ok)
+    type(msh_text_t), intent(in) :: t
+    type(msh_data_t), intent(inout) :: d
+    type(diag_t), intent(inout) :: diag
+    integer, intent(in) :: etype, kfirst
+    integer(i8), intent(in) :: phys(:)
+    logical, intent(out) :: ok
+    integer(i8) :: tag, node(4)
+    integer :: k, nn, idx, p
+
+    nn = t%ntok - kfirst + 1
+    node = 0
+    do k = 1, nn
+      call get_integer(t, diag, kfirst + k - 1, 'node tag', 1_i8, huge(1_i8), tag, ok)
+      if (.not. ok) return
+      idx = search_columns(d%ntag, d%tag_perm, [tag])
+      if (idx == 0) then
+        call fail(t, diag, 'element refers to undefined node tag ' // i8_to_str(tag) // &
+          ' (a node tag defined in $Nodes expected)')
+        ok = .false.
+        return
+      end if
+      node(k) = idx
+    end do
+    select case (etype)
+    case (15)
+      do p = 1, size(phys)
+        call push_record(d%points, [phys(p), node(1)])
+      end do
+    case (1)
+      do p = 1, size(phys)
+        call push_record(d%edges, [phys(p), node(1), node(2)])
+      end do
+    case (2, 3)
+      call push_record(d%raw, [int(nn, i8), node])
+      do p = 1, size(phys)
+        call push_record(d%region_pairs, [phys(p), int(d%raw%n, i8)])
+      end do
+    end select
+    ok = .true.
+  end subroutine add_element
+
+  !> Skip an unknown section up to its $End line.
+  subroutine skip_section(t, diag, name, ok)
+    type(msh_text_t), intent(inout) :: t
+    type(diag_t), intent(inout) :: diag
+    character(len=*), intent(in) :: name
+    logical, intent(out) :: ok
+    logical :: more
+    ok = .false.
+    do
+      call advance_line(t, more)
+      if (.not. more) then
+        call report_end_of_file(t, diag, name)
+        return
+      end if
+      if (t%ntok >= 1) then
+        if (item(t, 1) == '$End' // name) exit
+      end if
+    end do
+    ok = .true.
+  end subroutine skip_section
+
+  ! ---------------------------------------------------------------------------
+  ! From the records read to mesh_t
+  ! ---------------------------------------------------------------------------
+
+  !> Merge repeated 2D elements, fill the mesh and its named sets.
+  subroutine build_mesh(d, mesh)
+    type(msh_data_t), intent(in) :: d
+    type(mesh_t), intent(out) :: mesh
+    integer(i8), allocatable :: keys(:,:)
+    integer, allocatable :: perm(:), rep(:), elem_of_raw(:)
+    integer :: nraw, r, i, nelem, nen
+
+    ! Elements with the same node set are one element: sort the sorted node
+    ! sets; the first of each run of equal keys (stable sort) represents it.
+    nraw = d%raw%n
+    allocate(keys(5, nraw))
+    do r = 1, nraw
+      nen = int(d%raw%v(1, r))
+      keys(:, r) = d%raw%v(1:5, r)
+      call sort_small(keys(2:1 + nen, r))
+    end do
+    call sort_columns(keys, perm)
+    allocate(rep(nraw), elem_of_raw(nraw))
+    do i = 1, nraw
+      rep(perm(i)) = perm(i)
+      if (i > 1) then
+        if (all(keys(:, perm(i)) == keys(:, perm(i - 1)))) rep(perm(i)) = rep(perm(i - 1))
+      end if
+    end do
+    nelem = 0
+    do r = 1, nraw
+      if (rep(r) == r) then
+        nelem = nelem + 1
+        elem_of_raw(r) = nelem
+      else
+        elem_of_raw(r) = elem_of_raw(rep(r))
+      end if
+    end do
+
+    mesh%nnode = d%nnode
+    mesh%x = d%x
+    mesh%nelem = nelem
+    allocate(mesh%nen(nelem), mesh%conn(4, nelem))
+    do r = 1, nraw
+      if (rep(r) /= r) cycle
+      mesh%nen(elem_of_raw(r)) = int(d%raw%v(1, r))
+      mesh%conn(:, elem_of_raw(r)) = int(d%raw%v(2:5, r))
+    end do
+    call build_boundaries(d, mesh)
+    call build_regions(d, elem_of_raw, mesh)
+  end subroutine build_mesh
+
+  !> Boundaries from the edges (physical curves) and points (physical points).
+  subroutine build_boundaries(d, mesh)
+    type(msh_data_t), intent(in) :: d
+    type(mesh_t), intent(inout) :: mesh
+    integer(i8), allocatable :: gkeys(:,:), keys(:,:)
+    integer, allocatable :: set_of(:), nseg(:), npt(:)
+    logical, allocatable :: dup(:)
+    type(string_t), allocatable :: set_name(:)
+    integer :: ne, np, i, b, nset, r
+
+    ne = d%edges%n
+    np = d%points%n
+    allocate(gkeys(2, ne + np))
+    do i = 1, ne
+      gkeys(:, i) = [1_i8, d%edges%v(1, i)]
+    end do
+    do i = 1, np
+      gkeys(:, ne + i) = [0_i8, d%points%v(1, i)]
+    end do
+    call name_sets(d, gkeys, set_of, set_name)
+    nset = size(set_name)
+
+    ! An edge (or point) twice in one set, from groups of the same name, counts once.
+    allocate(keys(3, ne + np), dup(ne + np))
+    do i = 1, ne
+      keys(:, i) = [int(set_of(i), i8), minval(d%edges%v(2:3, i)), maxval(d%edges%v(2:3, i))]
+    end do
+    do i = 1, np
+      keys(:, ne + i) = [int(set_of(ne + i), i8), -1_i8, d%points%v(2, i)]
+    end do
+    call mark_repeated(keys, dup)
+
+    allocate(nseg(nset), npt(nset))
+    nseg = 0
+    npt = 0
+    do i = 1, ne
+      if (.not. dup(i)) nseg(set_of(i)) = nseg(set_of(i)) + 1
+    end do
+    do i = 1, np
+      if (.not. dup(ne + i)) npt(set_of(ne + i)) = npt(set_of(ne + i)) + 1
+    end do
+    allocate(mesh%bnd(nset))
+    do b = 1, nset
+      mesh%bnd(b)%name = set_name(b)%s
+      allocate(mesh%bnd(b)%seg(2, nseg(b)), mesh%bnd(b)%points(npt(b)))
+    end do
+    do i = 1, ne
+      if (dup(i)) cycle
+      b = set_of(i)
+      r = mesh%bnd(b)%nseg + 1
+      mesh%bnd(b)%nseg = r
+      mesh%bnd(b)%seg(:, r) = int(d%edges%v(2:3, i))
+    end do
+    do i = 1, np
+      if (dup(ne + i)) cycle
+      b = set_of(ne + i)
+      r = mesh%bnd(b)%npoint + 1
+      mesh%bnd(b)%npoint = r
+      mesh%bnd(b)%points(r) = int(d%points%v(2, i))
+    end do
+  end subroutine build_boundaries
+
+  !> Regions from the physical surfaces: sorted distinct element indices.
+  subroutine build_regions(d, elem_of_raw, mesh)
+    type(msh_data_t), intent(in) :: d
+    integer, intent(in) :: elem_of_raw(:)
+    type(mesh_t), intent(inout) :: mesh
+    integer(i8), allocatable :: gkeys(:,:), keys(:,:)
+    integer, allocatable :: set_of(:), perm(:), nel(:)
+    type(string_t), allocatable :: set_name(:)
+    integer :: n, i, k, s, nset
+
+    n = d%region_pairs%n
+    allocate(gkeys(2, n), keys(2, n))
+    do i = 1, n
+      gkeys(:, i) = [2_i8, d%region_pairs%v(1, i)]
+    end do
+    call name_sets(d, gkeys, set_of, set_name)
+    nset = size(set_name)
+    do i = 1, n
+      keys(:, i) = [int(set_of(i), i8), int(elem_of_raw(d%region_pairs%v(2, i)), i8)]
+    end do
+    call sort_columns(keys, perm)
+    allocate(nel(nset))
+    nel = 0
+    do i = 1, n
+      if (i > 1) then
+        if (all(keys(:, perm(i)) == keys(:, perm(i - 1)))) cycle
+      end if
+      s = int(keys(1, perm(i)))
+      nel(s) = nel(s) + 1
+    end do
+    allocate(mesh%reg(nset))
+    do s = 1, nset
+      mesh%reg(s)%name = set_name(s)%s
+      allocate(mesh%reg(s)%elems(nel(s)))
+    end do
+    nel = 0
+    do i = 1, n
+      if (i > 1) then
+        if (all(keys(:, perm(i)) == keys(:, perm(i - 1)))) cycle
+      end if
+      s = int(keys(1, perm(i)))
+      k = nel(s) + 1
+      nel(s) = k
+      mesh%reg(s)%elems(k) = int(keys(2, perm(i)))
+    end do
+  end subroutine build_regions
+
+  !> Group records by physical group (dimension, tag), name each group from
+  !> $PhysicalNames (else by its number) and merge groups of equal name.
+  !>   d        (in)  the names read
+  !>   gkeys    (in)  (2, n) dimension and physical tag of each record
+  !>   set_of   (out) (n) named set of each record, 1..size(set_name)
+  !>   set_name (out) (nset) the sets' names, in order of their first (dimension, tag)
+  subroutine name_sets(d, gkeys, set_of, set_name)
+    type(msh_data_t), intent(in) :: d
+    integer(i8), intent(in) :: gkeys(:,:)
+    integer, allocatable, intent(out) :: set_of(:)
+    type(string_t), allocatable, intent(out) :: set_name(:)
+    integer, allocatable :: perm(:), group_of(:), nperm(:), leader(:), set_of_group(:)
+    integer(i8), allocatable :: gkey(:,:)
+    type(string_t), allocatable :: gname(:)
+    integer :: n, ng, i, g, nset
+
+    n = size(gkeys, 2)
+    call sort_columns(gkeys, perm)
+    allocate(group_of(n), gkey(2, n))
+    ng = 0
+    do i = 1, n
+      if (i == 1) then
+        ng = 1
+        gkey(:, 1) = gkeys(:, perm(1))
+      else if (any(gkeys(:, perm(i)) /= gkey(:, ng))) then
+        ng = ng + 1
+        gkey(:, ng) = gkeys(:, perm(i))
+      end if
+      group_of(perm(i)) = ng
+    end do
+    allocate(gname(ng))
+    do g = 1, ng
+      gname(g)%s = physical_name(d, gkey(:, g))
+    end do
+    ! Stable sort of the names: the first group of each run of equal names leads it.
+    call sort_strings(gname, nperm)
+    allocate(leader(ng), set_of_group(ng))
+    do i = 1, ng
+      leader(nperm(i)) = nperm(i)
+      if (i > 1) then
+        if (gname(nperm(i))%s == gname(nperm(i - 1))%s) leader(nperm(i)) = leader(nperm(i - 1))
+      end if
+    end do
+    nset = count([(leader(g) == g, g = 1, ng)])
+    allocate(set_name(nset))
+    nset = 0
+    do g = 1, ng
+      if (leader(g) == g) then
+        nset = nset + 1
+        set_of_group(g) = nset
+        set_name(nset)%s = gname(g)%s
+      else
+        set_of_group(g) = set_of_group(leader(g))
+      end if
+    end do
+    allocate(set_of(n))
+    do i = 1, n
+      set_of(i) = set_of_group(group_of(i))
+    end do
+  end subroutine name_sets
+
+  !> Name of physical group key = (dimension, tag): from $PhysicalNames, else the tag.
+  function physical_name(d, key) result(name)
+    type(msh_data_t), intent(in) :: d
+    integer(i8), intent(in) :: key(2)
+    character(len=:), allocatable :: name
+    integer :: k
+    k = 0
+    if (allocated(d%name_key)) k = search_columns(d%name_key, d%name_perm, key)
+    if (k > 0) then
+      name = d%name_text(k)%s
+      if (len_trim(name) > 0) return
+    end if
+    name = i8_to_str(key(2))
+  end function physical_name
+
+  ! ---------------------------------------------------------------------------
+  ! Lines and items
+  ! ---------------------------------------------------------------------------
+
+  !> Move to the next line and split it into items; more = .false. at the end.
+  subroutine advance_line(t, more)
+    type(msh_text_t), intent(inout) :: t
+    logical, intent(out) :: more
+    integer(i8) :: p, e, start
+    integer(i8), allocatable :: grown(:)
+
+    more = t%ln < t%nline
+    t%ntok = 0
+    if (.not. more) return
+    t%ln = t%ln + 1
+    p = t%lbeg(t%ln)
+    e = t%lend(t%ln)
+    do
+      do while (p <= e)
+        if (.not. is_blank(t%buf(p:p))) exit
+        p = p + 1
+      end do
+      if (p > e) exit
+      start = p
+      do while (p <= e)
+        if (is_blank(t%buf(p:p))) exit
+        p = p + 1
+      end do
+      if (t%ntok == size(t%tbeg)) then
+        allocate(grown(2 * t%ntok))
+        grown(1:t%ntok) = t%tbeg(1:t%ntok)
+        call move_alloc(grown, t%tbeg)
+        allocate(grown(2 * t%ntok))
+        grown(1:t%ntok) = t%tend(1:t%ntok)
+        call move_alloc(grown, t%tend)
+      end if
+      t%ntok = t%ntok + 1
+      t%tbeg(t%ntok) = start
+      t%tend(t%ntok) = p - 1
+    end do
+  end subroutine advance_line
+
+  pure logical function is_blank(c)
+    character, intent(in) :: c
+    is_blank = c == ' ' .or. (iachar(c) >= 9 .and. iachar(c) <= 13)
+  end function is_blank
+
+  !> Lines after the current one.
+  pure integer function remaining_lines(t) result(n)
+    type(msh_text_t), intent(in) :: t
+    n = t%nline - t%ln
+  end function remaining_lines
+
+  !> Item k of the current line.
+  function item(t, k) result(s)
+    type(msh_text_t), intent(in) :: t
+    integer, intent(in) :: k
+    character(len=:), allocatable :: s
+    s = t%buf(t%tbeg(k):t%tend(k))
+  end function item
+
+  !> Item k of the current line, in double quotes, printable and shortened.
+  function quoted_item(t, k) result(s)
+    type(msh_text_t), intent(in) :: t
+    integer, intent(in) :: k
+    character(len=:), allocatable :: s
+    integer(i8) :: last
+    last = min(t%tend(k), t%tbeg(k) + quote_length - 1)
+    s = '"' // printable_text(t%buf(t%tbeg(k):last))
+    if (last < t%tend(k)) s = s // '...'
+    s = s // '"'
+  end function quoted_item
+
+  !> Next line of a section, holding data: not a $ line, nexpected items (any
+  !> number when nexpected = 0).
+  !>   section   (in) section name without $, for the end-of-file message
+  !>   what      (in) description of the expected line
+  subroutine read_data_line(t, diag, section, nexpected, what, ok)
+    type(msh_text_t), intent(inout) :: t
+    type(diag_t), intent(inout) :: diag
+    character(len=*), intent(in) :: section, what
+    integer, intent(in) :: nexpected
+    logical, intent(out) :: ok
+    logical :: more
+
+    ok = .false.
+    call advance_line(t, more)
+    if (.not. more) then
+      call report_end_of_file(t, diag, section)
+      return
+    end if
+    if (t%ntok > 0) then
+      if (t%buf(t%tbeg(1):t%tbeg(1)) == '$') then
+        call fail(t, diag, 'unexpected ' // quoted_item(t, 1) // ' (' // what // &
+          ' expected, as many lines as the counts announce)')
+        return
+      end if
+    end if
+    if (nexpected > 0 .and. t%ntok /= nexpected) then
+      call fail(t, diag, 'wrong number of items: ' // int_to_str(t%ntok) // ' (' // int_to_str(nexpected) // &
+        ' expected: ' // what // ')')
+      return
+    end if
+    ok = .true.
+  end subroutine read_data_line
+
+  !> The next line must be $End<section>.
+  subroutine expect_section_end(t, diag, section, ok)
+    type(msh_text_t), intent(inout) :: t
+    type(diag_t), intent(inout) :: diag
+    character(len=*), intent(in) :: section
+    logical, intent(out) :: ok
+    logical :: more
+
+    ok = .false.
+    call advance_line(t, more)
+    if (.not. more) then
+      call report_end_of_file(t, diag, section)
+      return
+    end if
+    if (t%ntok == 1) then
+      if (item(t, 1) == '$End' // section) then
+        ok = .true.
+        return
+      end if
+    end if
+    if (t%ntok > 0) then
+      if (t%buf(t%tbeg(1):t%tbeg(1)) == '$') then
+        call fail(t, diag, 'unexpected ' // quoted_item(t, 1) // ' ($End' // section // ' expected)')
+        return
+      end if
+    end if
+    call fail(t, diag, 'more lines than the counts announce ($End' // section // ' expected)')
+  end subroutine expect_section_end
+
+  subroutine report_end_of_file(t, diag, section)
+    type(msh_text_t), intent(in) :: t
+    type(diag_t), intent(inout) :: diag
+    character(len=*), intent(in) :: section
+    call add_error(diag, t%path, t%nline, 'unexpected end of file inside $' // section // &
+      ' ($End' // section // ' expected)')
+  end subroutine report_end_of_file
+
+  !> Report text at the current line, echoing it.
+  subroutine fail(t, diag, text)
+    type(msh_text_t), intent(in) :: t
+    type(diag_t), intent(inout) :: diag
+    character(len=*), intent(in) :: text
+    call fail_at(t, diag, t%ln, text)
+  end subroutine fail
+
+  !> Report text at a given line, echoing it.
+  subroutine fail_at(t, diag, line, text)
+    type(msh_text_t), intent(in) :: t
+    type(diag_t), intent(inout) :: diag
+    integer, intent(in) :: line
+    character(len=*), intent(in) :: text
+    integer(i8) :: b, e
+    if (line < 1 .or. line > t%nline) then
+      call add_error(diag, t%path, line, text)
+      return
+    end if
+    b = t%lbeg(line)
+    e = t%lend(line)
+    if (e - b + 1 > echo_length) then
+      call add_error(diag, t%path, line, text, echo=t%buf(b:b + echo_length - 1) // ' ...')
+    else
+      call add_error(diag, t%path, line, text, echo=t%buf(b:e))
+    end if
+  end subroutine fail_at
+
+  ! ---------------------------------------------------------------------------
+  ! Numbers
+  ! ---------------------------------------------------------------------------
+
+  !> Integer item k in [lo, hi]; else a message naming what.
+  subroutine get_integer(t, diag, k, what, lo, hi, v, ok)
+    type(msh_text_t), intent(in) :: t
+    type(diag_t), intent(inout) :: diag
+    integer, intent(in) :: k
+    character(len=*), intent(in) :: what
+    integer(i8), intent(in) :: lo, hi
+    integer(i8), intent(out) :: v
+    logical, intent(out) :: ok
+    character(len=:), allocatable :: expected
+
+    ok = parse_integer(item(t, k), v)
+    if (ok) ok = v >= lo .and. v <= hi
+    if (ok) return
+    if (lo == 0 .and. hi == huge(1_i8)) then
+      expected = 'a non-negative integer'
+    else if (lo == 1 .and. hi == huge(1_i8)) then
+      expected = 'a positive integer'
+    else if (lo == -huge(1_i8) .and. hi == huge(1_i8)) then
+      expected = 'an integer'
+    else
+      expected = 'an integer from ' // i8_to_str(lo) // ' to ' // i8_to_str(hi)
+    end if
+    call fail(t, diag, 'bad ' // what // ' ' // quoted_item(t, k) // ' (' // expected // ' expected)')
+  end subroutine get_integer
+
+  !> A count from item k, at least 0 and at most maxcount (what the rest of the
+  !> file can hold).
+  subroutine get_count(t, diag, k, what, maxcount, n, ok)
+    type(msh_text_t), intent(in) :: t
+    type(diag_t), intent(inout) :: diag
+    integer, intent(in) :: k, maxcount
+    character(len=*), intent(in) :: what
+    integer, intent(out) :: n
+    logical, intent(out) :: ok
+    integer(i8) :: v
+    n = 0
+    call get_integer(t, diag, k, what, 0_i8, huge(1_i8), v, ok)
+    if (.not. ok) return
+    if (v > max(maxcount, 0)) then
+      call fail(t, diag, what // ' ' // i8_to_str(v) // ' is more than the rest of the file holds (at most ' // &
+        int_to_str(max(maxcount, 0)) // ' expected; truncated file?)')
+      ok = .false.
+      return
+    end if
+    n = int(v)
+  end subroutine get_count
+
+  !> Real item k: finite, of magnitude below 1e100; else a message naming what.
+  subroutine get_real(t, diag, k, what, v, ok)
+    type(msh_text_t), intent(in) :: t
+    type(diag_t), intent(inout) :: diag
+    integer, intent(in) :: k
+    character(len=*), intent(in) :: what
+    real(dp), intent(out) :: v
+    logical, intent(out) :: ok
+    select case (parse_real(item(t, k), v))
+    case (0)
+      ok = .true.
+      return
+    case (2)
+      call fail(t, diag, 'non-finite number ' // quoted_item(t, k) // ' (a finite real number expected for ' // &
+        what // ')')
+    case (3)
+      call fail(t, diag, 'number out of range ' // quoted_item(t, k) // ' (a real number of magnitude below 1e' // &
+        int_to_str(max_decimal_exponent + 1) // ' expected for ' // what // ')')
+    case default
+      call fail(t, diag, 'bad number ' // quoted_item(t, k) // ' (a real number expected for ' // what // ')')
+    end select
+    ok = .false.
+  end subroutine get_real
+
+  !> Strict decimal integer: optional sign, then digits only; .false. when not
+  !> an integer or beyond 18 significant digits.
+  logical function parse_integer(s, v) result(ok)
+    character(len=*), intent(in) :: s
+    integer(i8), intent(out) :: v
+    integer :: p, ndig
+    logical :: negative
+    v = 0
+    ok = .false.
+    p = 1
+    negative = .false.
+    if (len(s) == 0) return
+    if (s(1:1) == '+' .or. s(1:1) == '-') then
+      negative = s(1:1) == '-'
+      p = 2
+    end if
+    if (p > len(s)) return
+    ndig = 0
+    do while (p <= len(s))
+      if (.not. is_digit(s(p:p))) return
+      if (ndig > 0 .or. s(p:p) /= '0') ndig = ndig + 1
+      if (ndig > 18) return
+      v = 10 * v + (iachar(s(p:p)) - iachar('0'))
+      p = p + 1
+    end do
+    if (negative) v = -v
+    ok = .true.
+  end function parse_integer
+
+  !> Real number in Fortran or C notation ([+-]digits[.digits][(e|d)[+-]digits]).
+  !> The text is checked and its decimal magnitude computed before the internal
+  !> read, so that the conversion cannot overflow.
+  !>   returns 0 ok, 1 not a number, 2 NaN or Inf, 3 magnitude 1e100 or more
+  integer function parse_real(s, v) result(status)
+    character(len=*), intent(in) :: s
+    real(dp), intent(out) :: v
+    character(len=len(s)) :: low
+    integer :: p, n, nint, nfrac, first_nonzero, mag, ios, exponent, nexp_digits
+    logical :: nonzero, negative_exponent
+
+    v = 0.0_dp
+    status = 1
+    n = len(s)
+    if (n == 0 .or. n > max_number_length) return
+    low = lower_case(s)
+    p = 1
+    if (low(1:1) == '+' .or. low(1:1) == '-') p = 2
+    if (p <= n) then
+      if (low(p:) == 'nan' .or. low(p:) == 'inf' .or. low(p:) == 'infinity' .or. low(p:min(n, p + 3)) == 'nan(') then
+        status = 2
+        return
+      end if
+    end if
+    ! digits [. digits]
+    nint = 0
+    nfrac = 0
+    nonzero = .false.
+    first_nonzero = 0
+    mag = 0
+    do while (p <= n)
+      if (.not. is_digit(low(p:p))) exit
+      if (low(p:p) /= '0' .and. .not. nonzero) then
+        nonzero = .true.
+        first_nonzero = nint + 1
+      end if
+      nint = nint + 1
+      p = p + 1
+    end do
+    if (nonzero) mag = nint - first_nonzero
+    if (p <= n) then
+      if (low(p:p) == '.') then
+        p = p + 1
+        do while (p <= n)
+          if (.not. is_digit(low(p:p))) exit
+          nfrac = nfrac + 1
+          if (low(p:p) /= '0' .and. .not. nonzero) then
+            nonzero = .true.
+            mag = -nfrac
+          end if
+          p = p + 1
+        end do
+      end if
+    end if
+    if (nint + nfrac == 0) return
+    ! [(e|d) [+-] digits]
+    exponent = 0
+    if (p <= n) then
+      if (low(p:p) /= 'e' .and. low(p:p) /= 'd') return
+      p = p + 1
+      negative_exponent = .false.
+      if (p <= n) then
+        if (low(p:p) == '+' .or. low(p:p) == '-') then
+          negative_exponent = low(p:p) == '-'
+          p = p + 1
+        end if
+      end if
+      if (p > n) return
+      nexp_digits = 0
+      do while (p <= n)
+        if (.not. is_digit(low(p:p))) return
+        if (nexp_digits > 0 .or. low(p:p) /= '0') nexp_digits = nexp_digits + 1
+        if (nexp_digits <= 6) exponent = 10 * exponent + (iachar(low(p:p)) - iachar('0'))
+        p = p + 1
+      end do
+      if (nexp_digits > 6) exponent = 9999999
+      if (negative_exponent) exponent = -exponent
+    end if
+    if (.not. nonzero) then
+      status = 0
+      return
+    end if
+    if (mag + exponent > max_decimal_exponent) then
+      status = 3
+      return
+    end if
+    if (mag + exponent < -300) then
+      status = 0
+      return
+    end if
+    read(s, *, iostat=ios) v
+    if (ios /= 0) then
+      v = 0.0_dp
+      return
+    end if
+    if (.not. ieee_is_finite(v)) then
+      v = 0.0_dp
+      status = 2
+      return
+    end if
+    status = 0
+  end function parse_real
+
+  pure logical function is_digit(c)
+    character, intent(in) :: c
+    is_digit = c >= '0' .and. c <= '9'
+  end function is_digit
+
+  pure function lower_case(s) result(low)
+    character(len=*), intent(in) :: s
+    character(len=len(s)) :: low
+    integer :: i, c
+    low = s
+    do i = 1, len(s)
+      c = iachar(s(i:i))
+      if (c >= iachar('A') .and. c <= iachar('Z')) low(i:i) = achar(c + 32)
+    end do
+  end function lower_case
+
+  !> s with control and non-ASCII bytes replaced by '?'.
+  pure function printable_text(s) result(p)
+    character(len=*), intent(in) :: s
+    character(len=len(s)) :: p
+    integer :: i, c
+    p = s
+    do i = 1, len(s)
+      c = iachar(s(i:i))
+      if (c < 32 .or. c > 126) p(i:i) = '?'
+    end do
+  end function printable_text
+
+  pure function i8_to_str(i) result(s)
+    integer(i8), intent(in) :: i
+    character(len=:), allocatable :: s
+    character(len=24) :: buf
+    write(buf, '(i0)') i
+    s = trim(buf)
+  end function i8_to_str
+
+  ! ---------------------------------------------------------------------------
+  ! Element types
+  ! ---------------------------------------------------------------------------
+
+  pure integer function element_dimension(etype)
+    integer, intent(in) :: etype
+    select case (etype)
+    case (15)
+      element_dimension = 0
+    case (1)
+      element_dimension = 1
+    case default
+      element_dimension = 2
+    end select
+  end function element_dimension
+
+  pure logical function element_is_3d(etype)
+    integer, intent(in) :: etype
+    select case (etype)
+    case (4:7, 11:14, 17:19, 29:31, 92, 93)
+      element_is_3d = .true.
+    case default
+      element_is_3d = .false.
+    end select
+  end function element_is_3d
+
+  !> gmsh's name of an element type, '' when not known here.
+  function element_description(etype) result(s)
+    integer, intent(in) :: etype
+    character(len=:), allocatable :: s
+    select case (etype)
+    case (4);  s = '4-node tetrahedron'
+    case (5);  s = '8-node hexahedron'
+    case (6);  s = '6-node prism'
+    case (7);  s = '5-node pyramid'
+    case (8);  s = '3-node second-order line'
+    case (9);  s = '6-node second-order triangle'
+    case (10); s = '9-node second-order quadrangle'
+    case (11); s = '10-node second-order tetrahedron'
+    case (12); s = '27-node second-order hexahedron'
+    case (13); s = '18-node second-order prism'
+    case (14); s = '14-node second-order pyramid'
+    case (16); s = '8-node second-order quadrangle'
+    case (17); s = '20-node second-order hexahedron'
+    case (18); s = '15-node second-order prism'
+    case (19); s = '13-node second-order pyramid'
+    case (20); s = '9-node third-order incomplete triangle'
+    case (21); s = '10-node third-order triangle'
+    case (22); s = '12-node fourth-order incomplete triangle'
+    case (23); s = '15-node fourth-order triangle'
+    case (24); s = '15-node fifth-order incomplete triangle'
+    case (25); s = '21-node fifth-order triangle'
+    case (26); s = '4-node third-order line'
+    case (27); s = '5-node fourth-order line'
+    case (28); s = '6-node fifth-order line'
+    case (29); s = '20-node third-order tetrahedron'
+    case (30); s = '35-node fourth-order tetrahedron'
+    case (31); s = '56-node fifth-order tetrahedron'
+    case (92); s = '64-node third-order hexahedron'
+    case (93); s = '125-node fourth-order hexahedron'
+    case default; s = ''
+    end select
+  end function element_description
+
+  ! ---------------------------------------------------------------------------
+  ! Records, sorting and searching
+  ! ---------------------------------------------------------------------------
+
+  !> Append one record to a list (width = size(rec), fixed by the first push).
+  subroutine push_record(list, rec)
+    type(record_list_t), intent(inout) :: list
+    integer(i8), intent(in) :: rec(:)
+    integer(i8), allocatable :: grown(:,:)
+    if (.not. allocated(list%v)) allocate(list%v(size(rec), 64))
+    if (list%n == size(list%v, 2)) then
+      allocate(grown(size(rec), 2 * list%n))
+      grown(:, 1:list%n) = list%v(:, 1:list%n)
+      call move_alloc(grown, list%v)
+    end if
+    list%n = list%n + 1
+    list%v(:, list%n) = rec
+  end subroutine push_record
+
+  !> Lexicographic a < b of two key columns.
+  pure logical function column_less(a, b) result(less)
+    integer(i8), intent(in) :: a(:), b(:)
+    integer :: i
+    less = .false.
+    do i = 1, size(a)
+      if (a(i) /= b(i)) then
+        less = a(i) < b(i)
+        return
+      end if
+    end do
+  end function column_less
+
+  !> Stable bottom-up merge sort of the columns of keys, lexicographically.
+  !>   keys (in)  (m, n) one key per column
+  !>   perm (out) (n) keys(:, perm) is ascending; equal keys keep their order
+  subroutine sort_columns(keys, perm)
+    integer(i8), intent(in) :: keys(:,:)
+    integer, allocatable, intent(out) :: perm(:)
+    integer, allocatable :: tmp(:)
+    integer :: n, i
+    integer(i8) :: width, lo, mid, hi, a, b, k
+
+    n = size(keys, 2)
+    allocate(perm(n), tmp(n))
+    perm = [(i, i = 1, n)]
+    width = 1
+    do while (width < n)
+      lo = 1
+      do while (lo <= n)
+        mid = min(lo + width - 1, int(n, i8))
+        hi = min(lo + 2 * width - 1, int(n, i8))
+        if (mid < hi) then
+          a = lo
+          b = mid + 1
+          k = lo
+          do while (a <= mid .and. b <= hi)
+            if (column_less(keys(:, perm(b)), keys(:, perm(a)))) then
+              tmp(k) = perm(b)
+              b = b + 1
+            else
+              tmp(k) = perm(a)
+              a = a + 1
+            end if
+            k = k + 1
+          end do
+          do while (a <= mid)
+            tmp(k) = perm(a)
+            a = a + 1
+            k = k + 1
+          end do
+          do while (b <= hi)
+            tmp(k) = perm(b)
+            b = b + 1
+            k = k + 1
+          end do
+          perm(lo:hi) = tmp(lo:hi)
+        end if
+        lo = lo + 2 * width
+      end do
+      width = 2 * width
+    end do
+  end subroutine sort_columns
+
+  !> Stable merge sort of strings (Fortran collation, trailing blanks ignored).
+  subroutine sort_strings(s, perm)
+    type(string_t), intent(in) :: s(:)
+    integer, allocatable, intent(out) :: perm(:)
+    integer, allocatable :: tmp(:)
+    integer :: n, i
+    integer(i8) :: width, lo, mid, hi, a, b, k
+
+    n = size(s)
+    allocate(perm(n), tmp(n))
+    perm = [(i, i = 1, n)]
+    width = 1
+    do while (width < n)
+      lo = 1
+      do while (lo <= n)
+        mid = min(lo + width - 1, int(n, i8))
+        hi = min(lo + 2 * width - 1, int(n, i8))
+        if (mid < hi) then
+          a = lo
+          b = mid + 1
+          k = lo
+          do while (a <= mid .and. b <= hi)
+            if (s(perm(b))%s < s(perm(a))%s) then
+              tmp(k) = perm(b)
+              b = b + 1
+            else
+              tmp(k) = perm(a)
+              a = a + 1
+            end if
+            k = k + 1
+          end do
+          do while (a <= mid)
+            tmp(k) = perm(a)
+            a = a + 1
+            k = k + 1
+          end do
+          do while (b <= hi)
+            tmp(k) = perm(b)
+            b = b + 1
+            k = k + 1
+          end do
+          perm(lo:hi) = tmp(lo:hi)
+        end if
+        lo = lo + 2 * width
+      end do
+      width = 2 * width
+    end do
+  end subroutine sort_strings
+
+  !> Column of keys equal to key (the first in file order), 0 when none.
+  !>   keys (in) (m, n); perm (in) (n) from sort_columns(keys); key (in) (m)
+  integer function search_columns(keys, perm, key) result(found)
+    integer(i8), intent(in) :: keys(:,:)
+    integer, intent(in) :: perm(:)
+    integer(i8), intent(in) :: key(:)
+    integer :: lo, hi, mid
+    found = 0
+    lo = 1
+    hi = size(perm) + 1
+    do while (lo < hi)
+      mid = lo + (hi - lo) / 2
+      if (column_less(keys(:, perm(mid)), key)) then
+        lo = mid + 1
+      else
+        hi = mid
+      end if
+    end do
+    if (lo <= size(perm)) then
+      if (all(keys(:, perm(lo)) == key)) found = perm(lo)
+    end if
+  end function search_columns
+
+  !> repeated(i) = .true. when an earlier column of keys equals column i.
+  subroutine mark_repeated(keys, repeated)
+    integer(i8), intent(in) :: keys(:,:)
+    logical, intent(out) :: repeated(:)
+    integer, allocatable :: perm(:)
+    integer :: i
+    call sort_columns(keys, perm)
+    repeated = .false.
+    do i = 2, size(perm)
+      if (all(keys(:, perm(i)) == keys(:, perm(i - 1)))) repeated(perm(i)) = .true.
+    end do
+  end subroutine mark_repeated
+
+  !> Insertion sort of a few integers, ascending.
+  pure subroutine sort_small(a)
+    integer(i8), intent(inout) :: a(:)
+    integer :: i, j
+    integer(i8) :: v
+    do i = 2, size(a)
+      v = a(i)
+      j = i - 1
+      do while (j >= 1)
+        if (a(j) <= v) exit
+        a(j + 1) = a(j)
+        j = j - 1
+      end do
+      a(j + 1) = v
+    end do
+  end subroutine sort_small
+
+  ! ---------------------------------------------------------------------------
+  ! Files and gmsh
+  ! ---------------------------------------------------------------------------
+
+  !> The bytes of a file.
+  !>   status (out) 0 read, 1 cannot open, 2 cannot read, 3 too large for memory
+  subroutine read_whole_file(path, buf, status)
+    character(len=*), intent(in) :: path
+    character(len=:), allocatable, intent(out) :: buf
+    integer, intent(out) :: status
+    integer :: u, ios, st
+    integer(i8) :: nbytes
+
+    open(newunit=u, file=path, access='stream', form='unformatted', action='read', status='old', iostat=ios)
+    if (ios /= 0) then
+      status = 1
+      return
+    end if
+    inquire(unit=u, size=nbytes)
+    if (nbytes < 0) then
+      close(u)
+      status = 2
+      return
+    end if
+    allocate(character(len=nbytes) :: buf, stat=st)
+    if (st /= 0) then
+      close(u)
+      status = 3
+      return
+    end if
+    status = 0
+    if (nbytes > 0) then
+      read(u, iostat=ios) buf
+      if (ios /= 0) status = 2
+    end if
+    close(u)
+  end subroutine read_whole_file
+
+  !> Mesh a .geo file with gmsh (2D, first order, MSH 4.1 ASCII).
+  !> Runs `gmsh -2 -order 1 -format msh41 -v 2 [-setnumber NAME VALUE]... GEO
+  !> -o MSH > LOG 2>&1`, every word shell-quoted.
+  !>   geo_path (in)  the .geo file
+  !>   names    (in)  (n) names given to -setnumber (n may be 0)
+  !>   values   (in)  (n) their values
+  !>   msh_path (in)  the mesh file to write (an old one is removed first)
+  !>   log_path (in)  where gmsh's output goes
+  !>   ok       (out) .true. when gmsh exited with status 0 and wrote msh_path
+  !>   message  (out) '' when ok; else what went wrong: gmsh's first "Error" lines,
+  !>                  or "gmsh not found (install the Debian package gmsh)"
+  subroutine mesh_geo_file(geo_path, names, values, msh_path, log_path, ok, message)
+    character(len=*), intent(in) :: geo_path, msh_path, log_path
+    character(len=*), intent(in) :: names(:)
+    real(dp), intent(in) :: values(:)
+    logical, intent(out) :: ok
+    character(len=:), allocatable, intent(out) :: message
+    character(len=:), allocatable :: cmd
+    character(len=256) :: cmdmsg
+    integer :: exitstat, cmdstat, i, u, ios
+    logical :: exists
+
+    ok = .false.
+    message = ''
+    if (size(names) /= size(values)) then
+      message = 'gmsh parameters: ' // int_to_str(size(names)) // ' names but ' // int_to_str(size(values)) // &
+        ' values (one value per name expected)'
+      return
+    end if
+    do i = 1, size(names)
+      if (len_trim(names(i)) == 0) then
+        message = 'gmsh parameter ' // int_to_str(i) // ' has an empty name (a name for -setnumber expected)'
+        return
+      end if
+      if (.not. ieee_is_finite(values(i))) then
+        message = 'gmsh parameter ' // trim(names(i)) // ' is not finite (a finite number expected)'
+        return
+      end if
+    end do
+
+    exitstat = -1
+    cmdstat = -1
+    call execute_command_line('command -v gmsh > /dev/null 2>&1', wait=.true., exitstat=exitstat, cmdstat=cmdstat)
+    if (cmdstat /= 0 .or. exitstat /= 0) then
+      message = 'gmsh not found (install the Debian package gmsh)'
+      return
+    end if
+
+    ! Remove an old mesh so that its presence afterwards means gmsh wrote it.
+    inquire(file=msh_path, exist=exists)
+    if (exists) then
+      open(newunit=u, file=msh_path, status='old', iostat=ios)
+      if (ios == 0) close(u, status='delete', iostat=ios)
+    end if
+
+    cmd = 'gmsh -2 -order 1 -format msh41 -v 2'
+    do i = 1, size(names)
+      cmd = cmd // ' -setnumber ' // shell_quote(trim(names(i))) // ' ' // shell_quote(real_to_text(values(i)))
+    end do
+    cmd = cmd // ' ' // shell_quote(geo_path) // ' -o ' // shell_quote(msh_path) // ' > ' // &
+      shell_quote(log_path) // ' 2>&1'
+    exitstat = -1
+    cmdstat = -1
+    cmdmsg = ''
+    call execute_command_line(cmd, wait=.true., exitstat=exitstat, cmdstat=cmdstat, cmdmsg=cmdmsg)
+    if (cmdstat /= 0) then
+      message = 'cannot run gmsh: ' // trim(cmdmsg)
+      return
+    end if
+    inquire(file=msh_path, exist=exists)
+    ok = exitstat == 0 .and. exists
+    if (ok) return
+    message = gmsh_errors(log_path)
+    if (len(message) == 0) then
+      if (exitstat /= 0) then
+        message = 'gmsh failed with exit status ' // int_to_str(exitstat) // ' (see ' // log_path // ')'
+      else
+        message = 'gmsh wrote no mesh file ' // msh_path // ' (see ' // log_path // ')'
+      end if
+    end if
+  end subroutine mesh_geo_file
+
+  !> The first two lines of gmsh's log starting with "Error", joined by "; ".
+  function gmsh_errors(log_path) result(text)
+    character(len=*), intent(in) :: log_path
+    character(len=:), allocatable :: text
+    character(len=:), allocatable :: buf, line
+    integer :: status, nfound
+    integer(i8) :: p, q, n
+
+    text = ''
+    call read_whole_file(log_path, buf, status)
+    if (status /= 0) return
+    n = len(buf, kind=i8)
+    nfound = 0
+    p = 1
+    do while (p <= n .and. nfound < 2)
+      q = index(buf(p:), achar(10), kind=i8)
+      if (q == 0) then
+        line = buf(p:n)
+        p = n + 1
+      else
+        line = buf(p:p + q - 2)
+        p = p + q
+      end if
+      line = trim(adjustl(printable_text(line)))
+      if (len(line) >= 5) then
+        if (line(1:5) == 'Error') then
+          if (len(line) > 300) line = line(1:300) // ' ...'
+          if (nfound > 0) text = text // '; '
+          text = text // line
+          nfound = nfound + 1
+        end if
+      end if
+    end do
+  end function gmsh_errors
+
+  !> s in single quotes for the shell, embedded quotes written '\''.
+  pure function shell_quote(s) result(q)
+    character(len=*), intent(in) :: s
+    character(len=:), allocatable :: q
+    integer :: i
+    q = "'"
+    do i = 1, len(s)
+      if (s(i:i) == "'") then
+        q = q // "'\''"
+      else
+        q = q // s(i:i)
+      end if
+    end do
+    q = q // "'"
+  end function shell_quote
+
+  !> A real number as text that reads back exactly: an integer when it is
+  !> one, else 17 significant digits.
+  function real_to_text(v) result(s)
+    real(dp), intent(in) :: v
+    character(len=:), allocatable :: s
+    character(len=32) :: buf
+    if (abs(v) < 1.0e15_dp .and. v == aint(v)) then
+      write(buf, '(i0)') int(v, i8)
+    else
+      write(buf, '(es25.16e3)') v
+    end if
+    s = trim(adjustl(buf))
+  end function real_to_text
+
+end module gmsh_reader

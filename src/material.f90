@@ -1,0 +1,115 @@
+!> material: the plane elasticity tensor A of the paper (a general symmetric,
+!> elliptic tensor), in engineering (Voigt) notation sigma = D eps with
+!> eps = (exx, eyy, gxy), and the out-of-plane stress of plane strain.
+!>
+!> Isotropic and orthotropic laws.  The orthotropic law is given in material
+!> axes (1, 2, 3) rotated by `angle` (degrees, counter-clockwise from x) in the
+!> plane.  Plane stress: sigma_zz = 0.  Plane strain: eps_zz = 0, so
+!> sigma_zz = c1 sigma_11 + c2 sigma_22 (material axes), c = -S_3k / S_33.
+!>
+!> Programming interface
+!>   type(elasticity_t)               D(3,3) and what stress recovery needs
+!>   make_isotropic(E, nu, plane_stress, mat)
+!>   make_orthotropic(E1, E2, E3, nu12, nu13, nu23, G12, angle_deg, plane_stress, mat)
+!>   out_of_plane_stress(mat, sigma)  sigma_zz for an in-plane stress (sxx, syy, sxy)
+!>   von_mises(mat, sigma)            equivalent stress, sigma_zz included
+module material
+  use kinds, only: dp
+  implicit none
+  private
+  public :: elasticity_t, make_isotropic, make_orthotropic, out_of_plane_stress, von_mises
+
+  type :: elasticity_t
+    real(dp) :: d(3, 3) = 0.0_dp     !< sigma = D eps, global axes, Voigt (xx, yy, xy) with gamma_xy
+    logical :: plane_stress = .false.
+    real(dp) :: czz(2) = 0.0_dp      !< plane strain: sigma_zz = czz(1) s11 + czz(2) s22 (material axes)
+    real(dp) :: angle = 0.0_dp       !< material axis 1, radians from x
+    real(dp) :: emax = 0.0_dp        !< largest Young's modulus, a stiffness scale
+  end type elasticity_t
+
+contains
+
+  !> Isotropic law; requires E > 0, -1 < nu < 0.5 (checked by the deck reader).
+  subroutine make_isotropic(e, nu, plane_stress, mat)
+    real(dp), intent(in) :: e, nu
+    logical, intent(in) :: plane_stress
+    type(elasticity_t), intent(out) :: mat
+    call make_orthotropic(e, e, e, nu, nu, nu, e / (2.0_dp * (1.0_dp + nu)), 0.0_dp, plane_stress, mat)
+  end subroutine make_isotropic
+
+  !> Orthotropic law from engineering constants in material axes.
+  !>   e1, e2, e3   (in) Young's moduli, > 0
+  !>   nu12, nu13, nu23 (in) Poisson ratios (nu_ij = -eps_j / eps_i under sigma_i)
+  !>   g12          (in) in-plane shear modulus, > 0
+  !>   angle_deg    (in) rotation of axis 1 from x, degrees
+  !>   plane_stress (in) .true. plane stress, .false. plane strain
+  !>   mat          (out) the law in global axes
+  subroutine make_orthotropic(e1, e2, e3, nu12, nu13, nu23, g12, angle_deg, plane_stress, mat)
+    real(dp), intent(in) :: e1, e2, e3, nu12, nu13, nu23, g12, angle_deg
+    logical, intent(in) :: plane_stress
+    type(elasticity_t), intent(out) :: mat
+    real(dp) :: s(3, 3), sr(2, 2), dm(3, 3), t(3, 3), det, c, sn
+    real(dp), parameter :: pi = acos(-1.0_dp)
+
+    ! 3D normal compliance in material axes
+    s = reshape([1.0_dp / e1, -nu12 / e1, -nu13 / e1, &
+                 -nu12 / e1, 1.0_dp / e2, -nu23 / e2, &
+                 -nu13 / e1, -nu23 / e2, 1.0_dp / e3], [3, 3])
+    if (plane_stress) then
+      sr = s(1:2, 1:2)
+      mat%czz = 0.0_dp
+    else
+      ! eps_zz = 0: S'_ij = S_ij - S_i3 S_3j / S_33
+      sr(1, 1) = s(1, 1) - s(1, 3) * s(3, 1) / s(3, 3)
+      sr(1, 2) = s(1, 2) - s(1, 3) * s(3, 2) / s(3, 3)
+      sr(2, 1) = sr(1, 2)
+      sr(2, 2) = s(2, 2) - s(2, 3) * s(3, 2) / s(3, 3)
+      mat%czz = [-s(3, 1) / s(3, 3), -s(3, 2) / s(3, 3)]
+    end if
+    det = sr(1, 1) * sr(2, 2) - sr(1, 2) * sr(2, 1)
+    dm = 0.0_dp
+    dm(1, 1) = sr(2, 2) / det
+    dm(2, 2) = sr(1, 1) / det
+    dm(1, 2) = -sr(1, 2) / det
+    dm(2, 1) = dm(1, 2)
+    dm(3, 3) = g12
+    ! D = T' D' T with eps' = T eps (engineering shear)
+    mat%angle = angle_deg * pi / 180.0_dp
+    c = cos(mat%angle)
+    sn = sin(mat%angle)
+    t = reshape([c**2, sn**2, -2.0_dp * c * sn, &
+                 sn**2, c**2, 2.0_dp * c * sn, &
+                 c * sn, -c * sn, c**2 - sn**2], [3, 3])
+    mat%d = matmul(transpose(t), matmul(dm, t))
+    mat%d = 0.5_dp * (mat%d + transpose(mat%d))
+    mat%plane_stress = plane_stress
+    mat%emax = max(e1, e2, e3)
+  end subroutine make_orthotropic
+
+  !> sigma_zz of plane strain for the in-plane stress sig = (sxx, syy, sxy).
+  pure real(dp) function out_of_plane_stress(mat, sig) result(szz)
+    type(elasticity_t), intent(in) :: mat
+    real(dp), intent(in) :: sig(3)
+    real(dp) :: c, sn, s11, s22
+    if (mat%plane_stress) then
+      szz = 0.0_dp
+      return
+    end if
+    c = cos(mat%angle)
+    sn = sin(mat%angle)
+    s11 = c**2 * sig(1) + sn**2 * sig(2) + 2.0_dp * c * sn * sig(3)   ! a.sigma.a, a = (c, s)
+    s22 = sn**2 * sig(1) + c**2 * sig(2) - 2.0_dp * c * sn * sig(3)   ! b.sigma.b, b = (-s, c)
+    szz = mat%czz(1) * s11 + mat%czz(2) * s22
+  end function out_of_plane_stress
+
+  !> von Mises equivalent stress of (sxx, syy, sxy) with sigma_zz of the law.
+  pure real(dp) function von_mises(mat, sig) result(vm)
+    type(elasticity_t), intent(in) :: mat
+    real(dp), intent(in) :: sig(3)
+    real(dp) :: szz
+    szz = out_of_plane_stress(mat, sig)
+    vm = sqrt(max(0.0_dp, sig(1)**2 + sig(2)**2 + szz**2 - sig(1) * sig(2) - sig(2) * szz &
+                          - szz * sig(1) + 3.0_dp * sig(3)**2))
+  end function von_mises
+
+end module material

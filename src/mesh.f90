@@ -1,0 +1,336 @@
+!> mesh: the 2D mesh of one body, P1 triangles and Q1 quadrilaterals, with named
+!> boundaries (chains of edges), named point sets and named element regions.
+!>
+!> Node-last layouts: x(2, nnode), conn(4, nelem).  Element e has nen(e) = 3 or 4
+!> nodes conn(1:nen(e), e), counter-clockwise after finalize_mesh; conn(4, e) = 0
+!> for a triangle.
+!>
+!> Programming interface
+!>   type(mesh_t), type(boundary_t), type(region_t)
+!>   finalize_mesh(mesh, file, diag)   drop nodes no element uses (renumbering the
+!>        boundaries), orient every element counter-clockwise when the whole mesh
+!>        is clockwise, and report to diag: no elements, mixed orientation
+!>        (inverted elements), degenerate or non-convex elements, boundary edges
+!>        or points that name nodes outside the mesh
+!>   find_boundary(mesh, name)  index into mesh%bnd of the boundary or point set
+!>        called name, 0 when there is none
+!>   find_region(mesh, name)    index into mesh%reg, 0 when there is none
+!>   boundary_nodes(b, nodes)   sorted distinct nodes of a boundary or point set
+!>   element_area(mesh, e)      signed area of element e
+module mesh
+  use kinds, only: dp
+  use diagnostics, only: diag_t, add_error, int_to_str
+  implicit none
+  private
+  public :: mesh_t, boundary_t, region_t, finalize_mesh, find_boundary, find_region
+  public :: boundary_nodes, element_area, mesh_size
+
+  !> A named boundary: a set of edges (a physical curve) or of points.
+  type :: boundary_t
+    character(len=:), allocatable :: name  !< case-sensitive name
+    integer :: nseg = 0                     !< number of edges
+    integer, allocatable :: seg(:,:)        !< (2, nseg) node ids of each edge
+    integer :: npoint = 0                   !< number of points (physical points)
+    integer, allocatable :: points(:)       !< (npoint) node ids
+  end type boundary_t
+
+  !> A named set of elements (a physical surface).
+  type :: region_t
+    character(len=:), allocatable :: name   !< case-sensitive name
+    integer, allocatable :: elems(:)        !< element ids
+  end type region_t
+
+  type :: mesh_t
+    integer :: nnode = 0                    !< number of nodes
+    integer :: nelem = 0                    !< number of elements
+    real(dp), allocatable :: x(:,:)         !< (2, nnode) coordinates
+    integer, allocatable :: nen(:)          !< (nelem) nodes per element, 3 or 4
+    integer, allocatable :: conn(:,:)       !< (4, nelem) connectivity
+    type(boundary_t), allocatable :: bnd(:) !< named boundaries and point sets
+    type(region_t), allocatable :: reg(:)   !< named element regions
+  end type mesh_t
+
+contains
+
+  !> Compact, orient and check a mesh just read; see the module header.
+  !>   mesh (inout) the mesh; on return nodes are 1..nnode all used by elements
+  !>   file (in)    name for messages
+  !>   diag (inout) receives one message per defect (at most a few of each kind)
+  subroutine finalize_mesh(mesh, file, diag)
+    type(mesh_t), intent(inout) :: mesh
+    character(len=*), intent(in) :: file
+    type(diag_t), intent(inout) :: diag
+    integer, allocatable :: newid(:)
+    integer :: e, k, n, nneg, npos, nbad, b
+    real(dp) :: a, h2, scale
+    real(dp), allocatable :: area(:)
+
+    if (mesh%nelem <= 0) then
+      call add_error(diag, file, 0, 'mesh has no 2D elements (triangles or quadrilaterals expected)')
+      return
+    end if
+    do e = 1, mesh%nelem
+      do k = 1, mesh%nen(e)
+        if (mesh%conn(k, e) < 1 .or. mesh%conn(k, e) > mesh%nnode) then
+          call add_error(diag, file, 0, 'element ' // int_to_str(e) // ' refers to a node that does not exist')
+          return
+        end if
+      end do
+    end do
+
+    ! New numbering: the used nodes, in their old order.
+    allocate(newid(mesh%nnode), source=0)
+    do e = 1, mesh%nelem
+      newid(mesh%conn(1:mesh%nen(e), e)) = 1
+    end do
+    n = 0
+    do k = 1, mesh%nnode
+      if (newid(k) /= 0) then
+        n = n + 1
+        newid(k) = n
+        mesh%x(:, n) = mesh%x(:, k)
+      end if
+    end do
+    if (n < mesh%nnode) then
+      mesh%x = mesh%x(:, 1:n)
+      do e = 1, mesh%nelem
+        mesh%conn(1:mesh%nen(e), e) = newid(mesh%conn(1:mesh%nen(e), e))
+      end do
+      if (allocated(mesh%bnd)) then
+        do b = 1, size(mesh%bnd)
+          call renumber_boundary(mesh%bnd(b), newid, mesh%nnode, file, diag)
+        end do
+      end if
+      mesh%nnode = n
+    else if (allocated(mesh%bnd)) then
+      do b = 1, size(mesh%bnd)
+        call renumber_boundary(mesh%bnd(b), newid, mesh%nnode, file, diag)
+      end do
+    end if
+
+    ! Orientation: the mesh must be consistently oriented; flip it when it is
+    ! clockwise throughout.  Degenerate: |area| below 1e-12 of the element's
+    ! squared longest edge.
+    allocate(area(mesh%nelem))
+    nneg = 0; npos = 0; nbad = 0
+    do e = 1, mesh%nelem
+      area(e) = element_area(mesh, e)
+      h2 = longest_edge2(mesh, e)
+      if (.not. (abs(area(e)) > 1.0e-12_dp * h2)) then
+        nbad = nbad + 1
+        if (nbad <= 5) call add_error(diag, file, 0, 'element ' // int_to_str(e) // &
+          ' is degenerate (zero area; distinct, non-collinear nodes expected)')
+      else if (area(e) < 0.0_dp) then
+        nneg = nneg + 1
+      else
+        npos = npos + 1
+      end if
+    end do
+    if (nbad > 0) return
+    if (nneg > 0 .and. npos > 0) then
+      ! report the minority as inverted
+      nbad = 0
+      scale = merge(1.0_dp, -1.0_dp, npos >= nneg)
+      do e = 1, mesh%nelem
+        if (area(e) * scale < 0.0_dp) then
+          nbad = nbad + 1
+          if (nbad <= 5) call add_error(diag, file, 0, 'element ' // int_to_str(e) // &
+            ' is inverted (its orientation is opposite to the rest of the mesh)')
+        end if
+      end do
+      return
+    end if
+    if (nneg > 0) then
+      do e = 1, mesh%nelem
+        k = mesh%nen(e)
+        mesh%conn(1:k, e) = mesh%conn(k:1:-1, e)
+      end do
+    end if
+    ! Quadrilaterals must be strictly convex (positive Jacobian at each corner).
+    nbad = 0
+    do e = 1, mesh%nelem
+      if (mesh%nen(e) /= 4) cycle
+      a = min_corner_cross(mesh, e)
+      if (.not. (a > 1.0e-12_dp * longest_edge2(mesh, e))) then
+        nbad = nbad + 1
+        if (nbad <= 5) call add_error(diag, file, 0, 'quadrilateral ' // int_to_str(e) // &
+          ' is not convex (a convex quadrilateral with positive corner angles below 180 degrees expected)')
+      end if
+    end do
+  end subroutine finalize_mesh
+
+  subroutine renumber_boundary(b, newid, nold, file, diag)
+    type(boundary_t), intent(inout) :: b
+    integer, intent(in) :: newid(:), nold
+    character(len=*), intent(in) :: file
+    type(diag_t), intent(inout) :: diag
+    integer :: k, j
+    do k = 1, b%nseg
+      do j = 1, 2
+        if (b%seg(j, k) < 1 .or. b%seg(j, k) > nold) then
+          call add_error(diag, file, 0, 'boundary "' // b%name // '" refers to a node that does not exist')
+          return
+        end if
+        if (newid(b%seg(j, k)) == 0) then
+          call add_error(diag, file, 0, 'boundary "' // b%name // &
+            '" has an edge whose nodes belong to no element (edges on the body''s boundary expected)')
+          return
+        end if
+        b%seg(j, k) = newid(b%seg(j, k))
+      end do
+    end do
+    do k = 1, b%npoint
+      if (b%points(k) < 1 .or. b%points(k) > nold) then
+        call add_error(diag, file, 0, 'point set "' // b%name // '" refers to a node that does not exist')
+        return
+      end if
+      if (newid(b%points(k)) == 0) then
+        call add_error(diag, file, 0, 'point set "' // b%name // &
+          '" names a node that belongs to no element (a mesh node expected)')
+        return
+      end if
+      b%points(k) = newid(b%points(k))
+    end do
+  end subroutine renumber_boundary
+
+  !> Signed area of element e (shoelace formula; positive when counter-clockwise).
+  pure real(dp) function element_area(mesh, e) result(a)
+    type(mesh_t), intent(in) :: mesh
+    integer, intent(in) :: e
+    integer :: k, n, i, j
+    n = mesh%nen(e)
+    a = 0.0_dp
+    do k = 1, n
+      i = mesh%conn(k, e)
+      j = mesh%conn(mod(k, n) + 1, e)
+      a = a + mesh%x(1, i) * mesh%x(2, j) - mesh%x(1, j) * mesh%x(2, i)
+    end do
+    a = 0.5_dp * a
+  end function element_area
+
+  pure real(dp) function longest_edge2(mesh, e) result(h2)
+    type(mesh_t), intent(in) :: mesh
+    integer, intent(in) :: e
+    integer :: k, n
+    real(dp) :: d(2)
+    n = mesh%nen(e)
+    h2 = 0.0_dp
+    do k = 1, n
+      d = mesh%x(:, mesh%conn(mod(k, n) + 1, e)) - mesh%x(:, mesh%conn(k, e))
+      h2 = max(h2, sum(d**2))
+    end do
+  end function longest_edge2
+
+  !> Smallest cross product of consecutive edges at the corners of a quad
+  !> (after orientation), i.e. twice the smallest corner triangle area.
+  pure real(dp) function min_corner_cross(mesh, e) result(c)
+    type(mesh_t), intent(in) :: mesh
+    integer, intent(in) :: e
+    integer :: k
+    real(dp) :: a(2), b(2)
+    c = huge(1.0_dp)
+    do k = 1, 4
+      a = mesh%x(:, mesh%conn(mod(k, 4) + 1, e)) - mesh%x(:, mesh%conn(k, e))
+      b = mesh%x(:, mesh%conn(mod(k + 1, 4) + 1, e)) - mesh%x(:, mesh%conn(mod(k, 4) + 1, e))
+      c = min(c, a(1) * b(2) - a(2) * b(1))
+    end do
+  end function min_corner_cross
+
+  !> Index of the boundary or point set called name; 0 when none.
+  integer function find_boundary(mesh, name) result(ib)
+    type(mesh_t), intent(in) :: mesh
+    character(len=*), intent(in) :: name
+    integer :: b
+    ib = 0
+    if (.not. allocated(mesh%bnd)) return
+    do b = 1, size(mesh%bnd)
+      if (mesh%bnd(b)%name == name) then
+        ib = b
+        return
+      end if
+    end do
+  end function find_boundary
+
+  !> Index of the element region called name; 0 when none.
+  integer function find_region(mesh, name) result(ir)
+    type(mesh_t), intent(in) :: mesh
+    character(len=*), intent(in) :: name
+    integer :: r
+    ir = 0
+    if (.not. allocated(mesh%reg)) return
+    do r = 1, size(mesh%reg)
+      if (mesh%reg(r)%name == name) then
+        ir = r
+        return
+      end if
+    end do
+  end function find_region
+
+  !> Sorted distinct node ids of a boundary's edges and points.
+  subroutine boundary_nodes(b, nodes)
+    type(boundary_t), intent(in) :: b
+    integer, allocatable, intent(out) :: nodes(:)
+    integer, allocatable :: all(:)
+    integer :: n, k, i
+    n = 2 * b%nseg + b%npoint
+    allocate(all(n))
+    if (b%nseg > 0) all(1:2 * b%nseg) = reshape(b%seg(:, 1:b%nseg), [2 * b%nseg])
+    if (b%npoint > 0) all(2 * b%nseg + 1:n) = b%points(1:b%npoint)
+    call sort_int(all)
+    k = 0
+    do i = 1, n
+      if (k > 0) then
+        if (all(i) == all(k)) cycle
+      end if
+      k = k + 1
+      all(k) = all(i)
+    end do
+    nodes = all(1:k)
+  end subroutine boundary_nodes
+
+  !> Mean edge length of the mesh, a length scale for tolerances.
+  real(dp) function mesh_size(mesh) result(h)
+    type(mesh_t), intent(in) :: mesh
+    integer :: e
+    h = 0.0_dp
+    do e = 1, mesh%nelem
+      h = h + sqrt(longest_edge2(mesh, e))
+    end do
+    h = h / max(1, mesh%nelem)
+  end function mesh_size
+
+  !> In-place heap sort of an integer array (ascending).
+  subroutine sort_int(a)
+    integer, intent(inout) :: a(:)
+    integer :: n, i, root, child, t, last
+    n = size(a)
+    do i = n / 2, 1, -1
+      root = i
+      do
+        child = 2 * root
+        if (child > n) exit
+        if (child < n) then
+          if (a(child + 1) > a(child)) child = child + 1
+        end if
+        if (a(root) >= a(child)) exit
+        t = a(root); a(root) = a(child); a(child) = t
+        root = child
+      end do
+    end do
+    do last = n, 2, -1
+      t = a(1); a(1) = a(last); a(last) = t
+      root = 1
+      do
+        child = 2 * root
+        if (child > last - 1) exit
+        if (child < last - 1) then
+          if (a(child + 1) > a(child)) child = child + 1
+        end if
+        if (a(root) >= a(child)) exit
+        t = a(root); a(root) = a(child); a(child) = t
+        root = child
+      end do
+    end do
+  end subroutine sort_int
+
+end module mesh

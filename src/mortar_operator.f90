@@ -1,0 +1,564 @@
+!> mortar_operator: the discrete contact constraint K_h of one contact pair, built on
+!> the geometry of two boundary polylines by the mortar method of F. Ben Belgacem,
+!> P. Hild and P. Laborde, "Approximation of the unilateral contact problem by the
+!> mortar finite element method" (C. R. Acad. Sci. Paris).
+!>
+!> Setting.  The slave (non-mortar) side is the paper's side 1: its boundary polyline
+!> x_1..x_ns carries the P1 hats phi_i and the Lagrange multipliers.  The master
+!> (mortar) side 2 is the polyline y_1..y_nm with hats chi_j.  The normal traces of
+!> V_h^l, eq. (7), on the contact zone are the continuous piecewise linear functions
+!> W_h^l on these 1D meshes.  The discrete convex is
+!>     K_h = { v_h : v_h^1.n^1 + pi_h^1 (v_h^2.n^2) <= 0 on Gamma_c }        (K_h, eq. (10))
+!> and this module builds the matrix P of pi_h^1 restricted to the master traces.
+!>
+!> 1. Segment intersection ("1D segment quadrature").  For each slave segment
+!>    [x_a, x_b] (length L, unit tangent t, outward unit normal n) every master segment
+!>    that faces it (n_master . n < 0) is projected onto the slave segment's line along
+!>    n: s(y) = (y - x_a).t / L.  The overlap of the projected interval with [0, 1], when
+!>    longer than 1e-10, is a sub-segment; on it the slave hats (affine in s) and the
+!>    master hats (affine in the master coordinate r, itself affine in s) are both
+!>    linear, so 2-point Gauss on each sub-segment integrates every product
+!>    phi_i chi_j and phi_i phi_l exactly.  A master part counts whatever its distance
+!>    along n (initial gaps may be large); a slave part covered twice (a master that
+!>    folds back in front of the slave) is rejected.
+!> 2. Effective contact zone Gamma_c.  The slave segments with a positive covered length
+!>    form the zone, slave nodes first..last, renumbered x_0 = a1, ..., x_n = a2
+!>    (n = last - first segments).  An uncovered slave segment inside the zone (a hole)
+!>    is an input error; no coverage at all gives first = last = 0 (no contact).
+!> 3. Multiplier space M_h^1 (continuous P1, constant on the two end segments):
+!>       psi_1 = phi_0 + phi_1,  psi_k = phi_k (2 <= k <= n-2),  psi_{n-1} = phi_{n-1} + phi_n;
+!>    for n = 2, psi_1 = phi_0 + phi_1 + phi_2 = 1; for n = 1 there is no multiplier
+!>    beyond the two end conditions.  M_h^1 contains the constants.
+!> 4. Projection pi_h^1, eq. (8): for a master trace phi = sum_j c_j chi_j,
+!>       (pi phi)(a_i) = phi(a_i), i = 1, 2,
+!>       integral_{Gamma_c} (phi - pi phi) psi_k = 0, k = 1..n-1.
+!>    With v the interior nodal values of pi phi:
+!>       D v = M c - E_0 (pi phi)(a1) - E_n (pi phi)(a2),
+!>       D_kl = int psi_k phi_l (k, l = 1..n-1),  M_kj = int psi_k chi_j,
+!>       E_0k = int psi_k phi_0,  E_nk = int psi_k phi_n,
+!>    all integrals over the covered part of Gamma_c only (the sub-segments), so that
+!>    pi 1 = 1 and int (pi phi) = int phi hold exactly even where the master covers only
+!>    part of an end segment.  D is tridiagonal, symmetric positive definite (no holes);
+!>    it is solved by LAPACK dgtsv for all master columns at once:
+!>       P(interior, :) = D^-1 (M - E_0 P(first, :) - E_n P(last, :)).
+!>    End values: phi(a_i) is the master trace at the master point hit by the line
+!>    through a_i along the slave nodal normal (the facing master segment nearest along
+!>    that line).  When that line misses the master (the master stops short of a_i)
+!>    the master trace is extended by a constant: the value at the master point that
+!>    bounds the covered part of the end segment, i.e. the master's end point.
+!> 5. Initial normal gap (gap=geometry): with the slave nodal normal n_i used for both
+!>    sides (the usual small-deformation choice; n^2 = -n^1 on a flat interface),
+!>       gap0_i = n_i . ( sum_j P(i,j) y_j - x_i ),  i = first..last;
+!>    gap=zero is the paper's setting (coinciding boundaries), gap0 = 0.
+!>    Constraint row of slave node i (the caller assembles it on the displacements):
+!>       B_i u = n_i . u^1(x_i) - n_i . sum_j P(i,j) u^2(y_j) <= gap0_i.
+!>
+!> Programming interface
+!>   type(mortar_t)        the operator of one pair (fields commented below)
+!>   type(intersection_t)  the list of sub-segments of the two 1D meshes
+!>   build_mortar(xs, ns_out, xm, nm_out, gap_zero, mortar, err)
+!>                         check the polylines, intersect, build pi_h^1, gaps, weights;
+!>                         err (status 2) for geometric input problems, (status 1) when
+!>                         the LAPACK solve fails
+!>   intersect_segments(xs, ns_out, xm, nm_out, inter)
+!>                         the sub-segment list alone (valid polylines assumed)
+module mortar_operator
+  use kinds, only: dp
+  use diagnostics, only: error_t, set_error, int_to_str
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+  implicit none
+  private
+  public :: mortar_t, intersection_t, build_mortar, intersect_segments
+
+  !> Sub-segments of the intersection of the slave and master 1D meshes, ordered by
+  !> slave segment and, within one, by increasing s.
+  type :: intersection_t
+    integer :: nsub = 0                       !< number of sub-segments
+    integer, allocatable :: slave_seg(:)      !< (nsub) slave segment e (nodes e, e+1)
+    integer, allocatable :: master_seg(:)     !< (nsub) master segment f (nodes f, f+1)
+    real(dp), allocatable :: s(:,:)           !< (2, nsub) slave coordinates of the ends, 0 <= s(1) < s(2) <= 1
+    real(dp), allocatable :: r(:,:)           !< (2, nsub) master coordinates at the same ends (y = (1-r) y_f + r y_f+1)
+  end type intersection_t
+
+  !> The mortar operator of one contact pair.
+  type :: mortar_t
+    integer :: ns = 0                         !< slave polyline nodes
+    integer :: nm = 0                         !< master polyline nodes
+    integer :: first = 0, last = 0            !< effective zone: slave nodes first..last; 0/0 when none
+    real(dp), allocatable :: normal(:,:)      !< (2, ns) unit outward slave nodal normals
+    real(dp), allocatable :: P(:,:)           !< (ns, nm) pi_h^1: (pi phi)(x_i) = sum_j P(i,j) c_j; zero rows off the zone
+    real(dp), allocatable :: gap0(:)          !< (ns) initial normal gap n_i.((P y)_i - x_i); 0 for gap=zero or off the zone
+    real(dp), allocatable :: weight(:)        !< (ns) w_i = int phi_i over the zone (full segments first..last)
+    real(dp), allocatable :: covered_weight(:) !< (ns) int phi_i over the covered part only: P' covered_weight = master weights
+    real(dp), allocatable :: arc(:)           !< (ns) arc length along the slave polyline from node 1
+    logical, allocatable :: constrained(:)    !< (ns) true for first..last
+    type(intersection_t) :: inter             !< the sub-segments used for the integrals
+  end type mortar_t
+
+  real(dp), parameter :: tol_unit = 1.0e-8_dp      ! |n| = 1 and n.t = 0 up to this
+  real(dp), parameter :: tol_length = 1.0e-12_dp   ! zero length, relative to the polyline's extent
+  real(dp), parameter :: tol_overlap = 1.0e-10_dp  ! shortest sub-segment / double cover, relative to L
+  real(dp), parameter :: tol_ray = 1.0e-10_dp      ! slack on the master coordinate of a ray hit
+
+  interface
+    !> LAPACK: solve A X = B for a general tridiagonal A (LU with partial pivoting).
+    subroutine dgtsv(n, nrhs, dl, d, du, b, ldb, info)
+      import :: dp
+      integer, intent(in) :: n, nrhs, ldb
+      real(dp), intent(inout) :: dl(*), d(*), du(*), b(ldb, *)
+      integer, intent(out) :: info
+    end subroutine dgtsv
+  end interface
+
+contains
+
+  !> Build the mortar operator pi_h^1 (eq. (8)) of one contact pair, its effective
+  !> zone, nodal normals, weights and initial gaps; see the module header.
+  !>   xs       (in)  (2, ns) slave polyline nodes in order along the boundary, ns >= 2
+  !>   ns_out   (in)  (2, ns-1) outward unit normal of each slave segment (from the slave body)
+  !>   xm       (in)  (2, nm) master polyline nodes in order, nm >= 2
+  !>   nm_out   (in)  (2, nm-1) outward unit normal of each master segment (from the master body)
+  !>   gap_zero (in)  .true.: the boundaries coincide (the paper's setting), gap0 = 0
+  !>   mortar   (out) the operator; contents unspecified when err is returned
+  !>   err      (out) allocated on failure: status 2 for bad geometry (sizes, zero-length
+  !>                  segments, normals, holes or folds in the master cover), 1 when the
+  !>                  tridiagonal solve fails
+  subroutine build_mortar(xs, ns_out, xm, nm_out, gap_zero, mortar, err)
+    real(dp), intent(in) :: xs(:,:), ns_out(:,:), xm(:,:), nm_out(:,:)
+    logical, intent(in) :: gap_zero
+    type(mortar_t), intent(out) :: mortar
+    type(error_t), allocatable, intent(out) :: err
+    integer :: ns, nm, i, e, k, first, last, f, jlo, jhi, info
+    integer, allocatable :: ncover(:)
+    real(dp) :: r, y(2)
+    real(dp), allocatable :: seglen(:), py(:,:)
+
+    call check_polyline(xs, ns_out, 'slave', err)
+    if (allocated(err)) return
+    call check_polyline(xm, nm_out, 'master', err)
+    if (allocated(err)) return
+
+    ns = size(xs, 2)
+    nm = size(xm, 2)
+    mortar%ns = ns
+    mortar%nm = nm
+    allocate(mortar%normal(2, ns), mortar%P(ns, nm), mortar%gap0(ns), mortar%weight(ns))
+    allocate(mortar%covered_weight(ns), mortar%arc(ns), mortar%constrained(ns))
+    mortar%P = 0.0_dp
+    mortar%gap0 = 0.0_dp
+    mortar%weight = 0.0_dp
+    mortar%covered_weight = 0.0_dp
+    mortar%constrained = .false.
+
+    ! Arc length and nodal normals (normalized sum of the adjacent segment normals).
+    allocate(seglen(ns - 1))
+    mortar%arc(1) = 0.0_dp
+    do e = 1, ns - 1
+      seglen(e) = norm2(xs(:, e + 1) - xs(:, e))
+      mortar%arc(e + 1) = mortar%arc(e) + seglen(e)
+    end do
+    mortar%normal(:, 1) = ns_out(:, 1)
+    mortar%normal(:, ns) = ns_out(:, ns - 1)
+    do i = 2, ns - 1
+      y = ns_out(:, i - 1) + ns_out(:, i)
+      mortar%normal(:, i) = y / norm2(y)
+    end do
+
+    call intersect_segments(xs, ns_out, xm, nm_out, mortar%inter)
+    if (mortar%inter%nsub == 0) return
+
+    ! Coverage per slave segment; double cover (folds) and holes.
+    allocate(ncover(ns - 1), source=0)
+    do k = 1, mortar%inter%nsub
+      e = mortar%inter%slave_seg(k)
+      ncover(e) = ncover(e) + 1
+      if (k > 1) then
+        if (mortar%inter%slave_seg(k - 1) == e .and. &
+            mortar%inter%s(1, k) < mortar%inter%s(2, k - 1) - tol_overlap) then
+          call set_error(err, 'master boundary covers the slave boundary twice between arc length ' // &
+            real_to_str(mortar%arc(e) + mortar%inter%s(1, k) * seglen(e)) // ' and ' // &
+            real_to_str(mortar%arc(e) + min(mortar%inter%s(2, k - 1), mortar%inter%s(2, k)) * seglen(e)) // &
+            ' (a master boundary that faces the slave once, without folds, expected)', 2)
+          return
+        end if
+      end if
+    end do
+    first = mortar%inter%slave_seg(1)
+    last = mortar%inter%slave_seg(mortar%inter%nsub) + 1
+    e = first
+    do while (e < last)
+      if (ncover(e) == 0) then
+        k = e
+        do while (ncover(k + 1) == 0)
+          k = k + 1
+        end do
+        call set_error(err, 'master boundary leaves a gap opposite the slave boundary between arc length ' // &
+          real_to_str(mortar%arc(e)) // ' and ' // real_to_str(mortar%arc(k + 1)) // &
+          ' (a master that covers the slave contact zone without holes expected)', 2)
+        return
+      end if
+      e = e + 1
+    end do
+    mortar%first = first
+    mortar%last = last
+    mortar%constrained(first:last) = .true.
+
+    ! Lumped weights over the full zone segments.
+    do e = first, last - 1
+      mortar%weight(e) = mortar%weight(e) + 0.5_dp * seglen(e)
+      mortar%weight(e + 1) = mortar%weight(e + 1) + 0.5_dp * seglen(e)
+    end do
+
+    ! End rows: the master trace opposite a1 and a2, eq. (8) first line.
+    call end_row(xs(:, first), mortar%normal(:, first), xm, nm_out, mortar%inter, first, .true., f, r)
+    mortar%P(first, f) = 1.0_dp - r
+    mortar%P(first, f + 1) = r
+    jlo = f
+    jhi = f + 1
+    call end_row(xs(:, last), mortar%normal(:, last), xm, nm_out, mortar%inter, last - 1, .false., f, r)
+    mortar%P(last, f) = mortar%P(last, f) + (1.0_dp - r)
+    mortar%P(last, f + 1) = mortar%P(last, f + 1) + r
+    jlo = min(jlo, f, minval(mortar%inter%master_seg(1:mortar%inter%nsub)))
+    jhi = max(jhi, f + 1, maxval(mortar%inter%master_seg(1:mortar%inter%nsub)) + 1)
+
+    ! Interior rows: D v = M c - E_0 c(a1) - E_n c(a2), eq. (8) second line.
+    call project_interior(mortar, seglen, jlo, jhi, info)
+    if (info /= 0) then
+      call set_error(err, 'mortar matrix D of the contact zone is singular (LAPACK dgtsv info ' // &
+        int_to_str(info) // ')', 1)
+      return
+    end if
+
+    ! Initial normal gap, gap=geometry.
+    if (.not. gap_zero) then
+      allocate(py(first:last, 2))
+      py = matmul(mortar%P(first:last, jlo:jhi), transpose(xm(:, jlo:jhi)))   ! (P y)_i, componentwise
+      do i = first, last
+        mortar%gap0(i) = dot_product(mortar%normal(:, i), py(i, :) - xs(:, i))
+      end do
+    end if
+  end subroutine build_mortar
+
+  !> Assemble D, M, E_0, E_n on the sub-segments (2-point Gauss, exact) and solve for
+  !> the interior rows of P; also accumulate mortar%covered_weight.
+  !>   mortar (inout) in: first, last, end rows of P, inter; out: interior rows of P
+  !>   seglen (in)    (ns-1) slave segment lengths
+  !>   jlo, jhi (in)  range of master columns that can be nonzero
+  !>   info   (out)   0, or the dgtsv info when D is singular
+  subroutine project_interior(mortar, seglen, jlo, jhi, info)
+    type(mortar_t), intent(inout) :: mortar
+    real(dp), intent(in) :: seglen(:)
+    integer, intent(in) :: jlo, jhi
+    integer, intent(out) :: info
+    real(dp), parameter :: gauss = 0.57735026918962576451_dp   ! 1/sqrt(3)
+    real(dp), allocatable :: dl(:), dd(:), du(:), e0(:), en(:)
+    real(dp) :: half, mid, sq, rq, wq, wa, v, phi(0:1), chi(0:1)
+    integer :: n, first, last, k, m, f, q, ia, ib, a, b, kp, ns
+
+    info = 0
+    first = mortar%first
+    last = mortar%last
+    ns = mortar%ns
+    n = last - first
+    allocate(dl(max(n - 2, 1)), dd(max(n - 1, 1)), du(max(n - 2, 1)), e0(max(n - 1, 1)), en(max(n - 1, 1)))
+    dl = 0.0_dp; dd = 0.0_dp; du = 0.0_dp; e0 = 0.0_dp; en = 0.0_dp
+
+    do k = 1, mortar%inter%nsub
+      m = mortar%inter%slave_seg(k) - first + 1          ! zone segment m: local nodes m-1, m
+      f = mortar%inter%master_seg(k)
+      half = 0.5_dp * (mortar%inter%s(2, k) - mortar%inter%s(1, k))
+      mid = 0.5_dp * (mortar%inter%s(2, k) + mortar%inter%s(1, k))
+      wq = half * seglen(mortar%inter%slave_seg(k))      ! Gauss weight (each of two) in length
+      do q = -1, 1, 2
+        sq = mid + real(q, dp) * gauss * half
+        rq = 0.5_dp * (mortar%inter%r(1, k) + mortar%inter%r(2, k)) + &
+             real(q, dp) * gauss * 0.5_dp * (mortar%inter%r(2, k) - mortar%inter%r(1, k))
+        phi = [1.0_dp - sq, sq]
+        chi = [1.0_dp - rq, rq]
+        do ia = 0, 1
+          a = m - 1 + ia
+          wa = wq * phi(ia)
+          mortar%covered_weight(first + a) = mortar%covered_weight(first + a) + wa
+          if (n < 2) cycle
+          kp = max(1, min(n - 1, a))                       ! phi_a is part of psi_kp
+          do ib = 0, 1
+            b = m - 1 + ib
+            v = wa * phi(ib)
+            if (b == 0) then
+              e0(kp) = e0(kp) + v                          ! E_0 = int psi_k phi_0
+            else if (b == n) then
+              en(kp) = en(kp) + v                          ! E_n = int psi_k phi_n
+            else if (b == kp) then
+              dd(kp) = dd(kp) + v                          ! D_kk
+            else if (b == kp + 1) then
+              du(kp) = du(kp) + v                          ! D_k,k+1
+            else
+              dl(b) = dl(b) + v                            ! D_k,k-1 (b = k-1)
+            end if
+          end do
+          ! M_kj = int psi_k chi_j, accumulated in row first+kp of P
+          mortar%P(first + kp, f) = mortar%P(first + kp, f) + wa * chi(0)
+          mortar%P(first + kp, f + 1) = mortar%P(first + kp, f + 1) + wa * chi(1)
+        end do
+      end do
+    end do
+    if (n < 2) return
+
+    ! Right-hand sides M - E_0 P(first,:) - E_n P(last,:), then v = D^-1 (...).
+    do f = jlo, jhi
+      mortar%P(first + 1:last - 1, f) = mortar%P(first + 1:last - 1, f) - e0(1:n - 1) * mortar%P(first, f) &
+                                        - en(1:n - 1) * mortar%P(last, f)
+    end do
+    call dgtsv(n - 1, jhi - jlo + 1, dl, dd, du, mortar%P(first + 1, jlo), ns, info)
+  end subroutine project_interior
+
+  !> The master point that gives the end value (pi phi)(a) = phi(a), eq. (8): the
+  !> nearest hit of the line a + tau n on a master segment facing n; when there is
+  !> none, the master point bounding the covered part of the end slave segment.
+  !>   a       (in)  (2) end node of the zone
+  !>   n       (in)  (2) its unit nodal normal
+  !>   xm      (in)  (2, nm) master nodes
+  !>   nm_out  (in)  (2, nm-1) master segment normals
+  !>   inter   (in)  the sub-segments (at least one on segment eend)
+  !>   eend    (in)  the zone's end slave segment
+  !>   at_start (in) .true. for a1 (lowest s on eend), .false. for a2 (highest s)
+  !>   f       (out) master segment holding the point
+  !>   r       (out) its master coordinate in [0, 1]
+  subroutine end_row(a, n, xm, nm_out, inter, eend, at_start, f, r)
+    real(dp), intent(in) :: a(2), n(2), xm(:,:), nm_out(:,:)
+    type(intersection_t), intent(in) :: inter
+    integer, intent(in) :: eend
+    logical, intent(in) :: at_start
+    integer, intent(out) :: f
+    real(dp), intent(out) :: r
+    real(dp) :: d(2), w(2), den, tau, rr, best
+    integer :: g, k
+
+    f = 0
+    r = 0.0_dp
+    best = huge(1.0_dp)
+    do g = 1, size(xm, 2) - 1
+      if (dot_product(nm_out(:, g), n) >= 0.0_dp) cycle
+      d = xm(:, g + 1) - xm(:, g)
+      w = xm(:, g) - a
+      den = cross(n, d)
+      if (abs(den) <= 1.0e-12_dp * norm2(d)) cycle        ! segment along the ray
+      rr = -cross(n, w) / den                              ! a + tau n = y_g + rr d
+      if (rr < -tol_ray .or. rr > 1.0_dp + tol_ray) cycle
+      tau = cross(w, d) / den
+      if (abs(tau) < best) then
+        best = abs(tau)
+        f = g
+        r = min(1.0_dp, max(0.0_dp, rr))
+      end if
+    end do
+    if (f > 0) return
+
+    ! Constant extension of the master trace beyond its end.
+    if (at_start) then
+      do k = 1, inter%nsub
+        if (inter%slave_seg(k) == eend) then
+          f = inter%master_seg(k)
+          r = inter%r(1, k)
+          return
+        end if
+      end do
+    else
+      do k = inter%nsub, 1, -1
+        if (inter%slave_seg(k) == eend) then
+          f = inter%master_seg(k)
+          r = inter%r(2, k)
+          return
+        end if
+      end do
+    end if
+  end subroutine end_row
+
+  !> Intersect the slave and master 1D meshes: for each slave segment, the master
+  !> segments facing it projected along its normal onto its line (module header, 1.).
+  !> The polylines are assumed valid (as checked by build_mortar).
+  !>   xs     (in)  (2, ns) slave nodes;  ns_out (in) (2, ns-1) slave segment normals
+  !>   xm     (in)  (2, nm) master nodes; nm_out (in) (2, nm-1) master segment normals
+  !>   inter  (out) the sub-segments, ordered by slave segment and increasing s
+  subroutine intersect_segments(xs, ns_out, xm, nm_out, inter)
+    real(dp), intent(in) :: xs(:,:), ns_out(:,:), xm(:,:), nm_out(:,:)
+    type(intersection_t), intent(out) :: inter
+    integer :: nss, nms, e, f, nc, i, j, cap
+    real(dp) :: xa(2), t(2), length, sa, sb, lo, hi
+    real(dp), allocatable :: clo(:), chi(:), rlo(:), rhi(:)
+    integer, allocatable :: cf(:)
+
+    nss = size(xs, 2) - 1
+    nms = size(xm, 2) - 1
+    allocate(clo(nms), chi(nms), rlo(nms), rhi(nms), cf(nms))
+    cap = max(16, nss + nms)
+    allocate(inter%slave_seg(cap), inter%master_seg(cap), inter%s(2, cap), inter%r(2, cap))
+    inter%nsub = 0
+    do e = 1, nss
+      xa = xs(:, e)
+      t = xs(:, e + 1) - xa
+      length = norm2(t)
+      t = t / length
+      nc = 0
+      do f = 1, nms
+        if (dot_product(nm_out(:, f), ns_out(:, e)) >= 0.0_dp) cycle   ! not facing
+        sa = dot_product(xm(:, f) - xa, t) / length
+        sb = dot_product(xm(:, f + 1) - xa, t) / length
+        lo = max(0.0_dp, min(sa, sb))
+        hi = min(1.0_dp, max(sa, sb))
+        if (hi - lo <= tol_overlap) cycle
+        nc = nc + 1
+        clo(nc) = lo
+        chi(nc) = hi
+        rlo(nc) = min(1.0_dp, max(0.0_dp, (lo - sa) / (sb - sa)))   ! y = y_f + r (y_f+1 - y_f)
+        rhi(nc) = min(1.0_dp, max(0.0_dp, (hi - sa) / (sb - sa)))
+        cf(nc) = f
+      end do
+      ! insertion sort by lo
+      do i = 2, nc
+        j = i
+        do while (j > 1)
+          if (clo(j - 1) <= clo(j)) exit
+          call swap_real(clo(j - 1), clo(j))
+          call swap_real(chi(j - 1), chi(j))
+          call swap_real(rlo(j - 1), rlo(j))
+          call swap_real(rhi(j - 1), rhi(j))
+          call swap_int(cf(j - 1), cf(j))
+          j = j - 1
+        end do
+      end do
+      if (inter%nsub + nc > cap) then
+        cap = max(2 * cap, inter%nsub + nc)
+        call grow_intersection(inter, cap)
+      end if
+      do i = 1, nc
+        inter%nsub = inter%nsub + 1
+        inter%slave_seg(inter%nsub) = e
+        inter%master_seg(inter%nsub) = cf(i)
+        inter%s(:, inter%nsub) = [clo(i), chi(i)]
+        inter%r(:, inter%nsub) = [rlo(i), rhi(i)]
+      end do
+    end do
+  end subroutine intersect_segments
+
+  !> Check one polyline and its segment normals; err (status 2) on the first defect.
+  !>   x     (in)  (2, np) nodes
+  !>   nrm   (in)  (2, np-1) outward unit segment normals
+  !>   side  (in)  'slave' or 'master', for messages
+  !>   err   (out) allocated when the polyline is not usable
+  subroutine check_polyline(x, nrm, side, err)
+    real(dp), intent(in) :: x(:,:), nrm(:,:)
+    character(len=*), intent(in) :: side
+    type(error_t), allocatable, intent(out) :: err
+    integer :: np, k
+    real(dp) :: scale, length, t(2), orient, c
+
+    np = size(x, 2)
+    if (size(x, 1) /= 2 .or. size(nrm, 1) /= 2) then
+      call set_error(err, side // ' boundary coordinates or normals are not 2D (arrays (2, n) expected)', 2)
+      return
+    end if
+    if (np < 2) then
+      call set_error(err, side // ' boundary has ' // int_to_str(np) // &
+        ' node(s) (at least 2 nodes, one segment, expected)', 2)
+      return
+    end if
+    if (size(nrm, 2) /= np - 1) then
+      call set_error(err, side // ' boundary has ' // int_to_str(size(nrm, 2)) // ' segment normals for ' // &
+        int_to_str(np) // ' nodes (one normal per segment, ' // int_to_str(np - 1) // ', expected)', 2)
+      return
+    end if
+    if (.not. (all(ieee_is_finite(x)) .and. all(ieee_is_finite(nrm)))) then
+      call set_error(err, side // ' boundary has non-finite coordinates or normals (finite numbers expected)', 2)
+      return
+    end if
+    scale = max(maxval(x(1, :)) - minval(x(1, :)), maxval(x(2, :)) - minval(x(2, :)))
+    orient = 0.0_dp
+    do k = 1, np - 1
+      t = x(:, k + 1) - x(:, k)
+      length = norm2(t)
+      if (length <= tol_length * scale) then
+        call set_error(err, 'zero-length segment on the ' // side // ' boundary at node ' // int_to_str(k) // &
+          ' (distinct consecutive nodes expected)', 2)
+        return
+      end if
+      t = t / length
+      if (abs(norm2(nrm(:, k)) - 1.0_dp) > tol_unit) then
+        call set_error(err, 'normal of ' // side // ' segment ' // int_to_str(k) // &
+          ' is not a unit vector (outward unit normals expected)', 2)
+        return
+      end if
+      if (abs(dot_product(nrm(:, k), t)) > tol_unit) then
+        call set_error(err, 'normal of ' // side // ' segment ' // int_to_str(k) // &
+          ' is not perpendicular to the segment (outward unit normals expected)', 2)
+        return
+      end if
+      c = cross(t, nrm(:, k))                              ! +1 or -1: the side of the normal
+      if (k == 1) then
+        orient = c
+      else if (c * orient < 0.0_dp) then
+        call set_error(err, 'normals of the ' // side // ' boundary change side at segment ' // int_to_str(k) // &
+          ' (outward normals, all on the body''s side, expected)', 2)
+        return
+      end if
+      if (k > 1) then
+        if (dot_product(nrm(:, k - 1), nrm(:, k)) <= -1.0_dp + tol_unit) then
+          call set_error(err, side // ' boundary turns back on itself at node ' // int_to_str(k) // &
+            ' (a boundary without folds expected)', 2)
+          return
+        end if
+      end if
+    end do
+  end subroutine check_polyline
+
+  !> Enlarge the arrays of inter to capacity cap, keeping the first nsub entries.
+  subroutine grow_intersection(inter, cap)
+    type(intersection_t), intent(inout) :: inter
+    integer, intent(in) :: cap
+    integer, allocatable :: ia(:)
+    real(dp), allocatable :: ra(:,:)
+    integer :: n
+    n = inter%nsub
+    allocate(ia(cap)); ia(1:n) = inter%slave_seg(1:n); call move_alloc(ia, inter%slave_seg)
+    allocate(ia(cap)); ia(1:n) = inter%master_seg(1:n); call move_alloc(ia, inter%master_seg)
+    allocate(ra(2, cap)); ra(:, 1:n) = inter%s(:, 1:n); call move_alloc(ra, inter%s)
+    allocate(ra(2, cap)); ra(:, 1:n) = inter%r(:, 1:n); call move_alloc(ra, inter%r)
+  end subroutine grow_intersection
+
+  !> z-component of the cross product of two plane vectors.
+  pure real(dp) function cross(u, v)
+    real(dp), intent(in) :: u(2), v(2)
+    cross = u(1) * v(2) - u(2) * v(1)
+  end function cross
+
+  pure subroutine swap_real(a, b)
+    real(dp), intent(inout) :: a, b
+    real(dp) :: c
+    c = a; a = b; b = c
+  end subroutine swap_real
+
+  pure subroutine swap_int(a, b)
+    integer, intent(inout) :: a, b
+    integer :: c
+    c = a; a = b; b = c
+  end subroutine swap_int
+
+  !> Short decimal text of a real (6 significant digits, trailing zeros dropped), for messages.
+  function real_to_str(v) result(s)
+    real(dp), intent(in) :: v
+    character(len=:), allocatable :: s
+    character(len=32) :: buf
+    integer :: k
+    write(buf, '(g0.6)') v
+    s = trim(adjustl(buf))
+    if (index(s, '.') > 0 .and. scan(s, 'EeDd') == 0) then
+      k = len_trim(s)
+      do while (s(k:k) == '0')
+        k = k - 1
+      end do
+      if (s(k:k) == '.') k = k - 1
+      s = s(1:k)
+    end if
+  end function real_to_str
+
+end module mortar_operator

@@ -1,0 +1,339 @@
+!> scene: from the deck to the physics.  The one module that knows both
+!> deck_t and the bodies: it makes each body's mesh (MESH rect, a .msh file or a
+!> .geo file meshed by gmsh), its elasticity tensor, its Dirichlet data (FIX),
+!> its loads (TRACTION, PRESSURE, BODYFORCE, GRAVITY) and resolves the CONTACT
+!> pairs.  Every name that needs a mesh to check (boundaries) is checked here,
+!> and reported at the deck line of the statement that uses it.
+!>
+!> The scene declares its effects: only what the deck asks for is simulated,
+!> and scene%effects lists it for the run log and the summary.
+!>
+!> Programming interface
+!>   type(scene_t)                       bodies, dof data, loads, pair specs, effects
+!>   build_scene(deck, workdir, sc, diag)  workdir: where gmsh writes its
+!>        temporary .msh (the output folder); errors go to diag with deck lines
+module scene
+  use kinds, only: dp
+  use diagnostics, only: diag_t, add_error, has_errors, int_to_str
+  use deck_reader, only: deck_t, body_deck_t, LOAD_TRACTION, LOAD_PRESSURE
+  use mesh, only: mesh_t, finalize_mesh, find_boundary, boundary_nodes
+  use mesh_rect, only: make_rect_mesh
+  use gmsh_reader, only: read_gmsh_file, mesh_geo_file
+  use material, only: make_isotropic, make_orthotropic
+  use elements, only: element_body_load, edge_load
+  use body, only: body_t, node_elements, edge_outward_normal, element_dofs
+  use contact_set, only: pair_spec_t
+  implicit none
+  private
+  public :: scene_t, fix_ref_t, build_scene
+
+  !> A FIX statement, for its reaction line in the summary.
+  type :: fix_ref_t
+    integer :: body = 0
+    character(len=:), allocatable :: label   !< BODY:BOUNDARY
+  end type fix_ref_t
+
+  type :: scene_t
+    type(body_t), allocatable :: bodies(:)
+    integer :: ndof = 0                       !< 2 x all nodes
+    integer :: nnode = 0, nelem = 0           !< totals over bodies
+    logical, allocatable :: fixed(:)          !< (ndof) Dirichlet dofs
+    real(dp), allocatable :: ubar(:)          !< (ndof) prescribed values
+    integer, allocatable :: fix_owner(:)      !< (ndof) FIX that owns a fixed dof (first one)
+    type(fix_ref_t), allocatable :: fixes(:)  !< all FIX statements, deck order
+    real(dp), allocatable :: fext(:)          !< (ndof) external nodal forces
+    type(pair_spec_t), allocatable :: specs(:)  !< CONTACT pairs
+    character(len=:), allocatable :: effects  !< space-separated effects simulated
+  end type scene_t
+
+contains
+
+  !> Build the scene of a deck read without errors.
+  !>   deck    (in)  the deck
+  !>   workdir (in)  folder for gmsh's temporary files
+  !>   sc      (out) the scene (incomplete when diag has errors)
+  !>   diag    (inout) input errors, FILE:LINE of the deck or the mesh file
+  subroutine build_scene(deck, workdir, sc, diag)
+    type(deck_t), intent(in) :: deck
+    character(len=*), intent(in) :: workdir
+    type(scene_t), intent(out) :: sc
+    type(diag_t), intent(inout) :: diag
+    integer :: b, nb, nfix, ifix, ndof, ip
+    logical :: has_traction, has_pressure, has_bforce, has_gravity, has_dirichlet
+
+    nb = size(deck%bodies)
+    allocate(sc%bodies(nb))
+    do b = 1, nb
+      call make_body(deck, deck%bodies(b), workdir, sc%bodies(b), diag)
+    end do
+    if (has_errors(diag)) return
+
+    ! dof and element offsets
+    ndof = 0
+    do b = 1, nb
+      sc%bodies(b)%dof0 = ndof
+      sc%bodies(b)%elem0 = sc%nelem
+      ndof = ndof + 2 * sc%bodies(b)%mesh%nnode
+      sc%nnode = sc%nnode + sc%bodies(b)%mesh%nnode
+      sc%nelem = sc%nelem + sc%bodies(b)%mesh%nelem
+    end do
+    sc%ndof = ndof
+    allocate(sc%fixed(ndof), sc%ubar(ndof), sc%fix_owner(ndof), sc%fext(ndof))
+    sc%fixed = .false.; sc%ubar = 0.0_dp; sc%fix_owner = 0; sc%fext = 0.0_dp
+
+    nfix = 0
+    do b = 1, nb
+      nfix = nfix + size(deck%bodies(b)%fixes)
+    end do
+    allocate(sc%fixes(nfix))
+    ifix = 0
+    has_dirichlet = .false.
+    has_traction = .false.; has_pressure = .false.; has_bforce = .false.; has_gravity = .false.
+    do b = 1, nb
+      call apply_fixes(deck, deck%bodies(b), sc, b, ifix, diag)
+      call apply_loads(deck, deck%bodies(b), sc, b, diag, has_traction, has_pressure, has_bforce, has_gravity)
+    end do
+    has_dirichlet = any(sc%fixed .and. sc%ubar /= 0.0_dp)
+
+    ! contact pairs
+    allocate(sc%specs(size(deck%contacts)))
+    do ip = 1, size(deck%contacts)
+      associate(c => deck%contacts(ip))
+        sc%specs(ip)%slave_body = c%slave_body
+        sc%specs(ip)%master_body = c%master_body
+        sc%specs(ip)%gap_zero = c%gap_zero
+        sc%specs(ip)%slave_bnd = curve_index(deck, c%line, sc%bodies(c%slave_body), c%slave_boundary, 'CONTACT slave', diag)
+        sc%specs(ip)%master_bnd = curve_index(deck, c%line, sc%bodies(c%master_body), c%master_boundary, &
+                                              'CONTACT master', diag)
+        if (c%slave_body == c%master_body .and. c%slave_boundary == c%master_boundary) then
+          call add_error(diag, deck%file, c%line, 'slave and master are the same boundary (two different boundaries expected)')
+        end if
+      end associate
+    end do
+
+    sc%effects = 'elasticity'
+    if (has_dirichlet) sc%effects = sc%effects // ' prescribed_displacement'
+    if (has_traction) sc%effects = sc%effects // ' traction'
+    if (has_pressure) sc%effects = sc%effects // ' pressure'
+    if (has_bforce) sc%effects = sc%effects // ' body_force'
+    if (has_gravity) sc%effects = sc%effects // ' gravity'
+    if (size(sc%specs) > 0) sc%effects = sc%effects // ' contact'
+  end subroutine build_scene
+
+  !> Mesh and elasticity tensor of one body.
+  subroutine make_body(deck, bdeck, workdir, bd, diag)
+    type(deck_t), intent(in) :: deck
+    type(body_deck_t), intent(in) :: bdeck
+    character(len=*), intent(in) :: workdir
+    type(body_t), intent(out) :: bd
+    type(diag_t), intent(inout) :: diag
+    character(len=:), allocatable :: msh, log, message
+    logical :: ok
+    integer :: n0, u
+
+    bd%name = bdeck%name
+    associate(ms => bdeck%mesh)
+      select case (ms%kind)
+      case ('rect')
+        call make_rect_mesh(ms%x0, ms%y0, ms%x1, ms%y1, ms%nx, ms%ny, ms%elem == 'quad4', ms%diag, bd%mesh)
+        call finalize_mesh(bd%mesh, deck%file, diag)
+      case default
+        n0 = diag%count
+        if (ms%is_geo) then
+          msh = workdir // '/.contact2d-' // deck%name // '-' // bdeck%name // '.msh'
+          log = workdir // '/.contact2d-' // deck%name // '-' // bdeck%name // '.log'
+          call mesh_geo_file(ms%path, ms%set_names, ms%set_values, msh, log, ok, message)
+          if (.not. ok) then
+            call add_error(diag, deck%file, ms%line, 'gmsh could not mesh "' // ms%file // '": ' // message)
+          else
+            call read_gmsh_file(msh, bd%mesh, diag)
+            if (diag%count == n0) call finalize_mesh(bd%mesh, ms%path, diag)
+          end if
+          call delete_file(msh)
+          if (ok) call delete_file(log)
+        else
+          call read_gmsh_file(ms%path, bd%mesh, diag)
+          if (diag%count == n0) call finalize_mesh(bd%mesh, ms%path, diag)
+        end if
+      end select
+    end associate
+    u = 0
+    associate(mt => bdeck%material)
+      if (mt%kind == 'orthotropic') then
+        call make_orthotropic(mt%e1, mt%e2, mt%e3, mt%nu12, mt%nu13, mt%nu23, mt%g12, mt%angle, deck%plane_stress, bd%law)
+      else
+        call make_isotropic(mt%e, mt%nu, deck%plane_stress, bd%law)
+      end if
+    end associate
+    bd%thick = 1.0_dp
+    if (deck%plane_stress) bd%thick = deck%thickness
+  end subroutine make_body
+
+  subroutine delete_file(path)
+    character(len=*), intent(in) :: path
+    integer :: u, ios
+    logical :: there
+    inquire(file=path, exist=there)
+    if (.not. there) return
+    open(newunit=u, file=path, status='old', iostat=ios)
+    if (ios == 0) close(u, status='delete', iostat=ios)
+  end subroutine delete_file
+
+  !> Boundary index of `name` in body bd, reporting at `line` when unknown.
+  integer function boundary_index(deck, line, bd, name, what, diag) result(ib)
+    type(deck_t), intent(in) :: deck
+    integer, intent(in) :: line
+    type(body_t), intent(in) :: bd
+    character(len=*), intent(in) :: name, what
+    type(diag_t), intent(inout) :: diag
+    ib = find_boundary(bd%mesh, name)
+    if (ib == 0) call add_error(diag, deck%file, line, what // ': unknown boundary "' // name // '" in body "' // &
+                                bd%name // '" (expected one of: ' // boundary_list(bd%mesh) // ')')
+  end function boundary_index
+
+  !> Like boundary_index, and the boundary must be a curve (have edges).
+  integer function curve_index(deck, line, bd, name, what, diag) result(ib)
+    type(deck_t), intent(in) :: deck
+    integer, intent(in) :: line
+    type(body_t), intent(in) :: bd
+    character(len=*), intent(in) :: name, what
+    type(diag_t), intent(inout) :: diag
+    ib = boundary_index(deck, line, bd, name, what, diag)
+    if (ib == 0) return
+    if (bd%mesh%bnd(ib)%nseg == 0) then
+      call add_error(diag, deck%file, line, what // ': "' // name // '" in body "' // bd%name // &
+                     '" is a point set (a boundary curve with edges expected)')
+      ib = 0
+    end if
+  end function curve_index
+
+  function boundary_list(m) result(s)
+    type(mesh_t), intent(in) :: m
+    character(len=:), allocatable :: s
+    integer :: b
+    s = ''
+    if (allocated(m%bnd)) then
+      do b = 1, size(m%bnd)
+        if (b > 1) s = s // ', '
+        s = s // m%bnd(b)%name
+      end do
+    end if
+    if (len(s) == 0) s = 'none: the mesh names no boundary'
+  end function boundary_list
+
+  !> Dirichlet dofs of the FIX statements of body b.
+  subroutine apply_fixes(deck, bdeck, sc, b, ifix, diag)
+    type(deck_t), intent(in) :: deck
+    type(body_deck_t), intent(in) :: bdeck
+    type(scene_t), intent(inout) :: sc
+    integer, intent(in) :: b
+    integer, intent(inout) :: ifix
+    type(diag_t), intent(inout) :: diag
+    integer :: k, ib, i, dof, c
+    integer, allocatable :: nodes(:)
+    logical :: has(2)
+    real(dp) :: val(2)
+    do k = 1, size(bdeck%fixes)
+      associate(fx => bdeck%fixes(k))
+        ifix = ifix + 1
+        sc%fixes(ifix)%body = b
+        sc%fixes(ifix)%label = bdeck%name // ':' // fx%boundary
+        ib = boundary_index(deck, fx%line, sc%bodies(b), fx%boundary, 'FIX', diag)
+        if (ib == 0) cycle
+        call boundary_nodes(sc%bodies(b)%mesh%bnd(ib), nodes)
+        has = [fx%has_ux, fx%has_uy]
+        val = [fx%ux, fx%uy]
+        do i = 1, size(nodes)
+          do c = 1, 2
+            if (.not. has(c)) cycle
+            dof = sc%bodies(b)%dof0 + 2 * (nodes(i) - 1) + c
+            if (sc%fixed(dof)) then
+              if (sc%ubar(dof) /= val(c)) then
+                call add_error(diag, deck%file, fx%line, 'FIX ' // fx%boundary // ' gives node ' // &
+                  int_to_str(nodes(i)) // ' a value that conflicts with an earlier FIX (equal values where FIX ' // &
+                  'statements share nodes expected)')
+                exit
+              end if
+            else
+              sc%fixed(dof) = .true.
+              sc%ubar(dof) = val(c)
+              sc%fix_owner(dof) = ifix
+            end if
+          end do
+        end do
+      end associate
+    end do
+  end subroutine apply_fixes
+
+  !> External nodal forces of body b: TRACTION, PRESSURE, BODYFORCE, GRAVITY.
+  subroutine apply_loads(deck, bdeck, sc, b, diag, has_traction, has_pressure, has_bforce, has_gravity)
+    type(deck_t), intent(in) :: deck
+    type(body_deck_t), intent(in) :: bdeck
+    type(scene_t), intent(inout) :: sc
+    integer, intent(in) :: b
+    type(diag_t), intent(inout) :: diag
+    logical, intent(inout) :: has_traction, has_pressure, has_bforce, has_gravity
+    integer :: k, ib, s, na, nb, owner, e, nen
+    integer :: dofs(8)
+    integer, allocatable :: eptr(:), elist(:)
+    real(dp) :: t(2), nrm(2), fe(8), bf(2)
+    logical :: have_topology
+
+    have_topology = .false.
+    associate(bd => sc%bodies(b), m => sc%bodies(b)%mesh)
+      do k = 1, size(bdeck%loads)
+        associate(ld => bdeck%loads(k))
+          if (ld%kind == LOAD_TRACTION) then
+            ib = curve_index(deck, ld%line, bd, ld%boundary, 'TRACTION', diag)
+          else
+            ib = curve_index(deck, ld%line, bd, ld%boundary, 'PRESSURE', diag)
+          end if
+          if (ib == 0) cycle
+          if (ld%kind == LOAD_PRESSURE .and. .not. have_topology) then
+            call node_elements(m, eptr, elist)
+            have_topology = .true.
+          end if
+          do s = 1, m%bnd(ib)%nseg
+            na = m%bnd(ib)%seg(1, s)
+            nb = m%bnd(ib)%seg(2, s)
+            if (ld%kind == LOAD_TRACTION) then
+              t = [ld%tx, ld%ty]
+            else
+              call edge_outward_normal(m, eptr, elist, na, nb, nrm, owner)
+              if (owner <= 0) then
+                call add_error(diag, deck%file, ld%line, 'PRESSURE on "' // ld%boundary // &
+                  '": an edge is not on the outer boundary of body "' // bd%name // '" (boundary edges expected)')
+                exit
+              end if
+              t = -ld%p * nrm                   ! positive pressure pushes into the body
+            end if
+            call edge_load(m%x(:, na), m%x(:, nb), t, bd%thick, fe(1:4))
+            sc%fext(bd%dof0 + 2 * (na - 1) + [1, 2]) = sc%fext(bd%dof0 + 2 * (na - 1) + [1, 2]) + fe(1:2)
+            sc%fext(bd%dof0 + 2 * (nb - 1) + [1, 2]) = sc%fext(bd%dof0 + 2 * (nb - 1) + [1, 2]) + fe(3:4)
+          end do
+          if (ld%kind == LOAD_TRACTION) has_traction = .true.
+          if (ld%kind == LOAD_PRESSURE) has_pressure = .true.
+        end associate
+      end do
+
+      bf = 0.0_dp
+      if (bdeck%has_bodyforce) then
+        bf = [bdeck%fx, bdeck%fy]
+        has_bforce = .true.
+      end if
+      if (deck%has_gravity .and. bdeck%has_density) then
+        bf = bf + bdeck%rho * [deck%gx, deck%gy]
+        has_gravity = .true.
+      end if
+      if (bdeck%has_bodyforce .or. (deck%has_gravity .and. bdeck%has_density)) then
+        do e = 1, m%nelem
+          nen = m%nen(e)
+          call element_body_load(nen, m%x(:, m%conn(1:nen, e)), bf, bd%thick, fe(1:2 * nen))
+          call element_dofs(bd, e, dofs)
+          sc%fext(dofs(1:2 * nen)) = sc%fext(dofs(1:2 * nen)) + fe(1:2 * nen)
+        end do
+      end if
+    end associate
+  end subroutine apply_loads
+
+end module scene

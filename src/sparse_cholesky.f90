@@ -1,0 +1,414 @@
+!> sparse_cholesky: sparse direct solution of K u = f for the symmetric
+!> positive definite stiffness matrix K, by CHOLMOD's supernodal Cholesky
+!> factorization
+!>     P K P' = L L'                      (P a fill-reducing permutation)
+!>     u = P' L'^-1 L^-1 P f              (forward and back substitution)
+!>
+!> Ordering.  By default P is METIS nested dissection followed by the
+!> elimination-tree postorder.  With `last` (a set of dofs, e.g. the dofs of
+!> a contact interface), P = [METIS order of the other dofs, last(:)] with no
+!> postorder, so the block c = last occupies the last pivots of L.  Then, with
+!> r the other dofs,
+!>     L = [ L_rr  0    ]      K_cc - K_cr K_rr^-1 K_rc = L_cc L_cc'
+!>         [ L_cr  L_cc ]      (K^-1)_cc = (L_cc L_cc')^-1
+!> and trailing_factor_block returns L_cc: the Schur complement on the
+!> interface, and the interface block of K^-1, come without any solve.  The
+!> price is fill: the other dofs are ordered without the freedom to put the
+!> block elsewhere (nnz(L) about 14 % above plain METIS for a 100 x 100 grid
+!> with one edge last).
+!>
+!> Failure checks.  CHOLMOD reports "not positive definite" as a warning: the
+!> call returns TRUE with Common->status = CHOLMOD_NOT_POSDEF and L->minor < n;
+!> both are checked, and the failing pivot is mapped back to the dof of K.  A
+!> singular K whose dependent pivot comes out tiny but positive through
+!> rounding (a rigid-body mode; about half of the singular meshes tried) is
+!> caught by the pivot ratio L(k,k)^2 / K(p_k,p_k), which is >= 1 / cond(K)
+!> for an SPD matrix and of the order of the unit roundoff u for a dependent
+!> column: K is reported singular when the ratio is below max(n, 1000) u.
+!> Any other status != CHOLMOD_OK (out of memory, too large) is reported with
+!> CHOLMOD's code name.
+!>
+!> Ownership.  A factor_t owns its CHOLMOD handle (common and factor, in C);
+!> free_factor or the final procedure releases it.  Do not copy a factor_t by
+!> assignment: both copies would hold the same handle.  The statistics stay
+!> readable after free_factor.
+!>
+!> Programming interface
+!>   type(factor_t)   opaque handle (private); ready, n, nlast, nnz_l, flops,
+!>                    time_analyze, time_factorize, ordering, memory_peak,
+!>                    min_pivot_ratio
+!>   factorize(f, A, err [, last])          P A P' = L L'
+!>   solve(f, b, x [, err])                 x = A^-1 b, b(n) or b(n, nrhs)
+!>   solve_vector(f, b, x [, err])          the 1-D specific of solve
+!>   solve_block(f, b, x [, err])           the 2-D specific of solve (one CHOLMOD call)
+!>   trailing_factor_block(f, nlast, Lcc [, err])   dense L_cc after factorize(last=)
+!>   free_factor(f)                         release the handle
+!>   factor_nnz(f), factor_flops(f), factor_memory(f), factor_ordering(f)
+module sparse_cholesky
+  use, intrinsic :: iso_c_binding, only: c_ptr, c_null_ptr, c_associated, c_int, c_double, &
+                                         c_int64_t, c_char, c_null_char
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
+  use kinds, only: dp, i8
+  use diagnostics, only: error_t, set_error, int_to_str, fail_numerical
+  use sparse_matrix, only: csc_t, csc_nnz, csc_check
+  use cholmod_binding, only: c2d_chol_create, c2d_chol_destroy, c2d_chol_factorize, c2d_chol_minor, &
+                             c2d_chol_stats, c2d_chol_min_pivot_ratio, c2d_chol_ordering_name, &
+                             c2d_chol_status_name, c2d_chol_solve, c2d_chol_trailing_block, &
+                             cholmod_ok, cholmod_not_posdef, c2d_chol_block_moved, &
+                             c2d_chol_not_super_ll
+  implicit none
+  private
+  public :: factor_t, factorize, solve, solve_vector, solve_block, trailing_factor_block
+  public :: free_factor, factor_nnz, factor_flops, factor_memory, factor_ordering
+
+  !> Floor of the order in the singularity tolerance (see singular_pivot_tolerance).
+  integer, parameter :: tolerance_order_floor = 1000
+
+  !> A Cholesky factor P A P' = L L' and its statistics.
+  type :: factor_t
+    type(c_ptr), private :: handle = c_null_ptr  !< owned CHOLMOD handle (common + L)
+    logical :: ready = .false.            !< .true. when L is a valid numeric factor
+    integer :: n = 0                      !< order of A
+    integer :: nlast = 0                  !< size of the block ordered last (0: none)
+    integer(i8) :: nnz_l = 0_i8           !< nnz(L), without zeros of supernodal amalgamation
+    real(dp) :: flops = 0.0_dp            !< flop count of the numeric factorization
+    real(dp) :: time_analyze = 0.0_dp     !< wall seconds: ordering and symbolic analysis
+    real(dp) :: time_factorize = 0.0_dp   !< wall seconds: numeric factorization
+    character(len=16) :: ordering = 'none' !< "metis", "metis+last" (or CHOLMOD's fallback)
+    integer(i8) :: memory_peak = 0_i8     !< peak memory of CHOLMOD, bytes
+    real(dp) :: min_pivot_ratio = 0.0_dp  !< min over pivots of L(k,k)^2 / A(p_k,p_k)
+  contains
+    final :: finalize_factor
+  end type factor_t
+
+  !> x = A^-1 b for one right-hand side b(n) or a block b(n, nrhs).
+  interface solve
+    module procedure solve_vector, solve_block
+  end interface solve
+
+contains
+
+  !> Factorize the symmetric positive definite A: P A P' = L L' (supernodal).
+  !>   f    (inout) the factor; any factor it held is freed first.  On success
+  !>                f%ready = .true.; on failure f%ready = .false. and the
+  !>                statistics of what was done are kept
+  !>   A    (in)    symmetric matrix, upper triangle in CSC (sparse_matrix), n >= 1
+  !>   err  (out)   allocated (status 1) when A is malformed, not positive
+  !>                definite or singular to working precision, or CHOLMOD fails
+  !>   last (in, optional) (nlast) distinct dofs 1..n to be ordered last, in
+  !>                this order; the other dofs get a METIS ordering of their
+  !>                submatrix.  Needed for trailing_factor_block
+  subroutine factorize(f, A, err, last)
+    type(factor_t), intent(inout) :: f
+    type(csc_t), intent(in) :: A
+    type(error_t), allocatable, intent(out) :: err
+    integer, intent(in), optional :: last(:)
+    integer(c_int), allocatable :: last_c(:)
+    integer(c_int) :: status, nlast, column, equation
+    integer(c_int64_t) :: lnz, memory_peak
+    real(c_double) :: flops, time_analyze, time_factorize, ratio
+    character(kind=c_char) :: buf(32)
+
+    call free_factor(f)
+    f%n = 0
+    f%nlast = 0
+    f%nnz_l = 0_i8
+    f%flops = 0.0_dp
+    f%time_analyze = 0.0_dp
+    f%time_factorize = 0.0_dp
+    f%ordering = 'none'
+    f%memory_peak = 0_i8
+    f%min_pivot_ratio = 0.0_dp
+    call check_input(A, err, last)
+    if (allocated(err)) return
+
+    nlast = 0
+    if (present(last)) then
+      nlast = int(size(last), c_int)
+      last_c = int(last, c_int)
+    else
+      allocate(last_c(1))
+      last_c = 0
+    end if
+
+    f%handle = c2d_chol_create()
+    if (.not. c_associated(f%handle)) then
+      call set_error(err, 'sparse Cholesky: CHOLMOD could not start (out of memory)', 1)
+      return
+    end if
+    f%n = A%n
+    f%nlast = int(nlast)
+    status = c2d_chol_factorize(f%handle, int(A%n, c_int), A%colptr, A%rowind, A%val, nlast, last_c)
+
+    call c2d_chol_stats(f%handle, lnz, flops, memory_peak, time_analyze, time_factorize)
+    f%nnz_l = int(lnz, i8)
+    f%flops = real(flops, dp)
+    f%memory_peak = int(memory_peak, i8)
+    f%time_analyze = real(time_analyze, dp)
+    f%time_factorize = real(time_factorize, dp)
+    call c2d_chol_ordering_name(f%handle, buf, int(size(buf), c_int))
+    f%ordering = c_string(buf)
+
+    select case (status)
+    case (cholmod_ok)
+      continue
+    case (cholmod_not_posdef)
+      call c2d_chol_minor(f%handle, column, equation)
+      call set_error(err, singular_message(int(equation), int(column)), 1)
+      return
+    case (c2d_chol_block_moved)
+      call set_error(err, 'sparse Cholesky: the analysis did not keep the ' // int_to_str(int(nlast)) &
+                     // ' dofs given as `last` at the last pivots (' // status_name(status) // ')', 1)
+      return
+    case default
+      call set_error(err, 'sparse Cholesky factorization failed: ' // status_name(status) // ' (status ' &
+                     // int_to_str(int(status)) // ') for a matrix of order ' // int_to_str(A%n) &
+                     // ' with ' // int_to_str(csc_nnz(A)) // ' stored entries', 1)
+      return
+    end select
+
+    ! a dependent column whose pivot came out tiny but positive through rounding
+    call c2d_chol_min_pivot_ratio(f%handle, ratio, column, equation)
+    f%min_pivot_ratio = real(ratio, dp)
+    if (ieee_is_nan(ratio)) then
+      call set_error(err, 'sparse Cholesky: non-finite pivot at equation ' // int_to_str(int(equation)) &
+                     // ' (column ' // int_to_str(int(column)) // ' of the permuted matrix): overflow in the factor', 1)
+      return
+    end if
+    if (ratio < singular_pivot_tolerance(A%n)) then
+      call set_error(err, singular_message(int(equation), int(column)), 1)
+      return
+    end if
+    f%ready = .true.
+  end subroutine factorize
+
+  !> Checks of A and `last` before CHOLMOD sees them.
+  subroutine check_input(A, err, last)
+    type(csc_t), intent(in) :: A
+    type(error_t), allocatable, intent(out) :: err
+    integer, intent(in), optional :: last(:)
+    logical, allocatable :: seen(:)
+    integer :: j, p, k
+
+    call csc_check(A, err)
+    if (allocated(err)) return
+    if (A%n < 1) then
+      call set_error(err, 'sparse Cholesky: empty matrix (order 0)', 1)
+      return
+    end if
+    do j = 1, A%n
+      do p = A%colptr(j), A%colptr(j + 1) - 1
+        if (.not. ieee_is_finite(A%val(p))) then
+          call set_error(err, 'stiffness matrix has a non-finite entry at row ' // int_to_str(A%rowind(p)) &
+                         // ', column ' // int_to_str(j), 1)
+          return
+        end if
+      end do
+    end do
+    if (.not. present(last)) return
+    allocate(seen(A%n))
+    seen = .false.
+    do k = 1, size(last)
+      if (last(k) < 1 .or. last(k) > A%n) then
+        call set_error(err, 'sparse Cholesky: dof ' // int_to_str(last(k)) // ' in `last` is out of range 1..' &
+                       // int_to_str(A%n), 1)
+        return
+      end if
+      if (seen(last(k))) then
+        call set_error(err, 'sparse Cholesky: dof ' // int_to_str(last(k)) // ' appears twice in `last`', 1)
+        return
+      end if
+      seen(last(k)) = .true.
+    end do
+  end subroutine check_input
+
+  !> Tolerance on the pivot ratio L(k,k)^2 / A(p_k,p_k) below which A is
+  !> singular to working precision: max(n, 1000) u, u the unit roundoff (the
+  !> n u of LAPACK's DPSTRF, relative here to each dof's own diagonal).  For an
+  !> SPD matrix the ratio is >= 1 / cond(A); for a dependent column it is the
+  !> rounding left of a zero pivot, a few 1e-14 to 1e-13 on meshes of 1e4 to
+  !> 1e5 dofs.
+  !>   n (in) order of A
+  pure real(dp) function singular_pivot_tolerance(n)
+    integer, intent(in) :: n
+    singular_pivot_tolerance = real(max(n, tolerance_order_floor), dp) * epsilon(1.0_dp)
+  end function singular_pivot_tolerance
+
+  !> The diagnostic for a singular or indefinite matrix.
+  pure function singular_message(equation, column) result(msg)
+    integer, intent(in) :: equation, column
+    character(len=:), allocatable :: msg
+    msg = 'stiffness matrix is singular or not positive definite at equation ' // int_to_str(equation) &
+          // ' (column ' // int_to_str(column) // ' of the permuted matrix is dependent: a rigid-body mode' &
+          // ' not held by FIX or contact)'
+  end function singular_message
+
+  !> x = A^-1 b for one right-hand side.
+  !>   f   (in)  a factor with f%ready
+  !>   b   (in)  (n) right-hand side
+  !>   x   (out) (n) solution
+  !>   err (out, optional) allocated on failure; when absent a failure stops
+  !>       the program through fail_numerical (exit status 1)
+  subroutine solve_vector(f, b, x, err)
+    type(factor_t), intent(in) :: f
+    real(dp), intent(in) :: b(:)
+    real(dp), intent(out) :: x(:)
+    type(error_t), allocatable, intent(out), optional :: err
+    character(len=:), allocatable :: msg
+    integer(c_int) :: status
+
+    if (.not. f%ready) then
+      msg = 'sparse Cholesky solve: no valid factor (factorize failed or was not called)'
+    else if (size(b) /= f%n .or. size(x) /= f%n) then
+      msg = 'sparse Cholesky solve: vectors of size ' // int_to_str(size(b)) // ' and ' // int_to_str(size(x)) &
+            // ' for a factor of order ' // int_to_str(f%n)
+    else
+      status = c2d_chol_solve(f%handle, int(f%n, c_int), 1_c_int, b, x)
+      if (status == cholmod_ok) return
+      msg = 'sparse Cholesky solve failed: ' // status_name(status) // ' (status ' // int_to_str(int(status)) // ')'
+    end if
+    call report(msg, err)
+  end subroutine solve_vector
+
+  !> X = A^-1 B for a block of right-hand sides, in one CHOLMOD solve.
+  !>   f   (in)  a factor with f%ready
+  !>   b   (in)  (n, nrhs) right-hand sides, nrhs >= 0
+  !>   x   (out) (n, nrhs) solutions
+  !>   err (out, optional) as for solve_vector
+  subroutine solve_block(f, b, x, err)
+    type(factor_t), intent(in) :: f
+    real(dp), intent(in) :: b(:,:)
+    real(dp), intent(out) :: x(:,:)
+    type(error_t), allocatable, intent(out), optional :: err
+    character(len=:), allocatable :: msg
+    integer(c_int) :: status
+
+    if (.not. f%ready) then
+      msg = 'sparse Cholesky solve: no valid factor (factorize failed or was not called)'
+    else if (size(b, 1) /= f%n .or. size(x, 1) /= f%n .or. size(x, 2) /= size(b, 2)) then
+      msg = 'sparse Cholesky solve: blocks of ' // int_to_str(size(b, 1)) // ' and ' // int_to_str(size(x, 1)) &
+            // ' rows (' // int_to_str(size(b, 2)) // ' and ' // int_to_str(size(x, 2)) &
+            // ' columns) for a factor of order ' // int_to_str(f%n)
+    else
+      if (size(b, 2) == 0) return
+      status = c2d_chol_solve(f%handle, int(f%n, c_int), int(size(b, 2), c_int), b, x)
+      if (status == cholmod_ok) return
+      msg = 'sparse Cholesky solve failed: ' // status_name(status) // ' (status ' // int_to_str(int(status)) // ')'
+    end if
+    call report(msg, err)
+  end subroutine solve_block
+
+  !> The trailing block L_cc of L, for a factor computed with `last`: rows and
+  !> columns of the last nlast pivots, in the order of `last`, so that
+  !>     (A^-1)(last, last) = (L_cc L_cc')^-1,  L_cc L_cc' = Schur complement on last.
+  !>   f     (in)  a factor from factorize(f, A, err, last) with f%ready
+  !>   nlast (in)  size(last) given to factorize
+  !>   Lcc   (out) (nlast, nlast) lower triangular, zero above the diagonal
+  !>   err   (out, optional) allocated when f has no such block (no `last`,
+  !>         another nlast, factor not supernodal LL', block not at the end);
+  !>         when absent a failure stops the program through fail_numerical
+  subroutine trailing_factor_block(f, nlast, Lcc, err)
+    type(factor_t), intent(in) :: f
+    integer, intent(in) :: nlast
+    real(dp), allocatable, intent(out) :: Lcc(:,:)
+    type(error_t), allocatable, intent(out), optional :: err
+    character(len=:), allocatable :: msg
+    integer(c_int) :: status
+
+    if (.not. f%ready) then
+      msg = 'trailing factor block: no valid factor (factorize failed or was not called)'
+    else if (f%nlast == 0) then
+      msg = 'trailing factor block: the factor was computed without `last`'
+    else if (nlast /= f%nlast) then
+      msg = 'trailing factor block: ' // int_to_str(nlast) // ' dofs asked, the factor has ' &
+            // int_to_str(f%nlast) // ' ordered last'
+    else
+      allocate(Lcc(nlast, nlast))
+      status = c2d_chol_trailing_block(f%handle, int(nlast, c_int), Lcc)
+      if (status == cholmod_ok) return
+      deallocate(Lcc)
+      if (status == c2d_chol_not_super_ll) then
+        msg = 'trailing factor block: the factor is not stored as supernodal LL'' (LDL'' or simplicial)'
+      else if (status == c2d_chol_block_moved) then
+        msg = 'trailing factor block: the `last` dofs are not the last pivots of the factor'
+      else
+        msg = 'trailing factor block: ' // status_name(status) // ' (status ' // int_to_str(int(status)) // ')'
+      end if
+    end if
+    call report(msg, err)
+  end subroutine trailing_factor_block
+
+  !> Release the CHOLMOD handle of f (no-op when it holds none); the
+  !> statistics are kept.
+  !>   f (inout) the factor; on return f%ready = .false.
+  subroutine free_factor(f)
+    type(factor_t), intent(inout) :: f
+    if (c_associated(f%handle)) call c2d_chol_destroy(f%handle)
+    f%handle = c_null_ptr
+    f%ready = .false.
+  end subroutine free_factor
+
+  !> Final procedure: a factor going out of scope releases its handle.
+  subroutine finalize_factor(f)
+    type(factor_t), intent(inout) :: f
+    call free_factor(f)
+  end subroutine finalize_factor
+
+  !> nnz(L) of the last factorization (without amalgamation zeros).
+  pure integer(i8) function factor_nnz(f)
+    type(factor_t), intent(in) :: f
+    factor_nnz = f%nnz_l
+  end function factor_nnz
+
+  !> Flop count of the last numeric factorization.
+  pure real(dp) function factor_flops(f)
+    type(factor_t), intent(in) :: f
+    factor_flops = f%flops
+  end function factor_flops
+
+  !> Peak memory used by CHOLMOD for this factor, bytes.
+  pure integer(i8) function factor_memory(f)
+    type(factor_t), intent(in) :: f
+    factor_memory = f%memory_peak
+  end function factor_memory
+
+  !> Name of the ordering used: "metis", "metis+last", or CHOLMOD's fallback.
+  pure function factor_ordering(f) result(name)
+    type(factor_t), intent(in) :: f
+    character(len=:), allocatable :: name
+    name = trim(f%ordering)
+  end function factor_ordering
+
+  !> Hand msg to err when present, else stop with exit status 1.
+  subroutine report(msg, err)
+    character(len=*), intent(in) :: msg
+    type(error_t), allocatable, intent(out), optional :: err
+    if (present(err)) then
+      call set_error(err, msg, 1)
+    else
+      call fail_numerical(msg)
+    end if
+  end subroutine report
+
+  !> Name of a CHOLMOD or shim status code.
+  function status_name(status) result(name)
+    integer(c_int), intent(in) :: status
+    character(len=:), allocatable :: name
+    character(kind=c_char) :: buf(32)
+    call c2d_chol_status_name(status, buf, int(size(buf), c_int))
+    name = c_string(buf)
+  end function status_name
+
+  !> Fortran string of a NUL-terminated c_char array.
+  pure function c_string(buf) result(s)
+    character(kind=c_char), intent(in) :: buf(:)
+    character(len=:), allocatable :: s
+    integer :: k
+    s = ''
+    do k = 1, size(buf)
+      if (buf(k) == c_null_char) exit
+      s = s // buf(k)
+    end do
+  end function c_string
+
+end module sparse_cholesky

@@ -1,0 +1,33 @@
+// Quarter of a square plate [0,L]^2 with a circular hole of radius a at the
+// origin; element size hc at the hole, hf far away.
+DefineConstant[ a = 1, L = 20, hc = 0.04, hf = 2 ];
+Point(1) = {0, 0, 0, hc};
+Point(2) = {a, 0, 0, hc};
+Point(3) = {L, 0, 0, hf};
+Point(4) = {L, L, 0, hf};
+Point(5) = {0, L, 0, hf};
+Point(6) = {0, a, 0, hc};
+Line(1) = {2, 3};
+Line(2) = {3, 4};
+Line(3) = {4, 5};
+Line(4) = {5, 6};
+Circle(5) = {6, 1, 2};
+Curve Loop(1) = {1, 2, 3, 4, 5};
+Plane Surface(1) = {1};
+Field[1] = Distance;
+Field[1].CurvesList = {5};
+Field[2] = Threshold;
+Field[2].InField = 1;
+Field[2].SizeMin = hc;
+Field[2].SizeMax = hf;
+Field[2].DistMin = 0.2 * a;
+Field[2].DistMax = 8 * a;
+Background Field = 2;
+Mesh.MeshSizeExtendFromBoundary = 0;
+Mesh.MeshSizeFromPoints = 0;
+Physical Curve("bottom") = {1};
+Physical Curve("right") = {2};
+Physical Curve("top") = {3};
+Physical Curve("left") = {4};
+Physical Curve("hole") = {5};
+Physical Surface("plate") = {1};

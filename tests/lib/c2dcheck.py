@@ -1,0 +1,125 @@
+"""Checks for the deck cases of contact2d: read the summary, the contact
+table and the VTK file, and print one `PASS name` / `FAIL name: detail` line
+per check.  The references are independent of the code: closed forms,
+invariants, or reference files whose provenance is recorded beside them."""
+import math
+import os
+import subprocess
+import sys
+
+PROGRAM = os.environ.get("CONTACT2D", "contact2d")
+failures = 0
+
+
+def run(deck, outdir, *options, expect=0):
+    """Run contact2d on deck into outdir; FAIL (and exit) unless status == expect."""
+    os.makedirs(outdir, exist_ok=True)
+    cmd = [PROGRAM, "-q", "-o", outdir, *options, deck]
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    ok = p.returncode == expect
+    check(ok, f"run {os.path.basename(deck)} exits {expect}",
+          f"status {p.returncode}: {p.stderr.strip()[:300]}")
+    if not ok:
+        finish()
+    return p
+
+
+def summary(path):
+    """Dict key -> list of words; 'reaction' -> dict label -> (Fx, Fy)."""
+    d = {"reaction": {}}
+    with open(path) as f:
+        for line in f:
+            w = line.split()
+            if not w:
+                continue
+            if w[0] == "reaction":
+                d["reaction"][w[1]] = (float(w[2]), float(w[3]))
+            else:
+                d[w[0]] = w[1:]
+    return d
+
+
+def value(s, key):
+    return float(s[key][0])
+
+
+def contact_table(path):
+    """List of dicts with float fields (gap0, gap empty -> None)."""
+    rows = []
+    with open(path) as f:
+        head = f.readline().strip().split(",")
+        for line in f:
+            w = line.strip().split(",")
+            r = {}
+            for k, v in zip(head, w):
+                r[k] = float(v) if v != "" else None
+            rows.append(r)
+    return rows
+
+
+def vtk(path):
+    """Points, cells and the named POINT_DATA / CELL_DATA arrays of a legacy file."""
+    with open(path) as f:
+        tok = f.read().split("\n")
+    out = {"point": {}, "cell": {}}
+    i = 0
+    section = None
+    words = []
+    # a simple streaming parser over whitespace tokens, keeping the keywords
+    for line in tok:
+        words.extend(line.split())
+    n = len(words)
+    i = words.index("POINTS")
+    npt = int(words[i + 1]); i += 3
+    out["points"] = [(float(words[i + 3 * k]), float(words[i + 3 * k + 1])) for k in range(npt)]
+    i += 3 * npt
+    assert words[i] == "CELLS"
+    ncell = int(words[i + 1]); i += 3
+    cells = []
+    for _ in range(ncell):
+        m = int(words[i]); cells.append([int(x) for x in words[i + 1:i + 1 + m]]); i += 1 + m
+    out["cells"] = cells
+    while i < n:
+        w = words[i]
+        if w == "POINT_DATA":
+            section, count = "point", int(words[i + 1]); i += 2
+        elif w == "CELL_DATA":
+            section, count = "cell", int(words[i + 1]); i += 2
+        elif w == "CELL_TYPES":
+            i += 2 + int(words[i + 1])
+        elif w in ("SCALARS", "VECTORS"):
+            name = words[i + 1]
+            ncomp = 3 if w == "VECTORS" else (int(words[i + 3]) if i + 3 < n and words[i + 3].isdigit() else 1)
+            i += 3 if w == "VECTORS" else 4
+            if words[i] == "LOOKUP_TABLE":
+                i += 2
+            vals = [float(x) for x in words[i:i + ncomp * count]]
+            out[section][name] = [vals[k * ncomp:(k + 1) * ncomp] for k in range(count)]
+            i += ncomp * count
+        else:
+            i += 1
+    return out
+
+
+def check(ok, name, detail=""):
+    global failures
+    if ok:
+        print(f"PASS {name}")
+    else:
+        failures += 1
+        print(f"FAIL {name}: {detail}")
+    sys.stdout.flush()
+
+
+def close(got, want, rtol, name, floor=0.0):
+    scale = max(abs(want), floor)
+    ok = math.isfinite(got) and abs(got - want) <= rtol * scale
+    check(ok, name, f"got {got:.10g}, expected {want:.10g} (rtol {rtol:g})")
+
+
+def small(got, tol, name):
+    check(math.isfinite(got) and got <= tol, name, f"{got:.3e} > {tol:.1e}")
+
+
+def finish():
+    sys.exit(1 if failures else 0)

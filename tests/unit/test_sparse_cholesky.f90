@@ -1,0 +1,620 @@
+!> Unit tests of sparse_matrix and sparse_cholesky (CHOLMOD through the C shim).
+!>
+!> Matrices are built here: the 5-point Laplacian of an m-by-m grid of
+!> interior nodes (Dirichlet nodes eliminated: SPD), the same graph with
+!> Neumann rows (singular, constant null vector), and a P1 plane-strain
+!> elasticity stiffness on a triangulated square (left edge fixed, or free).
+!> References are independent of the code under test: residuals scaled in
+!> the LAPACK manner, ||A x - b|| / (||A|| ||x|| + ||b||), the block of A^-1
+!> obtained by solving with unit vectors, dense products from the triplets,
+!> and the null vectors of the singular matrices.
+program test_sparse_cholesky
+  use kinds, only: dp, i8
+  use diagnostics, only: error_t
+  use testing, only: check, check_close, check_small, finish_tests
+  use sparse_matrix, only: csc_t, csc_nnz, csc_symv, csc_from_triplets, csc_check
+  use sparse_cholesky, only: factor_t, factorize, solve, solve_vector, solve_block, trailing_factor_block, &
+                             free_factor, factor_nnz, factor_flops, factor_memory, factor_ordering
+  implicit none
+
+  call test_triplets()
+  call test_laplacian_solves()
+  call test_trailing_block_laplacian()
+  call test_trailing_block_all()
+  call test_elasticity()
+  call test_singular()
+  call test_bad_arguments()
+  call test_fill_with_last()
+  call finish_tests()
+
+contains
+
+  ! ---------------------------------------------------------------- matrices
+
+  !> 5-point Laplacian of an m-by-m grid, node (ix, iy) -> dof ix + m (iy-1).
+  !> dirichlet: diagonal 4 (boundary neighbours eliminated, SPD); otherwise
+  !> the diagonal is the node degree (pure Neumann, singular).
+  subroutine grid_laplacian(m, dirichlet, A)
+    integer, intent(in) :: m
+    logical, intent(in) :: dirichlet
+    type(csc_t), intent(out) :: A
+    integer, allocatable :: ti(:), tj(:)
+    real(dp), allocatable :: tv(:)
+    integer :: ix, iy, k, nt, deg
+
+    allocate(ti(3 * m * m), tj(3 * m * m), tv(3 * m * m))
+    nt = 0
+    do iy = 1, m
+      do ix = 1, m
+        k = ix + m * (iy - 1)
+        deg = 0
+        if (ix > 1) deg = deg + 1
+        if (ix < m) deg = deg + 1
+        if (iy > 1) deg = deg + 1
+        if (iy < m) deg = deg + 1
+        nt = nt + 1
+        ti(nt) = k
+        tj(nt) = k
+        tv(nt) = merge(4.0_dp, real(deg, dp), dirichlet)
+        if (ix < m) then                 ! east neighbour, given in the lower triangle
+          nt = nt + 1
+          ti(nt) = k + 1
+          tj(nt) = k
+          tv(nt) = -1.0_dp
+        end if
+        if (iy < m) then                 ! north neighbour, upper triangle
+          nt = nt + 1
+          ti(nt) = k
+          tj(nt) = k + m
+          tv(nt) = -1.0_dp
+        end if
+      end do
+    end do
+    call csc_from_triplets(m * m, ti(1:nt), tj(1:nt), tv(1:nt), A)
+  end subroutine grid_laplacian
+
+  !> P1 plane-strain elasticity (E = 1, nu = 0.3) on the unit square cut into
+  !> nx-by-ny squares, each split into two triangles.  Node (ix, iy),
+  !> ix = 0..nx, iy = 0..ny; dofs 2 node - 1 (x), 2 node (y).  fix_left
+  !> removes the dofs of the nodes at x = 0; dof_of(2, nnode) gives the dof
+  !> number of each nodal component (0 when removed).
+  subroutine elasticity(nx, ny, fix_left, A, dof_of)
+    integer, intent(in) :: nx, ny
+    logical, intent(in) :: fix_left
+    type(csc_t), intent(out) :: A
+    integer, allocatable, intent(out) :: dof_of(:,:)
+    real(dp), parameter :: young = 1.0_dp, nu = 0.3_dp
+    integer, parameter :: node_of(6) = [1, 1, 2, 2, 3, 3], comp_of(6) = [1, 2, 1, 2, 1, 2]
+    real(dp) :: d(3, 3), xy(2, 3), b(3, 6), ke(6, 6), area, lam, mu
+    integer :: tri(3, 2), conn(3), ix, iy, e, a1, a2, c1, gi, gj, nt, ndof, node
+    integer, allocatable :: ti(:), tj(:)
+    real(dp), allocatable :: tv(:)
+
+    lam = young * nu / ((1.0_dp + nu) * (1.0_dp - 2.0_dp * nu))
+    mu = young / (2.0_dp * (1.0_dp + nu))
+    d = 0.0_dp
+    d(1, 1) = lam + 2.0_dp * mu
+    d(2, 2) = lam + 2.0_dp * mu
+    d(1, 2) = lam
+    d(2, 1) = lam
+    d(3, 3) = mu
+
+    allocate(dof_of(2, (nx + 1) * (ny + 1)))
+    ndof = 0
+    do iy = 0, ny
+      do ix = 0, nx
+        node = 1 + ix + (nx + 1) * iy
+        if (fix_left .and. ix == 0) then
+          dof_of(:, node) = 0
+        else
+          dof_of(1, node) = ndof + 1
+          dof_of(2, node) = ndof + 2
+          ndof = ndof + 2
+        end if
+      end do
+    end do
+
+    allocate(ti(72 * nx * ny), tj(72 * nx * ny), tv(72 * nx * ny))
+    nt = 0
+    do iy = 0, ny - 1
+      do ix = 0, nx - 1
+        node = 1 + ix + (nx + 1) * iy
+        tri(:, 1) = [node, node + 1, node + nx + 2]
+        tri(:, 2) = [node, node + nx + 2, node + nx + 1]
+        do e = 1, 2
+          conn = tri(:, e)
+          do a1 = 1, 3
+            xy(1, a1) = real(mod(conn(a1) - 1, nx + 1), dp) / nx
+            xy(2, a1) = real((conn(a1) - 1) / (nx + 1), dp) / ny
+          end do
+          area = 0.5_dp * ((xy(1, 2) - xy(1, 1)) * (xy(2, 3) - xy(2, 1)) - (xy(1, 3) - xy(1, 1)) * (xy(2, 2) - xy(2, 1)))
+          b = 0.0_dp
+          do a1 = 1, 3
+            ! grad of the P1 shape function a1: (y_b - y_c, x_c - x_b) / (2 area)
+            a2 = mod(a1, 3) + 1
+            c1 = mod(a1 + 1, 3) + 1
+            b(1, 2 * a1 - 1) = (xy(2, a2) - xy(2, c1)) / (2.0_dp * area)
+            b(2, 2 * a1) = (xy(1, c1) - xy(1, a2)) / (2.0_dp * area)
+            b(3, 2 * a1 - 1) = b(2, 2 * a1)
+            b(3, 2 * a1) = b(1, 2 * a1 - 1)
+          end do
+          ke = area * matmul(transpose(b), matmul(d, b))     ! K_e = |T| B' D B
+          do a1 = 1, 6
+            gi = dof_of(comp_of(a1), conn(node_of(a1)))
+            do a2 = 1, 6
+              gj = dof_of(comp_of(a2), conn(node_of(a2)))
+              if (gi == 0 .or. gj == 0 .or. gi > gj) cycle   ! upper triangle once
+              nt = nt + 1
+              ti(nt) = gi
+              tj(nt) = gj
+              tv(nt) = ke(a1, a2)
+            end do
+          end do
+        end do
+      end do
+    end do
+    call csc_from_triplets(ndof, ti(1:nt), tj(1:nt), tv(1:nt), A)
+  end subroutine elasticity
+
+  !> ||A||_inf (= ||A||_1) of the symmetric A: max_i sum_j |a_ij|.
+  function norm_inf(A) result(s)
+    type(csc_t), intent(in) :: A
+    real(dp) :: s
+    type(csc_t) :: absa
+    real(dp), allocatable :: ones(:), rowsum(:)
+    absa = A
+    absa%val = abs(absa%val)
+    allocate(ones(A%n), rowsum(A%n))
+    ones = 1.0_dp
+    call csc_symv(absa, ones, rowsum)
+    s = maxval(rowsum)
+  end function norm_inf
+
+  !> Scale-free residual ||A x - b||_inf / (||A||_inf ||x||_inf + ||b||_inf).
+  function residual_ratio(A, x, b) result(r)
+    type(csc_t), intent(in) :: A
+    real(dp), intent(in) :: x(:), b(:)
+    real(dp) :: r
+    real(dp), allocatable :: ax(:)
+    allocate(ax(A%n))
+    call csc_symv(A, x, ax)
+    r = maxval(abs(ax - b)) / (norm_inf(A) * maxval(abs(x)) + maxval(abs(b)))
+  end function residual_ratio
+
+  !> A right-hand side with O(1) entries of both signs.
+  function smooth_rhs(n, shift) result(b)
+    integer, intent(in) :: n, shift
+    real(dp) :: b(n)
+    integer :: i
+    do i = 1, n
+      b(i) = sin(0.37_dp * (i + shift)) + 0.5_dp * cos(0.011_dp * i * (shift + 1))
+    end do
+  end function smooth_rhs
+
+  !> Inverse of S = Lcc Lcc' from the triangular factor: X = Lcc^-T Lcc^-1.
+  function inverse_from_factor(lcc) result(x)
+    real(dp), intent(in) :: lcc(:,:)
+    real(dp) :: x(size(lcc, 1), size(lcc, 1))
+    real(dp) :: y(size(lcc, 1), size(lcc, 1))
+    integer :: m, i, j
+    m = size(lcc, 1)
+    ! Y = Lcc^-1 (forward substitution on the columns of I)
+    y = 0.0_dp
+    do j = 1, m
+      y(j, j) = 1.0_dp
+      do i = 1, m
+        y(i, j) = (y(i, j) - dot_product(lcc(i, 1:i - 1), y(1:i - 1, j))) / lcc(i, i)
+      end do
+    end do
+    ! X = Lcc^-T Y (back substitution)
+    do j = 1, m
+      do i = m, 1, -1
+        x(i, j) = (y(i, j) - dot_product(lcc(i + 1:m, i), x(i + 1:m, j))) / lcc(i, i)
+      end do
+    end do
+  end function inverse_from_factor
+
+  !> Block (A^-1)(idx, idx) by solving A Z = E with the unit vectors e_idx.
+  function inverse_block(f, n, idx) result(z)
+    type(factor_t), intent(in) :: f
+    integer, intent(in) :: n, idx(:)
+    real(dp) :: z(size(idx), size(idx))
+    real(dp), allocatable :: e(:,:), zz(:,:)
+    integer :: k
+    allocate(e(n, size(idx)), zz(n, size(idx)))
+    e = 0.0_dp
+    do k = 1, size(idx)
+      e(idx(k), k) = 1.0_dp
+    end do
+    call solve_block(f, e, zz)
+    z = zz(idx, :)
+  end function inverse_block
+
+  !> .true. when text contains piece.
+  logical function contains_text(text, piece)
+    character(len=*), intent(in) :: text, piece
+    contains_text = index(text, piece) > 0
+  end function contains_text
+
+  function itoa(i) result(s)
+    integer, intent(in) :: i
+    character(len=:), allocatable :: s
+    character(len=16) :: buf
+    write(buf, '(i0)') i
+    s = trim(buf)
+  end function itoa
+
+  ! ------------------------------------------------------------------- tests
+
+  !> csc_from_triplets and csc_symv against a dense matrix built from the
+  !> same triplets (duplicates and both triangles).
+  subroutine test_triplets()
+    integer, parameter :: n = 7, nt = 20
+    integer :: ti(nt), tj(nt), k, j, p
+    real(dp) :: tv(nt), dense(n, n), x(n), y(n)
+    type(csc_t) :: A
+    type(error_t), allocatable :: err
+    logical :: sorted, upper(n, n)
+
+    do k = 1, nt
+      ti(k) = 1 + mod(3 * k, n)
+      tj(k) = 1 + mod(5 * k + k / 4, n)
+      tv(k) = real(k, dp) - 7.5_dp
+    end do
+    ti(nt) = ti(1)                         ! an exact duplicate of triplet 1
+    tj(nt) = tj(1)
+    dense = 0.0_dp
+    do k = 1, nt
+      dense(ti(k), tj(k)) = dense(ti(k), tj(k)) + tv(k)
+      if (ti(k) /= tj(k)) dense(tj(k), ti(k)) = dense(tj(k), ti(k)) + tv(k)
+    end do
+    call csc_from_triplets(n, ti, tj, tv, A)
+    call csc_check(A, err)
+    call check(.not. allocated(err), 'csc_from_triplets gives a valid upper CSC matrix')
+    sorted = .true.
+    do j = 1, n
+      do p = A%colptr(j) + 1, A%colptr(j + 1) - 1
+        if (A%rowind(p) <= A%rowind(p - 1)) sorted = .false.
+      end do
+    end do
+    call check(sorted, 'csc_from_triplets: rows strictly ascending in each column')
+    upper = .false.
+    do k = 1, nt
+      upper(min(ti(k), tj(k)), max(ti(k), tj(k))) = .true.
+    end do
+    call check(csc_nnz(A) == count(upper), 'csc_nnz = number of distinct upper positions of the triplets')
+    do k = 1, n
+      x(k) = 1.0_dp / k - 0.3_dp
+    end do
+    call csc_symv(A, x, y)
+    call check_small(maxval(abs(y - matmul(dense, x))) / maxval(abs(matmul(abs(dense), abs(x)))), 1.0e-15_dp, &
+                     'csc_symv equals the dense product of the triplets')
+  end subroutine test_triplets
+
+  !> Single and 7-column solves on the 60x60 Dirichlet Laplacian; `last` gives
+  !> the same solution.
+  subroutine test_laplacian_solves()
+    integer, parameter :: m = 60, nrhs = 7
+    type(csc_t) :: A
+    type(factor_t) :: f, g
+    type(error_t), allocatable :: err
+    real(dp), allocatable :: b(:), x(:), bb(:,:), xx(:,:), xl(:)
+    integer, allocatable :: last(:)
+    real(dp) :: worst
+    integer :: n, k
+
+    call grid_laplacian(m, .true., A)
+    n = A%n
+    call factorize(f, A, err)
+    call check(.not. allocated(err), 'factorize 60x60 Dirichlet Laplacian')
+    if (allocated(err)) then
+      print '(a)', '  ' // err%message
+      return
+    end if
+    call check(factor_ordering(f) == 'metis', 'default ordering is metis')
+    call check(factor_nnz(f) >= int(n, i8) .and. factor_nnz(f) <= int(n, i8) * (n + 1) / 2, &
+               'n <= nnz(L) <= n(n+1)/2')
+    call check(factor_flops(f) > 0.0_dp .and. factor_memory(f) > 0_i8, 'flop count and peak memory positive')
+    call check(f%time_analyze >= 0.0_dp .and. f%time_factorize >= 0.0_dp, 'timings non-negative')
+
+    allocate(b(n), x(n))
+    b = smooth_rhs(n, 0)
+    call solve(f, b, x)
+    call check_small(residual_ratio(A, x, b), 1.0e-14_dp, 'single RHS: scaled residual < 1e-14')
+
+    allocate(bb(n, nrhs), xx(n, nrhs))
+    do k = 1, nrhs
+      bb(:, k) = smooth_rhs(n, 13 * k)
+    end do
+    bb(:, 1) = b
+    call solve(f, bb, xx)
+    worst = 0.0_dp
+    do k = 1, nrhs
+      worst = max(worst, residual_ratio(A, xx(:, k), bb(:, k)))
+    end do
+    call check_small(worst, 1.0e-14_dp, '7-column block RHS: scaled residual < 1e-14 for every column')
+    call check_small(maxval(abs(xx(:, 1) - x)) / maxval(abs(x)), 1.0e-14_dp, &
+                     'block solve column 1 equals the single solve')
+
+    ! the top row of the grid ordered last, in reverse order
+    allocate(last(m))
+    last = [(n - k + 1, k = 1, m)]
+    call factorize(g, A, err, last)
+    call check(.not. allocated(err), 'factorize with the top row last')
+    if (allocated(err)) then
+      print '(a)', '  ' // err%message
+      return
+    end if
+    call check(factor_ordering(g) == 'metis+last', 'ordering with last is metis+last')
+    allocate(xl(n))
+    call solve_vector(g, b, xl)
+    call check_small(residual_ratio(A, xl, b), 1.0e-14_dp, 'last: scaled residual < 1e-14')
+    call check_small(maxval(abs(xl - x)) / maxval(abs(x)), 1.0e-12_dp, 'last: same solution as the default ordering')
+    call free_factor(f)
+    call free_factor(g)
+  end subroutine test_laplacian_solves
+
+  !> (L_cc L_cc')^-1 against the block of A^-1 from unit-vector solves, for a
+  !> scattered, unsorted `last` on the 60x60 Laplacian.
+  subroutine test_trailing_block_laplacian()
+    integer, parameter :: m = 60, nlast = 40
+    type(csc_t) :: A
+    type(factor_t) :: f
+    type(error_t), allocatable :: err
+    real(dp), allocatable :: lcc(:,:)
+    real(dp) :: z(nlast, nlast), zinv(nlast, nlast)
+    integer :: last(nlast), k, n, i
+    logical :: upper_zero
+
+    call grid_laplacian(m, .true., A)
+    n = A%n
+    ! dofs spread over the grid (a diagonal line and a column), unsorted
+    do k = 1, 20
+      last(k) = 3 * k + m * (3 * k - 1)          ! (3k, 3k)
+    end do
+    do k = 1, 20
+      last(20 + k) = 45 + m * (2 * k + 9)        ! (45, 2k+10)
+    end do
+    last(1:20) = last(20:1:-1)
+    call factorize(f, A, err, last)
+    call check(.not. allocated(err), 'factorize with 40 scattered dofs last')
+    if (allocated(err)) then
+      print '(a)', '  ' // err%message
+      return
+    end if
+    call trailing_factor_block(f, nlast, lcc)
+    call check(size(lcc, 1) == nlast .and. size(lcc, 2) == nlast, 'trailing block has shape (nlast, nlast)')
+    upper_zero = .true.
+    do k = 2, nlast
+      do i = 1, k - 1
+        if (lcc(i, k) /= 0.0_dp) upper_zero = .false.
+      end do
+    end do
+    call check(upper_zero .and. all([(lcc(k, k) > 0.0_dp, k = 1, nlast)]), &
+               'trailing block lower triangular with a positive diagonal')
+    z = inverse_block(f, n, last)
+    zinv = inverse_from_factor(lcc)
+    call check_small(maxval(abs(zinv - z)) / maxval(abs(z)), 1.0e-12_dp, &
+                     'Laplacian: (Lcc Lcc'')^-1 = (A^-1)(last,last)')
+  end subroutine test_trailing_block_laplacian
+
+  !> All dofs last (no METIS part): L_cc is the whole factor of A(last, last),
+  !> so L_cc L_cc' equals the dense permuted matrix.
+  subroutine test_trailing_block_all()
+    integer, parameter :: m = 9
+    type(csc_t) :: A
+    type(factor_t) :: f
+    type(error_t), allocatable :: err
+    real(dp), allocatable :: lcc(:,:), dense(:,:), e(:)
+    integer, allocatable :: last(:)
+    integer :: n, k
+
+    call grid_laplacian(m, .true., A)
+    n = A%n
+    allocate(dense(n, n), e(n))
+    do k = 1, n                                   ! dense A, column by column
+      e = 0.0_dp
+      e(k) = 1.0_dp
+      call csc_symv(A, e, dense(:, k))
+    end do
+    last = [(1 + mod(7 * k, n), k = 0, n - 1)]    ! a permutation of 1..n (gcd(7, 81) = 1)
+    call factorize(f, A, err, last)
+    call check(.not. allocated(err), 'factorize with every dof in last')
+    if (allocated(err)) return
+    call trailing_factor_block(f, n, lcc)
+    call check_small(maxval(abs(matmul(lcc, transpose(lcc)) - dense(last, last))) / maxval(abs(dense)), &
+                     1.0e-15_dp, 'every dof last: Lcc Lcc'' = A(last, last)')
+  end subroutine test_trailing_block_all
+
+  !> P1 elasticity, left edge fixed: solve residual, and the trailing block
+  !> for the top edge (both components, interleaved), as a contact interface.
+  subroutine test_elasticity()
+    integer, parameter :: nx = 24, ny = 16
+    type(csc_t) :: A
+    type(factor_t) :: f
+    type(error_t), allocatable :: err
+    integer, allocatable :: dof_of(:,:), last(:)
+    real(dp), allocatable :: b(:), x(:), lcc(:,:), z(:,:), zinv(:,:)
+    integer :: ix, node, k
+
+    call elasticity(nx, ny, .true., A, dof_of)
+    allocate(last(2 * nx))
+    k = 0
+    do ix = nx, 1, -1                               ! top edge without the fixed corner
+      node = 1 + ix + (nx + 1) * ny
+      last(k + 1:k + 2) = dof_of(:, node)
+      k = k + 2
+    end do
+    call factorize(f, A, err, last)
+    call check(.not. allocated(err), 'factorize P1 elasticity with the top edge last')
+    if (allocated(err)) then
+      print '(a)', '  ' // err%message
+      return
+    end if
+    allocate(b(A%n), x(A%n))
+    b = smooth_rhs(A%n, 5)
+    call solve(f, b, x)
+    call check_small(residual_ratio(A, x, b), 1.0e-14_dp, 'elasticity: scaled residual < 1e-14')
+    call trailing_factor_block(f, size(last), lcc)
+    allocate(z(size(last), size(last)), zinv(size(last), size(last)))
+    z = inverse_block(f, A%n, last)
+    zinv = inverse_from_factor(lcc)
+    call check_small(maxval(abs(zinv - z)) / maxval(abs(z)), 1.0e-12_dp, &
+                     'elasticity: (Lcc Lcc'')^-1 = (A^-1)(top edge, top edge)')
+  end subroutine test_elasticity
+
+  !> Singular matrices are reported with the dof of the dependent column.
+  subroutine test_singular()
+    integer, parameter :: m = 30
+    type(csc_t) :: A, B
+    type(factor_t) :: f
+    type(error_t), allocatable :: err
+    integer, allocatable :: dof_of(:,:)
+    real(dp), allocatable :: x(:), rhs(:)
+    integer :: n, dead, j, p, q
+
+    ! (1) a zero row and column: the pivot of dof `dead` is exactly zero
+    call grid_laplacian(m, .true., A)
+    n = A%n
+    dead = 417
+    B%n = n
+    allocate(B%colptr(n + 1), B%rowind(csc_nnz(A)), B%val(csc_nnz(A)))
+    q = 0
+    do j = 1, n
+      B%colptr(j) = q + 1
+      do p = A%colptr(j), A%colptr(j + 1) - 1
+        if (j == dead .or. A%rowind(p) == dead) cycle
+        q = q + 1
+        B%rowind(q) = A%rowind(p)
+        B%val(q) = A%val(p)
+      end do
+    end do
+    B%colptr(n + 1) = q + 1
+    call factorize(f, B, err)
+    call check(allocated(err), 'zero column: factorize reports an error')
+    if (allocated(err)) then
+      print '(a)', '  ' // err%message
+      call check(contains_text(err%message, 'at equation ' // itoa(dead) // ' (column '), &
+                 'zero column: the error names equation ' // itoa(dead))
+      call check(err%status == 1, 'zero column: numerical failure status 1')
+    end if
+    call check(.not. f%ready, 'zero column: factor not ready')
+    allocate(x(n), rhs(n))
+    rhs = 1.0_dp
+    call solve(f, rhs, x, err)
+    call check(allocated(err), 'solve after a failed factorization returns an error')
+
+    ! same with `last` containing the dead dof in the middle
+    call factorize(f, B, err, [5, dead, 900])
+    call check(allocated(err), 'zero column with last: error')
+    if (allocated(err)) then
+      call check(contains_text(err%message, 'at equation ' // itoa(dead) // ' (column ' // itoa(n - 1) // ' '), &
+                 'zero column with last: equation ' // itoa(dead) // ' at column n-1')
+    end if
+
+    ! (2) pure Neumann Laplacian: null vector = constants; with `last` = one
+    ! corner dof, every earlier leading block is nonsingular, so the last
+    ! pivot (that dof) is the dependent one
+    call grid_laplacian(m, .false., A)
+    call factorize(f, A, err)
+    call check(allocated(err), 'Neumann Laplacian: factorize reports an error')
+    if (allocated(err)) print '(a)', '  ' // err%message
+    call factorize(f, A, err, [m])
+    call check(allocated(err), 'Neumann Laplacian with last=[m]: error')
+    if (allocated(err)) then
+      print '(a)', '  ' // err%message
+      call check(contains_text(err%message, 'at equation ' // itoa(m) // ' (column ' // itoa(A%n) // ' '), &
+                 'Neumann Laplacian with last=[m]: equation m at the last column')
+    end if
+
+    ! (3) a pair of dofs held by a spring of stiffness 2^-50 only: in the order
+    ! given, L = [2 0; 1 2^-25], computed exactly, so CHOLMOD succeeds with a
+    ! pivot 2^-50 that only the pivot-ratio check can catch
+    call grid_laplacian(m, .true., A)
+    n = A%n
+    B%n = n + 2
+    deallocate(B%colptr, B%rowind, B%val)
+    allocate(B%colptr(n + 3), B%rowind(csc_nnz(A) + 3), B%val(csc_nnz(A) + 3))
+    B%colptr(1:n + 1) = A%colptr
+    B%rowind(1:csc_nnz(A)) = A%rowind
+    B%val(1:csc_nnz(A)) = A%val
+    q = csc_nnz(A)
+    B%rowind(q + 1:q + 3) = [n + 1, n + 1, n + 2]
+    B%val(q + 1:q + 3) = [4.0_dp, 2.0_dp, 1.0_dp + 2.0_dp**(-50)]
+    B%colptr(n + 2:n + 3) = [q + 2, q + 4]
+    call factorize(f, B, err, [n + 1, n + 2])
+    call check(allocated(err), 'tiny positive pivot: factorize reports an error')
+    if (allocated(err)) then
+      print '(a)', '  ' // err%message
+      call check(contains_text(err%message, 'at equation ' // itoa(n + 2) // ' (column ' // itoa(n + 2) // ' '), &
+                 'tiny positive pivot: equation n+2 at the last column')
+    end if
+    call check_close(f%min_pivot_ratio, 2.0_dp**(-50) / (1.0_dp + 2.0_dp**(-50)), 1.0e-12_dp, &
+                     'tiny positive pivot: ratio L(k,k)^2 / A(k,k) = 2^-50 / (1 + 2^-50)')
+    call factorize(f, B, err)
+    call check(allocated(err), 'tiny positive pivot, default ordering: error')
+
+    ! (4) a free elastic body: three rigid-body modes
+    call elasticity(12, 8, .false., A, dof_of)
+    call factorize(f, A, err)
+    call check(allocated(err), 'unconstrained elasticity: factorize reports an error')
+    if (allocated(err)) print '(a)', '  ' // err%message
+  end subroutine test_singular
+
+  !> Argument errors come back through err, not as crashes.
+  subroutine test_bad_arguments()
+    type(csc_t) :: A
+    type(factor_t) :: f
+    type(error_t), allocatable :: err
+    real(dp), allocatable :: lcc(:,:)
+
+    call grid_laplacian(10, .true., A)
+    call factorize(f, A, err, [3, 7, 3])
+    call check(allocated(err), 'repeated dof in last: error')
+    call factorize(f, A, err, [0, 7])
+    call check(allocated(err), 'dof out of range in last: error')
+    call factorize(f, A, err)
+    call check(.not. allocated(err) .and. f%ready, 'refactorize the same factor_t: ok')
+    call trailing_factor_block(f, 2, lcc, err)
+    call check(allocated(err), 'trailing block of a factor without last: error')
+    call factorize(f, A, err, [1, 2, 3])
+    call trailing_factor_block(f, 2, lcc, err)
+    call check(allocated(err), 'trailing block with the wrong nlast: error')
+    call free_factor(f)
+    call check(.not. f%ready, 'free_factor: factor no longer ready')
+    call free_factor(f)
+    call check(.true., 'free_factor twice: no crash')
+    A%rowind(2) = A%n
+    call factorize(f, A, err)
+    call check(allocated(err), 'malformed matrix (row below the diagonal): error')
+  end subroutine test_bad_arguments
+
+  !> nnz(L) for the 100x100 grid with the top row last against the default
+  !> METIS ordering (informational).
+  subroutine test_fill_with_last()
+    integer, parameter :: m = 100
+    type(csc_t) :: A
+    type(factor_t) :: f, g
+    type(error_t), allocatable :: err
+    integer :: k
+
+    call grid_laplacian(m, .true., A)
+    call factorize(f, A, err)
+    if (allocated(err)) then
+      call check(.false., 'factorize 100x100: ' // err%message)
+      return
+    end if
+    call factorize(g, A, err, [(m * (m - 1) + k, k = 1, m)])
+    if (allocated(err)) then
+      call check(.false., 'factorize 100x100 with the top row last: ' // err%message)
+      return
+    end if
+    print '(a, i0, a, es10.3, a, f6.3, a)', 'INFO 100x100 grid, metis:          nnz(L) = ', factor_nnz(f), &
+          ', flops = ', factor_flops(f), ', factor ', f%time_factorize, ' s'
+    print '(a, i0, a, es10.3, a, f6.3, a)', 'INFO 100x100 grid, top row last:   nnz(L) = ', factor_nnz(g), &
+          ', flops = ', factor_flops(g), ', factor ', g%time_factorize, ' s'
+    print '(a, f7.3)', 'INFO nnz(L) ratio last/metis = ', real(factor_nnz(g), dp) / real(factor_nnz(f), dp)
+    print '(a, i0, a, i0)', 'INFO peak memory (bytes): metis ', factor_memory(f), ', last ', factor_memory(g)
+  end subroutine test_fill_with_last
+
+end program test_sparse_cholesky

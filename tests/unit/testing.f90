@@ -1,0 +1,61 @@
+!> testing: checks for the unit-test programs.  Each check prints one line
+!> `PASS name` or `FAIL name: detail`; finish_tests exits 1 when any failed.
+!> tests/run-tests counts the lines.
+module testing
+  use kinds, only: dp
+  use, intrinsic :: iso_fortran_env, only: output_unit
+  implicit none
+  private
+  public :: check, check_close, check_small, finish_tests
+
+  integer, save :: nfail = 0
+contains
+
+  subroutine check(cond, name)
+    logical, intent(in) :: cond
+    character(len=*), intent(in) :: name
+    if (cond) then
+      write(output_unit, '(a)') 'PASS ' // name
+    else
+      write(output_unit, '(a)') 'FAIL ' // name
+      nfail = nfail + 1
+    end if
+  end subroutine check
+
+  !> PASS when |a - b| <= rtol * max(|b|, floor) (floor defaults to tiny).
+  subroutine check_close(a, b, rtol, name, floor)
+    real(dp), intent(in) :: a, b, rtol
+    character(len=*), intent(in) :: name
+    real(dp), intent(in), optional :: floor
+    real(dp) :: scale
+    character(len=120) :: detail
+    scale = abs(b)
+    if (present(floor)) scale = max(scale, floor)
+    if (abs(a - b) <= rtol * scale .and. a == a) then
+      write(output_unit, '(a)') 'PASS ' // name
+    else
+      write(detail, '(a,es12.5,a,es12.5,a,es9.2)') ': got ', a, ' expected ', b, ' rtol ', rtol
+      write(output_unit, '(a)') 'FAIL ' // name // trim(detail)
+      nfail = nfail + 1
+    end if
+  end subroutine check_close
+
+  !> PASS when 0 <= a <= tol (a is an error measure; NaN fails).
+  subroutine check_small(a, tol, name)
+    real(dp), intent(in) :: a, tol
+    character(len=*), intent(in) :: name
+    character(len=80) :: detail
+    if (a <= tol .and. a == a) then
+      write(output_unit, '(a)') 'PASS ' // name
+    else
+      write(detail, '(a,es12.5,a,es9.2)') ': ', a, ' > ', tol
+      write(output_unit, '(a)') 'FAIL ' // name // trim(detail)
+      nfail = nfail + 1
+    end if
+  end subroutine check_small
+
+  subroutine finish_tests()
+    flush(output_unit)
+    if (nfail > 0) error stop 1
+  end subroutine finish_tests
+end module testing
