@@ -31,6 +31,10 @@
 !>   `FILE:LINE: what is wrong (what was expected)` with the line echoed, and
 !>   reading stops; the mesh is then returned empty.
 !>
+!> The section readers below share their arguments: t (inout) the file and the
+!> reading position, d (inout) what has been read, diag (inout) the messages, and
+!> ok (out) .false. once an error has been reported (reading then stops).
+!>
 !> Programming interface
 !>   read_gmsh_file(path, mesh, diag)
 !>        read the MSH file path into mesh; errors go to diag
@@ -42,7 +46,7 @@ module gmsh_reader
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp, i8
   use diagnostics, only: diag_t, add_error, int_to_str
-  use mesh, only: mesh_t, boundary_t, region_t
+  use mesh, only: mesh_t
   implicit none
   private
   public :: read_gmsh_file, mesh_geo_file

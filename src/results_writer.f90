@@ -17,10 +17,11 @@ module results_writer
   use body, only: body_t
   use contact_set, only: contact_set_t
   use diagnostics, only: int_to_str
+  use text_buffer, only: text_buffer_t, open_text, put_line, put_real, put_int, put_newline, close_text
   implicit none
   private
   public :: results_t, write_vtk, write_contact_csv, write_summary, commit_outputs, discard_outputs
-  public :: phase_names, nphase
+  public :: phase_names, nphase, peak_memory
 
   integer, parameter :: nphase = 8
   character(len=8), parameter :: phase_names(nphase) = &
@@ -48,6 +49,7 @@ module results_writer
     integer :: contact_nodes = 0, active_nodes = 0, redundant = 0
     integer(i8) :: factor_nnz = 0
     real(dp) :: time(nphase) = 0                 !< seconds per phase_names
+    real(dp) :: memory_peak = 0                  !< peak resident memory, bytes (0 when unknown)
   end type results_t
 
   interface
@@ -59,13 +61,14 @@ module results_writer
 
 contains
 
-  !> VTK legacy unstructured grid of every body (see DECK.md).
+  !> VTK legacy unstructured grid of every body (see DECK.md), ASCII.
   subroutine write_vtk(path, title, bodies, r, ok)
     character(len=*), intent(in) :: path, title
     type(body_t), intent(in) :: bodies(:)
     type(results_t), intent(in) :: r
     logical, intent(out) :: ok
-    integer :: u, ios, b, e, a, nnode, nelem, ncon, k, nen
+    type(text_buffer_t) :: tb
+    integer :: b, e, a, k, nnode, nelem, ncon, nen
     character(len=256) :: head
 
     nnode = 0; nelem = 0; ncon = 0
@@ -74,64 +77,84 @@ contains
       nelem = nelem + bodies(b)%mesh%nelem
       ncon = ncon + bodies(b)%mesh%nelem + sum(bodies(b)%mesh%nen)
     end do
-    open(newunit=u, file=path, status='replace', action='write', form='formatted', iostat=ios)
-    ok = ios == 0
+    call open_text(tb, path, ok)
     if (.not. ok) return
     head = title
     if (len_trim(head) == 0) head = 'contact2d'
-    write(u, '(a)') '# vtk DataFile Version 3.0'
-    write(u, '(a)') trim(head)
-    write(u, '(a)') 'ASCII'
-    write(u, '(a)') 'DATASET UNSTRUCTURED_GRID'
-    write(u, '(a,i0,a)') 'POINTS ', nnode, ' double'
+    call put_line(tb, '# vtk DataFile Version 3.0')
+    call put_line(tb, trim(head))
+    call put_line(tb, 'ASCII')
+    call put_line(tb, 'DATASET UNSTRUCTURED_GRID')
+    call put_line(tb, 'POINTS ' // int_to_str(nnode) // ' double')
     do b = 1, size(bodies)
       do a = 1, bodies(b)%mesh%nnode
-        write(u, '(2(1x,es17.9e3),a)') bodies(b)%mesh%x(:, a), ' 0'
+        call put_real(tb, bodies(b)%mesh%x(1, a))
+        call put_real(tb, bodies(b)%mesh%x(2, a))
+        call put_line(tb, ' 0')
       end do
     end do
-    write(u, '(a,i0,1x,i0)') 'CELLS ', nelem, ncon
+    call put_line(tb, 'CELLS ' // int_to_str(nelem) // ' ' // int_to_str(ncon))
     k = 0
     do b = 1, size(bodies)
       do e = 1, bodies(b)%mesh%nelem
         nen = bodies(b)%mesh%nen(e)
-        write(u, '(i0,4(1x,i0))') nen, bodies(b)%mesh%conn(1:nen, e) - 1 + k
+        call put_int(tb, nen)
+        do a = 1, nen
+          call put_int(tb, bodies(b)%mesh%conn(a, e) - 1 + k)
+        end do
+        call put_newline(tb)
       end do
       k = k + bodies(b)%mesh%nnode
     end do
-    write(u, '(a,i0)') 'CELL_TYPES ', nelem
+    call put_line(tb, 'CELL_TYPES ' // int_to_str(nelem))
     do b = 1, size(bodies)
       do e = 1, bodies(b)%mesh%nelem
-        write(u, '(i0)') merge(5, 9, bodies(b)%mesh%nen(e) == 3)
+        call put_line(tb, merge(' 5', ' 9', bodies(b)%mesh%nen(e) == 3))
       end do
     end do
-    write(u, '(a,i0)') 'POINT_DATA ', nnode
-    write(u, '(a)') 'VECTORS displacement double'
+    call put_line(tb, 'POINT_DATA ' // int_to_str(nnode))
+    call put_line(tb, 'VECTORS displacement double')
     do a = 1, nnode
-      write(u, '(2(1x,es17.9e3),a)') r%u(2 * a - 1:2 * a), ' 0'
+      call put_real(tb, r%u(2 * a - 1))
+      call put_real(tb, r%u(2 * a))
+      call put_line(tb, ' 0')
     end do
-    write(u, '(a)') 'SCALARS contact_pressure double 1'
-    write(u, '(a)') 'LOOKUP_TABLE default'
-    write(u, '(1x,es17.9e3)') r%node_pressure
-    write(u, '(a)') 'SCALARS gap double 1'
-    write(u, '(a)') 'LOOKUP_TABLE default'
-    write(u, '(1x,es17.9e3)') r%node_gap
-    write(u, '(a,i0)') 'CELL_DATA ', nelem
-    write(u, '(a)') 'SCALARS body int 1'
-    write(u, '(a)') 'LOOKUP_TABLE default'
+    call put_scalars(tb, 'contact_pressure', r%node_pressure)
+    call put_scalars(tb, 'gap', r%node_gap)
+    call put_line(tb, 'CELL_DATA ' // int_to_str(nelem))
+    call put_line(tb, 'SCALARS body int 1')
+    call put_line(tb, 'LOOKUP_TABLE default')
     do b = 1, size(bodies)
       do e = 1, bodies(b)%mesh%nelem
-        write(u, '(i0)') b
+        call put_int(tb, b)
+        call put_newline(tb)
       end do
     end do
-    write(u, '(a)') 'SCALARS stress double 3'
-    write(u, '(a)') 'LOOKUP_TABLE default'
-    write(u, '(3(1x,es17.9e3))') r%stress
-    write(u, '(a)') 'SCALARS von_mises double 1'
-    write(u, '(a)') 'LOOKUP_TABLE default'
-    write(u, '(1x,es17.9e3)') r%vm
-    close(u, iostat=ios)
-    ok = ios == 0
+    call put_line(tb, 'SCALARS stress double 3')
+    call put_line(tb, 'LOOKUP_TABLE default')
+    do e = 1, nelem
+      call put_real(tb, r%stress(1, e))
+      call put_real(tb, r%stress(2, e))
+      call put_real(tb, r%stress(3, e))
+      call put_newline(tb)
+    end do
+    call put_scalars(tb, 'von_mises', r%vm)
+    call close_text(tb, ok)
   end subroutine write_vtk
+
+  !> One SCALARS array, a value per line.
+  subroutine put_scalars(tb, name, v)
+    type(text_buffer_t), intent(inout) :: tb
+    character(len=*), intent(in) :: name
+    real(dp), intent(in) :: v(:)
+    integer :: i
+    call put_line(tb, 'SCALARS ' // name // ' double 1')
+    call put_line(tb, 'LOOKUP_TABLE default')
+    do i = 1, size(v)
+      call put_real(tb, v(i))
+      call put_newline(tb)
+    end do
+  end subroutine put_scalars
 
   !> Contact table: one row per slave node of each pair, along the boundary.
   !> Slave nodes with no master opposite (outside the effective contact zone)
@@ -203,6 +226,7 @@ contains
       write(u, '(a)') 'reaction ' // trim(r%fix_label(k)) // ' ' // num(r%reaction(1, k)) // ' ' // num(r%reaction(2, k))
     end do
     write(u, '(a,i0)') 'factor_nnz ', r%factor_nnz
+    write(u, '(a,a)') 'memory_peak_mb ', num(r%memory_peak / 1048576.0_dp)
     do k = 1, nphase
       write(u, '(a,a)') 'time_' // trim(phase_names(k)) // ' ', num(r%time(k))
     end do
@@ -237,5 +261,26 @@ contains
       if (ios == 0) close(u, status='delete', iostat=ios)
     end do
   end subroutine discard_outputs
+
+  !> Peak resident set size of this process in bytes (VmHWM of
+  !> /proc/self/status on Linux); 0 when it cannot be read.
+  real(dp) function peak_memory() result(bytes)
+    integer :: u, ios
+    character(len=256) :: line
+    real(dp) :: kb
+    bytes = 0.0_dp
+    open(newunit=u, file='/proc/self/status', status='old', action='read', iostat=ios)
+    if (ios /= 0) return
+    do
+      read(u, '(a)', iostat=ios) line
+      if (ios /= 0) exit
+      if (line(1:6) == 'VmHWM:') then
+        read(line(7:), *, iostat=ios) kb
+        if (ios == 0) bytes = kb * 1024.0_dp
+        exit
+      end if
+    end do
+    close(u)
+  end function peak_memory
 
 end module results_writer

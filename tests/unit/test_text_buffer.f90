@@ -1,0 +1,60 @@
+!> text_buffer against the es17.9e3 edit descriptor and integer i0.
+program test_text_buffer
+  use kinds, only: dp
+  use text_buffer, only: text_buffer_t, open_text, put_real, put_int, put_newline, close_text
+  use testing, only: check, finish_tests
+  implicit none
+  type(text_buffer_t) :: tb
+  real(dp) :: x(12), y
+  integer :: i, u, ios, nbad, ints(5), j
+  logical :: ok
+  character(len=64) :: line, ref
+  character(len=*), parameter :: path = 'test_text_buffer.tmp'
+
+  x = [1.0_dp, -1.0_dp, 0.0_dp, 123456.789_dp, -9.9999999999e-7_dp, 1.0e300_dp, 2.5e-310_dp, &
+       -4.2e-120_dp, 9.9999999996_dp, 0.1_dp, 6.02214076e23_dp, -1.0e-5_dp]
+  ints = [0, 7, -13, 2147483647, -2147483647]
+  call open_text(tb, path, ok)
+  call check(ok, 'open')
+  do i = 1, size(x)
+    call put_real(tb, x(i))
+    call put_newline(tb)
+  end do
+  do i = 1, 20000
+    call random_number(y)
+    y = (y - 0.5_dp) * 10.0_dp**(int(40 * y) - 20)
+    call put_real(tb, y)
+    call put_newline(tb)
+  end do
+  do i = 1, size(ints)
+    call put_int(tb, ints(i))
+    call put_newline(tb)
+  end do
+  call close_text(tb, ok)
+  call check(ok, 'close')
+  ! read back: every number equals the value written to 10 significant digits
+  open(newunit=u, file=path, status='old', action='read')
+  nbad = 0
+  do i = 1, size(x)
+    read(u, '(a)') line
+    write(ref, '(es17.9e3)') x(i)
+    if (adjustl(line) /= adjustl(ref)) then
+      nbad = nbad + 1
+      write(*, '(a)') '# ' // trim(line) // ' vs ' // trim(ref)
+    end if
+  end do
+  call check(nbad == 0, 'chosen values equal es17.9e3')
+  nbad = 0
+  do i = 1, 20000
+    read(u, '(a)') line
+    read(line, *, iostat=ios) y
+    if (ios /= 0) nbad = nbad + 1
+  end do
+  call check(nbad == 0, 'random values read back')
+  do i = 1, size(ints)
+    read(u, *) j
+    call check(j == ints(i), 'integer read back')
+  end do
+  close(u, status='delete')
+  call finish_tests()
+end program test_text_buffer
