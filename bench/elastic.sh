@@ -1,0 +1,38 @@
+#!/bin/sh
+# bench/elastic.sh [REPEATS]: plain plane-strain elasticity (a clamped square,
+# MESH rect tri3, traction on top) at about 1e4, 1e5 and 1e6 dofs.  Prints per
+# size the median over REPEATS runs (default 3) of each phase's time, the peak
+# memory, and the ratios assemble/factor and total/factor.
+# Targets (issue): at 1e6 dofs assemble < 0.25 factor, total < 2 factor.
+set -eu
+top=$(cd "$(dirname "$0")/.." && pwd)
+prog=${CONTACT2D:-$top/bin/contact2d}
+reps=${1:-3}
+work=$(mktemp -d "${TMPDIR:-/tmp}/c2d-bench.XXXXXX")
+trap 'rm -rf "$work"' EXIT
+median() { sort -g | awk '{v[NR]=$1} END {print (NR%2) ? v[(NR+1)/2] : (v[NR/2]+v[NR/2+1])/2}'; }
+printf '%-9s %9s %7s %8s %8s %8s %8s %8s %8s %9s %8s %8s\n' n dofs mesh assemble factor recover output total memMB \
+  nnzL asm/fac tot/fac
+for n in 70 223 707; do
+  cat > "$work/plate.deck" <<DECK
+PLANE strain
+BODY plate
+  MESH rect x0=0 y0=0 x1=1 y1=1 nx=$n ny=$n
+  MATERIAL isotropic E=1000 nu=0.3
+  FIX bottom ux=0 uy=0
+  TRACTION top tx=1 ty=-1
+END
+DECK
+  i=0
+  while [ $i -lt "$reps" ]; do
+    "$prog" -q -o "$work/r$i" "$work/plate.deck"
+    i=$((i + 1))
+  done
+  get() { for s in "$work"/r*/plate.summary; do awk -v k="$1" '$1 == k {print $2}' "$s"; done | median; }
+  dofs=$(get dofs); m=$(get time_mesh); a=$(get time_assemble); f=$(get time_factor)
+  r=$(get time_recover); o=$(get time_output); t=$(get time_total); mem=$(get memory_peak_mb); nz=$(get factor_nnz)
+  awk -v n="$n" -v d="$dofs" -v m="$m" -v a="$a" -v f="$f" -v r="$r" -v o="$o" -v t="$t" -v mem="$mem" -v nz="$nz" \
+    'BEGIN {printf "%-9s %9d %7.3f %8.3f %8.3f %8.3f %8.3f %8.3f %8.0f %9.3g %8.3f %8.3f\n", n"x"n, d, m, a, f, r, o, t, mem, nz, a/f, t/f}'
+  rm -rf "$work"/r*
+done
+echo "(medians of $reps runs; seconds; memMB = peak resident memory; BLAS: $(readlink -f /usr/lib/x86_64-linux-gnu/libblas.so.3 | sed 's|.*/\([^/]*\)/libblas.so.3|\1|'))"
