@@ -17,7 +17,9 @@ program contact2d
   use sparse_cholesky, only: factor_t, factorize, solve, factor_nnz
   use contact_set, only: contact_set_t, build_contact_set
   use contact_condensation, only: contact_equations, condense, contact_forces, recover
-  use lcp_solvers, only: lcp_options_t, lcp_report_t, solve_lcp_lemke, solve_lcp_pgs
+  use lcp_solvers, only: lcp_options_t
+  use contact_lcp, only: contact_solution_t, solve_contact
+  use rigid_modes, only: floating_t, find_floating_modes, mode_name
   use results_writer, only: results_t, write_vtk, write_contact_csv, write_summary, commit_outputs, &
                             discard_outputs, phase_names, nphase, peak_memory
   use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
@@ -38,7 +40,9 @@ program contact2d
   type(factor_t) :: factor
   type(results_t) :: res
   type(error_t), allocatable :: err
+  type(floating_t) :: fl
   integer, allocatable :: eq(:), last(:)
+  logical, allocatable :: held(:)
   integer :: nfree, i, nlabel
   integer(i8) :: t_start, t_phase
   real(dp), allocatable :: rhs(:,:), x(:,:), u0(:), w(:,:), q(:), fint(:), fc(:)
@@ -56,7 +60,11 @@ program contact2d
   call stop_input_errors(diag)
   call build_contact_set(sc%bodies, sc%specs, cs, err)
   if (allocated(err)) call contact_error(err)
-  call number_equations(sc%fixed, eq, nfree)
+  ! free rigid modes (bodies held only by contact): pin k dofs to factorize K^#
+  call find_floating_modes(sc%bodies, sc%fixed, fl)
+  held = sc%fixed
+  if (fl%k > 0) held(fl%pin) = .true.
+  call number_equations(held, eq, nfree)
   res%effects = sc%effects
   res%nfree = nfree
   call report_scene()
@@ -100,16 +108,17 @@ program contact2d
   allocate(fc(sc%ndof))
   fc = 0.0_dp
   res%lcp_method = 'none'
-  if (cs%nrow > 0) then
+  if (cs%nrow > 0 .or. fl%k > 0) then
     ! the solve u0 = K^-1 f counts as condensation when there is contact,
     ! as recovery otherwise: a scene without contact spends nothing on it
     call condense(cs, eq, factor, u0, w, q, err)
     if (allocated(err)) call fail_numerical(err%message)
     call lap(ph_condense)
-    call solve_contact_lcp()
+    call solve_contact_problem()
     call lap(ph_lcp)
     allocate(res%u(sc%ndof))
     call recover(cs, eq, factor, u0, res%mu, res%u)
+    if (fl%k > 0) res%u = res%u + matmul(fl%r, res%alpha)    ! + R alpha: the free rigid modes
     call contact_forces(cs, res%mu, fc)
   else
     res%u = u0
@@ -177,12 +186,14 @@ contains
     call fail_numerical(e%message)
   end subroutine contact_error
 
-  !> LCP(W, q) by the chosen method; mu, gaps, pressures, status.
-  subroutine solve_contact_lcp()
+  !> The condensed contact problem by the chosen method (with the free rigid
+  !> modes as equality constraints); mu, gaps, pressures, status.
+  subroutine solve_contact_problem()
     type(lcp_options_t) :: opts
-    type(lcp_report_t) :: rep
+    type(contact_solution_t) :: sol
     character(len=:), allocatable :: method
-    integer :: r, ip, node
+    real(dp), allocatable :: h(:,:), e(:)
+    integer :: r, ip, node, kk, j
     real(dp) :: dmax, pmax, gmax
 
     opts%tol = deck%solver%tol
@@ -196,32 +207,45 @@ contains
         method = 'pgs'
       end if
     end if
-    allocate(res%mu(cs%nrow))
-    res%mu = 0.0_dp
-    if (method == 'lemke') then
-      call solve_lcp_lemke(w, q, res%mu, opts, rep)
-    else
-      call solve_lcp_pgs(w, q, res%mu, opts, rep)
-    end if
+    ! H = B R (how the free modes open the gaps), e = R' f (their load)
+    allocate(h(cs%nrow, fl%k), e(fl%k))
+    h = 0.0_dp
+    do j = 1, fl%k
+      do r = 1, cs%nrow
+        do kk = cs%bptr(r), cs%bptr(r + 1) - 1
+          h(r, j) = h(r, j) + cs%bval(kk) * fl%r(cs%cdof(cs%bcol(kk)), j)
+        end do
+      end do
+      e(j) = dot_product(fl%r(:, j), sc%fext)
+    end do
+    call solve_contact(w, q, h, e, method, opts, sol)
     res%lcp_method = method
-    res%lcp_iterations = rep%iterations
-    res%lcp_residual = rep%residual
-    if (rep%info /= 0) then
-      if (allocated(rep%message)) then
-        call fail_numerical('contact problem not solved: ' // rep%message)
+    res%lcp_iterations = sol%rep%iterations
+    res%lcp_residual = sol%rep%residual
+    if (sol%rep%info /= 0) then
+      if (allocated(sol%rep%message)) then
+        call fail_numerical('contact problem not solved: ' // sol%rep%message)
       else
-        call fail_numerical('contact problem not solved by ' // method // ' (info ' // int_to_str(rep%info) // ')')
+        call fail_numerical('contact problem not solved by ' // method // ' (info ' // int_to_str(sol%rep%info) // ')')
       end if
     end if
-    if (.not. all(ieee_is_finite(res%mu))) call fail_numerical('the contact multipliers are not finite')
+    if (.not. all(ieee_is_finite(sol%mu))) call fail_numerical('the contact multipliers are not finite')
+    call move_alloc(sol%mu, res%mu)
+    call move_alloc(sol%alpha, res%alpha)
+    do j = 1, fl%k
+      if (sol%unheld(j)) call say('note     body ' // sc%bodies(fl%mode_body(j))%name // ': rigid mode (' // &
+        mode_name(fl, j) // ') held by neither FIX nor contact and unloaded: its amplitude is set to 0')
+    end do
 
+    allocate(res%gap(cs%nrow), res%pressure(cs%nrow), res%status(cs%nrow))
+    res%contact_nodes = cs%nrow
+    res%gap = sol%gap
+    if (cs%nrow == 0) return
     dmax = 0.0_dp
     do r = 1, cs%nrow
       dmax = max(dmax, w(r, r))
     end do
     res%redundant = count([(w(r, r) <= 1.0e-14_dp * dmax, r = 1, cs%nrow)])
-    allocate(res%gap(cs%nrow), res%pressure(cs%nrow), res%status(cs%nrow))
-    res%gap = q + matmul(w, res%mu)                 ! final gap = q + W mu
     pmax = 0.0_dp
     do r = 1, cs%nrow
       ip = cs%row_pair(r)
@@ -229,7 +253,6 @@ contains
       res%pressure(r) = res%mu(r) / cs%pair(ip)%mortar%covered_weight(node)   ! p = mu / int(phi_i)
       pmax = max(pmax, abs(res%pressure(r)))
     end do
-    res%contact_nodes = cs%nrow
     do r = 1, cs%nrow
       res%status(r) = merge(1, 0, res%mu(r) > 1.0e-12_dp * maxval(abs(res%mu)) .and. res%mu(r) > 0.0_dp)
     end do
@@ -243,7 +266,7 @@ contains
     end if
     res%min_gap = min(0.0_dp, minval(res%gap))
     res%min_pressure = minval(res%pressure)
-  end subroutine solve_contact_lcp
+  end subroutine solve_contact_problem
 
   !> contact_pressure and gap on the nodes, for the VTK file.
   subroutine nodal_contact_fields()
@@ -307,6 +330,10 @@ contains
         ' slave nodes, ', size(cs%pair(ip)%mnode), ' master nodes, ', cs%pair(ip)%nrow, &
         ' constrained (mortar, frictionless)'
       call say(trim(line))
+    end do
+    do ip = 1, fl%k
+      call say('rigid    body ' // sc%bodies(fl%mode_body(ip))%name // ': ' // mode_name(fl, ip) // &
+               ' not held by FIX: held by contact (equilibrium as an equality constraint)')
     end do
     write(line, '(a,i0,a,i0,a,i0,a)') 'sizes    ', sc%ndof, ' dofs, ', nfree, ' free, ', cs%nrow, ' contact constraints'
     call say(trim(line))

@@ -36,6 +36,7 @@ module results_writer
     real(dp), allocatable :: node_pressure(:)    !< (ndof/2) contact pressure at nodes (0 elsewhere)
     real(dp), allocatable :: node_gap(:)         !< (ndof/2) final gap at slave nodes (0 elsewhere)
     real(dp), allocatable :: mu(:)               !< (nrow) multipliers (nodal forces)
+    real(dp), allocatable :: alpha(:)            !< (k) amplitudes of the free rigid modes
     real(dp), allocatable :: gap(:)              !< (nrow) final gaps
     real(dp), allocatable :: pressure(:)         !< (nrow) pressures mu / w
     integer, allocatable :: status(:)            !< (nrow) 1 contact, 0 open

@@ -1,0 +1,237 @@
+!> contact_lcp: the condensed contact problem, with or without free rigid modes.
+!>
+!> Without free modes it is LCP(W, q), solved by Lemke or PGS (lcp_solvers).
+!> With k free modes R (see rigid_modes) it is the mixed LCP
+!>     mu >= 0,  gap = q + W mu - H alpha >= 0,  mu' gap = 0,  H' mu = e,
+!> H = B R (how each mode opens the gaps), e = R' f (the load along the
+!> modes), alpha the modes' amplitudes: the KKT conditions of
+!>     min 1/2 mu'W mu + q'mu  subject to  mu >= 0, H' mu = e.
+!> It is solved in three steps, each exact or checked:
+!>  1. modes that no contact row can hold (zero singular values of H) must
+!>     carry no load (else: no equilibrium, exit 1); they are dropped, their
+!>     amplitude 0 (the body can slide along them freely: reported);
+!>  2. feasibility: min |H'mu - e| over mu >= 0 (nonnegative least squares,
+!>     itself the LCP(H H', -H e), by Lemke); a positive minimum means the
+!>     loads pull the body away from its contacts: no equilibrium, exit 1;
+!>  3. the method of multipliers on the equality: for lambda given, the
+!>     LCP(W + rho H H', q - H (lambda + rho e)) by the chosen solver, then
+!>     lambda <- lambda - rho (H'mu - e), until H'mu = e to the tolerance;
+!>     finished by the exact KKT solve on the active set (dsysv).
+!>
+!> Programming interface
+!>   type(contact_solution_t)   mu, alpha, gap, report, notes
+!>   solve_contact(w, q, h, e, method, opts, sol)
+module contact_lcp
+  use kinds, only: dp
+  use lcp_solvers, only: lcp_options_t, lcp_report_t, solve_lcp_lemke, solve_lcp_pgs, lcp_natural_residual
+  use diagnostics, only: int_to_str
+  implicit none
+  private
+  public :: contact_solution_t, solve_contact
+
+  type :: contact_solution_t
+    real(dp), allocatable :: mu(:)           !< (nc) multipliers, nodal forces
+    real(dp), allocatable :: alpha(:)        !< (k) amplitudes of the free modes
+    real(dp), allocatable :: gap(:)          !< (nc) final gaps q + W mu - H alpha
+    type(lcp_report_t) :: rep                !< info 0 solved; else failure and message
+    real(dp) :: equality_residual = 0        !< |H'mu - e| / max(|e|, scale)
+    integer :: outer = 0                     !< multiplier iterations
+    logical, allocatable :: unheld(:)        !< (k) mode held by no contact row
+  end type contact_solution_t
+
+  interface
+    subroutine dsysv(uplo, n, nrhs, a, lda, ipiv, b, ldb, work, lwork, info)
+      import :: dp
+      character, intent(in) :: uplo
+      integer, intent(in) :: n, nrhs, lda, ldb, lwork
+      real(dp), intent(inout) :: a(lda, *), b(ldb, *)
+      integer, intent(out) :: ipiv(*), info
+      real(dp), intent(out) :: work(*)
+    end subroutine dsysv
+    subroutine dgesvd(jobu, jobvt, m, n, a, lda, s, u, ldu, vt, ldvt, work, lwork, info)
+      import :: dp
+      character, intent(in) :: jobu, jobvt
+      integer, intent(in) :: m, n, lda, ldu, ldvt, lwork
+      real(dp), intent(inout) :: a(lda, *)
+      real(dp), intent(out) :: s(*), u(ldu, *), vt(ldvt, *), work(*)
+      integer, intent(out) :: info
+    end subroutine dgesvd
+  end interface
+
+contains
+
+  !> Solve the condensed contact problem.
+  !>   w      (in) (nc, nc) Delassus matrix B K^# B'
+  !>   q      (in) (nc) gaps without contact forces
+  !>   h      (in) (nc, k) B R; k = 0 for a problem without free modes
+  !>   e      (in) (k) R' f
+  !>   method (in) 'lemke' or 'pgs'
+  !>   opts   (in) tolerances
+  !>   sol    (out) the solution; sol%rep%info /= 0 on failure with a message
+  subroutine solve_contact(w, q, h, e, method, opts, sol)
+    real(dp), intent(in) :: w(:,:), q(:), h(:,:), e(:)
+    character(len=*), intent(in) :: method
+    type(lcp_options_t), intent(in) :: opts
+    type(contact_solution_t), intent(out) :: sol
+    integer :: nc, k, kh, j, it, info, lwork
+    real(dp), allocatable :: a(:,:), s(:), vt(:,:), work(:), hh(:,:), eh(:), lam(:), wr(:,:), qr(:), r(:)
+    real(dp) :: u1(1, 1), wq(1), smax, escale, rho, res, wdiag, hnorm
+    type(lcp_report_t) :: rep
+    integer :: total
+
+    nc = size(q)
+    k = size(e)
+    allocate(sol%mu(nc), sol%alpha(k), sol%gap(nc), sol%unheld(k))
+    sol%mu = 0.0_dp
+    sol%alpha = 0.0_dp
+    sol%unheld = .false.
+    if (k == 0) then
+      call run_solver(method, w, q, opts, sol%mu, sol%rep)
+      sol%gap = q + matmul(w, sol%mu)
+      return
+    end if
+
+    ! 1. held and unheld modes: SVD of H (nc x k)
+    escale = maxval(abs(e))
+    allocate(s(k), vt(k, k))
+    s = 0.0_dp
+    if (nc > 0) then
+      a = h
+      call dgesvd('N', 'A', nc, k, a, nc, s, u1, 1, vt, k, wq, -1, info)
+      lwork = int(wq(1))
+      allocate(work(lwork))
+      call dgesvd('N', 'A', nc, k, a, nc, s, u1, 1, vt, k, work, lwork, info)
+      deallocate(work)
+    else
+      vt = 0.0_dp
+      do j = 1, k
+        vt(j, j) = 1.0_dp
+      end do
+    end if
+    smax = maxval(s)
+    kh = count(s > 1.0e-10_dp * max(smax, tiny(1.0_dp)) .and. s > 0.0_dp)
+    ! modes beyond kh (rows kh+1.. of vt) move no gap: they must carry no load
+    do j = kh + 1, k
+      if (abs(dot_product(vt(j, :), e)) > 1.0e-9_dp * max(escale, 1.0e-300_dp) .and. escale > 0.0_dp) then
+        sol%rep%info = 1
+        sol%rep%message = 'no equilibrium: a body held only by contact is loaded along a rigid mode that no ' // &
+          'contact can resist (frictionless contact holds only normal to the contact surface)'
+        return
+      end if
+      sol%unheld = sol%unheld .or. abs(vt(j, :)) > 1.0e-8_dp
+    end do
+    hh = matmul(h, transpose(vt(1:kh, :)))      ! held directions: H V_h
+    eh = matmul(vt(1:kh, :), e)
+    allocate(lam(kh))
+    lam = 0.0_dp
+    if (kh == 0) then
+      call run_solver(method, w, q, opts, sol%mu, sol%rep)
+      sol%gap = q + matmul(w, sol%mu)
+      return
+    end if
+
+    ! 2. feasibility: nonnegative least squares min |Hh'mu - eh|, mu >= 0
+    call solve_lcp_lemke(matmul(hh, transpose(hh)), -matmul(hh, eh), sol%mu, opts, rep)
+    res = norm2(matmul(transpose(hh), sol%mu) - eh)
+    if (res > 1.0e-8_dp * norm2(eh)) then
+      sol%rep%info = 1
+      sol%rep%message = 'no equilibrium: the loads pull a body held only by contact away from its contacts ' // &
+        '(the contact forces cannot balance them; residual ' // real_str(res / max(norm2(eh), tiny(1.0_dp))) // ')'
+      return
+    end if
+
+    ! 3. method of multipliers: rho H H' of the size of W
+    wdiag = 0.0_dp
+    do j = 1, nc
+      wdiag = max(wdiag, w(j, j))
+    end do
+    hnorm = maxval(sum(hh**2, dim=1))
+    rho = 10.0_dp * wdiag / max(hnorm, tiny(1.0_dp))
+    wr = w + rho * matmul(hh, transpose(hh))
+    total = 0
+    do it = 1, 100
+      qr = q - matmul(hh, lam + rho * eh)
+      call run_solver(method, wr, qr, opts, sol%mu, rep)
+      total = total + rep%iterations
+      if (rep%info /= 0) then
+        sol%rep = rep
+        return
+      end if
+      r = matmul(transpose(hh), sol%mu) - eh
+      lam = lam - rho * r
+      sol%outer = it
+      if (norm2(r) <= opts%tol * max(norm2(eh), tiny(1.0_dp))) exit
+    end do
+    sol%rep = rep
+    sol%rep%iterations = total
+    call finish_exact(w, q, hh, eh, sol%mu, lam)
+    sol%equality_residual = norm2(matmul(transpose(hh), sol%mu) - eh) / max(norm2(eh), tiny(1.0_dp))
+    if (sol%equality_residual > 1.0e3_dp * opts%tol) then
+      sol%rep%info = 2
+      sol%rep%message = 'the equilibrium of a body held only by contact was not reached (relative residual ' // &
+        real_str(sol%equality_residual) // ' after ' // int_to_str(sol%outer) // ' multiplier iterations)'
+    end if
+    sol%alpha = matmul(transpose(vt(1:kh, :)), lam)
+    sol%gap = q + matmul(w, sol%mu) - matmul(h, sol%alpha)
+    sol%rep%residual = lcp_natural_residual(w, q - matmul(h, sol%alpha), sol%mu)
+  end subroutine solve_contact
+
+  subroutine run_solver(method, w, q, opts, z, rep)
+    character(len=*), intent(in) :: method
+    real(dp), intent(in) :: w(:,:), q(:)
+    type(lcp_options_t), intent(in) :: opts
+    real(dp), intent(inout) :: z(:)
+    type(lcp_report_t), intent(out) :: rep
+    if (method == 'pgs') then
+      call solve_lcp_pgs(w, q, z, opts, rep)
+    else
+      call solve_lcp_lemke(w, q, z, opts, rep)
+    end if
+  end subroutine run_solver
+
+  !> Exact finish: on the active set A = {mu > 0} solve
+  !>   [W_AA  -H_A] [mu_A  ]   [-q_A]
+  !>   [-H_A'   0 ] [lambda] = [-e  ]
+  !> and keep it when mu_A >= 0 and the inactive gaps are >= 0.
+  subroutine finish_exact(w, q, h, e, mu, lam)
+    real(dp), intent(in) :: w(:,:), q(:), h(:,:), e(:)
+    real(dp), intent(inout) :: mu(:), lam(:)
+    integer, allocatable :: act(:), ipiv(:)
+    real(dp), allocatable :: a(:,:), b(:,:), work(:), gap(:), mu_new(:)
+    integer :: na, k, n, info, lwork
+    real(dp) :: wq(1), scale
+    act = pack([(n, n = 1, size(mu))], mu > 0.0_dp)
+    na = size(act)
+    k = size(e)
+    n = na + k
+    allocate(a(n, n), b(n, 1), ipiv(n))
+    a = 0.0_dp
+    a(1:na, 1:na) = w(act, act)
+    a(1:na, na + 1:n) = -h(act, :)
+    a(na + 1:n, 1:na) = -transpose(h(act, :))
+    b(1:na, 1) = -q(act)
+    b(na + 1:n, 1) = -e
+    call dsysv('U', n, 1, a, n, ipiv, b, n, wq, -1, info)
+    lwork = max(1, int(wq(1)))
+    allocate(work(lwork))
+    call dsysv('U', n, 1, a, n, ipiv, b, n, work, lwork, info)
+    if (info /= 0) return
+    mu_new = mu
+    mu_new(act) = b(1:na, 1)
+    if (any(mu_new(act) < 0.0_dp)) return
+    gap = q + matmul(w, mu_new) - matmul(h, b(na + 1:n, 1))
+    scale = maxval(abs(q)) + maxval(abs(matmul(w, mu_new)))
+    if (any(gap < -1.0e-10_dp * scale)) return
+    mu = mu_new
+    lam = b(na + 1:n, 1)
+  end subroutine finish_exact
+
+  function real_str(x) result(s)
+    real(dp), intent(in) :: x
+    character(len=:), allocatable :: s
+    character(len=16) :: buf
+    write(buf, '(es10.3)') x
+    s = trim(adjustl(buf))
+  end function real_str
+
+end module contact_lcp

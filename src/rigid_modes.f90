@@ -1,0 +1,170 @@
+!> rigid_modes: the rigid-body modes that a body's Dirichlet data leave free.
+!>
+!> A body held by FIX statements in too few directions (say, the upper block
+!> of the patch test loaded by a pressure on top instead of a prescribed
+!> displacement) has a singular stiffness K: its free rigid modes R satisfy
+!> K R = 0.  contact2d handles them exactly, as in FETI's natural coarse
+!> space: K is factorized with k well-chosen "pinned" dofs held at zero, which
+!> gives a generalized inverse K^# (K K^# b = b for every b in range(K)), and
+!>     u = K^# (f - B' mu) + R alpha,     R' (f - B' mu) = 0,
+!> the second equation being the body's equilibrium along its free modes,
+!> which the contact forces must supply.  No spring is added anywhere.
+!>
+!> The modes of body b: the three rigid motions (two translations, a rotation
+!> about the centroid scaled by the body's size), restricted to the fixed dofs
+!> as C (nfixed x 3); the right singular vectors of C with zero singular value
+!> span the free modes.  The pinned dofs are the first k pivots of a QR
+!> factorization with column pivoting (dgeqp3) of R_b' over the free dofs, so
+!> R_b(pinned, :) is well conditioned.
+!>
+!> Programming interface
+!>   type(floating_t)                          k modes, R, their bodies, pinned dofs
+!>   find_floating_modes(bodies, fixed, fl)    fixed (ndof): Dirichlet dofs
+!>   mode_name(fl, j)                          'translation x', 'rotation', ...
+module rigid_modes
+  use kinds, only: dp
+  use body, only: body_t
+  implicit none
+  private
+  public :: floating_t, find_floating_modes, mode_name
+
+  type :: floating_t
+    integer :: k = 0                         !< number of free rigid modes, all bodies
+    real(dp), allocatable :: r(:,:)          !< (ndof, k) the modes, zero on fixed dofs, unit length
+    integer, allocatable :: mode_body(:)     !< (k) body of each mode
+    real(dp), allocatable :: coef(:,:)       !< (3, k) mode = coef(1) tx + coef(2) ty + coef(3) rotation
+    integer, allocatable :: pin(:)           !< (k) dofs held at zero in the factorization
+  end type floating_t
+
+  interface
+    subroutine dgesvd(jobu, jobvt, m, n, a, lda, s, u, ldu, vt, ldvt, work, lwork, info)
+      import :: dp
+      character, intent(in) :: jobu, jobvt
+      integer, intent(in) :: m, n, lda, ldu, ldvt, lwork
+      real(dp), intent(inout) :: a(lda, *)
+      real(dp), intent(out) :: s(*), u(ldu, *), vt(ldvt, *), work(*)
+      integer, intent(out) :: info
+    end subroutine dgesvd
+    subroutine dgeqp3(m, n, a, lda, jpvt, tau, work, lwork, info)
+      import :: dp
+      integer, intent(in) :: m, n, lda, lwork
+      real(dp), intent(inout) :: a(lda, *)
+      integer, intent(inout) :: jpvt(*)
+      real(dp), intent(out) :: tau(*), work(*)
+      integer, intent(out) :: info
+    end subroutine dgeqp3
+  end interface
+
+contains
+
+  !> Free rigid modes of every body and the dofs pinned to factorize K^#.
+  !>   bodies (in)  the bodies, dof0 set
+  !>   fixed  (in)  (ndof) Dirichlet dofs
+  !>   fl     (out) the modes (fl%k = 0 when every body is held by its FIX)
+  subroutine find_floating_modes(bodies, fixed, fl)
+    type(body_t), intent(in) :: bodies(:)
+    logical, intent(in) :: fixed(:)
+    type(floating_t), intent(out) :: fl
+    integer :: b, nb, kb, ndof, j
+    real(dp), allocatable :: modes(:,:), coefs(:,:)
+    integer, allocatable :: pins(:)
+    real(dp), allocatable :: r(:,:), c(:,:)
+    integer, allocatable :: mb(:), pn(:)
+
+    ndof = size(fixed)
+    allocate(r(ndof, 0), c(3, 0), mb(0), pn(0))
+    nb = size(bodies)
+    do b = 1, nb
+      call body_modes(bodies(b), fixed, modes, coefs, pins)
+      kb = size(modes, 2)
+      if (kb == 0) cycle
+      r = reshape([r, [(0.0_dp, j = 1, ndof * kb)]], [ndof, size(r, 2) + kb])
+      r(bodies(b)%dof0 + 1:bodies(b)%dof0 + 2 * bodies(b)%mesh%nnode, size(r, 2) - kb + 1:) = modes
+      c = reshape([c, coefs], [3, size(c, 2) + kb])
+      mb = [mb, [(b, j = 1, kb)]]
+      pn = [pn, bodies(b)%dof0 + pins]
+    end do
+    fl%k = size(mb)
+    call move_alloc(r, fl%r)
+    call move_alloc(c, fl%coef)
+    call move_alloc(mb, fl%mode_body)
+    call move_alloc(pn, fl%pin)
+  end subroutine find_floating_modes
+
+  !> Free modes of one body: modes (2 nnode, kb), coefs (3, kb), pins (kb)
+  !> as dofs local to the body.
+  subroutine body_modes(bd, fixed, modes, coefs, pins)
+    type(body_t), intent(in) :: bd
+    logical, intent(in) :: fixed(:)
+    real(dp), allocatable, intent(out) :: modes(:,:), coefs(:,:)
+    integer, allocatable, intent(out) :: pins(:)
+    real(dp), allocatable :: r3(:,:), cmat(:,:), a(:,:), tau(:), work(:)
+    real(dp) :: xc(2), size_b, s(3), u(1, 1), vt(3, 3), wq(1)
+    integer :: n, nd, a_, i, nfix, m, info, kb, j, lwork
+    integer, allocatable :: fdofs(:), free(:), jpvt(:)
+
+    n = bd%mesh%nnode
+    nd = 2 * n
+    xc = sum(bd%mesh%x, dim=2) / n
+    size_b = max(maxval(bd%mesh%x(1, :)) - minval(bd%mesh%x(1, :)), &
+                 maxval(bd%mesh%x(2, :)) - minval(bd%mesh%x(2, :)))
+    allocate(r3(nd, 3))
+    do a_ = 1, n                                  ! tx, ty, rotation / size
+      r3(2 * a_ - 1, :) = [1.0_dp, 0.0_dp, -(bd%mesh%x(2, a_) - xc(2)) / size_b]
+      r3(2 * a_, :) = [0.0_dp, 1.0_dp, (bd%mesh%x(1, a_) - xc(1)) / size_b]
+    end do
+    fdofs = pack([(i, i = 1, nd)], fixed(bd%dof0 + 1:bd%dof0 + nd))
+    nfix = size(fdofs)
+    ! null space of C = r3(fixed dofs, :)
+    if (nfix == 0) then
+      vt = reshape([1.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 1.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 1.0_dp], [3, 3])
+      s = 0.0_dp
+      kb = 3
+    else
+      m = nfix
+      cmat = r3(fdofs, :)
+      call dgesvd('N', 'A', m, 3, cmat, m, s, u, 1, vt, 3, wq, -1, info)
+      lwork = int(wq(1))
+      allocate(work(lwork))
+      s = 0.0_dp
+      call dgesvd('N', 'A', m, 3, cmat, m, s, u, 1, vt, 3, work, lwork, info)
+      deallocate(work)
+      ! singular values beyond min(m, 3) are zero; tolerance relative to s(1) >= 1
+      kb = count(s(1:3) <= 1.0e-10_dp * max(s(1), 1.0_dp))
+    end if
+    allocate(modes(nd, kb), coefs(3, kb), pins(kb))
+    if (kb == 0) return
+    ! the last kb right singular vectors span the null space
+    coefs = transpose(vt(3 - kb + 1:3, :))
+    modes = matmul(r3, coefs)
+    do j = 1, kb
+      modes(fdofs, j) = 0.0_dp
+      modes(:, j) = modes(:, j) / norm2(modes(:, j))
+    end do
+    ! pinned dofs: QR with column pivoting of modes' over the free dofs
+    free = pack([(i, i = 1, nd)], .not. fixed(bd%dof0 + 1:bd%dof0 + nd))
+    a = transpose(modes(free, :))
+    allocate(jpvt(size(free)), tau(kb))
+    jpvt = 0
+    call dgeqp3(kb, size(free), a, kb, jpvt, tau, wq, -1, info)
+    lwork = int(wq(1))
+    allocate(work(lwork))
+    call dgeqp3(kb, size(free), a, kb, jpvt, tau, work, lwork, info)
+    pins = free(jpvt(1:kb))
+  end subroutine body_modes
+
+  !> A readable name of mode j from its coefficients.
+  function mode_name(fl, j) result(name)
+    type(floating_t), intent(in) :: fl
+    integer, intent(in) :: j
+    character(len=:), allocatable :: name
+    real(dp) :: c(3)
+    c = abs(fl%coef(:, j)) / maxval(abs(fl%coef(:, j)))
+    name = ''
+    if (c(1) > 1.0e-8_dp) name = name // '+translation x'
+    if (c(2) > 1.0e-8_dp) name = name // '+translation y'
+    if (c(3) > 1.0e-8_dp) name = name // '+rotation'
+    name = name(2:)
+  end function mode_name
+
+end module rigid_modes
