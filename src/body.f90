@@ -16,6 +16,7 @@
 !>   assemble_stiffness(bodies, eq, ubar, k, rhs)   add K_ff to k, subtract K_fd ubar from rhs
 !>   internal_forces(bodies, u, fint)               fint = K u (all dofs, element by element)
 !>   element_stresses(bodies, u, stress, vm)        per element (3, nelem_total) and von Mises
+!>   element_response(bodies, u, stress, vm, fint)  both in one element loop (OpenMP, atomic adds)
 !>   node_elements(mesh, ptr, list)                 elements around each node (CSR)
 !>   edge_outward_normal(mesh, eptr, elist, a, b, nrm, owner)  unit normal of edge a-b
 !>        pointing out of its element; owner = that element, 0 when no element has
@@ -29,7 +30,7 @@ module body
   implicit none
   private
   public :: body_t, number_equations, build_pattern, assemble_stiffness, internal_forces
-  public :: element_stresses, node_elements, element_dofs, edge_outward_normal
+  public :: element_stresses, node_elements, element_dofs, edge_outward_normal, element_response
 
   type :: body_t
     character(len=:), allocatable :: name  !< as in the deck
@@ -321,5 +322,38 @@ contains
     xc = sum(mesh%x(:, mesh%conn(1:mesh%nen(owner), owner)), dim=2) / mesh%nen(owner)
     if (dot_product(nrm, xc - mesh%x(:, a)) > 0.0_dp) nrm = -nrm
   end subroutine edge_outward_normal
+
+  !> Stresses, von Mises and internal forces fint = K u in one element loop,
+  !> threaded with OpenMP (fint accumulated by atomic adds: an array reduction
+  !> would put a private copy of fint on each thread's stack).
+  subroutine element_response(bodies, u, stress, vm, fint)
+    type(body_t), intent(in) :: bodies(:)
+    real(dp), intent(in) :: u(:)
+    real(dp), intent(out) :: stress(:,:), vm(:), fint(:)
+    integer :: b, e, nen, ge, i
+    integer :: dofs(8)
+    real(dp) :: ke(8, 8), eps(3), fe(8)
+    fint = 0.0_dp
+    do b = 1, size(bodies)
+      associate(m => bodies(b)%mesh, bd => bodies(b))
+        !$omp parallel do private(e, nen, ge, dofs, ke, eps, fe, i) schedule(static)
+        do e = 1, m%nelem
+          nen = m%nen(e)
+          ge = bd%elem0 + e
+          call element_dofs(bd, e, dofs)
+          call element_stiffness(nen, m%x(:, m%conn(1:nen, e)), bd%law%d, bd%thick, ke(1:2 * nen, 1:2 * nen))
+          fe(1:2 * nen) = matmul(ke(1:2 * nen, 1:2 * nen), u(dofs(1:2 * nen)))
+          do i = 1, 2 * nen
+            !$omp atomic
+            fint(dofs(i)) = fint(dofs(i)) + fe(i)
+          end do
+          call element_strain(nen, m%x(:, m%conn(1:nen, e)), u(dofs(1:2 * nen)), eps)
+          stress(:, ge) = matmul(bd%law%d, eps)
+          vm(ge) = von_mises(bd%law, stress(:, ge))
+        end do
+        !$omp end parallel do
+      end associate
+    end do
+  end subroutine element_response
 
 end module body

@@ -12,9 +12,9 @@ program contact2d
   use diagnostics, only: diag_t, add_error, stop_input_errors, fail_numerical, exit_program, error_t, int_to_str
   use deck_reader, only: deck_t, read_deck
   use scene, only: scene_t, build_scene
-  use body, only: number_equations, build_pattern, assemble_stiffness, internal_forces, element_stresses
+  use body, only: number_equations, build_pattern, assemble_stiffness, element_response
   use sparse_matrix, only: csc_t
-  use sparse_cholesky, only: factor_t, factorize, solve, factor_nnz
+  use sparse_cholesky, only: factor_t, factorize, solve, factor_nnz, factor_memory
   use contact_set, only: contact_set_t, build_contact_set
   use contact_condensation, only: contact_equations, condense, contact_forces, recover
   use lcp_solvers, only: lcp_options_t
@@ -44,7 +44,7 @@ program contact2d
   integer, allocatable :: eq(:), last(:)
   logical, allocatable :: held(:)
   integer :: nfree, i, nlabel
-  integer(i8) :: t_start, t_phase
+  integer(i8) :: t_start, t_phase, t_solve, t_now, t_rate
   real(dp), allocatable :: rhs(:,:), x(:,:), u0(:), w(:,:), q(:), fint(:), fc(:)
 
   call parse_command_line(deck_path, outdir, check_only, quiet)
@@ -54,14 +54,20 @@ program contact2d
   ! --- deck and scene ---------------------------------------------------
   call read_deck(deck_path, deck, diag)
   call stop_input_errors(diag)
-  call make_folder(outdir, diag)
+  if (.not. check_only) call make_folder(outdir, diag)
   call stop_input_errors(diag)
-  call build_scene(deck, outdir, sc, diag)
+  call build_scene(deck, temp_folder(), sc, diag)
   call stop_input_errors(diag)
   call build_contact_set(sc%bodies, sc%specs, cs, err)
   if (allocated(err)) call contact_error(err)
+  do i = 1, cs%npair
+    if (cs%pair(i)%nrow == 0) write(error_unit, '(a)') 'contact2d: warning: ' // deck%file // ':' // &
+      int_to_str(deck%contacts(i)%line) // ': no part of the master boundary faces the slave boundary: ' // &
+      'this pair can never touch (check the boundary names and the slave/master choice)'
+  end do
   ! free rigid modes (bodies held only by contact): pin k dofs to factorize K^#
   call find_floating_modes(sc%bodies, sc%fixed, fl)
+  call check_floating_bodies()
   held = sc%fixed
   if (fl%k > 0) held(fl%pin) = .true.
   call number_equations(held, eq, nfree)
@@ -92,12 +98,17 @@ program contact2d
   else
     call factorize(factor, k, err)
   end if
-  if (allocated(err)) call fail_numerical(err%message)
+  if (allocated(err)) call fail_numerical(err%message // equation_location(err%message))
   res%factor_nnz = factor_nnz(factor)
+  res%factor_memory = real(factor_memory(factor), dp)
+  deallocate(k%colptr, k%rowind, k%val)      ! K lives on in its factor only
   call lap(ph_factor)
 
   ! --- u0 = K^-1 f ------------------------------------------------------
+  call system_clock(t_solve)
   call solve(factor, rhs, x)
+  call system_clock(t_now, t_rate)
+  res%time_solve = real(t_now - t_solve, dp) / real(t_rate, dp)
   allocate(u0(sc%ndof))
   u0 = sc%ubar
   do i = 1, sc%ndof
@@ -124,11 +135,11 @@ program contact2d
     res%u = u0
   end if
   if (.not. all(ieee_is_finite(res%u))) call fail_numerical('the displacement is not finite (overflow in the solve)')
+  call lap(ph_recover)
 
   ! --- stresses, reactions, energy -----------------------------------------
   allocate(res%stress(3, sc%nelem), res%vm(sc%nelem), fint(sc%ndof))
-  call element_stresses(sc%bodies, res%u, res%stress, res%vm)
-  call internal_forces(sc%bodies, res%u, fint)
+  call element_response(sc%bodies, res%u, res%stress, res%vm, fint)
   res%energy = 0.5_dp * dot_product(res%u, fint)
   allocate(res%reaction(2, size(sc%fixes)), source=0.0_dp)
   nlabel = 1
@@ -147,7 +158,7 @@ program contact2d
     end if
   end do
   call nodal_contact_fields()
-  call lap(ph_recover)
+  call lap(ph_output)             ! stresses, reactions and energy are post-processing
 
   ! --- outputs ------------------------------------------------------------
   call write_outputs()
@@ -358,9 +369,67 @@ contains
       write(line, '(a,f12.4)') phase_names(p), res%time(p)
       call say(trim(line))
     end do
-    call say('wrote    ' // outdir // '/' // deck%output%vtk // ', ' // trim(merge(deck%output%contact // ', ', &
-             repeat(' ', len(deck%output%contact) + 2), cs%npair > 0)) // ' ' // deck%output%summary)
+    if (cs%npair > 0) then
+      call say('wrote    ' // outdir // '/' // deck%output%vtk // ', ' // deck%output%contact // ', ' // deck%output%summary)
+    else
+      call say('wrote    ' // outdir // '/' // deck%output%vtk // ', ' // deck%output%summary)
+    end if
   end subroutine report_run
+
+  !> Folder for temporary files (gmsh's meshes of .geo files): $TMPDIR or /tmp.
+  function temp_folder() result(path)
+    character(len=:), allocatable :: path
+    integer :: n, stat
+    call get_environment_variable('TMPDIR', length=n, status=stat)
+    if (stat == 0 .and. n > 0) then
+      allocate(character(len=n) :: path)
+      call get_environment_variable('TMPDIR', path)
+    else
+      path = '/tmp'
+    end if
+  end function temp_folder
+
+  !> A body whose FIX leaves a rigid mode free must be held by a CONTACT.
+  subroutine check_floating_bodies()
+    integer :: j, ip, b
+    logical :: in_contact
+    do j = 1, fl%k
+      b = fl%mode_body(j)
+      in_contact = .false.
+      do ip = 1, size(sc%specs)
+        if (sc%specs(ip)%slave_body == b .or. sc%specs(ip)%master_body == b) in_contact = .true.
+      end do
+      if (.not. in_contact) call add_error(diag, deck%file, deck%bodies(b)%line, 'body "' // sc%bodies(b)%name // &
+        '": its FIX statements leave a rigid-body mode free (' // mode_name(fl, j) // ') and no CONTACT holds ' // &
+        'the body (a FIX that blocks it, or a CONTACT, expected)')
+    end do
+    call stop_input_errors(diag)
+  end subroutine check_floating_bodies
+
+  !> ': body NAME node N at (x, y), component u_x' for a message naming a free
+  !> equation ('at equation K'); '' when it names none.
+  function equation_location(message) result(where)
+    character(len=*), intent(in) :: message
+    character(len=:), allocatable :: where
+    integer :: p, ios, eqn, d, b, node
+    character(len=64) :: buf
+    where = ''
+    p = index(message, 'at equation ')
+    if (p == 0) return
+    read(message(p + 12:), *, iostat=ios) eqn
+    if (ios /= 0) return
+    do d = 1, size(eq)
+      if (eq(d) /= eqn) cycle
+      do b = size(sc%bodies), 1, -1
+        if (d > sc%bodies(b)%dof0) exit
+      end do
+      node = (d - sc%bodies(b)%dof0 + 1) / 2
+      write(buf, '(a,es11.4,a,es11.4,a)') ' at (', sc%bodies(b)%mesh%x(1, node), ',', sc%bodies(b)%mesh%x(2, node), ')'
+      where = '; that is body "' // sc%bodies(b)%name // '", node ' // int_to_str(node) // trim(buf) // &
+              ', component ' // merge('u_x', 'u_y', mod(d - sc%bodies(b)%dof0, 2) == 1)
+      return
+    end do
+  end function equation_location
 
   !> Create the output folder (and its parents) when missing.
   subroutine make_folder(path, d)

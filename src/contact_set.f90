@@ -254,16 +254,19 @@ contains
         d0m = bodies(pr%spec%master_body)%dof0
         ns = size(pr%snode); nm = size(pr%mnode)
         do i = mo%first, mo%last
-          touched(d0s + 2 * (pr%snode(i) - 1) + [1, 2]) = .true.
           pmax = maxval(abs(mo%p(i, :)))
           drop = 1.0e-16_dp * pmax
-          do j = 1, nm
-            if (abs(mo%p(i, j)) > drop) then
-              touched(d0m + 2 * (pr%mnode(j) - 1) + [1, 2]) = .true.
-              nnz = nnz + 2
-            end if
+          do c = 1, 2                       ! a dof is a contact dof only where its coefficient is non-zero
+            if (mo%normal(c, i) == 0.0_dp) cycle
+            touched(d0s + 2 * (pr%snode(i) - 1) + c) = .true.
+            nnz = nnz + 1
+            do j = 1, nm
+              if (abs(mo%p(i, j)) > drop) then
+                touched(d0m + 2 * (pr%mnode(j) - 1) + c) = .true.
+                nnz = nnz + 1
+              end if
+            end do
           end do
-          nnz = nnz + 2
         end do
       end associate
     end do
@@ -294,16 +297,15 @@ contains
           cs%row_pair(r) = ip
           cs%row_node(r) = i
           cs%g(r) = mo%gap0(i)
-          do c = 1, 2                                   ! + n_i . u1(x_i)
-            k = k + 1
-            cs%bcol(k) = colmap(d0s + 2 * (pr%snode(i) - 1) + c)
-            cs%bval(k) = mo%normal(c, i)
-          end do
           pmax = maxval(abs(mo%p(i, :)))
           drop = 1.0e-16_dp * pmax
-          do j = 1, nm                                  ! - n_i . sum_j P_ij u2(y_j)
-            if (abs(mo%p(i, j)) <= drop) cycle
-            do c = 1, 2
+          do c = 1, 2
+            if (mo%normal(c, i) == 0.0_dp) cycle
+            k = k + 1                                   ! + n_i . u1(x_i)
+            cs%bcol(k) = colmap(d0s + 2 * (pr%snode(i) - 1) + c)
+            cs%bval(k) = mo%normal(c, i)
+            do j = 1, nm                                ! - n_i . sum_j P_ij u2(y_j)
+              if (abs(mo%p(i, j)) <= drop) cycle
               k = k + 1
               cs%bcol(k) = colmap(d0m + 2 * (pr%mnode(j) - 1) + c)
               cs%bval(k) = -mo%normal(c, i) * mo%p(i, j)

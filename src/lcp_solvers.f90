@@ -15,9 +15,10 @@
 !> diagonal is zero (W_ii <= 1e-30 max_j W_jj) is a redundant constraint: for a
 !> PSD W its whole row and column vanish, w_i = q_i whatever z, and z_i = 0 is
 !> taken; it is scaled with d_i = 1/sqrt(max_j W_jj).  If such a row has
-!> qs_i < -tol max(1, ||qs||_inf) the LCP has no solution (info = 1).
+!> qs_i < -tol ||qs||_inf the LCP has no solution (info = 1).
 !> Tolerances are relative to the scaled problem; the measures reported are
-!>     residual         r = || min(zs, ws) ||_inf / max(1, ||qs||_inf)
+!>     residual         r = || min(zs, ws) ||_inf / ||qs||_inf  (1 in place of
+!>                      ||qs|| when q = 0): scale-free, whatever the units of q
 !>                      (the natural residual: r = 0 iff z solves the LCP),
 !>     complementarity  max_i |zs_i ws_i| / (max_i |zs_i| max_i |qs_i|)
 !>                      (zs_i ws_i = z_i w_i; 0 when z = 0; divided by
@@ -90,7 +91,7 @@ module lcp_solvers
     integer, allocatable :: rows(:)       !< (m) original indices of the rows kept
     real(dp), allocatable :: ws(:, :)     !< (m, m) (D W D)(rows, rows)
     real(dp), allocatable :: qs(:)        !< (m) (D q)(rows)
-    real(dp) :: qscale = 1.0_dp           !< max(1, ||D q||_inf) over all n rows
+    real(dp) :: qscale = 1.0_dp           !< ||D q||_inf over all n rows (1 when q = 0)
   end type scaled_lcp_t
 
   real(dp), parameter :: diag_zero_ratio = 1.0e-30_dp      ! W_ii below this * max diag: zero row
@@ -240,7 +241,7 @@ contains
     end select
   end subroutine solve_lcp_pgs
 
-  !> Scaled natural residual r = ||min(zs, ws)||_inf / max(1, ||qs||_inf) of a
+  !> Scaled natural residual r = ||min(zs, ws)||_inf / ||qs||_inf of a
   !> candidate z (zs = D^-1 z, ws = D (q + W z), qs = D q, D as in scale_lcp).
   !> r = 0 exactly when z solves LCP(W, q).
   !>   W  (in) (n, n)
@@ -289,6 +290,13 @@ contains
   ! ---------------------------------------------------------------------------
   ! Internals
   ! ---------------------------------------------------------------------------
+
+  !> The scale of the scaled q: its largest entry, 1 when q = 0.
+  pure real(dp) function scale_of(qmax) result(sc)
+    real(dp), intent(in) :: qmax
+    sc = qmax
+    if (.not. (sc > 0.0_dp)) sc = 1.0_dp
+  end function scale_of
 
   !> d_i = 1/sqrt(W_ii), or 1/sqrt(max diag) on a zero row (see scale_lcp).
   pure subroutine scaling_vector(W, d)
@@ -397,7 +405,7 @@ contains
     call scaling_vector(W, p%d)
     qs_all = p%d * q                                    ! qs = D q
     p%qscale = 1.0_dp
-    if (n > 0) p%qscale = max(1.0_dp, maxval(abs(qs_all)))
+    if (n > 0) p%qscale = scale_of(maxval(abs(qs_all)))
 
     ! Zero rows: z_i = 0, feasible only when q_i is not clearly negative.
     p%m = 0
@@ -468,7 +476,7 @@ contains
     zs = z / d                                                ! zs = D^-1 z
     ws = d * gap                                              ! ws = D w
     qmax = maxval(abs(d * q))
-    rep%residual = maxval(abs(min(zs, ws))) / max(1.0_dp, qmax)
+    rep%residual = maxval(abs(min(zs, ws))) / scale_of(qmax)
     prod = maxval(abs(zs * ws))
     zmax = maxval(abs(zs))
     if (prod > 0.0_dp) then

@@ -51,6 +51,8 @@ module results_writer
     integer(i8) :: factor_nnz = 0
     real(dp) :: time(nphase) = 0                 !< seconds per phase_names
     real(dp) :: memory_peak = 0                  !< peak resident memory, bytes (0 when unknown)
+    real(dp) :: factor_memory = 0                !< CHOLMOD's peak memory for the factor, bytes
+    real(dp) :: time_solve = 0                   !< seconds of the one solve u0 = K^-1 f (inside a phase)
   end type results_t
 
   interface
@@ -228,9 +230,11 @@ contains
     end do
     write(u, '(a,i0)') 'factor_nnz ', r%factor_nnz
     write(u, '(a,a)') 'memory_peak_mb ', num(r%memory_peak / 1048576.0_dp)
+    write(u, '(a,a)') 'factor_memory_mb ', num(r%factor_memory / 1048576.0_dp)
     do k = 1, nphase
       write(u, '(a,a)') 'time_' // trim(phase_names(k)) // ' ', num(r%time(k))
     end do
+    write(u, '(a,a)') 'time_solve ', num(r%time_solve)
     close(u, iostat=ios)
     ok = ios == 0
   end subroutine write_summary
