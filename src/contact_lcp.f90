@@ -48,6 +48,23 @@ module contact_lcp
       integer, intent(out) :: ipiv(*), info
       real(dp), intent(out) :: work(*)
     end subroutine dsysv
+    subroutine dpstrf(uplo, n, a, lda, piv, rank, tol, work, info)
+      import :: dp
+      character, intent(in) :: uplo
+      integer, intent(in) :: n, lda
+      real(dp), intent(inout) :: a(lda, *)
+      integer, intent(out) :: piv(*), rank, info
+      real(dp), intent(in) :: tol
+      real(dp), intent(out) :: work(*)
+    end subroutine dpstrf
+    subroutine dpotrs(uplo, n, nrhs, a, lda, b, ldb, info)
+      import :: dp
+      character, intent(in) :: uplo
+      integer, intent(in) :: n, nrhs, lda, ldb
+      real(dp), intent(in) :: a(lda, *)
+      real(dp), intent(inout) :: b(ldb, *)
+      integer, intent(out) :: info
+    end subroutine dpotrs
     subroutine dgesvd(jobu, jobvt, m, n, a, lda, s, u, ldu, vt, ldvt, work, lwork, info)
       import :: dp
       character, intent(in) :: jobu, jobvt
@@ -176,14 +193,32 @@ contains
     sol%rep%residual = lcp_natural_residual(w, q - matmul(h, sol%alpha), sol%mu)
   end subroutine solve_contact
 
+  !> One LCP(W, q) by Lemke or PGS.  PGS stops on its residual, which on an
+  !> ill-conditioned W (stiffness contrasts) still leaves errors of order
+  !> cond(W) x tol in z, or stagnates; its active set is then finished by the
+  !> exact solve W_AA z_A = -q_A, kept only when it satisfies the LCP to the
+  !> tolerance (z >= 0, w >= 0, smaller residual).
   subroutine run_solver(method, w, q, opts, z, rep)
     character(len=*), intent(in) :: method
     real(dp), intent(in) :: w(:,:), q(:)
     type(lcp_options_t), intent(in) :: opts
     real(dp), intent(inout) :: z(:)
     type(lcp_report_t), intent(out) :: rep
+    real(dp), allocatable :: h0(:,:), e0(:), lam0(:), zf(:)
+    real(dp) :: r
     if (method == 'pgs') then
       call solve_lcp_pgs(w, q, z, opts, rep)
+      if (rep%info == 0 .or. rep%info == 3) then
+        allocate(h0(size(q), 0), e0(0), lam0(0))
+        zf = z
+        call finish_exact(w, q, h0, e0, zf, lam0)
+        r = lcp_natural_residual(w, q, zf)
+        if (r <= opts%tol .and. r <= rep%residual) then
+          z = zf
+          rep%residual = r
+          rep%info = 0
+        end if
+      end if
     else
       call solve_lcp_lemke(w, q, z, opts, rep)
     end if
@@ -211,10 +246,16 @@ contains
     a(na + 1:n, 1:na) = -transpose(h(act, :))
     b(1:na, 1) = -q(act)
     b(na + 1:n, 1) = -e
-    call dsysv('U', n, 1, a, n, ipiv, b, n, wq, -1, info)
-    lwork = max(1, int(wq(1)))
-    allocate(work(lwork))
-    call dsysv('U', n, 1, a, n, ipiv, b, n, work, lwork, info)
+    if (k == 0) then
+      ! pure LCP: W_AA may be singular (redundant constraints): pivoted
+      ! Cholesky, solve on the independent rows, zero on the dependent ones
+      call solve_psd_subset(a, b(:, 1), info)
+    else
+      call dsysv('U', n, 1, a, n, ipiv, b, n, wq, -1, info)
+      lwork = max(1, int(wq(1)))
+      allocate(work(lwork))
+      call dsysv('U', n, 1, a, n, ipiv, b, n, work, lwork, info)
+    end if
     if (info /= 0) return
     mu_new = mu
     mu_new(act) = b(1:na, 1)
@@ -225,6 +266,29 @@ contains
     mu = mu_new
     lam = b(na + 1:n, 1)
   end subroutine finish_exact
+
+  !> x = A^+ b in the pivoted Cholesky sense: A (n, n) symmetric PSD, factorized
+  !> P' A P = L L' of rank r by dpstrf; x solves on the r pivots, 0 on the rest.
+  !> b is overwritten by x; info /= 0 when dpstrf fails.
+  subroutine solve_psd_subset(a, b, info)
+    real(dp), intent(inout) :: a(:,:), b(:)
+    integer, intent(out) :: info
+    integer :: n, rank
+    integer, allocatable :: piv(:)
+    real(dp), allocatable :: work(:), y(:)
+    n = size(b)
+    info = 0
+    if (n == 0) return
+    allocate(piv(n), work(2 * n))
+    call dpstrf('L', n, a, n, piv, rank, -1.0_dp, work, info)
+    if (info < 0) return
+    info = 0
+    y = b(piv(1:rank))
+    call dpotrs('L', rank, 1, a, n, y, rank, info)
+    if (info /= 0) return
+    b = 0.0_dp
+    b(piv(1:rank)) = y
+  end subroutine solve_psd_subset
 
   function real_str(x) result(s)
     real(dp), intent(in) :: x

@@ -27,7 +27,7 @@ module contact_set
   implicit none
   private
   public :: contact_set_t, pair_spec_t, contact_pair_t, chain_boundary, boundary_polyline
-  public :: build_contact_set
+  public :: build_contact_set, row_of_node
 
   !> What a CONTACT statement says, resolved to indices.
   type :: pair_spec_t
@@ -43,7 +43,9 @@ module contact_set
     real(dp), allocatable :: xs(:,:)       !< (2, ns) slave node coordinates
     type(mortar_t) :: mortar               !< pi_h^1, normals, gap0, weights
     integer :: row0 = 0                    !< rows row0+1 .. row0+nrow of B
-    integer :: nrow = 0                    !< constrained slave nodes (effective zone)
+    integer :: nrow = 0                    !< constrained slave nodes
+    logical, allocatable :: row(:)         !< (ns) slave node carries a constraint row: in the
+                                           !< effective zone and with master opposite
   end type contact_pair_t
 
   type :: contact_set_t
@@ -230,11 +232,8 @@ contains
           return
         end if
         pr%row0 = cs%nrow
-        if (pr%mortar%first > 0) then
-          pr%nrow = pr%mortar%last - pr%mortar%first + 1
-        else
-          pr%nrow = 0
-        end if
+        call constrained_nodes(pr%mortar, pr%row)
+        pr%nrow = count(pr%row)
         cs%nrow = cs%nrow + pr%nrow
       end associate
     end do
@@ -254,6 +253,7 @@ contains
         d0m = bodies(pr%spec%master_body)%dof0
         ns = size(pr%snode); nm = size(pr%mnode)
         do i = mo%first, mo%last
+          if (.not. pr%row(i)) cycle
           pmax = maxval(abs(mo%p(i, :)))
           drop = 1.0e-16_dp * pmax
           do c = 1, 2                       ! a dof is a contact dof only where its coefficient is non-zero
@@ -292,8 +292,10 @@ contains
         d0s = bodies(pr%spec%slave_body)%dof0
         d0m = bodies(pr%spec%master_body)%dof0
         nm = size(pr%mnode)
+        r = pr%row0
         do i = mo%first, mo%last
-          r = pr%row0 + i - mo%first + 1
+          if (.not. pr%row(i)) cycle
+          r = r + 1
           cs%row_pair(r) = ip
           cs%row_node(r) = i
           cs%g(r) = mo%gap0(i)
@@ -316,5 +318,42 @@ contains
       end associate
     end do
   end subroutine build_contact_set
+
+  !> Slave nodes that carry a constraint row: those of the effective zone
+  !> first..last that have master opposite.  Where the master covers only part
+  !> of an end segment, the end node lies beyond the master: a nodal
+  !> constraint there would press it against the master's extrapolated edge
+  !> (a spurious force); the master's corner is held by the covered node next
+  !> to it.  When no node is covered (a master inside one slave segment) both
+  !> end nodes keep their rows.
+  subroutine constrained_nodes(mo, row)
+    type(mortar_t), intent(in) :: mo
+    logical, allocatable, intent(out) :: row(:)
+    real(dp), parameter :: tol = 1.0e-10_dp
+    integer :: k, i
+    allocate(row(mo%ns), source=.false.)
+    if (mo%first == 0) return
+    row(mo%first:mo%last) = .true.
+    do i = mo%first, mo%last, max(1, mo%last - mo%first)
+      row(i) = .false.
+      do k = 1, mo%inter%nsub
+        if (mo%inter%slave_seg(k) == i .and. mo%inter%s(1, k) <= tol) row(i) = .true.
+        if (mo%inter%slave_seg(k) == i - 1 .and. mo%inter%s(2, k) >= 1.0_dp - tol) row(i) = .true.
+      end do
+    end do
+    if (.not. any(row)) then
+      row(mo%first) = .true.
+      row(mo%last) = .true.
+    end if
+  end subroutine constrained_nodes
+
+  !> Constraint row of slave node i of pair ip, 0 when it has none.
+  pure integer function row_of_node(cs, ip, i) result(r)
+    type(contact_set_t), intent(in) :: cs
+    integer, intent(in) :: ip, i
+    r = 0
+    if (.not. cs%pair(ip)%row(i)) return
+    r = cs%pair(ip)%row0 + count(cs%pair(ip)%row(1:i))
+  end function row_of_node
 
 end module contact_set

@@ -903,10 +903,10 @@ contains
       end do
     case (1)
       do p = 1, size(phys)
-        call push_record(d%edges, [phys(p), node(1), node(2)])
+        call push_record(d%edges, [phys(p), node(1), node(2), int(t%ln, i8)])
       end do
     case (2, 3)
-      call push_record(d%raw, [int(nn, i8), node])
+      call push_record(d%raw, [int(nn, i8), node, int(t%ln, i8)])
       do p = 1, size(phys)
         call push_record(d%region_pairs, [phys(p), int(d%raw%n, i8)])
       end do
@@ -977,11 +977,12 @@ contains
     mesh%nnode = d%nnode
     mesh%x = d%x
     mesh%nelem = nelem
-    allocate(mesh%nen(nelem), mesh%conn(4, nelem))
+    allocate(mesh%nen(nelem), mesh%conn(4, nelem), mesh%elem_line(nelem))
     do r = 1, nraw
       if (rep(r) /= r) cycle
       mesh%nen(elem_of_raw(r)) = int(d%raw%v(1, r))
       mesh%conn(:, elem_of_raw(r)) = int(d%raw%v(2:5, r))
+      mesh%elem_line(elem_of_raw(r)) = int(d%raw%v(6, r))
     end do
     call build_boundaries(d, mesh)
     call build_regions(d, elem_of_raw, mesh)
@@ -1031,7 +1032,7 @@ contains
     allocate(mesh%bnd(nset))
     do b = 1, nset
       mesh%bnd(b)%name = set_name(b)%s
-      allocate(mesh%bnd(b)%seg(2, nseg(b)), mesh%bnd(b)%points(npt(b)))
+      allocate(mesh%bnd(b)%seg(2, nseg(b)), mesh%bnd(b)%points(npt(b)), mesh%bnd(b)%seg_line(nseg(b)))
     end do
     do i = 1, ne
       if (dup(i)) cycle
@@ -1039,6 +1040,7 @@ contains
       r = mesh%bnd(b)%nseg + 1
       mesh%bnd(b)%nseg = r
       mesh%bnd(b)%seg(:, r) = int(d%edges%v(2:3, i))
+      mesh%bnd(b)%seg_line(r) = int(d%edges%v(4, i))
     end do
     do i = 1, np
       if (dup(ne + i)) cycle

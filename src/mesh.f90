@@ -30,6 +30,7 @@ module mesh
     character(len=:), allocatable :: name  !< case-sensitive name
     integer :: nseg = 0                     !< number of edges
     integer, allocatable :: seg(:,:)        !< (2, nseg) node ids of each edge
+    integer, allocatable :: seg_line(:)     !< (nseg) line of each edge in its mesh file (when read)
     integer :: npoint = 0                   !< number of points (physical points)
     integer, allocatable :: points(:)       !< (npoint) node ids
   end type boundary_t
@@ -46,6 +47,7 @@ module mesh
     real(dp), allocatable :: x(:,:)         !< (2, nnode) coordinates
     integer, allocatable :: nen(:)          !< (nelem) nodes per element, 3 or 4
     integer, allocatable :: conn(:,:)       !< (4, nelem) connectivity
+    integer, allocatable :: elem_line(:)    !< (nelem) line of each element in its mesh file (when read)
     type(boundary_t), allocatable :: bnd(:) !< named boundaries and point sets
     type(region_t), allocatable :: reg(:)   !< named element regions
   end type mesh_t
@@ -108,6 +110,23 @@ contains
       end do
     end if
 
+    ! Boundary edges of zero length (two distinct nodes at one point).
+    if (allocated(mesh%bnd)) then
+      scale = maxval(abs(mesh%x(:, 1:mesh%nnode)))
+      do b = 1, size(mesh%bnd)
+        do k = 1, mesh%bnd(b)%nseg
+          if (norm2(mesh%x(:, mesh%bnd(b)%seg(2, k)) - mesh%x(:, mesh%bnd(b)%seg(1, k))) <= 1.0e-12_dp * scale) then
+            n = 0
+            if (allocated(mesh%bnd(b)%seg_line)) n = mesh%bnd(b)%seg_line(k)
+            call add_error(diag, file, n, 'boundary "' // mesh%bnd(b)%name // '" has a zero-length edge (nodes ' // &
+              int_to_str(mesh%bnd(b)%seg(1, k)) // ' and ' // int_to_str(mesh%bnd(b)%seg(2, k)) // &
+              ' at the same point; distinct points expected)')
+            return
+          end if
+        end do
+      end do
+    end if
+
     ! Orientation: the mesh must be consistently oriented; flip it when it is
     ! clockwise throughout.  Degenerate: |area| below 1e-12 of the element's
     ! squared longest edge.
@@ -118,7 +137,7 @@ contains
       h2 = longest_edge2(mesh, e)
       if (.not. (abs(area(e)) > 1.0e-12_dp * h2)) then
         nbad = nbad + 1
-        if (nbad <= 5) call add_error(diag, file, 0, 'element ' // int_to_str(e) // &
+        if (nbad <= 5) call add_error(diag, file, source_line(mesh, e), 'element ' // int_to_str(e) // &
           ' is degenerate (zero area; distinct, non-collinear nodes expected)')
       else if (area(e) < 0.0_dp) then
         nneg = nneg + 1
@@ -134,7 +153,7 @@ contains
       do e = 1, mesh%nelem
         if (area(e) * scale < 0.0_dp) then
           nbad = nbad + 1
-          if (nbad <= 5) call add_error(diag, file, 0, 'element ' // int_to_str(e) // &
+          if (nbad <= 5) call add_error(diag, file, source_line(mesh, e), 'element ' // int_to_str(e) // &
             ' is inverted (its orientation is opposite to the rest of the mesh)')
         end if
       end do
@@ -153,7 +172,7 @@ contains
       a = min_corner_cross(mesh, e)
       if (.not. (a > 1.0e-12_dp * longest_edge2(mesh, e))) then
         nbad = nbad + 1
-        if (nbad <= 5) call add_error(diag, file, 0, 'quadrilateral ' // int_to_str(e) // &
+        if (nbad <= 5) call add_error(diag, file, source_line(mesh, e), 'quadrilateral ' // int_to_str(e) // &
           ' is not convex (a convex quadrilateral with positive corner angles below 180 degrees expected)')
       end if
     end do
@@ -192,6 +211,14 @@ contains
       b%points(k) = newid(b%points(k))
     end do
   end subroutine renumber_boundary
+
+  !> Line of element e in its mesh file, 0 when unknown (generated meshes).
+  pure integer function source_line(mesh, e) result(line)
+    type(mesh_t), intent(in) :: mesh
+    integer, intent(in) :: e
+    line = 0
+    if (allocated(mesh%elem_line)) line = mesh%elem_line(e)
+  end function source_line
 
   !> Signed area of element e (shoelace formula; positive when counter-clockwise).
   pure real(dp) function element_area(mesh, e) result(a)

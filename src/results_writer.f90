@@ -15,7 +15,7 @@ module results_writer
   use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char
   use kinds, only: dp, i8
   use body, only: body_t
-  use contact_set, only: contact_set_t
+  use contact_set, only: contact_set_t, row_of_node
   use diagnostics, only: int_to_str
   use text_buffer, only: text_buffer_t, open_text, put_line, put_real, put_int, put_newline, close_text
   implicit none
@@ -160,8 +160,8 @@ contains
   end subroutine put_scalars
 
   !> Contact table: one row per slave node of each pair, along the boundary.
-  !> Slave nodes with no master opposite (outside the effective contact zone)
-  !> have empty gap0 and gap fields and status -1.
+  !> Slave nodes with no master opposite (no constraint row) have empty gap0
+  !> and gap fields and status -1.
   subroutine write_contact_csv(path, cs, r, ok)
     character(len=*), intent(in) :: path
     type(contact_set_t), intent(in) :: cs
@@ -179,8 +179,8 @@ contains
           write(sx(1), '(es24.16e3)') mo%arc(i)
           write(sx(2), '(es24.16e3)') pr%xs(1, i)
           write(sx(3), '(es24.16e3)') pr%xs(2, i)
-          if (mo%first > 0 .and. i >= mo%first .and. i <= mo%last) then
-            row = pr%row0 + i - mo%first + 1
+          row = row_of_node(cs, ip, i)
+          if (row > 0) then
             write(u, '(a,i0,a,i0)') int_to_str(ip) // ',' // trim(adjustl(sx(1))) // ',' // &
               trim(adjustl(sx(2))) // ',' // trim(adjustl(sx(3))) // ',' // num(mo%gap0(i)) // ',' // &
               num(r%gap(row)) // ',' // num(r%pressure(row)) // ',', r%status(row), ''
