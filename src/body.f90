@@ -16,7 +16,8 @@
 !>   assemble_stiffness(bodies, eq, ubar, k, rhs)   add K_ff to k, subtract K_fd ubar from rhs
 !>   internal_forces(bodies, u, fint)               fint = K u (all dofs, element by element)
 !>   element_stresses(bodies, u, stress, vm)        per element (3, nelem_total) and von Mises
-!>   element_response(bodies, u, stress, vm, fint)  both in one element loop (OpenMP, atomic adds)
+!>   element_response(bodies, u, fint [, stress, vm])  both in one element loop (OpenMP, atomic adds)
+!>   thermal_loads(bd, f)                           f += int B' D eps0 t dA (THERMAL)
 !>   node_elements(mesh, ptr, list)                 elements around each node (CSR)
 !>   edge_outward_normal(mesh, eptr, elist, a, b, nrm, owner)  unit normal of edge a-b
 !>        pointing out of its element; owner = that element, 0 when no element has
@@ -25,12 +26,13 @@ module body
   use kinds, only: dp
   use mesh, only: mesh_t
   use material, only: elasticity_t, von_mises
-  use elements, only: element_stiffness, element_strain
+  use elements, only: element_stiffness, element_strain, quadrature_rule, shape_at, strain_operator
   use sparse_matrix, only: csc_t
   implicit none
   private
   public :: body_t, number_equations, build_pattern, assemble_stiffness, internal_forces
   public :: element_stresses, node_elements, element_dofs, edge_outward_normal, element_response
+  public :: thermal_loads
 
   type :: body_t
     character(len=:), allocatable :: name  !< as in the deck
@@ -39,6 +41,8 @@ module body
     real(dp) :: thick = 1.0_dp             !< thickness (1 in plane strain)
     integer :: dof0 = 0                    !< global dof offset
     integer :: elem0 = 0                   !< global element offset (output order)
+    real(dp), allocatable :: adt(:)        !< (nelem) alpha dT per element; allocated only
+                                           !< when the body has a THERMAL statement
   end type body_t
 
 contains
@@ -323,13 +327,39 @@ contains
     if (dot_product(nrm, xc - mesh%x(:, a)) > 0.0_dp) nrm = -nrm
   end subroutine edge_outward_normal
 
+  !> Nodal forces of the thermal strains, f = int B' D eps0 t dA, added to f
+  !> (eps0 = alpha dT eth per element; the body must have adt allocated).
+  subroutine thermal_loads(bd, f)
+    type(body_t), intent(in) :: bd
+    real(dp), intent(inout) :: f(:)
+    real(dp), allocatable :: xi(:,:), w(:)
+    real(dp) :: shp(4), dndx(2, 4), detj, b(3, 8), s0(3)
+    integer :: e, nen, q
+    integer :: dofs(8)
+    associate(m => bd%mesh)
+      do e = 1, m%nelem
+        if (bd%adt(e) == 0.0_dp) cycle
+        nen = m%nen(e)
+        s0 = matmul(bd%law%d, bd%law%eth) * bd%adt(e)     ! D eps0
+        call quadrature_rule(nen, 1, xi, w)
+        call element_dofs(bd, e, dofs)
+        do q = 1, size(w)
+          call shape_at(nen, m%x(:, m%conn(1:nen, e)), xi(:, q), shp(1:nen), dndx(:, 1:nen), detj)
+          call strain_operator(nen, dndx(:, 1:nen), b(:, 1:2 * nen))
+          f(dofs(1:2 * nen)) = f(dofs(1:2 * nen)) + (w(q) * detj * bd%thick) * matmul(transpose(b(:, 1:2 * nen)), s0)
+        end do
+      end do
+    end associate
+  end subroutine thermal_loads
+
   !> Stresses, von Mises and internal forces fint = K u in one element loop,
   !> threaded with OpenMP (fint accumulated by atomic adds: an array reduction
   !> would put a private copy of fint on each thread's stack).
-  subroutine element_response(bodies, u, stress, vm, fint)
+  subroutine element_response(bodies, u, fint, stress, vm)
     type(body_t), intent(in) :: bodies(:)
     real(dp), intent(in) :: u(:)
-    real(dp), intent(out) :: stress(:,:), vm(:), fint(:)
+    real(dp), intent(out) :: fint(:)
+    real(dp), intent(out), optional :: stress(:,:), vm(:)    !< skipped when absent
     integer :: b, e, nen, ge, i
     integer :: dofs(8)
     real(dp) :: ke(8, 8), eps(3), fe(8)
@@ -347,9 +377,15 @@ contains
             !$omp atomic
             fint(dofs(i)) = fint(dofs(i)) + fe(i)
           end do
+          if (.not. present(stress)) cycle
           call element_strain(nen, m%x(:, m%conn(1:nen, e)), u(dofs(1:2 * nen)), eps)
-          stress(:, ge) = matmul(bd%law%d, eps)
-          vm(ge) = von_mises(bd%law, stress(:, ge))
+          if (allocated(bd%adt)) then                   ! sigma = D (eps - alpha dT eth)
+            stress(:, ge) = matmul(bd%law%d, eps - bd%adt(e) * bd%law%eth)
+            vm(ge) = von_mises(bd%law, stress(:, ge), bd%adt(e))
+          else
+            stress(:, ge) = matmul(bd%law%d, eps)
+            vm(ge) = von_mises(bd%law, stress(:, ge))
+          end if
         end do
         !$omp end parallel do
       end associate

@@ -15,7 +15,7 @@ program contact2d
   use body, only: number_equations, build_pattern, assemble_stiffness, element_response
   use sparse_matrix, only: csc_t
   use sparse_cholesky, only: factor_t, factorize, solve, factor_nnz, factor_memory
-  use contact_set, only: contact_set_t, build_contact_set
+  use contact_set, only: contact_set_t, build_contact_set, row_of_node
   use contact_condensation, only: contact_equations, condense, contact_forces, recover
   use lcp_solvers, only: lcp_options_t
   use contact_lcp, only: contact_solution_t, solve_contact
@@ -139,7 +139,11 @@ program contact2d
 
   ! --- stresses, reactions, energy -----------------------------------------
   allocate(res%stress(3, sc%nelem), res%vm(sc%nelem), fint(sc%ndof))
-  call element_response(sc%bodies, res%u, res%stress, res%vm, fint)
+  if (deck%output%fields(4) .or. deck%output%fields(5)) then
+    call element_response(sc%bodies, res%u, fint, res%stress, res%vm)
+  else
+    call element_response(sc%bodies, res%u, fint)        ! no stress field asked for: none computed
+  end if
   res%energy = 0.5_dp * dot_product(res%u, fint)
   allocate(res%reaction(2, size(sc%fixes)), source=0.0_dp)
   nlabel = 1
@@ -261,13 +265,23 @@ contains
     do r = 1, cs%nrow
       ip = cs%row_pair(r)
       node = cs%row_node(r)
-      res%pressure(r) = res%mu(r) / cs%pair(ip)%mortar%covered_weight(node)   ! p = mu / int(phi_i)
+      res%pressure(r) = res%mu(r) / cs%weight(r)      ! p = mu / int(phi_i)
       pmax = max(pmax, abs(res%pressure(r)))
     end do
     do r = 1, cs%nrow
       res%status(r) = merge(1, 0, res%mu(r) > 1.0e-12_dp * maxval(abs(res%mu)) .and. res%mu(r) > 0.0_dp)
     end do
-    res%active_nodes = count(res%status == 1)
+    ! counts of slave nodes (a one-segment zone has two nodes on one row)
+    res%contact_nodes = 0
+    res%active_nodes = 0
+    do ip = 1, cs%npair
+      do node = 1, size(cs%pair(ip)%snode)
+        r = row_of_node(cs, ip, node)
+        if (r == 0) cycle
+        res%contact_nodes = res%contact_nodes + 1
+        if (res%status(r) == 1) res%active_nodes = res%active_nodes + 1
+      end do
+    end do
     ! length scale: the initial gaps, or the gaps the loads open without contact forces (q)
     gmax = max(maxval(abs(cs%g)), maxval(abs(q)))
     if (pmax > 0.0_dp .and. gmax > 0.0_dp) then
@@ -305,7 +319,7 @@ contains
       tmp(i) = trim(final(i)) // '.part'
     end do
     if (cs%npair == 0) tmp(2) = ''
-    call write_vtk(trim(tmp(1)), deck%title, sc%bodies, res, ok)
+    call write_vtk(trim(tmp(1)), deck%title, sc%bodies, res, deck%output%fields, ok)
     if (ok .and. cs%npair > 0) call write_contact_csv(trim(tmp(2)), cs, res, ok)
     if (ok) then
       call lap(ph_output)

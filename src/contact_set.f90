@@ -46,6 +46,8 @@ module contact_set
     integer :: nrow = 0                    !< constrained slave nodes
     logical, allocatable :: row(:)         !< (ns) slave node carries a constraint row: in the
                                            !< effective zone and with master opposite
+    logical :: single = .false.            !< the zone is one slave segment: one mean-value row
+    real(dp), allocatable :: mcov(:)       !< (nm) int of each master hat over the covered part
   end type contact_pair_t
 
   type :: contact_set_t
@@ -60,6 +62,8 @@ module contact_set
     integer, allocatable :: bcol(:)         !< column = index into cdof
     real(dp), allocatable :: bval(:)        !< values
     real(dp), allocatable :: g(:)           !< (nrow) initial gaps
+    real(dp), allocatable :: weight(:)      !< (nrow) length a row's multiplier acts on: the pressure
+                                            !< is mu / weight (int phi_i over the covered part)
   end type contact_set_t
 
 contains
@@ -234,6 +238,11 @@ contains
         pr%row0 = cs%nrow
         call constrained_nodes(pr%mortar, pr%row)
         pr%nrow = count(pr%row)
+        call covered_master_integrals(pr%mortar, pr%mcov)
+        ! one slave segment: the multiplier space is the constants (both end
+        ! segments at once), so one mean-value row replaces the two nodal ones
+        pr%single = pr%mortar%first > 0 .and. pr%mortar%last == pr%mortar%first + 1
+        if (pr%single) pr%nrow = 1
         cs%nrow = cs%nrow + pr%nrow
       end associate
     end do
@@ -244,7 +253,7 @@ contains
       maxdof = max(maxdof, bodies(i)%dof0 + 2 * bodies(i)%mesh%nnode)
     end do
     allocate(touched(maxdof), source=.false.)
-    allocate(cs%row_pair(cs%nrow), cs%row_node(cs%nrow), cs%g(cs%nrow), cs%bptr(cs%nrow + 1))
+    allocate(cs%row_pair(cs%nrow), cs%row_node(cs%nrow), cs%g(cs%nrow), cs%bptr(cs%nrow + 1), cs%weight(cs%nrow))
     nnz = 0
     do ip = 1, cs%npair
       associate(pr => cs%pair(ip), mo => cs%pair(ip)%mortar)
@@ -252,6 +261,18 @@ contains
         d0s = bodies(pr%spec%slave_body)%dof0
         d0m = bodies(pr%spec%master_body)%dof0
         ns = size(pr%snode); nm = size(pr%mnode)
+        if (pr%single) then
+          do c = 1, 2
+            do i = mo%first, mo%last
+              touched(d0s + 2 * (pr%snode(i) - 1) + c) = .true.
+            end do
+            do j = 1, nm
+              if (pr%mcov(j) > 0.0_dp) touched(d0m + 2 * (pr%mnode(j) - 1) + c) = .true.
+            end do
+          end do
+          nnz = nnz + 2 * (2 + count(pr%mcov > 0.0_dp))
+          cycle
+        end if
         do i = mo%first, mo%last
           if (.not. pr%row(i)) cycle
           pmax = maxval(abs(mo%p(i, :)))
@@ -293,9 +314,14 @@ contains
         d0m = bodies(pr%spec%master_body)%dof0
         nm = size(pr%mnode)
         r = pr%row0
+        if (pr%single) then
+          call single_row()
+          cycle
+        end if
         do i = mo%first, mo%last
           if (.not. pr%row(i)) cycle
           r = r + 1
+          cs%weight(r) = mo%covered_weight(i)
           cs%row_pair(r) = ip
           cs%row_node(r) = i
           cs%g(r) = mo%gap0(i)
@@ -317,7 +343,64 @@ contains
         end do
       end associate
     end do
+  contains
+
+    !> The mean-value row of a one-segment zone (pair ip, row r+1):
+    !>   (1/L) int_cov (u1 - u2).n ds <= (1/L) int_cov (y - x).n ds,
+    !> n the segment's normal, L the covered length.
+    subroutine single_row()
+      real(dp) :: nseg(2), len_cov, gsum
+      integer :: ii
+      associate(pr => cs%pair(ip), mo => cs%pair(ip)%mortar)
+        nseg = mo%normal(:, mo%first) + mo%normal(:, mo%last)
+        nseg = nseg / norm2(nseg)
+        len_cov = sum(pr%mcov)
+        r = r + 1
+        cs%row_pair(r) = ip
+        cs%row_node(r) = mo%first
+        cs%weight(r) = len_cov
+        gsum = 0.0_dp
+        do c = 1, 2
+          do ii = mo%first, mo%last                    ! + int phi_i (u1_i . n)
+            k = k + 1
+            cs%bcol(k) = colmap(d0s + 2 * (pr%snode(ii) - 1) + c)
+            cs%bval(k) = nseg(c) * mo%covered_weight(ii) / len_cov
+            gsum = gsum - nseg(c) * mo%covered_weight(ii) * pr%xs(c, ii)
+          end do
+          do j = 1, nm                                 ! - int chi_j (u2_j . n)
+            if (.not. (pr%mcov(j) > 0.0_dp)) cycle
+            k = k + 1
+            cs%bcol(k) = colmap(d0m + 2 * (pr%mnode(j) - 1) + c)
+            cs%bval(k) = -nseg(c) * pr%mcov(j) / len_cov
+            gsum = gsum + nseg(c) * pr%mcov(j) * bodies(pr%spec%master_body)%mesh%x(c, pr%mnode(j))
+          end do
+        end do
+        cs%g(r) = 0.0_dp
+        if (.not. pr%spec%gap_zero) cs%g(r) = gsum / len_cov
+        cs%bptr(r + 1) = k + 1
+      end associate
+    end subroutine single_row
+
   end subroutine build_contact_set
+
+  !> mcov(j) = integral of master hat j over the covered part of the slave
+  !> zone (sub-segments: chi is linear in the slave coordinate on each).
+  subroutine covered_master_integrals(mo, mcov)
+    type(mortar_t), intent(in) :: mo
+    real(dp), allocatable, intent(out) :: mcov(:)
+    integer :: k, f
+    real(dp) :: l, rm
+    allocate(mcov(mo%nm), source=0.0_dp)
+    if (mo%first == 0) return
+    do k = 1, mo%inter%nsub
+      f = mo%inter%master_seg(k)
+      l = (mo%inter%s(2, k) - mo%inter%s(1, k)) * &
+          (mo%arc(mo%inter%slave_seg(k) + 1) - mo%arc(mo%inter%slave_seg(k)))
+      rm = 0.5_dp * (mo%inter%r(1, k) + mo%inter%r(2, k))     ! chi_{f+1} at the midpoint
+      mcov(f) = mcov(f) + l * (1.0_dp - rm)
+      mcov(f + 1) = mcov(f + 1) + l * rm
+    end do
+  end subroutine covered_master_integrals
 
   !> Slave nodes that carry a constraint row: those of the effective zone
   !> first..last that have master opposite.  Where the master covers only part
@@ -353,6 +436,10 @@ contains
     integer, intent(in) :: ip, i
     r = 0
     if (.not. cs%pair(ip)%row(i)) return
+    if (cs%pair(ip)%single) then
+      r = cs%pair(ip)%row0 + 1
+      return
+    end if
     r = cs%pair(ip)%row0 + count(cs%pair(ip)%row(1:i))
   end function row_of_node
 

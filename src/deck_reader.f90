@@ -103,6 +103,15 @@ module deck_reader
   end type material_t
 
   !> One BODY ... END block.
+  !> THERMAL alpha= dT= [region=]: a uniform temperature change dT (from the
+  !> stress-free state) with expansion coefficient alpha, on the whole body or on
+  !> one physical surface (element region) of a gmsh mesh.
+  type :: thermal_t
+    real(dp) :: alpha = 0, dt = 0
+    character(len=:), allocatable :: region     !< '' for the whole body
+    integer :: line = 0
+  end type thermal_t
+
   type :: body_deck_t
     character(len=:), allocatable :: name
     integer :: line = 0                         !< line of the BODY statement
@@ -112,6 +121,8 @@ module deck_reader
     type(fix_t), allocatable :: fixes(:)        !< (nfix), always allocated
     type(load_t), allocatable :: loads(:)       !< (nload), always allocated
     logical :: has_bodyforce = .false.; real(dp) :: fx = 0, fy = 0; integer :: bodyforce_line = 0
+    type(thermal_t), allocatable :: thermals(:) !< (nthermal), always allocated
+    logical :: has_offset = .false.; real(dp) :: dx = 0, dy = 0; integer :: offset_line = 0
   end type body_deck_t
 
   !> CONTACT slave=body:boundary master=body:boundary [gap=]
@@ -134,6 +145,8 @@ module deck_reader
   !> OUTPUT [vtk=] [contact=] [summary=]; names relative to the output folder
   type :: output_deck_t
     character(len=:), allocatable :: vtk, contact, summary
+    !> fields of the VTK file: displacement, contact_pressure, gap, stress, von_mises
+    logical :: fields(5) = .true.
     integer :: line = 0
   end type output_deck_t
 
@@ -156,6 +169,7 @@ module deck_reader
   integer, parameter :: max_errors = 100    ! stop reading after this many errors
   integer, parameter :: echo_len = 160      ! echoed lines are cut after this many chars
   integer, parameter :: quote_len = 40      ! quoted user text is cut after this many chars
+  integer, parameter :: max_line_len = 1048576   ! longer lines: not a deck (e.g. /dev/zero, binary)
 
   type :: text_t
     character(len=:), allocatable :: s
@@ -233,6 +247,13 @@ contains
         do
           call read_line(u, line, ios)
           if (ios == iostat_end) exit
+          if (ios == 0 .and. len(line) > max_line_len) then
+            call store_echo(s, line)
+            call report(s, s%nline, 'line longer than ' // int_to_str(max_line_len) // &
+                        ' characters (expected a text deck; is this a binary file?)')
+            readable = .false.
+            exit
+          end if
           if (ios /= 0) then
             call report(s, 0, 'cannot read the deck after line ' // int_to_str(s%nline) // &
                         ' (expected a readable text file)')
@@ -257,9 +278,12 @@ contains
     call hand_over(s, deck%file, diag)
   end subroutine read_deck
 
-  !> Read one line of any length (non-advancing, in chunks); strip a final CR.
+  !> Read one line (non-advancing, in chunks); strip a final CR.  Reading stops
+  !> after max_line_len + 1 characters, so that a file without line ends
+  !> (/dev/zero, a large binary file) cannot exhaust the memory.
   !>   u     (in)  connected formatted unit
-  !>   line  (out) the line without its end-of-line characters
+  !>   line  (out) the line without its end-of-line characters; longer than
+  !>               max_line_len when the line was cut there
   !>   ios   (out) 0 a line was read, iostat_end no more lines, other: read error
   subroutine read_line(u, line, ios)
     integer, intent(in) :: u
@@ -281,6 +305,7 @@ contains
       end if
       buf(used + 1:used + n) = chunk(1:n)
       used = used + n
+      if (ios == 0 .and. used > max_line_len) exit
       if (ios == 0) cycle
       if (ios == iostat_end .and. used == 0) return
       exit
@@ -370,7 +395,7 @@ contains
       call do_body(s, deck, st)
     case ('END')
       call do_end(s, st)
-    case ('MESH', 'MATERIAL', 'DENSITY', 'FIX', 'TRACTION', 'PRESSURE', 'BODYFORCE')
+    case ('MESH', 'MATERIAL', 'DENSITY', 'FIX', 'TRACTION', 'PRESSURE', 'BODYFORCE', 'THERMAL', 'OFFSET')
       if (s%cur == 0) then
         call report(s, st%line, 'statement ' // kw // ' outside a BODY block (expected inside BODY ... END)')
         return
@@ -382,10 +407,13 @@ contains
       case ('FIX');       call do_fix(s, deck%bodies(s%cur), st)
       case ('TRACTION', 'PRESSURE'); call do_load(s, deck%bodies(s%cur), st, kw)
       case ('BODYFORCE'); call do_bodyforce(s, deck%bodies(s%cur), st)
+      case ('THERMAL');   call do_thermal(s, deck%bodies(s%cur), st)
+      case ('OFFSET');    call do_offset(s, deck%bodies(s%cur), st)
       end select
     case default
       call report(s, st%line, 'unknown keyword ' // quoted(st%keyword) // ' (expected one of TITLE, PLANE, ' // &
-                  'BODY, MESH, MATERIAL, DENSITY, FIX, TRACTION, PRESSURE, BODYFORCE, END, GRAVITY, ' // &
+                  'BODY, MESH, MATERIAL, DENSITY, FIX, TRACTION, PRESSURE, BODYFORCE, THERMAL, OFFSET, END, ' // &
+                  'GRAVITY, ' // &
                   'CONTACT, SOLVER, OUTPUT)')
     end select
   end subroutine process_line
@@ -853,7 +881,7 @@ contains
     associate (body => deck%bodies(s%nbody))
       body%line = st%line
       body%name = ''
-      allocate(body%fixes(0), body%loads(0))
+      allocate(body%fixes(0), body%loads(0), body%thermals(0))
       if (st%nword == 0) then
         call report(s, st%line, 'missing body name (expected ' // usage // ')')
       else
@@ -1318,6 +1346,73 @@ contains
     body%has_bodyforce = (ok1 .or. .not. seen(1)) .and. (ok2 .or. .not. seen(2)) .and. (seen(1) .or. seen(2))
   end subroutine do_bodyforce
 
+  !> THERMAL alpha= dT= [region=NAME]
+  subroutine do_thermal(s, body, st)
+    type(state_t), intent(inout) :: s
+    type(body_deck_t), intent(inout) :: body
+    type(stmt_t), intent(in) :: st
+    character(len=*), parameter :: usage = 'THERMAL alpha=number dT=number [region=NAME]'
+    type(thermal_t), allocatable :: grown(:)
+    type(thermal_t) :: th
+    logical :: seen(3), ok1, ok2, okn
+    type(text_t) :: val(3)
+    integer :: k
+
+    call check_extra_words(s, st, 0, usage)
+    call match_keys(s, st, ['alpha ', 'dT    ', 'region'], ['number', 'number', 'NAME  '], 'THERMAL', seen, val)
+    call require_key(s, st, seen(1), 'alpha', 'THERMAL', usage)
+    call require_key(s, st, seen(2), 'dT', 'THERMAL', usage)
+    call get_real(s, st, val(1), 'alpha', th%alpha, ok1)
+    call get_real(s, st, val(2), 'dT', th%dt, ok2)
+    th%region = ''
+    okn = .true.
+    if (allocated(val(3)%s)) then
+      call check_name(s, st, val(3)%s, 'region', okn)
+      if (okn) th%region = val(3)%s
+    end if
+    if (.not. (ok1 .and. ok2 .and. okn)) return
+    do k = 1, size(body%thermals)
+      if (body%thermals(k)%region == th%region) then
+        if (len(th%region) == 0) then
+          call report(s, st%line, 'second THERMAL for the whole of BODY ' // quoted(body%name) // ' (first at line ' // &
+                      int_to_str(body%thermals(k)%line) // '; expected one, or one per region=)')
+        else
+          call report(s, st%line, 'second THERMAL for region ' // quoted(th%region) // ' (first at line ' // &
+                      int_to_str(body%thermals(k)%line) // '; expected one per region)')
+        end if
+        return
+      end if
+    end do
+    th%line = st%line
+    allocate(grown(size(body%thermals) + 1))
+    grown(1:size(body%thermals)) = body%thermals
+    grown(size(grown)) = th
+    call move_alloc(grown, body%thermals)
+  end subroutine do_thermal
+
+  !> OFFSET dx= dy=: a rigid shift of the body's geometry (mesh) before anything else
+  subroutine do_offset(s, body, st)
+    type(state_t), intent(inout) :: s
+    type(body_deck_t), intent(inout) :: body
+    type(stmt_t), intent(in) :: st
+    character(len=*), parameter :: usage = 'OFFSET dx=number dy=number'
+    logical :: seen(2), ok1, ok2
+    type(text_t) :: val(2)
+
+    if (body%offset_line > 0) then
+      call report(s, st%line, 'second OFFSET in BODY ' // quoted(body%name) // ' (first at line ' // &
+                  int_to_str(body%offset_line) // '; expected at most one)')
+      return
+    end if
+    body%offset_line = st%line
+    call check_extra_words(s, st, 0, usage)
+    call match_keys(s, st, ['dx', 'dy'], ['number', 'number'], 'OFFSET', seen, val)
+    if (.not. (seen(1) .or. seen(2))) call report(s, st%line, 'missing dx= and dy= (expected ' // usage // ')')
+    call get_real(s, st, val(1), 'dx', body%dx, ok1)
+    call get_real(s, st, val(2), 'dy', body%dy, ok2)
+    body%has_offset = (ok1 .or. .not. seen(1)) .and. (ok2 .or. .not. seen(2)) .and. (seen(1) .or. seen(2))
+  end subroutine do_offset
+
   !> GRAVITY gx= gy=
   subroutine do_gravity(s, deck, st)
     type(state_t), intent(inout) :: s
@@ -1460,11 +1555,14 @@ contains
     type(state_t), intent(inout) :: s
     type(deck_t), intent(inout) :: deck
     type(stmt_t), intent(in) :: st
-    character(len=*), parameter :: usage = 'OUTPUT [vtk=NAME] [contact=NAME] [summary=NAME]'
-    character(len=7), parameter :: names(3) = [character(len=7) :: 'vtk', 'contact', 'summary']
-    logical :: seen(3)
-    type(text_t) :: val(3)
-    integer :: k
+    character(len=*), parameter :: usage = 'OUTPUT [vtk=NAME] [contact=NAME] [summary=NAME] [fields=LIST]'
+    character(len=7), parameter :: names(4) = [character(len=7) :: 'vtk', 'contact', 'summary', 'fields']
+    character(len=16), parameter :: field_names(5) = [character(len=16) :: 'displacement', 'contact_pressure', &
+                                                      'gap', 'stress', 'von_mises']
+    logical :: seen(4)
+    type(text_t) :: val(4)
+    integer :: k, p, q, f
+    character(len=:), allocatable :: item
 
     if (s%output_line > 0) then
       call report(s, st%line, 'second OUTPUT (first at line ' // int_to_str(s%output_line) // &
@@ -1474,7 +1572,34 @@ contains
     s%output_line = st%line
     deck%output%line = st%line
     call check_extra_words(s, st, 0, usage)
-    call match_keys(s, st, names, ['NAME', 'NAME', 'NAME'], 'OUTPUT', seen, val)
+    call match_keys(s, st, names, ['NAME', 'NAME', 'NAME', 'LIST'], 'OUTPUT', seen, val)
+    if (allocated(val(4)%s)) then
+      ! fields=a,b,c (or all, or none): the arrays of the VTK file
+      deck%output%fields = .false.
+      p = 1
+      do while (p <= len(val(4)%s) + 1)
+        q = index(val(4)%s(p:), ',')
+        if (q == 0) then
+          q = len(val(4)%s) + 1
+        else
+          q = p + q - 1
+        end if
+        item = lower(val(4)%s(p:q - 1))
+        f = find_key(item, field_names)
+        if (item == 'all') then
+          deck%output%fields = .true.
+        else if (item == 'none') then
+          continue
+        else if (f == 0) then
+          call report(s, st%line, 'unknown field ' // quoted(cut(item)) // ' in fields= (expected a comma-separated ' // &
+                      'list of ' // join_list(field_names) // ', or all, or none)')
+          exit
+        else
+          deck%output%fields(f) = .true.
+        end if
+        p = q + 1
+      end do
+    end if
     do k = 1, 3
       if (.not. allocated(val(k)%s)) cycle
       if (.not. is_name(val(k)%s) .or. val(k)%s == '.' .or. val(k)%s == '..') then
@@ -1733,6 +1858,7 @@ contains
         if (.not. allocated(body%material%kind)) body%material%kind = ''
         if (.not. allocated(body%fixes)) allocate(body%fixes(0))
         if (.not. allocated(body%loads)) allocate(body%loads(0))
+        if (.not. allocated(body%thermals)) allocate(body%thermals(0))
         do i = 1, size(body%fixes)
           if (.not. allocated(body%fixes(i)%boundary)) body%fixes(i)%boundary = ''
         end do

@@ -12,7 +12,12 @@
 !>   make_isotropic(E, nu, plane_stress, mat)
 !>   make_orthotropic(E1, E2, E3, nu12, nu13, nu23, G12, angle_deg, plane_stress, mat)
 !>   out_of_plane_stress(mat, sigma)  sigma_zz for an in-plane stress (sxx, syy, sxy)
-!>   von_mises(mat, sigma)            equivalent stress, sigma_zz included
+!>   von_mises(mat, sigma [, adt])    equivalent stress, sigma_zz included
+!>
+!> Thermal strain: alpha dT (1, 1, 1) in 3D.  Plane stress: eps0 = alpha dT
+!> (1, 1, 0).  Plane strain (eps_zz = 0): the in-plane part becomes
+!> alpha dT (1 - S_13/S_33, 1 - S_23/S_33) in material axes ((1 + nu) for an
+!> isotropic law) and sigma_zz gains -alpha dT / S_33.
 module material
   use kinds, only: dp
   implicit none
@@ -25,6 +30,8 @@ module material
     real(dp) :: czz(2) = 0.0_dp      !< plane strain: sigma_zz = czz(1) s11 + czz(2) s22 (material axes)
     real(dp) :: angle = 0.0_dp       !< material axis 1, radians from x
     real(dp) :: emax = 0.0_dp        !< largest Young's modulus, a stiffness scale
+    real(dp) :: eth(3) = 0.0_dp      !< in-plane thermal strain per unit alpha dT, global Voigt
+    real(dp) :: szz_th = 0.0_dp      !< plane strain: sigma_zz gains szz_th alpha dT
   end type elasticity_t
 
 contains
@@ -84,12 +91,26 @@ contains
     mat%d = 0.5_dp * (mat%d + transpose(mat%d))
     mat%plane_stress = plane_stress
     mat%emax = max(e1, e2, e3)
+    ! thermal strain per unit alpha dT, material axes -> global (tensor rotation)
+    block
+      real(dp) :: a1, a2
+      if (plane_stress) then
+        a1 = 1.0_dp; a2 = 1.0_dp
+        mat%szz_th = 0.0_dp
+      else
+        a1 = 1.0_dp - s(1, 3) / s(3, 3)
+        a2 = 1.0_dp - s(2, 3) / s(3, 3)
+        mat%szz_th = -1.0_dp / s(3, 3)
+      end if
+      mat%eth = [a1 * c**2 + a2 * sn**2, a1 * sn**2 + a2 * c**2, 2.0_dp * (a1 - a2) * c * sn]
+    end block
   end subroutine make_orthotropic
 
   !> sigma_zz of plane strain for the in-plane stress sig = (sxx, syy, sxy).
-  pure real(dp) function out_of_plane_stress(mat, sig) result(szz)
+  pure real(dp) function out_of_plane_stress(mat, sig, adt) result(szz)
     type(elasticity_t), intent(in) :: mat
     real(dp), intent(in) :: sig(3)
+    real(dp), intent(in), optional :: adt       !< alpha dT of a thermal strain
     real(dp) :: c, sn, s11, s22
     if (mat%plane_stress) then
       szz = 0.0_dp
@@ -100,14 +121,16 @@ contains
     s11 = c**2 * sig(1) + sn**2 * sig(2) + 2.0_dp * c * sn * sig(3)   ! a.sigma.a, a = (c, s)
     s22 = sn**2 * sig(1) + c**2 * sig(2) - 2.0_dp * c * sn * sig(3)   ! b.sigma.b, b = (-s, c)
     szz = mat%czz(1) * s11 + mat%czz(2) * s22
+    if (present(adt)) szz = szz + mat%szz_th * adt
   end function out_of_plane_stress
 
   !> von Mises equivalent stress of (sxx, syy, sxy) with sigma_zz of the law.
-  pure real(dp) function von_mises(mat, sig) result(vm)
+  pure real(dp) function von_mises(mat, sig, adt) result(vm)
     type(elasticity_t), intent(in) :: mat
     real(dp), intent(in) :: sig(3)
+    real(dp), intent(in), optional :: adt
     real(dp) :: szz
-    szz = out_of_plane_stress(mat, sig)
+    szz = out_of_plane_stress(mat, sig, adt)
     vm = sqrt(max(0.0_dp, sig(1)**2 + sig(2)**2 + szz**2 - sig(1) * sig(2) - sig(2) * szz &
                           - szz * sig(1) + 3.0_dp * sig(3)**2))
   end function von_mises

@@ -65,10 +65,11 @@ module results_writer
 contains
 
   !> VTK legacy unstructured grid of every body (see DECK.md), ASCII.
-  subroutine write_vtk(path, title, bodies, r, ok)
+  subroutine write_vtk(path, title, bodies, r, fields, ok)
     character(len=*), intent(in) :: path, title
     type(body_t), intent(in) :: bodies(:)
     type(results_t), intent(in) :: r
+    logical, intent(in) :: fields(5)   !< displacement, contact_pressure, gap, stress, von_mises
     logical, intent(out) :: ok
     type(text_buffer_t) :: tb
     integer :: b, e, a, k, nnode, nelem, ncon, nen
@@ -115,15 +116,17 @@ contains
         call put_line(tb, merge(' 5', ' 9', bodies(b)%mesh%nen(e) == 3))
       end do
     end do
-    call put_line(tb, 'POINT_DATA ' // int_to_str(nnode))
-    call put_line(tb, 'VECTORS displacement double')
-    do a = 1, nnode
-      call put_real(tb, r%u(2 * a - 1))
-      call put_real(tb, r%u(2 * a))
-      call put_line(tb, ' 0')
-    end do
-    call put_scalars(tb, 'contact_pressure', r%node_pressure)
-    call put_scalars(tb, 'gap', r%node_gap)
+    if (any(fields(1:3))) call put_line(tb, 'POINT_DATA ' // int_to_str(nnode))
+    if (fields(1)) then
+      call put_line(tb, 'VECTORS displacement double')
+      do a = 1, nnode
+        call put_real(tb, r%u(2 * a - 1))
+        call put_real(tb, r%u(2 * a))
+        call put_line(tb, ' 0')
+      end do
+    end if
+    if (fields(2)) call put_scalars(tb, 'contact_pressure', r%node_pressure)
+    if (fields(3)) call put_scalars(tb, 'gap', r%node_gap)
     call put_line(tb, 'CELL_DATA ' // int_to_str(nelem))
     call put_line(tb, 'SCALARS body int 1')
     call put_line(tb, 'LOOKUP_TABLE default')
@@ -133,15 +136,17 @@ contains
         call put_newline(tb)
       end do
     end do
-    call put_line(tb, 'SCALARS stress double 3')
-    call put_line(tb, 'LOOKUP_TABLE default')
-    do e = 1, nelem
-      call put_real(tb, r%stress(1, e))
-      call put_real(tb, r%stress(2, e))
-      call put_real(tb, r%stress(3, e))
-      call put_newline(tb)
-    end do
-    call put_scalars(tb, 'von_mises', r%vm)
+    if (fields(4)) then
+      call put_line(tb, 'SCALARS stress double 3')
+      call put_line(tb, 'LOOKUP_TABLE default')
+      do e = 1, nelem
+        call put_real(tb, r%stress(1, e))
+        call put_real(tb, r%stress(2, e))
+        call put_real(tb, r%stress(3, e))
+        call put_newline(tb)
+      end do
+    end if
+    if (fields(5)) call put_scalars(tb, 'von_mises', r%vm)
     call close_text(tb, ok)
   end subroutine write_vtk
 
@@ -239,20 +244,65 @@ contains
     ok = ios == 0
   end subroutine write_summary
 
-  !> Rename every tmp(i) to final(i); ok = .false. at the first failure.
+  !> Rename every tmp(i) to final(i), all or nothing: existing finals are first
+  !> moved aside to final(i).old; when any rename fails, what was renamed is
+  !> undone and the earlier outputs are restored, ok = .false.
   subroutine commit_outputs(tmp, final, ok)
     character(len=*), intent(in) :: tmp(:), final(:)
     logical, intent(out) :: ok
-    integer :: i
+    integer :: i, j, n
+    logical :: there
+    logical :: saved(size(tmp)), moved(size(tmp))
+    saved = .false.
+    moved = .false.
     ok = .true.
-    do i = 1, size(tmp)
+    n = size(tmp)
+    do i = 1, n                             ! a folder in the way: fail before touching anything
       if (len_trim(tmp(i)) == 0) cycle
-      if (c_rename(trim(tmp(i)) // c_null_char, trim(final(i)) // c_null_char) /= 0) then
+      inquire(file=trim(final(i)) // '/.', exist=there)
+      if (there) then
         ok = .false.
         return
       end if
     end do
+    do i = 1, n
+      if (len_trim(tmp(i)) == 0) cycle
+      inquire(file=trim(final(i)), exist=there)
+      if (there) then
+        if (c_rename(trim(final(i)) // c_null_char, trim(final(i)) // '.old' // c_null_char) /= 0) then
+          ok = .false.
+          exit
+        end if
+        saved(i) = .true.
+      end if
+      if (c_rename(trim(tmp(i)) // c_null_char, trim(final(i)) // c_null_char) /= 0) then
+        ok = .false.
+        exit
+      end if
+      moved(i) = .true.
+    end do
+    if (.not. ok) then
+      do j = n, 1, -1                       ! undo: new outputs back to tmp, old ones back in place
+        if (moved(j)) then
+          if (c_rename(trim(final(j)) // c_null_char, trim(tmp(j)) // c_null_char) /= 0) continue
+        end if
+        if (saved(j)) then
+          if (c_rename(trim(final(j)) // '.old' // c_null_char, trim(final(j)) // c_null_char) /= 0) continue
+        end if
+      end do
+      return
+    end if
+    do i = 1, n                              ! success: drop the earlier outputs
+      if (saved(i)) call delete_file(trim(final(i)) // '.old')
+    end do
   end subroutine commit_outputs
+
+  subroutine delete_file(path)
+    character(len=*), intent(in) :: path
+    integer :: u, ios
+    open(newunit=u, file=path, status='old', iostat=ios)
+    if (ios == 0) close(u, status='delete', iostat=ios)
+  end subroutine delete_file
 
   subroutine discard_outputs(tmp)
     character(len=*), intent(in) :: tmp(:)

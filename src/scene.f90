@@ -16,12 +16,12 @@ module scene
   use kinds, only: dp
   use diagnostics, only: diag_t, add_error, has_errors, int_to_str
   use deck_reader, only: deck_t, body_deck_t, LOAD_TRACTION, LOAD_PRESSURE
-  use mesh, only: mesh_t, finalize_mesh, find_boundary, boundary_nodes
+  use mesh, only: mesh_t, finalize_mesh, find_boundary, boundary_nodes, find_region
   use mesh_rect, only: make_rect_mesh
   use gmsh_reader, only: read_gmsh_file, mesh_geo_file
   use material, only: make_isotropic, make_orthotropic
   use elements, only: element_body_load, edge_load
-  use body, only: body_t, node_elements, edge_outward_normal, element_dofs
+  use body, only: body_t, node_elements, edge_outward_normal, element_dofs, thermal_loads
   use contact_set, only: pair_spec_t
   implicit none
   private
@@ -59,7 +59,7 @@ contains
     type(scene_t), intent(out) :: sc
     type(diag_t), intent(inout) :: diag
     integer :: b, nb, nfix, ifix, ndof, ip
-    logical :: has_traction, has_pressure, has_bforce, has_gravity, has_dirichlet
+    logical :: has_traction, has_pressure, has_bforce, has_gravity, has_dirichlet, has_thermal, has_offset
 
     nb = size(deck%bodies)
     allocate(sc%bodies(nb))
@@ -89,10 +89,17 @@ contains
     ifix = 0
     has_dirichlet = .false.
     has_traction = .false.; has_pressure = .false.; has_bforce = .false.; has_gravity = .false.
+    has_thermal = .false.
     do b = 1, nb
       call apply_fixes(deck, deck%bodies(b), sc, b, ifix, diag)
       call apply_loads(deck, deck%bodies(b), sc, b, diag, has_traction, has_pressure, has_bforce, has_gravity)
+      if (size(deck%bodies(b)%thermals) > 0) then
+        call apply_thermal(deck, deck%bodies(b), sc%bodies(b), diag)
+        if (allocated(sc%bodies(b)%adt)) call thermal_loads(sc%bodies(b), sc%fext)
+        has_thermal = .true.
+      end if
     end do
+    has_offset = any(deck%bodies(:)%has_offset)
     has_dirichlet = any(sc%fixed .and. sc%ubar /= 0.0_dp)
 
     ! contact pairs
@@ -117,6 +124,8 @@ contains
     if (has_pressure) sc%effects = sc%effects // ' pressure'
     if (has_bforce) sc%effects = sc%effects // ' body_force'
     if (has_gravity) sc%effects = sc%effects // ' gravity'
+    if (has_thermal) sc%effects = sc%effects // ' thermal'
+    if (has_offset) sc%effects = sc%effects // ' offset'
     if (size(sc%specs) > 0) sc%effects = sc%effects // ' contact'
   end subroutine build_scene
 
@@ -158,6 +167,11 @@ contains
       end select
     end associate
     u = 0
+    ! OFFSET: a rigid shift of the geometry, before any contact geometry is made
+    if (bdeck%has_offset .and. bd%mesh%nnode > 0) then
+      bd%mesh%x(1, :) = bd%mesh%x(1, :) + bdeck%dx
+      bd%mesh%x(2, :) = bd%mesh%x(2, :) + bdeck%dy
+    end if
     associate(mt => bdeck%material)
       if (mt%kind == 'orthotropic') then
         call make_orthotropic(mt%e1, mt%e2, mt%e3, mt%nu12, mt%nu13, mt%nu23, mt%g12, mt%angle, deck%plane_stress, bd%law)
@@ -264,6 +278,47 @@ contains
       end associate
     end do
   end subroutine apply_fixes
+
+  !> alpha dT per element from the THERMAL statements of a body: the one
+  !> without region= sets every element, those with region= set their region's
+  !> elements (a region statement overrides the whole-body one there).
+  subroutine apply_thermal(deck, bdeck, bd, diag)
+    type(deck_t), intent(in) :: deck
+    type(body_deck_t), intent(in) :: bdeck
+    type(body_t), intent(inout) :: bd
+    type(diag_t), intent(inout) :: diag
+    integer :: k, ir
+    allocate(bd%adt(bd%mesh%nelem), source=0.0_dp)
+    do k = 1, size(bdeck%thermals)
+      if (len(bdeck%thermals(k)%region) == 0) bd%adt = bdeck%thermals(k)%alpha * bdeck%thermals(k)%dt
+    end do
+    do k = 1, size(bdeck%thermals)
+      associate(th => bdeck%thermals(k))
+        if (len(th%region) == 0) cycle
+        ir = find_region(bd%mesh, th%region)
+        if (ir == 0) then
+          call add_error(diag, deck%file, th%line, 'THERMAL: unknown region "' // th%region // '" in body "' // &
+                         bd%name // '" (expected one of: ' // region_list(bd%mesh) // ')')
+          cycle
+        end if
+        bd%adt(bd%mesh%reg(ir)%elems) = th%alpha * th%dt
+      end associate
+    end do
+  end subroutine apply_thermal
+
+  function region_list(m) result(s)
+    type(mesh_t), intent(in) :: m
+    character(len=:), allocatable :: s
+    integer :: r
+    s = ''
+    if (allocated(m%reg)) then
+      do r = 1, size(m%reg)
+        if (r > 1) s = s // ', '
+        s = s // m%reg(r)%name
+      end do
+    end if
+    if (len(s) == 0) s = 'none: the mesh names no physical surface'
+  end function region_list
 
   !> External nodal forces of body b: TRACTION, PRESSURE, BODYFORCE, GRAVITY.
   subroutine apply_loads(deck, bdeck, sc, b, diag, has_traction, has_pressure, has_bforce, has_gravity)

@@ -1,0 +1,24 @@
+// Unit square [0,1] x [y0, y0+1] whose top edge is split at x = xs and xs + eps
+// (three curves): boundaries bottom, right, top (whole), top_a (x <= xs), left.
+DefineConstant[ h = 0.25, y0 = 0, xs = 0.5, eps = 0.1 ];
+Point(1) = {0, y0, 0, h};
+Point(2) = {1, y0, 0, h};
+Point(3) = {1, y0 + 1, 0, h};
+Point(4) = {xs + eps, y0 + 1, 0, h};
+Point(5) = {xs, y0 + 1, 0, h};
+Point(6) = {0, y0 + 1, 0, h};
+Line(1) = {1, 2};
+Line(2) = {2, 3};
+Line(3) = {3, 4};
+Line(4) = {4, 5};
+Line(5) = {5, 6};
+Line(6) = {6, 1};
+Curve Loop(1) = {1, 2, 3, 4, 5, 6};
+Plane Surface(1) = {1};
+Transfinite Curve{4} = 2;
+Physical Curve("bottom") = {1};
+Physical Curve("right") = {2};
+Physical Curve("top") = {3, 4, 5};
+Physical Curve("top_a") = {5};
+Physical Curve("left") = {6};
+Physical Surface("square") = {1};

@@ -1,0 +1,32 @@
+// Hertz-type block [-4,4] x [-4,0] (the lower body), element size hc on
+// |x| <= w, -d <= y <= 0 next to the contact zone, growing to hf far away.
+DefineConstant[ hc = 0.01, hf = 0.5, w = 0.15, d = 0.08 ];
+Point(1) = {-4, -4, 0, hf};
+Point(2) = { 4, -4, 0, hf};
+Point(3) = { 4,  0, 0, hf};
+Point(4) = { w, 0, 0, hc};
+Point(5) = {-w, 0, 0, hc};
+Point(6) = {-4,  0, 0, hf};
+Line(1) = {1, 2};
+Line(2) = {2, 3};
+Line(3) = {3, 4};
+Line(4) = {4, 5};
+Line(5) = {5, 6};
+Line(6) = {6, 1};
+Curve Loop(1) = {1, 2, 3, 4, 5, 6};
+Plane Surface(1) = {1};
+Field[1] = Box;
+Field[1].VIn = hc;
+Field[1].VOut = hf;
+Field[1].XMin = -w; Field[1].XMax = w;
+Field[1].YMin = -d; Field[1].YMax = 0.1;
+Field[1].Thickness = 0.6;
+Background Field = 1;
+Mesh.MeshSizeExtendFromBoundary = 0;
+Mesh.MeshSizeFromPoints = 0;
+Mesh.MeshSizeFromCurvature = 0;
+Physical Curve("bottom") = {1};
+Physical Curve("right") = {2};
+Physical Curve("top") = {3, 4, 5};
+Physical Curve("left") = {6};
+Physical Surface("block") = {1};
