@@ -177,12 +177,12 @@ contains
       r = matmul(transpose(hh), sol%mu) - eh
       lam = lam - rho * r
       sol%outer = it
-      if (norm2(r) <= opts%tol * max(norm2(eh), tiny(1.0_dp))) exit
+      if (norm2(r) <= opts%tol * equality_scale(hh, eh, sol%mu)) exit
     end do
     sol%rep = rep
     sol%rep%iterations = total
     call finish_exact(w, q, hh, eh, sol%mu, lam)
-    sol%equality_residual = norm2(matmul(transpose(hh), sol%mu) - eh) / max(norm2(eh), tiny(1.0_dp))
+    sol%equality_residual = norm2(matmul(transpose(hh), sol%mu) - eh) / equality_scale(hh, eh, sol%mu)
     if (sol%equality_residual > 1.0e3_dp * opts%tol) then
       sol%rep%info = 2
       sol%rep%message = 'the equilibrium of a body held only by contact was not reached (relative residual ' // &
@@ -198,6 +198,13 @@ contains
   !> cond(W) x tol in z, or stagnates; its active set is then finished by the
   !> exact solve W_AA z_A = -q_A, kept only when it satisfies the LCP to the
   !> tolerance (z >= 0, w >= 0, smaller residual).
+  !> Scale of the equality H'mu = e: the load along the modes, or the size
+  !> of the contact forces that balance each other along them (e may be 0).
+  pure real(dp) function equality_scale(h, e, mu) result(sc)
+    real(dp), intent(in) :: h(:,:), e(:), mu(:)
+    sc = max(norm2(e), maxval(abs(h)) * sum(abs(mu)), tiny(1.0_dp))
+  end function equality_scale
+
   subroutine run_solver(method, w, q, opts, z, rep)
     character(len=*), intent(in) :: method
     real(dp), intent(in) :: w(:,:), q(:)
