@@ -542,10 +542,12 @@ contains
       '    TRACTION boundary tx= ty=', &
       '    PRESSURE boundary p=', &
       '    BODYFORCE fx= fy=', &
+      '    THERMAL alpha= dT= [region=NAME]  (uniform temperature change; per physical surface)', &
+      '    OFFSET dx= dy=                    (rigid shift of the body''s geometry)', &
       '  GRAVITY gx= gy=', &
       '  CONTACT slave=body:boundary master=body:boundary [gap=geometry|zero]', &
       '  SOLVER lcp=auto|lemke|pgs [tol=1e-10] [maxit=N] [omega=1.0]', &
-      '  OUTPUT [vtk=FILE] [contact=FILE.csv] [summary=FILE]', &
+      '  OUTPUT [vtk=FILE] [contact=FILE.csv] [summary=FILE] [fields=displacement,contact_pressure,gap,stress,von_mises]', &
       '', &
       'exit status: 0 solved, 1 solver failure (diagnostic on stderr), 2 bad input.', &
       'See doc/deck.md for every statement, default and output.'
