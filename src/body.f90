@@ -16,7 +16,7 @@
 !>   assemble_stiffness(bodies, eq, ubar, k, rhs)   add K_ff to k, subtract K_fd ubar from rhs
 !>   internal_forces(bodies, u, fint)               fint = K u (all dofs, element by element)
 !>   element_stresses(bodies, u, stress, vm)        per element (3, nelem_total) and von Mises
-!>   element_response(bodies, u, fint [, stress, vm])  both in one element loop (OpenMP, atomic adds)
+!>   element_response(bodies, u, fint [, stress, vm])  both in one element loop (OpenMP, reproducible)
 !>   thermal_loads(bd, f)                           f += int B' D eps0 t dA (THERMAL)
 !>   node_elements(mesh, ptr, list)                 elements around each node (CSR)
 !>   edge_outward_normal(mesh, eptr, elist, a, b, nrm, owner)  unit normal of edge a-b
@@ -353,30 +353,29 @@ contains
   end subroutine thermal_loads
 
   !> Stresses, von Mises and internal forces fint = K u in one element loop,
-  !> threaded with OpenMP (fint accumulated by atomic adds: an array reduction
-  !> would put a private copy of fint on each thread's stack).
+  !> threaded with OpenMP.  The element forces are kept per element and added
+  !> into fint afterwards in element order, so the result does not depend on
+  !> the threads' timing (bit-for-bit reproducible runs).
   subroutine element_response(bodies, u, fint, stress, vm)
     type(body_t), intent(in) :: bodies(:)
     real(dp), intent(in) :: u(:)
     real(dp), intent(out) :: fint(:)
     real(dp), intent(out), optional :: stress(:,:), vm(:)    !< skipped when absent
-    integer :: b, e, nen, ge, i
+    integer :: b, e, nen, ge
     integer :: dofs(8)
-    real(dp) :: ke(8, 8), eps(3), fe(8)
+    real(dp) :: ke(8, 8), eps(3)
+    real(dp), allocatable :: fe(:,:)
     fint = 0.0_dp
     do b = 1, size(bodies)
       associate(m => bodies(b)%mesh, bd => bodies(b))
-        !$omp parallel do private(e, nen, ge, dofs, ke, eps, fe, i) schedule(static)
+        allocate(fe(8, m%nelem))
+        !$omp parallel do private(e, nen, ge, dofs, ke, eps) schedule(static)
         do e = 1, m%nelem
           nen = m%nen(e)
           ge = bd%elem0 + e
           call element_dofs(bd, e, dofs)
           call element_stiffness(nen, m%x(:, m%conn(1:nen, e)), bd%law%d, bd%thick, ke(1:2 * nen, 1:2 * nen))
-          fe(1:2 * nen) = matmul(ke(1:2 * nen, 1:2 * nen), u(dofs(1:2 * nen)))
-          do i = 1, 2 * nen
-            !$omp atomic
-            fint(dofs(i)) = fint(dofs(i)) + fe(i)
-          end do
+          fe(1:2 * nen, e) = matmul(ke(1:2 * nen, 1:2 * nen), u(dofs(1:2 * nen)))
           if (.not. present(stress)) cycle
           call element_strain(nen, m%x(:, m%conn(1:nen, e)), u(dofs(1:2 * nen)), eps)
           if (allocated(bd%adt)) then                   ! sigma = D (eps - alpha dT eth)
@@ -388,6 +387,12 @@ contains
           end if
         end do
         !$omp end parallel do
+        do e = 1, m%nelem                               ! fint += fe, in element order
+          nen = m%nen(e)
+          call element_dofs(bd, e, dofs)
+          fint(dofs(1:2 * nen)) = fint(dofs(1:2 * nen)) + fe(1:2 * nen, e)
+        end do
+        deallocate(fe)
       end associate
     end do
   end subroutine element_response

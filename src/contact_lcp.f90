@@ -24,6 +24,7 @@
 module contact_lcp
   use kinds, only: dp
   use lcp_solvers, only: lcp_options_t, lcp_report_t, solve_lcp_lemke, solve_lcp_pgs, lcp_natural_residual
+  use lcp_newton, only: solve_lcp_pdas
   use diagnostics, only: int_to_str
   implicit none
   private
@@ -82,7 +83,7 @@ contains
   !>   q      (in) (nc) gaps without contact forces
   !>   h      (in) (nc, k) B R; k = 0 for a problem without free modes
   !>   e      (in) (k) R' f
-  !>   method (in) 'lemke' or 'pgs'
+  !>   method (in) 'lemke', 'pgs' or 'pdas'
   !>   opts   (in) tolerances
   !>   sol    (out) the solution; sol%rep%info /= 0 on failure with a message
   subroutine solve_contact(w, q, h, e, method, opts, sol)
@@ -226,6 +227,8 @@ contains
           rep%info = 0
         end if
       end if
+    else if (method == 'pdas') then
+      call solve_lcp_pdas(w, q, z, opts, rep)
     else
       call solve_lcp_lemke(w, q, z, opts, rep)
     end if

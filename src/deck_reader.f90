@@ -27,7 +27,7 @@
 !>     BODYFORCE [fx=0] [fy=0]           (at least one)
 !>   GRAVITY [gx=0] [gy=0]               (at least one)
 !>   CONTACT slave=body:boundary master=body:boundary [gap=geometry|zero]
-!>   SOLVER [lcp=auto|lemke|pgs] [tol=1e-10] [maxit=0] [omega=1]
+!>   SOLVER [lcp=auto|lemke|pgs|pdas] [tol=1e-10] [maxit=0] [omega=1]
 !>   OUTPUT [vtk=NAME.vtk] [contact=NAME_contact.csv] [summary=NAME.summary]
 !>                                      (NAME: deck file name without folder and
 !>                                      extension; '.vtk' is appended to vtk= if missing)
@@ -135,7 +135,7 @@ module deck_reader
 
   !> SOLVER [lcp=] [tol=] [maxit=] [omega=]
   type :: solver_deck_t
-    character(len=:), allocatable :: lcp        !< 'auto' (default), 'lemke', 'pgs'
+    character(len=:), allocatable :: lcp        !< 'auto' (default), 'lemke', 'pgs', 'pdas'
     real(dp) :: tol = 1.0e-10_dp
     integer :: maxit = 0                        !< 0: the solver's default
     real(dp) :: omega = 1.0_dp
@@ -1522,9 +1522,9 @@ contains
     type(state_t), intent(inout) :: s
     type(deck_t), intent(inout) :: deck
     type(stmt_t), intent(in) :: st
-    character(len=*), parameter :: usage = 'SOLVER [lcp=auto|lemke|pgs] [tol=number] [maxit=integer] [omega=number]'
+    character(len=*), parameter :: usage = 'SOLVER [lcp=auto|lemke|pgs|pdas] [tol=number] [maxit=integer] [omega=number]'
     character(len=5), parameter :: names(4) = [character(len=5) :: 'lcp', 'tol', 'maxit', 'omega']
-    character(len=14), parameter :: forms(4) = [character(len=14) :: 'auto|lemke|pgs', 'number', 'integer', &
+    character(len=19), parameter :: forms(4) = [character(len=19) :: 'auto|lemke|pgs|pdas', 'number', 'integer', &
                                                 'number']
     logical :: seen(4), ok
     type(text_t) :: val(4)
@@ -1540,7 +1540,7 @@ contains
     call check_extra_words(s, st, 0, usage)
     call match_keys(s, st, names, forms, 'SOLVER', seen, val)
     if (allocated(val(1)%s)) then
-      lcp = get_choice(s, st, val(1), 'lcp', ['auto ', 'lemke', 'pgs  '])
+      lcp = get_choice(s, st, val(1), 'lcp', ['auto ', 'lemke', 'pgs  ', 'pdas '])
       if (len(lcp) > 0) deck%solver%lcp = lcp
     end if
     call get_positive(s, st, val(2), 'tol', deck%solver%tol, ok)
