@@ -1,0 +1,74 @@
+#!/usr/bin/python3
+"""GetFEM 5.4 solution of Hertz H on the two gmsh meshes of contact2d.
+
+    getfem_hertz.py BLOCK.msh DISK.msh OUT.prof [MAX_RES [MAX_ITER]]
+
+Plane strain P1 elasticity on each body (E = 200000, nu = 0.3), Dirichlet
+conditions by multipliers (block bottom clamped; disk top ux = 0,
+uy = -0.01), frictionless contact by the nodal contact brick between non-
+matching meshes (slave: block top nodes, master: disk arc; non-symmetric
+Alart-Curnier augmented Lagrangian, r = E), Newton with MUMPS.  The mesh
+regions are the gmsh physical tags (block: bottom 1, top 3; disk: arc 1,
+top 2).  Writes the profile (x, nodal normal force / tributary length) of the
+block top nodes with P = the vertical reaction on the disk top (the integral
+of the Dirichlet multiplier) and the Newton outcome.  Exit status 3 when
+Newton did not converge (the profile is written all the same).
+"""
+import sys
+
+import numpy as np
+
+import getfem as gf
+from hertz_err import write_profile
+
+E, NU, DELTA = 200000.0, 0.3, 0.01
+BOTTOM, BTOP = 1, 3        # block physical tags
+ARC, DTOP = 1, 2           # disk physical tags
+
+
+def main():
+    bfile, dfile, out = sys.argv[1:4]
+    max_res = float(sys.argv[4]) if len(sys.argv) > 4 else 1e-5
+    max_iter = int(sys.argv[5]) if len(sys.argv) > 5 else 50
+    gf.util("trace level", 0)
+    lam = E * NU / ((1 + NU) * (1 - 2 * NU))
+    mu = E / (2 * (1 + NU))
+    m1 = gf.Mesh("import", "gmsh", bfile)
+    m2 = gf.Mesh("import", "gmsh", dfile)
+    mf1 = gf.MeshFem(m1, 2)
+    mf1.set_classical_fem(1)
+    mf2 = gf.MeshFem(m2, 2)
+    mf2.set_classical_fem(1)
+    mim1 = gf.MeshIm(m1, 2)
+    mim2 = gf.MeshIm(m2, 2)
+    md = gf.Model("real")
+    md.add_fem_variable("u1", mf1)
+    md.add_fem_variable("u2", mf2)
+    md.add_initialized_data("clambda", [lam])
+    md.add_initialized_data("cmu", [mu])
+    md.add_isotropic_linearized_elasticity_brick(mim1, "u1", "clambda", "cmu")
+    md.add_isotropic_linearized_elasticity_brick(mim2, "u2", "clambda", "cmu")
+    # Multipliers, not "with simplification": the latter costs O(n^2) here.
+    md.add_Dirichlet_condition_with_multipliers(mim1, "u1", 1, BOTTOM)
+    md.add_initialized_data("DU", [0.0, -DELTA])
+    md.add_Dirichlet_condition_with_multipliers(mim2, "u2", 1, DTOP, "DU")
+    md.add_initialized_data("r", [E])
+    md.add_nodal_contact_between_nonmatching_meshes_brick(mim1, mim2, "u1", "u2", "lambda_n", "r",
+                                                          BTOP, ARC, 1, 0, 1)
+    nit, conv = md.solve("max_res", max_res, "max_iter", max_iter, "lsolver", "mumps")
+    P = abs(gf.asm_generic(mim2, 0, "mult_on_u2", DTOP, md)[1])
+    dofs = mf1.basic_dof_on_region(BTOP)
+    x = mf1.basic_dof_nodes(dofs[::2])[0]          # lambda_n follows these nodes
+    order = np.argsort(x)
+    xs = x[order]
+    force = -md.variable("lambda_n")[order]
+    w = np.zeros_like(xs)
+    w[:-1] += 0.5 * np.diff(xs)
+    w[1:] += 0.5 * np.diff(xs)
+    write_profile(out, list(xs), list(force / w), P=float(P), dofs=mf1.nbdof() + mf2.nbdof(),
+                  newton_iterations=int(nit), converged=int(conv))
+    return 0 if conv else 3
+
+
+if __name__ == "__main__":
+    sys.exit(main())
