@@ -162,6 +162,7 @@ program contact2d
     end if
   end do
   call nodal_contact_fields()
+  call check_finite_results()
   call lap(ph_output)             ! stresses, reactions and energy are post-processing
 
   ! --- outputs ------------------------------------------------------------
@@ -393,6 +394,21 @@ contains
       call say('wrote    ' // outdir // '/' // deck%output%vtk // ', ' // deck%output%summary)
     end if
   end subroutine report_run
+
+  !> Every number about to be written must be finite: loads near the top of
+  !> the accepted range can overflow in the post-processing (energy, stresses)
+  !> even when the displacement did not.  Numerical failure, exit 1, nothing
+  !> written.
+  subroutine check_finite_results()
+    logical :: ok
+    ok = ieee_is_finite(res%energy) .and. all(ieee_is_finite(res%reaction)) .and. &
+         ieee_is_finite(res%complementarity)
+    if (deck%output%fields(4) .or. deck%output%fields(5)) &
+      ok = ok .and. all(ieee_is_finite(res%stress)) .and. all(ieee_is_finite(res%vm))
+    if (allocated(res%gap)) ok = ok .and. all(ieee_is_finite(res%gap)) .and. all(ieee_is_finite(res%pressure))
+    if (.not. ok) call fail_numerical('the results overflow (stresses, reactions, energy or contact quantities ' // &
+      'are not finite): the loads or prescribed values are out of the range of double precision arithmetic')
+  end subroutine check_finite_results
 
   !> Folder for temporary files (gmsh's meshes of .geo files): $TMPDIR or /tmp.
   function temp_folder() result(path)

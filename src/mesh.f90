@@ -63,10 +63,11 @@ contains
     character(len=*), intent(in) :: file
     type(diag_t), intent(inout) :: diag
     integer, allocatable :: newid(:)
-    integer :: e, k, n, nneg, npos, nbad, b
+    integer :: e, k, n, nneg, npos, nbad, b, nerr0
     real(dp) :: a, h2, scale
     real(dp), allocatable :: area(:)
 
+    nerr0 = diag%count
     if (mesh%nelem <= 0) then
       call add_error(diag, file, 0, 'mesh has no 2D elements (triangles or quadrilaterals expected)')
       return
@@ -109,6 +110,8 @@ contains
         call renumber_boundary(mesh%bnd(b), newid, mesh%nnode, file, diag)
       end do
     end if
+    ! a boundary left with old node numbers (a node of no element) must not be used below
+    if (diag%count > nerr0) return
 
     ! Boundary edges of zero length (two distinct nodes at one point).
     if (allocated(mesh%bnd)) then
