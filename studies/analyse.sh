@@ -107,19 +107,20 @@ awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i
 
 # ---------------------------------------------------------------- the LCP solvers against each other
 {
-  echo "family,config,solvers,active_min,active_max,h1_rel_spread,energy_spread,residual_max,complementarity_max,min_gap_min"
+  echo "family,config,solvers,active_min,active_max,h1_rel_spread,energy_spread,residual_max,complementarity_max,min_gap_min,cpu_spread,cpu_min"
   for fam in S H; do
     if [ $fam = S ]; then csv=$t/signorini.csv; else csv=$t/hertz.csv; fi
     awk -F, -v fam=$fam 'NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
       $(c["status"]) == 0 { k = $(c["name"]); sub(/_(lemke|pgs|pdas)$/, "", k); keys[k] = 1; n[k]++
         a = $(c["active_nodes"]) + 0; e = $(c["h1_rel"]) + 0; en = $(c["energy"]) + 0
-        r = $(c["lcp_residual"]) + 0; cp = $(c["complementarity"]) + 0; g = $(c["min_gap"]) + 0
-        if (n[k] == 1) { amin[k] = amax[k] = a; emin[k] = emax[k] = e; nmin[k] = nmax[k] = en; rmax[k] = r; cmax[k] = cp; gmin[k] = g }
-        else { if (a < amin[k]) amin[k] = a; if (a > amax[k]) amax[k] = a; if (e < emin[k]) emin[k] = e; if (e > emax[k]) emax[k] = e
+        r = $(c["lcp_residual"]) + 0; cp = $(c["complementarity"]) + 0; g = $(c["min_gap"]) + 0; u = $(c["cpu_time"]) + 0
+        if (n[k] == 1) { amin[k] = amax[k] = a; emin[k] = emax[k] = e; nmin[k] = nmax[k] = en; rmax[k] = r; cmax[k] = cp; gmin[k] = g
+                         umin[k] = umax[k] = u }
+        else { if (u < umin[k]) umin[k] = u; if (u > umax[k]) umax[k] = u; if (a < amin[k]) amin[k] = a; if (a > amax[k]) amax[k] = a; if (e < emin[k]) emin[k] = e; if (e > emax[k]) emax[k] = e
                if (en < nmin[k]) nmin[k] = en; if (en > nmax[k]) nmax[k] = en; if (r > rmax[k]) rmax[k] = r
                if (cp > cmax[k]) cmax[k] = cp; if (g < gmin[k]) gmin[k] = g } }
-      END { for (k in keys) printf "%s,%s,%d,%d,%d,%.3e,%.3e,%.3e,%.3e,%.3e\n", fam, k, n[k], amin[k], amax[k],
+      END { for (k in keys) printf "%s,%s,%d,%d,%d,%.3e,%.3e,%.3e,%.3e,%.3e,%.4f,%.4f\n", fam, k, n[k], amin[k], amax[k],
               (emin[k] > 0 ? (emax[k] - emin[k]) / emin[k] : 0), (nmin[k] > 0 ? (nmax[k] - nmin[k]) / nmin[k] : 0),
-              rmax[k], cmax[k], gmin[k] }' "$csv" | sort
+              rmax[k], cmax[k], gmin[k], (umin[k] > 0 ? (umax[k] - umin[k]) / umin[k] : 0), umin[k] }' "$csv" | sort
   done
 } > "$t/agreement.csv"

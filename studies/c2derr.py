@@ -13,7 +13,8 @@
         one run triangle (nested meshes, e.g. MESH rect with nx multiplied) is
         integrated exactly with one point (both gradients are constant on it);
         any other reference triangle is clipped against the run triangles it
-        meets and integrated exactly piece by piece.  A part outside the run's
+        meets and integrated exactly piece by piece (when the run mesh has Q1
+        cells: with the centroids of its 16 pieces of a 4 x 4 split).  A part outside the run's
         body (a curved boundary meshed by chords) takes the gradient of the
         nearest run cell (its linear extension).  Q1 cells (either side) use
         2 x 2 Gauss points located one by one.  -m E,nu gives the material of body 1, 2, ... (the last one

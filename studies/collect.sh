@@ -76,10 +76,10 @@ awk 'BEGIN { print "element,n,h,l2_err,h1_err" }
   /^# +[0-9]+ / { printf "%s,%s,%s,%s,%s\n", el, $2, $3, $4, $5 }' "$out/mms.txt" > "$t/mms.csv"
 
 # rates: least squares of log(err) on log(h) per series; series = FILE:FILTER:HCOL:ECOL
-fit() {  # NAME CSV HCOL ECOL FILTER(awk condition on columns c[...]) [LEVELMIN]
-  awk -F, -v name="$1" -v hc="$3" -v ec="$4" -v lmin="${6:-0}" '
+fit() {  # NAME CSV HCOL ECOL FILTER(awk condition on columns c[...]) [LEVELMIN [LEVELMAX]]
+  awk -F, -v name="$1" -v hc="$3" -v ec="$4" -v lmin="${6:-0}" -v lmax="${7:-99}" '
     NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
-    $(c["status"]) == 0 && ('"$5"') && $(c[ec]) > 0 && ($(c["level"]) + 0) >= lmin {
+    $(c["status"]) == 0 && ('"$5"') && $(c[ec]) > 0 && ($(c["level"]) + 0) >= lmin && ($(c["level"]) + 0) <= lmax {
       x = log($(c[hc])); y = log($(c[ec])); n++; sx += x; sy += y; sxx += x * x; sxy += x * y
       if (n == 1 || $(c[hc]) > hmax) hmax = $(c[hc]); if (n == 1 || $(c[hc]) < hmin) hmin = $(c[hc]) }
     END { if (n >= 2) { r = (n * sxy - sx * sy) / (n * sxx - sx * sx); a = (sy - r * sx) / n
@@ -93,11 +93,16 @@ fit() {  # NAME CSV HCOL ECOL FILTER(awk condition on columns c[...]) [LEVELMIN]
     done
     fit "S h2/h1=$r slave=upper" "$t/signorini.csv" h1 h1_rel "\$(c[\"ratio\"]) == $r && \$(c[\"slave\"]) == \"upper\" && \$(c[\"lcp\"]) == \"lemke\""
   done
-  fit "S h2/h1=1 slave=lower, levels >= 1" "$t/signorini.csv" h1 h1_rel "\$(c[\"ratio\"]) == 1 && \$(c[\"slave\"]) == \"lower\" && \$(c[\"lcp\"]) == \"lemke\"" 1
-  fit "S h2/h1=1 slave=lower, levels >= 1" "$t/signorini.csv" h1 p_l2 "\$(c[\"ratio\"]) == 1 && \$(c[\"slave\"]) == \"lower\" && \$(c[\"lcp\"]) == \"lemke\"" 1
+  fit "S h2/h1=1 slave=lower levels>=1" "$t/signorini.csv" h1 h1_rel "\$(c[\"ratio\"]) == 1 && \$(c[\"slave\"]) == \"lower\" && \$(c[\"lcp\"]) == \"lemke\"" 1
+  fit "S h2/h1=1 slave=lower levels>=1" "$t/signorini.csv" h1 p_l2 "\$(c[\"ratio\"]) == 1 && \$(c[\"slave\"]) == \"lower\" && \$(c[\"lcp\"]) == \"lemke\"" 1
   for s in block disk; do
     for q in h1_rel energy_rel p_l2 p_l2_hertz a_err p0_err a_err_ref p0_err_ref F_max; do
       fit "H h2/h1=1 slave=$s" "$t/hertz.csv" h1 $q "\$(c[\"ratio\"]) == 1 && \$(c[\"slave\"]) == \"$s\" && \$(c[\"lcp\"]) == \"lemke\""
+    done
+  done
+  for s in block disk; do
+    for q in h1_rel p_l2; do
+      fit "H h2/h1=1 slave=$s levels<=3" "$t/hertz.csv" h1 $q "\$(c[\"ratio\"]) == 1 && \$(c[\"slave\"]) == \"$s\" && \$(c[\"lcp\"]) == \"lemke\"" 0 3
     done
   done
   for el in tri3 quad4; do
