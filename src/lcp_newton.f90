@@ -73,7 +73,8 @@
 module lcp_newton
   use kinds, only: dp, i8
   use diagnostics, only: int_to_str
-  use lcp_solvers, only: lcp_options_t, lcp_report_t, scale_lcp, solve_lcp_lemke, lcp_natural_residual
+  use lcp_solvers, only: lcp_options_t, lcp_report_t, scale_lcp, solve_lcp_lemke, lcp_natural_residual, &
+                         measure_solution
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
   private
@@ -933,45 +934,6 @@ contains
     rep%info = info
     rep%message = message
   end subroutine set_report
-
-  !> Residual (lcp_natural_residual) and complementarity of z, as lcp_solvers
-  !> reports them (see its module header):  max_i |zs_i ws_i| divided by
-  !> max_i |zs_i| max_i |qs_i| (by max_i |zs_i|**2 when q = 0; 0 when z = 0).
-  !>   W, q  (in)    the problem, (n, n) and (n)
-  !>   d     (in)    (n) the scaling
-  !>   z     (in)    (n) candidate
-  !>   rep   (inout) residual and complementarity set
-  subroutine measure_solution(W, q, d, z, rep)
-    real(dp), intent(in) :: W(:, :)
-    real(dp), intent(in) :: q(:)
-    real(dp), intent(in) :: d(:)
-    real(dp), intent(in) :: z(:)
-    type(lcp_report_t), intent(inout) :: rep
-    real(dp), allocatable :: gap(:), zs(:), ws(:)
-    real(dp) :: prod, zmax, qmax
-    integer :: n
-
-    n = size(q)
-    rep%residual = 0.0_dp
-    rep%complementarity = 0.0_dp
-    if (n == 0) return
-    rep%residual = lcp_natural_residual(W, q, z)
-    allocate(gap(n), zs(n), ws(n))
-    gap = q
-    call dgemv('N', n, n, 1.0_dp, W, n, z, 1, 1.0_dp, gap, 1)  ! w = q + W z
-    zs = z / d                                                  ! zs = D^-1 z
-    ws = d * gap                                                ! ws = D w
-    qmax = maxval(abs(d * q))
-    prod = maxval(abs(zs * ws))
-    zmax = maxval(abs(zs))
-    if (prod > 0.0_dp) then
-      if (qmax > 0.0_dp) then
-        rep%complementarity = prod / (zmax * qmax)
-      else
-        rep%complementarity = prod / zmax**2
-      end if
-    end if
-  end subroutine measure_solution
 
   !> Short scientific text of a real, for messages.
   function real_to_str(x) result(s)

@@ -65,7 +65,7 @@ module lcp_solvers
   implicit none
   private
   public :: lcp_options_t, lcp_report_t
-  public :: solve_lcp_lemke, solve_lcp_pgs, lcp_natural_residual, scale_lcp
+  public :: solve_lcp_lemke, solve_lcp_pgs, lcp_natural_residual, scale_lcp, measure_solution
 
   !> Solver settings.
   type :: lcp_options_t
