@@ -3,6 +3,7 @@ table and the VTK file, and print one `PASS name` / `FAIL name: detail` line
 per check.  The references are independent of the code: closed forms,
 invariants, or reference files whose provenance is recorded beside them."""
 import math
+import re
 import os
 import subprocess
 import sys
@@ -115,6 +116,27 @@ def close(got, want, rtol, name, floor=0.0):
     scale = max(abs(want), floor)
     ok = math.isfinite(got) and abs(got - want) <= rtol * scale
     check(ok, name, f"got {got:.10g}, expected {want:.10g} (rtol {rtol:g})")
+
+
+_NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
+
+
+def text_difference(a, b, rtol, scale=None):
+    """None when texts a and b are the same apart from floating-point numbers
+    that agree to rtol * scale (scale: the largest float magnitude in a unless
+    given); integers must be identical.  Else the first difference."""
+    wa, wb = _NUMBER.split(a), _NUMBER.split(b)
+    ta, tb = _NUMBER.findall(a), _NUMBER.findall(b)
+    if wa != wb or len(ta) != len(tb):
+        return "the texts differ apart from their numbers"
+    isint = [not any(c in t for c in ".eE") for t in ta]
+    fa = [abs(float(t)) for t, k in zip(ta, isint) if not k]
+    if scale is None:
+        scale = max((x for x in fa if math.isfinite(x)), default=0.0)
+    for i, (x, y, k) in enumerate(zip(ta, tb, isint)):
+        if k and x != y or not k and not abs(float(x) - float(y)) <= rtol * scale:
+            return f"number {i + 1}: {x} against {y}"
+    return None
 
 
 def small(got, tol, name):

@@ -4,7 +4,7 @@
 !> orthogonality (8) evaluated by an exact Simpson rule on the merged breakpoints,
 !> closed-form gaps) and the input errors.
 program test_mortar_operator
-  use kinds, only: dp
+  use kinds, only: dp, i8
   use diagnostics, only: error_t
   use mortar_operator, only: mortar_t, build_mortar
   use testing, only: check, check_close, check_small, finish_tests
@@ -27,8 +27,7 @@ contains
 
   !> Uniform pseudo-random number in [0, 1) (a fixed linear congruential sequence).
   real(dp) function rnd()
-    seed = mod(69069 * seed + 1, 2147483647)
-    if (seed < 0) seed = seed + 2147483647
+    seed = int(mod(69069_i8 * seed + 1_i8, 2147483647_i8))   ! in 64 bits: no overflow
     rnd = real(seed, dp) / 2147483647.0_dp
   end function rnd
 
