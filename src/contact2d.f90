@@ -11,13 +11,14 @@ program contact2d
   use kinds, only: dp, i8
   use diagnostics, only: diag_t, add_error, stop_input_errors, fail_numerical, exit_program, error_t, int_to_str
   use deck_reader, only: deck_t, read_deck
-  use scene, only: scene_t, build_scene
-  use body, only: number_equations, build_pattern, assemble_stiffness, element_response
+  use scene, only: scene_t, build_scene, load_factor
+  use body, only: number_equations, build_pattern, assemble_stiffness, element_response, internal_forces
   use sparse_matrix, only: csc_t
   use sparse_cholesky, only: factor_t, factorize, solve, factor_nnz, factor_memory
-  use contact_set, only: contact_set_t, build_contact_set, row_of_node
-  use contact_condensation, only: contact_equations, condense, contact_forces, recover
-  use lcp_solvers, only: lcp_options_t
+  use contact_set, only: contact_set_t, pair_spec_t, build_contact_set, row_of_node, has_friction
+  use contact_condensation, only: contact_equations, condense, contact_forces, recover, constraint_values
+  use lcp_solvers, only: lcp_options_t, lcp_report_t
+  use friction_lcp, only: solve_friction_lcp, friction_state
   use contact_lcp, only: contact_solution_t, solve_contact
   use rigid_modes, only: floating_t, find_floating_modes, mode_name
   use results_writer, only: results_t, write_vtk, write_contact_csv, write_summary, commit_outputs, &
@@ -46,6 +47,7 @@ program contact2d
   integer :: nfree, i, nlabel
   integer(i8) :: t_start, t_phase, t_solve, t_now, t_rate
   real(dp), allocatable :: rhs(:,:), x(:,:), u0(:), w(:,:), q(:), fint(:), fc(:)
+  real(dp), allocatable :: cu0(:,:)      ! (nrow + ntan, ramps) C u0 of each ramp's loads (friction)
 
   call parse_command_line(deck_path, outdir, check_only, quiet)
   call system_clock(t_start)
@@ -68,6 +70,7 @@ program contact2d
   ! free rigid modes (bodies held only by contact): pin k dofs to factorize K^#
   call find_floating_modes(sc%bodies, sc%fixed, fl)
   call check_floating_bodies()
+  call check_friction_support()
   held = sc%fixed
   if (fl%k > 0) held(fl%pin) = .true.
   call number_equations(held, eq, nfree)
@@ -124,13 +127,25 @@ program contact2d
     ! as recovery otherwise: a scene without contact spends nothing on it
     call condense(cs, eq, factor, u0, w, q, err)
     if (allocated(err)) call fail_numerical(err%message)
-    call lap(ph_condense)
-    call solve_contact_problem()
+    if (cs%ntan > 0) then
+      call friction_load_paths()
+      call lap(ph_condense)
+      call solve_friction_steps()
+    else
+      call lap(ph_condense)
+      call solve_contact_problem()
+    end if
+    call contact_measures()
     call lap(ph_lcp)
     allocate(res%u(sc%ndof))
-    call recover(cs, eq, factor, u0, res%mu, res%u)
+    if (cs%ntan > 0) then
+      call recover(cs, eq, factor, u0, [res%mu, res%tau], res%u)
+      call contact_forces(cs, [res%mu, res%tau], fc)
+    else
+      call recover(cs, eq, factor, u0, res%mu, res%u)
+      call contact_forces(cs, res%mu, fc)
+    end if
     if (fl%k > 0) res%u = res%u + matmul(fl%r, res%alpha)    ! + R alpha: the free rigid modes
-    call contact_forces(cs, res%mu, fc)
   else
     res%u = u0
   end if
@@ -209,8 +224,7 @@ contains
     type(contact_solution_t) :: sol
     character(len=:), allocatable :: method
     real(dp), allocatable :: h(:,:), e(:)
-    integer :: r, ip, node, kk, j
-    real(dp) :: dmax, pmax, gmax
+    integer :: r, kk, j
 
     opts%tol = deck%solver%tol
     opts%maxit = deck%solver%maxit
@@ -257,9 +271,16 @@ contains
         mode_name(fl, j) // ') held by neither FIX nor contact and unloaded: its amplitude is set to 0')
     end do
 
-    allocate(res%gap(cs%nrow), res%pressure(cs%nrow), res%status(cs%nrow))
+    call move_alloc(sol%gap, res%gap)
+  end subroutine solve_contact_problem
+
+  !> Pressures, status, node counts and complementarity of the solved
+  !> contact problem (res%mu, res%gap set).
+  subroutine contact_measures()
+    integer :: r, ip, node
+    real(dp) :: dmax, pmax, gmax
+    allocate(res%pressure(cs%nrow), res%status(cs%nrow))
     res%contact_nodes = cs%nrow
-    res%gap = sol%gap
     if (cs%nrow == 0) return
     dmax = 0.0_dp
     do r = 1, cs%nrow
@@ -288,7 +309,7 @@ contains
       end do
     end do
     ! length scale: the initial gaps, or the gaps the loads open without contact forces (q)
-    gmax = max(maxval(abs(cs%g)), maxval(abs(q)))
+    gmax = max(maxval(abs(cs%g)), maxval(abs(q(1:cs%nrow))))
     if (pmax > 0.0_dp .and. gmax > 0.0_dp) then
       res%complementarity = maxval(abs(res%pressure * res%gap)) / (pmax * gmax)
     else
@@ -296,7 +317,96 @@ contains
     end if
     res%min_gap = min(0.0_dp, minval(res%gap))
     res%min_pressure = minval(res%pressure)
-  end subroutine solve_contact_problem
+  end subroutine contact_measures
+
+  !> C u0_g for each ramp g of the load history (one solve per ramp, none when
+  !> the deck has one ramp: then C u0 is the load path times the factor).
+  subroutine friction_load_paths()
+    integer :: g, j
+    real(dp), allocatable :: rhsg(:,:), xg(:,:), ug(:), fk(:)
+    allocate(cu0(cs%nrow + cs%ntan, size(sc%ramp, 2)))
+    if (size(sc%ramp, 2) == 1) then
+      call constraint_values(cs, u0, cu0(:, 1))
+      return
+    end if
+    allocate(rhsg(nfree, 1), xg(nfree, 1), ug(sc%ndof), fk(sc%ndof))
+    do g = 1, size(sc%ramp, 2)
+      call internal_forces(sc%bodies, sc%ugroup(:, g), fk)        ! K ubar_g: its free rows are K_fd ubar_g
+      do j = 1, sc%ndof
+        if (eq(j) > 0) rhsg(eq(j), 1) = sc%fgroup(j, g) - fk(j)
+      end do
+      call solve(factor, rhsg, xg)
+      ug = sc%ugroup(:, g)
+      do j = 1, sc%ndof
+        if (eq(j) > 0) ug(j) = xg(eq(j), 1)
+      end do
+      call constraint_values(cs, ug, cu0(:, g))
+    end do
+  end subroutine friction_load_paths
+
+  !> Frictional contact in load steps: at step k the loads are the ramps'
+  !> factors times their loads, the slip of the step is measured from the
+  !> tangential displacement T u of step k-1, and the condensed friction LCP
+  !> (normal and tangential multipliers, friction_lcp) is solved, warm-started
+  !> from step k-1.
+  subroutine solve_friction_steps()
+    type(lcp_options_t) :: opts
+    type(lcp_report_t) :: rep
+    character(len=:), allocatable :: method
+    real(dp), allocatable :: z(:), cu(:), qn(:), qt(:), sprev(:)
+    integer :: n, nt, kstep, g, r
+    character(len=200) :: line
+
+    n = cs%nrow
+    nt = cs%ntan
+    opts%tol = deck%solver%tol
+    opts%maxit = deck%solver%maxit
+    opts%omega = deck%solver%omega
+    method = deck%solver%lcp
+    ! lcp=auto: Lemke on the friction LCP (n + 3 nt unknowns) while its dense
+    ! tableau is small, the block Gauss-Seidel above
+    if (method == 'auto') method = merge('lemke', 'pgs  ', n + 3 * nt <= 400)
+    method = trim(method)
+    allocate(z(n + nt), cu(n + nt), qn(n), qt(nt), sprev(nt), res%fstate(nt))
+    z = 0.0_dp
+    sprev = 0.0_dp
+    res%lcp_iterations = 0
+    do kstep = 1, sc%steps
+      cu = 0.0_dp
+      do g = 1, size(sc%ramp, 2)
+        cu = cu + load_factor(sc%ramp(:, g), kstep) * cu0(:, g)
+      end do
+      qn = cs%g - cu(1:n)                          ! gaps without contact forces
+      qt = sprev - cu(n + 1:)                      ! minus the slip of the step without contact forces
+      call solve_friction_lcp(w, qn, qt, cs%tan_row, cs%tan_mu, cs%tan_bound, method, opts, z, rep)
+      res%lcp_iterations = res%lcp_iterations + rep%iterations
+      if (rep%info /= 0) call fail_numerical('friction, load step ' // int_to_str(kstep) // ' of ' // &
+        int_to_str(sc%steps) // ': contact problem not solved: ' // rep%message)
+      if (.not. all(ieee_is_finite(z))) call fail_numerical('friction, load step ' // int_to_str(kstep) // &
+        ': the contact multipliers are not finite')
+      sprev = cu(n + 1:) - matmul(w(n + 1:, :), z)  ! T u_k = T u0_k - T K^-1 C' z
+      call friction_state(w, qn, qt, cs%tan_row, cs%tan_mu, cs%tan_bound, z, res%fstate)
+      write(line, '(a,i0,a,i0,a,i0,a,i0,a,i0,a,es9.2)') 'step     ', kstep, '/', sc%steps, ': ' // method // ' ', &
+        rep%iterations, ' iterations, ', count(z(1:n) > 0.0_dp), ' active, ', count(res%fstate == 2), &
+        ' slipping, residual ', rep%residual
+      call say(trim(line))
+    end do
+    res%lcp_method = method
+    res%lcp_residual = rep%residual
+    res%steps = sc%steps
+    res%mu = z(1:n)
+    res%tau = z(n + 1:)
+    res%gap = qn + matmul(w(1:n, :), z)
+    res%slip = sprev
+    allocate(res%shear(nt), res%tan_of_row(n))
+    res%tan_of_row = 0
+    do r = 1, nt
+      res%tan_of_row(cs%tan_row(r)) = r
+      res%shear(r) = -res%tau(r) / cs%weight(cs%tan_row(r))    ! the force on the slave is -tau t
+    end do
+    res%stick_nodes = count(res%fstate == 1)
+    res%slip_nodes = count(res%fstate == 2)
+  end subroutine solve_friction_steps
 
   !> contact_pressure and gap on the nodes, for the VTK file.
   subroutine nodal_contact_fields()
@@ -310,6 +420,14 @@ contains
       gnode = sc%bodies(cs%pair(ip)%spec%slave_body)%dof0 / 2 + cs%pair(ip)%snode(node)
       res%node_pressure(gnode) = res%pressure(r)
       res%node_gap(gnode) = res%gap(r)
+    end do
+    if (.not. allocated(res%tau)) return
+    allocate(res%node_shear(sc%ndof / 2), source=0.0_dp)
+    do r = 1, cs%ntan
+      ip = cs%row_pair(cs%tan_row(r))
+      node = cs%row_node(cs%tan_row(r))
+      gnode = sc%bodies(cs%pair(ip)%spec%slave_body)%dof0 / 2 + cs%pair(ip)%snode(node)
+      res%node_shear(gnode) = res%shear(r)
     end do
   end subroutine nodal_contact_fields
 
@@ -357,10 +475,15 @@ contains
     end do
     do ip = 1, cs%npair
       write(line, '(a,i0,a,i0,a,i0,a,i0,a)') 'contact  pair ', ip, ': ', size(cs%pair(ip)%snode), &
-        ' slave nodes, ', size(cs%pair(ip)%mnode), ' master nodes, ', cs%pair(ip)%nrow, &
-        ' constrained (mortar, frictionless)'
-      call say(trim(line))
+        ' slave nodes, ', size(cs%pair(ip)%mnode), ' master nodes, ', cs%pair(ip)%nrow, ' constrained (mortar, '
+      call say(trim(line) // ' ' // friction_law(deck%contacts(ip)%friction, cs%pair(ip)%spec) // ')')
     end do
+    if (sc%steps > 1 .and. cs%ntan > 0) then
+      call say('steps    ' // int_to_str(sc%steps) // ' load steps (friction: the answer depends on the load path)')
+    else if (sc%steps > 1) then
+      call say('steps    ' // int_to_str(sc%steps) // ' load steps declared; without friction the answer does not ' // &
+               'depend on the load path: the final step alone is solved')
+    end if
     do ip = 1, fl%k
       call say('rigid    body ' // sc%bodies(fl%mode_body(ip))%name // ': ' // mode_name(fl, ip) // &
                ' not held by FIX: held by contact (equilibrium as an equality constraint)')
@@ -394,6 +517,42 @@ contains
       call say('wrote    ' // outdir // '/' // deck%output%vtk // ', ' // deck%output%summary)
     end if
   end subroutine report_run
+
+  !> How a pair's tangential behaviour is described in the log.
+  function friction_law(kind, spec) result(t)
+    character(len=*), intent(in) :: kind
+    type(pair_spec_t), intent(in) :: spec
+    character(len=:), allocatable :: t
+    character(len=32) :: v
+    select case (kind)
+    case ('coulomb')
+      write(v, '(g0.6)') spec%mu
+      t = 'Coulomb friction mu = ' // trim(v)
+      if (spec%mu == 0.0_dp) t = t // ': frictionless'
+    case ('tresca')
+      write(v, '(g0.6)') spec%tresca
+      t = 'Tresca friction, slip bound ' // trim(v)
+      if (spec%tresca == 0.0_dp) t = t // ': frictionless'
+    case default
+      t = 'frictionless'
+    end select
+  end function friction_law
+
+  !> Friction needs every body held by FIX in its rigid modes: the friction
+  !> LCP has no equality constraints for the free modes (exit 2 at the CONTACT
+  !> line of the first friction pair).
+  subroutine check_friction_support()
+    integer :: ip
+    if (cs%ntan == 0 .or. fl%k == 0) return
+    do ip = 1, cs%npair
+      if (has_friction(cs%pair(ip)%spec)) then
+        call add_error(diag, deck%file, deck%contacts(ip)%line, 'friction with a body held only by contact (body ' // &
+          sc%bodies(fl%mode_body(1))%name // ': ' // mode_name(fl, 1) // ' not held by FIX) is not supported ' // &
+          '(expected FIX on every body that a friction pair touches, or a frictionless pair)')
+        call stop_input_errors(diag)
+      end if
+    end do
+  end subroutine check_friction_support
 
   !> Every number about to be written must be finite: loads near the top of
   !> the accepted range can overflow in the post-processing (energy, stresses)
@@ -559,15 +718,17 @@ contains
       '    MATERIAL isotropic E= nu=', &
       '    MATERIAL orthotropic E1= E2= nu12= G12= [angle=0] [E3= nu13= nu23=]', &
       '    DENSITY rho=', &
-      '    FIX boundary [ux=] [uy=]', &
-      '    TRACTION boundary tx= ty=', &
-      '    PRESSURE boundary p=', &
-      '    BODYFORCE fx= fy=', &
+      '    FIX boundary [ux=] [uy=] [ramp=k0:k1]', &
+      '    TRACTION boundary tx= ty= [ramp=k0:k1]', &
+      '    PRESSURE boundary p= [ramp=k0:k1]', &
+      '    BODYFORCE fx= fy= [ramp=k0:k1]', &
       '    THERMAL alpha= dT= [region=NAME]  (uniform temperature change; per physical surface)', &
       '    OFFSET dx= dy=                    (rigid shift of the body''s geometry)', &
-      '  GRAVITY gx= gy=', &
-      '  CONTACT slave=body:boundary master=body:boundary [gap=geometry|zero]', &
-      '  SOLVER lcp=auto|lemke|pgs|pdas [tol=1e-10] [maxit=N] [omega=1.0]', &
+      '  GRAVITY gx= gy= [ramp=k0:k1]', &
+      '  CONTACT slave=body:boundary master=body:boundary [gap=geometry|zero] [mu=C | tresca=S]', &
+      '                                    (frictionless unless mu= (Coulomb) or tresca= (slip bound))', &
+      '  SOLVER lcp=auto|lemke|pgs|pdas [tol=1e-10] [maxit=N] [omega=1.0]   (pdas: frictionless only)', &
+      '  STEPS n                           (load steps; ramp=k0:k1: load 0 at step k0 rising to 1 at k1)', &
       '  OUTPUT [vtk=FILE] [contact=FILE.csv] [summary=FILE] [fields=displacement,contact_pressure,gap,stress,von_mises]', &
       '', &
       'exit status: 0 solved, 1 solver failure (diagnostic on stderr), 2 bad input.', &

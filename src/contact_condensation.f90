@@ -14,7 +14,9 @@
 !> Programming interface
 !>   contact_equations(cs, eq, last)        free equations of the contact dofs, in
 !>                                          the order to be factorized last
-!>   condense(cs, eq, factor, u0, w, q, err)   W (nrow, nrow), q (nrow)
+!>   condense(cs, eq, factor, u0, w, q, err)   W (nc, nc), q (nc), nc = nrow + ntan
+!>   constraint_values(cs, u, v)            v = C u, C = [B; T] (the tangential
+!>                                          rows T of friction pairs after B)
 !>   contact_forces(cs, mu, fc)             fc = -B' mu on every dof (fc sized ndof)
 !>   recover(cs, eq, factor, u0, mu, u)     u = u0 + K^-1 (-B' mu) on free dofs
 module contact_condensation
@@ -24,7 +26,7 @@ module contact_condensation
   use sparse_cholesky, only: factor_t, trailing_factor_block, solve
   implicit none
   private
-  public :: contact_equations, condense, contact_forces, recover
+  public :: contact_equations, condense, contact_forces, recover, constraint_values
 
   interface
     subroutine dtrsm(side, uplo, transa, diag, m, n, alpha, a, lda, b, ldb)
@@ -63,12 +65,13 @@ contains
     end do
   end subroutine contact_equations
 
-  !> W = B_C (K^-1)_CC B_C' and q = g - B u0.
+  !> W = C_C (K^-1)_CC C_C' and q = g - C u0, C = [B; T] (T: tangential rows
+  !> of friction pairs, g = 0 there; C = B without friction).
   !>   cs     (in)  constraint rows; factor (in) K = L L' with contact_equations last
   !>   eq     (in)  (ndof) free equation numbers
   !>   u0     (in)  (ndof) solution without contact (prescribed values on fixed dofs)
-  !>   w      (out) (nrow, nrow) symmetric positive semi-definite
-  !>   q      (out) (nrow)
+  !>   w      (out) (nc, nc) symmetric positive semi-definite, nc = nrow + ntan
+  !>   q      (out) (nc)
   !>   err    (out) allocated when the trailing block cannot be had
   subroutine condense(cs, eq, factor, u0, w, q, err)
     type(contact_set_t), intent(in) :: cs
@@ -81,11 +84,12 @@ contains
     integer, allocatable :: fcol(:)
     real(dp), allocatable :: x(:,:), lcc(:,:)
 
-    nc = cs%nrow
+    nc = cs%nrow + cs%ntan
     allocate(w(nc, nc), q(nc))
-    ! q = g - B u0 (fixed contact dofs carry their prescribed values)
+    ! q = g - C u0 (fixed contact dofs carry their prescribed values; g = 0 on tangential rows)
     do r = 1, nc
-      q(r) = cs%g(r)
+      q(r) = 0.0_dp
+      if (r <= cs%nrow) q(r) = cs%g(r)
       do k = cs%bptr(r), cs%bptr(r + 1) - 1
         q(r) = q(r) - cs%bval(k) * u0(cs%cdof(cs%bcol(k)))
       end do
@@ -125,14 +129,31 @@ contains
     end do
   end subroutine condense
 
-  !> Nodal contact forces fc = -B' mu on all dofs (zero away from contact).
+  !> v = C u: the values of every constraint row (B u, then T u) at u.
+  !>   cs (in) rows; u (in) (ndof); v (out) (nrow + ntan)
+  subroutine constraint_values(cs, u, v)
+    type(contact_set_t), intent(in) :: cs
+    real(dp), intent(in) :: u(:)
+    real(dp), intent(out) :: v(:)
+    integer :: r, k
+    do r = 1, cs%nrow + cs%ntan
+      v(r) = 0.0_dp
+      do k = cs%bptr(r), cs%bptr(r + 1) - 1
+        v(r) = v(r) + cs%bval(k) * u(cs%cdof(cs%bcol(k)))
+      end do
+    end do
+  end subroutine constraint_values
+
+  !> Nodal contact forces fc = -C' mu on all dofs (zero away from contact);
+  !> mu holds the normal multipliers (nrow), followed by the tangential ones
+  !> (ntan) when there is friction.
   subroutine contact_forces(cs, mu, fc)
     type(contact_set_t), intent(in) :: cs
     real(dp), intent(in) :: mu(:)
     real(dp), intent(inout) :: fc(:)
     integer :: r, k
     fc = 0.0_dp
-    do r = 1, cs%nrow
+    do r = 1, size(mu)
       do k = cs%bptr(r), cs%bptr(r + 1) - 1
         fc(cs%cdof(cs%bcol(k))) = fc(cs%cdof(cs%bcol(k))) - cs%bval(k) * mu(r)
       end do

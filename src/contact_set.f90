@@ -6,6 +6,10 @@
 !> pair (see mortar_operator):
 !>     B_i u = n_i . u1(x_i) - n_i . sum_j P_ij u2(y_j)      (n2 = -n1)
 !> with n_i the slave nodal normal and P the matrix of pi_h^1; g_i = gap0_i.
+!> A pair with friction (beyond the paper) also has tangential rows
+!>     T_i u = t_i . u1(x_i) - t_i . sum_j P_ij u2(y_j),   t_i = (-n_y, n_x),
+!> the mortar relative tangential displacement (slip) at slave node i, stored
+!> after the rows of B in the same CSR arrays (rows nrow+1 .. nrow+ntan).
 !> B is kept sparse by rows over a compact list of "contact dofs" (the global
 !> dofs of the slave and master boundary nodes that B touches); entries of P
 !> below 1e-16 of their row's largest entry are dropped (pi_h^1 decays
@@ -27,13 +31,15 @@ module contact_set
   implicit none
   private
   public :: contact_set_t, pair_spec_t, contact_pair_t, chain_boundary, boundary_polyline
-  public :: build_contact_set, row_of_node
+  public :: build_contact_set, row_of_node, has_friction
 
   !> What a CONTACT statement says, resolved to indices.
   type :: pair_spec_t
     integer :: slave_body = 0, slave_bnd = 0   !< body index, boundary index in its mesh
     integer :: master_body = 0, master_bnd = 0
     logical :: gap_zero = .false.
+    real(dp) :: mu = 0.0_dp                   !< Coulomb coefficient (0: none)
+    real(dp) :: tresca = 0.0_dp               !< Tresca slip bound, a shear stress (0: none)
   end type pair_spec_t
 
   type :: contact_pair_t
@@ -64,6 +70,11 @@ module contact_set
     real(dp), allocatable :: g(:)           !< (nrow) initial gaps
     real(dp), allocatable :: weight(:)      !< (nrow) length a row's multiplier acts on: the pressure
                                             !< is mu / weight (int phi_i over the covered part)
+    integer :: ntan = 0                     !< tangential rows (pairs with friction), rows
+                                            !< nrow+1 .. nrow+ntan of the CSR arrays
+    integer, allocatable :: tan_row(:)      !< (ntan) the normal row of each tangential row
+    real(dp), allocatable :: tan_mu(:)      !< (ntan) Coulomb coefficient, 0 for Tresca
+    real(dp), allocatable :: tan_bound(:)   !< (ntan) Tresca force bound tresca * weight, 0 for Coulomb
   end type contact_set_t
 
 contains
@@ -205,7 +216,7 @@ contains
     type(pair_spec_t), intent(in) :: specs(:)
     type(contact_set_t), intent(out) :: cs
     type(error_t), allocatable, intent(out) :: err
-    integer :: ip, i, j, r, ns, nm, nnz, k, c, d0s, d0m, maxdof
+    integer :: ip, i, j, r, nm, nnz, k, c, d0s, d0m, maxdof
     integer, allocatable :: mnodes(:), colmap(:)
     real(dp), allocatable :: xm(:,:), nsl(:,:), nms(:,:)
     character(len=:), allocatable :: why
@@ -247,49 +258,24 @@ contains
       end associate
     end do
 
-    ! contact dofs: mark every dof B touches
+    ! tangential rows: one per normal row of a pair with a non-zero friction bound
+    cs%ntan = 0
+    do ip = 1, cs%npair
+      if (has_friction(cs%pair(ip)%spec)) cs%ntan = cs%ntan + cs%pair(ip)%nrow
+    end do
+
+    ! contact dofs: mark every dof B (and T) touches
     maxdof = 0
     do i = 1, size(bodies)
       maxdof = max(maxdof, bodies(i)%dof0 + 2 * bodies(i)%mesh%nnode)
     end do
     allocate(touched(maxdof), source=.false.)
-    allocate(cs%row_pair(cs%nrow), cs%row_node(cs%nrow), cs%g(cs%nrow), cs%bptr(cs%nrow + 1), cs%weight(cs%nrow))
+    allocate(cs%row_pair(cs%nrow), cs%row_node(cs%nrow), cs%g(cs%nrow), cs%bptr(cs%nrow + cs%ntan + 1), &
+             cs%weight(cs%nrow), cs%tan_row(cs%ntan), cs%tan_mu(cs%ntan), cs%tan_bound(cs%ntan))
     nnz = 0
     do ip = 1, cs%npair
-      associate(pr => cs%pair(ip), mo => cs%pair(ip)%mortar)
-        if (pr%nrow == 0) cycle
-        d0s = bodies(pr%spec%slave_body)%dof0
-        d0m = bodies(pr%spec%master_body)%dof0
-        ns = size(pr%snode); nm = size(pr%mnode)
-        if (pr%single) then
-          do c = 1, 2
-            do i = mo%first, mo%last
-              touched(d0s + 2 * (pr%snode(i) - 1) + c) = .true.
-            end do
-            do j = 1, nm
-              if (pr%mcov(j) > 0.0_dp) touched(d0m + 2 * (pr%mnode(j) - 1) + c) = .true.
-            end do
-          end do
-          nnz = nnz + 2 * (2 + count(pr%mcov > 0.0_dp))
-          cycle
-        end if
-        do i = mo%first, mo%last
-          if (.not. pr%row(i)) cycle
-          pmax = maxval(abs(mo%p(i, :)))
-          drop = 1.0e-16_dp * pmax
-          do c = 1, 2                       ! a dof is a contact dof only where its coefficient is non-zero
-            if (mo%normal(c, i) == 0.0_dp) cycle
-            touched(d0s + 2 * (pr%snode(i) - 1) + c) = .true.
-            nnz = nnz + 1
-            do j = 1, nm
-              if (abs(mo%p(i, j)) > drop) then
-                touched(d0m + 2 * (pr%mnode(j) - 1) + c) = .true.
-                nnz = nnz + 1
-              end if
-            end do
-          end do
-        end do
-      end associate
+      call mark_pair_dofs(.false.)
+      if (has_friction(cs%pair(ip)%spec)) call mark_pair_dofs(.true.)
     end do
     cs%ncdof = count(touched)
     allocate(cs%cdof(cs%ncdof), colmap(maxdof))
@@ -303,62 +289,141 @@ contains
       end if
     end do
 
-    ! rows of B (CSR over contact dofs)
+    ! rows of B, then of T (CSR over contact dofs)
     allocate(cs%bcol(nnz), cs%bval(nnz))
     k = 0
     cs%bptr(1) = 1
     do ip = 1, cs%npair
+      if (cs%pair(ip)%nrow == 0) cycle
+      r = cs%pair(ip)%row0
+      call fill_pair_rows(.false.)
+    end do
+    r = cs%nrow
+    do ip = 1, cs%npair
+      if (cs%pair(ip)%nrow == 0 .or. .not. has_friction(cs%pair(ip)%spec)) cycle
+      do i = 1, cs%pair(ip)%nrow                      ! tangential row r+i belongs to normal row row0+i
+        cs%tan_row(r - cs%nrow + i) = cs%pair(ip)%row0 + i
+        cs%tan_mu(r - cs%nrow + i) = cs%pair(ip)%spec%mu
+        cs%tan_bound(r - cs%nrow + i) = cs%pair(ip)%spec%tresca * cs%weight(cs%pair(ip)%row0 + i)
+      end do
+      call fill_pair_rows(.true.)
+    end do
+  contains
+
+    !> Direction of the rows of slave node i: the nodal normal n_i, or the
+    !> tangent t_i = (-n_y, n_x) (n turned a quarter turn anticlockwise).
+    pure function row_direction(mo, i, tangent) result(v)
+      type(mortar_t), intent(in) :: mo
+      integer, intent(in) :: i
+      logical, intent(in) :: tangent
+      real(dp) :: v(2)
+      v = mo%normal(:, i)
+      if (tangent) v = [-mo%normal(2, i), mo%normal(1, i)]
+    end function row_direction
+
+    !> Mark the dofs the rows of pair ip touch (normal or tangential rows) and
+    !> count their entries in nnz.
+    subroutine mark_pair_dofs(tangent)
+      logical, intent(in) :: tangent
+      real(dp) :: v(2)
       associate(pr => cs%pair(ip), mo => cs%pair(ip)%mortar)
-        if (pr%nrow == 0) cycle
+        if (pr%nrow == 0) return
         d0s = bodies(pr%spec%slave_body)%dof0
         d0m = bodies(pr%spec%master_body)%dof0
         nm = size(pr%mnode)
-        r = pr%row0
         if (pr%single) then
-          call single_row()
-          cycle
+          do c = 1, 2
+            do i = mo%first, mo%last
+              touched(d0s + 2 * (pr%snode(i) - 1) + c) = .true.
+            end do
+            do j = 1, nm
+              if (pr%mcov(j) > 0.0_dp) touched(d0m + 2 * (pr%mnode(j) - 1) + c) = .true.
+            end do
+          end do
+          nnz = nnz + 2 * (2 + count(pr%mcov > 0.0_dp))
+          return
+        end if
+        do i = mo%first, mo%last
+          if (.not. pr%row(i)) cycle
+          v = row_direction(mo, i, tangent)
+          pmax = maxval(abs(mo%p(i, :)))
+          drop = 1.0e-16_dp * pmax
+          do c = 1, 2                       ! a dof is a contact dof only where its coefficient is non-zero
+            if (v(c) == 0.0_dp) cycle
+            touched(d0s + 2 * (pr%snode(i) - 1) + c) = .true.
+            nnz = nnz + 1
+            do j = 1, nm
+              if (abs(mo%p(i, j)) > drop) then
+                touched(d0m + 2 * (pr%mnode(j) - 1) + c) = .true.
+                nnz = nnz + 1
+              end if
+            end do
+          end do
+        end do
+      end associate
+    end subroutine mark_pair_dofs
+
+    !> The rows of pair ip after row r (r advanced): normal rows with their
+    !> gaps and weights, or tangential rows.
+    subroutine fill_pair_rows(tangent)
+      logical, intent(in) :: tangent
+      real(dp) :: v(2)
+      associate(pr => cs%pair(ip), mo => cs%pair(ip)%mortar)
+        d0s = bodies(pr%spec%slave_body)%dof0
+        d0m = bodies(pr%spec%master_body)%dof0
+        nm = size(pr%mnode)
+        if (pr%single) then
+          call single_row(tangent)
+          return
         end if
         do i = mo%first, mo%last
           if (.not. pr%row(i)) cycle
           r = r + 1
-          cs%weight(r) = mo%covered_weight(i)
-          cs%row_pair(r) = ip
-          cs%row_node(r) = i
-          cs%g(r) = mo%gap0(i)
+          if (.not. tangent) then
+            cs%weight(r) = mo%covered_weight(i)
+            cs%row_pair(r) = ip
+            cs%row_node(r) = i
+            cs%g(r) = mo%gap0(i)
+          end if
+          v = row_direction(mo, i, tangent)
           pmax = maxval(abs(mo%p(i, :)))
           drop = 1.0e-16_dp * pmax
           do c = 1, 2
-            if (mo%normal(c, i) == 0.0_dp) cycle
-            k = k + 1                                   ! + n_i . u1(x_i)
+            if (v(c) == 0.0_dp) cycle
+            k = k + 1                                   ! + v_i . u1(x_i)
             cs%bcol(k) = colmap(d0s + 2 * (pr%snode(i) - 1) + c)
-            cs%bval(k) = mo%normal(c, i)
-            do j = 1, nm                                ! - n_i . sum_j P_ij u2(y_j)
+            cs%bval(k) = v(c)
+            do j = 1, nm                                ! - v_i . sum_j P_ij u2(y_j)
               if (abs(mo%p(i, j)) <= drop) cycle
               k = k + 1
               cs%bcol(k) = colmap(d0m + 2 * (pr%mnode(j) - 1) + c)
-              cs%bval(k) = -mo%normal(c, i) * mo%p(i, j)
+              cs%bval(k) = -v(c) * mo%p(i, j)
             end do
           end do
           cs%bptr(r + 1) = k + 1
         end do
       end associate
-    end do
-  contains
+    end subroutine fill_pair_rows
 
     !> The mean-value row of a one-segment zone (pair ip, row r+1):
     !>   (1/L) int_cov (u1 - u2).n ds <= (1/L) int_cov (y - x).n ds,
-    !> n the segment's normal, L the covered length.
-    subroutine single_row()
+    !> n the segment's normal, L the covered length; with tangent, the same
+    !> mean of (u1 - u2).t with t the segment's tangent.
+    subroutine single_row(tangent)
+      logical, intent(in) :: tangent
       real(dp) :: nseg(2), len_cov, gsum
       integer :: ii
       associate(pr => cs%pair(ip), mo => cs%pair(ip)%mortar)
         nseg = mo%normal(:, mo%first) + mo%normal(:, mo%last)
         nseg = nseg / norm2(nseg)
+        if (tangent) nseg = [-nseg(2), nseg(1)]
         len_cov = sum(pr%mcov)
         r = r + 1
-        cs%row_pair(r) = ip
-        cs%row_node(r) = mo%first
-        cs%weight(r) = len_cov
+        if (.not. tangent) then
+          cs%row_pair(r) = ip
+          cs%row_node(r) = mo%first
+          cs%weight(r) = len_cov
+        end if
         gsum = 0.0_dp
         do c = 1, 2
           do ii = mo%first, mo%last                    ! + int phi_i (u1_i . n)
@@ -375,8 +440,10 @@ contains
             gsum = gsum + nseg(c) * pr%mcov(j) * bodies(pr%spec%master_body)%mesh%x(c, pr%mnode(j))
           end do
         end do
-        cs%g(r) = 0.0_dp
-        if (.not. pr%spec%gap_zero) cs%g(r) = gsum / len_cov
+        if (.not. tangent) then
+          cs%g(r) = 0.0_dp
+          if (.not. pr%spec%gap_zero) cs%g(r) = gsum / len_cov
+        end if
         cs%bptr(r + 1) = k + 1
       end associate
     end subroutine single_row
@@ -429,6 +496,13 @@ contains
       row(mo%last) = .true.
     end if
   end subroutine constrained_nodes
+
+  !> A pair has tangential rows when its friction bound is not identically
+  !> zero (mu = 0 and tresca = 0 are the frictionless problem, exactly).
+  pure logical function has_friction(spec)
+    type(pair_spec_t), intent(in) :: spec
+    has_friction = spec%mu > 0.0_dp .or. spec%tresca > 0.0_dp
+  end function has_friction
 
   !> Constraint row of slave node i of pair ip, 0 when it has none.
   pure integer function row_of_node(cs, ip, i) result(r)

@@ -21,28 +21,42 @@
 !>     MATERIAL isotropic E= nu=
 !>     MATERIAL orthotropic E1= E2= nu12= G12= [angle=0] [E3=E2] [nu13=nu12] [nu23=nu12]
 !>     DENSITY rho=
-!>     FIX boundary [ux=] [uy=]          (neither: ux = uy = 0)
-!>     TRACTION boundary [tx=0] [ty=0]   (at least one)
-!>     PRESSURE boundary p=
-!>     BODYFORCE [fx=0] [fy=0]           (at least one)
-!>   GRAVITY [gx=0] [gy=0]               (at least one)
+!>     FIX boundary [ux=] [uy=] [ramp=0:STEPS]     (neither ux nor uy: ux = uy = 0)
+!>     TRACTION boundary [tx=0] [ty=0] [ramp=0:STEPS]   (at least one of tx, ty)
+!>     PRESSURE boundary p= [ramp=0:STEPS]
+!>     BODYFORCE [fx=0] [fy=0] [ramp=0:STEPS]      (at least one of fx, fy)
+!>     THERMAL alpha= dT= [region=NAME]
+!>     OFFSET [dx=0] [dy=0]              (at least one)
+!>   GRAVITY [gx=0] [gy=0] [ramp=0:STEPS]          (at least one of gx, gy)
 !>   CONTACT slave=body:boundary master=body:boundary [gap=geometry|zero]
+!>           [mu=number | tresca=number]           (default frictionless)
 !>   SOLVER [lcp=auto|lemke|pgs|pdas] [tol=1e-10] [maxit=0] [omega=1]
+!>   STEPS n                             default 1; 1 <= n <= 100000
 !>   OUTPUT [vtk=NAME.vtk] [contact=NAME_contact.csv] [summary=NAME.summary]
 !>                                      (NAME: deck file name without folder and
 !>                                      extension; '.vtk' is appended to vtk= if missing)
-!> TITLE, PLANE, GRAVITY, SOLVER, OUTPUT: at most once each, outside BODY blocks.
-!> MESH, MATERIAL, DENSITY, BODYFORCE: at most once per body; FIX, TRACTION, PRESSURE:
-!> any number.  Statements may come in any order (CONTACT before the BODY it names).
+!> TITLE, PLANE, GRAVITY, SOLVER, STEPS, OUTPUT: at most once each, outside BODY blocks.
+!> MESH, MATERIAL, DENSITY, BODYFORCE, OFFSET: at most once per body; FIX, TRACTION,
+!> PRESSURE, THERMAL: any number.  Statements may come in any order (CONTACT before the
+!> BODY it names, STEPS after the ramps it bounds).
+!>
+!> Load steps.  ramp=k0:k1 (integers, 0 <= k0 < k1 <= STEPS) scales the statement's
+!> values by the load factor 0 up to step k0, rising linearly to 1 at step k1, 1 after;
+!> absent, the ramp is 0:STEPS.  Every ramp is resolved on return (fix_t%ramp,
+!> load_t%ramp, body_deck_t%bodyforce_ramp, deck_t%gravity_ramp hold [k0, k1], also
+!> for absent statements; their initial value [0, 1] is the default for STEPS 1).  Friction: mu= (Coulomb, 0 <= mu <= 1000) or tresca= (a
+!> slip bound, a shear stress >= 0) on CONTACT, not both; mu=0 and tresca=0 are the
+!> frictionless problem.
 !>
 !> Checks beyond the syntax: value ranges (E > 0, -1 < nu < 0.5, orthotropic
 !> compliance positive definite, in plane strain with the out-of-plane terms too,
 !> x1 > x0, nx, ny positive integers, 0 < omega < 2, ...); one MESH and one MATERIAL per
 !> body; block structure; gmsh files exist; boundary names of rect meshes; CONTACT
 !> bodies exist and the two sides differ; every body is held by a FIX, directly or
-!> through CONTACT with a held body.  Errors are collected (at most max_errors), sorted
-!> by line and handed to diag as `FILE:LINE: what is wrong (what was expected)` with
-!> the line echoed.
+!> through CONTACT with a held body; every ramp ends at step STEPS at the latest;
+!> lcp=pdas only without friction (no CONTACT with mu > 0 or tresca > 0).  Errors are
+!> collected (at most max_errors), sorted by line and handed to diag as
+!> `FILE:LINE: what is wrong (what was expected)` with the line echoed.
 !>
 !> Programming interface
 !>   types fix_t, load_t, mesh_spec_t, material_t, body_deck_t, contact_deck_t,
@@ -62,11 +76,12 @@ module deck_reader
   integer, parameter :: load_traction = 1   !< load_t%kind of TRACTION
   integer, parameter :: load_pressure = 2   !< load_t%kind of PRESSURE
 
-  !> FIX boundary [ux=] [uy=]
+  !> FIX boundary [ux=] [uy=] [ramp=k0:k1]
   type :: fix_t
     character(len=:), allocatable :: boundary   !< boundary or point-set name
     logical :: has_ux = .false., has_uy = .false.
     real(dp) :: ux = 0, uy = 0                  !< prescribed displacements
+    integer :: ramp(2) = [0, 1]                 !< load steps k0, k1 of the ramp; default [0, steps]
     integer :: line = 0                         !< deck line
   end type fix_t
 
@@ -75,6 +90,7 @@ module deck_reader
     integer :: kind = 0                         !< load_traction or load_pressure
     character(len=:), allocatable :: boundary
     real(dp) :: tx = 0, ty = 0, p = 0           !< force per unit length; pressure
+    integer :: ramp(2) = [0, 1]                 !< load steps k0, k1 of the ramp; default [0, steps]
     integer :: line = 0
   end type load_t
 
@@ -121,15 +137,19 @@ module deck_reader
     type(fix_t), allocatable :: fixes(:)        !< (nfix), always allocated
     type(load_t), allocatable :: loads(:)       !< (nload), always allocated
     logical :: has_bodyforce = .false.; real(dp) :: fx = 0, fy = 0; integer :: bodyforce_line = 0
+    integer :: bodyforce_ramp(2) = [0, 1]       !< BODYFORCE ramp k0, k1; default [0, steps]
     type(thermal_t), allocatable :: thermals(:) !< (nthermal), always allocated
     logical :: has_offset = .false.; real(dp) :: dx = 0, dy = 0; integer :: offset_line = 0
   end type body_deck_t
 
-  !> CONTACT slave=body:boundary master=body:boundary [gap=]
+  !> CONTACT slave=body:boundary master=body:boundary [gap=] [mu= | tresca=]
   type :: contact_deck_t
     integer :: slave_body = 0, master_body = 0  !< indices into deck%bodies
     character(len=:), allocatable :: slave_boundary, master_boundary
     logical :: gap_zero = .false.               !< gap=zero; default gap=geometry
+    character(len=:), allocatable :: friction   !< 'none' (default), 'coulomb' (mu=) or 'tresca' (tresca=)
+    real(dp) :: mu = 0                          !< Coulomb coefficient, 0 <= mu <= 1000
+    real(dp) :: tresca = 0                      !< Tresca slip bound (a shear stress), >= 0
     integer :: line = 0
   end type contact_deck_t
 
@@ -159,6 +179,9 @@ module deck_reader
     logical :: plane_stress = .false.; real(dp) :: thickness = 1.0_dp
     type(body_deck_t), allocatable :: bodies(:) !< (nbody), always allocated
     logical :: has_gravity = .false.; real(dp) :: gx = 0, gy = 0; integer :: gravity_line = 0
+    integer :: gravity_ramp(2) = [0, 1]         !< GRAVITY ramp k0, k1; default [0, steps]
+    integer :: steps = 1                        !< STEPS n: load steps, 1 <= n <= max_steps
+    integer :: steps_line = 0                   !< line of the STEPS statement (0: none)
     type(contact_deck_t), allocatable :: contacts(:)   !< (ncontact), always allocated
     type(solver_deck_t) :: solver
     type(output_deck_t) :: output
@@ -170,6 +193,10 @@ module deck_reader
   integer, parameter :: echo_len = 160      ! echoed lines are cut after this many chars
   integer, parameter :: quote_len = 40      ! quoted user text is cut after this many chars
   integer, parameter :: max_line_len = 1048576   ! longer lines: not a deck (e.g. /dev/zero, binary)
+  integer, parameter :: max_steps = 100000  ! largest STEPS n
+  real(dp), parameter :: max_mu = 1.0e3_dp  ! largest Coulomb coefficient mu=
+  ! ramp(2) = 0 marks a ramp= not (validly) given until fill_defaults sets [0, steps]
+  integer, parameter :: ramp_unset(2) = [0, 0]
 
   type :: text_t
     character(len=:), allocatable :: s
@@ -205,6 +232,7 @@ module deck_reader
     logical :: end_hinted = .false.           ! a "missing END?" was said for cur
     integer :: title_line = 0, plane_line = 0, solver_line = 0, output_line = 0
     logical :: contact_bad = .false.          ! some CONTACT statement had an error
+    logical :: steps_bad = .false.            ! the STEPS statement had an error
     type(text_t), allocatable :: slave_name(:), master_name(:)   ! (ncontact) body names
   end type state_t
 
@@ -376,7 +404,7 @@ contains
     kw = upper(st%keyword)
 
     select case (kw)
-    case ('TITLE', 'PLANE', 'GRAVITY', 'CONTACT', 'SOLVER', 'OUTPUT')
+    case ('TITLE', 'PLANE', 'GRAVITY', 'CONTACT', 'SOLVER', 'STEPS', 'OUTPUT')
       if (s%cur /= 0 .and. .not. s%end_hinted) then
         call report(s, st%line, 'statement ' // kw // ' inside BODY ' // quoted(deck%bodies(s%cur)%name) // &
                     ' opened at line ' // int_to_str(deck%bodies(s%cur)%line) // &
@@ -389,6 +417,7 @@ contains
       case ('GRAVITY'); call do_gravity(s, deck, st)
       case ('CONTACT'); call do_contact(s, deck, st)
       case ('SOLVER');  call do_solver(s, deck, st)
+      case ('STEPS');   call do_steps(s, deck, st)
       case ('OUTPUT');  call do_output(s, deck, st)
       end select
     case ('BODY')
@@ -414,7 +443,7 @@ contains
       call report(s, st%line, 'unknown keyword ' // quoted(st%keyword) // ' (expected one of TITLE, PLANE, ' // &
                   'BODY, MESH, MATERIAL, DENSITY, FIX, TRACTION, PRESSURE, BODYFORCE, THERMAL, OFFSET, END, ' // &
                   'GRAVITY, ' // &
-                  'CONTACT, SOLVER, OUTPUT)')
+                  'CONTACT, SOLVER, STEPS, OUTPUT)')
     end select
   end subroutine process_line
 
@@ -801,6 +830,40 @@ contains
     if (.not. ok) call report(s, st%line, 'bad ' // what // ' name ' // quoted(name) // &
                               ' (expected letters, digits, _ . - only)')
   end subroutine check_name
+
+  !> Convert the value of ramp=k0:k1; report a bad form and k0 >= k1.  The bound
+  !> k1 <= STEPS is checked after the whole deck (check_ramps).
+  !>   val   (in)  the value of ramp=, unallocated when the key is absent
+  !>   ramp  (out) [k0, k1]; ramp_unset when absent or bad (then [0, steps] at the end)
+  subroutine get_ramp(s, st, val, ramp)
+    type(state_t), intent(inout) :: s
+    type(stmt_t), intent(in) :: st
+    type(text_t), intent(in) :: val
+    integer, intent(out) :: ramp(2)
+    integer :: colon, k0, k1
+    logical :: ok0, ok1
+
+    ramp = ramp_unset
+    if (.not. allocated(val%s)) return
+    colon = index(val%s, ':')
+    ok0 = .false.
+    ok1 = .false.
+    if (colon > 1 .and. colon < len(val%s)) then
+      call parse_integer(val%s(1:colon - 1), k0, ok0)
+      call parse_integer(val%s(colon + 1:), k1, ok1)
+    end if
+    if (ok0) ok0 = k0 >= 0
+    if (ok1) ok1 = k1 >= 0
+    if (.not. (ok0 .and. ok1)) then
+      call report(s, st%line, 'bad ramp ' // quoted(val%s) // ' (expected ramp=k0:k1 with integers ' // &
+                  '0 <= k0 < k1 <= STEPS n)')
+    else if (k0 >= k1) then
+      call report(s, st%line, 'bad ramp ' // quoted(val%s) // ' (expected ramp=k0:k1 with k0 < k1: the load ' // &
+                  'rises from step k0 to step k1)')
+    else
+      ramp = [k0, k1]
+    end if
+  end subroutine get_ramp
 
   ! ================================================================ statements
 
@@ -1236,16 +1299,16 @@ contains
     body%has_density = ok
   end subroutine do_density
 
-  !> FIX boundary [ux=] [uy=]
+  !> FIX boundary [ux=] [uy=] [ramp=]
   subroutine do_fix(s, body, st)
     type(state_t), intent(inout) :: s
     type(body_deck_t), intent(inout) :: body
     type(stmt_t), intent(in) :: st
-    character(len=*), parameter :: usage = 'FIX boundary [ux=number] [uy=number]'
+    character(len=*), parameter :: usage = 'FIX boundary [ux=number] [uy=number] [ramp=k0:k1]'
     type(fix_t), allocatable :: grown(:)
     type(fix_t) :: fix
-    logical :: seen(2), ok
-    type(text_t) :: val(2)
+    logical :: seen(3), ok
+    type(text_t) :: val(3)
     integer :: i
 
     fix%line = st%line
@@ -1257,12 +1320,13 @@ contains
       if (ok) fix%boundary = st%word(1)%s
       call check_extra_words(s, st, 1, usage)
     end if
-    call match_keys(s, st, ['ux', 'uy'], ['number', 'number'], 'FIX', seen, val)
+    call match_keys(s, st, ['ux  ', 'uy  ', 'ramp'], ['number', 'number', 'k0:k1 '], 'FIX', seen, val)
     call get_real(s, st, val(1), 'ux', fix%ux, ok)
     call get_real(s, st, val(2), 'uy', fix%uy, ok)
+    call get_ramp(s, st, val(3), fix%ramp)
     fix%has_ux = seen(1)
     fix%has_uy = seen(2)
-    if (.not. (seen(1) .or. seen(2))) then          ! FIX boundary: clamp both
+    if (.not. (seen(1) .or. seen(2))) then          ! FIX boundary [ramp=]: clamp both
       fix%has_ux = .true.
       fix%has_uy = .true.
     end if
@@ -1274,7 +1338,7 @@ contains
     call move_alloc(grown, body%fixes)
   end subroutine do_fix
 
-  !> TRACTION boundary tx= ty= | PRESSURE boundary p=
+  !> TRACTION boundary tx= ty= [ramp=] | PRESSURE boundary p= [ramp=]
   subroutine do_load(s, body, st, kw)
     type(state_t), intent(inout) :: s
     type(body_deck_t), intent(inout) :: body
@@ -1283,15 +1347,15 @@ contains
     character(len=:), allocatable :: usage
     type(load_t), allocatable :: grown(:)
     type(load_t) :: load
-    logical :: seen(2), ok
-    type(text_t) :: val(2)
+    logical :: seen(3), ok
+    type(text_t) :: val(3)
     integer :: i, nerr0
 
     if (kw == 'TRACTION') then
-      usage = 'TRACTION boundary tx=number ty=number'
+      usage = 'TRACTION boundary tx=number ty=number [ramp=k0:k1]'
       load%kind = load_traction
     else
-      usage = 'PRESSURE boundary p=number'
+      usage = 'PRESSURE boundary p=number [ramp=k0:k1]'
       load%kind = load_pressure
     end if
     load%line = st%line
@@ -1305,14 +1369,16 @@ contains
       call check_extra_words(s, st, 1, usage)
     end if
     if (kw == 'TRACTION') then
-      call match_keys(s, st, ['tx', 'ty'], ['number', 'number'], 'TRACTION', seen, val)
+      call match_keys(s, st, ['tx  ', 'ty  ', 'ramp'], ['number', 'number', 'k0:k1 '], 'TRACTION', seen, val)
       if (.not. (seen(1) .or. seen(2))) call report(s, st%line, 'missing tx= and ty= (expected ' // usage // ')')
       call get_real(s, st, val(1), 'tx', load%tx, ok)
       call get_real(s, st, val(2), 'ty', load%ty, ok)
+      call get_ramp(s, st, val(3), load%ramp)
     else
-      call match_keys(s, st, ['p'], ['number'], 'PRESSURE', seen(1:1), val(1:1))
+      call match_keys(s, st, ['p   ', 'ramp'], ['number', 'k0:k1 '], 'PRESSURE', seen(1:2), val(1:2))
       call require_key(s, st, seen(1), 'p', 'PRESSURE', usage)
       call get_real(s, st, val(1), 'p', load%p, ok)
+      call get_ramp(s, st, val(2), load%ramp)
     end if
     if (s%nerr /= nerr0) return
     allocate(grown(size(body%loads) + 1))
@@ -1323,14 +1389,14 @@ contains
     call move_alloc(grown, body%loads)
   end subroutine do_load
 
-  !> BODYFORCE fx= fy=
+  !> BODYFORCE fx= fy= [ramp=]
   subroutine do_bodyforce(s, body, st)
     type(state_t), intent(inout) :: s
     type(body_deck_t), intent(inout) :: body
     type(stmt_t), intent(in) :: st
-    character(len=*), parameter :: usage = 'BODYFORCE fx=number fy=number'
-    logical :: seen(2), ok1, ok2
-    type(text_t) :: val(2)
+    character(len=*), parameter :: usage = 'BODYFORCE fx=number fy=number [ramp=k0:k1]'
+    logical :: seen(3), ok1, ok2
+    type(text_t) :: val(3)
 
     if (body%bodyforce_line > 0) then
       call report(s, st%line, 'second BODYFORCE in BODY ' // quoted(body%name) // ' (first at line ' // &
@@ -1339,10 +1405,11 @@ contains
     end if
     body%bodyforce_line = st%line
     call check_extra_words(s, st, 0, usage)
-    call match_keys(s, st, ['fx', 'fy'], ['number', 'number'], 'BODYFORCE', seen, val)
+    call match_keys(s, st, ['fx  ', 'fy  ', 'ramp'], ['number', 'number', 'k0:k1 '], 'BODYFORCE', seen, val)
     if (.not. (seen(1) .or. seen(2))) call report(s, st%line, 'missing fx= and fy= (expected ' // usage // ')')
     call get_real(s, st, val(1), 'fx', body%fx, ok1)
     call get_real(s, st, val(2), 'fy', body%fy, ok2)
+    call get_ramp(s, st, val(3), body%bodyforce_ramp)
     body%has_bodyforce = (ok1 .or. .not. seen(1)) .and. (ok2 .or. .not. seen(2)) .and. (seen(1) .or. seen(2))
   end subroutine do_bodyforce
 
@@ -1413,14 +1480,14 @@ contains
     body%has_offset = (ok1 .or. .not. seen(1)) .and. (ok2 .or. .not. seen(2)) .and. (seen(1) .or. seen(2))
   end subroutine do_offset
 
-  !> GRAVITY gx= gy=
+  !> GRAVITY gx= gy= [ramp=]
   subroutine do_gravity(s, deck, st)
     type(state_t), intent(inout) :: s
     type(deck_t), intent(inout) :: deck
     type(stmt_t), intent(in) :: st
-    character(len=*), parameter :: usage = 'GRAVITY gx=number gy=number'
-    logical :: seen(2), ok1, ok2
-    type(text_t) :: val(2)
+    character(len=*), parameter :: usage = 'GRAVITY gx=number gy=number [ramp=k0:k1]'
+    logical :: seen(3), ok1, ok2
+    type(text_t) :: val(3)
 
     if (deck%gravity_line > 0) then
       call report(s, st%line, 'second GRAVITY (first at line ' // int_to_str(deck%gravity_line) // &
@@ -1429,24 +1496,26 @@ contains
     end if
     deck%gravity_line = st%line
     call check_extra_words(s, st, 0, usage)
-    call match_keys(s, st, ['gx', 'gy'], ['number', 'number'], 'GRAVITY', seen, val)
+    call match_keys(s, st, ['gx  ', 'gy  ', 'ramp'], ['number', 'number', 'k0:k1 '], 'GRAVITY', seen, val)
     if (.not. (seen(1) .or. seen(2))) call report(s, st%line, 'missing gx= and gy= (expected ' // usage // ')')
     call get_real(s, st, val(1), 'gx', deck%gx, ok1)
     call get_real(s, st, val(2), 'gy', deck%gy, ok2)
+    call get_ramp(s, st, val(3), deck%gravity_ramp)
     deck%has_gravity = (ok1 .or. .not. seen(1)) .and. (ok2 .or. .not. seen(2)) .and. (seen(1) .or. seen(2))
   end subroutine do_gravity
 
-  !> CONTACT slave=body:boundary master=body:boundary [gap=geometry|zero]
+  !> CONTACT slave=body:boundary master=body:boundary [gap=geometry|zero] [mu=number | tresca=number]
   subroutine do_contact(s, deck, st)
     type(state_t), intent(inout) :: s
     type(deck_t), intent(inout) :: deck
     type(stmt_t), intent(in) :: st
-    character(len=*), parameter :: usage = 'CONTACT slave=body:boundary master=body:boundary [gap=geometry|zero]'
-    character(len=6), parameter :: names(3) = [character(len=6) :: 'slave', 'master', 'gap']
-    character(len=13), parameter :: forms(3) = [character(len=13) :: 'body:boundary', 'body:boundary', &
-                                                'geometry|zero']
-    logical :: seen(3), ok_s, ok_m
-    type(text_t) :: val(3)
+    character(len=*), parameter :: usage = 'CONTACT slave=body:boundary master=body:boundary [gap=geometry|zero] ' // &
+                                           '[mu=number|tresca=number]'
+    character(len=6), parameter :: names(5) = [character(len=6) :: 'slave', 'master', 'gap', 'mu', 'tresca']
+    character(len=13), parameter :: forms(5) = [character(len=13) :: 'body:boundary', 'body:boundary', &
+                                                'geometry|zero', 'number', 'number']
+    logical :: seen(5), ok_s, ok_m, ok
+    type(text_t) :: val(5)
     type(contact_deck_t) :: c
     type(contact_deck_t), allocatable :: grown(:)
     type(text_t), allocatable :: gs(:), gm(:)
@@ -1468,6 +1537,26 @@ contains
     gap = 'geometry'
     if (allocated(val(3)%s)) gap = get_choice(s, st, val(3), 'gap', ['geometry', 'zero    '])
     c%gap_zero = gap == 'zero'
+    ! friction (beyond the paper): |tau| <= mu p (Coulomb) or |tau| <= tresca
+    c%friction = 'none'
+    if (seen(4) .and. seen(5)) &
+      call report(s, st%line, 'mu= and tresca= together (expected one friction law per CONTACT)')
+    call get_real(s, st, val(4), 'mu', c%mu, ok)
+    if (ok) then
+      if (c%mu >= 0 .and. c%mu <= max_mu) then
+        c%friction = 'coulomb'
+      else
+        call report(s, st%line, 'bad value mu=' // cut(val(4)%s) // ' (expected 0 <= mu <= 1000)')
+      end if
+    end if
+    call get_real(s, st, val(5), 'tresca', c%tresca, ok)
+    if (ok) then
+      if (c%tresca >= 0) then
+        c%friction = 'tresca'
+      else
+        call report(s, st%line, 'bad value tresca=' // cut(val(5)%s) // ' (expected tresca >= 0, a shear stress)')
+      end if
+    end if
     c%line = st%line
     if (s%nerr /= nerr0) then
       s%contact_bad = .true.
@@ -1550,6 +1639,39 @@ contains
       call report(s, st%line, 'bad value omega=' // cut(val(4)%s) // ' (expected 0 < omega < 2)')
   end subroutine do_solver
 
+  !> STEPS n: the number of load steps (the ramps run over steps 0..n)
+  subroutine do_steps(s, deck, st)
+    type(state_t), intent(inout) :: s
+    type(deck_t), intent(inout) :: deck
+    type(stmt_t), intent(in) :: st
+    character(len=*), parameter :: usage = 'STEPS n with an integer 1 <= n <= 100000'
+    integer :: n, nerr0
+    logical :: ok
+
+    if (deck%steps_line > 0) then
+      call report(s, st%line, 'second STEPS (first at line ' // int_to_str(deck%steps_line) // &
+                  '; expected at most one)')
+      return
+    end if
+    deck%steps_line = st%line
+    nerr0 = s%nerr
+    if (st%nword == 0) then
+      if (st%npair == 0) call report(s, st%line, 'missing number of load steps (expected ' // usage // ')')
+    else
+      call parse_integer(st%word(1)%s, n, ok)
+      if (ok) ok = n >= 1 .and. n <= max_steps
+      if (ok) then
+        deck%steps = n
+      else
+        call report(s, st%line, 'bad number of load steps ' // quoted(st%word(1)%s) // ' (expected ' // usage // ')')
+      end if
+      call check_extra_words(s, st, 1, usage)
+    end if
+    if (st%npair > 0) call report(s, st%line, 'unexpected ' // quoted(st%key(1)%s // '=' // st%value(1)%s) // &
+                                  ' (expected ' // usage // ')')
+    s%steps_bad = s%nerr /= nerr0
+  end subroutine do_steps
+
   !> OUTPUT [vtk=] [contact=] [summary=]
   subroutine do_output(s, deck, st)
     type(state_t), intent(inout) :: s
@@ -1622,7 +1744,8 @@ contains
   ! ================================================================ whole-deck checks
 
   !> Checks that need the whole deck: open block, bodies complete, rect boundary
-  !> names, plane-strain compliance, CONTACT bodies, rigid-body modes, output names.
+  !> names, plane-strain compliance, CONTACT bodies, rigid-body modes, ramps within
+  !> STEPS, lcp=pdas without friction, output names.
   subroutine finish_checks(s, deck)
     type(state_t), intent(inout) :: s
     type(deck_t), intent(inout) :: deck
@@ -1668,8 +1791,67 @@ contains
 
     call resolve_contacts(s, deck, resolved)
     if (resolved .and. .not. s%contact_bad) call check_rigid_modes(s, deck)
+    call check_ramps(s, deck)
+    call check_friction_solver(s, deck)
     call check_output_names(s, deck)
   end subroutine finish_checks
+
+  !> Every ramp=k0:k1 given ends at step STEPS at the latest (k0 < k1 and k0 >= 0
+  !> were checked with the statement).  Nothing is said when STEPS itself was bad.
+  subroutine check_ramps(s, deck)
+    type(state_t), intent(inout) :: s
+    type(deck_t), intent(in) :: deck
+    integer :: b, i
+
+    if (s%steps_bad) return
+    do b = 1, s%nbody
+      associate (body => deck%bodies(b))
+        do i = 1, size(body%fixes)
+          call check_ramp_end(s, deck, body%fixes(i)%ramp, body%fixes(i)%line)
+        end do
+        do i = 1, size(body%loads)
+          call check_ramp_end(s, deck, body%loads(i)%ramp, body%loads(i)%line)
+        end do
+        if (body%bodyforce_line > 0) call check_ramp_end(s, deck, body%bodyforce_ramp, body%bodyforce_line)
+      end associate
+    end do
+    if (deck%gravity_line > 0) call check_ramp_end(s, deck, deck%gravity_ramp, deck%gravity_line)
+  end subroutine check_ramps
+
+  !> Report ramp(2) > STEPS at the line of the statement holding the ramp.
+  subroutine check_ramp_end(s, deck, ramp, line)
+    type(state_t), intent(inout) :: s
+    type(deck_t), intent(in) :: deck
+    integer, intent(in) :: ramp(2), line
+    character(len=:), allocatable :: text
+
+    if (ramp(2) <= deck%steps) return
+    text = 'ramp=' // int_to_str(ramp(1)) // ':' // int_to_str(ramp(2)) // ' ends after the last load step'
+    if (deck%steps_line > 0) then
+      call report(s, line, text // ' (expected k1 <= ' // int_to_str(deck%steps) // ', the STEPS value at line ' // &
+                  int_to_str(deck%steps_line) // ')')
+    else
+      call report(s, line, text // ' (expected k1 <= 1, as STEPS defaults to 1 when absent)')
+    end if
+  end subroutine check_ramp_end
+
+  !> lcp=pdas solves the frictionless LCP only: refuse it when some CONTACT has a
+  !> friction bound that is not identically zero (mu=0 and tresca=0 are frictionless).
+  subroutine check_friction_solver(s, deck)
+    type(state_t), intent(inout) :: s
+    type(deck_t), intent(in) :: deck
+    integer :: i
+
+    if (.not. allocated(deck%solver%lcp)) return
+    if (deck%solver%lcp /= 'pdas') return
+    do i = 1, s%ncontact
+      if (deck%contacts(i)%mu > 0 .or. deck%contacts(i)%tresca > 0) then
+        call report(s, deck%solver%line, 'lcp=pdas solves frictionless contact only (expected lcp=auto, ' // &
+                    'lemke or pgs with friction)')
+        return
+      end if
+    end do
+  end subroutine check_friction_solver
 
   !> A rect mesh names its boundaries left, right, bottom, top.
   subroutine check_rect_boundary(s, body, name, line)
@@ -1836,7 +2018,8 @@ contains
     end if
   end subroutine check_output_names
 
-  !> Allocate every character component left unset.
+  !> Allocate every character component left unset; resolve the ramps not given
+  !> (or not valid) to [0, steps].
   subroutine fill_defaults(deck)
     type(deck_t), intent(inout) :: deck
     integer :: b, i
@@ -1861,12 +2044,20 @@ contains
         if (.not. allocated(body%thermals)) allocate(body%thermals(0))
         do i = 1, size(body%fixes)
           if (.not. allocated(body%fixes(i)%boundary)) body%fixes(i)%boundary = ''
+          if (body%fixes(i)%ramp(2) == ramp_unset(2)) body%fixes(i)%ramp = [0, deck%steps]
         end do
+        do i = 1, size(body%loads)
+          if (body%loads(i)%ramp(2) == ramp_unset(2)) body%loads(i)%ramp = [0, deck%steps]
+        end do
+        if (body%bodyforce_line == 0 .or. body%bodyforce_ramp(2) == ramp_unset(2)) &
+          body%bodyforce_ramp = [0, deck%steps]
       end associate
     end do
+    if (deck%gravity_line == 0 .or. deck%gravity_ramp(2) == ramp_unset(2)) deck%gravity_ramp = [0, deck%steps]
     do i = 1, size(deck%contacts)
       if (.not. allocated(deck%contacts(i)%slave_boundary)) deck%contacts(i)%slave_boundary = ''
       if (.not. allocated(deck%contacts(i)%master_boundary)) deck%contacts(i)%master_boundary = ''
+      if (.not. allocated(deck%contacts(i)%friction)) deck%contacts(i)%friction = 'none'
     end do
   end subroutine fill_defaults
 

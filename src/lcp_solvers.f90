@@ -55,6 +55,11 @@
 !>   solve_lcp_pgs(W, q, z, opts, rep)     z intent(inout): initial guess, clipped to >= 0
 !>   lcp_natural_residual(W, q, z)         the residual r above
 !>   scale_lcp(W, q, d, Ws, qs)            the symmetric diagonal scaling
+!>   solve_lcp_lemke_scaled(M, q, d, z, opts, rep)
+!>                                         Lemke on D M D, D q with a scaling d
+!>                                         given by the caller and no row removed:
+!>                                         for LCPs with zero diagonal entries or a
+!>                                         non-symmetric M (frictional contact)
 !> W need not be symmetric for Lemke and PGS to run (both use W's columns), but
 !> the convergence of PGS and the meaning of ray termination assume W PSD.
 !> No routine prints anything; every outcome is in the report.
@@ -66,6 +71,7 @@ module lcp_solvers
   private
   public :: lcp_options_t, lcp_report_t
   public :: solve_lcp_lemke, solve_lcp_pgs, lcp_natural_residual, scale_lcp, measure_solution
+  public :: solve_lcp_lemke_scaled
 
   !> Solver settings.
   type :: lcp_options_t
@@ -286,6 +292,106 @@ contains
     end do
     qs = d * q
   end subroutine scale_lcp
+
+  !> Solve LCP(M, q) by Lemke's complementary pivoting (lexicographic, covering
+  !> vector ones) on the problem scaled with a scaling chosen by the caller,
+  !>     Ms = D M D,   qs = D q,   z = D zs,   D = diag(d),
+  !> keeping every row: unlike solve_lcp_lemke, a zero diagonal entry does not
+  !> mark a redundant row, so M may be any square matrix, e.g. the
+  !> non-symmetric LCP of frictional contact whose slip rows have a zero
+  !> diagonal.  d should make Ms of unit size.  Residual and complementarity
+  !> are those of the module header with this d (the scaled natural residual).
+  !>   M     (in)  (n, n) finite
+  !>   q     (in)  (n) finite
+  !>   d     (in)  (n) the scaling, finite and > 0
+  !>   z     (out) (n) the solution when rep%info = 0 or 4; on failure the z part
+  !>               of the last almost-complementary point (finite, >= 0); zero
+  !>               on an argument error
+  !>   opts  (in)  tol, maxit (0: 10 n + 100 pivots); omega is not used
+  !>   rep   (out) info 0 solved, 1 ray termination (no solution exists when M is
+  !>               copositive-plus, e.g. positive semi-definite; otherwise none
+  !>               was found), 2 pivot limit, 4 residual above tol, -k argument k
+  !>               invalid; iterations = pivots; residual; complementarity; message
+  subroutine solve_lcp_lemke_scaled(M, q, d, z, opts, rep)
+    real(dp), intent(in) :: M(:, :)
+    real(dp), intent(in) :: q(:)
+    real(dp), intent(in) :: d(:)
+    real(dp), intent(out) :: z(:)
+    type(lcp_options_t), intent(in) :: opts
+    type(lcp_report_t), intent(out) :: rep
+    type(scaled_lcp_t) :: p
+    real(dp), allocatable :: zs(:)
+    integer :: n, i, j, maxit
+
+    z = 0.0_dp
+    rep%info = 0
+    n = size(q)
+    if (size(M, 1) /= n .or. size(M, 2) /= n) then
+      call set_report(rep, -1, 'LCP: M is ' // int_to_str(size(M, 1)) // ' x ' // int_to_str(size(M, 2)) // &
+        ' (expected ' // int_to_str(n) // ' x ' // int_to_str(n) // ', the size of q)')
+      return
+    else if (.not. all(ieee_is_finite(M))) then
+      call set_report(rep, -1, 'LCP: M has non-finite entries')
+      return
+    else if (.not. all(ieee_is_finite(q))) then
+      call set_report(rep, -2, 'LCP: q has non-finite entries')
+      return
+    else if (size(d) /= n) then
+      call set_report(rep, -3, 'LCP: d has ' // int_to_str(size(d)) // ' entries (expected ' // &
+        int_to_str(n) // ')')
+      return
+    else if (.not. all(ieee_is_finite(d) .and. d > 0.0_dp)) then
+      call set_report(rep, -3, 'LCP: the scaling d has entries that are not finite and > 0')
+      return
+    else if (size(z) /= n) then
+      call set_report(rep, -4, 'LCP: z has ' // int_to_str(size(z)) // ' entries (expected ' // &
+        int_to_str(n) // ')')
+      return
+    else if (.not. (ieee_is_finite(opts%tol) .and. opts%tol > 0.0_dp)) then
+      call set_report(rep, -5, 'LCP: tol = ' // real_to_str(opts%tol) // ' (expected tol > 0)')
+      return
+    else if (opts%maxit < 0) then
+      call set_report(rep, -5, 'LCP: maxit = ' // int_to_str(opts%maxit) // ' (expected >= 0)')
+      return
+    end if
+
+    ! Every row kept: the scaled problem is the whole of D M D.
+    p%n = n
+    p%m = n
+    allocate(p%d(n), p%rows(n), p%ws(n, n), p%qs(n), zs(n))
+    p%d = d
+    p%rows = [(i, i = 1, n)]
+    do j = 1, n
+      p%ws(:, j) = d * M(:, j) * d(j)                  ! (D M D)_ij = d_i M_ij d_j
+    end do
+    p%qs = d * q                                       ! qs = D q
+    p%qscale = 1.0_dp
+    if (n > 0) p%qscale = scale_of(maxval(abs(p%qs)))
+    maxit = opts%maxit
+    if (maxit == 0) maxit = 10 * n + 100
+
+    call lemke_scaled(p, maxit, zs, rep)
+    z = d * zs                                         ! z = D zs
+    where (z < 0.0_dp) z = 0.0_dp
+    call measure_solution(M, q, d, z, rep)
+
+    select case (rep%info)
+    case (0)
+      if (rep%residual > opts%tol) then
+        rep%info = 4
+        rep%message = 'Lemke: terminated after ' // int_to_str(rep%iterations) // &
+          ' pivots but the residual ' // real_to_str(rep%residual) // ' exceeds tol ' // &
+          real_to_str(opts%tol) // ' (M ill-conditioned or badly scaled)'
+      else
+        rep%message = 'Lemke: solved in ' // int_to_str(rep%iterations) // ' pivots, residual ' // &
+          real_to_str(rep%residual)
+      end if
+    case (1)
+      rep%message = 'Lemke: ray termination after ' // int_to_str(rep%iterations) // &
+        ' pivots (no solution found; when M is copositive-plus, e.g. positive semi-definite,' // &
+        ' the LCP has none)'
+    end select
+  end subroutine solve_lcp_lemke_scaled
 
   ! ---------------------------------------------------------------------------
   ! Internals

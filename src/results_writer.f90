@@ -40,6 +40,15 @@ module results_writer
     real(dp), allocatable :: gap(:)              !< (nrow) final gaps
     real(dp), allocatable :: pressure(:)         !< (nrow) pressures mu / w
     integer, allocatable :: status(:)            !< (nrow) 1 contact, 0 open
+    ! friction (allocated with size ntan > 0 only when a pair has friction)
+    real(dp), allocatable :: tau(:)              !< (ntan) tangential multipliers (nodal forces)
+    real(dp), allocatable :: shear(:)            !< (ntan) shear traction on the slave along t, -tau / w
+    real(dp), allocatable :: slip(:)             !< (ntan) relative tangential displacement T u (slave - master)
+    integer, allocatable :: fstate(:)            !< (ntan) 0 open, 1 stick, 2 slip (in the last step)
+    integer, allocatable :: tan_of_row(:)        !< (nrow) tangential row of each normal row, 0 if none
+    real(dp), allocatable :: node_shear(:)       !< (ndof/2) shear traction at slave nodes (0 elsewhere)
+    integer :: steps = 1                         !< load steps solved
+    integer :: stick_nodes = 0, slip_nodes = 0   !< friction states at the end
     real(dp), allocatable :: reaction(:,:)       !< (2, nfix)
     character(len=:), allocatable :: fix_label(:) !< (nfix) BODY:BOUNDARY
     real(dp) :: energy = 0
@@ -127,6 +136,7 @@ contains
     end if
     if (fields(2)) call put_scalars(tb, 'contact_pressure', r%node_pressure)
     if (fields(3)) call put_scalars(tb, 'gap', r%node_gap)
+    if (fields(2) .and. allocated(r%node_shear)) call put_scalars(tb, 'contact_shear', r%node_shear)
     call put_line(tb, 'CELL_DATA ' // int_to_str(nelem))
     call put_line(tb, 'SCALARS body int 1')
     call put_line(tb, 'LOOKUP_TABLE default')
@@ -172,12 +182,19 @@ contains
     type(contact_set_t), intent(in) :: cs
     type(results_t), intent(in) :: r
     logical, intent(out) :: ok
-    integer :: u, ios, ip, i, row
+    integer :: u, ios, ip, i, row, t
     character(len=32) :: sx(4)
+    character(len=:), allocatable :: extra
+    logical :: friction
     open(newunit=u, file=path, status='replace', action='write', form='formatted', iostat=ios)
     ok = ios == 0
     if (.not. ok) return
-    write(u, '(a)') 'pair,s,x,y,gap0,gap,pressure,status'
+    friction = allocated(r%tau)
+    if (friction) then                         ! friction: three more columns
+      write(u, '(a)') 'pair,s,x,y,gap0,gap,pressure,status,shear,slip,friction_state'
+    else
+      write(u, '(a)') 'pair,s,x,y,gap0,gap,pressure,status'
+    end if
     do ip = 1, cs%npair
       associate(pr => cs%pair(ip), mo => cs%pair(ip)%mortar)
         do i = 1, size(pr%snode)
@@ -185,13 +202,21 @@ contains
           write(sx(2), '(es24.16e3)') pr%xs(1, i)
           write(sx(3), '(es24.16e3)') pr%xs(2, i)
           row = row_of_node(cs, ip, i)
+          extra = ''
+          if (friction) then
+            extra = ',0,,0'                    ! no tangential row: no shear, no slip, open
+            if (row > 0) then
+              t = r%tan_of_row(row)
+              if (t > 0) extra = ',' // num(r%shear(t)) // ',' // num(r%slip(t)) // ',' // int_to_str(r%fstate(t))
+            end if
+          end if
           if (row > 0) then
-            write(u, '(a,i0,a,i0)') int_to_str(ip) // ',' // trim(adjustl(sx(1))) // ',' // &
+            write(u, '(a,i0,a)') int_to_str(ip) // ',' // trim(adjustl(sx(1))) // ',' // &
               trim(adjustl(sx(2))) // ',' // trim(adjustl(sx(3))) // ',' // num(mo%gap0(i)) // ',' // &
-              num(r%gap(row)) // ',' // num(r%pressure(row)) // ',', r%status(row), ''
+              num(r%gap(row)) // ',' // num(r%pressure(row)) // ',', r%status(row), extra
           else
             write(u, '(a)') int_to_str(ip) // ',' // trim(adjustl(sx(1))) // ',' // &
-              trim(adjustl(sx(2))) // ',' // trim(adjustl(sx(3))) // ',,,0,-1'
+              trim(adjustl(sx(2))) // ',' // trim(adjustl(sx(3))) // ',,,0,-1' // extra
           end if
         end do
       end associate
@@ -229,6 +254,11 @@ contains
     write(u, '(a,a)') 'complementarity ', num(r%complementarity)
     write(u, '(a,a)') 'min_gap ', num(r%min_gap)
     write(u, '(a,a)') 'min_pressure ', num(r%min_pressure)
+    if (allocated(r%tau)) then
+      write(u, '(a,i0)') 'steps ', r%steps
+      write(u, '(a,i0)') 'stick_nodes ', r%stick_nodes
+      write(u, '(a,i0)') 'slip_nodes ', r%slip_nodes
+    end if
     write(u, '(a,a)') 'energy ', num(r%energy)
     do k = 1, size(r%fix_label)
       write(u, '(a)') 'reaction ' // trim(r%fix_label(k)) // ' ' // num(r%reaction(1, k)) // ' ' // num(r%reaction(2, k))

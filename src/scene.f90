@@ -25,7 +25,7 @@ module scene
   use contact_set, only: pair_spec_t
   implicit none
   private
-  public :: scene_t, fix_ref_t, build_scene
+  public :: scene_t, fix_ref_t, build_scene, load_factor
 
   !> A FIX statement, for its reaction line in the summary.
   type :: fix_ref_t
@@ -44,6 +44,12 @@ module scene
     real(dp), allocatable :: fext(:)          !< (ndof) external nodal forces
     type(pair_spec_t), allocatable :: specs(:)  !< CONTACT pairs
     character(len=:), allocatable :: effects  !< space-separated effects simulated
+    ! load history (STEPS n, ramp=k0:k1): the loads and prescribed values
+    ! split by ramp; fext and ubar are their sums (the final step)
+    integer :: steps = 1                      !< load steps
+    integer, allocatable :: ramp(:,:)         !< (2, ngroup) distinct ramps k0:k1
+    real(dp), allocatable :: fgroup(:,:)      !< (ndof, ngroup) external forces of each ramp
+    real(dp), allocatable :: ugroup(:,:)      !< (ndof, ngroup) prescribed values of each ramp
   end type scene_t
 
 contains
@@ -80,6 +86,10 @@ contains
     sc%ndof = ndof
     allocate(sc%fixed(ndof), sc%ubar(ndof), sc%fix_owner(ndof), sc%fext(ndof))
     sc%fixed = .false.; sc%ubar = 0.0_dp; sc%fix_owner = 0; sc%fext = 0.0_dp
+    sc%steps = deck%steps
+    call collect_ramps(deck, sc%ramp)
+    allocate(sc%fgroup(ndof, size(sc%ramp, 2)), sc%ugroup(ndof, size(sc%ramp, 2)))
+    sc%fgroup = 0.0_dp; sc%ugroup = 0.0_dp
 
     nfix = 0
     do b = 1, nb
@@ -95,11 +105,19 @@ contains
       call apply_loads(deck, deck%bodies(b), sc, b, diag, has_traction, has_pressure, has_bforce, has_gravity)
       if (size(deck%bodies(b)%thermals) > 0) then
         call apply_thermal(deck, deck%bodies(b), sc%bodies(b), diag)
-        if (allocated(sc%bodies(b)%adt)) call thermal_loads(sc%bodies(b), sc%fext)
+        if (allocated(sc%bodies(b)%adt)) call thermal_loads(sc%bodies(b), &
+                                                             sc%fgroup(:, ramp_group(sc, [0, deck%steps])))
         has_thermal = .true.
       end if
     end do
     has_offset = any(deck%bodies(:)%has_offset)
+    if (size(sc%ramp, 2) == 1) then                 ! one ramp: the sums are the group itself
+      sc%fext = sc%fgroup(:, 1)
+      sc%ubar = sc%ugroup(:, 1)
+    else
+      sc%fext = sum(sc%fgroup, dim=2)
+      sc%ubar = sum(sc%ugroup, dim=2)
+    end if
     has_dirichlet = any(sc%fixed .and. sc%ubar /= 0.0_dp)
 
     ! contact pairs
@@ -109,6 +127,8 @@ contains
         sc%specs(ip)%slave_body = c%slave_body
         sc%specs(ip)%master_body = c%master_body
         sc%specs(ip)%gap_zero = c%gap_zero
+        if (c%friction == 'coulomb') sc%specs(ip)%mu = c%mu
+        if (c%friction == 'tresca') sc%specs(ip)%tresca = c%tresca
         sc%specs(ip)%slave_bnd = curve_index(deck, c%line, sc%bodies(c%slave_body), c%slave_boundary, 'CONTACT slave', diag)
         sc%specs(ip)%master_bnd = curve_index(deck, c%line, sc%bodies(c%master_body), c%master_boundary, &
                                               'CONTACT master', diag)
@@ -127,7 +147,64 @@ contains
     if (has_thermal) sc%effects = sc%effects // ' thermal'
     if (has_offset) sc%effects = sc%effects // ' offset'
     if (size(sc%specs) > 0) sc%effects = sc%effects // ' contact'
+    if (any([(deck%contacts(ip)%friction /= 'none', ip = 1, size(deck%contacts))])) &
+      sc%effects = sc%effects // ' friction'
   end subroutine build_scene
+
+  !> The distinct ramps of the deck's loads and prescribed values, the default
+  !> [0, steps] first (thermal loads always follow it).
+  subroutine collect_ramps(deck, ramp)
+    type(deck_t), intent(in) :: deck
+    integer, allocatable, intent(out) :: ramp(:,:)
+    integer :: b, k, n
+    integer, allocatable :: list(:,:)
+    n = 1
+    allocate(list(2, 8))
+    list(:, 1) = [0, deck%steps]
+    if (deck%has_gravity) call add(deck%gravity_ramp)
+    do b = 1, size(deck%bodies)
+      do k = 1, size(deck%bodies(b)%fixes)
+        call add(deck%bodies(b)%fixes(k)%ramp)
+      end do
+      do k = 1, size(deck%bodies(b)%loads)
+        call add(deck%bodies(b)%loads(k)%ramp)
+      end do
+      if (deck%bodies(b)%has_bodyforce) call add(deck%bodies(b)%bodyforce_ramp)
+    end do
+    ramp = list(:, 1:n)
+  contains
+    subroutine add(r)
+      integer, intent(in) :: r(2)
+      integer :: i
+      integer, allocatable :: grown(:,:)
+      do i = 1, n
+        if (list(1, i) == r(1) .and. list(2, i) == r(2)) return
+      end do
+      if (n == size(list, 2)) then
+        allocate(grown(2, 2 * n))
+        grown(:, 1:n) = list
+        call move_alloc(grown, list)
+      end if
+      n = n + 1
+      list(:, n) = r
+    end subroutine add
+  end subroutine collect_ramps
+
+  !> Column of sc%fgroup / sc%ugroup holding ramp r.
+  pure integer function ramp_group(sc, r) result(g)
+    type(scene_t), intent(in) :: sc
+    integer, intent(in) :: r(2)
+    do g = 1, size(sc%ramp, 2)
+      if (sc%ramp(1, g) == r(1) .and. sc%ramp(2, g) == r(2)) return
+    end do
+    g = 1
+  end function ramp_group
+
+  !> Load factor of ramp k0:k1 at step k: 0 up to k0, linear to 1 at k1, then 1.
+  pure real(dp) function load_factor(ramp, k) result(f)
+    integer, intent(in) :: ramp(2), k
+    f = min(1.0_dp, max(0.0_dp, real(k - ramp(1), dp) / real(ramp(2) - ramp(1), dp)))
+  end function load_factor
 
   !> Mesh and elasticity tensor of one body.
   subroutine make_body(deck, bdeck, workdir, bd, diag)
@@ -262,7 +339,8 @@ contains
             if (.not. has(c)) cycle
             dof = sc%bodies(b)%dof0 + 2 * (nodes(i) - 1) + c
             if (sc%fixed(dof)) then
-              if (sc%ubar(dof) /= val(c)) then
+              if (sum(sc%ugroup(dof, :)) /= val(c) .or. &
+                  (val(c) /= 0.0_dp .and. sc%ugroup(dof, ramp_group(sc, fx%ramp)) /= val(c))) then
                 call add_error(diag, deck%file, fx%line, 'FIX ' // fx%boundary // ' gives node ' // &
                   int_to_str(nodes(i)) // ' a value that conflicts with an earlier FIX (equal values where FIX ' // &
                   'statements share nodes expected)')
@@ -270,7 +348,7 @@ contains
               end if
             else
               sc%fixed(dof) = .true.
-              sc%ubar(dof) = val(c)
+              sc%ugroup(dof, ramp_group(sc, fx%ramp)) = val(c)
               sc%fix_owner(dof) = ifix
             end if
           end do
@@ -331,7 +409,7 @@ contains
     integer :: k, ib, s, na, nb, owner, e, nen
     integer :: dofs(8)
     integer, allocatable :: eptr(:), elist(:)
-    real(dp) :: t(2), nrm(2), fe(8), bf(2)
+    real(dp) :: t(2), nrm(2), fe(8)
     logical :: have_topology
 
     have_topology = .false.
@@ -363,32 +441,43 @@ contains
               t = -ld%p * nrm                   ! positive pressure pushes into the body
             end if
             call edge_load(m%x(:, na), m%x(:, nb), t, bd%thick, fe(1:4))
-            sc%fext(bd%dof0 + 2 * (na - 1) + [1, 2]) = sc%fext(bd%dof0 + 2 * (na - 1) + [1, 2]) + fe(1:2)
-            sc%fext(bd%dof0 + 2 * (nb - 1) + [1, 2]) = sc%fext(bd%dof0 + 2 * (nb - 1) + [1, 2]) + fe(3:4)
+            associate(f => sc%fgroup(:, ramp_group(sc, ld%ramp)))
+              f(bd%dof0 + 2 * (na - 1) + [1, 2]) = f(bd%dof0 + 2 * (na - 1) + [1, 2]) + fe(1:2)
+              f(bd%dof0 + 2 * (nb - 1) + [1, 2]) = f(bd%dof0 + 2 * (nb - 1) + [1, 2]) + fe(3:4)
+            end associate
           end do
           if (ld%kind == LOAD_TRACTION) has_traction = .true.
           if (ld%kind == LOAD_PRESSURE) has_pressure = .true.
         end associate
       end do
 
-      bf = 0.0_dp
-      if (bdeck%has_bodyforce) then
-        bf = [bdeck%fx, bdeck%fy]
-        has_bforce = .true.
+      ! body force and gravity: one element loop when they share a ramp
+      if (bdeck%has_bodyforce) has_bforce = .true.
+      if (deck%has_gravity .and. bdeck%has_density) has_gravity = .true.
+      if (bdeck%has_bodyforce .and. deck%has_gravity .and. bdeck%has_density .and. &
+          all(bdeck%bodyforce_ramp == deck%gravity_ramp)) then
+        call add_body_load([bdeck%fx, bdeck%fy] + bdeck%rho * [deck%gx, deck%gy], deck%gravity_ramp)
+      else
+        if (bdeck%has_bodyforce) call add_body_load([bdeck%fx, bdeck%fy], bdeck%bodyforce_ramp)
+        if (deck%has_gravity .and. bdeck%has_density) call add_body_load(bdeck%rho * [deck%gx, deck%gy], deck%gravity_ramp)
       end if
-      if (deck%has_gravity .and. bdeck%has_density) then
-        bf = bf + bdeck%rho * [deck%gx, deck%gy]
-        has_gravity = .true.
-      end if
-      if (bdeck%has_bodyforce .or. (deck%has_gravity .and. bdeck%has_density)) then
+    end associate
+  contains
+    !> Nodal forces of the body force density bf (per unit volume), ramp r.
+    subroutine add_body_load(bf, r)
+      real(dp), intent(in) :: bf(2)
+      integer, intent(in) :: r(2)
+      integer :: g
+      g = ramp_group(sc, r)
+      associate(bd => sc%bodies(b), m => sc%bodies(b)%mesh)
         do e = 1, m%nelem
           nen = m%nen(e)
           call element_body_load(nen, m%x(:, m%conn(1:nen, e)), bf, bd%thick, fe(1:2 * nen))
           call element_dofs(bd, e, dofs)
-          sc%fext(dofs(1:2 * nen)) = sc%fext(dofs(1:2 * nen)) + fe(1:2 * nen)
+          sc%fgroup(dofs(1:2 * nen), g) = sc%fgroup(dofs(1:2 * nen), g) + fe(1:2 * nen)
         end do
-      end if
-    end associate
+      end associate
+    end subroutine add_body_load
   end subroutine apply_loads
 
 end module scene

@@ -7,6 +7,8 @@
 !>   folder 'tests/bad/' removed, equals the line in the matching .expect file (what
 !>   `contact2d deck_x.deck` prints inside tests/bad).
 !> - numbers and integers accepted and refused, written into temporary decks.
+!> - STEPS, ramp= and CONTACT friction (mu=, tresca=): values as written, every ramp
+!>   resolved to [k0, k1] (default [0, STEPS]), the end-of-deck checks.
 !> - robustness: missing file, empty file, a 1 MB line, binary bytes, the error cap,
 !>   and randomly damaged copies of deck_full.deck (no crash, bounded messages).
 !> Run from the repository root.
@@ -22,6 +24,8 @@ program test_deck_reader
   call test_bad_decks()
   call test_numbers()
   call test_integers()
+  call test_steps_and_ramps()
+  call test_friction()
   call test_robustness()
   call finish_tests()
 
@@ -32,6 +36,7 @@ contains
     type(deck_t) :: d
     type(diag_t) :: g
     real(dp), parameter :: r = 1.0e-15_dp
+    integer :: i
 
     call read_deck('tests/unit/data/deck_full.deck', d, g)
     call check(g%count == 0, 'full: no errors')
@@ -134,6 +139,14 @@ contains
     call check(d%solver%lcp == 'pgs' .and. d%solver%maxit == 5000 .and. d%solver%line == 33, 'full: solver')
     call check_close(d%solver%tol, 1.0e-12_dp, r, 'full: tol')
     call check_close(d%solver%omega, 1.2_dp, r, 'full: omega')
+    call check(d%steps == 1 .and. d%steps_line == 0, 'full: default one load step')
+    call check(all(d%gravity_ramp == [0, 1]), 'full: gravity ramp resolved to [0, 1]')
+    call check(all([(all(d%bodies(1)%fixes(i)%ramp == [0, 1]), i = 1, size(d%bodies(1)%fixes))]) .and. &
+               all([(all(d%bodies(2)%loads(i)%ramp == [0, 1]), i = 1, size(d%bodies(2)%loads))]), &
+               'full: FIX and load ramps resolved to [0, 1]')
+    call check(all([(all(d%bodies(i)%bodyforce_ramp == [0, 1]), i = 1, 3)]), 'full: bodyforce ramps [0, 1]')
+    call check(all([(d%contacts(i)%friction == 'none' .and. d%contacts(i)%mu == 0 .and. &
+                     d%contacts(i)%tresca == 0, i = 1, size(d%contacts))]), 'full: contacts frictionless')
     call check(d%output%vtk == 'full_result.vtk', 'full: vtk prefix gets .vtk')
     call check(d%output%contact == 'pairs.csv' .and. d%output%summary == 'full.sum', 'full: contact, summary')
   end subroutine test_full_deck
@@ -198,7 +211,7 @@ contains
 
   !> Each bad deck: at least one error; first message line as in its .expect file.
   subroutine test_bad_decks()
-    character(len=*), parameter :: names(71) = [character(len=32) :: &
+    character(len=*), parameter :: names(82) = [character(len=32) :: &
       'deck_bad_name', 'deck_bad_number', 'deck_binary', 'deck_blank_equals_missing', 'deck_body_in_body', &
       'deck_body_no_name', 'deck_boundary_case', 'deck_contact_alone', 'deck_contact_duplicate', &
       'deck_contact_same_boundary', 'deck_contact_syntax', 'deck_contact_unknown_body', 'deck_density_alone', &
@@ -214,7 +227,9 @@ contains
       'deck_rect_missing_nx', 'deck_rigid_body', 'deck_rigid_group', 'deck_second_material', 'deck_second_mesh', &
       'deck_second_solver', 'deck_solver_lcp', 'deck_solver_maxit', 'deck_solver_omega', 'deck_solver_tol', &
       'deck_traction_missing', 'deck_trailing_garbage', 'deck_unknown_gap', 'deck_unknown_key', &
-      'deck_unknown_keyword']
+      'deck_unknown_keyword', 'deck_steps_value', 'deck_steps_missing', 'deck_second_steps', 'deck_ramp_syntax', &
+      'deck_ramp_order', 'deck_ramp_steps', 'deck_ramp_no_steps', 'deck_friction_both', 'deck_friction_mu_range', &
+      'deck_friction_tresca_negative', 'deck_friction_pdas']
     type(deck_t) :: d
     type(diag_t) :: g
     character(len=:), allocatable :: expected, got
@@ -287,6 +302,182 @@ contains
     call read_text_deck(small_deck('', 'nx=100000 ny=100000'), d, g)
     call check(g%count == 1, 'rect mesh size limit')
   end subroutine test_integers
+
+  !> STEPS n and ramp=k0:k1 on FIX, TRACTION, PRESSURE, BODYFORCE, GRAVITY: explicit
+  !> values, defaults resolved to [0, STEPS] (STEPS may follow the ramps), errors.
+  subroutine test_steps_and_ramps()
+    character(len=*), parameter :: nl = achar(10)
+    character(len=*), parameter :: head = 'BODY b' // nl // ' MESH rect nx=2 ny=2' // nl // &
+                                          ' MATERIAL isotropic E=1 nu=0' // nl
+    character(len=*), parameter :: bad_ramp(8) = [character(len=12) :: '0-5', '5', ':5', '0:', 'a:b', '-1:5', &
+                                                  '0:2.5', '0:5:7']
+    type(deck_t) :: d
+    type(diag_t) :: g
+    integer :: i
+
+    ! no STEPS, no ramp: one step, every ramp [0, 1], absent statements included
+    call read_text_deck(small_deck(''), d, g)
+    call check(g%count == 0 .and. d%steps == 1 .and. d%steps_line == 0, 'steps: default 1')
+    call check(all(d%bodies(1)%fixes(1)%ramp == [0, 1]), 'ramp: FIX default [0, 1]')
+    call check(all(d%bodies(1)%bodyforce_ramp == [0, 1]) .and. all(d%gravity_ramp == [0, 1]), &
+               'ramp: absent BODYFORCE and GRAVITY [0, 1]')
+
+    ! the Cattaneo-Mindlin loading: press, then shear, on the same boundary
+    call read_text_deck(head // ' FIX bottom' // nl // ' FIX top uy=-0.002 ramp=0:5' // nl // &
+                        ' FIX top ux=0.001 RAMP = 5:20' // nl // ' FIX left ramp=3:4' // nl // &
+                        ' TRACTION right ty=-1' // nl // ' PRESSURE right p=2 ramp=2:3' // nl // &
+                        ' BODYFORCE fy=-1 ramp=1:20' // nl // 'END' // nl // &
+                        'BODY c' // nl // ' MESH rect y0=1 y1=2 nx=2 ny=2' // nl // ' MATERIAL isotropic E=1 nu=0' // nl // &
+                        ' FIX top' // nl // ' BODYFORCE fx=1' // nl // 'END' // nl // &
+                        'GRAVITY gy=-9.81 ramp=0:7' // nl // 'STEPS 20 ! after the ramps' // nl, d, g)
+    call check(g%count == 0, 'ramp: deck with ramps reads')
+    if (g%count > 0) print '(a)', g%items(1)%text
+    call check(d%steps == 20 .and. d%steps_line == 19, 'steps: STEPS 20 and its line')
+    if (size(d%bodies) == 2 .and. g%count == 0) then
+      associate (b => d%bodies(1))
+        call check(size(b%fixes) == 4, 'ramp: four FIX, two on the same boundary')
+        call check(all(b%fixes(1)%ramp == [0, 20]), 'ramp: FIX without ramp= gets [0, STEPS]')
+        call check(all(b%fixes(2)%ramp == [0, 5]) .and. b%fixes(2)%has_uy .and. .not. b%fixes(2)%has_ux, &
+                   'ramp: FIX top uy ramp=0:5')
+        call check(all(b%fixes(3)%ramp == [5, 20]) .and. b%fixes(3)%has_ux .and. .not. b%fixes(3)%has_uy, &
+                   'ramp: FIX top ux RAMP = 5:20')
+        call check(b%fixes(2)%boundary == 'top' .and. b%fixes(3)%boundary == 'top', 'ramp: both on top')
+        call check(all(b%fixes(4)%ramp == [3, 4]) .and. b%fixes(4)%has_ux .and. b%fixes(4)%has_uy .and. &
+                   b%fixes(4)%ux == 0 .and. b%fixes(4)%uy == 0, 'ramp: FIX with ramp= only still clamps both')
+        call check(size(b%loads) == 2, 'ramp: two loads')
+        if (size(b%loads) == 2) then
+          call check(all(b%loads(1)%ramp == [0, 20]), 'ramp: TRACTION default [0, STEPS]')
+          call check(all(b%loads(2)%ramp == [2, 3]) .and. b%loads(2)%p == 2, 'ramp: PRESSURE ramp=2:3')
+        end if
+        call check(b%has_bodyforce .and. all(b%bodyforce_ramp == [1, 20]), 'ramp: BODYFORCE ramp=1:20')
+      end associate
+      call check(all(d%bodies(2)%bodyforce_ramp == [0, 20]) .and. d%bodies(2)%has_bodyforce, &
+                 'ramp: BODYFORCE default [0, STEPS]')
+      call check(all(d%bodies(2)%fixes(1)%ramp == [0, 20]), 'ramp: second body FIX default')
+      call check(d%has_gravity .and. all(d%gravity_ramp == [0, 7]), 'ramp: GRAVITY ramp=0:7')
+    end if
+    call read_text_deck(small_deck('STEPS 6'), d, g)
+    call check(g%count == 0 .and. all(d%gravity_ramp == [0, 6]) .and. all(d%bodies(1)%fixes(1)%ramp == [0, 6]) &
+               .and. all(d%bodies(1)%bodyforce_ramp == [0, 6]), 'ramp: defaults follow STEPS 6')
+    call read_text_deck(small_deck('STEPS 100000' // nl // 'GRAVITY gy=1 ramp=99999:100000'), d, g)
+    call check(g%count == 0 .and. d%steps == 100000 .and. all(d%gravity_ramp == [99999, 100000]), &
+               'steps: largest STEPS and ramp')
+    call read_text_deck(small_deck('GRAVITY gy=1 ramp=0:1'), d, g)
+    call check(g%count == 0 .and. all(d%gravity_ramp == [0, 1]), 'ramp: ramp=0:1 without STEPS')
+
+    ! errors
+    call expect_error(small_deck('STEPS 100001'), 6, 'bad number of load steps "100001" (expected STEPS n ' // &
+                      'with an integer 1 <= n <= 100000)', 'steps: 100001 refused')
+    call expect_error(small_deck('STEPS 2.0'), 6, 'bad number of load steps "2.0"', 'steps: 2.0 refused')
+    call expect_error(small_deck('STEPS -3'), 6, 'bad number of load steps "-3"', 'steps: -3 refused')
+    call expect_error(small_deck('STEPS 4 5'), 6, 'unexpected word "5" (expected STEPS n', 'steps: extra word')
+    call expect_error(small_deck('STEPS n=4'), 6, 'unexpected "n=4" (expected STEPS n', 'steps: key=value')
+    call expect_error(head // ' STEPS 4' // nl // ' FIX left' // nl // 'END' // nl, 4, &
+                      'statement STEPS inside BODY "b"', 'steps: inside BODY')
+    do i = 1, size(bad_ramp)
+      call expect_error(small_deck('GRAVITY gy=1 ramp=' // trim(bad_ramp(i)) // nl // 'STEPS 10'), 6, &
+                        'bad ramp "' // trim(bad_ramp(i)) // '" (expected ramp=k0:k1 with integers 0 <= k0 < k1 ' // &
+                        '<= STEPS n)', 'ramp: ' // trim(bad_ramp(i)) // ' refused')
+    end do
+    call expect_error(small_deck('GRAVITY gy=1 ramp=' // nl // 'STEPS 10'), 6, &
+                      'missing value for "ramp" (expected ramp=k0:k1)', 'ramp: empty value')
+    call expect_error(small_deck('GRAVITY gy=1 ramp=4:2' // nl // 'STEPS 10'), 6, &
+                      'bad ramp "4:2" (expected ramp=k0:k1 with k0 < k1', 'ramp: k0 > k1 refused')
+    call expect_error(small_deck('STEPS 3' // nl // 'GRAVITY gy=1 ramp=2:4'), 7, &
+                      'ramp=2:4 ends after the last load step (expected k1 <= 3, the STEPS value at line 6)', &
+                      'ramp: k1 > STEPS refused')
+    call expect_error(head // ' FIX left ux=0 ramp=0:2' // nl // 'END' // nl, 4, &
+                      'ramp=0:2 ends after the last load step (expected k1 <= 1, as STEPS defaults to 1 when absent)', &
+                      'ramp: k1 > 1 without STEPS refused')
+    call expect_error(small_deck('STEPS 0' // nl // 'GRAVITY gy=1 ramp=0:4'), 6, 'bad number of load steps "0"', &
+                      'ramp: no second message after a bad STEPS')
+    call expect_error(small_deck('STEPS 10' // nl // 'STEPS 10'), 7, 'second STEPS (first at line 6; ' // &
+                      'expected at most one)', 'steps: second STEPS')
+    call expect_error(small_deck('GRAVITY ramp=0:1'), 6, 'missing gx= and gy=', 'ramp: not a value of GRAVITY')
+  end subroutine test_steps_and_ramps
+
+  !> CONTACT mu= and tresca=: values, the default frictionless contact, errors, and
+  !> lcp=pdas refused with friction.
+  subroutine test_friction()
+    character(len=*), parameter :: nl = achar(10)
+    character(len=*), parameter :: two = 'BODY lower' // nl // ' MESH rect nx=2 ny=2' // nl // &
+      ' MATERIAL isotropic E=1 nu=0' // nl // ' FIX bottom' // nl // 'END' // nl // 'BODY upper' // nl // &
+      ' MESH rect y0=1 y1=2 nx=2 ny=2' // nl // ' MATERIAL isotropic E=1 nu=0' // nl // ' FIX top' // nl // &
+      'END' // nl                          ! 10 lines
+    character(len=*), parameter :: pair = 'CONTACT slave=lower:top master=upper:bottom'
+    type(deck_t) :: d
+    type(diag_t) :: g
+    real(dp), parameter :: r = 1.0e-15_dp
+
+    call read_text_deck(two // pair // nl // 'CONTACT slave=lower:bottom master=upper:top gap=zero MU=0.3' // nl // &
+                        'CONTACT slave=upper:left master=lower:left tresca = 2.5e1' // nl // &
+                        'CONTACT slave=upper:right master=lower:right mu=0' // nl // &
+                        'CONTACT slave=lower:left master=upper:right tresca=0' // nl // &
+                        'CONTACT slave=lower:right master=upper:left mu=1e3' // nl // 'STEPS 8' // nl, d, g)
+    call check(g%count == 0, 'friction: deck reads')
+    if (g%count > 0) print '(a)', g%items(1)%text
+    call check(size(d%contacts) == 6, 'friction: six contacts')
+    if (size(d%contacts) /= 6) return
+    call check(d%contacts(1)%friction == 'none' .and. d%contacts(1)%mu == 0 .and. d%contacts(1)%tresca == 0, &
+               'friction: default none')
+    call check(d%contacts(2)%friction == 'coulomb' .and. d%contacts(2)%gap_zero .and. d%contacts(2)%tresca == 0, &
+               'friction: MU= is Coulomb')
+    call check_close(d%contacts(2)%mu, 0.3_dp, r, 'friction: mu value')
+    call check(d%contacts(3)%friction == 'tresca' .and. d%contacts(3)%mu == 0, 'friction: tresca =')
+    call check_close(d%contacts(3)%tresca, 25.0_dp, r, 'friction: tresca value')
+    call check(d%contacts(4)%friction == 'coulomb' .and. d%contacts(4)%mu == 0, 'friction: mu=0 kept as Coulomb')
+    call check(d%contacts(5)%friction == 'tresca' .and. d%contacts(5)%tresca == 0, 'friction: tresca=0 kept')
+    call check_close(d%contacts(6)%mu, 1000.0_dp, r, 'friction: mu=1e3 accepted')
+    call check(d%steps == 8, 'friction: STEPS 8')
+
+    call read_text_deck(two // pair // ' mu=0' // nl // 'SOLVER lcp=pdas' // nl, d, g)
+    call check(g%count == 0, 'friction: mu=0 (frictionless) with lcp=pdas accepted')
+    call read_text_deck(two // pair // nl // 'SOLVER lcp=pdas' // nl // 'STEPS 5' // nl, d, g)
+    call check(g%count == 0, 'friction: STEPS without friction with lcp=pdas accepted')
+    call expect_error(two // pair // ' mu=0.2' // nl // 'SOLVER lcp=pdas' // nl, 12, 'lcp=pdas solves ' // &
+                      'frictionless contact only (expected lcp=auto, lemke or pgs with friction)', 'friction: pdas refused')
+    call expect_error(two // 'SOLVER lcp=PDAS' // nl // pair // ' tresca=1' // nl, 11, 'lcp=pdas solves ', &
+                      'friction: pdas refused, SOLVER before CONTACT')
+    call expect_error(two // pair // ' tresca=1 mu=0.1' // nl, 11, 'mu= and tresca= together (expected one ' // &
+                      'friction law per CONTACT)', 'friction: both laws refused')
+    call expect_error(two // pair // ' mu=1000.5' // nl, 11, 'bad value mu=1000.5 (expected 0 <= mu <= 1000)', &
+                      'friction: mu > 1000 refused')
+    call expect_error(two // pair // ' mu=-1e-9' // nl, 11, 'bad value mu=-1e-9 (expected 0 <= mu <= 1000)', &
+                      'friction: negative mu refused')
+    call expect_error(two // pair // ' mu=nan' // nl, 11, 'bad number "nan" for "mu" (expected a finite number)', &
+                      'friction: mu=nan refused')
+    call expect_error(two // pair // ' tresca=-2' // nl, 11, 'bad value tresca=-2 (expected tresca >= 0, a shear ' // &
+                      'stress)', 'friction: negative tresca refused')
+    call expect_error(two // pair // ' tresca=1e999' // nl, 11, 'bad number "1e999" for "tresca"', &
+                      'friction: tresca=1e999 refused')
+    call expect_error(two // pair // ' friction=0.3' // nl, 11, 'unknown key "friction" for CONTACT (expected ' // &
+                      'slave, master, gap, mu, tresca)', 'friction: unknown key lists mu, tresca')
+  end subroutine test_friction
+
+  !> Read text as a deck: exactly one error, at `line`, whose text after 'FILE:LINE: '
+  !> starts with `start`.
+  subroutine expect_error(text, line, start, name)
+    character(len=*), intent(in) :: text, start, name
+    integer, intent(in) :: line
+    type(deck_t) :: d
+    type(diag_t) :: g
+    character(len=:), allocatable :: msg, tag
+    integer :: k
+
+    call read_text_deck(text, d, g)
+    if (g%count /= 1) then
+      call check(.false., name // ' (' // itoa(g%count) // ' errors, 1 expected)')
+      if (g%count > 1) print '(a)', '  ' // first_line(g%items(1)%text) // new_line('a') // '  ' // &
+                                    first_line(g%items(2)%text)
+      return
+    end if
+    msg = first_line(g%items(1)%text)
+    tag = '.deck:' // itoa(line) // ': '
+    k = index(msg, tag)
+    if (k > 0) msg = msg(k + len(tag):)
+    call check(k > 0 .and. index(msg, start) == 1, name)
+    if (.not. (k > 0 .and. index(msg, start) == 1)) print '(a)', '  got: ' // first_line(g%items(1)%text)
+  end subroutine expect_error
 
   !> Missing and empty files, a 1 MB line, binary bytes, the error cap, damaged decks.
   subroutine test_robustness()

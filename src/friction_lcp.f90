@@ -1,0 +1,791 @@
+!> friction_lcp: one load step of frictional 2D contact (Coulomb or Tresca),
+!> condensed onto the contact rows.
+!>
+!> Rows.  n normal rows (one per constrained slave node) and nt tangential rows
+!> (nt <= n in 2D); tangential row k belongs to normal row trow(k).  G, of size
+!> (n+nt) x (n+nt), symmetric positive semi-definite, is the Delassus matrix
+!> C K^-1 C' of the stacked rows C = [B; T]; lam = [lambda (n); tau (nt)] holds
+!> the normal contact forces and the tangential (friction) forces.  With
+!> q = [qn; qt]
+!>     normal gap       w_i  = qn_i + (G lam)_i                    i <= n
+!>     slip increment   ds_k = -(qt_k + (G lam)_{n+k})             k <= nt
+!>     friction bound   b_k  = bound_k + cmu_k lambda_{trow(k)}
+!> (Tresca: bound_k >= 0 given, cmu_k = 0; Coulomb: bound_k = 0, cmu_k = mu >= 0)
+!> and the conditions of contact with friction are
+!>     lambda >= 0,  w >= 0,  lambda_i w_i = 0                     (Signorini)
+!>     |tau_k| <= b_k,  ds_k = 0 where |tau_k| < b_k,
+!>     tau_k = b_k sign(ds_k) where ds_k /= 0                      (Coulomb's law)
+!> so a friction force tau_k > 0 goes with a slip ds_k >= 0.  For Tresca they
+!> are the KKT conditions of the convex QP
+!>     min 1/2 lam'G lam + q'lam   subject to  lambda >= 0,  |tau| <= bound
+!> (ds is minus the gradient in tau); Coulomb's bound depends on lambda, and
+!> the problem is a quasi-variational inequality: for large mu and strong
+!> normal-tangential coupling in G it may have several solutions or none.
+!>
+!> Scaling.  As in lcp_solvers (scale_lcp on G): d_i = 1/sqrt(G_ii), and
+!> d_i = 1/sqrt(max_j G_jj) on a zero row (G_ii <= 1e-30 max_j G_jj: for a PSD G
+!> the whole row vanishes);
+!>     Gs = D G D,  qs = D q,  s = D^-1 lam,  v = qs + Gs s,
+!> so that v_i = d_i w_i, v_{n+k} = -d_{n+k} ds_k, and the scaled bound is
+!>     bs_k = b_k / d_{n+k} = bound_k / d_{n+k} + cmu_k (d_i / d_{n+k}) s_i,  i = trow(k).
+!> Measures of a candidate lam (both methods report these, for the lam returned):
+!>     residual  r = max( max_i |min(s_i, v_i)|,
+!>                        max_k |s_{n+k} - clamp(s_{n+k} - v_{n+k}, -bs_k, bs_k)| ) / qscale
+!>               with qscale = max(||qs||_inf, max_k bound_k / d_{n+k}) (1 when
+!>               both vanish) and bs_k taken as max(bs_k, 0).  The normal part is
+!>               lcp_solvers' natural residual; the tangential part is
+!>               |tau - clamp(tau + ds / G_tt, -b, b)| in the same scaled force
+!>               units (a zero row takes the unit step).  r = 0 exactly when lam
+!>               satisfies every condition above, and r is scale-free: unchanged
+!>               when lengths, forces or single rows of C are rescaled;
+!>     complementarity  max( max_i |s_i v_i|, max_k |bs_k |v_{n+k}| + s_{n+k} v_{n+k}| )
+!>               / (max_j |s_j| qscale), 0 when the numerator is 0; the tangential
+!>               term is b |ds| - tau ds (zero when the friction force opposes
+!>               the slip at full strength) in scaled units.
+!>
+!> Lemke (method 'lemke').  The classical LCP of 2D friction (Klarbring 1986;
+!> Stewart & Trinkle 1996 with the two tangent directions, exact in 2D):
+!>     z = [lambda; beta+; beta-; sigma]  (n + 3 nt),  tau = beta+ - beta-,
+!>     M = [  Gnn   Gnt  -Gnt  0 ]      q = [  qn   ]    w = q + M z:
+!>         [  Gtn   Gtt  -Gtt  I ]          [  qt   ]    w_beta+ = sigma - ds
+!>         [ -Gtn  -Gtt   Gtt  I ]          [ -qt   ]    w_beta- = sigma + ds
+!>         [  Cm   -I    -I    0 ]          [ bound ]    w_sigma = b - beta+ - beta-
+!> with Cm (nt x n) holding cmu_k in column trow(k).  Its complementarity
+!> conditions give sigma >= |ds|; sigma > 0 forces beta+ + beta- = b; beta+ > 0
+!> forces sigma = ds and beta- > 0 sigma = -ds; hence ds > 0 gives tau = b,
+!> ds < 0 gives tau = -b, and ds = 0 leaves |tau| <= b: exactly the conditions
+!> above, sigma being the slip magnitude.  M is not symmetric and its sigma
+!> rows have a zero diagonal, so it is solved by solve_lcp_lemke_scaled (no row
+!> removed) with d = [dn; dt; dt; 1/dt], dn, dt the scaling of G above: the
+!> diagonal blocks of D M D are unit-sized and the I blocks stay I.  On return
+!> tau is projected onto [-b, b] (beta+ + beta- <= b holds to round-off only;
+!> this polish is the counterpart of setting tiny negative z to zero).  For Tresca
+!> M is positive semi-definite (the G part is E'GE, E = [I 0 0; 0 I -I], the I
+!> blocks are skew), so Lemke solves it and ray termination proves that there
+!> is no solution; for Coulomb M is only copositive and ray termination means
+!> that Lemke found none.  Dense, O((n + 3 nt)^2) per pivot.
+!>
+!> PGS (method 'pgs').  Nonsmooth (block projected) Gauss-Seidel (Moreau,
+!> Jean) on the scaled problem, with relaxation omega: the normal rows in
+!> order, each followed by the tangential rows of its node,
+!>     s_i     <- max(0, s_i - omega v_i / Gs_ii)
+!>     s_{n+k} <- clamp(s_{n+k} - omega v_{n+k} / Gs_{n+k,n+k}, -bs_k, bs_k)
+!> with the current bs_k (the lambda just updated) and v kept up to date column
+!> by column (daxpy), recomputed every 50 sweeps.  Each update minimises the
+!> Tresca QP in one variable; at stick v_{n+k} = -d ds_k = 0 and tau stays.  A
+!> zero row takes the unit step.  The residual r is checked after every sweep
+!> and confirmed with v recomputed.  Divergence (iterates beyond 1e150 or r
+!> grown by 1e6 over its minimum) and stagnation (the best r not decreased by
+!> a factor 0.999 over max(1000, 10 (n + nt)) sweeps) stop with info 3, the
+!> sweep limit with info 2; lam then holds the best iterate.  PGS converges
+!> for Tresca (a convex QP with box constraints), slowly when G is ill-
+!> conditioned; for Coulomb it is a fixed-point iteration that usually
+!> converges for moderate mu and may stagnate for large mu with strong
+!> coupling (reported, info 3), where Lemke still finds a solution.
+!>
+!> Stick and slip.  friction_state classifies each tangential row with the
+!> relative tolerance state_tol = 1e-8 on the scaled quantities:
+!>     open  (0)  s_i <= state_tol qscale and bs_k <= state_tol qscale: no normal
+!>                force and no friction force available, the node is not in
+!>                contact (for Tresca, only when also bound_k = 0);
+!>     slip  (2)  otherwise, when |v_{n+k}| = d |ds_k| > state_tol qscale;
+!>     stick (1)  otherwise.
+!>
+!> Programming interface
+!>   solve_friction_lcp(g, qn, qt, trow, cmu, bound, method, opts, lam, rep)
+!>       method 'lemke' or 'pgs'; opts and rep are lcp_solvers' lcp_options_t
+!>       (tol on r, maxit, omega) and lcp_report_t (info, iterations: pivots or
+!>       sweeps, residual r, complementarity, message).  info 0 solved; 1 no
+!>       solution (Lemke ray termination, or a zero normal row of G with
+!>       qn_i < 0); 2 pivot / sweep limit; 3 PGS divergence or stagnation;
+!>       4 Lemke terminated with r > tol; -k argument k invalid.  With nt = 0
+!>       the call is solve_lcp_lemke or solve_lcp_pgs on (g, qn), unchanged.
+!>   friction_residual(g, qn, qt, trow, cmu, bound, lam)   the residual r
+!>   friction_state(g, qn, qt, trow, cmu, bound, lam, state)
+!>       state(nt): state_open (0), state_stick (1) or state_slip (2)
+!> No routine prints anything; every outcome is in the report.
+module friction_lcp
+  use kinds, only: dp
+  use diagnostics, only: int_to_str
+  use lcp_solvers, only: lcp_options_t, lcp_report_t, solve_lcp_lemke, solve_lcp_pgs, &
+    solve_lcp_lemke_scaled, scale_lcp
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+  implicit none
+  private
+  public :: solve_friction_lcp, friction_residual, friction_state
+  public :: state_open, state_stick, state_slip
+
+  integer, parameter :: state_open = 0    !< not in contact, no friction force available
+  integer, parameter :: state_stick = 1   !< no slip: ds = 0, |tau| <= b
+  integer, parameter :: state_slip = 2    !< slip: ds /= 0, tau = b sign(ds)
+
+  !> The scaled problem (module header).
+  type :: scaled_friction_t
+    integer :: n = 0                     !< normal rows
+    integer :: nt = 0                    !< tangential rows
+    real(dp), allocatable :: d(:)        !< (n+nt) scaling D
+    real(dp), allocatable :: gs(:, :)    !< (n+nt, n+nt) D G D
+    real(dp), allocatable :: qs(:)       !< (n+nt) D [qn; qt]
+    real(dp), allocatable :: step(:)     !< (n+nt) 1 / Gs_ii, 1 on a zero row
+    logical, allocatable :: zero(:)      !< (n+nt) .true. on a zero row of G
+    integer, allocatable :: trow(:)      !< (nt) normal row of each tangential row
+    real(dp), allocatable :: bs0(:)      !< (nt) bound_k / d_{n+k}
+    real(dp), allocatable :: mus(:)      !< (nt) cmu_k d_{trow(k)} / d_{n+k}
+    integer, allocatable :: tfirst(:)    !< (n+1) tangential rows of normal row i are
+    integer, allocatable :: tlist(:)     !< (nt)  tlist(tfirst(i) : tfirst(i+1) - 1)
+    real(dp) :: qscale = 1.0_dp          !< max(||qs||_inf, max bs0), 1 when 0
+  end type scaled_friction_t
+
+  real(dp), parameter :: diag_negative_ratio = 1.0e-8_dp   ! G_ii below -this * max diag: not PSD
+  real(dp), parameter :: state_tol = 1.0e-8_dp             ! friction_state: relative tolerance
+  real(dp), parameter :: divergence_factor = 1.0e6_dp      ! PGS: residual growth over its minimum
+  real(dp), parameter :: stagnation_factor = 0.999_dp      ! PGS: decrease expected per window
+  real(dp), parameter :: iterate_bound = 1.0e150_dp        ! PGS: iterates beyond this diverge
+  integer, parameter :: refresh_sweeps = 50                ! PGS: recompute v from scratch
+
+  interface
+    subroutine dgemv(trans, m, n, alpha, a, lda, x, incx, beta, y, incy)
+      import :: dp
+      character, intent(in) :: trans
+      integer, intent(in) :: m, n, lda, incx, incy
+      real(dp), intent(in) :: alpha, a(lda, *), x(*), beta
+      real(dp), intent(inout) :: y(*)
+    end subroutine dgemv
+    subroutine daxpy(n, alpha, x, incx, y, incy)
+      import :: dp
+      integer, intent(in) :: n, incx, incy
+      real(dp), intent(in) :: alpha, x(*)
+      real(dp), intent(inout) :: y(*)
+    end subroutine daxpy
+  end interface
+
+contains
+
+  !> Solve one load step of contact with Coulomb or Tresca friction (module
+  !> header) by Lemke on the friction LCP or by nonsmooth Gauss-Seidel.
+  !>   g       (in)    (n+nt, n+nt) Delassus matrix G, symmetric PSD, finite
+  !>   qn      (in)    (n) normal gaps of the unconstrained solution, finite
+  !>   qt      (in)    (nt) tangential right-hand side (ds = -(qt + (G lam)_t)), finite
+  !>   trow    (in)    (nt) normal row of each tangential row, 1 <= trow(k) <= n
+  !>   cmu     (in)    (nt) friction coefficients, finite, >= 0 (0 for Tresca)
+  !>   bound   (in)    (nt) Tresca bounds, finite, >= 0 (0 for Coulomb)
+  !>   method  (in)    'lemke' or 'pgs'
+  !>   opts    (in)    tol (> 0, on r), maxit (>= 0; 0: Lemke 10 (n + 3 nt) + 100
+  !>                   pivots, PGS min(1e5, max(1e4, 1e10 / (n + nt)^2)) sweeps),
+  !>                   omega (PGS, 0 < omega < 2)
+  !>   lam     (inout) (n+nt) [lambda; tau].  On entry the initial guess of PGS
+  !>                   (non-finite entries taken as 0, negative lambda as 0;
+  !>                   ignored by Lemke).  On exit the solution when rep%info = 0
+  !>                   (or 4, inaccurate); on failure Lemke's last almost-
+  !>                   complementary point or PGS's best iterate (finite); zero
+  !>                   when a zero normal row makes the problem infeasible (PGS);
+  !>                   unchanged on an argument error.  With nt = 0 as z of
+  !>                   solve_lcp_lemke / solve_lcp_pgs
+  !>   rep     (out)   info 0 solved, 1 no solution, 2 iteration limit, 3 PGS
+  !>                   divergence or stagnation, 4 Lemke residual above tol, -k
+  !>                   argument k invalid; iterations (pivots or sweeps);
+  !>                   residual r and complementarity of the lam returned; message
+  subroutine solve_friction_lcp(g, qn, qt, trow, cmu, bound, method, opts, lam, rep)
+    real(dp), intent(in) :: g(:, :)
+    real(dp), intent(in) :: qn(:)
+    real(dp), intent(in) :: qt(:)
+    integer, intent(in) :: trow(:)
+    real(dp), intent(in) :: cmu(:)
+    real(dp), intent(in) :: bound(:)
+    character(len=*), intent(in) :: method
+    type(lcp_options_t), intent(in) :: opts
+    real(dp), intent(inout) :: lam(:)
+    type(lcp_report_t), intent(out) :: rep
+    type(scaled_friction_t) :: p
+
+    call check_arguments(g, qn, qt, trow, cmu, bound, method, opts, size(lam), rep)
+    if (rep%info < 0) return
+
+    ! Without tangential rows this is the frictionless LCP(Gnn, qn).
+    if (size(qt) == 0) then
+      if (method == 'lemke') then
+        call solve_lcp_lemke(g, qn, lam, opts, rep)
+      else
+        call solve_lcp_pgs(g, qn, lam, opts, rep)
+      end if
+      return
+    end if
+
+    call scale_friction(g, qn, qt, trow, cmu, bound, p)
+    if (method == 'lemke') then
+      call friction_lemke(g, qn, qt, cmu, bound, p, opts, lam, rep)
+    else
+      call friction_pgs(p, opts, lam, rep)
+    end if
+  end subroutine solve_friction_lcp
+
+  !> Scale-free natural residual r (module header) of a candidate lam.
+  !> r = 0 exactly when lam solves the frictional contact problem.
+  !>   g, qn, qt, trow, cmu, bound  (in) the problem, as in solve_friction_lcp
+  !>   lam  (in)     (n+nt) candidate, finite
+  !>   r    (result) the residual; huge(1.0_dp) when the sizes or trow are invalid
+  function friction_residual(g, qn, qt, trow, cmu, bound, lam) result(r)
+    real(dp), intent(in) :: g(:, :)
+    real(dp), intent(in) :: qn(:)
+    real(dp), intent(in) :: qt(:)
+    integer, intent(in) :: trow(:)
+    real(dp), intent(in) :: cmu(:)
+    real(dp), intent(in) :: bound(:)
+    real(dp), intent(in) :: lam(:)
+    real(dp) :: r
+    type(scaled_friction_t) :: p
+    real(dp), allocatable :: s(:), v(:)
+
+    r = huge(1.0_dp)
+    if (.not. valid_sizes(g, qn, qt, trow, cmu, bound, size(lam))) return
+    call scale_friction(g, qn, qt, trow, cmu, bound, p)
+    s = lam / p%d                                      ! s = D^-1 lam
+    allocate(v(size(s)))
+    call scaled_gap(p, s, v)
+    r = scaled_residual(p, s, v)
+  end function friction_residual
+
+  !> Stick / slip state of each tangential row of a (solved) lam, decided with
+  !> the relative tolerance state_tol = 1e-8 (module header).
+  !>   g, qn, qt, trow, cmu, bound  (in) the problem, as in solve_friction_lcp
+  !>   lam    (in)  (n+nt) the forces, finite
+  !>   state  (out) (nt) state_open (0), state_stick (1) or state_slip (2);
+  !>                -1 everywhere when the sizes or trow are invalid
+  subroutine friction_state(g, qn, qt, trow, cmu, bound, lam, state)
+    real(dp), intent(in) :: g(:, :)
+    real(dp), intent(in) :: qn(:)
+    real(dp), intent(in) :: qt(:)
+    integer, intent(in) :: trow(:)
+    real(dp), intent(in) :: cmu(:)
+    real(dp), intent(in) :: bound(:)
+    real(dp), intent(in) :: lam(:)
+    integer, intent(out) :: state(:)
+    type(scaled_friction_t) :: p
+    real(dp), allocatable :: s(:), v(:)
+    real(dp) :: bk, small
+    integer :: k, i, j, n
+
+    state = -1
+    if (.not. valid_sizes(g, qn, qt, trow, cmu, bound, size(lam))) return
+    if (size(state) /= size(qt)) return
+    call scale_friction(g, qn, qt, trow, cmu, bound, p)
+    n = p%n
+    s = lam / p%d
+    allocate(v(size(s)))
+    call scaled_gap(p, s, v)
+    small = state_tol * p%qscale
+    do k = 1, p%nt
+      i = p%trow(k)
+      j = n + k
+      bk = max(0.0_dp, p%bs0(k) + p%mus(k) * s(i))    ! bs_k
+      if (s(i) <= small .and. bk <= small) then
+        state(k) = state_open
+      else if (abs(v(j)) > small) then                ! |v_{n+k}| = d |ds_k|
+        state(k) = state_slip
+      else
+        state(k) = state_stick
+      end if
+    end do
+  end subroutine friction_state
+
+  ! ---------------------------------------------------------------------------
+  ! Internals
+  ! ---------------------------------------------------------------------------
+
+  !> Check every argument of solve_friction_lcp; info -k names argument k.
+  subroutine check_arguments(g, qn, qt, trow, cmu, bound, method, opts, nlam, rep)
+    real(dp), intent(in) :: g(:, :)
+    real(dp), intent(in) :: qn(:)
+    real(dp), intent(in) :: qt(:)
+    integer, intent(in) :: trow(:)
+    real(dp), intent(in) :: cmu(:)
+    real(dp), intent(in) :: bound(:)
+    character(len=*), intent(in) :: method
+    type(lcp_options_t), intent(in) :: opts
+    integer, intent(in) :: nlam
+    type(lcp_report_t), intent(inout) :: rep
+    real(dp) :: dmax
+    integer :: n, nt, nrow, i
+
+    rep%info = 0
+    n = size(qn)
+    nt = size(qt)
+    nrow = n + nt
+    if (size(g, 1) /= nrow .or. size(g, 2) /= nrow) then
+      call set_report(rep, -1, 'friction LCP: G is ' // int_to_str(size(g, 1)) // ' x ' // &
+        int_to_str(size(g, 2)) // ' (expected ' // int_to_str(nrow) // ' x ' // int_to_str(nrow) // &
+        ', n + nt from qn and qt)')
+      return
+    else if (.not. all(ieee_is_finite(g))) then
+      call set_report(rep, -1, 'friction LCP: G has non-finite entries')
+      return
+    end if
+    dmax = 0.0_dp
+    do i = 1, nrow
+      dmax = max(dmax, g(i, i))
+    end do
+    do i = 1, nrow
+      if (g(i, i) < 0.0_dp .and. abs(g(i, i)) > diag_negative_ratio * dmax) then
+        call set_report(rep, -1, 'friction LCP: G(' // int_to_str(i) // ',' // int_to_str(i) // &
+          ') < 0 (G must be positive semi-definite)')
+        return
+      end if
+    end do
+    if (.not. all(ieee_is_finite(qn))) then
+      call set_report(rep, -2, 'friction LCP: qn has non-finite entries')
+    else if (.not. all(ieee_is_finite(qt))) then
+      call set_report(rep, -3, 'friction LCP: qt has non-finite entries')
+    else if (size(trow) /= nt) then
+      call set_report(rep, -4, 'friction LCP: trow has ' // int_to_str(size(trow)) // &
+        ' entries (expected nt = ' // int_to_str(nt) // ')')
+    else if (any(trow < 1 .or. trow > n)) then
+      call set_report(rep, -4, 'friction LCP: trow has entries outside 1..' // int_to_str(n))
+    else if (size(cmu) /= nt) then
+      call set_report(rep, -5, 'friction LCP: cmu has ' // int_to_str(size(cmu)) // &
+        ' entries (expected nt = ' // int_to_str(nt) // ')')
+    else if (.not. all(ieee_is_finite(cmu) .and. cmu >= 0.0_dp)) then
+      call set_report(rep, -5, 'friction LCP: cmu has entries that are not finite and >= 0')
+    else if (size(bound) /= nt) then
+      call set_report(rep, -6, 'friction LCP: bound has ' // int_to_str(size(bound)) // &
+        ' entries (expected nt = ' // int_to_str(nt) // ')')
+    else if (.not. all(ieee_is_finite(bound) .and. bound >= 0.0_dp)) then
+      call set_report(rep, -6, 'friction LCP: bound has entries that are not finite and >= 0')
+    else if (method /= 'lemke' .and. method /= 'pgs') then
+      call set_report(rep, -7, 'friction LCP: method ''' // method // ''' (expected ''lemke'' or ''pgs'')')
+    else if (.not. (ieee_is_finite(opts%tol) .and. opts%tol > 0.0_dp)) then
+      call set_report(rep, -8, 'friction LCP: tol is not finite and > 0')
+    else if (opts%maxit < 0) then
+      call set_report(rep, -8, 'friction LCP: maxit = ' // int_to_str(opts%maxit) // ' (expected >= 0)')
+    else if (method == 'pgs' .and. .not. (opts%omega > 0.0_dp .and. opts%omega < 2.0_dp)) then
+      call set_report(rep, -8, 'friction LCP: omega is not in (0, 2)')
+    else if (nlam /= nrow) then
+      call set_report(rep, -9, 'friction LCP: lam has ' // int_to_str(nlam) // ' entries (expected n + nt = ' // &
+        int_to_str(nrow) // ')')
+    end if
+  end subroutine check_arguments
+
+  !> .true. when the sizes agree and trow is in range (for the measures).
+  logical function valid_sizes(g, qn, qt, trow, cmu, bound, nlam)
+    real(dp), intent(in) :: g(:, :)
+    real(dp), intent(in) :: qn(:)
+    real(dp), intent(in) :: qt(:)
+    integer, intent(in) :: trow(:)
+    real(dp), intent(in) :: cmu(:)
+    real(dp), intent(in) :: bound(:)
+    integer, intent(in) :: nlam
+    integer :: nrow, nt
+    nt = size(qt)
+    nrow = size(qn) + nt
+    valid_sizes = size(g, 1) == nrow .and. size(g, 2) == nrow .and. nlam == nrow .and. &
+      size(trow) == nt .and. size(cmu) == nt .and. size(bound) == nt
+    if (valid_sizes) valid_sizes = all(trow >= 1 .and. trow <= size(qn))
+  end function valid_sizes
+
+  subroutine set_report(rep, info, message)
+    type(lcp_report_t), intent(inout) :: rep
+    integer, intent(in) :: info
+    character(len=*), intent(in) :: message
+    rep%info = info
+    rep%message = message
+  end subroutine set_report
+
+  !> Build the scaled problem (module header) from valid arguments.
+  subroutine scale_friction(g, qn, qt, trow, cmu, bound, p)
+    real(dp), intent(in) :: g(:, :)
+    real(dp), intent(in) :: qn(:)
+    real(dp), intent(in) :: qt(:)
+    integer, intent(in) :: trow(:)
+    real(dp), intent(in) :: cmu(:)
+    real(dp), intent(in) :: bound(:)
+    type(scaled_friction_t), intent(out) :: p
+    integer :: n, nt, nrow, i, k
+
+    n = size(qn)
+    nt = size(qt)
+    nrow = n + nt
+    p%n = n
+    p%nt = nt
+    allocate(p%d(nrow), p%gs(nrow, nrow), p%qs(nrow), p%step(nrow), p%zero(nrow))
+    call scale_lcp(g, [qn, qt], p%d, p%gs, p%qs)       ! Gs = D G D, qs = D q
+    ! scale_lcp leaves Gs_ii = 1 (to round-off) on a row with a positive
+    ! diagonal and Gs_ii <= 1e-30 on a zero row.
+    do i = 1, nrow
+      p%zero(i) = .not. (p%gs(i, i) > 0.5_dp)
+      p%step(i) = 1.0_dp
+      if (.not. p%zero(i)) p%step(i) = 1.0_dp / p%gs(i, i)
+    end do
+
+    p%trow = trow
+    allocate(p%bs0(nt), p%mus(nt))
+    do k = 1, nt
+      p%bs0(k) = bound(k) / p%d(n + k)                            ! bound / d_t
+      p%mus(k) = cmu(k) * p%d(trow(k)) / p%d(n + k)               ! cmu d_n / d_t
+    end do
+    p%qscale = 0.0_dp
+    if (nrow > 0) p%qscale = maxval(abs(p%qs))
+    if (nt > 0) p%qscale = max(p%qscale, maxval(p%bs0))
+    if (.not. (p%qscale > 0.0_dp)) p%qscale = 1.0_dp
+
+    ! Tangential rows of each normal row, in order (counting sort on trow).
+    allocate(p%tfirst(n + 1), p%tlist(nt))
+    p%tfirst = 0
+    do k = 1, nt
+      p%tfirst(trow(k) + 1) = p%tfirst(trow(k) + 1) + 1
+    end do
+    p%tfirst(1) = 1
+    do i = 1, n
+      p%tfirst(i + 1) = p%tfirst(i + 1) + p%tfirst(i)
+    end do
+    block
+      integer, allocatable :: next(:)
+      next = p%tfirst(1:n)
+      do k = 1, nt
+        p%tlist(next(trow(k))) = k
+        next(trow(k)) = next(trow(k)) + 1
+      end do
+    end block
+  end subroutine scale_friction
+
+  !> v = qs + Gs s.
+  subroutine scaled_gap(p, s, v)
+    type(scaled_friction_t), intent(in) :: p
+    real(dp), intent(in) :: s(:)
+    real(dp), intent(out) :: v(:)
+    integer :: nrow
+    nrow = p%n + p%nt
+    v = p%qs
+    if (nrow > 0) call dgemv('N', nrow, nrow, 1.0_dp, p%gs, nrow, s, 1, 1.0_dp, v, 1)
+  end subroutine scaled_gap
+
+  !> The residual r of (s, v = qs + Gs s) (module header).
+  pure function scaled_residual(p, s, v) result(r)
+    type(scaled_friction_t), intent(in) :: p
+    real(dp), intent(in) :: s(:), v(:)
+    real(dp) :: r
+    real(dp) :: bk
+    integer :: i, k, j
+
+    r = 0.0_dp
+    do i = 1, p%n
+      r = max(r, abs(min(s(i), v(i))))                              ! min(lambda_s, w_s)
+    end do
+    do k = 1, p%nt
+      j = p%n + k
+      bk = max(0.0_dp, p%bs0(k) + p%mus(k) * s(p%trow(k)))          ! bs_k
+      r = max(r, abs(s(j) - min(bk, max(-bk, s(j) - v(j)))))        ! tau - clamp(tau + ds, -b, b)
+    end do
+    r = r / p%qscale
+  end function scaled_residual
+
+  !> The complementarity measure of (s, v) (module header).
+  pure function scaled_complementarity(p, s, v) result(c)
+    type(scaled_friction_t), intent(in) :: p
+    real(dp), intent(in) :: s(:), v(:)
+    real(dp) :: c
+    real(dp) :: bk, prod, smax
+    integer :: i, k, j
+
+    c = 0.0_dp
+    if (p%n + p%nt == 0) return
+    prod = 0.0_dp
+    do i = 1, p%n
+      prod = max(prod, abs(s(i) * v(i)))                            ! lambda w
+    end do
+    do k = 1, p%nt
+      j = p%n + k
+      bk = max(0.0_dp, p%bs0(k) + p%mus(k) * s(p%trow(k)))
+      prod = max(prod, abs(bk * abs(v(j)) + s(j) * v(j)))           ! b |ds| - tau ds
+    end do
+    smax = maxval(abs(s))
+    if (prod > 0.0_dp) c = prod / (smax * p%qscale)
+  end function scaled_complementarity
+
+  !> residual and complementarity of scaled iterate s into rep.
+  subroutine measure_scaled(p, s, rep)
+    type(scaled_friction_t), intent(in) :: p
+    real(dp), intent(in) :: s(:)
+    type(lcp_report_t), intent(inout) :: rep
+    real(dp), allocatable :: v(:)
+    allocate(v(size(s)))
+    call scaled_gap(p, s, v)
+    rep%residual = scaled_residual(p, s, v)
+    rep%complementarity = scaled_complementarity(p, s, v)
+  end subroutine measure_scaled
+
+  !> Method 'lemke': build the friction LCP (module header), solve it with
+  !> solve_lcp_lemke_scaled, and read lam = [lambda; beta+ - beta-] off z.
+  !>   g, qn, qt, cmu, bound  (in) the problem
+  !>   p      (in)    its scaled form (d, trow, the measures)
+  !>   opts   (in)    tol, maxit
+  !>   lam    (out)   (n+nt) the solution, or the last almost-complementary point
+  !>   rep    (inout) the report
+  subroutine friction_lemke(g, qn, qt, cmu, bound, p, opts, lam, rep)
+    real(dp), intent(in) :: g(:, :)
+    real(dp), intent(in) :: qn(:)
+    real(dp), intent(in) :: qt(:)
+    real(dp), intent(in) :: cmu(:)
+    real(dp), intent(in) :: bound(:)
+    type(scaled_friction_t), intent(in) :: p
+    type(lcp_options_t), intent(in) :: opts
+    real(dp), intent(out) :: lam(:)
+    type(lcp_report_t), intent(inout) :: rep
+    type(lcp_report_t) :: lrep
+    real(dp), allocatable :: m(:, :), q(:), d(:), z(:)
+    real(dp) :: bk
+    integer :: n, nt, nz, jp, jm, js, k, i, nbad, first_bad
+
+    n = p%n
+    nt = p%nt
+    nz = n + 3 * nt
+    jp = n                                             ! beta+ = z(jp+1 : jp+nt)
+    jm = n + nt                                        ! beta- = z(jm+1 : jm+nt)
+    js = n + 2 * nt                                    ! sigma = z(js+1 : js+nt)
+    allocate(m(nz, nz), q(nz), d(nz), z(nz))
+    m = 0.0_dp
+    ! Normal rows:  w = qn + Gnn lambda + Gnt (beta+ - beta-).
+    m(1:n, 1:n) = g(1:n, 1:n)
+    m(1:n, jp + 1:jp + nt) = g(1:n, n + 1:n + nt)
+    m(1:n, jm + 1:jm + nt) = -g(1:n, n + 1:n + nt)
+    ! beta+ rows:  w = qt + Gtn lambda + Gtt tau + sigma = sigma - ds.
+    m(jp + 1:jp + nt, 1:n) = g(n + 1:n + nt, 1:n)
+    m(jp + 1:jp + nt, jp + 1:jp + nt) = g(n + 1:n + nt, n + 1:n + nt)
+    m(jp + 1:jp + nt, jm + 1:jm + nt) = -g(n + 1:n + nt, n + 1:n + nt)
+    ! beta- rows:  w = -qt - Gtn lambda - Gtt tau + sigma = sigma + ds.
+    m(jm + 1:jm + nt, 1:jm + nt) = -m(jp + 1:jp + nt, 1:jm + nt)
+    do k = 1, nt
+      m(jp + k, js + k) = 1.0_dp
+      m(jm + k, js + k) = 1.0_dp
+      ! sigma rows:  w = bound + cmu lambda_trow - beta+ - beta- = b - (beta+ + beta-).
+      m(js + k, p%trow(k)) = cmu(k)
+      m(js + k, jp + k) = -1.0_dp
+      m(js + k, jm + k) = -1.0_dp
+    end do
+    q = [qn, qt, -qt, bound]
+    d = [p%d, p%d(n + 1:n + nt), 1.0_dp / p%d(n + 1:n + nt)]     ! [dn; dt; dt; 1/dt]
+
+    call solve_lcp_lemke_scaled(m, q, d, z, opts, lrep)   ! maxit 0: 10 nz + 100 pivots
+    lam(1:n) = z(1:n)                                  ! lambda
+    do k = 1, nt
+      ! tau = beta+ - beta-, polished onto [-b, b]: beta+ + beta- <= b holds only
+      ! to round-off, and both may be basic at a round-off level when b = 0.
+      bk = bound(k) + cmu(k) * lam(p%trow(k))
+      lam(n + k) = min(bk, max(-bk, z(jp + k) - z(jm + k)))
+    end do
+    call measure_scaled(p, lam / p%d, rep)
+    rep%iterations = lrep%iterations
+
+    select case (lrep%info)
+    case (0, 4)
+      if (rep%residual <= opts%tol) then
+        rep%info = 0
+        rep%message = 'friction Lemke: solved in ' // int_to_str(rep%iterations) // ' pivots (LCP of size ' // &
+          int_to_str(nz) // '), residual ' // real_to_str(rep%residual)
+      else
+        rep%info = 4
+        rep%message = 'friction Lemke: terminated after ' // int_to_str(rep%iterations) // &
+          ' pivots but the residual ' // real_to_str(rep%residual) // ' exceeds tol ' // &
+          real_to_str(opts%tol) // ' (G ill-conditioned)'
+      end if
+    case (1)
+      rep%info = 1
+      rep%message = 'friction Lemke: ray termination after ' // int_to_str(rep%iterations) // ' pivots: '
+      ! Name the obvious cause when there is one: a zero normal row of G
+      ! (w_i = qn_i whatever lam) with a negative gap.
+      nbad = 0
+      first_bad = 0
+      do i = 1, n
+        if (p%zero(i) .and. p%qs(i) < -opts%tol * p%qscale) then
+          nbad = nbad + 1
+          if (first_bad == 0) first_bad = i
+        end if
+      end do
+      if (nbad > 0) then
+        rep%message = rep%message // 'row/column ' // int_to_str(first_bad) // ' of G is zero but qn(' // &
+          int_to_str(first_bad) // ') = ' // real_to_str(qn(first_bad)) // ' < 0: no solution (' // &
+          int_to_str(nbad) // ' such row(s))'
+      else if (all(cmu == 0.0_dp)) then
+        rep%message = rep%message // 'no solution (Tresca: the friction LCP is positive semi-definite)'
+      else
+        rep%message = rep%message // 'no solution found (Coulomb: large friction coefficients with' // &
+          ' strong normal-tangential coupling in G admit none)'
+      end if
+    case default
+      rep%info = lrep%info
+      rep%message = 'friction ' // lrep%message
+    end select
+  end subroutine friction_lemke
+
+  !> Method 'pgs': nonsmooth Gauss-Seidel on the scaled problem.
+  !>   p      (in)    the scaled problem
+  !>   opts   (in)    tol, maxit, omega
+  !>   lam    (inout) initial guess on entry; solution or best iterate on exit
+  !>   rep    (inout) the report
+  subroutine friction_pgs(p, opts, lam, rep)
+    type(scaled_friction_t), intent(in) :: p
+    type(lcp_options_t), intent(in) :: opts
+    real(dp), intent(inout) :: lam(:)
+    type(lcp_report_t), intent(inout) :: rep
+    real(dp), allocatable :: s(:)
+    integer :: nrow, i, maxit, window, reason, nbad, first_bad
+
+    nrow = p%n + p%nt
+    ! A zero normal row (w_i = qn_i whatever lam) with a clearly negative gap
+    ! cannot be closed: no solution.
+    nbad = 0
+    first_bad = 0
+    do i = 1, p%n
+      if (p%zero(i) .and. p%qs(i) < -opts%tol * p%qscale) then
+        nbad = nbad + 1
+        if (first_bad == 0) first_bad = i
+      end if
+    end do
+    if (nbad > 0) then
+      lam = 0.0_dp
+      call measure_scaled(p, lam, rep)
+      call set_report(rep, 1, 'friction PGS: row/column ' // int_to_str(first_bad) // &
+        ' of G is zero but qn(' // int_to_str(first_bad) // ') = ' // real_to_str(p%qs(first_bad) / p%d(first_bad)) // &
+        ' < 0: no solution (' // int_to_str(nbad) // ' such row(s))')
+      return
+    end if
+
+    maxit = opts%maxit
+    if (maxit == 0) maxit = nint(min(1.0e5_dp, max(1.0e4_dp, 1.0e10_dp / real(max(nrow, 1), dp)**2)))
+    window = max(1000, 10 * nrow)
+    allocate(s(nrow))
+    do i = 1, nrow                                     ! s = D^-1 lam, lambda >= 0
+      s(i) = 0.0_dp
+      if (ieee_is_finite(lam(i))) s(i) = lam(i) / p%d(i)
+      if (i <= p%n) s(i) = max(0.0_dp, s(i))
+    end do
+    call pgs_sweeps(p, opts%tol, opts%omega, maxit, window, s, rep%iterations, reason)
+    lam = p%d * s                                      ! lam = D s
+    call measure_scaled(p, s, rep)
+
+    select case (reason)
+    case (0)
+      rep%info = 0
+      rep%message = 'friction PGS: converged in ' // int_to_str(rep%iterations) // ' sweeps, residual ' // &
+        real_to_str(rep%residual)
+    case (2)
+      rep%info = 2
+      rep%message = 'friction PGS: sweep limit ' // int_to_str(maxit) // ' reached, residual ' // &
+        real_to_str(rep%residual) // ' > tol ' // real_to_str(opts%tol) // '; lam is the best iterate'
+    case (3)
+      rep%info = 3
+      rep%message = 'friction PGS: divergence at sweep ' // int_to_str(rep%iterations) // &
+        ' (the problem may have no solution); lam is the best iterate, residual ' // real_to_str(rep%residual)
+    case default
+      rep%info = 3
+      rep%message = 'friction PGS: stagnation at sweep ' // int_to_str(rep%iterations) // ', residual ' // &
+        real_to_str(rep%residual) // ' not decreasing over ' // int_to_str(window) // &
+        ' sweeps (the problem may have no solution); lam is the best iterate'
+    end select
+  end subroutine friction_pgs
+
+  !> Nonsmooth Gauss-Seidel sweeps (module header).
+  !>   p       (in)    the scaled problem
+  !>   tol     (in)    target on r
+  !>   omega   (in)    relaxation, 0 < omega < 2
+  !>   maxit   (in)    sweep limit
+  !>   window  (in)    stagnation window (sweeps)
+  !>   s       (inout) (n+nt) initial guess (s_i >= 0 on normal rows); on exit
+  !>                   the solution or the best iterate
+  !>   sweeps  (out)   sweeps done
+  !>   reason  (out)   0 converged, 2 limit, 3 divergence, 4 stagnation
+  subroutine pgs_sweeps(p, tol, omega, maxit, window, s, sweeps, reason)
+    type(scaled_friction_t), intent(in) :: p
+    real(dp), intent(in) :: tol, omega
+    integer, intent(in) :: maxit, window
+    real(dp), intent(inout) :: s(:)
+    integer, intent(out) :: sweeps, reason
+    real(dp), allocatable :: v(:), sbest(:)
+    real(dp) :: res, best, reference, bk
+    integer :: n, nrow, i, j, kk, k, sweep, last_progress
+
+    n = p%n
+    nrow = n + p%nt
+    sweeps = 0
+    reason = 0
+    allocate(v(nrow), sbest(nrow))
+    call scaled_gap(p, s, v)
+    res = scaled_residual(p, s, v)
+    best = res
+    sbest = s
+    reference = res
+    last_progress = 0
+    if (res <= tol) return
+
+    reason = 2
+    do sweep = 1, maxit
+      sweeps = sweep
+      do i = 1, n
+        call set_row(i, max(0.0_dp, s(i) - omega * v(i) * p%step(i)))      ! lambda_i projected
+        do kk = p%tfirst(i), p%tfirst(i + 1) - 1
+          k = p%tlist(kk)
+          j = n + k
+          bk = p%bs0(k) + p%mus(k) * s(i)                                  ! bs_k with the new lambda_i
+          call set_row(j, min(bk, max(-bk, s(j) - omega * v(j) * p%step(j))))   ! tau_k clamped
+        end do
+      end do
+      if (mod(sweep, refresh_sweeps) == 0) call scaled_gap(p, s, v)
+
+      if (.not. (all(ieee_is_finite(s)) .and. all(ieee_is_finite(v)))) then
+        reason = 3
+        exit
+      end if
+      if (maxval(abs(s)) > iterate_bound .or. maxval(abs(v)) > iterate_bound) then
+        reason = 3
+        exit
+      end if
+      res = scaled_residual(p, s, v)
+      if (res < best) then
+        best = res
+        sbest = s
+      end if
+      if (res <= tol) then
+        call scaled_gap(p, s, v)                       ! confirm without drift
+        res = scaled_residual(p, s, v)
+        if (res <= tol) then
+          reason = 0
+          exit
+        end if
+      end if
+      if (res > divergence_factor * max(best, tol)) then
+        reason = 3
+        exit
+      end if
+      if (best < stagnation_factor * reference) then
+        reference = best
+        last_progress = sweep
+      else if (sweep - last_progress >= window) then
+        reason = 4
+        exit
+      end if
+    end do
+    if (reason /= 0) s = sbest
+
+  contains
+
+    !> s_j <- snew, v <- v + (snew - s_j) Gs(:, j).
+    subroutine set_row(j, snew)
+      integer, intent(in) :: j
+      real(dp), intent(in) :: snew
+      real(dp) :: delta
+      delta = snew - s(j)
+      if (delta /= 0.0_dp) then
+        s(j) = snew
+        call daxpy(nrow, delta, p%gs(:, j), 1, v, 1)
+      end if
+    end subroutine set_row
+  end subroutine pgs_sweeps
+
+  !> Short scientific text of a real, for messages.
+  function real_to_str(x) result(s)
+    real(dp), intent(in) :: x
+    character(len=:), allocatable :: s
+    character(len=32) :: buf
+    write(buf, '(es10.3)') x
+    s = trim(adjustl(buf))
+  end function real_to_str
+
+end module friction_lcp

@@ -1,0 +1,599 @@
+!> Unit tests of friction_lcp (and lcp_solvers' solve_lcp_lemke_scaled): one
+!> node against values computed by hand, Tresca (a strictly convex QP: Lemke
+!> and PGS must agree) and Coulomb on random SPD Delassus matrices, checked by
+!> an independent test of every contact condition written here (no scaling,
+!> no call to the module's own residual), the frictionless limits mu = 0 and
+!> nt = 0 against lcp_solvers, and the failures that must be reported.
+program test_friction_lcp
+  use kinds, only: dp, i8
+  use testing, only: check, check_close, check_small, finish_tests
+  use lcp_solvers, only: lcp_options_t, lcp_report_t, solve_lcp_lemke, solve_lcp_pgs, solve_lcp_lemke_scaled
+  use friction_lcp, only: solve_friction_lcp, friction_residual, friction_state, state_open, state_stick, &
+    state_slip
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+  implicit none
+
+  integer(i8) :: seed
+  seed = 20240917_i8
+
+  call test_lemke_scaled()
+  call test_residual_hand_value()
+  call test_one_node()
+  call test_sign_convention()
+  call test_tresca_random(5, 5, 'n5', .false.)
+  call test_tresca_random(12, 12, 'n12 reversed trow', .true.)
+  call test_tresca_random(12, 8, 'n12 nt8', .false.)
+  call test_tresca_random(30, 30, 'n30', .false.)
+  call test_coulomb_random(10, 0.2_dp, 'n10 coupled')
+  call test_coulomb_random(25, 0.2_dp, 'n25 coupled')
+  call test_coulomb_random(25, 0.0_dp, 'n25 decoupled')
+  call test_zero_tangential_row()
+  call test_frictionless_limits(15)
+  call test_failures()
+  call test_arguments()
+  call finish_tests()
+
+contains
+
+  ! ---------------------------------------------------------------------------
+  ! Helpers
+  ! ---------------------------------------------------------------------------
+
+  !> Park-Miller minimal standard generator, uniform in (0, 1).
+  real(dp) function urand(state)
+    integer(i8), intent(inout) :: state
+    state = mod(16807_i8 * state, 2147483647_i8)
+    urand = real(state, dp) / 2147483647.0_dp
+  end function urand
+
+  !> W = A'A / (3m) + 1e-3 I with A (3m x m) uniform in (-1, 1): SPD, well conditioned.
+  subroutine random_spd(m, state, w)
+    integer, intent(in) :: m
+    integer(i8), intent(inout) :: state
+    real(dp), allocatable, intent(out) :: w(:, :)
+    real(dp), allocatable :: a(:, :)
+    integer :: i, j
+    allocate(a(3 * m, m))
+    do j = 1, m
+      do i = 1, 3 * m
+        a(i, j) = 2.0_dp * urand(state) - 1.0_dp
+      end do
+    end do
+    w = matmul(transpose(a), a) / real(3 * m, dp)
+    do i = 1, m
+      w(i, i) = w(i, i) + 1.0e-3_dp
+    end do
+  end subroutine random_spd
+
+  !> Random SPD G ((n+nt) x (n+nt)) whose normal-tangential blocks are scaled
+  !> by t in [0, 1]: t G + (1 - t) blockdiag(Gnn, Gtt), still SPD.
+  subroutine random_delassus(n, nt, t, state, g)
+    integer, intent(in) :: n, nt
+    real(dp), intent(in) :: t
+    integer(i8), intent(inout) :: state
+    real(dp), allocatable, intent(out) :: g(:, :)
+    call random_spd(n + nt, state, g)
+    g(1:n, n + 1:n + nt) = t * g(1:n, n + 1:n + nt)
+    g(n + 1:n + nt, 1:n) = t * g(n + 1:n + nt, 1:n)
+  end subroutine random_delassus
+
+  subroutine random_vector(state, lo, hi, x)
+    integer(i8), intent(inout) :: state
+    real(dp), intent(in) :: lo, hi
+    real(dp), intent(out) :: x(:)
+    integer :: i
+    do i = 1, size(x)
+      x(i) = lo + (hi - lo) * urand(state)
+    end do
+  end subroutine random_vector
+
+  !> Every condition of contact with friction, checked on the unscaled
+  !> quantities with relative tolerance tol (gaps and slips relative to
+  !> max |q|, forces relative to max(|lam|, bound)):
+  !>   lambda >= 0, w >= 0, lambda_i w_i = 0 (one of them zero),
+  !>   |tau_k| <= b_k, and for every k either ds_k = 0 (stick) or
+  !>   tau_k = b_k sign(ds_k) (slip against the friction force).
+  subroutine check_conditions(g, qn, qt, trow, cmu, bound, lam, tol, name)
+    real(dp), intent(in) :: g(:, :), qn(:), qt(:), cmu(:), bound(:), lam(:), tol
+    integer, intent(in) :: trow(:)
+    character(len=*), intent(in) :: name
+    real(dp), allocatable :: w(:), ds(:), b(:), lambda(:), tau(:)
+    real(dp) :: gscale, fscale, worst
+    integer :: n, nt, k
+
+    n = size(qn)
+    nt = size(qt)
+    call check(all(ieee_is_finite(lam)), name // ': lam finite')
+    allocate(lambda(n), tau(nt))
+    lambda(:) = lam(1:n)
+    tau(:) = lam(n + 1:n + nt)
+    w = qn + matmul(g(1:n, :), lam)
+    ds = -(qt + matmul(g(n + 1:n + nt, :), lam))
+    b = bound + cmu * lambda(trow)
+    gscale = max(tiny(1.0_dp), maxval(abs(qn)))
+    if (nt > 0) gscale = max(gscale, maxval(abs(qt)))
+    fscale = max(tiny(1.0_dp), maxval(abs(lam)))
+    if (nt > 0) fscale = max(fscale, maxval(bound))
+    call check_small(max(0.0_dp, -minval(lambda)) / fscale, tol, name // ': lambda >= 0')
+    call check_small(max(0.0_dp, -minval(w)) / gscale, tol, name // ': w >= 0')
+    call check_small(maxval(min(abs(lambda) / fscale, abs(w) / gscale)), tol, name // ': lambda_i w_i = 0')
+    if (nt == 0) return
+    call check_small(max(0.0_dp, maxval(abs(tau) - b)) / fscale, tol, name // ': |tau| <= b')
+    worst = 0.0_dp
+    do k = 1, nt
+      worst = max(worst, min(abs(ds(k)) / gscale, abs(tau(k) - b(k) * sign(1.0_dp, ds(k))) / fscale))
+    end do
+    call check_small(worst, tol, name // ': stick (ds = 0) or slip (tau = b sign(ds))')
+  end subroutine check_conditions
+
+  real(dp) function rel_diff(a, b)
+    real(dp), intent(in) :: a(:), b(:)
+    rel_diff = maxval(abs(a - b)) / max(tiny(1.0_dp), maxval(abs(b)))
+  end function rel_diff
+
+  function identity_rows(n) result(t)
+    integer, intent(in) :: n
+    integer, allocatable :: t(:)
+    integer :: k
+    t = [(k, k = 1, n)]
+  end function identity_rows
+
+  ! ---------------------------------------------------------------------------
+  ! Tests
+  ! ---------------------------------------------------------------------------
+
+  !> solve_lcp_lemke_scaled: with d = 1/sqrt(diag W) on an SPD W it is
+  !> solve_lcp_lemke (bit for bit); it keeps zero-diagonal rows that
+  !> solve_lcp_lemke drops; ray termination; argument checks.
+  subroutine test_lemke_scaled()
+    real(dp), allocatable :: w(:, :), q(:), z(:), zref(:), d(:)
+    real(dp) :: m2(2, 2), z2(2), w2(2)
+    type(lcp_options_t) :: opts
+    type(lcp_report_t) :: rep, ref
+    integer :: i, n
+
+    n = 20
+    call random_spd(n, seed, w)
+    allocate(q(n), z(n), zref(n), d(n))
+    call random_vector(seed, -1.0_dp, 1.0_dp, q)
+    d = [(1.0_dp / sqrt(w(i, i)), i = 1, n)]
+    call solve_lcp_lemke(w, q, zref, opts, ref)
+    call solve_lcp_lemke_scaled(w, q, d, z, opts, rep)
+    call check(rep%info == 0 .and. ref%info == 0, 'lemke scaled n20: info 0')
+    call check(all(z == zref), 'lemke scaled n20: z identical to solve_lcp_lemke')
+    call check(rep%iterations == ref%iterations .and. rep%iterations > 0, &
+      'lemke scaled n20: same pivots as solve_lcp_lemke')
+    call check(rep%residual == ref%residual, 'lemke scaled n20: same residual')
+
+    ! M = [0 1; -1 0] (skew, zero diagonal), q = [-1, 1]: w1 = z2 - 1,
+    ! w2 = 1 - z1; z = (0, 1) or (1, 1) solve it.  solve_lcp_lemke drops both
+    ! rows as redundant and reports row 1 infeasible.
+    m2 = reshape([0.0_dp, -1.0_dp, 1.0_dp, 0.0_dp], [2, 2])
+    call solve_lcp_lemke(m2, [-1.0_dp, 1.0_dp], z2, opts, rep)
+    call check(rep%info == 1, 'lemke scaled zero diagonal: solve_lcp_lemke drops the rows (info 1)')
+    call solve_lcp_lemke_scaled(m2, [-1.0_dp, 1.0_dp], [1.0_dp, 1.0_dp], z2, opts, rep)
+    call check(rep%info == 0, 'lemke scaled zero diagonal: info 0')
+    w2 = [-1.0_dp, 1.0_dp] + matmul(m2, z2)
+    call check_close(z2(2), 1.0_dp, 1.0e-14_dp, 'lemke scaled zero diagonal: z2 = 1')
+    call check(all(z2 >= 0.0_dp) .and. all(w2 >= -1.0e-14_dp) .and. maxval(abs(z2 * w2)) <= 1.0e-14_dp, &
+      'lemke scaled zero diagonal: complementary')
+
+    ! [1 -1; -1 1], q = -1: w1 + w2 = -2 for every z (PSD, infeasible).
+    m2 = reshape([1.0_dp, -1.0_dp, -1.0_dp, 1.0_dp], [2, 2])
+    call solve_lcp_lemke_scaled(m2, [-1.0_dp, -1.0_dp], [1.0_dp, 1.0_dp], z2, opts, rep)
+    call check(rep%info == 1, 'lemke scaled infeasible: info 1')
+    call check(index(rep%message, 'ray termination') > 0, 'lemke scaled infeasible: ray termination message')
+    call check(all(ieee_is_finite(z2)), 'lemke scaled infeasible: z finite')
+
+    call solve_lcp_lemke_scaled(m2, [1.0_dp, 1.0_dp], [1.0_dp, 0.0_dp], z2, opts, rep)
+    call check(rep%info == -3, 'lemke scaled arguments: d = 0 -> info -3')
+    call solve_lcp_lemke_scaled(m2, [1.0_dp, 1.0_dp], [1.0_dp], z2, opts, rep)
+    call check(rep%info == -3, 'lemke scaled arguments: d size -> info -3')
+    call solve_lcp_lemke_scaled(m2, [1.0_dp, 1.0_dp], [1.0_dp, 1.0_dp], z, opts, rep)
+    call check(rep%info == -4, 'lemke scaled arguments: z size -> info -4')
+    call solve_lcp_lemke_scaled(m2, [1.0_dp, 1.0_dp, 1.0_dp], [1.0_dp, 1.0_dp, 1.0_dp], z2, opts, rep)
+    call check(rep%info == -1, 'lemke scaled arguments: M size -> info -1')
+  end subroutine test_lemke_scaled
+
+  !> G = I, qn = -1, qt = 0, mu = 1/2.  lam = [1, 1/2]: w = 0, ds = -1/2,
+  !> b = 1/2, tangential residual |1/2 - clamp(1/2 - 1/2, -1/2, 1/2)| = 1/2,
+  !> qscale = 1: r = 1/2.  lam = [1, 0] is the solution: r = 0.
+  subroutine test_residual_hand_value()
+    real(dp) :: g(2, 2)
+    g = reshape([1.0_dp, 0.0_dp, 0.0_dp, 1.0_dp], [2, 2])
+    call check_close(friction_residual(g, [-1.0_dp], [0.0_dp], [1], [0.5_dp], [0.0_dp], [1.0_dp, 0.5_dp]), &
+      0.5_dp, 1.0e-15_dp, 'residual: hand value 1/2')
+    call check_small(friction_residual(g, [-1.0_dp], [0.0_dp], [1], [0.5_dp], [0.0_dp], [1.0_dp, 0.0_dp]), &
+      0.0_dp, 'residual: 0 at the solution')
+    call check(friction_residual(g, [-1.0_dp], [0.0_dp], [2], [0.5_dp], [0.0_dp], [1.0_dp, 0.0_dp]) == &
+      huge(1.0_dp), 'residual: trow out of range -> huge')
+  end subroutine test_residual_hand_value
+
+  !> One node, G = [2 1/2; 1/2 1], qn = -2, qt = -1/10, both methods.
+  !> Stick: G [lambda; tau] = [2; 1/10] gives lambda = 39/35, tau = -16/35,
+  !>   admissible when |tau| <= mu lambda, i.e. mu >= 16/39: mu = 0.8 sticks.
+  !> Slip (mu = 0.2): tau = -mu lambda, 2 lambda + tau/2 = 2 gives
+  !>   lambda = 20/19, tau = -4/19, ds = -(qt + lambda/2 + tau) = -4.1/19 < 0.
+  !> Open: qn = 1 gives lambda = tau = 0 (b = 0) although ds = 1/10 /= 0.
+  !> Tresca bound 0.3: tau = -0.3, lambda = (2 + 0.15)/2 = 1.075,
+  !>   ds = -(-0.1 + 0.5375 - 0.3) = -0.1375 < 0; bound 0.5 sticks as above.
+  subroutine test_one_node()
+    real(dp) :: g(2, 2)
+    integer :: method
+    character(len=5) :: tag
+    g = reshape([2.0_dp, 0.5_dp, 0.5_dp, 1.0_dp], [2, 2])
+    do method = 1, 2
+      tag = merge('lemke', 'pgs  ', method == 1)
+      call one_case(g, trim(tag), -2.0_dp, -0.1_dp, 0.8_dp, 0.0_dp, 39.0_dp / 35.0_dp, -16.0_dp / 35.0_dp, &
+        state_stick, 'coulomb mu 0.8 stick')
+      call one_case(g, trim(tag), -2.0_dp, -0.1_dp, 0.2_dp, 0.0_dp, 20.0_dp / 19.0_dp, -4.0_dp / 19.0_dp, &
+        state_slip, 'coulomb mu 0.2 slip')
+      call one_case(g, trim(tag), 1.0_dp, -0.1_dp, 0.2_dp, 0.0_dp, 0.0_dp, 0.0_dp, state_open, 'coulomb open')
+      call one_case(g, trim(tag), -2.0_dp, -0.1_dp, 0.0_dp, 0.3_dp, 1.075_dp, -0.3_dp, state_slip, 'tresca 0.3 slip')
+      call one_case(g, trim(tag), -2.0_dp, -0.1_dp, 0.0_dp, 0.5_dp, 39.0_dp / 35.0_dp, -16.0_dp / 35.0_dp, &
+        state_stick, 'tresca 0.5 stick')
+    end do
+  end subroutine test_one_node
+
+  !> One single-node case of test_one_node, solved and checked.
+  subroutine one_case(g, method_name, qn, qt, mu, bnd, lambda, tau, st, name)
+    real(dp), intent(in) :: g(:, :)
+    character(len=*), intent(in) :: method_name, name
+    real(dp), intent(in) :: qn, qt, mu, bnd, lambda, tau
+    integer, intent(in) :: st
+    type(lcp_options_t) :: opts
+    type(lcp_report_t) :: rep
+    real(dp) :: lam(2)
+    integer :: state(1)
+    character(len=:), allocatable :: full
+    full = 'one node ' // method_name // ' ' // name
+    opts%tol = 1.0e-14_dp
+    lam = [5.0_dp, 1.0_dp]
+    call solve_friction_lcp(g, [qn], [qt], [1], [mu], [bnd], method_name, opts, lam, rep)
+    call check(rep%info == 0, full // ': info 0')
+    call check_close(lam(1), lambda, 1.0e-12_dp, full // ': lambda by hand', floor=1.0_dp)
+    call check_close(lam(2), tau, 1.0e-12_dp, full // ': tau by hand', floor=1.0_dp)
+    call friction_state(g, [qn], [qt], [1], [mu], [bnd], lam, state)
+    call check(state(1) == st, full // ': state')
+    call check_conditions(g, [qn], [qt], [1], [mu], [bnd], lam, 1.0e-12_dp, full)
+  end subroutine one_case
+
+  !> G = diag(2, 1) (decoupled), qn = -2 so lambda = 1, mu = 0.3, b = 0.3.
+  !> qt = 1: sticking needs tau = -1, too large: slip with tau = -0.3 and
+  !> ds = -(1 - 0.3) = -0.7; qt = -1: tau = +0.3 with ds = +0.7 (tau > 0 goes
+  !> with ds > 0); qt = 0.2: stick, tau = -0.2, ds = 0.
+  subroutine test_sign_convention()
+    real(dp) :: g(2, 2), lam(2)
+    type(lcp_options_t) :: opts
+    type(lcp_report_t) :: rep
+    integer :: method
+    character(len=5) :: tag
+    g = reshape([2.0_dp, 0.0_dp, 0.0_dp, 1.0_dp], [2, 2])
+    opts%tol = 1.0e-14_dp
+    do method = 1, 2
+      tag = merge('lemke', 'pgs  ', method == 1)
+      lam = 0.0_dp
+      call solve_friction_lcp(g, [-2.0_dp], [1.0_dp], [1], [0.3_dp], [0.0_dp], trim(tag), opts, lam, rep)
+      call check(rep%info == 0 .and. abs(lam(1) - 1.0_dp) <= 1.0e-13_dp .and. abs(lam(2) + 0.3_dp) <= 1.0e-13_dp, &
+        'sign ' // trim(tag) // ': qt = 1 slips with tau = -0.3 (ds = -0.7)')
+      lam = 0.0_dp
+      call solve_friction_lcp(g, [-2.0_dp], [-1.0_dp], [1], [0.3_dp], [0.0_dp], trim(tag), opts, lam, rep)
+      call check(rep%info == 0 .and. abs(lam(1) - 1.0_dp) <= 1.0e-13_dp .and. abs(lam(2) - 0.3_dp) <= 1.0e-13_dp, &
+        'sign ' // trim(tag) // ': qt = -1 slips with tau = +0.3 (ds = +0.7)')
+      lam = 0.0_dp
+      call solve_friction_lcp(g, [-2.0_dp], [0.2_dp], [1], [0.3_dp], [0.0_dp], trim(tag), opts, lam, rep)
+      call check(rep%info == 0 .and. abs(lam(1) - 1.0_dp) <= 1.0e-13_dp .and. abs(lam(2) + 0.2_dp) <= 1.0e-13_dp, &
+        'sign ' // trim(tag) // ': qt = 0.2 sticks with tau = -0.2 (ds = 0)')
+    end do
+  end subroutine test_sign_convention
+
+  !> Tresca on random SPD G with full normal-tangential coupling: the QP is
+  !> strictly convex, so Lemke and PGS (also over-relaxed, also warm-started)
+  !> must agree; every condition holds.
+  subroutine test_tresca_random(n, nt, tag, reversed)
+    integer, intent(in) :: n, nt
+    character(len=*), intent(in) :: tag
+    logical, intent(in) :: reversed
+    real(dp), allocatable :: g(:, :), qn(:), qt(:), cmu(:), bound(:), lam_l(:), lam_p(:)
+    integer, allocatable :: trow(:)
+    type(lcp_options_t) :: opts
+    type(lcp_report_t) :: rep
+    integer :: k
+    character(len=:), allocatable :: name
+
+    name = 'tresca ' // tag
+    call random_delassus(n, nt, 1.0_dp, seed, g)
+    allocate(qn(n), qt(nt), bound(nt), lam_l(n + nt), lam_p(n + nt))
+    call random_vector(seed, -1.0_dp, 1.0_dp, qn)
+    call random_vector(seed, -1.0_dp, 1.0_dp, qt)
+    call random_vector(seed, 0.05_dp, 0.5_dp, bound)
+    cmu = [(0.0_dp, k = 1, nt)]
+    if (reversed) then
+      trow = [(n + 1 - k, k = 1, nt)]
+    else
+      trow = [(k + (n - nt) / 2, k = 1, nt)]
+    end if
+
+    call solve_friction_lcp(g, qn, qt, trow, cmu, bound, 'lemke', opts, lam_l, rep)
+    call check(rep%info == 0, name // ' lemke: info 0')
+    call check(rep%iterations > 0, name // ' lemke: pivots counted')
+    call check_small(rep%residual, opts%tol, name // ' lemke: reported residual <= tol')
+    call check_close(rep%residual, friction_residual(g, qn, qt, trow, cmu, bound, lam_l), 1.0e-12_dp, &
+      name // ' lemke: reported residual is that of lam', floor=1.0e-16_dp)
+    call check_conditions(g, qn, qt, trow, cmu, bound, lam_l, 1.0e-9_dp, name // ' lemke')
+
+    opts%tol = 1.0e-13_dp
+    lam_p = 0.0_dp
+    call solve_friction_lcp(g, qn, qt, trow, cmu, bound, 'pgs', opts, lam_p, rep)
+    call check(rep%info == 0, name // ' pgs: info 0')
+    call check(rep%iterations > 0, name // ' pgs: sweeps counted')
+    call check_conditions(g, qn, qt, trow, cmu, bound, lam_p, 1.0e-9_dp, name // ' pgs')
+    call check_small(rel_diff(lam_p, lam_l), 1.0e-8_dp, name // ': lemke and pgs agree')
+
+    lam_p = 0.0_dp
+    opts%omega = 1.3_dp
+    call solve_friction_lcp(g, qn, qt, trow, cmu, bound, 'pgs', opts, lam_p, rep)
+    call check(rep%info == 0, name // ' pgs omega 1.3: info 0')
+    call check_small(rel_diff(lam_p, lam_l), 1.0e-8_dp, name // ' pgs omega 1.3: agrees')
+
+    ! Warm start from the solution (the previous load step): at most one sweep.
+    lam_p = lam_l
+    opts%omega = 1.0_dp
+    opts%tol = 1.0e-10_dp
+    call solve_friction_lcp(g, qn, qt, trow, cmu, bound, 'pgs', opts, lam_p, rep)
+    call check(rep%info == 0 .and. rep%iterations <= 1, name // ' pgs warm start: converged at once')
+  end subroutine test_tresca_random
+
+  !> Coulomb with mu = 0.1, 0.3, 0.8 on random SPD G whose normal-tangential
+  !> coupling is scaled by t: Lemke solves and satisfies every condition; PGS
+  !> too when it converges; the states are consistent with the forces.  With
+  !> t = 0 the solution is unique (lambda from the frictionless LCP, then a
+  !> Tresca problem with b = mu lambda): the methods agree, and lambda is
+  !> solve_lcp_lemke's.
+  subroutine test_coulomb_random(n, t, tag)
+    integer, intent(in) :: n
+    real(dp), intent(in) :: t
+    character(len=*), intent(in) :: tag
+    real(dp), parameter :: mus(3) = [0.1_dp, 0.3_dp, 0.8_dp]
+    real(dp), allocatable :: g(:, :), gnn(:, :), qn(:), qt(:), cmu(:), bound(:), lam_l(:), lam_p(:), zref(:), b(:)
+    integer, allocatable :: trow(:), state(:)
+    type(lcp_options_t) :: opts
+    type(lcp_report_t) :: rep
+    integer :: imu, k
+    character(len=:), allocatable :: name
+    character(len=8) :: mtxt
+    logical :: consistent
+
+    call random_delassus(n, n, t, seed, g)
+    allocate(qn(n), qt(n), lam_l(2 * n), lam_p(2 * n), state(n))
+    call random_vector(seed, -1.0_dp, 1.0_dp, qn)
+    call random_vector(seed, -1.0_dp, 1.0_dp, qt)
+    trow = identity_rows(n)
+    bound = [(0.0_dp, k = 1, n)]
+    do imu = 1, size(mus)
+      write(mtxt, '(f3.1)') mus(imu)
+      name = 'coulomb ' // tag // ' mu ' // trim(mtxt)
+      cmu = [(mus(imu), k = 1, n)]
+      opts = lcp_options_t()
+      call solve_friction_lcp(g, qn, qt, trow, cmu, bound, 'lemke', opts, lam_l, rep)
+      call check(rep%info == 0, name // ' lemke: info 0')
+      call check(rep%iterations > 0, name // ' lemke: pivots counted')
+      call check_conditions(g, qn, qt, trow, cmu, bound, lam_l, 1.0e-9_dp, name // ' lemke')
+
+      ! States: slip has |tau| = b, stick |tau| <= b, open lambda = 0.
+      call friction_state(g, qn, qt, trow, cmu, bound, lam_l, state)
+      b = cmu * lam_l(1:n)
+      consistent = .true.
+      do k = 1, n
+        select case (state(k))
+        case (state_open)
+          consistent = consistent .and. lam_l(k) <= 1.0e-8_dp * maxval(lam_l)
+        case (state_stick)
+          consistent = consistent .and. abs(lam_l(n + k)) <= b(k) * (1.0_dp + 1.0e-9_dp) + 1.0e-14_dp
+        case (state_slip)
+          consistent = consistent .and. abs(abs(lam_l(n + k)) - b(k)) <= 1.0e-9_dp * maxval(lam_l)
+        case default
+          consistent = .false.
+        end select
+      end do
+      call check(consistent, name // ' lemke: states consistent with the forces')
+      call check(count(state == state_slip) > 0 .and. count(state == state_open) > 0, &
+        name // ': open and slipping nodes present')
+
+      opts%tol = 1.0e-12_dp
+      lam_p = 0.0_dp
+      call solve_friction_lcp(g, qn, qt, trow, cmu, bound, 'pgs', opts, lam_p, rep)
+      call check(rep%info >= 0 .and. rep%info /= 1 .and. all(ieee_is_finite(lam_p)), &
+        name // ' pgs: converged or reported, lam finite')
+      if (rep%info == 0) then
+        call check_conditions(g, qn, qt, trow, cmu, bound, lam_p, 1.0e-9_dp, name // ' pgs')
+      else
+        call check(rep%residual > opts%tol, name // ' pgs: not converged and residual > tol')
+      end if
+      if (t == 0.0_dp) then
+        call check(rep%info == 0, name // ' pgs: info 0 (decoupled)')
+        call check_small(rel_diff(lam_p, lam_l), 1.0e-8_dp, name // ': lemke and pgs agree (unique)')
+        allocate(zref(n))
+        gnn = g(1:n, 1:n)
+        call solve_lcp_lemke(gnn, qn, zref, lcp_options_t(), rep)
+        call check_small(rel_diff(lam_l(1:n), zref), 1.0e-10_dp, name // ': lambda is the frictionless one')
+        deallocate(zref)
+      end if
+    end do
+  end subroutine test_coulomb_random
+
+  !> A tangential row with a zero row/column in G (ds_k = -qt_k whatever lam):
+  !> with qt_k = -0.2 the node slips, tau_k = +b_k.
+  subroutine test_zero_tangential_row()
+    integer, parameter :: n = 8, kz = 3
+    real(dp), allocatable :: g(:, :), qn(:), qt(:), cmu(:), bound(:), lam(:)
+    type(lcp_options_t) :: opts
+    type(lcp_report_t) :: rep
+    integer :: method, k
+    character(len=5) :: tag
+
+    call random_delassus(n, n, 0.3_dp, seed, g)
+    g(n + kz, :) = 0.0_dp
+    g(:, n + kz) = 0.0_dp
+    allocate(qn(n), qt(n), lam(2 * n))
+    call random_vector(seed, -1.0_dp, 1.0_dp, qn)
+    call random_vector(seed, -1.0_dp, 1.0_dp, qt)
+    qn(kz) = -1.0_dp
+    qt(kz) = -0.2_dp
+    cmu = [(0.3_dp, k = 1, n)]
+    bound = [(0.0_dp, k = 1, n)]
+    opts%tol = 1.0e-12_dp
+    do method = 1, 2
+      tag = merge('lemke', 'pgs  ', method == 1)
+      lam = 0.0_dp
+      call solve_friction_lcp(g, qn, qt, identity_rows(n), cmu, bound, trim(tag), opts, lam, rep)
+      call check(rep%info == 0, 'zero tangential row ' // trim(tag) // ': info 0')
+      call check_conditions(g, qn, qt, identity_rows(n), cmu, bound, lam, 1.0e-9_dp, &
+        'zero tangential row ' // trim(tag))
+      call check(lam(kz) > 0.0_dp, 'zero tangential row ' // trim(tag) // ': node in contact')
+      call check_close(lam(n + kz), 0.3_dp * lam(kz), 1.0e-10_dp, 'zero tangential row ' // trim(tag) // &
+        ': tau = +mu lambda')
+    end do
+  end subroutine test_zero_tangential_row
+
+  !> mu = 0: tau = 0 and lambda solves LCP(Gnn, qn) although G couples the
+  !> rows; nt = 0: the result of solve_lcp_lemke / solve_lcp_pgs, bit for bit.
+  subroutine test_frictionless_limits(n)
+    integer, intent(in) :: n
+    real(dp), allocatable :: g(:, :), gnn(:, :), qn(:), qt(:), zero(:), lam(:), zref(:), empty(:)
+    integer, allocatable :: none(:)
+    type(lcp_options_t) :: opts
+    type(lcp_report_t) :: rep, ref
+    integer :: k
+
+    call random_delassus(n, n, 1.0_dp, seed, g)
+    allocate(qn(n), qt(n), lam(2 * n), zref(n), empty(0), none(0))
+    call random_vector(seed, -1.0_dp, 1.0_dp, qn)
+    call random_vector(seed, -1.0_dp, 1.0_dp, qt)
+    zero = [(0.0_dp, k = 1, n)]
+    gnn = g(1:n, 1:n)
+    call solve_lcp_lemke(gnn, qn, zref, opts, ref)
+    call solve_friction_lcp(g, qn, qt, identity_rows(n), zero, zero, 'lemke', opts, lam, rep)
+    call check(rep%info == 0, 'mu = 0 lemke: info 0')
+    call check(maxval(abs(lam(n + 1:))) <= 1.0e-14_dp * maxval(lam(1:n)), 'mu = 0 lemke: tau = 0')
+    call check_small(rel_diff(lam(1:n), zref), 1.0e-10_dp, 'mu = 0 lemke: lambda frictionless')
+    lam = 1.0_dp
+    opts%tol = 1.0e-13_dp
+    call solve_friction_lcp(g, qn, qt, identity_rows(n), zero, zero, 'pgs', opts, lam, rep)
+    call check(rep%info == 0 .and. all(lam(n + 1:) == 0.0_dp), 'mu = 0 pgs: info 0, tau = 0')
+    call check_small(rel_diff(lam(1:n), zref), 1.0e-8_dp, 'mu = 0 pgs: lambda frictionless')
+
+    ! nt = 0.
+    opts = lcp_options_t()
+    deallocate(lam)
+    allocate(lam(n))
+    call solve_friction_lcp(gnn, qn, empty, none, empty, empty, 'lemke', opts, lam, rep)
+    call check(all(lam == zref) .and. rep%info == ref%info .and. rep%iterations == ref%iterations .and. &
+      rep%residual == ref%residual, 'nt = 0 lemke: identical to solve_lcp_lemke')
+    zref = 0.5_dp
+    call solve_lcp_pgs(gnn, qn, zref, opts, ref)
+    lam = 0.5_dp
+    call solve_friction_lcp(gnn, qn, empty, none, empty, empty, 'pgs', opts, lam, rep)
+    call check(all(lam == zref) .and. rep%info == ref%info .and. rep%iterations == ref%iterations .and. &
+      rep%residual == ref%residual, 'nt = 0 pgs: identical to solve_lcp_pgs')
+  end subroutine test_frictionless_limits
+
+  !> A normal row whose row/column of G is zero: with qn_i < 0 there is no
+  !> solution (info 1, Lemke by ray termination); with qn_i > 0, lambda_i = 0.
+  !> PGS with maxit = 2: info 2, the best iterate finite, residual reported.
+  subroutine test_failures()
+    integer, parameter :: n = 6, iz = 3
+    real(dp), allocatable :: g(:, :), qn(:), qt(:), cmu(:), bound(:), lam(:)
+    type(lcp_options_t) :: opts
+    type(lcp_report_t) :: rep
+    integer :: method, k
+    character(len=5) :: tag
+
+    call random_delassus(n, n, 0.5_dp, seed, g)
+    g(iz, :) = 0.0_dp
+    g(:, iz) = 0.0_dp
+    allocate(qn(n), qt(n), lam(2 * n))
+    call random_vector(seed, -1.0_dp, 1.0_dp, qn)
+    call random_vector(seed, -1.0_dp, 1.0_dp, qt)
+    cmu = [(0.3_dp, k = 1, n)]
+    bound = [(0.0_dp, k = 1, n)]
+    do method = 1, 2
+      tag = merge('lemke', 'pgs  ', method == 1)
+      qn(iz) = -0.5_dp
+      lam = 0.0_dp
+      call solve_friction_lcp(g, qn, qt, identity_rows(n), cmu, bound, trim(tag), opts, lam, rep)
+      call check(rep%info == 1, 'zero normal row, qn < 0 ' // trim(tag) // ': info 1')
+      call check(index(rep%message, 'row/column 3') > 0, 'zero normal row, qn < 0 ' // trim(tag) // &
+        ': message names row 3')
+      call check(all(ieee_is_finite(lam)) .and. ieee_is_finite(rep%residual), &
+        'zero normal row, qn < 0 ' // trim(tag) // ': lam and residual finite')
+      qn(iz) = 0.5_dp
+      lam = 0.0_dp
+      opts%tol = 1.0e-12_dp
+      call solve_friction_lcp(g, qn, qt, identity_rows(n), cmu, bound, trim(tag), opts, lam, rep)
+      call check(rep%info == 0 .and. lam(iz) == 0.0_dp .and. lam(n + iz) == 0.0_dp, &
+        'zero normal row, qn > 0 ' // trim(tag) // ': solved, lambda = tau = 0 there')
+      call check_conditions(g, qn, qt, identity_rows(n), cmu, bound, lam, 1.0e-9_dp, &
+        'zero normal row, qn > 0 ' // trim(tag))
+      opts = lcp_options_t()
+    end do
+    call check(index(rep%message, 'PGS') > 0, 'messages name the method')
+
+    deallocate(g, qn, qt, lam)
+    call random_delassus(30, 30, 1.0_dp, seed, g)
+    allocate(qn(30), qt(30), lam(60))
+    call random_vector(seed, -1.0_dp, 1.0_dp, qn)
+    call random_vector(seed, -1.0_dp, 1.0_dp, qt)
+    cmu = [(0.3_dp, k = 1, 30)]
+    bound = [(0.0_dp, k = 1, 30)]
+    lam = 0.0_dp
+    opts%maxit = 2
+    opts%tol = 1.0e-14_dp
+    call solve_friction_lcp(g, qn, qt, identity_rows(30), cmu, bound, 'pgs', opts, lam, rep)
+    call check(rep%info == 2 .and. rep%iterations == 2, 'pgs maxit 2: info 2 after 2 sweeps')
+    call check(all(ieee_is_finite(lam)) .and. all(lam(1:30) >= 0.0_dp), 'pgs maxit 2: best iterate finite')
+    call check(rep%residual > opts%tol, 'pgs maxit 2: residual above tol')
+    call check_close(rep%residual, friction_residual(g, qn, qt, identity_rows(30), cmu, bound, lam), &
+      1.0e-12_dp, 'pgs maxit 2: reported residual is that of lam')
+    call check(index(rep%message, 'sweep limit') > 0, 'pgs maxit 2: message')
+
+    opts%maxit = 3
+    call solve_friction_lcp(g, qn, qt, identity_rows(30), cmu, bound, 'lemke', opts, lam, rep)
+    call check(rep%info == 2 .and. all(ieee_is_finite(lam)), 'lemke maxit 3: info 2, lam finite')
+  end subroutine test_failures
+
+  subroutine test_arguments()
+    real(dp) :: g(4, 4), lam(4), lam3(3)
+    type(lcp_options_t) :: opts
+    type(lcp_report_t) :: rep
+    integer :: i
+    g = 0.0_dp
+    do i = 1, 4
+      g(i, i) = 1.0_dp
+    end do
+    lam = 7.0_dp
+    call solve_friction_lcp(g, [-1.0_dp, -1.0_dp], [0.1_dp, 0.1_dp], [1, 2], [0.3_dp, 0.3_dp], &
+      [0.0_dp, 0.0_dp], 'newton', opts, lam, rep)
+    call check(rep%info == -7 .and. all(lam == 7.0_dp), 'arguments: unknown method -> -7, lam unchanged')
+    call solve_friction_lcp(g, [-1.0_dp, -1.0_dp], [0.1_dp, 0.1_dp], [1, 3], [0.3_dp, 0.3_dp], &
+      [0.0_dp, 0.0_dp], 'lemke', opts, lam, rep)
+    call check(rep%info == -4, 'arguments: trow out of range -> -4')
+    call solve_friction_lcp(g, [-1.0_dp, -1.0_dp], [0.1_dp, 0.1_dp], [1, 2], [0.3_dp, -0.3_dp], &
+      [0.0_dp, 0.0_dp], 'lemke', opts, lam, rep)
+    call check(rep%info == -5, 'arguments: negative cmu -> -5')
+    call solve_friction_lcp(g, [-1.0_dp, -1.0_dp], [0.1_dp, 0.1_dp], [1, 2], [0.3_dp, 0.3_dp], &
+      [0.0_dp, -1.0_dp], 'lemke', opts, lam, rep)
+    call check(rep%info == -6, 'arguments: negative bound -> -6')
+    call solve_friction_lcp(g, [-1.0_dp, -1.0_dp], [0.1_dp, 0.1_dp], [1, 2], [0.3_dp, 0.3_dp], &
+      [0.0_dp, 0.0_dp], 'lemke', opts, lam3, rep)
+    call check(rep%info == -9, 'arguments: lam size -> -9')
+    call solve_friction_lcp(g(1:3, 1:3), [-1.0_dp, -1.0_dp], [0.1_dp, 0.1_dp], [1, 2], [0.3_dp, 0.3_dp], &
+      [0.0_dp, 0.0_dp], 'lemke', opts, lam, rep)
+    call check(rep%info == -1, 'arguments: G size -> -1')
+    opts%omega = 2.0_dp
+    call solve_friction_lcp(g, [-1.0_dp, -1.0_dp], [0.1_dp, 0.1_dp], [1, 2], [0.3_dp, 0.3_dp], &
+      [0.0_dp, 0.0_dp], 'pgs', opts, lam, rep)
+    call check(rep%info == -8 .and. allocated(rep%message), 'arguments: omega = 2 -> -8')
+  end subroutine test_arguments
+
+end program test_friction_lcp
