@@ -21,6 +21,7 @@
 !>   recover(cs, eq, factor, u0, mu, u)     u = u0 + K^-1 (-B' mu) on free dofs
 module contact_condensation
   use kinds, only: dp
+  use lapack_interfaces, only: dsyrk, dtrsm
   use diagnostics, only: error_t, set_error
   use contact_set, only: contact_set_t
   use sparse_cholesky, only: factor_t, trailing_factor_block, solve
@@ -28,22 +29,6 @@ module contact_condensation
   private
   public :: contact_equations, condense, contact_forces, recover, constraint_values
 
-  interface
-    subroutine dtrsm(side, uplo, transa, diag, m, n, alpha, a, lda, b, ldb)
-      import :: dp
-      character, intent(in) :: side, uplo, transa, diag
-      integer, intent(in) :: m, n, lda, ldb
-      real(dp), intent(in) :: alpha, a(lda, *)
-      real(dp), intent(inout) :: b(ldb, *)
-    end subroutine dtrsm
-    subroutine dsyrk(uplo, trans, n, k, alpha, a, lda, beta, c, ldc)
-      import :: dp
-      character, intent(in) :: uplo, trans
-      integer, intent(in) :: n, k, lda, ldc
-      real(dp), intent(in) :: alpha, a(lda, *), beta
-      real(dp), intent(inout) :: c(ldc, *)
-    end subroutine dsyrk
-  end interface
 
 contains
 

@@ -23,6 +23,7 @@
 !>   solve_contact(w, q, h, e, method, opts, sol)
 module contact_lcp
   use kinds, only: dp
+  use lapack_interfaces, only: dgesvd, dpotrs, dpstrf, dsysv
   use lcp_solvers, only: lcp_options_t, lcp_report_t, solve_lcp_lemke, solve_lcp_pgs, lcp_natural_residual
   use lcp_newton, only: solve_lcp_pdas
   use diagnostics, only: int_to_str
@@ -40,41 +41,6 @@ module contact_lcp
     logical, allocatable :: unheld(:)        !< (k) mode held by no contact row
   end type contact_solution_t
 
-  interface
-    subroutine dsysv(uplo, n, nrhs, a, lda, ipiv, b, ldb, work, lwork, info)
-      import :: dp
-      character, intent(in) :: uplo
-      integer, intent(in) :: n, nrhs, lda, ldb, lwork
-      real(dp), intent(inout) :: a(lda, *), b(ldb, *)
-      integer, intent(out) :: ipiv(*), info
-      real(dp), intent(out) :: work(*)
-    end subroutine dsysv
-    subroutine dpstrf(uplo, n, a, lda, piv, rank, tol, work, info)
-      import :: dp
-      character, intent(in) :: uplo
-      integer, intent(in) :: n, lda
-      real(dp), intent(inout) :: a(lda, *)
-      integer, intent(out) :: piv(*), rank, info
-      real(dp), intent(in) :: tol
-      real(dp), intent(out) :: work(*)
-    end subroutine dpstrf
-    subroutine dpotrs(uplo, n, nrhs, a, lda, b, ldb, info)
-      import :: dp
-      character, intent(in) :: uplo
-      integer, intent(in) :: n, nrhs, lda, ldb
-      real(dp), intent(in) :: a(lda, *)
-      real(dp), intent(inout) :: b(ldb, *)
-      integer, intent(out) :: info
-    end subroutine dpotrs
-    subroutine dgesvd(jobu, jobvt, m, n, a, lda, s, u, ldu, vt, ldvt, work, lwork, info)
-      import :: dp
-      character, intent(in) :: jobu, jobvt
-      integer, intent(in) :: m, n, lda, ldu, ldvt, lwork
-      real(dp), intent(inout) :: a(lda, *)
-      real(dp), intent(out) :: s(*), u(ldu, *), vt(ldvt, *), work(*)
-      integer, intent(out) :: info
-    end subroutine dgesvd
-  end interface
 
 contains
 

@@ -18,12 +18,13 @@
 !>   exit_program(status) terminate with the given status, printing nothing
 !>   type(error_t)        a mid-level error: message and exit status (1 or 2)
 module diagnostics
+  use kinds, only: dp
   use, intrinsic :: iso_c_binding, only: c_int
   use, intrinsic :: iso_fortran_env, only: error_unit
   implicit none
   private
   public :: diag_t, add_error, has_errors, print_errors, stop_input_errors
-  public :: fail_numerical, exit_program, error_t, set_error, int_to_str
+  public :: fail_numerical, exit_program, error_t, set_error, int_to_str, real_to_str
 
   !> One collected message.
   type :: message_t
@@ -151,5 +152,14 @@ contains
     write(buf, '(i0)') i
     s = trim(buf)
   end function int_to_str
+
+  !> Short scientific text of a real (4 significant digits), for messages.
+  function real_to_str(x) result(s)
+    real(dp), intent(in) :: x
+    character(len=:), allocatable :: s
+    character(len=32) :: buf
+    write(buf, '(es10.3)') x
+    s = trim(adjustl(buf))
+  end function real_to_str
 
 end module diagnostics

@@ -106,8 +106,9 @@
 !> No routine prints anything; every outcome is in the report.
 module friction_lcp
   use kinds, only: dp
-  use diagnostics, only: int_to_str
-  use lcp_solvers, only: lcp_options_t, lcp_report_t, solve_lcp_lemke, solve_lcp_pgs, &
+  use lapack_interfaces, only: daxpy, dgemv
+  use diagnostics, only: int_to_str, real_to_str
+  use lcp_solvers, only: lcp_options_t, lcp_report_t, solve_lcp_lemke, solve_lcp_pgs, pgs_outcome, &
     solve_lcp_lemke_scaled, scale_lcp
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
@@ -143,21 +144,6 @@ module friction_lcp
   real(dp), parameter :: iterate_bound = 1.0e150_dp        ! PGS: iterates beyond this diverge
   integer, parameter :: refresh_sweeps = 50                ! PGS: recompute v from scratch
 
-  interface
-    subroutine dgemv(trans, m, n, alpha, a, lda, x, incx, beta, y, incy)
-      import :: dp
-      character, intent(in) :: trans
-      integer, intent(in) :: m, n, lda, incx, incy
-      real(dp), intent(in) :: alpha, a(lda, *), x(*), beta
-      real(dp), intent(inout) :: y(*)
-    end subroutine dgemv
-    subroutine daxpy(n, alpha, x, incx, y, incy)
-      import :: dp
-      integer, intent(in) :: n, incx, incy
-      real(dp), intent(in) :: alpha, x(*)
-      real(dp), intent(inout) :: y(*)
-    end subroutine daxpy
-  end interface
 
 contains
 
@@ -661,25 +647,7 @@ contains
     lam = p%d * s                                      ! lam = D s
     call measure_scaled(p, s, rep)
 
-    select case (reason)
-    case (0)
-      rep%info = 0
-      rep%message = 'friction PGS: converged in ' // int_to_str(rep%iterations) // ' sweeps, residual ' // &
-        real_to_str(rep%residual)
-    case (2)
-      rep%info = 2
-      rep%message = 'friction PGS: sweep limit ' // int_to_str(maxit) // ' reached, residual ' // &
-        real_to_str(rep%residual) // ' > tol ' // real_to_str(opts%tol) // '; lam is the best iterate'
-    case (3)
-      rep%info = 3
-      rep%message = 'friction PGS: divergence at sweep ' // int_to_str(rep%iterations) // &
-        ' (the problem may have no solution); lam is the best iterate, residual ' // real_to_str(rep%residual)
-    case default
-      rep%info = 3
-      rep%message = 'friction PGS: stagnation at sweep ' // int_to_str(rep%iterations) // ', residual ' // &
-        real_to_str(rep%residual) // ' not decreasing over ' // int_to_str(window) // &
-        ' sweeps (the problem may have no solution); lam is the best iterate'
-    end select
+    call pgs_outcome(reason, maxit, window, opts%tol, 'friction PGS', 'lam', 'problem', rep)
   end subroutine friction_pgs
 
   !> Nonsmooth Gauss-Seidel sweeps (module header).
@@ -778,14 +746,5 @@ contains
       end if
     end subroutine set_row
   end subroutine pgs_sweeps
-
-  !> Short scientific text of a real, for messages.
-  function real_to_str(x) result(s)
-    real(dp), intent(in) :: x
-    character(len=:), allocatable :: s
-    character(len=32) :: buf
-    write(buf, '(es10.3)') x
-    s = trim(adjustl(buf))
-  end function real_to_str
 
 end module friction_lcp

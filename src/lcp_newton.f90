@@ -72,7 +72,8 @@
 !> No routine prints anything.
 module lcp_newton
   use kinds, only: dp, i8
-  use diagnostics, only: int_to_str
+  use lapack_interfaces, only: dgemv, dpotrf, dpotrs, dpstrf, drot, dsyrk, dtrsm
+  use diagnostics, only: int_to_str, real_to_str
   use lcp_solvers, only: lcp_options_t, lcp_report_t, scale_lcp, solve_lcp_lemke, lcp_natural_residual, &
                          measure_solution
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
@@ -118,61 +119,6 @@ module lcp_newton
   real(dp), parameter :: symmetry_tol = 1.0e-8_dp          ! largest |Ws_ij - Ws_ji| accepted
   integer(i8), parameter :: hash_prime = 2305843009213693951_i8   ! 2**61 - 1
 
-  interface
-    subroutine dpotrf(uplo, n, a, lda, info)
-      import :: dp
-      character, intent(in) :: uplo
-      integer, intent(in) :: n, lda
-      real(dp), intent(inout) :: a(lda, *)
-      integer, intent(out) :: info
-    end subroutine dpotrf
-    subroutine dpotrs(uplo, n, nrhs, a, lda, b, ldb, info)
-      import :: dp
-      character, intent(in) :: uplo
-      integer, intent(in) :: n, nrhs, lda, ldb
-      real(dp), intent(in) :: a(lda, *)
-      real(dp), intent(inout) :: b(ldb, *)
-      integer, intent(out) :: info
-    end subroutine dpotrs
-    subroutine dpstrf(uplo, n, a, lda, piv, rank, tol, work, info)
-      import :: dp
-      character, intent(in) :: uplo
-      integer, intent(in) :: n, lda
-      real(dp), intent(inout) :: a(lda, *)
-      integer, intent(out) :: piv(*)
-      integer, intent(out) :: rank
-      real(dp), intent(in) :: tol
-      real(dp), intent(inout) :: work(*)
-      integer, intent(out) :: info
-    end subroutine dpstrf
-    subroutine dtrsm(side, uplo, transa, diag, m, n, alpha, a, lda, b, ldb)
-      import :: dp
-      character, intent(in) :: side, uplo, transa, diag
-      integer, intent(in) :: m, n, lda, ldb
-      real(dp), intent(in) :: alpha, a(lda, *)
-      real(dp), intent(inout) :: b(ldb, *)
-    end subroutine dtrsm
-    subroutine dsyrk(uplo, trans, n, k, alpha, a, lda, beta, c, ldc)
-      import :: dp
-      character, intent(in) :: uplo, trans
-      integer, intent(in) :: n, k, lda, ldc
-      real(dp), intent(in) :: alpha, a(lda, *), beta
-      real(dp), intent(inout) :: c(ldc, *)
-    end subroutine dsyrk
-    subroutine dgemv(trans, m, n, alpha, a, lda, x, incx, beta, y, incy)
-      import :: dp
-      character, intent(in) :: trans
-      integer, intent(in) :: m, n, lda, incx, incy
-      real(dp), intent(in) :: alpha, a(lda, *), x(*), beta
-      real(dp), intent(inout) :: y(*)
-    end subroutine dgemv
-    subroutine drot(n, x, incx, y, incy, c, s)
-      import :: dp
-      integer, intent(in) :: n, incx, incy
-      real(dp), intent(inout) :: x(*), y(*)
-      real(dp), intent(in) :: c, s
-    end subroutine drot
-  end interface
 
 contains
 
@@ -934,14 +880,5 @@ contains
     rep%info = info
     rep%message = message
   end subroutine set_report
-
-  !> Short scientific text of a real, for messages.
-  function real_to_str(x) result(s)
-    real(dp), intent(in) :: x
-    character(len=:), allocatable :: s
-    character(len=32) :: buf
-    write(buf, '(es10.3)') x
-    s = trim(adjustl(buf))
-  end function real_to_str
 
 end module lcp_newton

@@ -65,13 +65,14 @@
 !> No routine prints anything; every outcome is in the report.
 module lcp_solvers
   use kinds, only: dp
-  use diagnostics, only: int_to_str
+  use lapack_interfaces, only: daxpy, dgemv, dger
+  use diagnostics, only: int_to_str, real_to_str
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
   private
   public :: lcp_options_t, lcp_report_t
   public :: solve_lcp_lemke, solve_lcp_pgs, lcp_natural_residual, scale_lcp, measure_solution
-  public :: solve_lcp_lemke_scaled
+  public :: solve_lcp_lemke_scaled, pgs_outcome
 
   !> Solver settings.
   type :: lcp_options_t
@@ -109,27 +110,6 @@ module lcp_solvers
   real(dp), parameter :: iterate_bound = 1.0e150_dp        ! PGS: iterates beyond this diverge
   integer, parameter :: refresh_sweeps = 50                ! PGS: recompute ws from scratch
 
-  interface
-    subroutine dger(m, n, alpha, x, incx, y, incy, a, lda)
-      import :: dp
-      integer, intent(in) :: m, n, incx, incy, lda
-      real(dp), intent(in) :: alpha, x(*), y(*)
-      real(dp), intent(inout) :: a(lda, *)
-    end subroutine dger
-    subroutine dgemv(trans, m, n, alpha, a, lda, x, incx, beta, y, incy)
-      import :: dp
-      character, intent(in) :: trans
-      integer, intent(in) :: m, n, lda, incx, incy
-      real(dp), intent(in) :: alpha, a(lda, *), x(*), beta
-      real(dp), intent(inout) :: y(*)
-    end subroutine dgemv
-    subroutine daxpy(n, alpha, x, incx, y, incy)
-      import :: dp
-      integer, intent(in) :: n, incx, incy
-      real(dp), intent(in) :: alpha, x(*)
-      real(dp), intent(inout) :: y(*)
-    end subroutine daxpy
-  end interface
 
 contains
 
@@ -226,26 +206,43 @@ contains
     z(p%rows) = p%d(p%rows) * zs
     call measure_solution(W, q, p%d, z, rep)
 
-    select case (stop_reason)
+    call pgs_outcome(stop_reason, maxit, window, opts%tol, 'PGS', 'z', 'LCP', rep)
+  end subroutine solve_lcp_pgs
+
+  !> info and message of a projected Gauss-Seidel run from its stop reason
+  !> (0 converged, 2 sweep limit, 3 divergence, other: stagnation).
+  !>   reason  (in)    stop reason
+  !>   maxit, window (in) the sweep limit and the stagnation window
+  !>   tol     (in)    the residual target
+  !>   label   (in)    the method's name in the message ('PGS')
+  !>   iterate (in)    the name of the returned iterate ('z')
+  !>   problem (in)    what may have no solution ('LCP')
+  !>   rep     (inout) iterations and residual set on entry; info, message set
+  subroutine pgs_outcome(reason, maxit, window, tol, label, iterate, problem, rep)
+    integer, intent(in) :: reason, maxit, window
+    real(dp), intent(in) :: tol
+    character(len=*), intent(in) :: label, iterate, problem
+    type(lcp_report_t), intent(inout) :: rep
+    select case (reason)
     case (0)
       rep%info = 0
-      rep%message = 'PGS: converged in ' // int_to_str(rep%iterations) // ' sweeps, residual ' // &
+      rep%message = label // ': converged in ' // int_to_str(rep%iterations) // ' sweeps, residual ' // &
         real_to_str(rep%residual)
     case (2)
       rep%info = 2
-      rep%message = 'PGS: sweep limit ' // int_to_str(maxit) // ' reached, residual ' // &
-        real_to_str(rep%residual) // ' > tol ' // real_to_str(opts%tol) // '; z is the best iterate'
+      rep%message = label // ': sweep limit ' // int_to_str(maxit) // ' reached, residual ' // &
+        real_to_str(rep%residual) // ' > tol ' // real_to_str(tol) // '; ' // iterate // ' is the best iterate'
     case (3)
       rep%info = 3
-      rep%message = 'PGS: divergence at sweep ' // int_to_str(rep%iterations) // &
-        ' (the LCP may have no solution); z is the best iterate, residual ' // real_to_str(rep%residual)
+      rep%message = label // ': divergence at sweep ' // int_to_str(rep%iterations) // ' (the ' // problem // &
+        ' may have no solution); ' // iterate // ' is the best iterate, residual ' // real_to_str(rep%residual)
     case default
       rep%info = 3
-      rep%message = 'PGS: stagnation at sweep ' // int_to_str(rep%iterations) // ', residual ' // &
-        real_to_str(rep%residual) // ' not decreasing over ' // int_to_str(window) // &
-        ' sweeps (the LCP may have no solution); z is the best iterate'
+      rep%message = label // ': stagnation at sweep ' // int_to_str(rep%iterations) // ', residual ' // &
+        real_to_str(rep%residual) // ' not decreasing over ' // int_to_str(window) // ' sweeps (the ' // &
+        problem // ' may have no solution); ' // iterate // ' is the best iterate'
     end select
-  end subroutine solve_lcp_pgs
+  end subroutine pgs_outcome
 
   !> Scaled natural residual r = ||min(zs, ws)||_inf / ||qs||_inf of a
   !> candidate z (zs = D^-1 z, ws = D (q + W z), qs = D q, D as in scale_lcp).
@@ -933,14 +930,5 @@ contains
     ws = p%qs
     call dgemv('N', p%m, p%m, 1.0_dp, p%ws, p%m, zs, 1, 1.0_dp, ws, 1)
   end subroutine update_gap
-
-  !> Short scientific text of a real, for messages.
-  function real_to_str(x) result(s)
-    real(dp), intent(in) :: x
-    character(len=:), allocatable :: s
-    character(len=32) :: buf
-    write(buf, '(es10.3)') x
-    s = trim(adjustl(buf))
-  end function real_to_str
 
 end module lcp_solvers

@@ -64,6 +64,7 @@
 !>                         the sub-segment list alone (valid polylines assumed)
 module mortar_operator
   use kinds, only: dp
+  use lapack_interfaces, only: dgtsv
   use diagnostics, only: error_t, set_error, int_to_str
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
@@ -100,15 +101,6 @@ module mortar_operator
   real(dp), parameter :: tol_overlap = 1.0e-10_dp  ! shortest sub-segment / double cover, relative to L
   real(dp), parameter :: tol_ray = 1.0e-10_dp      ! slack on the master coordinate of a ray hit
 
-  interface
-    !> LAPACK: solve A X = B for a general tridiagonal A (LU with partial pivoting).
-    subroutine dgtsv(n, nrhs, dl, d, du, b, ldb, info)
-      import :: dp
-      integer, intent(in) :: n, nrhs, ldb
-      real(dp), intent(inout) :: dl(*), d(*), du(*), b(ldb, *)
-      integer, intent(out) :: info
-    end subroutine dgtsv
-  end interface
 
 contains
 

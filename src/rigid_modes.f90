@@ -23,6 +23,7 @@
 !>   mode_name(fl, j)                          'translation x', 'rotation', ...
 module rigid_modes
   use kinds, only: dp
+  use lapack_interfaces, only: dgeqp3, dgesvd
   use body, only: body_t
   implicit none
   private
@@ -36,24 +37,6 @@ module rigid_modes
     integer, allocatable :: pin(:)           !< (k) dofs held at zero in the factorization
   end type floating_t
 
-  interface
-    subroutine dgesvd(jobu, jobvt, m, n, a, lda, s, u, ldu, vt, ldvt, work, lwork, info)
-      import :: dp
-      character, intent(in) :: jobu, jobvt
-      integer, intent(in) :: m, n, lda, ldu, ldvt, lwork
-      real(dp), intent(inout) :: a(lda, *)
-      real(dp), intent(out) :: s(*), u(ldu, *), vt(ldvt, *), work(*)
-      integer, intent(out) :: info
-    end subroutine dgesvd
-    subroutine dgeqp3(m, n, a, lda, jpvt, tau, work, lwork, info)
-      import :: dp
-      integer, intent(in) :: m, n, lda, lwork
-      real(dp), intent(inout) :: a(lda, *)
-      integer, intent(inout) :: jpvt(*)
-      real(dp), intent(out) :: tau(*), work(*)
-      integer, intent(out) :: info
-    end subroutine dgeqp3
-  end interface
 
 contains
 

@@ -6,7 +6,7 @@
 !> nt = 0 against lcp_solvers, and the failures that must be reported.
 program test_friction_lcp
   use kinds, only: dp, i8
-  use testing, only: check, check_close, check_small, finish_tests
+  use testing, only: check, check_close, check_small, finish_tests, urand, random_spd
   use lcp_solvers, only: lcp_options_t, lcp_report_t, solve_lcp_lemke, solve_lcp_pgs, solve_lcp_lemke_scaled
   use friction_lcp, only: solve_friction_lcp, friction_residual, friction_state, state_open, state_stick, &
     state_slip
@@ -39,31 +39,6 @@ contains
   ! Helpers
   ! ---------------------------------------------------------------------------
 
-  !> Park-Miller minimal standard generator, uniform in (0, 1).
-  real(dp) function urand(state)
-    integer(i8), intent(inout) :: state
-    state = mod(16807_i8 * state, 2147483647_i8)
-    urand = real(state, dp) / 2147483647.0_dp
-  end function urand
-
-  !> W = A'A / (3m) + 1e-3 I with A (3m x m) uniform in (-1, 1): SPD, well conditioned.
-  subroutine random_spd(m, state, w)
-    integer, intent(in) :: m
-    integer(i8), intent(inout) :: state
-    real(dp), allocatable, intent(out) :: w(:, :)
-    real(dp), allocatable :: a(:, :)
-    integer :: i, j
-    allocate(a(3 * m, m))
-    do j = 1, m
-      do i = 1, 3 * m
-        a(i, j) = 2.0_dp * urand(state) - 1.0_dp
-      end do
-    end do
-    w = matmul(transpose(a), a) / real(3 * m, dp)
-    do i = 1, m
-      w(i, i) = w(i, i) + 1.0e-3_dp
-    end do
-  end subroutine random_spd
 
   !> Random SPD G ((n+nt) x (n+nt)) whose normal-tangential blocks are scaled
   !> by t in [0, 1]: t G + (1 - t) blockdiag(Gnn, Gtt), still SPD.

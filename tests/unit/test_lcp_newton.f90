@@ -10,7 +10,7 @@
 !> Lemke's dense tableau is O(n^2) per pivot and needs about n/2 pivots).
 program test_lcp_newton
   use kinds, only: dp, i8
-  use testing, only: check, check_close, check_small, finish_tests
+  use testing, only: check, check_close, check_small, finish_tests, urand, random_spd
   use lcp_solvers, only: lcp_options_t, lcp_report_t, solve_lcp_lemke, solve_lcp_pgs, &
     lcp_natural_residual
   use lcp_newton, only: solve_lcp_pdas, pdas_stats_t, pdas_factor_auto, pdas_factor_refactor, &
@@ -71,31 +71,6 @@ contains
   ! Helpers
   ! ---------------------------------------------------------------------------
 
-  !> Park-Miller minimal standard generator, uniform in (0, 1).
-  real(dp) function urand(state)
-    integer(i8), intent(inout) :: state
-    state = mod(16807_i8 * state, 2147483647_i8)
-    urand = real(state, dp) / 2147483647.0_dp
-  end function urand
-
-  !> W = A'A / (3n) + 1e-3 I with A (3n x n) uniform in (-1, 1): SPD, well conditioned.
-  subroutine random_spd(n, state, w)
-    integer, intent(in) :: n
-    integer(i8), intent(inout) :: state
-    real(dp), allocatable, intent(out) :: w(:, :)
-    real(dp), allocatable :: a(:, :)
-    integer :: i, j
-    allocate(a(3 * n, n))
-    do j = 1, n
-      do i = 1, 3 * n
-        a(i, j) = 2.0_dp * urand(state) - 1.0_dp
-      end do
-    end do
-    w = matmul(transpose(a), a) / real(3 * n, dp)
-    do i = 1, n
-      w(i, i) = w(i, i) + 1.0e-3_dp
-    end do
-  end subroutine random_spd
 
   !> Complementary z0, w0 >= 0: each index is active (z0 > 0), open (w0 > 0), or
   !> with probability pboth both zero (degenerate).

@@ -2,11 +2,12 @@
 !> `PASS name` or `FAIL name: detail`; finish_tests exits 1 when any failed.
 !> tests/run-tests counts the lines.
 module testing
-  use kinds, only: dp
+  use kinds, only: dp, i8
   use, intrinsic :: iso_fortran_env, only: output_unit
   implicit none
   private
   public :: check, check_close, check_small, finish_tests
+  public :: urand, random_spd
 
   integer, save :: nfail = 0
 contains
@@ -58,4 +59,30 @@ contains
     flush(output_unit)
     if (nfail > 0) error stop 1
   end subroutine finish_tests
+  !> Park-Miller minimal standard generator, uniform in (0, 1).
+  real(dp) function urand(state)
+    integer(i8), intent(inout) :: state
+    state = mod(16807_i8 * state, 2147483647_i8)
+    urand = real(state, dp) / 2147483647.0_dp
+  end function urand
+
+  !> W = A'A / (3n) + 1e-3 I with A (3n x n) uniform in (-1, 1): SPD, well conditioned.
+  subroutine random_spd(n, state, w)
+    integer, intent(in) :: n
+    integer(i8), intent(inout) :: state
+    real(dp), allocatable, intent(out) :: w(:, :)
+    real(dp), allocatable :: a(:, :)
+    integer :: i, j
+    allocate(a(3 * n, n))
+    do j = 1, n
+      do i = 1, 3 * n
+        a(i, j) = 2.0_dp * urand(state) - 1.0_dp
+      end do
+    end do
+    w = matmul(transpose(a), a) / real(3 * n, dp)
+    do i = 1, n
+      w(i, i) = w(i, i) + 1.0e-3_dp
+    end do
+  end subroutine random_spd
+
 end module testing
