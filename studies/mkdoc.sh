@@ -116,7 +116,7 @@ ${failures}## What is measured
   the finest level is nested in it, the coarser levels are not. There are two references,
   one per slave choice (see "H: broken H1 error" for why).
 
-**Error measures** (\`studies/c2dh1.c\`, same formulas as \`studies/c2derr.py h1\`):
+**Error measures** (\`studies/c2dh1.f90\`, same formulas as \`studies/c2derr.py h1\`):
 
 * broken H1 seminorm  |e|_{1,h} = ( sum over bodies of int |grad(u_ref - u_h)|^2 )^{1/2}, and the
   energy norm ( sum int sigma(e) : eps(e) )^{1/2}, both also relative to the reference's own
@@ -128,7 +128,7 @@ ${failures}## What is measured
   lengths) takes the gradient of the nearest run triangle.
   The tools pass $ntest self-test checks against closed forms before the study uses them
   (\`studies/test-tools\`: nested interpolants of x^2, where |I_f u - I_c u|_1^2 = A (hc^2 - hf^2)/3;
-  perturbed non-nested meshes with a linear difference; C against Python).
+  perturbed non-nested meshes with a linear difference; \`c2dh1\` against \`c2derr.py h1\`).
 * **pressure** p_h (the CSV's nodal contact pressure, taken piecewise linear along the slave
   boundary):
   * S: the relative L2 difference to the reference profile over **0 <= x <= 1.75 only**. The
