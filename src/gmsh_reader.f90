@@ -8,7 +8,7 @@
 !>   - 2D elements: 3-node triangles (type 2) and 4-node quadrangles (type 3), all
 !>     of them, in the file's node order; MSH 2.2 repeats an element once per
 !>     physical group holding it, so elements with the same node set are merged
-!>     (sort of the sorted node sets, O(n log n));
+!>     (hash table of the sorted node sets, O(n));
 !>   - physical groups: a physical curve gives a boundary_t whose edges are its
 !>     2-node lines (type 1); a physical point gives a boundary_t whose points are
 !>     its point elements (type 15); a physical surface gives a region_t of element
@@ -25,15 +25,24 @@
 !>   The whole file is read into memory and split into lines first, so any line
 !>   length and any byte are safe and every count read from the file is checked
 !>   against the number of lines left before anything is allocated from it.
-!>   Numbers are validated character by character before an internal read (so
+!>   Numbers are validated character by character before they are converted (so
 !>   that no overflow can occur in the conversion) and must be finite and of
-!>   magnitude below 1e100.  The first defect found is reported to diag as
+!>   magnitude below 1e100.  A real is the double nearest to its text, as an
+!>   internal read gives it; the common texts (up to 18 significant digits,
+!>   moderate exponents) are converted exactly with integer arithmetic, the
+!>   others by an internal read.  The first defect found is reported to diag as
 !>   `FILE:LINE: what is wrong (what was expected)` with the line echoed, and
 !>   reading stops; the mesh is then returned empty.
 !>
 !> The section readers below share their arguments: t (inout) the file and the
 !> reading position, d (inout) what has been read, diag (inout) the messages, and
 !> ok (out) .false. once an error has been reported (reading then stops).
+!>
+!> Speed
+!>   Items are parsed in place in the file's buffer (no substring copies), node
+!>   tags are looked up in a table tag -> node when they are dense (else by a
+!>   binary search of the sorted tags), and repeated elements are found with a
+!>   hash table: reading costs O(file size).
 !>
 !> Programming interface
 !>   read_gmsh_file(path, mesh, diag)
@@ -56,6 +65,7 @@ module gmsh_reader
   integer, parameter :: max_number_length = 200    !< longest accepted number item
   integer, parameter :: echo_length = 100          !< characters of a line echoed
   integer, parameter :: quote_length = 40          !< characters of an item quoted
+  integer, parameter :: raw_width = 6              !< nen, 4 nodes, line: an element read
   character(len=*), parameter :: order_hint = &
     'P1 triangles/Q1 quads and 2-node lines expected; mesh with gmsh -order 1'
 
@@ -96,7 +106,10 @@ module gmsh_reader
     integer(i8), allocatable :: ntag(:,:)     !< (1, nnode) node tags
     integer, allocatable :: tag_line(:)       !< (nnode) line of each node tag
     integer, allocatable :: coord_line(:)     !< (nnode) line of each node's coordinates
-    integer, allocatable :: tag_perm(:)       !< (nnode) ntag(1, tag_perm) ascending
+    integer, allocatable :: tag_index(:)      !< (max tag) node of each tag, 0 for none, when the
+                                              !< tags are dense (max tag <= 2 nnode + 1000)
+    integer, allocatable :: tag_perm(:)       !< (nnode) else: ntag(1, tag_perm) ascending
+    integer(i8), allocatable :: tag_sorted(:) !< (nnode) and ntag(1, tag_perm), for the search
     integer(i8), allocatable :: name_key(:,:) !< (2, nname) dimension, tag of each name
     type(string_t), allocatable :: name_text(:) !< (nname) physical names
     integer, allocatable :: name_perm(:)      !< (nname) name_key sorted
@@ -105,7 +118,8 @@ module gmsh_reader
     integer, allocatable :: ent_count(:)      !< (nent) number of physical tags
     integer, allocatable :: ent_perm(:)       !< (nent) ent_key sorted
     type(record_list_t) :: ent_phys           !< (1, *) physical tags of the entities
-    type(record_list_t) :: raw                !< (5, *) nen, nodes of each 2D element read
+    type(record_list_t) :: raw                !< (raw_width, *) nen, 4 nodes, line of each 2D
+                                              !< element read
     type(record_list_t) :: region_pairs       !< (2, *) physical tag, raw element
     type(record_list_t) :: edges              !< (3, *) physical tag, node, node
     type(record_list_t) :: points             !< (2, *) physical tag, node
@@ -143,6 +157,7 @@ contains
     type(msh_text_t), intent(inout) :: t
     type(diag_t), intent(inout) :: diag
     logical, intent(out) :: ok
+    character, parameter :: lf = achar(10)
     integer :: status, n, k
     integer(i8) :: p, q, nbytes, nlf
 
@@ -167,38 +182,34 @@ contains
 
     ! Count the lines: one per LF, plus an unterminated last line.
     nlf = 0
-    p = 1
-    do
-      q = index(t%buf(p:), achar(10), kind=i8)
-      if (q == 0) exit
-      nlf = nlf + 1
-      p = p + q
-      if (p > nbytes) exit
+    do p = 1, nbytes
+      if (t%buf(p:p) == lf) nlf = nlf + 1
     end do
-    if (t%buf(nbytes:nbytes) /= achar(10)) nlf = nlf + 1
+    if (t%buf(nbytes:nbytes) /= lf) nlf = nlf + 1
     if (nlf > int(huge(1), i8) - 4_i8) then
       call add_error(diag, t%path, 0, 'mesh file has too many lines (fewer than 2**31 expected)')
       return
     end if
     n = int(nlf)
+    ! Line k runs from lbeg(k) to the byte before its LF (or to the end of the
+    ! file), less a CR before the LF.
     allocate(t%lbeg(n), t%lend(n))
-    p = 1
+    k = 1
+    t%lbeg(1) = 1
+    do p = 1, nbytes
+      if (t%buf(p:p) == lf) then
+        t%lend(k) = p - 1
+        k = k + 1
+        if (k > n) exit
+        t%lbeg(k) = p + 1
+      end if
+    end do
+    if (k == n) t%lend(n) = nbytes
     do k = 1, n
-      t%lbeg(k) = p
-      if (p > nbytes) then
-        q = 0
-      else
-        q = index(t%buf(p:), achar(10), kind=i8)
+      q = t%lend(k)
+      if (q >= t%lbeg(k)) then
+        if (t%buf(q:q) == achar(13)) t%lend(k) = q - 1
       end if
-      if (q == 0) then
-        t%lend(k) = nbytes
-      else
-        t%lend(k) = p + q - 2
-      end if
-      if (t%lend(k) >= t%lbeg(k)) then
-        if (t%buf(t%lend(k):t%lend(k)) == achar(13)) t%lend(k) = t%lend(k) - 1
-      end if
-      p = p + q
     end do
     t%nline = n
     t%ln = 0
@@ -540,6 +551,7 @@ contains
     integer :: nblock, n, b, m, k, j, i, left, header, nitem
     integer(i8) :: dim, param, tag
     real(dp) :: r
+    character(len=:), allocatable :: line_what
 
     call read_data_line(t, diag, 'Nodes', 4, 'numEntityBlocks numNodes minNodeTag maxNodeTag', ok)
     if (.not. ok) return
@@ -580,13 +592,13 @@ contains
         d%tag_line(j) = t%ln
       end do
       nitem = 3 + int(param * dim)
+      if (nitem == 3) then
+        line_what = 'x y z'
+      else
+        line_what = 'x y z and ' // i8_to_str(dim) // ' parametric coordinates'
+      end if
       do j = k + 1, k + m
-        if (nitem == 3) then
-          call read_data_line(t, diag, 'Nodes', nitem, 'x y z', ok)
-        else
-          call read_data_line(t, diag, 'Nodes', nitem, 'x y z and ' // i8_to_str(dim) // &
-            ' parametric coordinates', ok)
-        end if
+        call read_data_line(t, diag, 'Nodes', nitem, line_what, ok)
         if (.not. ok) return
         call get_coordinates(t, diag, 1, d%x(:, j), d%z(j), ok)
         if (.not. ok) return
@@ -630,26 +642,52 @@ contains
 
   !> After $Nodes: index the tags, report the first duplicate tag or the first
   !> node off the plane z = 0, whichever comes first in the file.
+  !> Dense tags (max tag <= 2 nnode + 1000, as gmsh writes them) are indexed by
+  !> a table tag -> node, others by sorting them for a binary search.  Either
+  !> way the duplicate reported is the node of the earliest line whose tag an
+  !> earlier node has.
   subroutine check_nodes(t, d, diag, ok)
     type(msh_text_t), intent(in) :: t
     type(msh_data_t), intent(inout) :: d
     type(diag_t), intent(inout) :: diag
     logical, intent(out) :: ok
     integer :: i, dup_line, z_line, dup_node, z_node
+    integer(i8) :: max_tag, tag
     real(dp) :: extent
     character(len=16) :: zbuf
 
-    call sort_columns(d%ntag, d%tag_perm)
     dup_line = huge(1)
     dup_node = 0
-    do i = 2, d%nnode
-      if (d%ntag(1, d%tag_perm(i)) == d%ntag(1, d%tag_perm(i - 1))) then
-        if (d%tag_line(d%tag_perm(i)) < dup_line) then
-          dup_line = d%tag_line(d%tag_perm(i))
-          dup_node = d%tag_perm(i)
-        end if
-      end if
+    max_tag = 0
+    do i = 1, d%nnode
+      max_tag = max(max_tag, d%ntag(1, i))
     end do
+    if (max_tag <= 2_i8 * d%nnode + 1000_i8) then
+      allocate(d%tag_index(max_tag), source=0)
+      do i = 1, d%nnode
+        tag = d%ntag(1, i)
+        if (d%tag_index(tag) == 0) then
+          d%tag_index(tag) = i
+        else if (dup_node == 0) then
+          dup_line = d%tag_line(i)
+          dup_node = i
+        end if
+      end do
+    else
+      call sort_columns(d%ntag, d%tag_perm)
+      allocate(d%tag_sorted(d%nnode))
+      do i = 1, d%nnode
+        d%tag_sorted(i) = d%ntag(1, d%tag_perm(i))
+      end do
+      do i = 2, d%nnode
+        if (d%tag_sorted(i) == d%tag_sorted(i - 1)) then
+          if (d%tag_line(d%tag_perm(i)) < dup_line) then
+            dup_line = d%tag_line(d%tag_perm(i))
+            dup_node = d%tag_perm(i)
+          end if
+        end if
+      end do
+    end if
     z_line = huge(1)
     z_node = 0
     if (d%nnode > 0) then
@@ -691,6 +729,7 @@ contains
     header = t%ln
     call get_count(t, diag, 1, 'number of elements', remaining_lines(t), n, ok)
     if (.not. ok) return
+    call reserve_records(d%raw, raw_width, n)
     do k = 1, n
       call read_data_line(t, diag, 'Elements', 0, what, ok)
       if (.not. ok) return
@@ -740,6 +779,7 @@ contains
     integer :: nblock, n, b, m, k, j, left, header, etype, nn, ient, first, count
     integer(i8) :: dim, tag, v
     integer(i8), allocatable :: phys(:)
+    character(len=:), allocatable :: line_what
 
     call read_data_line(t, diag, 'Elements', 4, 'numEntityBlocks numElements minElementTag maxElementTag', ok)
     if (.not. ok) return
@@ -755,6 +795,7 @@ contains
       ok = .false.
       return
     end if
+    call reserve_records(d%raw, raw_width, n)
     call get_integer(t, diag, 3, 'minimum element tag', -huge(1_i8), huge(1_i8), tag, ok)
     if (.not. ok) return
     call get_integer(t, diag, 4, 'maximum element tag', -huge(1_i8), huge(1_i8), tag, ok)
@@ -785,8 +826,9 @@ contains
         count = d%ent_count(ient)
         if (count > 0) phys = d%ent_phys%v(1, first:first + count - 1)
       end if
+      line_what = 'element-tag and ' // int_to_str(nn) // ' node tags'
       do j = 1, m
-        call read_data_line(t, diag, 'Elements', 1 + nn, 'element-tag and ' // int_to_str(nn) // ' node tags', ok)
+        call read_data_line(t, diag, 'Elements', 1 + nn, line_what, ok)
         if (.not. ok) return
         call get_integer(t, diag, 1, 'element tag', -huge(1_i8), huge(1_i8), v, ok)
         if (.not. ok) return
@@ -887,7 +929,7 @@ contains
     do k = 1, nn
       call get_integer(t, diag, kfirst + k - 1, 'node tag', 1_i8, huge(1_i8), tag, ok)
       if (.not. ok) return
-      idx = search_columns(d%ntag, d%tag_perm, [tag])
+      idx = node_of_tag(d, tag)
       if (idx == 0) then
         call fail(t, diag, 'element refers to undefined node tag ' // i8_to_str(tag) // &
           ' (a node tag defined in $Nodes expected)')
@@ -929,7 +971,7 @@ contains
         return
       end if
       if (t%ntok >= 1) then
-        if (item(t, 1) == '$End' // name) exit
+        if (t%buf(t%tbeg(1):t%tend(1)) == '$End' // name) exit
       end if
     end do
     ok = .true.
@@ -944,11 +986,15 @@ contains
     type(msh_data_t), intent(in) :: d
     type(mesh_t), intent(out) :: mesh
     integer(i8), allocatable :: keys(:,:)
-    integer, allocatable :: perm(:), rep(:), elem_of_raw(:)
-    integer :: nraw, r, i, nelem, nen
+    integer, allocatable :: rep(:), elem_of_raw(:), slot(:,:)
+    integer :: nraw, r, nelem, nen, h
+    integer(i8) :: nslot, s
 
-    ! Elements with the same node set are one element: sort the sorted node
-    ! sets; the first of each run of equal keys (stable sort) represents it.
+    ! Elements with the same node set are one element, represented by the first
+    ! of them in the file.  Key of an element: nen and its sorted nodes.  An open
+    ! addressing hash table (linear probing, at most half full) holds the
+    ! representatives and their hashes; each element in file order finds the
+    ! earlier one with its key, or becomes one.
     nraw = d%raw%n
     allocate(keys(5, nraw))
     do r = 1, nraw
@@ -956,13 +1002,29 @@ contains
       keys(:, r) = d%raw%v(1:5, r)
       call sort_small(keys(2:1 + nen, r))
     end do
-    call sort_columns(keys, perm)
+    nslot = 1
+    do while (nslot < 2_i8 * nraw)
+      nslot = 2 * nslot
+    end do
+    allocate(slot(2, 0:nslot - 1), source=0)        ! (element, hash) of each slot
     allocate(rep(nraw), elem_of_raw(nraw))
-    do i = 1, nraw
-      rep(perm(i)) = perm(i)
-      if (i > 1) then
-        if (all(keys(:, perm(i)) == keys(:, perm(i - 1)))) rep(perm(i)) = rep(perm(i - 1))
-      end if
+    do r = 1, nraw
+      h = element_hash(keys(:, r))
+      s = iand(int(h, i8), nslot - 1)
+      do
+        if (slot(1, s) == 0) then
+          slot(:, s) = [r, h]
+          rep(r) = r
+          exit
+        end if
+        if (slot(2, s) == h) then
+          if (all(keys(:, slot(1, s)) == keys(:, r))) then
+            rep(r) = slot(1, s)
+            exit
+          end if
+        end if
+        s = iand(s + 1, nslot - 1)
+      end do
     end do
     nelem = 0
     do r = 1, nraw
@@ -987,6 +1049,20 @@ contains
     call build_boundaries(d, mesh)
     call build_regions(d, elem_of_raw, mesh)
   end subroutine build_mesh
+
+  !> Hash of an element key (non-negative integers), in [0, 2**31 - 1).
+  pure integer function element_hash(key) result(h)
+    integer(i8), intent(in) :: key(:)
+    integer(i8), parameter :: multiplier = 1000003_i8
+    integer(i8), parameter :: modulus = 2147483647_i8     ! 2**31 - 1, a prime
+    integer(i8) :: a
+    integer :: i
+    a = 0
+    do i = 1, size(key)
+      a = modulo(a * multiplier + key(i), modulus)      ! a < 2**31: no overflow
+    end do
+    h = int(a)
+  end function element_hash
 
   !> Boundaries from the edges (physical curves) and points (physical points).
   subroutine build_boundaries(d, mesh)
@@ -1198,6 +1274,7 @@ contains
       end do
       if (p > e) exit
       start = p
+      p = p + 1
       do while (p <= e)
         if (is_blank(t%buf(p:p))) exit
         p = p + 1
@@ -1216,9 +1293,13 @@ contains
     end do
   end subroutine advance_line
 
+  !> c is a space, TAB, LF, VT, FF or CR (on the byte code: a comparison with the
+  !> blank ' ' would cost a call to len_trim).
   pure logical function is_blank(c)
     character, intent(in) :: c
-    is_blank = c == ' ' .or. (iachar(c) >= 9 .and. iachar(c) <= 13)
+    integer :: code
+    code = iachar(c)
+    is_blank = code == 32 .or. (code >= 9 .and. code <= 13)
   end function is_blank
 
   !> Lines after the current one.
@@ -1360,7 +1441,7 @@ contains
     logical, intent(out) :: ok
     character(len=:), allocatable :: expected
 
-    ok = parse_integer(item(t, k), v)
+    ok = parse_integer(t%buf(t%tbeg(k):t%tend(k)), v)
     if (ok) ok = v >= lo .and. v <= hi
     if (ok) return
     if (lo == 0 .and. hi == huge(1_i8)) then
@@ -1405,7 +1486,7 @@ contains
     character(len=*), intent(in) :: what
     real(dp), intent(out) :: v
     logical, intent(out) :: ok
-    select case (parse_real(item(t, k), v))
+    select case (parse_real(t%buf(t%tbeg(k):t%tend(k)), v))
     case (0)
       ok = .true.
       return
@@ -1451,54 +1532,87 @@ contains
   end function parse_integer
 
   !> Real number in Fortran or C notation ([+-]digits[.digits][(e|d)[+-]digits]).
-  !> The text is checked and its decimal magnitude computed before the internal
-  !> read, so that the conversion cannot overflow.
+  !> The text is checked and its decimal magnitude computed before any
+  !> conversion, so that the conversion cannot overflow.  The value is the double
+  !> nearest to the text (ties to even), as the internal read gives it: from the
+  !> first 18 significant digits w and the decimal exponent e, value = w 10**e,
+  !> by decimal_to_real when no nonzero digit was dropped and w 10**e can be
+  !> rounded exactly in 64-bit integer and double arithmetic (the common case),
+  !> else by the internal read.
   !>   returns 0 ok, 1 not a number, 2 NaN or Inf, 3 magnitude 1e100 or more
   integer function parse_real(s, v) result(status)
     character(len=*), intent(in) :: s
     real(dp), intent(out) :: v
-    character(len=len(s)) :: low
-    integer :: p, n, nint, nfrac, first_nonzero, mag, ios, exponent, nexp_digits
-    logical :: nonzero, negative_exponent
+    integer, parameter :: max_significand_digits = 18   !< w < 10**18 < 2**63
+    integer :: p, n, nint, nfrac, first_nonzero, mag, ios, exponent, nexp_digits, digit, nsig, shift
+    integer(i8) :: w
+    logical :: nonzero, negative_exponent, exact, done
+    character :: c
 
     v = 0.0_dp
     status = 1
     n = len(s)
     if (n == 0 .or. n > max_number_length) return
-    low = lower_case(s)
     p = 1
-    if (low(1:1) == '+' .or. low(1:1) == '-') p = 2
+    if (s(1:1) == '+' .or. s(1:1) == '-') p = 2
     if (p <= n) then
-      if (low(p:) == 'nan' .or. low(p:) == 'inf' .or. low(p:) == 'infinity' .or. low(p:min(n, p + 3)) == 'nan(') then
-        status = 2
+      if (.not. is_digit(s(p:p)) .and. s(p:p) /= '.') then
+        if (same_lower_text(s(p:), 'nan') .or. same_lower_text(s(p:), 'inf') .or. &
+            same_lower_text(s(p:), 'infinity') .or. same_lower_text(s(p:min(n, p + 3)), 'nan(')) status = 2
         return
       end if
     end if
-    ! digits [. digits]
+    ! digits [. digits]; the digits read are w 10**shift (exactly, while exact)
     nint = 0
     nfrac = 0
     nonzero = .false.
     first_nonzero = 0
     mag = 0
+    w = 0
+    nsig = 0
+    shift = 0
+    exact = .true.
     do while (p <= n)
-      if (.not. is_digit(low(p:p))) exit
-      if (low(p:p) /= '0' .and. .not. nonzero) then
+      c = s(p:p)
+      if (.not. is_digit(c)) exit
+      digit = iachar(c) - iachar('0')
+      if (digit /= 0 .and. .not. nonzero) then
         nonzero = .true.
         first_nonzero = nint + 1
       end if
       nint = nint + 1
+      if (nonzero) then
+        if (nsig < max_significand_digits) then
+          w = 10 * w + digit
+          nsig = nsig + 1
+        else
+          shift = shift + 1
+          if (digit /= 0) exact = .false.
+        end if
+      end if
       p = p + 1
     end do
     if (nonzero) mag = nint - first_nonzero
     if (p <= n) then
-      if (low(p:p) == '.') then
+      if (s(p:p) == '.') then
         p = p + 1
         do while (p <= n)
-          if (.not. is_digit(low(p:p))) exit
+          c = s(p:p)
+          if (.not. is_digit(c)) exit
+          digit = iachar(c) - iachar('0')
           nfrac = nfrac + 1
-          if (low(p:p) /= '0' .and. .not. nonzero) then
+          if (digit /= 0 .and. .not. nonzero) then
             nonzero = .true.
             mag = -nfrac
+          end if
+          if (.not. nonzero) then
+            shift = shift - 1
+          else if (nsig < max_significand_digits) then
+            w = 10 * w + digit
+            nsig = nsig + 1
+            shift = shift - 1
+          else if (digit /= 0) then
+            exact = .false.
           end if
           p = p + 1
         end do
@@ -1508,21 +1622,22 @@ contains
     ! [(e|d) [+-] digits]
     exponent = 0
     if (p <= n) then
-      if (low(p:p) /= 'e' .and. low(p:p) /= 'd') return
+      c = s(p:p)
+      if (c /= 'e' .and. c /= 'E' .and. c /= 'd' .and. c /= 'D') return
       p = p + 1
       negative_exponent = .false.
       if (p <= n) then
-        if (low(p:p) == '+' .or. low(p:p) == '-') then
-          negative_exponent = low(p:p) == '-'
+        if (s(p:p) == '+' .or. s(p:p) == '-') then
+          negative_exponent = s(p:p) == '-'
           p = p + 1
         end if
       end if
       if (p > n) return
       nexp_digits = 0
       do while (p <= n)
-        if (.not. is_digit(low(p:p))) return
-        if (nexp_digits > 0 .or. low(p:p) /= '0') nexp_digits = nexp_digits + 1
-        if (nexp_digits <= 6) exponent = 10 * exponent + (iachar(low(p:p)) - iachar('0'))
+        if (.not. is_digit(s(p:p))) return
+        if (nexp_digits > 0 .or. s(p:p) /= '0') nexp_digits = nexp_digits + 1
+        if (nexp_digits <= 6) exponent = 10 * exponent + (iachar(s(p:p)) - iachar('0'))
         p = p + 1
       end do
       if (nexp_digits > 6) exponent = 9999999
@@ -1540,34 +1655,130 @@ contains
       status = 0
       return
     end if
+    status = 0
+    if (exact) then
+      call decimal_to_real(w, shift + exponent, v, done)
+      if (done) then
+        if (s(1:1) == '-') v = -v
+        return
+      end if
+    end if
     read(s, *, iostat=ios) v
     if (ios /= 0) then
       v = 0.0_dp
+      status = 1
       return
     end if
     if (.not. ieee_is_finite(v)) then
       v = 0.0_dp
       status = 2
-      return
     end if
-    status = 0
   end function parse_real
+
+  !> v = w 10**e rounded to the nearest double, ties to even, when one exact
+  !> rounding does it (Clinger's fast path and two integer variants of it):
+  !>   - w <= 2**53 and |e| <= 22: w and 10**|e| are doubles, so one IEEE
+  !>     product or quotient is the rounded value;
+  !>   - 0 <= e <= 27 and w 5**e < 2**63: w 10**e = (w 5**e) 2**e, rounded once
+  !>     in the conversion of the integer w 5**e;
+  !>   - -22 <= e < 0: w 10**e = (w / 5**(-e)) 2**e, the quotient rounded by
+  !>     rounded_quotient.
+  !> Scaling by a power of 2 is exact here (no overflow, no subnormal).
+  !>   w    (in)  the decimal significand, 1 <= w < 10**18
+  !>   e    (in)  the decimal exponent, |e| < 1000
+  !>   v    (out) w 10**e rounded, when done
+  !>   done (out) .false. when none of the cases applies (v is then 0)
+  pure subroutine decimal_to_real(w, e, v, done)
+    integer(i8), intent(in) :: w
+    integer, intent(in) :: e
+    real(dp), intent(out) :: v
+    logical, intent(out) :: done
+    integer :: k
+    integer(i8), parameter :: two_53 = 2_i8**53
+    real(dp), parameter :: power_of_ten(0:22) = [1.0e0_dp, 1.0e1_dp, 1.0e2_dp, 1.0e3_dp, 1.0e4_dp, 1.0e5_dp, &
+      1.0e6_dp, 1.0e7_dp, 1.0e8_dp, 1.0e9_dp, 1.0e10_dp, 1.0e11_dp, 1.0e12_dp, 1.0e13_dp, 1.0e14_dp, 1.0e15_dp, &
+      1.0e16_dp, 1.0e17_dp, 1.0e18_dp, 1.0e19_dp, 1.0e20_dp, 1.0e21_dp, 1.0e22_dp]
+    integer(i8), parameter :: power_of_five(0:27) = [(5_i8**k, k = 0, 27)]
+
+    v = 0.0_dp
+    done = .true.
+    if (w <= two_53 .and. abs(e) <= 22) then
+      if (e >= 0) then
+        v = real(w, dp) * power_of_ten(e)
+      else
+        v = real(w, dp) / power_of_ten(-e)
+      end if
+    else if (e >= 0 .and. e <= 27) then
+      done = w <= huge(w) / power_of_five(e)
+      if (done) v = scale(real(w * power_of_five(e), dp), e)
+    else if (e < 0 .and. e >= -22) then
+      v = scale(rounded_quotient(w, power_of_five(-e)), e)
+    else
+      done = .false.
+    end if
+  end subroutine decimal_to_real
+
+  !> The double nearest to w / q, ties to even, by long division: the quotient
+  !> is developed to 55 bits (53 of the significand, a round bit and one more)
+  !> and a sticky bit for the rest.
+  !>   w (in) 1 <= w < 2**62;  q (in) 1 <= q < 2**52
+  pure real(dp) function rounded_quotient(w, q) result(v)
+    integer(i8), intent(in) :: w, q
+    integer(i8) :: a, r, low_bits
+    integer :: nbit, m, e2
+    logical :: sticky, up
+
+    a = w / q                                     ! w / q = (a + r / q) 2**e2
+    r = w - a * q
+    e2 = 0
+    sticky = .false.
+    nbit = int(bit_size(a)) - leadz(a)
+    if (nbit > 55) then
+      m = nbit - 55
+      sticky = ibits(a, 0, m) /= 0
+      a = shiftr(a, m)
+      e2 = m
+      nbit = 55
+    end if
+    do while (nbit < 55)
+      m = min(55 - nbit, 10)                      ! r 2**m < 2**62
+      r = shiftl(r, m)
+      a = shiftl(a, m) + r / q
+      r = r - (r / q) * q
+      e2 = e2 - m
+      nbit = int(bit_size(a)) - leadz(a)
+    end do
+    sticky = sticky .or. r /= 0
+    low_bits = iand(a, 3_i8)
+    up = low_bits == 3 .or. (low_bits == 2 .and. (sticky .or. btest(a, 2)))
+    a = shiftr(a, 2)
+    if (up) a = a + 1
+    v = scale(real(a, dp), e2 + 2)
+  end function rounded_quotient
 
   pure logical function is_digit(c)
     character, intent(in) :: c
     is_digit = c >= '0' .and. c <= '9'
   end function is_digit
 
-  pure function lower_case(s) result(low)
-    character(len=*), intent(in) :: s
-    character(len=len(s)) :: low
+  !> a == b as Fortran compares strings (the shorter padded with blanks), with
+  !> the letters A-Z of a taken in lower case; b is in lower case.
+  pure logical function same_lower_text(a, b) result(same)
+    character(len=*), intent(in) :: a, b
+    character :: x, y
     integer :: i, c
-    low = s
-    do i = 1, len(s)
-      c = iachar(s(i:i))
-      if (c >= iachar('A') .and. c <= iachar('Z')) low(i:i) = achar(c + 32)
+    same = .false.
+    do i = 1, max(len(a), len(b))
+      x = ' '
+      y = ' '
+      if (i <= len(a)) x = a(i:i)
+      if (i <= len(b)) y = b(i:i)
+      c = iachar(x)
+      if (c >= iachar('A') .and. c <= iachar('Z')) x = achar(c + 32)
+      if (x /= y) return
     end do
-  end function lower_case
+    same = .true.
+  end function same_lower_text
 
   !> s with control and non-ASCII bytes replaced by '?'.
   pure function printable_text(s) result(p)
@@ -1657,6 +1868,13 @@ contains
   ! Records, sorting and searching
   ! ---------------------------------------------------------------------------
 
+  !> Make room for capacity records of the given width in an empty list.
+  subroutine reserve_records(list, width, capacity)
+    type(record_list_t), intent(inout) :: list
+    integer, intent(in) :: width, capacity
+    if (.not. allocated(list%v)) allocate(list%v(width, max(capacity, 64)))
+  end subroutine reserve_records
+
   !> Append one record to a list (width = size(rec), fixed by the first push).
   subroutine push_record(list, rec)
     type(record_list_t), intent(inout) :: list
@@ -1672,20 +1890,37 @@ contains
     list%v(:, list%n) = rec
   end subroutine push_record
 
-  !> Lexicographic a < b of two key columns.
-  pure logical function column_less(a, b) result(less)
-    integer(i8), intent(in) :: a(:), b(:)
-    integer :: i
+  !> Lexicographic keys(:, i) < keys(:, j).
+  pure logical function column_less(keys, i, j) result(less)
+    integer(i8), intent(in) :: keys(:,:)
+    integer, intent(in) :: i, j
+    integer :: r
     less = .false.
-    do i = 1, size(a)
-      if (a(i) /= b(i)) then
-        less = a(i) < b(i)
+    do r = 1, size(keys, 1)
+      if (keys(r, i) /= keys(r, j)) then
+        less = keys(r, i) < keys(r, j)
         return
       end if
     end do
   end function column_less
 
+  !> Lexicographic keys(:, i) < key.
+  pure logical function column_less_than_key(keys, i, key) result(less)
+    integer(i8), intent(in) :: keys(:,:)
+    integer, intent(in) :: i
+    integer(i8), intent(in) :: key(:)
+    integer :: r
+    less = .false.
+    do r = 1, size(keys, 1)
+      if (keys(r, i) /= key(r)) then
+        less = keys(r, i) < key(r)
+        return
+      end if
+    end do
+  end function column_less_than_key
+
   !> Stable bottom-up merge sort of the columns of keys, lexicographically.
+  !> Two runs already in order are not merged, so that sorted input costs O(n).
   !>   keys (in)  (m, n) one key per column
   !>   perm (out) (n) keys(:, perm) is ascending; equal keys keep their order
   subroutine sort_columns(keys, perm)
@@ -1705,11 +1940,15 @@ contains
         mid = min(lo + width - 1, int(n, i8))
         hi = min(lo + 2 * width - 1, int(n, i8))
         if (mid < hi) then
+          if (.not. column_less(keys, perm(mid + 1), perm(mid))) then
+            lo = lo + 2 * width
+            cycle
+          end if
           a = lo
           b = mid + 1
           k = lo
           do while (a <= mid .and. b <= hi)
-            if (column_less(keys(:, perm(b)), keys(:, perm(a)))) then
+            if (column_less(keys, perm(b), perm(a))) then
               tmp(k) = perm(b)
               b = b + 1
             else
@@ -1791,22 +2030,52 @@ contains
     integer(i8), intent(in) :: keys(:,:)
     integer, intent(in) :: perm(:)
     integer(i8), intent(in) :: key(:)
-    integer :: lo, hi, mid
+    integer :: lo, hi, mid, r
     found = 0
     lo = 1
     hi = size(perm) + 1
     do while (lo < hi)
       mid = lo + (hi - lo) / 2
-      if (column_less(keys(:, perm(mid)), key)) then
+      if (column_less_than_key(keys, perm(mid), key)) then
         lo = mid + 1
       else
         hi = mid
       end if
     end do
     if (lo <= size(perm)) then
-      if (all(keys(:, perm(lo)) == key)) found = perm(lo)
+      do r = 1, size(key)
+        if (keys(r, perm(lo)) /= key(r)) return
+      end do
+      found = perm(lo)
     end if
   end function search_columns
+
+  !> Node of a node tag, 0 when no node has it (tags are distinct here: the
+  !> $Nodes section passed check_nodes).
+  pure integer function node_of_tag(d, tag) result(node)
+    type(msh_data_t), intent(in) :: d
+    integer(i8), intent(in) :: tag
+    integer :: lo, hi, mid
+    node = 0
+    if (allocated(d%tag_index)) then
+      if (tag >= 1 .and. tag <= size(d%tag_index, kind=i8)) node = d%tag_index(tag)
+      return
+    end if
+    ! binary search for the first sorted tag >= tag
+    lo = 1
+    hi = d%nnode + 1
+    do while (lo < hi)
+      mid = lo + (hi - lo) / 2
+      if (d%tag_sorted(mid) < tag) then
+        lo = mid + 1
+      else
+        hi = mid
+      end if
+    end do
+    if (lo <= d%nnode) then
+      if (d%tag_sorted(lo) == tag) node = d%tag_perm(lo)
+    end if
+  end function node_of_tag
 
   !> repeated(i) = .true. when an earlier column of keys equals column i.
   subroutine mark_repeated(keys, repeated)

@@ -14,7 +14,7 @@
 !>     .expect file; truncated, mutated and random files never crash the reader.
 !> Data provenance: tests/unit/data/README.md.  Run from the repository root.
 program test_gmsh_reader
-  use kinds, only: dp
+  use kinds, only: dp, i8
   use diagnostics, only: diag_t
   use mesh, only: mesh_t, finalize_mesh, find_boundary, find_region, element_area, boundary_nodes
   use gmsh_reader, only: read_gmsh_file, mesh_geo_file
@@ -30,6 +30,8 @@ program test_gmsh_reader
   call test_disk()
   call test_sparse_tags()
   call test_number_notations()
+  call test_far_tags()
+  call test_correct_rounding()
   call test_geo_meshing()
   call test_bad_meshes()
   call test_robustness()
@@ -223,6 +225,139 @@ contains
     call check(m%nelem == 1 .and. size(m%reg) == 0, 'numbers: element with no tags, no region')
     call delete_file(path)
   end subroutine test_number_notations
+
+  !> Node tags far above the number of nodes, so that they are found by a
+  !> search of the sorted tags rather than by a table: sparse_22.msh and
+  !> sparse_41.msh with every tag t written as 10**12 + t give the same mesh;
+  !> a duplicate and an undefined far tag are reported as near ones are.
+  subroutine test_far_tags()
+    type(mesh_t) :: m22, m41, ref
+    type(diag_t) :: d, dref
+    character(len=*), parameter :: lf = achar(10)
+    character(len=*), parameter :: head22 = '$MeshFormat' // lf // '2.2 0 8' // lf // '$EndMeshFormat' // lf
+    character(len=*), parameter :: t7 = '1000000000007', t10 = '1000000000010', t20 = '1000000000020', &
+      t30 = '1000000000030', t1000 = '1000000001000'
+    character(len=:), allocatable :: path
+
+    path = tmp // 'far_tags.msh'
+    call read_gmsh_file(data_dir // 'sparse_22.msh', ref, dref)
+    call write_text(path, head22 // '$Nodes' // lf // '5' // lf // t10 // ' 0 0 0' // lf // t30 // ' 1 0 0' // lf // &
+      t20 // ' 1 1 0' // lf // t7 // ' 0 1 0' // lf // t1000 // ' 5 5 0' // lf // '$EndNodes' // lf // &
+      '$Elements' // lf // '4' // lf // '1 2 2 1 4 ' // t10 // ' ' // t30 // ' ' // t20 // lf // &
+      '2 2 2 1 4 ' // t10 // ' ' // t20 // ' ' // t7 // lf // '3 1 2 2 8 ' // t10 // ' ' // t30 // lf // &
+      '4 15 2 3 5 ' // t7 // lf // '$EndElements' // lf)
+    call read_gmsh_file(path, m22, d)
+    call check(d%count == 0 .and. dref%count == 0, 'far tags: MSH 2.2 read without error')
+    call check(same_mesh(m22, ref), 'far tags: MSH 2.2 gives the mesh of sparse_22.msh (tags 10 30 20 7 1000)')
+
+    call write_text(path, '$MeshFormat' // lf // '4.1 0 8' // lf // '$EndMeshFormat' // lf // '$Nodes' // lf // &
+      '1 5 ' // t7 // ' ' // t1000 // lf // '2 1 0 5' // lf // t10 // lf // t30 // lf // t20 // lf // t7 // lf // &
+      t1000 // lf // '0 0 0' // lf // '1 0 0' // lf // '1 1 0' // lf // '0 1 0' // lf // '5 5 0' // lf // &
+      '$EndNodes' // lf // '$Elements' // lf // '1 2 1 2' // lf // '2 1 2 2' // lf // '1 ' // t10 // ' ' // t30 // &
+      ' ' // t20 // lf // '2 ' // t10 // ' ' // t20 // ' ' // t7 // lf // '$EndElements' // lf)
+    d = diag_t()
+    call read_gmsh_file(path, m41, d)
+    call check(d%count == 0 .and. m41%nnode == 5 .and. m41%nelem == 2, 'far tags: MSH 4.1 read without error')
+    if (m41%nelem == 2 .and. m41%nnode == 5) then
+      call check(all(m41%conn(:, 1) == [1, 2, 3, 0]) .and. all(m41%conn(:, 2) == [1, 3, 4, 0]) .and. &
+        all(m41%x == ref%x), 'far tags: MSH 4.1 maps the tags to nodes 1 2 3 4 in file order')
+    end if
+
+    call write_text(path, head22 // '$Nodes' // lf // '3' // lf // t10 // ' 0 0 0' // lf // t30 // ' 1 0 0' // lf // &
+      t10 // ' 1 1 0' // lf // '$EndNodes' // lf // '$Elements' // lf // '1' // lf // '1 2 0 ' // t10 // ' ' // &
+      t30 // ' ' // t20 // lf // '$EndElements' // lf)
+    d = diag_t()
+    call read_gmsh_file(path, m22, d)
+    call check(d%count == 1 .and. m22%nnode == 0, 'far tags: a duplicate tag gives one error')
+    if (d%count == 1) call check(index(d%items(1)%text, 'far_tags.msh:8: duplicate node tag ' // t10 // &
+      ' (each node tag defined once expected)') > 0, 'far tags: the duplicate is reported at its line')
+
+    call write_text(path, head22 // '$Nodes' // lf // '3' // lf // t10 // ' 0 0 0' // lf // t30 // ' 1 0 0' // lf // &
+      t20 // ' 1 1 0' // lf // '$EndNodes' // lf // '$Elements' // lf // '1' // lf // '1 2 0 ' // t10 // ' ' // &
+      t30 // ' ' // t7 // lf // '$EndElements' // lf)
+    d = diag_t()
+    call read_gmsh_file(path, m22, d)
+    call check(d%count == 1 .and. m22%nnode == 0, 'far tags: an undefined tag gives one error')
+    if (d%count == 1) call check(index(d%items(1)%text, 'far_tags.msh:12: element refers to undefined node tag ' // &
+      t7 // ' (a node tag defined in $Nodes expected)') > 0, 'far tags: the undefined tag is reported at its line')
+    call delete_file(path)
+  end subroutine test_far_tags
+
+  !> Coordinates are the doubles nearest to their texts, bit for bit as the
+  !> Fortran library's list-directed read of the same text gives them: hard
+  !> cases (ties to even at 2**53, 17 to 20 digits, exponents beyond 22, one
+  !> digit off a tie) and 3000 pseudo-random texts of 1 to 20 digits with a
+  !> point anywhere and exponents from -25 to 25.
+  subroutine test_correct_rounding()
+    integer, parameter :: nhand = 20, nrandom = 3000
+    character(len=*), parameter :: hand(nhand) = [character(len=40) :: '9007199254740993', '9007199254740995', &
+      '-0.9007199254740993', '1.00000000000000011', '1.000000000000000111', '1e23', '9.999999999999999e22', &
+      '0.30000000000000004', '8.98846567431158e15', '-4.4501477170144023e-15', '123456789012345678e-30', &
+      '2.2250738585072011e-10', '7.0064923216240862e-46', '1.7976931348623157e99', '4.35679585e-7', '0.1', &
+      '18014398509481985', '1.00000000000000000000000000001', '90071992547409930e-1', '9007199254740995000e-3']
+    character(len=*), parameter :: lf = achar(10)
+    character(len=40) :: text(nhand + nrandom)
+    character(len=:), allocatable :: body, path
+    type(mesh_t) :: m
+    type(diag_t) :: d
+    real(dp) :: v
+    integer(i8) :: state
+    integer :: k, nwrong, ios
+
+    state = 20240601_i8
+    text(1:nhand) = hand
+    do k = nhand + 1, nhand + nrandom
+      text(k) = random_decimal(state)
+    end do
+    body = ''
+    do k = 1, size(text)
+      body = body // itoa(k) // ' ' // trim(text(k)) // ' 0 0' // lf
+    end do
+    path = tmp // 'rounding.msh'
+    call write_text(path, '$MeshFormat' // lf // '2.2 0 8' // lf // '$EndMeshFormat' // lf // '$Nodes' // lf // &
+      itoa(size(text)) // lf // body // '$EndNodes' // lf // '$Elements' // lf // '1' // lf // '1 2 0 1 2 3' // lf // &
+      '$EndElements' // lf)
+    call read_gmsh_file(path, m, d)
+    call check(d%count == 0 .and. m%nnode == size(text), 'rounding: ' // itoa(size(text)) // ' coordinates read')
+    if (m%nnode == size(text)) then
+      nwrong = 0
+      do k = 1, size(text)
+        read(text(k), *, iostat=ios) v
+        if (ios /= 0 .or. transfer(m%x(1, k), 1_i8) /= transfer(v, 1_i8)) nwrong = nwrong + 1
+      end do
+      call check(nwrong == 0, 'rounding: each coordinate has the bits of read(text, *) (' // itoa(nwrong) // &
+        ' differ)')
+    end if
+    call delete_file(path)
+  end subroutine test_correct_rounding
+
+  !> A decimal text [-]digits[.digits][e|d exponent], 1 to 20 digits, the first
+  !> one nonzero; state (inout) of a Park-Miller generator.
+  function random_decimal(state) result(s)
+    integer(i8), intent(inout) :: state
+    character(len=40) :: s
+    character(len=24) :: digits
+    integer :: nd, k, point
+
+    nd = 1 + next_int(state, 20)
+    digits = ''
+    do k = 1, nd
+      digits(k:k) = achar(iachar('0') + merge(1 + next_int(state, 9), next_int(state, 10), k == 1))
+    end do
+    point = next_int(state, nd + 1)
+    s = digits(1:point) // '.' // digits(point + 1:nd)
+    if (point == nd .and. next_int(state, 2) == 0) s = digits(1:nd)
+    if (next_int(state, 3) > 0) s = trim(s) // merge('e', 'd', next_int(state, 4) > 0) // itoa(next_int(state, 51) - 25)
+    if (next_int(state, 2) == 0) s = '-' // trim(s)
+  end function random_decimal
+
+  !> A pseudo-random integer in 0 .. n - 1 (Park-Miller, state < 2**31).
+  integer function next_int(state, n)
+    integer(i8), intent(inout) :: state
+    integer, intent(in) :: n
+    state = mod(48271_i8 * state, 2147483647_i8)
+    next_int = int(mod(state, int(n, i8)))
+  end function next_int
 
   !> mesh_geo_file: -setnumber, default values, shell quoting, failure.
   subroutine test_geo_meshing()
