@@ -45,6 +45,19 @@ void c2d_chol_destroy(void *h);
 int c2d_chol_factorize(void *h, int n, const int *colptr, const int *rowind,
                        const double *val, int nlast, const int *last);
 
+/* The two halves of c2d_chol_factorize, so that the values of A can be
+ * assembled while the pattern is being ordered.  c2d_chol_analyze: the
+ * ordering and symbolic analysis of the pattern (arguments as above, no
+ * values; any previous factor is freed first), returns CHOLMOD_OK, a CHOLMOD
+ * code or C2D_CHOL_BLOCK_MOVED.  c2d_chol_factorize_values: the numeric
+ * factorization of A with the pattern analyzed (same n, colptr, rowind),
+ * returns as c2d_chol_factorize, or C2D_CHOL_NO_FACTOR when no analysis is
+ * held. */
+int c2d_chol_analyze(void *h, int n, const int *colptr, const int *rowind,
+                     int nlast, const int *last);
+int c2d_chol_factorize_values(void *h, int n, const int *colptr, const int *rowind,
+                              const double *val);
+
 /* Where the last factorization failed: *column = 1-based pivot (column of the
  * permuted matrix), *equation = the 1-based dof of A at that pivot; both 0 when
  * the factorization succeeded or no factor is held. */

@@ -13,6 +13,8 @@
 !> Programming interface (see include/cholmod_shim.h for the details)
 !>   c2d_chol_create() -> handle          c2d_chol_destroy(handle)
 !>   c2d_chol_factorize(handle, n, colptr, rowind, val, nlast, last) -> status
+!>   c2d_chol_analyze(handle, n, colptr, rowind, nlast, last) -> status
+!>   c2d_chol_factorize_values(handle, n, colptr, rowind, val) -> status
 !>   c2d_chol_minor(handle, column, equation)
 !>   c2d_chol_stats(handle, lnz, flops, memory_peak, time_analyze, time_factorize)
 !>   c2d_chol_min_pivot_ratio(handle, ratio, column, equation)
@@ -25,6 +27,7 @@ module cholmod_binding
   implicit none
   private
   public :: c2d_chol_create, c2d_chol_destroy, c2d_chol_factorize, c2d_chol_minor
+  public :: c2d_chol_analyze, c2d_chol_factorize_values
   public :: c2d_chol_stats, c2d_chol_min_pivot_ratio, c2d_chol_ordering_name
   public :: c2d_chol_status_name, c2d_chol_solve, c2d_chol_trailing_block
   public :: cholmod_ok, cholmod_not_posdef, cholmod_out_of_memory, cholmod_too_large
@@ -70,6 +73,31 @@ module cholmod_binding
       integer(c_int), intent(in) :: last(*)
       integer(c_int) :: status
     end function c2d_chol_factorize
+
+    !> Ordering and symbolic analysis of the pattern; returns the status.
+    function c2d_chol_analyze(handle, n, colptr, rowind, nlast, last) &
+        bind(c, name='c2d_chol_analyze') result(status)
+      import :: c_ptr, c_int
+      type(c_ptr), value :: handle
+      integer(c_int), value :: n
+      integer(c_int), intent(in) :: colptr(*)
+      integer(c_int), intent(in) :: rowind(*)
+      integer(c_int), value :: nlast
+      integer(c_int), intent(in) :: last(*)
+      integer(c_int) :: status
+    end function c2d_chol_analyze
+
+    !> Numeric factorization of the analyzed pattern's values; returns the status.
+    function c2d_chol_factorize_values(handle, n, colptr, rowind, val) &
+        bind(c, name='c2d_chol_factorize_values') result(status)
+      import :: c_ptr, c_int, c_double
+      type(c_ptr), value :: handle
+      integer(c_int), value :: n
+      integer(c_int), intent(in) :: colptr(*)
+      integer(c_int), intent(in) :: rowind(*)
+      real(c_double), intent(in) :: val(*)
+      integer(c_int) :: status
+    end function c2d_chol_factorize_values
 
     !> Failing pivot (column of P A P') and its dof; 0, 0 when none.
     subroutine c2d_chol_minor(handle, column, equation) bind(c, name='c2d_chol_minor')

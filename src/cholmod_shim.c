@@ -113,8 +113,9 @@ static cholmod_sparse *copy_matrix(int n, const int *colptr, const int *rowind,
     {
         if (rowind[p] < 1 || rowind[p] > n) return NULL;
     }
+    /* val == NULL: the pattern alone (what the ordering and analysis read) */
     A = cholmod_allocate_sparse((size_t) n, (size_t) n, (size_t) (nnz > 0 ? nnz : 1),
-                                1, 1, 1, CHOLMOD_REAL, c);
+                                1, 1, 1, val != NULL ? CHOLMOD_REAL : CHOLMOD_PATTERN, c);
     if (A == NULL)
     {
         *status = c->status;
@@ -126,10 +127,11 @@ static cholmod_sparse *copy_matrix(int n, const int *colptr, const int *rowind,
     for (j = 0; j <= n; j++) Ap[j] = colptr[j] - 1;
     for (j = 0; j < n; j++)
     {
-        adiag[j] = 0.0;
+        if (val != NULL) adiag[j] = 0.0;
         for (p = Ap[j]; p < Ap[j + 1]; p++)
         {
             Ai[p] = rowind[p] - 1;
+            if (val == NULL) continue;
             Ax[p] = val[p];
             if (Ai[p] == j) adiag[j] += val[p];
         }
@@ -284,17 +286,16 @@ static void scan_pivots(struct c2d_chol *h, const double *adiag)
     }
 }
 
-/* The analysis and factorization of A into h->L; returns the status. */
-static int analyze_and_factorize(struct c2d_chol *h, cholmod_sparse *A, const double *adiag,
-                                 int nlast, const int *last)
+/* The ordering and symbolic analysis of the pattern A into h->L; returns the
+ * status. */
+static int analyze_pattern(struct c2d_chol *h, cholmod_sparse *A, int nlast, const int *last)
 {
     cholmod_common *c = &h->common;
     int n = (int) A->ncol;
     int k, status = CHOLMOD_OK;
-    double t0, t1, t2;
+    double t0;
     const int *Perm;
 
-    /* ordering and symbolic analysis */
     t0 = SuiteSparse_time();
     if (nlast == 0)
     {
@@ -308,8 +309,7 @@ static int analyze_and_factorize(struct c2d_chol *h, cholmod_sparse *A, const do
     {
         h->L = analyze_block_last(A, nlast, last, c, &status);
     }
-    t1 = SuiteSparse_time();
-    h->time_analyze = t1 - t0;
+    h->time_analyze = SuiteSparse_time() - t0;
     if (h->L == NULL) return status;
     h->n = n;
     h->nlast = nlast;
@@ -320,11 +320,23 @@ static int analyze_and_factorize(struct c2d_chol *h, cholmod_sparse *A, const do
     {
         if (Perm[n - nlast + k] != last[k] - 1) return C2D_CHOL_BLOCK_MOVED;
     }
+    return CHOLMOD_OK;
+}
+
+/* The numeric factorization of A (values, the pattern analyzed) into h->L;
+ * returns the status. */
+static int factorize_numeric(struct c2d_chol *h, cholmod_sparse *A, const double *adiag)
+{
+    cholmod_common *c = &h->common;
+    int n = (int) A->ncol;
+    int status;
+    double t1;
+    const int *Perm = h->L->Perm;
 
     /* numeric factorization P A P' = L L' */
+    t1 = SuiteSparse_time();
     cholmod_factorize(A, h->L, c);
-    t2 = SuiteSparse_time();
-    h->time_factorize = t2 - t1;
+    h->time_factorize = SuiteSparse_time() - t1;
     status = c->status;
 
     /* "not positive definite" is a warning: CHOLMOD returns TRUE, sets
@@ -345,13 +357,12 @@ static int analyze_and_factorize(struct c2d_chol *h, cholmod_sparse *A, const do
     return CHOLMOD_OK;
 }
 
-int c2d_chol_factorize(void *handle, int n, const int *colptr, const int *rowind,
-                       const double *val, int nlast, const int *last)
+int c2d_chol_analyze(void *handle, int n, const int *colptr, const int *rowind,
+                     int nlast, const int *last)
 {
     struct c2d_chol *h = handle;
     cholmod_common *c;
     cholmod_sparse *A;
-    double *adiag;
     int status;
 
     if (h == NULL) return C2D_CHOL_NO_HANDLE;
@@ -361,21 +372,47 @@ int c2d_chol_factorize(void *handle, int n, const int *colptr, const int *rowind
     {
         return C2D_CHOL_BAD_ARGUMENT;
     }
+    A = copy_matrix(n, colptr, rowind, NULL, NULL, c, &status);
+    if (A != NULL)
+    {
+        status = analyze_pattern(h, A, nlast, last);
+        cholmod_free_sparse(&A, c);
+    }
+    if (status != CHOLMOD_OK && h->L != NULL) cholmod_free_factor(&h->L, c);
+    return status;
+}
 
+int c2d_chol_factorize_values(void *handle, int n, const int *colptr, const int *rowind,
+                              const double *val)
+{
+    struct c2d_chol *h = handle;
+    cholmod_common *c;
+    cholmod_sparse *A;
+    double *adiag;
+    int status;
+
+    if (h == NULL) return C2D_CHOL_NO_HANDLE;
+    if (h->L == NULL || h->valid) return C2D_CHOL_NO_FACTOR;
+    if (n != h->n || val == NULL) return C2D_CHOL_BAD_ARGUMENT;
+    c = &h->common;
     adiag = cholmod_malloc((size_t) n, sizeof(double), c);
     if (adiag == NULL) return (c->status < 0) ? c->status : CHOLMOD_OUT_OF_MEMORY;
     A = copy_matrix(n, colptr, rowind, val, adiag, c, &status);
     if (A != NULL)
     {
-        status = analyze_and_factorize(h, A, adiag, nlast, last);
+        status = factorize_numeric(h, A, adiag);
         cholmod_free_sparse(&A, c);
     }
     cholmod_free((size_t) n, sizeof(double), adiag, c);
-    if (status != CHOLMOD_OK)
-    {
-        h->valid = 0;
-        if (h->L != NULL) cholmod_free_factor(&h->L, c);
-    }
+    if (status != CHOLMOD_OK) h->valid = 0;
+    return status;
+}
+
+int c2d_chol_factorize(void *handle, int n, const int *colptr, const int *rowind,
+                       const double *val, int nlast, const int *last)
+{
+    int status = c2d_chol_analyze(handle, n, colptr, rowind, nlast, last);
+    if (status == CHOLMOD_OK) status = c2d_chol_factorize_values(handle, n, colptr, rowind, val);
     return status;
 }
 

@@ -62,6 +62,9 @@ module results_writer
     real(dp) :: memory_peak = 0                  !< peak resident memory, bytes (0 when unknown)
     real(dp) :: factor_memory = 0                !< CHOLMOD's peak memory for the factor, bytes
     real(dp) :: time_solve = 0                   !< seconds of the one solve u0 = K^-1 f (inside a phase)
+    real(dp) :: time_ordering = 0                !< seconds of the ordering and analysis (inside factor)
+    real(dp) :: time_assemble_values = 0         !< seconds of the assembly of K's values, which ran
+                                                 !< beside the ordering (partly inside factor)
   end type results_t
 
   interface
@@ -270,6 +273,8 @@ contains
       write(u, '(a,a)') 'time_' // trim(phase_names(k)) // ' ', num(r%time(k))
     end do
     write(u, '(a,a)') 'time_solve ', num(r%time_solve)
+    write(u, '(a,a)') 'time_ordering ', num(r%time_ordering)
+    write(u, '(a,a)') 'time_assemble_values ', num(r%time_assemble_values)
     close(u, iostat=ios)
     ok = ios == 0
   end subroutine write_summary

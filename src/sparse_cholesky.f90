@@ -37,7 +37,9 @@
 !>   type(factor_t)   opaque handle (private); ready, n, nlast, nnz_l, flops,
 !>                    time_analyze, time_factorize, ordering, memory_peak,
 !>                    min_pivot_ratio
-!>   factorize(f, A, err [, last])          P A P' = L L'
+!>   factorize(f, A, err [, last])          P A P' = L L' (the two halves below)
+!>   analyze_pattern(f, n, colptr, rowind, err [, last])   ordering and symbolic analysis
+!>   factorize_values(f, A, err)            numeric factorization of the analyzed pattern
 !>   solve(f, b, x [, err])                 x = A^-1 b, b(n) or b(n, nrhs)
 !>   solve_vector(f, b, x [, err])          the 1-D specific of solve
 !>   solve_block(f, b, x [, err])           the 2-D specific of solve (one CHOLMOD call)
@@ -51,14 +53,16 @@ module sparse_cholesky
   use kinds, only: dp, i8
   use diagnostics, only: error_t, set_error, int_to_str, fail_numerical
   use sparse_matrix, only: csc_t, csc_nnz, csc_check
-  use cholmod_binding, only: c2d_chol_create, c2d_chol_destroy, c2d_chol_factorize, c2d_chol_minor, &
+  use cholmod_binding, only: c2d_chol_create, c2d_chol_destroy, c2d_chol_analyze, c2d_chol_factorize_values, &
+                             c2d_chol_minor, &
                              c2d_chol_stats, c2d_chol_min_pivot_ratio, c2d_chol_ordering_name, &
                              c2d_chol_status_name, c2d_chol_solve, c2d_chol_trailing_block, &
                              cholmod_ok, cholmod_not_posdef, c2d_chol_block_moved, &
                              c2d_chol_not_super_ll
   implicit none
   private
-  public :: factor_t, factorize, solve, solve_vector, solve_block, trailing_factor_block
+  public :: factor_t, factorize, analyze_pattern, factorize_values, solve, solve_vector, solve_block
+  public :: trailing_factor_block
   public :: free_factor, factor_nnz, factor_flops, factor_memory, factor_ordering
 
   !> Floor of the order in the singularity tolerance (see singular_pivot_tolerance).
@@ -88,7 +92,8 @@ module sparse_cholesky
 
 contains
 
-  !> Factorize the symmetric positive definite A: P A P' = L L' (supernodal).
+  !> Factorize the symmetric positive definite A: P A P' = L L' (supernodal):
+  !> analyze_pattern, then factorize_values.
   !>   f    (inout) the factor; any factor it held is freed first.  On success
   !>                f%ready = .true.; on failure f%ready = .false. and the
   !>                statistics of what was done are kept
@@ -103,11 +108,30 @@ contains
     type(csc_t), intent(in) :: A
     type(error_t), allocatable, intent(out) :: err
     integer, intent(in), optional :: last(:)
+    call csc_check(A, err)
+    if (allocated(err)) return
+    call analyze_pattern(f, A%n, A%colptr, A%rowind, err, last)
+    if (allocated(err)) return
+    call factorize_values(f, A, err)
+  end subroutine factorize
+
+  !> The ordering and symbolic analysis of a pattern: the first half of
+  !> factorize, which reads no values (they may be assembled meanwhile, in
+  !> another thread: only colptr and rowind are read).
+  !>   f      (inout) the factor; any factor it held is freed first
+  !>   n      (in)    order, >= 1
+  !>   colptr (in)    (n+1) column pointers of the upper triangle (1-based)
+  !>   rowind (in)    row indices, sorted per column
+  !>   err    (out)   allocated (status 1) on a bad pattern or `last`, or a CHOLMOD failure
+  !>   last   (in, optional) as in factorize
+  subroutine analyze_pattern(f, n, colptr, rowind, err, last)
+    type(factor_t), intent(inout) :: f
+    integer, intent(in) :: n
+    integer, intent(in) :: colptr(:), rowind(:)
+    type(error_t), allocatable, intent(out) :: err
+    integer, intent(in), optional :: last(:)
     integer(c_int), allocatable :: last_c(:)
-    integer(c_int) :: status, nlast, column, equation
-    integer(c_int64_t) :: lnz, memory_peak
-    real(c_double) :: flops, time_analyze, time_factorize, ratio
-    character(kind=c_char) :: buf(32)
+    integer(c_int) :: status, nlast
 
     call free_factor(f)
     f%n = 0
@@ -119,7 +143,7 @@ contains
     f%ordering = 'none'
     f%memory_peak = 0_i8
     f%min_pivot_ratio = 0.0_dp
-    call check_input(A, err, last)
+    call check_pattern(n, colptr, rowind, err, last)
     if (allocated(err)) return
 
     nlast = 0
@@ -136,18 +160,52 @@ contains
       call set_error(err, 'sparse Cholesky: CHOLMOD could not start (out of memory)', 1)
       return
     end if
-    f%n = A%n
+    f%n = n
     f%nlast = int(nlast)
-    status = c2d_chol_factorize(f%handle, int(A%n, c_int), A%colptr, A%rowind, A%val, nlast, last_c)
+    status = c2d_chol_analyze(f%handle, int(n, c_int), colptr, rowind, nlast, last_c)
+    call read_statistics(f)
 
-    call c2d_chol_stats(f%handle, lnz, flops, memory_peak, time_analyze, time_factorize)
-    f%nnz_l = int(lnz, i8)
-    f%flops = real(flops, dp)
-    f%memory_peak = int(memory_peak, i8)
-    f%time_analyze = real(time_analyze, dp)
-    f%time_factorize = real(time_factorize, dp)
-    call c2d_chol_ordering_name(f%handle, buf, int(size(buf), c_int))
-    f%ordering = c_string(buf)
+    select case (status)
+    case (cholmod_ok)
+      continue
+    case (c2d_chol_block_moved)
+      call set_error(err, 'sparse Cholesky: the analysis did not keep the ' // int_to_str(int(nlast)) &
+                     // ' dofs given as `last` at the last pivots (' // status_name(status) // ')', 1)
+    case default
+      call set_error(err, 'sparse Cholesky analysis failed: ' // status_name(status) // ' (status ' &
+                     // int_to_str(int(status)) // ') for a matrix of order ' // int_to_str(n) &
+                     // ' with ' // int_to_str(colptr(n + 1) - 1) // ' stored entries', 1)
+    end select
+  end subroutine analyze_pattern
+
+  !> The numeric factorization of A, whose pattern analyze_pattern analyzed:
+  !> the second half of factorize.
+  !>   f   (inout) the factor, analyzed; f%ready = .true. on success
+  !>   A   (in)    the matrix with the analyzed pattern, finite values
+  !>   err (out)   allocated (status 1) as in factorize
+  subroutine factorize_values(f, A, err)
+    type(factor_t), intent(inout) :: f
+    type(csc_t), intent(in) :: A
+    type(error_t), allocatable, intent(out) :: err
+    integer(c_int) :: status, column, equation
+    real(c_double) :: ratio
+    integer :: j, p
+
+    if (.not. c_associated(f%handle) .or. f%n /= A%n) then
+      call set_error(err, 'sparse Cholesky: factorize_values without the analysis of this pattern', 1)
+      return
+    end if
+    do j = 1, A%n
+      do p = A%colptr(j), A%colptr(j + 1) - 1
+        if (.not. ieee_is_finite(A%val(p))) then
+          call set_error(err, 'stiffness matrix has a non-finite entry at row ' // int_to_str(A%rowind(p)) &
+                         // ', column ' // int_to_str(j), 1)
+          return
+        end if
+      end do
+    end do
+    status = c2d_chol_factorize_values(f%handle, int(A%n, c_int), A%colptr, A%rowind, A%val)
+    call read_statistics(f)
 
     select case (status)
     case (cholmod_ok)
@@ -155,10 +213,6 @@ contains
     case (cholmod_not_posdef)
       call c2d_chol_minor(f%handle, column, equation)
       call set_error(err, singular_message(int(equation), int(column)), 1)
-      return
-    case (c2d_chol_block_moved)
-      call set_error(err, 'sparse Cholesky: the analysis did not keep the ' // int_to_str(int(nlast)) &
-                     // ' dofs given as `last` at the last pivots (' // status_name(status) // ')', 1)
       return
     case default
       call set_error(err, 'sparse Cholesky factorization failed: ' // status_name(status) // ' (status ' &
@@ -180,38 +234,55 @@ contains
       return
     end if
     f%ready = .true.
-  end subroutine factorize
+  end subroutine factorize_values
 
-  !> Checks of A and `last` before CHOLMOD sees them.
-  subroutine check_input(A, err, last)
-    type(csc_t), intent(in) :: A
+  !> Statistics of the handle into f (after each half of the factorization).
+  subroutine read_statistics(f)
+    type(factor_t), intent(inout) :: f
+    integer(c_int64_t) :: lnz, memory_peak
+    real(c_double) :: flops, time_analyze, time_factorize
+    character(kind=c_char) :: buf(32)
+    call c2d_chol_stats(f%handle, lnz, flops, memory_peak, time_analyze, time_factorize)
+    f%nnz_l = int(lnz, i8)
+    f%flops = real(flops, dp)
+    f%memory_peak = int(memory_peak, i8)
+    f%time_analyze = real(time_analyze, dp)
+    f%time_factorize = real(time_factorize, dp)
+    call c2d_chol_ordering_name(f%handle, buf, int(size(buf), c_int))
+    f%ordering = c_string(buf)
+  end subroutine read_statistics
+
+  !> Checks of a pattern and `last` before CHOLMOD sees them.
+  subroutine check_pattern(n, colptr, rowind, err, last)
+    integer, intent(in) :: n
+    integer, intent(in) :: colptr(:), rowind(:)
     type(error_t), allocatable, intent(out) :: err
     integer, intent(in), optional :: last(:)
     logical, allocatable :: seen(:)
-    integer :: j, p, k
+    integer :: j, k
 
-    call csc_check(A, err)
-    if (allocated(err)) return
-    if (A%n < 1) then
+    if (n < 1) then
       call set_error(err, 'sparse Cholesky: empty matrix (order 0)', 1)
       return
     end if
-    do j = 1, A%n
-      do p = A%colptr(j), A%colptr(j + 1) - 1
-        if (.not. ieee_is_finite(A%val(p))) then
-          call set_error(err, 'stiffness matrix has a non-finite entry at row ' // int_to_str(A%rowind(p)) &
-                         // ', column ' // int_to_str(j), 1)
-          return
-        end if
-      end do
+    if (size(colptr) /= n + 1) then
+      call set_error(err, 'sparse Cholesky: ' // int_to_str(size(colptr)) // ' column pointers for order ' // &
+                     int_to_str(n), 1)
+      return
+    end if
+    do j = 1, n
+      if (colptr(j) < 1 .or. colptr(j + 1) < colptr(j) .or. colptr(j + 1) - 1 > size(rowind)) then
+        call set_error(err, 'sparse Cholesky: bad column pointers at column ' // int_to_str(j), 1)
+        return
+      end if
     end do
     if (.not. present(last)) return
-    allocate(seen(A%n))
+    allocate(seen(n))
     seen = .false.
     do k = 1, size(last)
-      if (last(k) < 1 .or. last(k) > A%n) then
+      if (last(k) < 1 .or. last(k) > n) then
         call set_error(err, 'sparse Cholesky: dof ' // int_to_str(last(k)) // ' in `last` is out of range 1..' &
-                       // int_to_str(A%n), 1)
+                       // int_to_str(n), 1)
         return
       end if
       if (seen(last(k))) then
@@ -220,7 +291,7 @@ contains
       end if
       seen(last(k)) = .true.
     end do
-  end subroutine check_input
+  end subroutine check_pattern
 
   !> Tolerance on the pivot ratio L(k,k)^2 / A(p_k,p_k) below which A is
   !> singular to working precision: max(n, 1000) u, u the unit roundoff (the
