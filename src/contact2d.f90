@@ -25,6 +25,7 @@ program contact2d
                             discard_outputs, phase_names, nphase, peak_memory
   use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+  use omp_lib, only: omp_get_max_threads
   implicit none
 
   character(len=*), parameter :: version = '1.0.0'
@@ -95,7 +96,7 @@ program contact2d
   end do
   call contact_equations(cs, eq, last)
   call lap(ph_assemble)
-  !$omp parallel sections num_threads(2)
+  !$omp parallel sections
   !$omp section
   if (size(last) > 0) then
     call analyze_pattern(factor, k%n, k%colptr, k%rowind, err_order, last=last)
@@ -536,9 +537,11 @@ contains
       write(line, '(a,f12.4)') phase_names(p), res%time(p)
       call say(trim(line))
     end do
-    write(line, '(a,f8.3,a,f8.3,a)') 'overlap  the METIS ordering (', res%time_ordering, &
-      ' s, in factor) and the assembly of K (', res%time_assemble_values, ' s) ran side by side on two threads'
-    call say(trim(line))
+    if (omp_get_max_threads() > 1) then
+      write(line, '(a,f8.3,a,f8.3,a)') 'overlap  the METIS ordering (', res%time_ordering, &
+        ' s, in factor) and the assembly of K (', res%time_assemble_values, ' s) ran side by side on two threads'
+      call say(trim(line))
+    end if
     if (cs%npair > 0) then
       call say('wrote    ' // outdir // '/' // deck%output%vtk // ', ' // deck%output%contact // ', ' // deck%output%summary)
     else
