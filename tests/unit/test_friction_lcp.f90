@@ -39,7 +39,6 @@ contains
   ! Helpers
   ! ---------------------------------------------------------------------------
 
-
   !> Random SPD G ((n+nt) x (n+nt)) whose normal-tangential blocks are scaled
   !> by t in [0, 1]: t G + (1 - t) blockdiag(Gnn, Gtt), still SPD.
   subroutine random_delassus(n, nt, t, state, g)

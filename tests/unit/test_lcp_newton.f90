@@ -10,7 +10,7 @@
 !> Lemke's dense tableau is O(n^2) per pivot and needs about n/2 pivots).
 program test_lcp_newton
   use kinds, only: dp, i8
-  use testing, only: check, check_close, check_small, finish_tests, urand, random_spd
+  use testing, only: check, check_close, check_small, finish_tests, urand, random_spd, random_pair
   use lcp_solvers, only: lcp_options_t, lcp_report_t, solve_lcp_lemke, solve_lcp_pgs, &
     lcp_natural_residual
   use lcp_newton, only: solve_lcp_pdas, pdas_stats_t, pdas_factor_auto, pdas_factor_refactor, &
@@ -70,29 +70,6 @@ contains
   ! ---------------------------------------------------------------------------
   ! Helpers
   ! ---------------------------------------------------------------------------
-
-
-  !> Complementary z0, w0 >= 0: each index is active (z0 > 0), open (w0 > 0), or
-  !> with probability pboth both zero (degenerate).
-  subroutine random_pair(n, pboth, state, z0, w0)
-    integer, intent(in) :: n
-    real(dp), intent(in) :: pboth
-    integer(i8), intent(inout) :: state
-    real(dp), intent(out) :: z0(:), w0(:)
-    integer :: i
-    real(dp) :: u
-    do i = 1, n
-      u = urand(state)
-      z0(i) = 0.0_dp
-      w0(i) = 0.0_dp
-      if (u < pboth) cycle
-      if (urand(state) < 0.5_dp) then
-        z0(i) = 0.1_dp + urand(state)
-      else
-        w0(i) = 0.1_dp + urand(state)
-      end if
-    end do
-  end subroutine random_pair
 
   !> The LCP invariants of z recomputed here, on the diagonally scaled problem
   !> (d_i = 1/sqrt(W_ii), 1 when W_ii = 0), relative to ||qs||_inf (1 when

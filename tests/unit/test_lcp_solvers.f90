@@ -5,7 +5,7 @@
 !> active set, and the LCP invariants recomputed here.
 program test_lcp_solvers
   use kinds, only: dp, i8
-  use testing, only: check, check_close, check_small, finish_tests, urand, random_spd
+  use testing, only: check, check_close, check_small, finish_tests, urand, random_spd, random_pair
   use lcp_solvers, only: lcp_options_t, lcp_report_t, solve_lcp_lemke, solve_lcp_pgs, &
     lcp_natural_residual, scale_lcp
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
@@ -47,29 +47,6 @@ contains
   ! ---------------------------------------------------------------------------
   ! Helpers
   ! ---------------------------------------------------------------------------
-
-
-  !> Complementary z0, w0 >= 0: each index is active (z0 > 0), open (w0 > 0), or
-  !> with probability pboth both zero (degenerate).
-  subroutine random_pair(n, pboth, state, z0, w0)
-    integer, intent(in) :: n
-    real(dp), intent(in) :: pboth
-    integer(i8), intent(inout) :: state
-    real(dp), intent(out) :: z0(:), w0(:)
-    integer :: i
-    real(dp) :: u
-    do i = 1, n
-      u = urand(state)
-      z0(i) = 0.0_dp
-      w0(i) = 0.0_dp
-      if (u < pboth) cycle
-      if (urand(state) < 0.5_dp) then
-        z0(i) = 0.1_dp + urand(state)
-      else
-        w0(i) = 0.1_dp + urand(state)
-      end if
-    end do
-  end subroutine random_pair
 
   !> The LCP invariants of z recomputed here, on the diagonally scaled problem
   !> (d_i = 1/sqrt(W_ii), 1 when W_ii = 0): z >= 0, natural residual

@@ -7,7 +7,7 @@ module testing
   implicit none
   private
   public :: check, check_close, check_small, finish_tests
-  public :: urand, random_spd
+  public :: urand, random_spd, random_pair
 
   integer, save :: nfail = 0
 contains
@@ -84,5 +84,27 @@ contains
       w(i, i) = w(i, i) + 1.0e-3_dp
     end do
   end subroutine random_spd
+
+  !> Complementary z0, w0 >= 0: each index is active (z0 > 0), open (w0 > 0), or
+  !> with probability pboth both zero (degenerate).
+  subroutine random_pair(n, pboth, state, z0, w0)
+    integer, intent(in) :: n
+    real(dp), intent(in) :: pboth
+    integer(i8), intent(inout) :: state
+    real(dp), intent(out) :: z0(:), w0(:)
+    integer :: i
+    real(dp) :: u
+    do i = 1, n
+      u = urand(state)
+      z0(i) = 0.0_dp
+      w0(i) = 0.0_dp
+      if (u < pboth) cycle
+      if (urand(state) < 0.5_dp) then
+        z0(i) = 0.1_dp + urand(state)
+      else
+        w0(i) = 0.1_dp + urand(state)
+      end if
+    end do
+  end subroutine random_pair
 
 end module testing
