@@ -13,7 +13,7 @@
 !> Programming interface (see include/cholmod_shim.h for the details)
 !>   c2d_chol_create() -> handle          c2d_chol_destroy(handle)
 !>   c2d_chol_factorize(handle, n, colptr, rowind, val, nlast, last) -> status
-!>   c2d_chol_analyze(handle, n, colptr, rowind, nlast, last) -> status
+!>   c2d_chol_analyze(handle, n, colptr, rowind, nlast, last, ngroup, group) -> status
 !>   c2d_chol_factorize_values(handle, n, colptr, rowind, val) -> status
 !>   c2d_chol_minor(handle, column, equation)
 !>   c2d_chol_stats(handle, lnz, flops, memory_peak, time_analyze, time_factorize)
@@ -75,7 +75,7 @@ module cholmod_binding
     end function c2d_chol_factorize
 
     !> Ordering and symbolic analysis of the pattern; returns the status.
-    function c2d_chol_analyze(handle, n, colptr, rowind, nlast, last) &
+    function c2d_chol_analyze(handle, n, colptr, rowind, nlast, last, ngroup, group) &
         bind(c, name='c2d_chol_analyze') result(status)
       import :: c_ptr, c_int
       type(c_ptr), value :: handle
@@ -84,6 +84,8 @@ module cholmod_binding
       integer(c_int), intent(in) :: rowind(*)
       integer(c_int), value :: nlast
       integer(c_int), intent(in) :: last(*)
+      integer(c_int), value :: ngroup
+      integer(c_int), intent(in) :: group(*)
       integer(c_int) :: status
     end function c2d_chol_analyze
 

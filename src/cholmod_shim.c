@@ -18,6 +18,7 @@
 #include <string.h>
 
 #include "cholmod.h"
+#include "metis.h"
 #include "cholmod_shim.h"
 
 /* One factorization and the CHOLMOD workspace that built it. */
@@ -35,6 +36,7 @@ struct c2d_chol
     int pivot_equation;     /* 1-based dof at that pivot */
     double time_analyze;    /* wall seconds: ordering and symbolic analysis */
     double time_factorize;  /* wall seconds: numeric factorization */
+    int grouped;            /* 1 when METIS ordered the graph of dof groups (nodes) */
 };
 
 /* Copy a C string into buf[len], truncated and NUL-terminated. */
@@ -175,12 +177,135 @@ static cholmod_sparse *remaining_pattern(const cholmod_sparse *A, const int *map
     return S;
 }
 
+/* METIS nested dissection of the graph of dof groups (the nodes of the
+ * mesh: the dofs of a node share their neighbours), expanded to the dofs and
+ * postordered by the elimination tree: the ordering cholmod_metis gives,
+ * from a graph with a quarter of the edges.
+ *   S      symmetric pattern (upper triangle, 0-based), n x n
+ *   group  [n] group of each column, 0 <= group < n
+ *   perm   [n] out: the permutation (perm[k] = column at pivot k) */
+static int metis_groups(cholmod_sparse *S, const int *group, int *perm, cholmod_common *c)
+{
+    int n = (int) S->ncol;
+    const int *Sp = S->p, *Si = S->i;
+    int *gid, *gptr, *gdof, *deg, *xadj, *adj, *mark, *vw, *gperm, *giperm;
+    int i, j, p, g, h, k, ng, nadj, ok;
+    idx_t nv;
+    cholmod_factor *L;
+    int status = CHOLMOD_OK;
+    size_t nnz = (size_t) Sp[n];
+    int *work = cholmod_malloc(9 * (size_t) n + 1, sizeof(int), c);
+    int *adjmem = cholmod_malloc(2 * nnz + 1, sizeof(int), c);
+
+    if (work == NULL || adjmem == NULL)
+    {
+        cholmod_free(9 * (size_t) n + 1, sizeof(int), work, c);
+        cholmod_free(2 * nnz + 1, sizeof(int), adjmem, c);
+        return (c->status < 0) ? c->status : CHOLMOD_OUT_OF_MEMORY;
+    }
+    gid = work;             /* [n] compact group of a column */
+    gptr = work + n;        /* [ng+1] dofs of each group (CSR) */
+    gdof = work + 2 * n;    /* [n] */
+    deg = work + 3 * n;     /* [n] */
+    xadj = work + 4 * n;    /* [ng+1] group graph (CSR, no self loops) */
+    mark = work + 5 * n + 1;/* [n] */
+    vw = work + 6 * n + 1;  /* [ng] dofs per group: METIS vertex weights */
+    gperm = work + 7 * n + 1;  /* [ng] */
+    giperm = work + 8 * n + 1; /* [ng] */
+    adj = adjmem;
+
+    /* compact group numbers in order of first appearance */
+    for (i = 0; i < n; i++) mark[i] = -1;
+    ng = 0;
+    for (j = 0; j < n; j++)
+    {
+        g = group[j];
+        if (g < 0 || g >= n) { status = C2D_CHOL_BAD_ARGUMENT; goto done; }
+        if (mark[g] < 0) mark[g] = ng++;
+        gid[j] = mark[g];
+    }
+    for (g = 0; g <= ng; g++) gptr[g] = 0;
+    for (j = 0; j < n; j++) gptr[gid[j] + 1]++;
+    for (g = 0; g < ng; g++) gptr[g + 1] += gptr[g];
+    for (g = 0; g < ng; g++) deg[g] = gptr[g];
+    for (j = 0; j < n; j++) gdof[deg[gid[j]]++] = j;
+    for (g = 0; g < ng; g++) vw[g] = gptr[g + 1] - gptr[g];
+
+    /* group graph: g ~ h when a dof of g and a dof of h are coupled */
+    for (g = 0; g < ng; g++) deg[g] = 0;
+    for (j = 0; j < n; j++)
+    {
+        for (p = Sp[j]; p < Sp[j + 1]; p++)
+        {
+            i = Si[p];
+            if (gid[i] != gid[j]) { deg[gid[i]]++; deg[gid[j]]++; }
+        }
+    }
+    xadj[0] = 0;
+    for (g = 0; g < ng; g++) xadj[g + 1] = xadj[g] + deg[g];
+    for (g = 0; g < ng; g++) deg[g] = xadj[g];
+    for (j = 0; j < n; j++)
+    {
+        for (p = Sp[j]; p < Sp[j + 1]; p++)
+        {
+            i = Si[p];
+            if (gid[i] != gid[j]) { adj[deg[gid[i]]++] = gid[j]; adj[deg[gid[j]]++] = gid[i]; }
+        }
+    }
+    /* remove repeated neighbours, compacting in place */
+    for (g = 0; g < ng; g++) mark[g] = -1;
+    nadj = 0;
+    for (g = 0; g < ng; g++)
+    {
+        int start = xadj[g], end = xadj[g + 1];
+        xadj[g] = nadj;
+        for (p = start; p < end; p++)
+        {
+            h = adj[p];
+            if (mark[h] != g) { mark[h] = g; adj[nadj++] = h; }
+        }
+    }
+    xadj[ng] = nadj;
+
+    /* nested dissection of the group graph, then the dofs group by group */
+    nv = ng;
+    if (ng > 1)
+    {
+        ok = METIS_NodeND(&nv, xadj, adj, vw, NULL, gperm, giperm);
+        if (ok != METIS_OK) { status = (ok == METIS_ERROR_MEMORY) ? CHOLMOD_OUT_OF_MEMORY : CHOLMOD_INVALID; goto done; }
+    }
+    else
+    {
+        gperm[0] = 0;
+    }
+    k = 0;
+    for (g = 0; g < ng; g++)
+    {
+        h = gperm[g];
+        for (p = gptr[h]; p < gptr[h + 1]; p++) perm[k++] = gdof[p];
+    }
+
+    /* postorder of the elimination tree of S(perm, perm): supernodes */
+    c->nmethods = 1;
+    c->method[0].ordering = CHOLMOD_GIVEN;
+    c->postorder = 1;
+    L = cholmod_analyze_p(S, perm, NULL, 0, c);
+    if (L == NULL) { status = (c->status < 0) ? c->status : CHOLMOD_INVALID; goto done; }
+    for (k = 0; k < n; k++) perm[k] = ((int *) L->Perm)[k];
+    cholmod_free_factor(&L, c);
+
+done:
+    cholmod_free(9 * (size_t) n + 1, sizeof(int), work, c);
+    cholmod_free(2 * nnz + 1, sizeof(int), adjmem, c);
+    return status;
+}
+
 /* perm = [METIS order of the remaining dofs R, last(:)] (0-based), the METIS
  * order computed on the submatrix A(R,R) alone.  Workspace: map[n], rem[n],
  * permS[n].  Returns CHOLMOD_OK, C2D_CHOL_BAD_ARGUMENT (a dof of `last` out
  * of range or repeated) or CHOLMOD's error status. */
-static int order_block_last(const cholmod_sparse *A, int nlast, const int *last, int *perm,
-                            int *map, int *rem, int *permS, cholmod_common *c)
+static int order_block_last(const cholmod_sparse *A, int nlast, const int *last, const int *group,
+                            int *perm, int *map, int *rem, int *permS, cholmod_common *c)
 {
     int n = (int) A->ncol;
     int nr = n - nlast;
@@ -209,9 +334,39 @@ static int order_block_last(const cholmod_sparse *A, int nlast, const int *last,
         S = remaining_pattern(A, map, nr, c);
         if (S == NULL) return (c->status < 0) ? c->status : CHOLMOD_OUT_OF_MEMORY;
         /* METIS nested dissection of S, followed by its etree postorder */
-        ok = cholmod_metis(S, NULL, 0, 1, permS, c);
-        cholmod_free_sparse(&S, c);
-        if (!ok) return (c->status < 0) ? c->status : CHOLMOD_INVALID;
+        if (group != NULL)
+        {
+            /* the groups of the remaining dofs (0-based, < nr: first appearance) */
+            int *gS = cholmod_malloc((size_t) n, sizeof(int), c);
+            int *seen = cholmod_malloc((size_t) n, sizeof(int), c);
+            int ng = 0, st;
+            if (gS == NULL || seen == NULL)
+            {
+                cholmod_free((size_t) n, sizeof(int), gS, c);
+                cholmod_free((size_t) n, sizeof(int), seen, c);
+                cholmod_free_sparse(&S, c);
+                return (c->status < 0) ? c->status : CHOLMOD_OUT_OF_MEMORY;
+            }
+            for (i = 0; i < n; i++) seen[i] = -1;
+            for (k = 0; k < nr; k++)
+            {
+                i = group[rem[k]] - 1;
+                if (i < 0 || i >= n) i = n - 1;        /* checked by the caller */
+                if (seen[i] < 0) seen[i] = ng++;
+                gS[k] = seen[i];
+            }
+            st = metis_groups(S, gS, permS, c);
+            cholmod_free((size_t) n, sizeof(int), gS, c);
+            cholmod_free((size_t) n, sizeof(int), seen, c);
+            cholmod_free_sparse(&S, c);
+            if (st != CHOLMOD_OK) return st;
+        }
+        else
+        {
+            ok = cholmod_metis(S, NULL, 0, 1, permS, c);
+            cholmod_free_sparse(&S, c);
+            if (!ok) return (c->status < 0) ? c->status : CHOLMOD_INVALID;
+        }
     }
     for (k = 0; k < nr; k++) perm[k] = rem[permS[k]];      /* remaining dofs */
     for (k = 0; k < nlast; k++) perm[nr + k] = last[k] - 1; /* then the block */
@@ -222,7 +377,7 @@ static int order_block_last(const cholmod_sparse *A, int nlast, const int *last,
  * postorder of the elimination tree could move the block away from the last
  * pivots).  Returns the symbolic factor or NULL with the status in *status. */
 static cholmod_factor *analyze_block_last(cholmod_sparse *A, int nlast, const int *last,
-                                          cholmod_common *c, int *status)
+                                          const int *group, cholmod_common *c, int *status)
 {
     size_t n = A->ncol;
     int *work = cholmod_malloc(4 * n, sizeof(int), c); /* perm, map, rem, permS */
@@ -233,7 +388,7 @@ static cholmod_factor *analyze_block_last(cholmod_sparse *A, int nlast, const in
         *status = (c->status < 0) ? c->status : CHOLMOD_OUT_OF_MEMORY;
         return NULL;
     }
-    *status = order_block_last(A, nlast, last, work, work + n, work + 2 * n, work + 3 * n, c);
+    *status = order_block_last(A, nlast, last, group, work, work + n, work + 2 * n, work + 3 * n, c);
     if (*status == CHOLMOD_OK)
     {
         c->nmethods = 1;
@@ -288,7 +443,8 @@ static void scan_pivots(struct c2d_chol *h, const double *adiag)
 
 /* The ordering and symbolic analysis of the pattern A into h->L; returns the
  * status. */
-static int analyze_pattern(struct c2d_chol *h, cholmod_sparse *A, int nlast, const int *last)
+static int analyze_pattern(struct c2d_chol *h, cholmod_sparse *A, int nlast, const int *last,
+                           const int *group)
 {
     cholmod_common *c = &h->common;
     int n = (int) A->ncol;
@@ -297,7 +453,34 @@ static int analyze_pattern(struct c2d_chol *h, cholmod_sparse *A, int nlast, con
     const int *Perm;
 
     t0 = SuiteSparse_time();
-    if (nlast == 0)
+    h->grouped = group != NULL;
+    if (nlast == 0 && group != NULL)
+    {
+        /* METIS on the groups' graph (postordered), then the given order */
+        int *gz = cholmod_malloc((size_t) n, sizeof(int), c);
+        int *perm = cholmod_malloc((size_t) n, sizeof(int), c);
+        if (gz == NULL || perm == NULL)
+        {
+            status = (c->status < 0) ? c->status : CHOLMOD_OUT_OF_MEMORY;
+        }
+        else
+        {
+            for (k = 0; k < n; k++) gz[k] = group[k] - 1;
+            status = metis_groups(A, gz, perm, c);
+            if (status == CHOLMOD_OK)
+            {
+                c->nmethods = 1;
+                c->method[0].ordering = CHOLMOD_GIVEN;
+                c->postorder = 0;                       /* perm is postordered already */
+                h->L = cholmod_analyze_p(A, perm, NULL, 0, c);
+                c->postorder = 1;
+                if (h->L == NULL) status = (c->status < 0) ? c->status : CHOLMOD_INVALID;
+            }
+        }
+        cholmod_free((size_t) n, sizeof(int), gz, c);
+        cholmod_free((size_t) n, sizeof(int), perm, c);
+    }
+    else if (nlast == 0)
     {
         c->nmethods = 1;
         c->method[0].ordering = CHOLMOD_METIS;
@@ -307,7 +490,7 @@ static int analyze_pattern(struct c2d_chol *h, cholmod_sparse *A, int nlast, con
     }
     else
     {
-        h->L = analyze_block_last(A, nlast, last, c, &status);
+        h->L = analyze_block_last(A, nlast, last, group, c, &status);
     }
     h->time_analyze = SuiteSparse_time() - t0;
     if (h->L == NULL) return status;
@@ -358,7 +541,7 @@ static int factorize_numeric(struct c2d_chol *h, cholmod_sparse *A, const double
 }
 
 int c2d_chol_analyze(void *handle, int n, const int *colptr, const int *rowind,
-                     int nlast, const int *last)
+                     int nlast, const int *last, int ngroup, const int *group)
 {
     struct c2d_chol *h = handle;
     cholmod_common *c;
@@ -375,7 +558,7 @@ int c2d_chol_analyze(void *handle, int n, const int *colptr, const int *rowind,
     A = copy_matrix(n, colptr, rowind, NULL, NULL, c, &status);
     if (A != NULL)
     {
-        status = analyze_pattern(h, A, nlast, last);
+        status = analyze_pattern(h, A, nlast, last, ngroup > 0 ? group : NULL);
         cholmod_free_sparse(&A, c);
     }
     if (status != CHOLMOD_OK && h->L != NULL) cholmod_free_factor(&h->L, c);
@@ -411,7 +594,7 @@ int c2d_chol_factorize_values(void *handle, int n, const int *colptr, const int 
 int c2d_chol_factorize(void *handle, int n, const int *colptr, const int *rowind,
                        const double *val, int nlast, const int *last)
 {
-    int status = c2d_chol_analyze(handle, n, colptr, rowind, nlast, last);
+    int status = c2d_chol_analyze(handle, n, colptr, rowind, nlast, last, 0, NULL);
     if (status == CHOLMOD_OK) status = c2d_chol_factorize_values(handle, n, colptr, rowind, val);
     return status;
 }
@@ -466,7 +649,11 @@ void c2d_chol_ordering_name(const void *handle, char *buf, int len)
     {
         if (h->nlast > 0)
         {
-            name = "metis+last";
+            name = h->grouped ? "metis(nodes)+last" : "metis+last";
+        }
+        else if (h->grouped)
+        {
+            name = "metis(nodes)";
         }
         else
         {

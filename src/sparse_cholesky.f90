@@ -38,7 +38,7 @@
 !>                    time_analyze, time_factorize, ordering, memory_peak,
 !>                    min_pivot_ratio
 !>   factorize(f, A, err [, last])          P A P' = L L' (the two halves below)
-!>   analyze_pattern(f, n, colptr, rowind, err [, last])   ordering and symbolic analysis
+!>   analyze_pattern(f, n, colptr, rowind, err [, last] [, group])   ordering and symbolic analysis
 !>   factorize_values(f, A, err)            numeric factorization of the analyzed pattern
 !>   solve(f, b, x [, err])                 x = A^-1 b, b(n) or b(n, nrhs)
 !>   solve_vector(f, b, x [, err])          the 1-D specific of solve
@@ -78,7 +78,7 @@ module sparse_cholesky
     real(dp) :: flops = 0.0_dp            !< flop count of the numeric factorization
     real(dp) :: time_analyze = 0.0_dp     !< wall seconds: ordering and symbolic analysis
     real(dp) :: time_factorize = 0.0_dp   !< wall seconds: numeric factorization
-    character(len=16) :: ordering = 'none' !< "metis", "metis+last" (or CHOLMOD's fallback)
+    character(len=24) :: ordering = 'none' !< "metis", "metis+last", "metis(nodes)[+last]"
     integer(i8) :: memory_peak = 0_i8     !< peak memory of CHOLMOD, bytes
     real(dp) :: min_pivot_ratio = 0.0_dp  !< min over pivots of L(k,k)^2 / A(p_k,p_k)
   contains
@@ -124,14 +124,18 @@ contains
   !>   rowind (in)    row indices, sorted per column
   !>   err    (out)   allocated (status 1) on a bad pattern or `last`, or a CHOLMOD failure
   !>   last   (in, optional) as in factorize
-  subroutine analyze_pattern(f, n, colptr, rowind, err, last)
+  !>   group  (in, optional) (n) group of each dof, 1 <= group <= n (its mesh
+  !>          node): METIS orders the graph of the groups, half the time of
+  !>          the dof graph for two dofs per node, and a group's dofs stay together
+  subroutine analyze_pattern(f, n, colptr, rowind, err, last, group)
     type(factor_t), intent(inout) :: f
     integer, intent(in) :: n
     integer, intent(in) :: colptr(:), rowind(:)
     type(error_t), allocatable, intent(out) :: err
     integer, intent(in), optional :: last(:)
-    integer(c_int), allocatable :: last_c(:)
-    integer(c_int) :: status, nlast
+    integer, intent(in), optional :: group(:)
+    integer(c_int), allocatable :: last_c(:), group_c(:)
+    integer(c_int) :: status, nlast, ngroup
 
     call free_factor(f)
     f%n = 0
@@ -155,6 +159,20 @@ contains
       last_c = 0
     end if
 
+    ngroup = 0
+    if (present(group)) then
+      if (size(group) /= n .or. any(group < 1) .or. any(group > n)) then
+        call set_error(err, 'sparse Cholesky: `group` must give each of the ' // int_to_str(n) // &
+                       ' dofs a group in 1..' // int_to_str(n), 1)
+        return
+      end if
+      ngroup = int(n, c_int)
+      group_c = int(group, c_int)
+    else
+      allocate(group_c(1))
+      group_c = 0
+    end if
+
     f%handle = c2d_chol_create()
     if (.not. c_associated(f%handle)) then
       call set_error(err, 'sparse Cholesky: CHOLMOD could not start (out of memory)', 1)
@@ -162,7 +180,7 @@ contains
     end if
     f%n = n
     f%nlast = int(nlast)
-    status = c2d_chol_analyze(f%handle, int(n, c_int), colptr, rowind, nlast, last_c)
+    status = c2d_chol_analyze(f%handle, int(n, c_int), colptr, rowind, nlast, last_c, ngroup, group_c)
     call read_statistics(f)
 
     select case (status)

@@ -14,7 +14,8 @@ program test_sparse_cholesky
   use testing, only: check, check_close, check_small, finish_tests
   use sparse_matrix, only: csc_t, csc_nnz, csc_symv, csc_from_triplets, csc_check
   use sparse_cholesky, only: factor_t, factorize, solve, solve_vector, solve_block, trailing_factor_block, &
-                             free_factor, factor_nnz, factor_flops, factor_memory, factor_ordering
+                             free_factor, factor_nnz, factor_flops, factor_memory, factor_ordering, &
+                             analyze_pattern, factorize_values
   implicit none
 
   call test_triplets()
@@ -25,6 +26,7 @@ program test_sparse_cholesky
   call test_singular()
   call test_bad_arguments()
   call test_fill_with_last()
+  call test_node_groups()
   call finish_tests()
 
 contains
@@ -616,5 +618,78 @@ contains
     print '(a, f7.3)', 'INFO nnz(L) ratio last/metis = ', real(factor_nnz(g), dp) / real(factor_nnz(f), dp)
     print '(a, i0, a, i0)', 'INFO peak memory (bytes): metis ', factor_memory(f), ', last ', factor_memory(g)
   end subroutine test_fill_with_last
+
+  !> METIS on the graph of dof groups (the mesh nodes), in two halves
+  !> (analyze_pattern, factorize_values), without and with a block last: the
+  !> same solutions and trailing block as the checks above, a fill close to
+  !> that of the dof graph, and a bad group rejected.
+  subroutine test_node_groups()
+    integer, parameter :: nx = 30, ny = 20
+    type(csc_t) :: A
+    type(factor_t) :: f, g, h
+    type(error_t), allocatable :: err
+    integer, allocatable :: dof_of(:,:), last(:), group(:)
+    real(dp), allocatable :: b(:), x(:), lcc(:,:), z(:,:), zinv(:,:)
+    integer :: node, c, ix, k
+
+    call elasticity(nx, ny, .true., A, dof_of)
+    allocate(group(A%n))
+    group = 0
+    do node = 1, size(dof_of, 2)
+      do c = 1, 2
+        if (dof_of(c, node) > 0) group(dof_of(c, node)) = node
+      end do
+    end do
+    k = 0
+    do node = 1, size(dof_of, 2)                        ! compact: 1..(nodes with a free dof)
+      if (any(dof_of(:, node) > 0)) then
+        k = k + 1
+        where (group == node) group = -k
+      end if
+    end do
+    group = -group
+    call check(all(group >= 1 .and. group <= A%n), 'node groups: every dof in 1..n')
+
+    call analyze_pattern(f, A%n, A%colptr, A%rowind, err, group=group)
+    call check(.not. allocated(err), 'analyze_pattern with node groups')
+    if (allocated(err)) return
+    call factorize_values(f, A, err)
+    call check(.not. allocated(err), 'factorize_values after the grouped analysis')
+    if (allocated(err)) return
+    call check(factor_ordering(f) == 'metis(nodes)', 'ordering reported as metis(nodes): ' // factor_ordering(f))
+    allocate(b(A%n), x(A%n))
+    b = smooth_rhs(A%n, 3)
+    call solve(f, b, x)
+    call check_small(residual_ratio(A, x, b), 1.0e-14_dp, 'grouped ordering: scaled residual < 1e-14')
+    call factorize(g, A, err)
+    if (allocated(err)) return
+    call check(abs(real(factor_nnz(f), dp) / real(factor_nnz(g), dp) - 1.0_dp) < 0.1_dp, &
+               'grouped ordering: nnz(L) within 10% of METIS on the dof graph')
+
+    allocate(last(2 * nx))
+    k = 0
+    do ix = nx, 1, -1                                   ! the top edge last, as a contact interface
+      last(k + 1:k + 2) = dof_of(:, 1 + ix + (nx + 1) * ny)
+      k = k + 2
+    end do
+    call analyze_pattern(h, A%n, A%colptr, A%rowind, err, last=last, group=group)
+    call check(.not. allocated(err), 'analyze_pattern with node groups and a block last')
+    if (allocated(err)) return
+    call factorize_values(h, A, err)
+    if (allocated(err)) return
+    call check(factor_ordering(h) == 'metis(nodes)+last', 'ordering reported as metis(nodes)+last')
+    call solve(h, b, x)
+    call check_small(residual_ratio(A, x, b), 1.0e-14_dp, 'grouped ordering, block last: scaled residual < 1e-14')
+    call trailing_factor_block(h, size(last), lcc)
+    allocate(z(size(last), size(last)), zinv(size(last), size(last)))
+    z = inverse_block(h, A%n, last)
+    zinv = inverse_from_factor(lcc)
+    call check_small(maxval(abs(zinv - z)) / maxval(abs(z)), 1.0e-12_dp, &
+                     'grouped ordering: (Lcc Lcc'')^-1 = (A^-1)(top edge, top edge)')
+
+    group(1) = A%n + 1
+    call analyze_pattern(f, A%n, A%colptr, A%rowind, err, group=group)
+    call check(allocated(err), 'a group out of 1..n is rejected')
+  end subroutine test_node_groups
 
 end program test_sparse_cholesky
