@@ -92,16 +92,14 @@ void c2d_chol_destroy(void *handle)
     free(h);
 }
 
-/* Build the CHOLMOD copy of A (0-based, stype = 1: upper triangle) and the
- * diagonal of A in adiag[n].  Returns NULL on a malformed matrix (status
- * C2D_CHOL_BAD_ARGUMENT in *status) or when out of memory. */
-static cholmod_sparse *copy_matrix(int n, const int *colptr, const int *rowind,
-                                   const double *val, double *adiag,
-                                   cholmod_common *c, int *status)
+/* The pattern of A as a CHOLMOD matrix (0-based, upper triangle, no values):
+ * what the ordering and the analysis read.  NULL with *status set when the
+ * column pointers or row indices are out of range. */
+static cholmod_sparse *copy_pattern(int n, const int *colptr, const int *rowind,
+                                    cholmod_common *c, int *status)
 {
     cholmod_sparse *A;
     int *Ap, *Ai;
-    double *Ax;
     int j, p, nnz;
 
     *status = C2D_CHOL_BAD_ARGUMENT;
@@ -115,9 +113,8 @@ static cholmod_sparse *copy_matrix(int n, const int *colptr, const int *rowind,
     {
         if (rowind[p] < 1 || rowind[p] > n) return NULL;
     }
-    /* val == NULL: the pattern alone (what the ordering and analysis read) */
     A = cholmod_allocate_sparse((size_t) n, (size_t) n, (size_t) (nnz > 0 ? nnz : 1),
-                                1, 1, 1, val != NULL ? CHOLMOD_REAL : CHOLMOD_PATTERN, c);
+                                1, 1, 1, CHOLMOD_PATTERN, c);
     if (A == NULL)
     {
         *status = c->status;
@@ -125,19 +122,8 @@ static cholmod_sparse *copy_matrix(int n, const int *colptr, const int *rowind,
     }
     Ap = A->p;
     Ai = A->i;
-    Ax = A->x;
     for (j = 0; j <= n; j++) Ap[j] = colptr[j] - 1;
-    for (j = 0; j < n; j++)
-    {
-        if (val != NULL) adiag[j] = 0.0;
-        for (p = Ap[j]; p < Ap[j + 1]; p++)
-        {
-            Ai[p] = rowind[p] - 1;
-            if (val == NULL) continue;
-            Ax[p] = val[p];
-            if (Ai[p] == j) adiag[j] += val[p];
-        }
-    }
+    for (p = 0; p < nnz; p++) Ai[p] = rowind[p] - 1;
     *status = CHOLMOD_OK;
     return A;
 }
@@ -555,7 +541,7 @@ int c2d_chol_analyze(void *handle, int n, const int *colptr, const int *rowind,
     {
         return C2D_CHOL_BAD_ARGUMENT;
     }
-    A = copy_matrix(n, colptr, rowind, NULL, NULL, c, &status);
+    A = copy_pattern(n, colptr, rowind, c, &status);
     if (A != NULL)
     {
         status = analyze_pattern(h, A, nlast, last, ngroup > 0 ? group : NULL);
@@ -580,10 +566,26 @@ int c2d_chol_factorize_values(void *handle, int n, const int *colptr, const int 
     c = &h->common;
     adiag = cholmod_malloc((size_t) n, sizeof(double), c);
     if (adiag == NULL) return (c->status < 0) ? c->status : CHOLMOD_OUT_OF_MEMORY;
-    A = copy_matrix(n, colptr, rowind, val, adiag, c, &status);
+    /* the 0-based pattern is copied; the values are the caller's own array,
+     * lent to CHOLMOD for the factorization (read only) and taken back
+     * before the matrix is freed: no second copy of K's values */
+    A = copy_pattern(n, colptr, rowind, c, &status);
     if (A != NULL)
     {
+        int j, p;
+        for (j = 0; j < n; j++)
+        {
+            adiag[j] = 0.0;
+            for (p = colptr[j] - 1; p < colptr[j + 1] - 1; p++)
+            {
+                if (rowind[p] - 1 == j) adiag[j] += val[p];
+            }
+        }
+        A->x = (void *) val;
+        A->xtype = CHOLMOD_REAL;
         status = factorize_numeric(h, A, adiag);
+        A->x = NULL;
+        A->xtype = CHOLMOD_PATTERN;
         cholmod_free_sparse(&A, c);
     }
     cholmod_free((size_t) n, sizeof(double), adiag, c);

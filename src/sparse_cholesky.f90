@@ -5,7 +5,9 @@
 !>     u = P' L'^-1 L^-1 P f              (forward and back substitution)
 !>
 !> Ordering.  By default P is METIS nested dissection followed by the
-!> elimination-tree postorder.  With `last` (a set of dofs, e.g. the dofs of
+!> elimination-tree postorder; with `group` (analyze_pattern), METIS orders
+!> the graph of the dof groups (the mesh nodes) and a group's dofs follow
+!> one another.  With `last` (a set of dofs, e.g. the dofs of
 !> a contact interface), P = [METIS order of the other dofs, last(:)] with no
 !> postorder, so the block c = last occupies the last pivots of L.  Then, with
 !> r the other dofs,
@@ -461,7 +463,8 @@ contains
     factor_memory = f%memory_peak
   end function factor_memory
 
-  !> Name of the ordering used: "metis", "metis+last", or CHOLMOD's fallback.
+  !> Name of the ordering used: "metis", "metis+last", "metis(nodes)",
+  !> "metis(nodes)+last", or CHOLMOD's fallback.
   pure function factor_ordering(f) result(name)
     type(factor_t), intent(in) :: f
     character(len=:), allocatable :: name
