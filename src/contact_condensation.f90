@@ -70,7 +70,7 @@ contains
     real(dp), allocatable :: x(:,:), lcc(:,:)
 
     nc = cs%nrow + cs%ntan
-    allocate(w(nc, nc), q(nc))
+    allocate(q(nc))
     ! q = g - C u0 (fixed contact dofs carry their prescribed values; g = 0 on tangential rows)
     do r = 1, nc
       q(r) = 0.0_dp
@@ -90,8 +90,10 @@ contains
         fcol(k) = 0
       end if
     end do
-    w = 0.0_dp
-    if (nfc == 0 .or. nc == 0) return
+    if (nfc == 0 .or. nc == 0) then
+      allocate(w(nc, nc), source=0.0_dp)
+      return
+    end if
     ! X = B_C' restricted to free contact dofs, (nfc, nc)
     allocate(x(nfc, nc), source=0.0_dp)
     do r = 1, nc
@@ -106,6 +108,8 @@ contains
       return
     end if
     call dtrsm('L', 'L', 'N', 'N', nfc, nc, 1.0_dp, lcc, nfc, x, nfc)      ! X = L_cc^-1 B_C'
+    deallocate(lcc)                                                        ! before W: a lower peak
+    allocate(w(nc, nc))
     call dsyrk('U', 'T', nc, nfc, 1.0_dp, x, nfc, 0.0_dp, w, nc)           ! W = X' X (upper)
     do j = 1, nc
       do i = j + 1, nc
