@@ -109,7 +109,7 @@ module friction_lcp
   use lapack_interfaces, only: daxpy, dgemv
   use diagnostics, only: int_to_str, real_to_str
   use lcp_solvers, only: lcp_options_t, lcp_report_t, solve_lcp_lemke, solve_lcp_pgs, pgs_outcome, &
-    solve_lcp_lemke_scaled, scale_lcp
+    solve_lcp_lemke_scaled, scale_lcp, set_report
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
   private
@@ -366,14 +366,6 @@ contains
       size(trow) == nt .and. size(cmu) == nt .and. size(bound) == nt
     if (valid_sizes) valid_sizes = all(trow >= 1 .and. trow <= size(qn))
   end function valid_sizes
-
-  subroutine set_report(rep, info, message)
-    type(lcp_report_t), intent(inout) :: rep
-    integer, intent(in) :: info
-    character(len=*), intent(in) :: message
-    rep%info = info
-    rep%message = message
-  end subroutine set_report
 
   !> Build the scaled problem (module header) from valid arguments.
   subroutine scale_friction(g, qn, qt, trow, cmu, bound, p)

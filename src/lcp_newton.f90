@@ -75,7 +75,7 @@ module lcp_newton
   use lapack_interfaces, only: dgemv, dpotrf, dpotrs, dpstrf, drot, dsyrk, dtrsm
   use diagnostics, only: int_to_str, real_to_str
   use lcp_solvers, only: lcp_options_t, lcp_report_t, scale_lcp, solve_lcp_lemke, lcp_natural_residual, &
-                         measure_solution
+                         measure_solution, set_report
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
   private
@@ -872,13 +872,5 @@ contains
       a(j + 1) = v
     end do
   end subroutine sort_descending
-
-  subroutine set_report(rep, info, message)
-    type(lcp_report_t), intent(inout) :: rep
-    integer, intent(in) :: info
-    character(len=*), intent(in) :: message
-    rep%info = info
-    rep%message = message
-  end subroutine set_report
 
 end module lcp_newton

@@ -72,7 +72,7 @@ module lcp_solvers
   private
   public :: lcp_options_t, lcp_report_t
   public :: solve_lcp_lemke, solve_lcp_pgs, lcp_natural_residual, scale_lcp, measure_solution
-  public :: solve_lcp_lemke_scaled, pgs_outcome
+  public :: solve_lcp_lemke_scaled, pgs_outcome, set_report
 
   !> Solver settings.
   type :: lcp_options_t
@@ -546,6 +546,7 @@ contains
     p%qs = qs_all(p%rows)
   end subroutine prepare_lcp
 
+  !> rep%info = info, rep%message = message.
   subroutine set_report(rep, info, message)
     type(lcp_report_t), intent(inout) :: rep
     integer, intent(in) :: info

@@ -15,6 +15,7 @@ program test_lcp_newton
     lcp_natural_residual
   use lcp_newton, only: solve_lcp_pdas, pdas_stats_t, pdas_factor_auto, pdas_factor_refactor, &
     pdas_factor_update
+  use lapack_interfaces, only: dpotrf
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use, intrinsic :: iso_fortran_env, only: output_unit
   implicit none
@@ -27,13 +28,6 @@ program test_lcp_newton
       real(dp), intent(inout) :: a(lda, *), b(ldb, *)
       integer, intent(out) :: info
     end subroutine dposv
-    subroutine dpotrf(uplo, n, a, lda, info)
-      import :: dp
-      character, intent(in) :: uplo
-      integer, intent(in) :: n, lda
-      real(dp), intent(inout) :: a(lda, *)
-      integer, intent(out) :: info
-    end subroutine dpotrf
     subroutine dptsv(n, nrhs, d, e, b, ldb, info)
       import :: dp
       integer, intent(in) :: n, nrhs, ldb
