@@ -515,9 +515,10 @@ contains
       call say('model    plane strain, P1/Q1 elasticity, small deformation')
     end if
     do b = 1, size(sc%bodies)
-      write(line, '(a,i0,a,i0,a,i0,a)') 'body     ' // sc%bodies(b)%name // ': ', sc%bodies(b)%mesh%nnode, &
-        ' nodes, ', sc%bodies(b)%mesh%nelem, ' elements (', count(sc%bodies(b)%mesh%nen == 4), ' quadrilaterals)'
-      call say(trim(line))
+      ! the body name is as long as the deck made it: not part of the buffer
+      write(line, '(i0,a,i0,a,i0,a)') sc%bodies(b)%mesh%nnode, ' nodes, ', sc%bodies(b)%mesh%nelem, &
+        ' elements (', count(sc%bodies(b)%mesh%nen == 4), ' quadrilaterals)'
+      call say('body     ' // sc%bodies(b)%name // ': ' // trim(line))
     end do
     do ip = 1, cs%npair
       write(line, '(a,i0,a,i0,a,i0,a,i0,a)') 'contact  pair ', ip, ': ', size(cs%pair(ip)%snode), &
