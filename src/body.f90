@@ -26,7 +26,7 @@ module body
   use kinds, only: dp
   use mesh, only: mesh_t
   use material, only: elasticity_t, von_mises
-  use elements, only: element_stiffness, element_strain, quadrature_rule, shape_at, strain_operator
+  use elements, only: element_stiffness, element_force, element_strain, quadrature_rule, shape_at, strain_operator
   use sparse_matrix, only: csc_t
   implicit none
   private
@@ -263,16 +263,16 @@ contains
     real(dp), intent(out) :: fint(:)
     integer :: b, e, nen
     integer :: dofs(8)
-    real(dp) :: ke(8, 8)
+    real(dp) :: fe(8)
     fint = 0.0_dp
     do b = 1, size(bodies)
       associate(m => bodies(b)%mesh)
         do e = 1, m%nelem
           nen = m%nen(e)
-          call element_stiffness(nen, m%x(:, m%conn(1:nen, e)), bodies(b)%law%d, bodies(b)%thick, &
-                                 ke(1:2 * nen, 1:2 * nen))
           call element_dofs(bodies(b), e, dofs)
-          fint(dofs(1:2 * nen)) = fint(dofs(1:2 * nen)) + matmul(ke(1:2 * nen, 1:2 * nen), u(dofs(1:2 * nen)))
+          call element_force(nen, m%x(:, m%conn(1:nen, e)), bodies(b)%law%d, bodies(b)%thick, u(dofs(1:2 * nen)), &
+                             fe(1:2 * nen))
+          fint(dofs(1:2 * nen)) = fint(dofs(1:2 * nen)) + fe(1:2 * nen)
         end do
       end associate
     end do
@@ -363,19 +363,18 @@ contains
     real(dp), intent(out), optional :: stress(:,:), vm(:)    !< skipped when absent
     integer :: b, e, nen, ge
     integer :: dofs(8)
-    real(dp) :: ke(8, 8), eps(3)
+    real(dp) :: eps(3)
     real(dp), allocatable :: fe(:,:)
     fint = 0.0_dp
     do b = 1, size(bodies)
       associate(m => bodies(b)%mesh, bd => bodies(b))
         allocate(fe(8, m%nelem))
-        !$omp parallel do private(e, nen, ge, dofs, ke, eps) schedule(static)
+        !$omp parallel do private(e, nen, ge, dofs, eps) schedule(static)
         do e = 1, m%nelem
           nen = m%nen(e)
           ge = bd%elem0 + e
           call element_dofs(bd, e, dofs)
-          call element_stiffness(nen, m%x(:, m%conn(1:nen, e)), bd%law%d, bd%thick, ke(1:2 * nen, 1:2 * nen))
-          fe(1:2 * nen, e) = matmul(ke(1:2 * nen, 1:2 * nen), u(dofs(1:2 * nen)))
+          call element_force(nen, m%x(:, m%conn(1:nen, e)), bd%law%d, bd%thick, u(dofs(1:2 * nen)), fe(1:2 * nen, e))
           if (.not. present(stress)) cycle
           call element_strain(nen, m%x(:, m%conn(1:nen, e)), u(dofs(1:2 * nen)), eps)
           if (allocated(bd%adt)) then                   ! sigma = D (eps - alpha dT eth)

@@ -11,6 +11,7 @@
 !>   shape_at(nen, xe, xi, n, dndx, detj)  shape functions, their x-y gradients
 !>        and the Jacobian determinant at a reference point
 !>   element_stiffness(nen, xe, d, thick, ke)    ke = int B' D B t dA
+!>   element_force(nen, xe, d, thick, ue, fe)    fe = ke ue, without ke
 !>   element_body_load(nen, xe, b, thick, fe)    fe = int N' b t dA (constant b)
 !>   element_strain(nen, xe, ue, eps)            strain at the element centre
 !>   edge_load(xa, xb, t, thick, fe)             fe(4) = int N' t t_h ds, constant
@@ -19,7 +20,7 @@ module elements
   use kinds, only: dp
   implicit none
   private
-  public :: quadrature_rule, shape_at, element_stiffness, element_body_load, element_strain
+  public :: quadrature_rule, shape_at, element_stiffness, element_force, element_body_load, element_strain
   public :: edge_load, strain_operator
 
 contains
@@ -118,24 +119,60 @@ contains
     end do
   end subroutine strain_operator
 
+  !> The stiffness rule (quadrature_rule order 1) in fixed-size arrays, for
+  !> the kernels called once per element: no allocation there.
+  !>   nq (out) 1 (P1) or 4 (Q1); xi(:, 1:nq), w(1:nq) as quadrature_rule
+  pure subroutine stiffness_rule(nen, nq, xi, w)
+    integer, intent(in) :: nen
+    integer, intent(out) :: nq
+    real(dp), intent(out) :: xi(2, 4), w(4)
+    real(dp), parameter :: g = 1.0_dp / sqrt(3.0_dp)
+    if (nen == 3) then
+      nq = 1
+      xi(:, 1) = [1.0_dp, 1.0_dp] / 3.0_dp
+      w(1) = 0.5_dp
+    else
+      nq = 4
+      xi = reshape([-g, -g, g, -g, -g, g, g, g], [2, 4])
+      w = 1.0_dp
+    end if
+  end subroutine stiffness_rule
+
   !> Element stiffness ke = sum_q w_q detJ_q t B_q' D B_q (exact: 1 point for P1,
   !> 2x2 Gauss for Q1).
   pure subroutine element_stiffness(nen, xe, d, thick, ke)
     integer, intent(in) :: nen
     real(dp), intent(in) :: xe(2, nen), d(3, 3), thick
     real(dp), intent(out) :: ke(2 * nen, 2 * nen)
-    real(dp), allocatable :: xi(:,:), w(:)
-    real(dp) :: n(nen), dndx(2, nen), detj, b(3, 2 * nen), db(3, 2 * nen)
-    integer :: q
-    call quadrature_rule(nen, 1, xi, w)
+    real(dp) :: xi(2, 4), w(4), n(nen), dndx(2, nen), detj, b(3, 2 * nen), db(3, 2 * nen)
+    integer :: q, nq
+    call stiffness_rule(nen, nq, xi, w)
     ke = 0.0_dp
-    do q = 1, size(w)
+    do q = 1, nq
       call shape_at(nen, xe, xi(:, q), n, dndx, detj)
       call strain_operator(nen, dndx, b)
       db = matmul(d, b)
       ke = ke + (w(q) * detj * thick) * matmul(transpose(b), db)
     end do
   end subroutine element_stiffness
+
+  !> Element forces fe = ke ue = sum_q w_q detJ_q t B_q' (D (B_q ue)), without
+  !> forming ke (the same rule as element_stiffness).
+  pure subroutine element_force(nen, xe, d, thick, ue, fe)
+    integer, intent(in) :: nen
+    real(dp), intent(in) :: xe(2, nen), d(3, 3), thick, ue(2 * nen)
+    real(dp), intent(out) :: fe(2 * nen)
+    real(dp) :: xi(2, 4), w(4), n(nen), dndx(2, nen), detj, b(3, 2 * nen), sig(3)
+    integer :: q, nq
+    call stiffness_rule(nen, nq, xi, w)
+    fe = 0.0_dp
+    do q = 1, nq
+      call shape_at(nen, xe, xi(:, q), n, dndx, detj)
+      call strain_operator(nen, dndx, b)
+      sig = matmul(d, matmul(b, ue))
+      fe = fe + (w(q) * detj * thick) * matmul(sig, b)
+    end do
+  end subroutine element_force
 
   !> Consistent nodal forces of a constant body force b (force per unit volume).
   pure subroutine element_body_load(nen, xe, bf, thick, fe)
