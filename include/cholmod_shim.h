@@ -26,8 +26,17 @@
 #define C2D_CHOL_BLOCK_MOVED    (-103) /* the last block is not at the last pivots */
 #define C2D_CHOL_BAD_ARGUMENT   (-104) /* inconsistent argument (size, index range) */
 
+/* Fill-reducing orderings (c2d_chol_set_ordering) */
+#define C2D_ORDER_METIS 0 /* METIS nested dissection (the default) */
+#define C2D_ORDER_AMD   1 /* approximate minimum degree (AMD): a cheaper
+                             ordering, more fill on large meshes */
+
 /* New handle with contact2d's CHOLMOD settings; NULL when out of memory. */
 void *c2d_chol_create(void);
+
+/* The ordering of the next analyses: C2D_ORDER_METIS or C2D_ORDER_AMD.
+ * Returns CHOLMOD_OK, C2D_CHOL_NO_HANDLE or C2D_CHOL_BAD_ARGUMENT. */
+int c2d_chol_set_ordering(void *h, int method);
 
 /* Free the factor, finish the common and free the handle (NULL is a no-op). */
 void c2d_chol_destroy(void *h);

@@ -13,6 +13,7 @@
 !> Programming interface (see include/cholmod_shim.h for the details)
 !>   c2d_chol_create() -> handle          c2d_chol_destroy(handle)
 !>   c2d_chol_factorize(handle, n, colptr, rowind, val, nlast, last) -> status
+!>   c2d_chol_set_ordering(handle, method) -> status   method: c2d_order_metis, c2d_order_amd
 !>   c2d_chol_analyze(handle, n, colptr, rowind, nlast, last, ngroup, group) -> status
 !>   c2d_chol_factorize_values(handle, n, colptr, rowind, val) -> status
 !>   c2d_chol_minor(handle, column, equation)
@@ -27,12 +28,17 @@ module cholmod_binding
   implicit none
   private
   public :: c2d_chol_create, c2d_chol_destroy, c2d_chol_factorize, c2d_chol_minor
-  public :: c2d_chol_analyze, c2d_chol_factorize_values
+  public :: c2d_chol_analyze, c2d_chol_factorize_values, c2d_chol_set_ordering
+  public :: c2d_order_metis, c2d_order_amd
   public :: c2d_chol_stats, c2d_chol_min_pivot_ratio, c2d_chol_ordering_name
   public :: c2d_chol_status_name, c2d_chol_solve, c2d_chol_trailing_block
   public :: cholmod_ok, cholmod_not_posdef, cholmod_out_of_memory, cholmod_too_large
   public :: c2d_chol_no_handle, c2d_chol_no_factor, c2d_chol_not_super_ll
   public :: c2d_chol_block_moved, c2d_chol_bad_argument
+
+  ! fill-reducing orderings (cholmod_shim.h)
+  integer(c_int), parameter :: c2d_order_metis = 0     !< METIS nested dissection
+  integer(c_int), parameter :: c2d_order_amd = 1       !< approximate minimum degree
 
   ! CHOLMOD status codes (cholmod_core.h)
   integer(c_int), parameter :: cholmod_ok = 0             !< success
@@ -73,6 +79,14 @@ module cholmod_binding
       integer(c_int), intent(in) :: last(*)
       integer(c_int) :: status
     end function c2d_chol_factorize
+
+    !> The ordering of the next analyses (c2d_order_*); returns the status.
+    function c2d_chol_set_ordering(handle, method) bind(c, name='c2d_chol_set_ordering') result(status)
+      import :: c_ptr, c_int
+      type(c_ptr), value :: handle
+      integer(c_int), value :: method
+      integer(c_int) :: status
+    end function c2d_chol_set_ordering
 
     !> Ordering and symbolic analysis of the pattern; returns the status.
     function c2d_chol_analyze(handle, n, colptr, rowind, nlast, last, ngroup, group) &

@@ -19,6 +19,7 @@
 
 #include "cholmod.h"
 #include "metis.h"
+#include "amd.h"
 #include "cholmod_shim.h"
 
 /* One factorization and the CHOLMOD workspace that built it. */
@@ -36,7 +37,8 @@ struct c2d_chol
     int pivot_equation;     /* 1-based dof at that pivot */
     double time_analyze;    /* wall seconds: ordering and symbolic analysis */
     double time_factorize;  /* wall seconds: numeric factorization */
-    int grouped;            /* 1 when METIS ordered the graph of dof groups (nodes) */
+    int grouped;            /* 1 when the graph of dof groups (nodes) was ordered */
+    int method;             /* C2D_ORDER_METIS (nested dissection) or C2D_ORDER_AMD */
 };
 
 /* Copy a C string into buf[len], truncated and NUL-terminated. */
@@ -81,6 +83,15 @@ void *c2d_chol_create(void)
     h->L = NULL;
     clear_factor(h);
     return h;
+}
+
+int c2d_chol_set_ordering(void *handle, int method)
+{
+    struct c2d_chol *h = handle;
+    if (h == NULL) return C2D_CHOL_NO_HANDLE;
+    if (method != C2D_ORDER_METIS && method != C2D_ORDER_AMD) return C2D_CHOL_BAD_ARGUMENT;
+    h->method = method;
+    return CHOLMOD_OK;
 }
 
 void c2d_chol_destroy(void *handle)
@@ -163,14 +174,16 @@ static cholmod_sparse *remaining_pattern(const cholmod_sparse *A, const int *map
     return S;
 }
 
-/* METIS nested dissection of the graph of dof groups (the nodes of the
+/* The fill-reducing ordering of the graph of dof groups (the nodes of the
  * mesh: the dofs of a node share their neighbours), expanded to the dofs and
- * postordered by the elimination tree: the ordering cholmod_metis gives,
- * from a graph with a quarter of the edges.
+ * postordered by the elimination tree: the ordering cholmod_metis (or
+ * cholmod_amd) gives, from a graph with a quarter of the edges.
  *   S      symmetric pattern (upper triangle, 0-based), n x n
  *   group  [n] group of each column, 0 <= group < n
+ *   method C2D_ORDER_METIS: METIS nested dissection (vertex weights: the
+ *          group's dofs); C2D_ORDER_AMD: approximate minimum degree
  *   perm   [n] out: the permutation (perm[k] = column at pivot k) */
-static int metis_groups(cholmod_sparse *S, const int *group, int *perm, cholmod_common *c)
+static int order_groups(cholmod_sparse *S, const int *group, int method, int *perm, cholmod_common *c)
 {
     int n = (int) S->ncol;
     const int *Sp = S->p, *Si = S->i;
@@ -253,9 +266,16 @@ static int metis_groups(cholmod_sparse *S, const int *group, int *perm, cholmod_
     }
     xadj[ng] = nadj;
 
-    /* nested dissection of the group graph, then the dofs group by group */
+    /* the ordering of the group graph, then the dofs group by group */
     nv = ng;
-    if (ng > 1)
+    if (ng > 1 && method == C2D_ORDER_AMD)
+    {
+        double control[AMD_CONTROL], info[AMD_INFO];
+        amd_defaults(control);
+        ok = amd_order(ng, xadj, adj, gperm, control, info);
+        if (ok < AMD_OK) { status = (ok == AMD_OUT_OF_MEMORY) ? CHOLMOD_OUT_OF_MEMORY : CHOLMOD_INVALID; goto done; }
+    }
+    else if (ng > 1)
     {
         ok = METIS_NodeND(&nv, xadj, adj, vw, NULL, gperm, giperm);
         if (ok != METIS_OK) { status = (ok == METIS_ERROR_MEMORY) ? CHOLMOD_OUT_OF_MEMORY : CHOLMOD_INVALID; goto done; }
@@ -286,12 +306,12 @@ done:
     return status;
 }
 
-/* perm = [METIS order of the remaining dofs R, last(:)] (0-based), the METIS
- * order computed on the submatrix A(R,R) alone.  Workspace: map[n], rem[n],
+/* perm = [order of the remaining dofs R, last(:)] (0-based), the METIS (or
+ * AMD) order computed on the submatrix A(R,R) alone.  Workspace: map[n], rem[n],
  * permS[n].  Returns CHOLMOD_OK, C2D_CHOL_BAD_ARGUMENT (a dof of `last` out
  * of range or repeated) or CHOLMOD's error status. */
 static int order_block_last(const cholmod_sparse *A, int nlast, const int *last, const int *group,
-                            int *perm, int *map, int *rem, int *permS, cholmod_common *c)
+                            int method, int *perm, int *map, int *rem, int *permS, cholmod_common *c)
 {
     int n = (int) A->ncol;
     int nr = n - nlast;
@@ -341,7 +361,7 @@ static int order_block_last(const cholmod_sparse *A, int nlast, const int *last,
                 if (seen[i] < 0) seen[i] = ng++;
                 gS[k] = seen[i];
             }
-            st = metis_groups(S, gS, permS, c);
+            st = order_groups(S, gS, method, permS, c);
             cholmod_free((size_t) n, sizeof(int), gS, c);
             cholmod_free((size_t) n, sizeof(int), seen, c);
             cholmod_free_sparse(&S, c);
@@ -349,7 +369,8 @@ static int order_block_last(const cholmod_sparse *A, int nlast, const int *last,
         }
         else
         {
-            ok = cholmod_metis(S, NULL, 0, 1, permS, c);
+            ok = (method == C2D_ORDER_AMD) ? cholmod_amd(S, NULL, 0, permS, c)
+                                           : cholmod_metis(S, NULL, 0, 1, permS, c);
             cholmod_free_sparse(&S, c);
             if (!ok) return (c->status < 0) ? c->status : CHOLMOD_INVALID;
         }
@@ -363,7 +384,7 @@ static int order_block_last(const cholmod_sparse *A, int nlast, const int *last,
  * postorder of the elimination tree could move the block away from the last
  * pivots).  Returns the symbolic factor or NULL with the status in *status. */
 static cholmod_factor *analyze_block_last(cholmod_sparse *A, int nlast, const int *last,
-                                          const int *group, cholmod_common *c, int *status)
+                                          const int *group, int method, cholmod_common *c, int *status)
 {
     size_t n = A->ncol;
     int *work = cholmod_malloc(4 * n, sizeof(int), c); /* perm, map, rem, permS */
@@ -374,7 +395,7 @@ static cholmod_factor *analyze_block_last(cholmod_sparse *A, int nlast, const in
         *status = (c->status < 0) ? c->status : CHOLMOD_OUT_OF_MEMORY;
         return NULL;
     }
-    *status = order_block_last(A, nlast, last, group, work, work + n, work + 2 * n, work + 3 * n, c);
+    *status = order_block_last(A, nlast, last, group, method, work, work + n, work + 2 * n, work + 3 * n, c);
     if (*status == CHOLMOD_OK)
     {
         c->nmethods = 1;
@@ -442,7 +463,7 @@ static int analyze_pattern(struct c2d_chol *h, cholmod_sparse *A, int nlast, con
     h->grouped = group != NULL;
     if (nlast == 0 && group != NULL)
     {
-        /* METIS on the groups' graph (postordered), then the given order */
+        /* the groups' graph ordered (postordered), then the given order */
         int *gz = cholmod_malloc((size_t) n, sizeof(int), c);
         int *perm = cholmod_malloc((size_t) n, sizeof(int), c);
         if (gz == NULL || perm == NULL)
@@ -452,7 +473,7 @@ static int analyze_pattern(struct c2d_chol *h, cholmod_sparse *A, int nlast, con
         else
         {
             for (k = 0; k < n; k++) gz[k] = group[k] - 1;
-            status = metis_groups(A, gz, perm, c);
+            status = order_groups(A, gz, h->method, perm, c);
             if (status == CHOLMOD_OK)
             {
                 c->nmethods = 1;
@@ -469,14 +490,14 @@ static int analyze_pattern(struct c2d_chol *h, cholmod_sparse *A, int nlast, con
     else if (nlast == 0)
     {
         c->nmethods = 1;
-        c->method[0].ordering = CHOLMOD_METIS;
+        c->method[0].ordering = (h->method == C2D_ORDER_AMD) ? CHOLMOD_AMD : CHOLMOD_METIS;
         c->postorder = 1;
         h->L = cholmod_analyze(A, c);
         if (h->L == NULL) status = (c->status < 0) ? c->status : CHOLMOD_INVALID;
     }
     else
     {
-        h->L = analyze_block_last(A, nlast, last, group, c, &status);
+        h->L = analyze_block_last(A, nlast, last, group, h->method, c, &status);
     }
     h->time_analyze = SuiteSparse_time() - t0;
     if (h->L == NULL) return status;
@@ -649,13 +670,18 @@ void c2d_chol_ordering_name(const void *handle, char *buf, int len)
     const char *name = "none";
     if (h != NULL && h->L != NULL)
     {
-        if (h->nlast > 0)
+        int amd = h->method == C2D_ORDER_AMD;
+        if (h->nlast > 0 && h->grouped)
         {
-            name = h->grouped ? "metis(nodes)+last" : "metis+last";
+            name = amd ? "amd(nodes)+last" : "metis(nodes)+last";
+        }
+        else if (h->nlast > 0)
+        {
+            name = amd ? "amd+last" : "metis+last";
         }
         else if (h->grouped)
         {
-            name = "metis(nodes)";
+            name = amd ? "amd(nodes)" : "metis(nodes)";
         }
         else
         {

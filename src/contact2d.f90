@@ -14,7 +14,8 @@ program contact2d
   use scene, only: scene_t, build_scene, load_factor
   use body, only: number_equations, build_pattern, assemble_stiffness, element_response, internal_forces
   use sparse_matrix, only: csc_t
-  use sparse_cholesky, only: factor_t, analyze_pattern, factorize_values, solve, factor_nnz, factor_memory
+  use sparse_cholesky, only: factor_t, analyze_pattern, factorize_values, solve, factor_nnz, factor_memory, &
+                             factor_ordering
   use contact_set, only: contact_set_t, pair_spec_t, build_contact_set, row_of_node, has_friction
   use contact_condensation, only: contact_equations, condense, contact_forces, recover, constraint_values
   use lcp_solvers, only: lcp_options_t, lcp_report_t
@@ -31,8 +32,12 @@ program contact2d
   character(len=*), parameter :: version = '1.0.0'
   integer, parameter :: ph_mesh = 1, ph_assemble = 2, ph_factor = 3, ph_condense = 4, ph_lcp = 5, &
                         ph_recover = 6, ph_output = 7, ph_total = 8
+  ! ordering=auto: AMD up to this many free dofs, METIS nested dissection
+  ! above (the crossover of bench/ordering.sh, doc/performance.md)
+  integer, parameter :: amd_max_free = 500000
 
   character(len=:), allocatable :: deck_path, outdir
+  character(len=5) :: ordering              !< 'metis' or 'amd' (SOLVER ordering=, auto resolved)
   logical :: check_only, quiet
   type(diag_t) :: diag
   type(deck_t) :: deck
@@ -85,8 +90,8 @@ program contact2d
   call lap(ph_mesh)
 
   ! --- assembly and factorization (contact dofs last) ----------------------
-  ! The ordering (METIS) reads only the pattern: it runs on one core while the
-  ! values are assembled on the other, then the numeric factorization.
+  ! The ordering (AMD or METIS) reads only the pattern: it runs on one core
+  ! while the values are assembled on the other, then the numeric factorization.
   if (nfree == 0) call fail_numerical('every dof is fixed: there is nothing to solve')
   call build_pattern(sc%bodies, eq, nfree, k)
   allocate(rhs(nfree, 1), x(nfree, 1))
@@ -96,13 +101,15 @@ program contact2d
   end do
   call contact_equations(cs, eq, last)
   call node_groups(eq, nfree, group)
+  ordering = deck%solver%ordering
+  if (ordering == 'auto') ordering = merge('amd  ', 'metis', nfree <= amd_max_free)
   call lap(ph_assemble)
   !$omp parallel sections
   !$omp section
   if (size(last) > 0) then
-    call analyze_pattern(factor, k%n, k%colptr, k%rowind, err_order, last=last, group=group)
+    call analyze_pattern(factor, k%n, k%colptr, k%rowind, err_order, last=last, group=group, method=trim(ordering))
   else
-    call analyze_pattern(factor, k%n, k%colptr, k%rowind, err_order, group=group)
+    call analyze_pattern(factor, k%n, k%colptr, k%rowind, err_order, group=group, method=trim(ordering))
   end if
   !$omp section
   call system_clock(t_asm0)
@@ -114,6 +121,7 @@ program contact2d
   call factorize_values(factor, k, err)
   if (allocated(err)) call fail_numerical(err%message // equation_location(err%message))
   res%factor_nnz = factor_nnz(factor)
+  res%ordering = factor_ordering(factor)
   res%factor_memory = real(factor_memory(factor), dp)
   deallocate(k%colptr, k%rowind, k%val)      ! K lives on in its factor only
   call lap(ph_factor)
@@ -539,6 +547,13 @@ contains
     call say(trim(line))
   end subroutine report_scene
 
+  !> x with one decimal (f10.1)
+  function real_fixed(x) result(s)
+    real(dp), intent(in) :: x
+    character(len=10) :: s
+    write(s, '(f10.1)') x
+  end function real_fixed
+
   subroutine report_run()
     character(len=160) :: line
     integer :: p
@@ -550,18 +565,18 @@ contains
       write(line, '(a,es12.4,a,es12.4)') 'contact  min gap ', res%min_gap, ', min pressure ', res%min_pressure
       call say(trim(line))
     end if
-    write(line, '(a,es16.8,a,i0,a,f10.1,a)') 'energy   ', res%energy, ',  nnz(L) ', res%factor_nnz, &
-      ',  peak memory ', res%memory_peak / 1048576.0_dp, ' MB'
-    call say(trim(line))
+    write(line, '(a,es16.8,a,i0)') 'energy   ', res%energy, ',  nnz(L) ', res%factor_nnz
+    call say(trim(line) // ' (' // res%ordering // '),  peak memory ' // &
+             trim(adjustl(real_fixed(res%memory_peak / 1048576.0_dp))) // ' MB')
     call say('phase        seconds')
     do p = 1, nphase
       write(line, '(a,f12.4)') phase_names(p), res%time(p)
       call say(trim(line))
     end do
     if (omp_get_max_threads() > 1) then
-      write(line, '(a,f8.3,a,f8.3,a)') 'overlap  the METIS ordering (', res%time_ordering, &
+      write(line, '(a,f8.3,a,f8.3,a)') ' ordering (', res%time_ordering, &
         ' s, in factor) and the assembly of K (', res%time_assemble_values, ' s) ran side by side on two threads'
-      call say(trim(line))
+      call say('overlap  the ' // res%ordering // trim(line))
     end if
     if (cs%npair > 0) then
       call say('wrote    ' // outdir // '/' // deck%output%vtk // ', ' // deck%output%contact // ', ' // deck%output%summary)
@@ -780,6 +795,7 @@ contains
       '  CONTACT slave=body:boundary master=body:boundary [gap=geometry|zero] [mu=C | tresca=S]', &
       '                                    (frictionless unless mu= (Coulomb) or tresca= (slip bound))', &
       '  SOLVER lcp=auto|lemke|pgs|pdas [tol=1e-10] [maxit=N] [omega=1.0]   (pdas: frictionless only)', &
+      '         [ordering=auto|metis|amd]  (fill-reducing ordering; auto: AMD up to 5e5 free dofs, METIS above)', &
       '  STEPS n                           (load steps; ramp=k0:k1: load 0 at step k0 rising to 1 at k1)', &
       '  OUTPUT [vtk=FILE] [contact=FILE.csv] [summary=FILE] [fields=displacement,contact_pressure,gap,stress,von_mises]', &
       '', &

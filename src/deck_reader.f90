@@ -30,7 +30,7 @@
 !>   GRAVITY [gx=0] [gy=0] [ramp=0:STEPS]          (at least one of gx, gy)
 !>   CONTACT slave=body:boundary master=body:boundary [gap=geometry|zero]
 !>           [mu=number | tresca=number]           (default frictionless)
-!>   SOLVER [lcp=auto|lemke|pgs|pdas] [tol=1e-10] [maxit=0] [omega=1]
+!>   SOLVER [lcp=auto|lemke|pgs|pdas] [tol=1e-10] [maxit=0] [omega=1] [ordering=auto|metis|amd]
 !>   STEPS n                             default 1; 1 <= n <= 100000
 !>   OUTPUT [vtk=NAME.vtk] [contact=NAME_contact.csv] [summary=NAME.summary]
 !>                                      (NAME: deck file name without folder and
@@ -153,9 +153,10 @@ module deck_reader
     integer :: line = 0
   end type contact_deck_t
 
-  !> SOLVER [lcp=] [tol=] [maxit=] [omega=]
+  !> SOLVER [lcp=] [tol=] [maxit=] [omega=] [ordering=]
   type :: solver_deck_t
     character(len=:), allocatable :: lcp        !< 'auto' (default), 'lemke', 'pgs', 'pdas'
+    character(len=:), allocatable :: ordering   !< 'auto' (default), 'metis', 'amd'
     real(dp) :: tol = 1.0e-10_dp
     integer :: maxit = 0                        !< 0: the solver's default
     real(dp) :: omega = 1.0_dp
@@ -1606,18 +1607,19 @@ contains
                               '=body:boundary, names made of letters, digits, _ . -)')
   end subroutine split_side
 
-  !> SOLVER [lcp=] [tol=] [maxit=] [omega=]
+  !> SOLVER [lcp=] [tol=] [maxit=] [omega=] [ordering=]
   subroutine do_solver(s, deck, st)
     type(state_t), intent(inout) :: s
     type(deck_t), intent(inout) :: deck
     type(stmt_t), intent(in) :: st
-    character(len=*), parameter :: usage = 'SOLVER [lcp=auto|lemke|pgs|pdas] [tol=number] [maxit=integer] [omega=number]'
-    character(len=5), parameter :: names(4) = [character(len=5) :: 'lcp', 'tol', 'maxit', 'omega']
-    character(len=19), parameter :: forms(4) = [character(len=19) :: 'auto|lemke|pgs|pdas', 'number', 'integer', &
-                                                'number']
-    logical :: seen(4), ok
-    type(text_t) :: val(4)
-    character(len=:), allocatable :: lcp
+    character(len=*), parameter :: usage = 'SOLVER [lcp=auto|lemke|pgs|pdas] [tol=number] [maxit=integer] ' // &
+                                           '[omega=number] [ordering=auto|metis|amd]'
+    character(len=8), parameter :: names(5) = [character(len=8) :: 'lcp', 'tol', 'maxit', 'omega', 'ordering']
+    character(len=19), parameter :: forms(5) = [character(len=19) :: 'auto|lemke|pgs|pdas', 'number', 'integer', &
+                                                'number', 'auto|metis|amd']
+    logical :: seen(5), ok
+    type(text_t) :: val(5)
+    character(len=:), allocatable :: lcp, ordering
 
     if (s%solver_line > 0) then
       call report(s, st%line, 'second SOLVER (first at line ' // int_to_str(s%solver_line) // &
@@ -1631,6 +1633,10 @@ contains
     if (allocated(val(1)%s)) then
       lcp = get_choice(s, st, val(1), 'lcp', ['auto ', 'lemke', 'pgs  ', 'pdas '])
       if (len(lcp) > 0) deck%solver%lcp = lcp
+    end if
+    if (allocated(val(5)%s)) then
+      ordering = get_choice(s, st, val(5), 'ordering', ['auto ', 'metis', 'amd  '])
+      if (len(ordering) > 0) deck%solver%ordering = ordering
     end if
     call get_positive(s, st, val(2), 'tol', deck%solver%tol, ok)
     call get_integer(s, st, val(3), 'maxit', 0, deck%solver%maxit, ok)
@@ -2025,6 +2031,7 @@ contains
     integer :: b, i
     if (.not. allocated(deck%title)) deck%title = ''
     if (.not. allocated(deck%solver%lcp)) deck%solver%lcp = 'auto'
+    if (.not. allocated(deck%solver%ordering)) deck%solver%ordering = 'auto'
     if (.not. allocated(deck%output%vtk)) deck%output%vtk = deck%name // '.vtk'
     if (.not. allocated(deck%output%contact)) deck%output%contact = deck%name // '_contact.csv'
     if (.not. allocated(deck%output%summary)) deck%output%summary = deck%name // '.summary'

@@ -58,6 +58,7 @@ module results_writer
     real(dp) :: complementarity = 0, min_gap = 0, min_pressure = 0
     integer :: contact_nodes = 0, active_nodes = 0, redundant = 0
     integer(i8) :: factor_nnz = 0
+    character(len=:), allocatable :: ordering    !< fill-reducing ordering used, e.g. amd(nodes)+last
     real(dp) :: time(nphase) = 0                 !< seconds per phase_names
     real(dp) :: memory_peak = 0                  !< peak resident memory, bytes (0 when unknown)
     real(dp) :: factor_memory = 0                !< CHOLMOD's peak memory for the factor, bytes
@@ -267,6 +268,7 @@ contains
       write(u, '(a)') 'reaction ' // trim(r%fix_label(k)) // ' ' // num(r%reaction(1, k)) // ' ' // num(r%reaction(2, k))
     end do
     write(u, '(a,i0)') 'factor_nnz ', r%factor_nnz
+    if (allocated(r%ordering)) write(u, '(a)') 'factor_ordering ' // r%ordering
     write(u, '(a,a)') 'memory_peak_mb ', num(r%memory_peak / 1048576.0_dp)
     write(u, '(a,a)') 'factor_memory_mb ', num(r%factor_memory / 1048576.0_dp)
     do k = 1, nphase

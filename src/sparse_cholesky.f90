@@ -40,7 +40,8 @@
 !>                    time_analyze, time_factorize, ordering, memory_peak,
 !>                    min_pivot_ratio
 !>   factorize(f, A, err [, last])          P A P' = L L' (the two halves below)
-!>   analyze_pattern(f, n, colptr, rowind, err [, last] [, group])   ordering and symbolic analysis
+!>   analyze_pattern(f, n, colptr, rowind, err [, last] [, group] [, method])
+!>                                          ordering (METIS or AMD) and symbolic analysis
 !>   factorize_values(f, A, err)            numeric factorization of the analyzed pattern
 !>   solve(f, b, x [, err])                 x = A^-1 b, b(n) or b(n, nrhs)
 !>   solve_vector(f, b, x [, err])          the 1-D specific of solve
@@ -56,7 +57,7 @@ module sparse_cholesky
   use diagnostics, only: error_t, set_error, int_to_str, fail_numerical
   use sparse_matrix, only: csc_t, csc_nnz, csc_check
   use cholmod_binding, only: c2d_chol_create, c2d_chol_destroy, c2d_chol_analyze, c2d_chol_factorize_values, &
-                             c2d_chol_minor, &
+                             c2d_chol_minor, c2d_chol_set_ordering, c2d_order_amd, &
                              c2d_chol_stats, c2d_chol_min_pivot_ratio, c2d_chol_ordering_name, &
                              c2d_chol_status_name, c2d_chol_solve, c2d_chol_trailing_block, &
                              cholmod_ok, cholmod_not_posdef, c2d_chol_block_moved, &
@@ -129,13 +130,17 @@ contains
   !>   group  (in, optional) (n) group of each dof, 1 <= group <= n (its mesh
   !>          node): METIS orders the graph of the groups, half the time of
   !>          the dof graph for two dofs per node, and a group's dofs stay together
-  subroutine analyze_pattern(f, n, colptr, rowind, err, last, group)
+  !>   method (in, optional) 'metis' (default: nested dissection) or 'amd'
+  !>          (approximate minimum degree: cheaper to compute, more fill on
+  !>          large meshes)
+  subroutine analyze_pattern(f, n, colptr, rowind, err, last, group, method)
     type(factor_t), intent(inout) :: f
     integer, intent(in) :: n
     integer, intent(in) :: colptr(:), rowind(:)
     type(error_t), allocatable, intent(out) :: err
     integer, intent(in), optional :: last(:)
     integer, intent(in), optional :: group(:)
+    character(len=*), intent(in), optional :: method
     integer(c_int), allocatable :: last_c(:), group_c(:)
     integer(c_int) :: status, nlast, ngroup
 
@@ -182,7 +187,16 @@ contains
     end if
     f%n = n
     f%nlast = int(nlast)
-    status = c2d_chol_analyze(f%handle, int(n, c_int), colptr, rowind, nlast, last_c, ngroup, group_c)
+    status = cholmod_ok
+    if (present(method)) then
+      if (method == 'amd') then
+        status = c2d_chol_set_ordering(f%handle, c2d_order_amd)
+      else if (method /= 'metis') then
+        call set_error(err, 'sparse Cholesky: unknown ordering "' // method // '" (expected metis or amd)', 1)
+        return
+      end if
+    end if
+    if (status == cholmod_ok) status = c2d_chol_analyze(f%handle, int(n, c_int), colptr, rowind, nlast, last_c, ngroup, group_c)
     call read_statistics(f)
 
     select case (status)

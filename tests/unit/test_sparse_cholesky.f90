@@ -619,18 +619,21 @@ contains
     print '(a, i0, a, i0)', 'INFO peak memory (bytes): metis ', factor_memory(f), ', last ', factor_memory(g)
   end subroutine test_fill_with_last
 
-  !> METIS on the graph of dof groups (the mesh nodes), in two halves
-  !> (analyze_pattern, factorize_values), without and with a block last: the
-  !> same solutions and trailing block as the checks above, a fill close to
-  !> that of the dof graph, and a bad group rejected.
+  !> The graph of dof groups (the mesh nodes) ordered by METIS and by AMD, in
+  !> two halves (analyze_pattern, factorize_values), without and with a block
+  !> last: the same solutions and trailing block as the checks above, a fill
+  !> close to that of METIS on the dof graph, the ordering named, the dof
+  !> graph ordered by AMD too, and a bad group or method rejected.
   subroutine test_node_groups()
     integer, parameter :: nx = 30, ny = 20
+    character(len=5), parameter :: methods(2) = ['metis', 'amd  ']
     type(csc_t) :: A
     type(factor_t) :: f, g, h
     type(error_t), allocatable :: err
     integer, allocatable :: dof_of(:,:), last(:), group(:)
     real(dp), allocatable :: b(:), x(:), lcc(:,:), z(:,:), zinv(:,:)
-    integer :: node, c, ix, k
+    character(len=:), allocatable :: m
+    integer :: node, c, ix, k, im
 
     call elasticity(nx, ny, .true., A, dof_of)
     allocate(group(A%n))
@@ -649,44 +652,67 @@ contains
     end do
     group = -group
     call check(all(group >= 1 .and. group <= A%n), 'node groups: every dof in 1..n')
-
-    call analyze_pattern(f, A%n, A%colptr, A%rowind, err, group=group)
-    call check(.not. allocated(err), 'analyze_pattern with node groups')
-    if (allocated(err)) return
-    call factorize_values(f, A, err)
-    call check(.not. allocated(err), 'factorize_values after the grouped analysis')
-    if (allocated(err)) return
-    call check(factor_ordering(f) == 'metis(nodes)', 'ordering reported as metis(nodes): ' // factor_ordering(f))
-    allocate(b(A%n), x(A%n))
-    b = smooth_rhs(A%n, 3)
-    call solve(f, b, x)
-    call check_small(residual_ratio(A, x, b), 1.0e-14_dp, 'grouped ordering: scaled residual < 1e-14')
-    call factorize(g, A, err)
-    if (allocated(err)) return
-    call check(abs(real(factor_nnz(f), dp) / real(factor_nnz(g), dp) - 1.0_dp) < 0.1_dp, &
-               'grouped ordering: nnz(L) within 10% of METIS on the dof graph')
-
     allocate(last(2 * nx))
     k = 0
     do ix = nx, 1, -1                                   ! the top edge last, as a contact interface
       last(k + 1:k + 2) = dof_of(:, 1 + ix + (nx + 1) * ny)
       k = k + 2
     end do
-    call analyze_pattern(h, A%n, A%colptr, A%rowind, err, last=last, group=group)
-    call check(.not. allocated(err), 'analyze_pattern with node groups and a block last')
+    allocate(b(A%n), x(A%n))
+    b = smooth_rhs(A%n, 3)
+    call factorize(g, A, err)
     if (allocated(err)) return
-    call factorize_values(h, A, err)
+    z = inverse_block(g, A%n, last)
+
+    do im = 1, size(methods)
+      m = trim(methods(im))
+      call analyze_pattern(f, A%n, A%colptr, A%rowind, err, group=group, method=m)
+      call check(.not. allocated(err), m // ': analyze_pattern with node groups')
+      if (allocated(err)) return
+      call factorize_values(f, A, err)
+      call check(.not. allocated(err), m // ': factorize_values after the grouped analysis')
+      if (allocated(err)) return
+      call check(factor_ordering(f) == m // '(nodes)', m // ': ordering reported as ' // m // '(nodes): ' // &
+                 factor_ordering(f))
+      call solve(f, b, x)
+      call check_small(residual_ratio(A, x, b), 1.0e-14_dp, m // ', grouped ordering: scaled residual < 1e-14')
+      call check(abs(real(factor_nnz(f), dp) / real(factor_nnz(g), dp) - 1.0_dp) < 0.3_dp, &
+                 m // ', grouped ordering: nnz(L) within 30% of METIS on the dof graph')
+
+      call analyze_pattern(h, A%n, A%colptr, A%rowind, err, last=last, group=group, method=m)
+      call check(.not. allocated(err), m // ': analyze_pattern with node groups and a block last')
+      if (allocated(err)) return
+      call factorize_values(h, A, err)
+      if (allocated(err)) return
+      call check(factor_ordering(h) == m // '(nodes)+last', m // ': ordering reported as ' // m // '(nodes)+last')
+      call solve(h, b, x)
+      call check_small(residual_ratio(A, x, b), 1.0e-14_dp, m // ', grouped, block last: scaled residual < 1e-14')
+      call trailing_factor_block(h, size(last), lcc)
+      zinv = inverse_from_factor(lcc)
+      call check_small(maxval(abs(zinv - z)) / maxval(abs(z)), 1.0e-12_dp, &
+                       m // ', grouped: (Lcc Lcc'')^-1 = (A^-1)(top edge, top edge)')
+    end do
+
+    ! AMD on the dof graph (no groups), without and with the block last
+    call analyze_pattern(f, A%n, A%colptr, A%rowind, err, method='amd')
+    if (.not. allocated(err)) call factorize_values(f, A, err)
+    call check(.not. allocated(err), 'amd on the dof graph: factorized')
     if (allocated(err)) return
-    call check(factor_ordering(h) == 'metis(nodes)+last', 'ordering reported as metis(nodes)+last')
-    call solve(h, b, x)
-    call check_small(residual_ratio(A, x, b), 1.0e-14_dp, 'grouped ordering, block last: scaled residual < 1e-14')
+    call check(factor_ordering(f) == 'amd', 'amd on the dof graph: reported as amd: ' // factor_ordering(f))
+    call solve(f, b, x)
+    call check_small(residual_ratio(A, x, b), 1.0e-14_dp, 'amd on the dof graph: scaled residual < 1e-14')
+    call analyze_pattern(h, A%n, A%colptr, A%rowind, err, last=last, method='amd')
+    if (.not. allocated(err)) call factorize_values(h, A, err)
+    call check(.not. allocated(err), 'amd+last on the dof graph: factorized')
+    if (allocated(err)) return
+    call check(factor_ordering(h) == 'amd+last', 'amd+last: reported as amd+last: ' // factor_ordering(h))
     call trailing_factor_block(h, size(last), lcc)
-    allocate(z(size(last), size(last)), zinv(size(last), size(last)))
-    z = inverse_block(h, A%n, last)
     zinv = inverse_from_factor(lcc)
     call check_small(maxval(abs(zinv - z)) / maxval(abs(z)), 1.0e-12_dp, &
-                     'grouped ordering: (Lcc Lcc'')^-1 = (A^-1)(top edge, top edge)')
+                     'amd+last: (Lcc Lcc'')^-1 = (A^-1)(top edge, top edge)')
 
+    call analyze_pattern(f, A%n, A%colptr, A%rowind, err, group=group, method='nesdis')
+    call check(allocated(err), 'an unknown ordering method is rejected')
     group(1) = A%n + 1
     call analyze_pattern(f, A%n, A%colptr, A%rowind, err, group=group)
     call check(allocated(err), 'a group out of 1..n is rejected')

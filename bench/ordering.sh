@@ -1,0 +1,105 @@
+#!/bin/sh
+# bench/ordering.sh [REPEATS]: where METIS nested dissection starts to pay
+# against AMD (approximate minimum degree), the crossover behind
+# `SOLVER ordering=auto`.  Three families over sizes from 5e4 to 1e6 dofs:
+# plate (one clamped square, no contact, MESH rect), signorini (two MESH rect
+# blocks, the contact dofs ordered last) and hertz (graded gmsh meshes, as in
+# bench/contact.sh).  Each case runs with ordering=amd and ordering=metis;
+# prints the medians over REPEATS runs (default 3) of the ordering time (the
+# analysis), the whole factor phase and the whole run, nnz(L), and the ratio
+# total(metis) / total(amd): above 1, AMD is the faster choice.
+set -eu
+top=$(cd "$(dirname "$0")/.." && pwd)
+prog=${CONTACT2D:-$top/bin/contact2d}
+reps=${1:-3}
+work=${BENCH_OUT:-$top/bench/out/ordering}
+mkdir -p "$work"
+median() { sort -g | awk '{v[NR]=$1} END {print (NR%2) ? v[(NR+1)/2] : (v[NR/2]+v[NR/2+1])/2}'; }
+
+plate_deck() { # name n ordering
+  cat > "$work/$1_$3.deck" <<DECK
+PLANE strain
+BODY plate
+  MESH rect x0=0 y0=0 x1=1 y1=1 nx=$2 ny=$2
+  MATERIAL isotropic E=1000 nu=0.3
+  FIX bottom ux=0 uy=0
+  TRACTION top tx=1 ty=-1
+END
+SOLVER ordering=$3
+DECK
+}
+signorini_deck() { # name nx1 ny1 nx2 ny2 ordering
+  cat > "$work/$1_$6.deck" <<DECK
+PLANE strain
+BODY lower
+  MESH rect x0=0 y0=0 x1=2 y1=1 nx=$2 ny=$3
+  MATERIAL isotropic E=1000 nu=0.3
+  FIX bottom ux=0 uy=0
+END
+BODY upper
+  MESH rect x0=0 y0=1 x1=2 y1=2 nx=$4 ny=$5
+  MATERIAL isotropic E=1000 nu=0.3
+  FIX top ux=0 uy=0
+  TRACTION right tx=0 ty=-20
+  TRACTION left tx=0 ty=20
+END
+CONTACT slave=lower:top master=upper:bottom gap=zero
+SOLVER ordering=$6
+DECK
+}
+hertz_deck() { # name hf ordering (hc = 0.001: 600 slave nodes on the contact line)
+  for part in block disk; do
+    [ -f "$work/$1_$part.msh" ] || gmsh -2 -format msh41 -v 1 -setnumber hc 0.001 -setnumber hf "$2" \
+      "$top/bench/geo/hertz_${part}_graded.geo" -o "$work/$1_$part.msh"
+  done
+  cat > "$work/$1_$3.deck" <<DECK
+PLANE strain
+BODY block
+  MESH gmsh file=$1_block.msh
+  MATERIAL isotropic E=200000 nu=0.3
+  FIX bottom ux=0 uy=0
+END
+BODY disk
+  MESH gmsh file=$1_disk.msh
+  MATERIAL isotropic E=200000 nu=0.3
+  FIX top ux=0 uy=-0.01
+END
+CONTACT slave=block:top master=disk:arc
+SOLVER ordering=$3
+DECK
+}
+
+cases=""
+for o in amd metis; do
+  for n in 160 223 316 447 707; do plate_deck "plate_$n" "$n" $o; done
+  signorini_deck signorini_1 500 50 400 60 $o
+  signorini_deck signorini_2 700 70 560 85 $o
+  signorini_deck signorini_4 1000 100 800 120 $o
+  signorini_deck signorini_10 1580 158 1265 190 $o
+  hertz_deck hertz_1 0.04 $o
+  hertz_deck hertz_3 0.02 $o
+  hertz_deck hertz_10 0.0095 $o
+done
+cases="plate_160 plate_223 plate_316 plate_447 plate_707 signorini_1 signorini_2 signorini_4 signorini_10 hertz_1 hertz_3 hertz_10"
+
+printf '%-13s %8s | %9s %9s | %7s %7s | %7s %7s | %7s %7s | %11s\n' case dofs nnzL_amd nnzL_metis \
+  ord_amd ord_met fac_amd fac_met tot_amd tot_met metis/amd
+for c in $cases; do
+  for o in amd metis; do
+    i=0
+    while [ $i -lt "$reps" ]; do
+      "$prog" -q -o "$work/run_${o}_$i" "$work/${c}_$o.deck"
+      i=$((i + 1))
+    done
+  done
+  get() { for s in "$work"/run_"$1"_*/"${c}_$1.summary"; do awk -v k="$2" '$1 == k {print $2}' "$s"; done | median; }
+  awk -v c="$c" -v d="$(get amd dofs)" -v na="$(get amd factor_nnz)" -v nm="$(get metis factor_nnz)" \
+      -v oa="$(get amd time_ordering)" -v om="$(get metis time_ordering)" \
+      -v fa="$(get amd time_factor)" -v fm="$(get metis time_factor)" \
+      -v ta="$(get amd time_total)" -v tm="$(get metis time_total)" \
+      'BEGIN {printf "%-13s %8d | %9.3g %9.3g | %7.3f %7.3f | %7.3f %7.3f | %7.3f %7.3f | %11.3f\n",
+              c, d, na, nm, oa, om, fa, fm, ta, tm, tm / ta}'
+  rm -rf "$work"/run_*
+done
+echo "(medians of $reps runs, seconds; ord = time_ordering, fac = time_factor (ordering + numeric), tot = time_total;"
+echo " threads: OMP_NUM_THREADS=${OMP_NUM_THREADS:-all}, OpenBLAS: ${OPENBLAS_NUM_THREADS:-all})"
