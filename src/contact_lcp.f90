@@ -203,7 +203,8 @@ contains
   !> Exact finish: on the active set A = {mu > 0} solve
   !>   [W_AA  -H_A] [mu_A  ]   [-q_A]
   !>   [-H_A'   0 ] [lambda] = [-e  ]
-  !> and keep it when mu_A >= 0 and the inactive gaps are >= 0.
+  !> and keep it when mu_A >= 0 (to round-off, 1e-10 of max mu) and the gaps
+  !> are >= 0 (1e-10 of their scale).
   subroutine finish_exact(w, q, h, e, mu, lam)
     real(dp), intent(in) :: w(:,:), q(:), h(:,:), e(:)
     real(dp), intent(inout) :: mu(:), lam(:)
@@ -235,7 +236,11 @@ contains
     if (info /= 0) return
     mu_new = mu
     mu_new(act) = b(1:na, 1)
-    if (any(mu_new(act) < 0.0_dp)) return
+    ! a multiplier that is 0 in exact arithmetic (a degenerate or redundant
+    ! row) may come out at -1e-12: round-off, set to 0; a clearly negative
+    ! one means a wrong active set
+    if (any(mu_new(act) < -1.0e-10_dp * maxval(abs(mu_new)))) return
+    mu_new = max(mu_new, 0.0_dp)
     gap = q + matmul(w, mu_new) - matmul(h, b(na + 1:n, 1))
     scale = maxval(abs(q)) + maxval(abs(matmul(w, mu_new)))
     if (any(gap < -1.0e-10_dp * scale)) return
