@@ -20,6 +20,7 @@
 #include "cholmod.h"
 #include "metis.h"
 #include "amd.h"
+#include "camd.h"
 #include "cholmod_shim.h"
 
 /* One factorization and the CHOLMOD workspace that built it. */
@@ -182,23 +183,26 @@ static cholmod_sparse *remaining_pattern(const cholmod_sparse *A, const int *map
  *   group  [n] group of each column, 0 <= group < n
  *   method C2D_ORDER_METIS: METIS nested dissection (vertex weights: the
  *          group's dofs); C2D_ORDER_AMD: approximate minimum degree
+ *   cset   [n] or NULL: with AMD, a constraint set per column (0 or 1, the
+ *          same within a group): CAMD orders set 0 before set 1
  *   perm   [n] out: the permutation (perm[k] = column at pivot k) */
-static int order_groups(cholmod_sparse *S, const int *group, int method, int *perm, cholmod_common *c)
+static int order_groups(cholmod_sparse *S, const int *group, int method, const int *cset, int *perm,
+                        cholmod_common *c)
 {
     int n = (int) S->ncol;
     const int *Sp = S->p, *Si = S->i;
-    int *gid, *gptr, *gdof, *deg, *xadj, *adj, *mark, *vw, *gperm, *giperm;
+    int *gid, *gptr, *gdof, *deg, *xadj, *adj, *mark, *vw, *gperm, *giperm, *gset;
     int i, j, p, g, h, k, ng, nadj, ok;
     idx_t nv;
     cholmod_factor *L;
     int status = CHOLMOD_OK;
     size_t nnz = (size_t) Sp[n];
-    int *work = cholmod_malloc(9 * (size_t) n + 1, sizeof(int), c);
+    int *work = cholmod_malloc(10 * (size_t) n + 1, sizeof(int), c);
     int *adjmem = cholmod_malloc(2 * nnz + 1, sizeof(int), c);
 
     if (work == NULL || adjmem == NULL)
     {
-        cholmod_free(9 * (size_t) n + 1, sizeof(int), work, c);
+        cholmod_free(10 * (size_t) n + 1, sizeof(int), work, c);
         cholmod_free(2 * nnz + 1, sizeof(int), adjmem, c);
         return (c->status < 0) ? c->status : CHOLMOD_OUT_OF_MEMORY;
     }
@@ -211,6 +215,7 @@ static int order_groups(cholmod_sparse *S, const int *group, int method, int *pe
     vw = work + 6 * n + 1;  /* [ng] dofs per group: METIS vertex weights */
     gperm = work + 7 * n + 1;  /* [ng] */
     giperm = work + 8 * n + 1; /* [ng] */
+    gset = work + 9 * n + 1;   /* [ng] constraint set of each group (CAMD) */
     adj = adjmem;
 
     /* compact group numbers in order of first appearance */
@@ -229,6 +234,7 @@ static int order_groups(cholmod_sparse *S, const int *group, int method, int *pe
     for (g = 0; g < ng; g++) deg[g] = gptr[g];
     for (j = 0; j < n; j++) gdof[deg[gid[j]]++] = j;
     for (g = 0; g < ng; g++) vw[g] = gptr[g + 1] - gptr[g];
+    for (g = 0; g < ng; g++) gset[g] = (cset != NULL) ? cset[gdof[gptr[g]]] : 0;
 
     /* group graph: g ~ h when a dof of g and a dof of h are coupled */
     for (g = 0; g < ng; g++) deg[g] = 0;
@@ -271,9 +277,18 @@ static int order_groups(cholmod_sparse *S, const int *group, int method, int *pe
     if (ng > 1 && method == C2D_ORDER_AMD)
     {
         double control[AMD_CONTROL], info[AMD_INFO];
-        amd_defaults(control);
-        ok = amd_order(ng, xadj, adj, gperm, control, info);
-        if (ok < AMD_OK) { status = (ok == AMD_OUT_OF_MEMORY) ? CHOLMOD_OUT_OF_MEMORY : CHOLMOD_INVALID; goto done; }
+        if (cset == NULL)
+        {
+            amd_defaults(control);
+            ok = amd_order(ng, xadj, adj, gperm, control, info);
+            if (ok < AMD_OK) { status = (ok == AMD_OUT_OF_MEMORY) ? CHOLMOD_OUT_OF_MEMORY : CHOLMOD_INVALID; goto done; }
+        }
+        else
+        {
+            camd_defaults(control);
+            ok = camd_order(ng, xadj, adj, gperm, control, info, gset);
+            if (ok < CAMD_OK) { status = (ok == CAMD_OUT_OF_MEMORY) ? CHOLMOD_OUT_OF_MEMORY : CHOLMOD_INVALID; goto done; }
+        }
     }
     else if (ng > 1)
     {
@@ -301,13 +316,14 @@ static int order_groups(cholmod_sparse *S, const int *group, int method, int *pe
     cholmod_free_factor(&L, c);
 
 done:
-    cholmod_free(9 * (size_t) n + 1, sizeof(int), work, c);
+    cholmod_free(10 * (size_t) n + 1, sizeof(int), work, c);
     cholmod_free(2 * nnz + 1, sizeof(int), adjmem, c);
     return status;
 }
 
-/* perm = [order of the remaining dofs R, last(:)] (0-based), the METIS (or
- * AMD) order computed on the submatrix A(R,R) alone.  Workspace: map[n], rem[n],
+/* perm = [order of the remaining dofs R, last(:)] (0-based): the METIS order
+ * computed on the submatrix A(R,R) alone, or with AMD on node groups the
+ * CAMD order of the whole graph with `last` constrained to come last.  Workspace: map[n], rem[n],
  * permS[n].  Returns CHOLMOD_OK, C2D_CHOL_BAD_ARGUMENT (a dof of `last` out
  * of range or repeated) or CHOLMOD's error status. */
 static int order_block_last(const cholmod_sparse *A, int nlast, const int *last, const int *group,
@@ -335,7 +351,53 @@ static int order_block_last(const cholmod_sparse *A, int nlast, const int *last,
         }
     }
 
-    if (nr > 0)
+    if (nr > 0 && group != NULL && method == C2D_ORDER_AMD)
+    {
+        /* CAMD on the node graph of the whole pattern, each dof of `last` a
+         * group of its own in the constraint set ordered last: the other dofs
+         * are ordered knowing that the block comes after them */
+        int *gz = cholmod_malloc((size_t) n, sizeof(int), c);
+        int *cset = cholmod_malloc((size_t) n, sizeof(int), c);
+        int *seen = cholmod_malloc((size_t) n, sizeof(int), c);
+        int *pf = cholmod_malloc((size_t) n, sizeof(int), c);
+        int ng = 0, g, st = CHOLMOD_OUT_OF_MEMORY;
+        if (gz != NULL && cset != NULL && seen != NULL && pf != NULL)
+        {
+            for (i = 0; i < n; i++) seen[i] = -1;
+            for (i = 0; i < n; i++)
+            {
+                if (map[i] < 0) continue;
+                g = group[i] - 1;
+                if (g < 0 || g >= n) g = n - 1;        /* checked by the caller */
+                if (seen[g] < 0) seen[g] = ng++;
+                gz[i] = seen[g];
+                cset[i] = 0;
+            }
+            for (k = 0; k < nlast; k++)
+            {
+                gz[last[k] - 1] = ng++;
+                cset[last[k] - 1] = 1;
+            }
+            st = order_groups((cholmod_sparse *) A, gz, method, cset, pf, c);
+            if (st == CHOLMOD_OK)
+            {
+                for (i = 0, k = 0; i < n; i++)
+                {
+                    if (map[pf[i]] >= 0) permS[k++] = map[pf[i]];
+                }
+            }
+        }
+        else if (c->status < 0)
+        {
+            st = c->status;
+        }
+        cholmod_free((size_t) n, sizeof(int), gz, c);
+        cholmod_free((size_t) n, sizeof(int), cset, c);
+        cholmod_free((size_t) n, sizeof(int), seen, c);
+        cholmod_free((size_t) n, sizeof(int), pf, c);
+        if (st != CHOLMOD_OK) return st;
+    }
+    else if (nr > 0)
     {
         S = remaining_pattern(A, map, nr, c);
         if (S == NULL) return (c->status < 0) ? c->status : CHOLMOD_OUT_OF_MEMORY;
@@ -361,7 +423,7 @@ static int order_block_last(const cholmod_sparse *A, int nlast, const int *last,
                 if (seen[i] < 0) seen[i] = ng++;
                 gS[k] = seen[i];
             }
-            st = order_groups(S, gS, method, permS, c);
+            st = order_groups(S, gS, method, NULL, permS, c);
             cholmod_free((size_t) n, sizeof(int), gS, c);
             cholmod_free((size_t) n, sizeof(int), seen, c);
             cholmod_free_sparse(&S, c);
@@ -473,7 +535,7 @@ static int analyze_pattern(struct c2d_chol *h, cholmod_sparse *A, int nlast, con
         else
         {
             for (k = 0; k < n; k++) gz[k] = group[k] - 1;
-            status = order_groups(A, gz, h->method, perm, c);
+            status = order_groups(A, gz, h->method, NULL, perm, c);
             if (status == CHOLMOD_OK)
             {
                 c->nmethods = 1;
