@@ -14,50 +14,13 @@ prog=${CONTACT2D:-$top/bin/contact2d}
 reps=${1:-3}
 work=${BENCH_OUT:-$top/bench/out/contact}
 mkdir -p "$work"
+. "$top/bench/decks.sh"
 median() { sort -g | awk '{v[NR]=$1} END {print (NR%2) ? v[(NR+1)/2] : (v[NR/2]+v[NR/2+1])/2}'; }
 
-hertz_deck() { # name hc hf
-  for part in block disk; do
-    [ -f "$work/$1_$part.msh" ] || gmsh -2 -format msh41 -v 1 -setnumber hc "$2" -setnumber hf "$3" \
-      "$top/bench/geo/hertz_${part}_graded.geo" -o "$work/$1_$part.msh"
-  done
-  cat > "$work/$1.deck" <<DECK
-PLANE strain
-BODY block
-  MESH gmsh file=$1_block.msh
-  MATERIAL isotropic E=200000 nu=0.3
-  FIX bottom ux=0 uy=0
-END
-BODY disk
-  MESH gmsh file=$1_disk.msh
-  MATERIAL isotropic E=200000 nu=0.3
-  FIX top ux=0 uy=-0.01
-END
-CONTACT slave=block:top master=disk:arc
-DECK
-}
-signorini_deck() { # name nx1 ny1 nx2 ny2
-  cat > "$work/$1.deck" <<DECK
-PLANE strain
-BODY lower
-  MESH rect x0=0 y0=0 x1=2 y1=1 nx=$2 ny=$3
-  MATERIAL isotropic E=1000 nu=0.3
-  FIX bottom ux=0 uy=0
-END
-BODY upper
-  MESH rect x0=0 y0=1 x1=2 y1=2 nx=$4 ny=$5
-  MATERIAL isotropic E=1000 nu=0.3
-  FIX top ux=0 uy=0
-  TRACTION right tx=0 ty=-20
-  TRACTION left tx=0 ty=20
-END
-CONTACT slave=lower:top master=upper:bottom gap=zero
-DECK
-}
-hertz_deck hertz_1e5 0.001 0.04
-hertz_deck hertz_1e6 0.001 0.0095
-signorini_deck signorini_1e5 500 50 400 60
-signorini_deck signorini_1e6 800 400 600 300
+hertz_deck "$work/hertz_1e5.deck" hertz_1e5 0.001 0.04
+hertz_deck "$work/hertz_1e6.deck" hertz_1e6 0.001 0.0095
+signorini_deck "$work/signorini_1e5.deck" 500 50 400 60
+signorini_deck "$work/signorini_1e6.deck" 800 400 600 300
 
 printf '%-14s %8s %5s %6s %7s %8s %8s %7s %7s %8s %8s %7s | %8s %9s %8s\n' case dofs nodes active assemble factor \
   condense lcp recover total memMB fmemMB overhead whole memory

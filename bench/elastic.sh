@@ -10,19 +10,12 @@ prog=${CONTACT2D:-$top/bin/contact2d}
 reps=${1:-3}
 work=$(mktemp -d "${TMPDIR:-/tmp}/c2d-bench.XXXXXX")
 trap 'rm -rf "$work"' EXIT
+. "$top/bench/decks.sh"
 median() { sort -g | awk '{v[NR]=$1} END {print (NR%2) ? v[(NR+1)/2] : (v[NR/2]+v[NR/2+1])/2}'; }
 printf '%-9s %9s %7s %8s %8s %8s %8s %8s %8s %9s %8s %8s\n' n dofs mesh assemble factor recover output total memMB \
   nnzL asm/fac tot/fac
 for n in 70 223 707; do
-  cat > "$work/plate.deck" <<DECK
-PLANE strain
-BODY plate
-  MESH rect x0=0 y0=0 x1=1 y1=1 nx=$n ny=$n
-  MATERIAL isotropic E=1000 nu=0.3
-  FIX bottom ux=0 uy=0
-  TRACTION top tx=1 ty=-1
-END
-DECK
+  plate_deck "$work/plate.deck" "$n"
   i=0
   while [ $i -lt "$reps" ]; do
     "$prog" -q -o "$work/r$i" "$work/plate.deck"

@@ -14,71 +14,18 @@ prog=${CONTACT2D:-$top/bin/contact2d}
 reps=${1:-3}
 work=${BENCH_OUT:-$top/bench/out/ordering}
 mkdir -p "$work"
+. "$top/bench/decks.sh"
 median() { sort -g | awk '{v[NR]=$1} END {print (NR%2) ? v[(NR+1)/2] : (v[NR/2]+v[NR/2+1])/2}'; }
 
-plate_deck() { # name n ordering
-  cat > "$work/$1_$3.deck" <<DECK
-PLANE strain
-BODY plate
-  MESH rect x0=0 y0=0 x1=1 y1=1 nx=$2 ny=$2
-  MATERIAL isotropic E=1000 nu=0.3
-  FIX bottom ux=0 uy=0
-  TRACTION top tx=1 ty=-1
-END
-SOLVER ordering=$3
-DECK
-}
-signorini_deck() { # name nx1 ny1 nx2 ny2 ordering
-  cat > "$work/$1_$6.deck" <<DECK
-PLANE strain
-BODY lower
-  MESH rect x0=0 y0=0 x1=2 y1=1 nx=$2 ny=$3
-  MATERIAL isotropic E=1000 nu=0.3
-  FIX bottom ux=0 uy=0
-END
-BODY upper
-  MESH rect x0=0 y0=1 x1=2 y1=2 nx=$4 ny=$5
-  MATERIAL isotropic E=1000 nu=0.3
-  FIX top ux=0 uy=0
-  TRACTION right tx=0 ty=-20
-  TRACTION left tx=0 ty=20
-END
-CONTACT slave=lower:top master=upper:bottom gap=zero
-SOLVER ordering=$6
-DECK
-}
-hertz_deck() { # name hf ordering (hc = 0.001: 600 slave nodes on the contact line)
-  for part in block disk; do
-    [ -f "$work/$1_$part.msh" ] || gmsh -2 -format msh41 -v 1 -setnumber hc 0.001 -setnumber hf "$2" \
-      "$top/bench/geo/hertz_${part}_graded.geo" -o "$work/$1_$part.msh"
-  done
-  cat > "$work/$1_$3.deck" <<DECK
-PLANE strain
-BODY block
-  MESH gmsh file=$1_block.msh
-  MATERIAL isotropic E=200000 nu=0.3
-  FIX bottom ux=0 uy=0
-END
-BODY disk
-  MESH gmsh file=$1_disk.msh
-  MATERIAL isotropic E=200000 nu=0.3
-  FIX top ux=0 uy=-0.01
-END
-CONTACT slave=block:top master=disk:arc
-SOLVER ordering=$3
-DECK
-}
-
-cases=""
 for o in amd metis; do
-  for n in 160 223 316 447 707; do plate_deck "plate_$n" "$n" $o; done
-  signorini_deck signorini_1 500 50 400 60 $o
-  signorini_deck signorini_2 700 70 560 85 $o
-  signorini_deck signorini_4 1000 100 800 120 $o
-  signorini_deck signorini_10 1580 158 1265 190 $o
-  hertz_deck hertz_1 0.04 $o
-  hertz_deck hertz_3 0.02 $o
-  hertz_deck hertz_10 0.0095 $o
+  for n in 160 223 316 447 707; do plate_deck "$work/plate_${n}_$o.deck" "$n" "SOLVER ordering=$o"; done
+  signorini_deck "$work/signorini_1_$o.deck" 500 50 400 60 "SOLVER ordering=$o"
+  signorini_deck "$work/signorini_2_$o.deck" 700 70 560 85 "SOLVER ordering=$o"
+  signorini_deck "$work/signorini_4_$o.deck" 1000 100 800 120 "SOLVER ordering=$o"
+  signorini_deck "$work/signorini_10_$o.deck" 1580 158 1265 190 "SOLVER ordering=$o"
+  hertz_deck "$work/hertz_1_$o.deck" hertz_1 0.001 0.04 "SOLVER ordering=$o"
+  hertz_deck "$work/hertz_3_$o.deck" hertz_3 0.001 0.02 "SOLVER ordering=$o"
+  hertz_deck "$work/hertz_10_$o.deck" hertz_10 0.001 0.0095 "SOLVER ordering=$o"
 done
 cases="plate_160 plate_223 plate_316 plate_447 plate_707 signorini_1 signorini_2 signorini_4 signorini_10 hertz_1 hertz_3 hertz_10"
 
