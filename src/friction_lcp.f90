@@ -109,7 +109,8 @@ module friction_lcp
   use lapack_interfaces, only: daxpy, dgemv
   use diagnostics, only: int_to_str, real_to_str
   use lcp_solvers, only: lcp_options_t, lcp_report_t, solve_lcp_lemke, solve_lcp_pgs, pgs_outcome, &
-    solve_lcp_lemke_scaled, scale_lcp, set_report
+    solve_lcp_lemke_scaled, scale_lcp, set_report, pgs_monitor_t, pgs_watch_start, pgs_watch_iterate, &
+    pgs_watch_progress, pgs_refresh_sweeps
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
   private
@@ -139,10 +140,6 @@ module friction_lcp
 
   real(dp), parameter :: diag_negative_ratio = 1.0e-8_dp   ! G_ii below -this * max diag: not PSD
   real(dp), parameter :: state_tol = 1.0e-8_dp             ! friction_state: relative tolerance
-  real(dp), parameter :: divergence_factor = 1.0e6_dp      ! PGS: residual growth over its minimum
-  real(dp), parameter :: stagnation_factor = 0.999_dp      ! PGS: decrease expected per window
-  real(dp), parameter :: iterate_bound = 1.0e150_dp        ! PGS: iterates beyond this diverge
-  integer, parameter :: refresh_sweeps = 50                ! PGS: recompute v from scratch
 
 
 contains
@@ -658,21 +655,19 @@ contains
     integer, intent(in) :: maxit, window
     real(dp), intent(inout) :: s(:)
     integer, intent(out) :: sweeps, reason
-    real(dp), allocatable :: v(:), sbest(:)
-    real(dp) :: res, best, reference, bk
-    integer :: n, nrow, i, j, kk, k, sweep, last_progress
+    type(pgs_monitor_t) :: mon
+    real(dp), allocatable :: v(:)
+    real(dp) :: res, bk
+    integer :: n, nrow, i, j, kk, k, sweep
 
     n = p%n
     nrow = n + p%nt
     sweeps = 0
     reason = 0
-    allocate(v(nrow), sbest(nrow))
+    allocate(v(nrow))
     call scaled_gap(p, s, v)
     res = scaled_residual(p, s, v)
-    best = res
-    sbest = s
-    reference = res
-    last_progress = 0
+    call pgs_watch_start(mon, tol, window, s, res)
     if (res <= tol) return
 
     reason = 2
@@ -687,21 +682,11 @@ contains
           call set_row(j, min(bk, max(-bk, s(j) - omega * v(j) * p%step(j))))   ! tau_k clamped
         end do
       end do
-      if (mod(sweep, refresh_sweeps) == 0) call scaled_gap(p, s, v)
+      if (mod(sweep, pgs_refresh_sweeps) == 0) call scaled_gap(p, s, v)
 
-      if (.not. (all(ieee_is_finite(s)) .and. all(ieee_is_finite(v)))) then
-        reason = 3
-        exit
-      end if
-      if (maxval(abs(s)) > iterate_bound .or. maxval(abs(v)) > iterate_bound) then
-        reason = 3
-        exit
-      end if
       res = scaled_residual(p, s, v)
-      if (res < best) then
-        best = res
-        sbest = s
-      end if
+      reason = pgs_watch_iterate(mon, s, v, res)
+      if (reason >= 0) exit
       if (res <= tol) then
         call scaled_gap(p, s, v)                       ! confirm without drift
         res = scaled_residual(p, s, v)
@@ -710,19 +695,11 @@ contains
           exit
         end if
       end if
-      if (res > divergence_factor * max(best, tol)) then
-        reason = 3
-        exit
-      end if
-      if (best < stagnation_factor * reference) then
-        reference = best
-        last_progress = sweep
-      else if (sweep - last_progress >= window) then
-        reason = 4
-        exit
-      end if
+      reason = pgs_watch_progress(mon, sweep, res)
+      if (reason >= 0) exit
+      reason = 2
     end do
-    if (reason /= 0) s = sbest
+    if (reason /= 0) s = mon%xbest
 
   contains
 

@@ -73,6 +73,7 @@ module lcp_solvers
   public :: lcp_options_t, lcp_report_t
   public :: solve_lcp_lemke, solve_lcp_pgs, lcp_natural_residual, scale_lcp, measure_solution
   public :: solve_lcp_lemke_scaled, pgs_outcome, set_report
+  public :: pgs_monitor_t, pgs_watch_start, pgs_watch_iterate, pgs_watch_progress, pgs_refresh_sweeps
 
   !> Solver settings.
   type :: lcp_options_t
@@ -108,7 +109,18 @@ module lcp_solvers
   real(dp), parameter :: divergence_factor = 1.0e6_dp      ! PGS: residual growth over its minimum
   real(dp), parameter :: stagnation_factor = 0.999_dp      ! PGS: decrease expected per window
   real(dp), parameter :: iterate_bound = 1.0e150_dp        ! PGS: iterates beyond this diverge
-  integer, parameter :: refresh_sweeps = 50                ! PGS: recompute ws from scratch
+  integer, parameter :: pgs_refresh_sweeps = 50            ! PGS: recompute the gaps from scratch
+
+  !> The stop tests that every PGS loop shares (this module's and the friction
+  !> sweeps of friction_lcp): the best iterate, divergence, stagnation.
+  type :: pgs_monitor_t
+    real(dp) :: tol = 0.0_dp               !< residual target
+    real(dp) :: best = 0.0_dp              !< smallest residual so far
+    real(dp) :: reference = 0.0_dp         !< best at the start of the stagnation window
+    integer :: window = 0                  !< stagnation window (sweeps)
+    integer :: last_progress = 0           !< sweep of the last 0.1% decrease of best
+    real(dp), allocatable :: xbest(:)      !< the iterate of residual best
+  end type pgs_monitor_t
 
 
 contains
@@ -857,21 +869,19 @@ contains
     integer, intent(in) :: maxit, window
     real(dp), intent(inout) :: zs(:)
     integer, intent(out) :: sweeps, reason
-    real(dp), allocatable :: ws(:), zbest(:)
-    real(dp) :: res, best, reference, znew, dz
-    integer :: m, i, sweep, last_progress
+    type(pgs_monitor_t) :: mon
+    real(dp), allocatable :: ws(:)
+    real(dp) :: res, znew, dz
+    integer :: m, i, sweep
 
     m = p%m
     sweeps = 0
     reason = 0
     if (m == 0) return
-    allocate(ws(m), zbest(m))
+    allocate(ws(m))
     call update_gap(p, zs, ws)
     res = maxval(abs(min(zs, ws))) / p%qscale
-    best = res
-    zbest = zs
-    reference = res
-    last_progress = 0
+    call pgs_watch_start(mon, tol, window, zs, res)
     if (res <= tol) return
 
     reason = 2
@@ -885,21 +895,11 @@ contains
           call daxpy(m, dz, p%ws(:, i), 1, ws, 1)                 ! ws = ws + dz Ws(:, i)
         end if
       end do
-      if (mod(sweep, refresh_sweeps) == 0) call update_gap(p, zs, ws)
+      if (mod(sweep, pgs_refresh_sweeps) == 0) call update_gap(p, zs, ws)
 
-      if (.not. (all(ieee_is_finite(zs)) .and. all(ieee_is_finite(ws)))) then
-        reason = 3
-        exit
-      end if
-      if (maxval(abs(zs)) > iterate_bound .or. maxval(abs(ws)) > iterate_bound) then
-        reason = 3
-        exit
-      end if
       res = maxval(abs(min(zs, ws))) / p%qscale
-      if (res < best) then
-        best = res
-        zbest = zs
-      end if
+      reason = pgs_watch_iterate(mon, zs, ws, res)
+      if (reason >= 0) exit
       if (res <= tol) then
         call update_gap(p, zs, ws)                    ! confirm without drift
         res = maxval(abs(min(zs, ws))) / p%qscale
@@ -908,20 +908,60 @@ contains
           exit
         end if
       end if
-      if (res > divergence_factor * max(best, tol)) then
-        reason = 3
-        exit
-      end if
-      if (best < stagnation_factor * reference) then
-        reference = best
-        last_progress = sweep
-      else if (sweep - last_progress >= window) then
-        reason = 4
-        exit
-      end if
+      reason = pgs_watch_progress(mon, sweep, res)
+      if (reason >= 0) exit
+      reason = 2
     end do
-    if (reason /= 0) zs = zbest
+    if (reason /= 0) zs = mon%xbest
   end subroutine pgs_scaled
+
+  !> Start watching a PGS loop at its initial iterate x of residual res.
+  pure subroutine pgs_watch_start(mon, tol, window, x, res)
+    type(pgs_monitor_t), intent(out) :: mon
+    real(dp), intent(in) :: tol, x(:), res
+    integer, intent(in) :: window
+    mon%tol = tol
+    mon%window = window
+    mon%best = res
+    mon%reference = res
+    mon%last_progress = 0
+    mon%xbest = x
+  end subroutine pgs_watch_start
+
+  !> After a sweep: 3 (divergence) when the iterate x or its gaps v are not
+  !> finite or beyond iterate_bound; otherwise -1, and x is kept when its
+  !> residual res is the smallest so far.
+  integer function pgs_watch_iterate(mon, x, v, res) result(reason)
+    type(pgs_monitor_t), intent(inout) :: mon
+    real(dp), intent(in) :: x(:), v(:), res
+    reason = -1
+    if (.not. (all(ieee_is_finite(x)) .and. all(ieee_is_finite(v)))) then
+      reason = 3
+    else if (maxval(abs(x)) > iterate_bound .or. maxval(abs(v)) > iterate_bound) then
+      reason = 3
+    else if (res < mon%best) then
+      mon%best = res
+      mon%xbest = x
+    end if
+  end function pgs_watch_iterate
+
+  !> After a sweep that did not converge: 3 (divergence) when the residual
+  !> res grew by divergence_factor over the best, 4 (stagnation) when the best
+  !> fell by less than 0.1% over the last window sweeps, otherwise -1.
+  integer function pgs_watch_progress(mon, sweep, res) result(reason)
+    type(pgs_monitor_t), intent(inout) :: mon
+    integer, intent(in) :: sweep
+    real(dp), intent(in) :: res
+    reason = -1
+    if (res > divergence_factor * max(mon%best, mon%tol)) then
+      reason = 3
+    else if (mon%best < stagnation_factor * mon%reference) then
+      mon%reference = mon%best
+      mon%last_progress = sweep
+    else if (sweep - mon%last_progress >= mon%window) then
+      reason = 4
+    end if
+  end function pgs_watch_progress
 
   !> ws = qs + Ws zs.
   subroutine update_gap(p, zs, ws)
