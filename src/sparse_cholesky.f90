@@ -81,7 +81,7 @@ module sparse_cholesky
     real(dp) :: flops = 0.0_dp            !< flop count of the numeric factorization
     real(dp) :: time_analyze = 0.0_dp     !< wall seconds: ordering and symbolic analysis
     real(dp) :: time_factorize = 0.0_dp   !< wall seconds: numeric factorization
-    character(len=24) :: ordering = 'none' !< "metis", "metis+last", "metis(nodes)[+last]"
+    character(len=24) :: ordering = 'none' !< "metis" or "amd", "(nodes)" when grouped, "+last" with a block last
     integer(i8) :: memory_peak = 0_i8     !< peak memory of CHOLMOD, bytes
     real(dp) :: min_pivot_ratio = 0.0_dp  !< min over pivots of L(k,k)^2 / A(p_k,p_k)
   contains
@@ -477,8 +477,9 @@ contains
     factor_memory = f%memory_peak
   end function factor_memory
 
-  !> Name of the ordering used: "metis", "metis+last", "metis(nodes)",
-  !> "metis(nodes)+last", or CHOLMOD's fallback.
+  !> Name of the ordering used: "metis" or "amd", with "(nodes)" when the
+  !> node graph was ordered and "+last" with a block last (e.g.
+  !> "amd(nodes)+last"), or the name of CHOLMOD's own choice.
   pure function factor_ordering(f) result(name)
     type(factor_t), intent(in) :: f
     character(len=:), allocatable :: name
