@@ -308,6 +308,11 @@ contains
       end do
       call fill_pair_rows(.true.)
     end do
+    ! the projection lives on in the rows of B and T: the dense (ns, nm)
+    ! matrix P is not kept (5 MB for 852 x 741 nodes, through the whole run)
+    do ip = 1, cs%npair
+      if (allocated(cs%pair(ip)%mortar%P)) deallocate(cs%pair(ip)%mortar%P)
+    end do
   contains
 
     !> Direction of the rows of slave node i: the nodal normal n_i, or the
