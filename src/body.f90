@@ -31,7 +31,7 @@ module body
   implicit none
   private
   public :: body_t, number_equations, build_pattern, assemble_stiffness, internal_forces
-  public :: element_stresses, node_elements, element_dofs, edge_outward_normal, element_response
+  public :: node_elements, element_dofs, edge_outward_normal, element_response
   public :: thermal_loads
 
   type :: body_t
@@ -212,13 +212,13 @@ contains
     real(dp), intent(inout) :: rhs(:)
     integer :: b, e, nen, p, q, ep, eq_q, pos
     integer :: dofs(8)
-    real(dp) :: ke(8, 8)
+    real(dp) :: ke(8, 8), xe(2, 4)
     do b = 1, size(bodies)
       associate(m => bodies(b)%mesh)
         do e = 1, m%nelem
           nen = m%nen(e)
-          call element_stiffness(nen, m%x(:, m%conn(1:nen, e)), bodies(b)%law%d, bodies(b)%thick, &
-                                 ke(1:2 * nen, 1:2 * nen))
+          call element_coordinates(m, e, xe)
+          call element_stiffness(nen, xe(:, 1:nen), bodies(b)%law%d, bodies(b)%thick, ke)
           call element_dofs(bodies(b), e, dofs)
           do q = 1, 2 * nen
             eq_q = eq(dofs(q))
@@ -237,6 +237,19 @@ contains
       end associate
     end do
   end subroutine assemble_stiffness
+
+  !> The node coordinates of element e of m into xe(:, 1:nen), gathered node
+  !> by node (an array section with a vector subscript would make an array
+  !> temporary on the heap at every element).
+  pure subroutine element_coordinates(m, e, xe)
+    type(mesh_t), intent(in) :: m
+    integer, intent(in) :: e
+    real(dp), intent(inout) :: xe(:,:)
+    integer :: a
+    do a = 1, m%nen(e)
+      xe(:, a) = m%x(:, m%conn(a, e))
+    end do
+  end subroutine element_coordinates
 
   !> Position of (row, col) in k by bisection over the sorted column.
   pure integer function find_row(k, row, col) result(pos)
@@ -263,42 +276,21 @@ contains
     real(dp), intent(out) :: fint(:)
     integer :: b, e, nen
     integer :: dofs(8)
-    real(dp) :: fe(8)
+    real(dp) :: fe(8), xe(2, 4), ue(8)
     fint = 0.0_dp
     do b = 1, size(bodies)
       associate(m => bodies(b)%mesh)
         do e = 1, m%nelem
           nen = m%nen(e)
           call element_dofs(bodies(b), e, dofs)
-          call element_force(nen, m%x(:, m%conn(1:nen, e)), bodies(b)%law%d, bodies(b)%thick, u(dofs(1:2 * nen)), &
-                             fe(1:2 * nen))
+          call element_coordinates(m, e, xe)
+          ue(1:2 * nen) = u(dofs(1:2 * nen))
+          call element_force(nen, xe(:, 1:nen), bodies(b)%law%d, bodies(b)%thick, ue(1:2 * nen), fe(1:2 * nen))
           fint(dofs(1:2 * nen)) = fint(dofs(1:2 * nen)) + fe(1:2 * nen)
         end do
       end associate
     end do
   end subroutine internal_forces
-
-  !> Stress (sxx, syy, sxy) at each element centre and its von Mises value,
-  !> elements numbered body after body (elem0 + e).
-  subroutine element_stresses(bodies, u, stress, vm)
-    type(body_t), intent(in) :: bodies(:)
-    real(dp), intent(in) :: u(:)
-    real(dp), intent(out) :: stress(:,:), vm(:)
-    integer :: b, e, nen
-    integer :: dofs(8)
-    real(dp) :: eps(3)
-    do b = 1, size(bodies)
-      associate(m => bodies(b)%mesh)
-        do e = 1, m%nelem
-          nen = m%nen(e)
-          call element_dofs(bodies(b), e, dofs)
-          call element_strain(nen, m%x(:, m%conn(1:nen, e)), u(dofs(1:2 * nen)), eps)
-          stress(:, bodies(b)%elem0 + e) = matmul(bodies(b)%law%d, eps)
-          vm(bodies(b)%elem0 + e) = von_mises(bodies(b)%law, stress(:, bodies(b)%elem0 + e))
-        end do
-      end associate
-    end do
-  end subroutine element_stresses
 
   !> Outward unit normal of the edge a-b (see the module header).
   subroutine edge_outward_normal(mesh, eptr, elist, a, b, nrm, owner)
@@ -363,20 +355,22 @@ contains
     real(dp), intent(out), optional :: stress(:,:), vm(:)    !< skipped when absent
     integer :: b, e, nen, ge
     integer :: dofs(8)
-    real(dp) :: eps(3)
+    real(dp) :: eps(3), xe(2, 4), ue(8)
     real(dp), allocatable :: fe(:,:)
     fint = 0.0_dp
     do b = 1, size(bodies)
       associate(m => bodies(b)%mesh, bd => bodies(b))
         allocate(fe(8, m%nelem))
-        !$omp parallel do private(e, nen, ge, dofs, eps) schedule(static)
+        !$omp parallel do private(e, nen, ge, dofs, eps, xe, ue) schedule(static)
         do e = 1, m%nelem
           nen = m%nen(e)
           ge = bd%elem0 + e
           call element_dofs(bd, e, dofs)
-          call element_force(nen, m%x(:, m%conn(1:nen, e)), bd%law%d, bd%thick, u(dofs(1:2 * nen)), fe(1:2 * nen, e))
+          call element_coordinates(m, e, xe)
+          ue(1:2 * nen) = u(dofs(1:2 * nen))
+          call element_force(nen, xe(:, 1:nen), bd%law%d, bd%thick, ue(1:2 * nen), fe(1:2 * nen, e))
           if (.not. present(stress)) cycle
-          call element_strain(nen, m%x(:, m%conn(1:nen, e)), u(dofs(1:2 * nen)), eps)
+          call element_strain(nen, xe(:, 1:nen), ue(1:2 * nen), eps)
           if (allocated(bd%adt)) then                   ! sigma = D (eps - alpha dT eth)
             stress(:, ge) = matmul(bd%law%d, eps - bd%adt(e) * bd%law%eth)
             vm(ge) = von_mises(bd%law, stress(:, ge), bd%adt(e))

@@ -139,20 +139,22 @@ contains
   end subroutine stiffness_rule
 
   !> Element stiffness ke = sum_q w_q detJ_q t B_q' D B_q (exact: 1 point for P1,
-  !> 2x2 Gauss for Q1).
+  !> 2x2 Gauss for Q1), in ke(1:2 nen, 1:2 nen) (ke may be larger: 8 x 8 for
+  !> either element).
   pure subroutine element_stiffness(nen, xe, d, thick, ke)
     integer, intent(in) :: nen
     real(dp), intent(in) :: xe(2, nen), d(3, 3), thick
-    real(dp), intent(out) :: ke(2 * nen, 2 * nen)
+    real(dp), intent(inout) :: ke(:,:)
     real(dp) :: xi(2, 4), w(4), n(nen), dndx(2, nen), detj, b(3, 2 * nen), db(3, 2 * nen)
-    integer :: q, nq
+    integer :: q, nq, m
+    m = 2 * nen
     call stiffness_rule(nen, nq, xi, w)
-    ke = 0.0_dp
+    ke(1:m, 1:m) = 0.0_dp
     do q = 1, nq
       call shape_at(nen, xe, xi(:, q), n, dndx, detj)
       call strain_operator(nen, dndx, b)
       db = matmul(d, b)
-      ke = ke + (w(q) * detj * thick) * matmul(transpose(b), db)
+      ke(1:m, 1:m) = ke(1:m, 1:m) + (w(q) * detj * thick) * matmul(transpose(b), db)
     end do
   end subroutine element_stiffness
 

@@ -9,7 +9,7 @@ program test_elastic_patch
   use mesh, only: mesh_t, finalize_mesh
   use mesh_rect, only: make_rect_mesh
   use material, only: make_isotropic, make_orthotropic
-  use body, only: body_t, number_equations, build_pattern, assemble_stiffness, internal_forces, element_stresses
+  use body, only: body_t, number_equations, build_pattern, assemble_stiffness, element_response
   use sparse_matrix, only: csc_t
   use sparse_cholesky, only: factor_t, factorize, solve
   use testing, only: check, check_small, finish_tests
@@ -98,12 +98,11 @@ contains
     umax = maxval(abs(ubar))
     call check_small(maxval(abs(u - ubar)) / umax, 1.0e-12_dp, name // ': displacement exact')
     allocate(stress(3, bd(1)%mesh%nelem), vm(bd(1)%mesh%nelem))
-    call element_stresses(bd, u, stress, vm)
+    call element_response(bd, u, fint, stress, vm)
     eps = [a(2), b(3), a(3) + b(2)]
     sexact = matmul(bd(1)%law%d, eps)
     call check_small(maxval(abs(stress - spread(sexact, 2, bd(1)%mesh%nelem))) / maxval(abs(sexact)), 1.0e-11_dp, &
                      name // ': stress exact')
-    call internal_forces(bd, u, fint)
     r = [sum(fint(1::2)), sum(fint(2::2))]
     moment = sum(bd(1)%mesh%x(1, :) * fint(2::2) - bd(1)%mesh%x(2, :) * fint(1::2))
     call check_small(maxval(abs([r, moment])) / maxval(abs(fint)), 1.0e-12_dp, name // ': reactions in equilibrium')
