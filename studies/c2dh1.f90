@@ -106,6 +106,33 @@ contains
   end function is_space
 
   !> The characters 0 ... 9.
+  !> A signed decimal exponent starting at buf(j0) (after its 'e' or 'p'):
+  !> its value in expo (digits beyond a magnitude of 100000 ignored) and the
+  !> position after its last digit in next; expo = 0 and next = 0 when no
+  !> digit follows the optional sign.
+  pure subroutine read_exponent(buf, n, j0, expo, next)
+    character(len=*), intent(in) :: buf
+    integer(il), intent(in) :: n, j0
+    integer(il), intent(out) :: expo, next
+    integer(il) :: j
+    logical :: negative
+    expo = 0
+    next = 0
+    j = j0
+    negative = buf(j:j) == '-'
+    if (negative .or. buf(j:j) == '+') j = j + 1
+    if (j > n) return
+    if (.not. is_digit(buf(j:j))) return
+    do
+      if (j > n) exit
+      if (.not. is_digit(buf(j:j))) exit
+      if (expo < 100000) expo = 10 * expo + (iachar(buf(j:j)) - 48)
+      j = j + 1
+    end do
+    if (negative) expo = -expo
+    next = j
+  end subroutine read_exponent
+
   pure logical function is_digit(c)
     character, intent(in) :: c
     is_digit = c >= '0' .and. c <= '9'
@@ -205,7 +232,7 @@ contains
     integer(il), parameter :: max_exact = 9007199254740992_il   ! 2^53
     integer(il) :: n, i, j, start, m, dexp, expo, e10
     integer :: nsig, ndig, d, ios
-    logical :: negative, truncated, esign
+    logical :: negative, truncated
     character :: c
 
     n = len(buf, kind=il)
@@ -283,21 +310,8 @@ contains
       expo = 0
       if (i < n) then                                  ! exponent, only when a digit follows
         if (lower(buf(i:i)) == 'e') then
-          j = i + 1
-          esign = buf(j:j) == '-'
-          if (esign .or. buf(j:j) == '+') j = j + 1
-          if (j <= n) then
-            if (is_digit(buf(j:j))) then
-              do
-                if (j > n) exit
-                if (.not. is_digit(buf(j:j))) exit
-                if (expo < 100000) expo = 10 * expo + (iachar(buf(j:j)) - 48)
-                j = j + 1
-              end do
-              if (esign) expo = -expo
-              i = j
-            end if
-          end if
+          call read_exponent(buf, n, i + 1, expo, j)
+          if (j > 0) i = j
         end if
       end if
       e10 = dexp + expo
@@ -371,7 +385,7 @@ contains
     logical, intent(out) :: ok
     integer(il) :: n, i, j, m, bexp, pexp
     integer :: ndig, nsig, d
-    logical :: after_point, psign
+    logical :: after_point
 
     n = len(buf, kind=il)
     i = first
@@ -408,21 +422,8 @@ contains
     pexp = 0
     if (i < n) then
       if (lower(buf(i:i)) == 'p') then
-        j = i + 1
-        psign = buf(j:j) == '-'
-        if (psign .or. buf(j:j) == '+') j = j + 1
-        if (j <= n) then
-          if (is_digit(buf(j:j))) then
-            do
-              if (j > n) exit
-              if (.not. is_digit(buf(j:j))) exit
-              if (pexp < 100000) pexp = 10 * pexp + (iachar(buf(j:j)) - 48)
-              j = j + 1
-            end do
-            if (psign) pexp = -pexp
-            last = j
-          end if
-        end if
+        call read_exponent(buf, n, i + 1, pexp, j)
+        if (j > 0) last = j
       end if
     end if
     if (m == 0) return
