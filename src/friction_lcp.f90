@@ -110,7 +110,7 @@ module friction_lcp
   use diagnostics, only: int_to_str, real_to_str
   use lcp_solvers, only: lcp_options_t, lcp_report_t, solve_lcp_lemke, solve_lcp_pgs, pgs_outcome, &
     solve_lcp_lemke_scaled, scale_lcp, set_report, pgs_monitor_t, pgs_watch_start, pgs_watch_iterate, &
-    pgs_watch_progress, pgs_refresh_sweeps
+    pgs_watch_progress, pgs_refresh_sweeps, negative_diagonal
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
   private
@@ -138,7 +138,6 @@ module friction_lcp
     real(dp) :: qscale = 1.0_dp          !< max(||qs||_inf, max bs0), 1 when 0
   end type scaled_friction_t
 
-  real(dp), parameter :: diag_negative_ratio = 1.0e-8_dp   ! G_ii below -this * max diag: not PSD
   real(dp), parameter :: state_tol = 1.0e-8_dp             ! friction_state: relative tolerance
 
 
@@ -287,7 +286,6 @@ contains
     type(lcp_options_t), intent(in) :: opts
     integer, intent(in) :: nlam
     type(lcp_report_t), intent(inout) :: rep
-    real(dp) :: dmax
     integer :: n, nt, nrow, i
 
     rep%info = 0
@@ -303,17 +301,12 @@ contains
       call set_report(rep, -1, 'friction LCP: G has non-finite entries')
       return
     end if
-    dmax = 0.0_dp
-    do i = 1, nrow
-      dmax = max(dmax, g(i, i))
-    end do
-    do i = 1, nrow
-      if (g(i, i) < 0.0_dp .and. abs(g(i, i)) > diag_negative_ratio * dmax) then
-        call set_report(rep, -1, 'friction LCP: G(' // int_to_str(i) // ',' // int_to_str(i) // &
-          ') < 0 (G must be positive semi-definite)')
-        return
-      end if
-    end do
+    i = negative_diagonal(g)
+    if (i > 0) then
+      call set_report(rep, -1, 'friction LCP: G(' // int_to_str(i) // ',' // int_to_str(i) // &
+        ') < 0 (G must be positive semi-definite)')
+      return
+    end if
     if (.not. all(ieee_is_finite(qn))) then
       call set_report(rep, -2, 'friction LCP: qn has non-finite entries')
     else if (.not. all(ieee_is_finite(qt))) then

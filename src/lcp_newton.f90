@@ -75,7 +75,7 @@ module lcp_newton
   use lapack_interfaces, only: dgemv, dpotrf, dpotrs, dpstrf, drot, dsyrk, dtrsm
   use diagnostics, only: int_to_str, real_to_str
   use lcp_solvers, only: lcp_options_t, lcp_report_t, scale_lcp, solve_lcp_lemke, lcp_natural_residual, &
-                         measure_solution, set_report
+                         measure_solution, set_report, max_diagonal, negative_diagonal
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
   private
@@ -112,7 +112,6 @@ module lcp_newton
   end type active_factor_t
 
   real(dp), parameter :: diag_zero_ratio = 1.0e-30_dp      ! W_ii below this * max diag: zero row
-  real(dp), parameter :: diag_negative_ratio = 1.0e-8_dp   ! W_ii below -this * max diag: not PSD
   real(dp), parameter :: pivot_tol = 1.0e-12_dp            ! smallest Schur pivot of Ws_AA (unit diagonal)
   real(dp), parameter :: delta_ratio = 0.1_dp              ! delta = delta_ratio tol ||qs||
   real(dp), parameter :: givens_weight = 8.0_dp            ! cost of a rotation flop in dpotrf flops
@@ -186,18 +185,14 @@ contains
       if (present(stats)) stats = st
       return
     end if
-    dmax = 0.0_dp
-    do i = 1, n
-      dmax = max(dmax, W(i, i))
-    end do
-    do i = 1, n
-      if (W(i, i) < 0.0_dp .and. abs(W(i, i)) > diag_negative_ratio * dmax) then
-        call set_report(rep, -1, 'LCP: W(' // int_to_str(i) // ',' // int_to_str(i) // ') = ' // &
-          real_to_str(W(i, i)) // ' < 0 (W must be positive semi-definite)')
-        if (present(stats)) stats = st
-        return
-      end if
-    end do
+    dmax = max_diagonal(W)
+    i = negative_diagonal(W)
+    if (i > 0) then
+      call set_report(rep, -1, 'LCP: W(' // int_to_str(i) // ',' // int_to_str(i) // ') = ' // &
+        real_to_str(W(i, i)) // ' < 0 (W must be positive semi-definite)')
+      if (present(stats)) stats = st
+      return
+    end if
 
     ! Scale; zero rows of W (redundant constraints) are set aside with z_i = 0.
     allocate(d(n), wsf(n, n), qsf(n))

@@ -74,6 +74,7 @@ module lcp_solvers
   public :: solve_lcp_lemke, solve_lcp_pgs, lcp_natural_residual, scale_lcp, measure_solution
   public :: solve_lcp_lemke_scaled, pgs_outcome, set_report
   public :: pgs_monitor_t, pgs_watch_start, pgs_watch_iterate, pgs_watch_progress, pgs_refresh_sweeps
+  public :: max_diagonal, negative_diagonal
 
   !> Solver settings.
   type :: lcp_options_t
@@ -444,6 +445,22 @@ contains
     end do
   end function max_diagonal
 
+  !> The first i with W(i,i) < 0 beyond round-off (|W(i,i)| > 1e-8 of the
+  !> largest diagonal entry): W is then not positive semi-definite; 0 if none.
+  pure integer function negative_diagonal(W) result(bad)
+    real(dp), intent(in) :: W(:, :)
+    real(dp) :: dmax
+    integer :: i
+    dmax = max_diagonal(W)
+    bad = 0
+    do i = 1, min(size(W, 1), size(W, 2))
+      if (W(i, i) < 0.0_dp .and. abs(W(i, i)) > diag_negative_ratio * dmax) then
+        bad = i
+        return
+      end if
+    end do
+  end function negative_diagonal
+
   pure logical function is_zero_row(wii, dmax)
     real(dp), intent(in) :: wii, dmax
     is_zero_row = wii <= diag_zero_ratio * dmax
@@ -507,13 +524,12 @@ contains
       return
     end if
     dmax = max_diagonal(W)
-    do i = 1, n
-      if (W(i, i) < 0.0_dp .and. abs(W(i, i)) > diag_negative_ratio * dmax) then
-        call set_report(rep, -1, 'LCP: W(' // int_to_str(i) // ',' // int_to_str(i) // ') = ' // &
-          real_to_str(W(i, i)) // ' < 0 (W must be positive semi-definite)')
-        return
-      end if
-    end do
+    i = negative_diagonal(W)
+    if (i > 0) then
+      call set_report(rep, -1, 'LCP: W(' // int_to_str(i) // ',' // int_to_str(i) // ') = ' // &
+        real_to_str(W(i, i)) // ' < 0 (W must be positive semi-definite)')
+      return
+    end if
 
     p%n = n
     allocate(p%d(n), qs_all(n))

@@ -564,6 +564,16 @@ contains
     call solve_friction_lcp(g(1:3, 1:3), [-1.0_dp, -1.0_dp], [0.1_dp, 0.1_dp], [1, 2], [0.3_dp, 0.3_dp], &
       [0.0_dp, 0.0_dp], 'lemke', opts, lam, rep)
     call check(rep%info == -1, 'arguments: G size -> -1')
+    g(3, 3) = -1.0e-3_dp
+    call solve_friction_lcp(g, [-1.0_dp, -1.0_dp], [0.1_dp, 0.1_dp], [1, 2], [0.3_dp, 0.3_dp], &
+      [0.0_dp, 0.0_dp], 'lemke', opts, lam, rep)
+    call check(rep%info == -1 .and. index(rep%message, 'G(3,3) < 0') > 0, &
+               'arguments: negative diagonal G(3,3) -> -1, named')
+    g(3, 3) = -1.0e-12_dp
+    call solve_friction_lcp(g, [-1.0_dp, -1.0_dp], [0.1_dp, 0.1_dp], [1, 2], [0.3_dp, 0.3_dp], &
+      [0.0_dp, 0.0_dp], 'lemke', opts, lam, rep)
+    call check(rep%info /= -1, 'arguments: G(3,3) = -1e-12 is round-off, accepted')
+    g(3, 3) = 1.0_dp
     opts%omega = 2.0_dp
     call solve_friction_lcp(g, [-1.0_dp, -1.0_dp], [0.1_dp, 0.1_dp], [1, 2], [0.3_dp, 0.3_dp], &
       [0.0_dp, 0.0_dp], 'pgs', opts, lam, rep)
