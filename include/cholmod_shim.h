@@ -100,6 +100,16 @@ void c2d_chol_status_name(int status, char *buf, int len);
  * cholmod_solve call.  Returns CHOLMOD_OK or an error code. */
 int c2d_chol_solve(void *h, int n, int nrhs, const double *b, double *x);
 
+/* The solve or one half of it, A = P' L L' P: C2D_SOLVE_WHOLE gives x = A^-1 b,
+ * C2D_SOLVE_FORWARD y = L^-1 P b,
+ * C2D_SOLVE_BACKWARD x = P' L'^-1 y; the two in turn are c2d_chol_solve.
+ * With `last`, the trailing nlast entries of y belong to the block L_cc.
+ * Returns CHOLMOD_OK, an error code or C2D_CHOL_BAD_ARGUMENT for another half. */
+#define C2D_SOLVE_WHOLE 0
+#define C2D_SOLVE_FORWARD 1
+#define C2D_SOLVE_BACKWARD 2
+int c2d_chol_solve_half(void *h, int half, int n, int nrhs, const double *b, double *x);
+
 /* The trailing nlast-by-nlast block of L (pivots n-nlast+1..n, i.e. the dofs
  * `last` in the order given to c2d_chol_factorize), written dense and
  * column-major into lcc[nlast*nlast], zero above the diagonal.  Read directly

@@ -15,7 +15,6 @@
 !>   build_pattern(bodies, eq, nfree, k)            pattern of K_ff, values 0
 !>   assemble_stiffness(bodies, eq, ubar, k, rhs)   add K_ff to k, subtract K_fd ubar from rhs
 !>   internal_forces(bodies, u, fint)               fint = K u (all dofs, element by element)
-!>   element_stresses(bodies, u, stress, vm)        per element (3, nelem_total) and von Mises
 !>   element_response(bodies, u, fint [, stress, vm])  both in one element loop (OpenMP, reproducible)
 !>   thermal_loads(bd, f)                           f += int B' D eps0 t dA (THERMAL)
 !>   node_elements(mesh, ptr, list)                 elements around each node (CSR)

@@ -21,6 +21,7 @@
 !>   c2d_chol_min_pivot_ratio(handle, ratio, column, equation)
 !>   c2d_chol_ordering_name(handle, buf, len)   c2d_chol_status_name(status, buf, len)
 !>   c2d_chol_solve(handle, n, nrhs, b, x) -> status
+!>   c2d_chol_solve_half(handle, half, n, nrhs, b, x) -> status   (c2d_solve_whole / _forward / _backward)
 !>   c2d_chol_trailing_block(handle, nlast, lcc) -> status
 !>   status codes: cholmod_ok, cholmod_not_posdef, c2d_chol_* (shim codes)
 module cholmod_binding
@@ -32,6 +33,7 @@ module cholmod_binding
   public :: c2d_order_metis, c2d_order_amd
   public :: c2d_chol_stats, c2d_chol_min_pivot_ratio, c2d_chol_ordering_name
   public :: c2d_chol_status_name, c2d_chol_solve, c2d_chol_trailing_block
+  public :: c2d_chol_solve_half, c2d_solve_whole, c2d_solve_forward, c2d_solve_backward
   public :: cholmod_ok, cholmod_not_posdef, cholmod_out_of_memory, cholmod_too_large
   public :: c2d_chol_no_handle, c2d_chol_no_factor, c2d_chol_not_super_ll
   public :: c2d_chol_block_moved, c2d_chol_bad_argument
@@ -39,6 +41,11 @@ module cholmod_binding
   ! fill-reducing orderings (cholmod_shim.h)
   integer(c_int), parameter :: c2d_order_metis = 0     !< METIS nested dissection
   integer(c_int), parameter :: c2d_order_amd = 1       !< approximate minimum degree
+
+  ! the halves of a solve (cholmod_shim.h)
+  integer(c_int), parameter :: c2d_solve_whole = 0     !< x = A^-1 b
+  integer(c_int), parameter :: c2d_solve_forward = 1   !< y = L^-1 P b
+  integer(c_int), parameter :: c2d_solve_backward = 2  !< x = P' L'^-1 y
 
   ! CHOLMOD status codes (cholmod_core.h)
   integer(c_int), parameter :: cholmod_ok = 0             !< success
@@ -167,6 +174,16 @@ module cholmod_binding
       real(c_double), intent(inout) :: x(*)
       integer(c_int) :: status
     end function c2d_chol_solve
+
+    !> The whole solve or one half (forward: y = L \ P b; backward: x = P' (L' \ y)).
+    function c2d_chol_solve_half(handle, half, n, nrhs, b, x) bind(c, name='c2d_chol_solve_half') result(status)
+      import :: c_ptr, c_int, c_double
+      type(c_ptr), value :: handle
+      integer(c_int), value :: half, n, nrhs
+      real(c_double), intent(in) :: b(*)
+      real(c_double), intent(inout) :: x(*)
+      integer(c_int) :: status
+    end function c2d_chol_solve_half
 
     !> Dense trailing block L_cc (nlast, nlast) of L; returns the status.
     function c2d_chol_trailing_block(handle, nlast, lcc) bind(c, name='c2d_chol_trailing_block') &

@@ -786,11 +786,11 @@ void c2d_chol_status_name(int status, char *buf, int len)
     copy_name(name, buf, len);
 }
 
-int c2d_chol_solve(void *handle, int n, int nrhs, const double *b, double *x)
+/* x = the systems sys[0], sys[1], ... applied in turn to b (nrhs columns). */
+static int solve_steps(struct c2d_chol *h, int n, int nrhs, const double *b, double *x, const int *sys, int nsys)
 {
-    struct c2d_chol *h = handle;
-    cholmod_dense B, *X;
-    int status;
+    cholmod_dense B, *cur, *next;
+    int k, status;
 
     if (h == NULL) return C2D_CHOL_NO_HANDLE;
     if (!h->valid || h->L == NULL) return C2D_CHOL_NO_FACTOR;
@@ -808,15 +808,37 @@ int c2d_chol_solve(void *handle, int n, int nrhs, const double *b, double *x)
     B.xtype = CHOLMOD_REAL;
     B.dtype = CHOLMOD_DOUBLE;
 
-    X = cholmod_solve(CHOLMOD_A, h->L, &B, &h->common); /* X = A \ B */
-    if (X == NULL)
+    cur = &B;
+    for (k = 0; k < nsys; k++)
     {
-        status = h->common.status;
-        return (status < 0) ? status : CHOLMOD_INVALID;
+        next = cholmod_solve(sys[k], h->L, cur, &h->common);
+        if (cur != &B) cholmod_free_dense(&cur, &h->common);
+        if (next == NULL)
+        {
+            status = h->common.status;
+            return (status < 0) ? status : CHOLMOD_INVALID;
+        }
+        cur = next;
     }
-    memcpy(x, X->x, (size_t) n * (size_t) nrhs * sizeof(double));
-    cholmod_free_dense(&X, &h->common);
+    memcpy(x, cur->x, (size_t) n * (size_t) nrhs * sizeof(double));
+    cholmod_free_dense(&cur, &h->common);
     return CHOLMOD_OK;
+}
+
+int c2d_chol_solve(void *handle, int n, int nrhs, const double *b, double *x)
+{
+    return c2d_chol_solve_half(handle, C2D_SOLVE_WHOLE, n, nrhs, b, x);
+}
+
+int c2d_chol_solve_half(void *handle, int half, int n, int nrhs, const double *b, double *x)
+{
+    static const int forward[2] = {CHOLMOD_P, CHOLMOD_L};   /* y = L \ (P b) */
+    static const int backward[2] = {CHOLMOD_Lt, CHOLMOD_Pt}; /* x = P' (L' \ y) */
+    static const int whole[1] = {CHOLMOD_A};
+    if (half == C2D_SOLVE_WHOLE) return solve_steps(handle, n, nrhs, b, x, whole, 1);
+    if (half == C2D_SOLVE_FORWARD) return solve_steps(handle, n, nrhs, b, x, forward, 2);
+    if (half == C2D_SOLVE_BACKWARD) return solve_steps(handle, n, nrhs, b, x, backward, 2);
+    return C2D_CHOL_BAD_ARGUMENT;
 }
 
 int c2d_chol_trailing_block(const void *handle, int nlast, double *lcc)

@@ -14,7 +14,7 @@ program contact2d
   use scene, only: scene_t, build_scene, load_factor
   use body, only: number_equations, build_pattern, assemble_stiffness, element_response, internal_forces
   use sparse_matrix, only: csc_t
-  use sparse_cholesky, only: factor_t, analyze_pattern, factorize_values, solve, factor_nnz, factor_memory, &
+  use sparse_cholesky, only: factor_t, analyze_pattern, factorize_values, solve, solve_forward, factor_nnz, factor_memory, &
                              factor_ordering
   use contact_set, only: contact_set_t, pair_spec_t, build_contact_set, row_of_node, has_friction
   use contact_condensation, only: contact_equations, condense, contact_forces, recover, constraint_values
@@ -53,6 +53,8 @@ program contact2d
   integer :: nfree, i, nlabel
   integer(i8) :: t_start, t_phase, t_solve, t_now, t_rate, t_asm0, t_asm1
   real(dp), allocatable :: rhs(:,:), x(:,:), u0(:), w(:,:), q(:), fint(:), fc(:)
+  real(dp), allocatable :: y(:), xc(:,:)  ! forward half of u0's solve; X = L_cc^-1 C_C' (condense)
+  logical :: with_contact
   real(dp), allocatable :: cu0(:,:)      ! (nrow + ntan, ramps) C u0 of each ramp's loads (friction)
 
   call parse_command_line(deck_path, outdir, check_only, quiet)
@@ -122,25 +124,33 @@ program contact2d
   deallocate(k%colptr, k%rowind, k%val)      ! K lives on in its factor only
   call lap(ph_factor)
 
-  ! --- u0 = K^-1 f ------------------------------------------------------
-  call system_clock(t_solve)
-  call solve(factor, rhs, x)
-  call system_clock(t_now, t_rate)
-  res%time_solve = real(t_now - t_solve, dp) / real(t_rate, dp)
+  ! --- u0 = K^-1 f: with contact, its forward half y = L^-1 P f only ---------
+  ! (condense takes u0 on the contact dofs from y, and the recovery ends the
+  ! solve: one forward and one backward substitution in all, time_solve)
   allocate(u0(sc%ndof))
   u0 = sc%ubar
-  do i = 1, sc%ndof
-    if (eq(i) > 0) u0(i) = x(eq(i), 1)
-  end do
+  with_contact = cs%nrow > 0 .or. fl%k > 0
+  call system_clock(t_solve)
+  if (with_contact) then
+    allocate(y(nfree))
+    call solve_forward(factor, rhs(:, 1), y)
+  else
+    call solve(factor, rhs, x)
+    do i = 1, sc%ndof
+      if (eq(i) > 0) u0(i) = x(eq(i), 1)
+    end do
+  end if
+  call system_clock(t_now, t_rate)
+  res%time_solve = real(t_now - t_solve, dp) / real(t_rate, dp)
   deallocate(rhs, x)
 
   allocate(fc(sc%ndof))
   fc = 0.0_dp
   res%lcp_method = 'none'
-  if (cs%nrow > 0 .or. fl%k > 0) then
-    ! the solve u0 = K^-1 f counts as condensation when there is contact,
-    ! as recovery otherwise: a scene without contact spends nothing on it
-    call condense(cs, eq, factor, u0, w, q, err)
+  if (with_contact) then
+    ! the forward solve counts as condensation when there is contact, as
+    ! recovery otherwise: a scene without contact spends nothing on it
+    call condense(cs, eq, factor, u0, w, q, err, y, xc)
     if (allocated(err)) call fail_numerical(err%message)
     if (cs%ntan > 0) then
       call friction_load_paths()
@@ -153,13 +163,16 @@ program contact2d
     call contact_measures()
     call lap(ph_lcp)
     allocate(res%u(sc%ndof))
+    call system_clock(t_solve)
     if (cs%ntan > 0) then
-      call recover(cs, eq, factor, u0, [res%mu, res%tau], res%u)
+      call recover(cs, eq, factor, u0, [res%mu, res%tau], res%u, y, xc)
       call contact_forces(cs, [res%mu, res%tau], fc)
     else
-      call recover(cs, eq, factor, u0, res%mu, res%u)
+      call recover(cs, eq, factor, u0, res%mu, res%u, y, xc)
       call contact_forces(cs, res%mu, fc)
     end if
+    call system_clock(t_now, t_rate)
+    res%time_solve = res%time_solve + real(t_now - t_solve, dp) / real(t_rate, dp)
     if (fl%k > 0) res%u = res%u + matmul(fl%r, res%alpha)    ! + R alpha: the free rigid modes
   else
     res%u = u0

@@ -14,20 +14,34 @@
 !> has contact dofs: the solve runs block by block (half the flops of the
 !> whole block for two bodies of equal share).
 !>
+!> One solve in all.  With y = L^-1 P f (the forward half of u0 = K^-1 f),
+!> the contact dofs of u0 are the end of the backward half,
+!>     u0_C = L_cc'^-1 y_c,
+!> which is all that q needs; and the contact forces -B' mu reach only the
+!> trailing pivots, so the forward half of the recovery is
+!>     L^-1 P (f - B' mu) = y - [0; X mu]
+!> and one backward solve gives u.  The displacement costs one forward and
+!> one backward solve, not two solves.
+!>
 !> Programming interface
 !>   contact_equations(cs, eq, last)        free equations of the contact dofs, in
 !>                                          the order to be factorized last
-!>   condense(cs, eq, factor, u0, w, q, err)   W (nc, nc), q (nc), nc = nrow + ntan
+!>   condense(cs, eq, factor, u0, w, q, err [, y, xc])
+!>                                          W (nc, nc), q (nc), nc = nrow + ntan;
+!>                                          with y: u0 on the contact dofs from y,
+!>                                          and X kept in xc for recover
 !>   constraint_values(cs, u, v)            v = C u, C = [B; T] (the tangential
 !>                                          rows T of friction pairs after B)
 !>   contact_forces(cs, mu, fc)             fc = -B' mu on every dof (fc sized ndof)
-!>   recover(cs, eq, factor, u0, mu, u)     u = u0 + K^-1 (-B' mu) on free dofs
+!>   recover(cs, eq, factor, u0, mu, u [, y, xc])
+!>                                          u = u0 + K^-1 (-B' mu) on free dofs;
+!>                                          with y and xc: one backward solve
 module contact_condensation
   use kinds, only: dp
-  use lapack_interfaces, only: dsyrk, dtrsm
+  use lapack_interfaces, only: dgemv, dsyrk, dtrsm
   use diagnostics, only: error_t, set_error
   use contact_set, only: contact_set_t
-  use sparse_cholesky, only: factor_t, trailing_factor_block, solve
+  use sparse_cholesky, only: factor_t, trailing_factor_block, solve, solve_backward
   implicit none
   private
   public :: contact_equations, condense, contact_forces, recover, constraint_values
@@ -57,31 +71,28 @@ contains
   !> of friction pairs, g = 0 there; C = B without friction).
   !>   cs     (in)  constraint rows; factor (in) K = L L' with contact_equations last
   !>   eq     (in)  (ndof) free equation numbers
-  !>   u0     (in)  (ndof) solution without contact (prescribed values on fixed dofs)
+  !>   u0     (inout) (ndof) solution without contact (prescribed values on fixed
+  !>                dofs); with y, only its fixed dofs are read, and its free
+  !>                contact dofs are set (u0_C = L_cc'^-1 y_c)
   !>   w      (out) (nc, nc) symmetric positive semi-definite, nc = nrow + ntan
   !>   q      (out) (nc)
   !>   err    (out) allocated when the trailing block cannot be had
-  subroutine condense(cs, eq, factor, u0, w, q, err)
+  !>   y      (in, optional) (nfree) the forward half L^-1 P f of u0's solve
+  !>   xc     (out, optional, with y) X = L_cc^-1 B_C' (nfc, nc), for recover
+  subroutine condense(cs, eq, factor, u0, w, q, err, y, xc)
     type(contact_set_t), intent(in) :: cs
     integer, intent(in) :: eq(:)
     type(factor_t), intent(inout) :: factor
-    real(dp), intent(in) :: u0(:)
+    real(dp), intent(inout) :: u0(:)
     real(dp), allocatable, intent(out) :: w(:,:), q(:)
     type(error_t), allocatable, intent(out) :: err
+    real(dp), intent(in), optional :: y(:)
+    real(dp), allocatable, intent(out), optional :: xc(:,:)
     integer :: nc, nfc, r, k, col, i, j, s, e, c1, c2
     integer, allocatable :: fcol(:)
-    real(dp), allocatable :: x(:,:), lcc(:,:)
+    real(dp), allocatable :: x(:,:), lcc(:,:), uc(:)
 
     nc = cs%nrow + cs%ntan
-    allocate(q(nc))
-    ! q = g - C u0 (fixed contact dofs carry their prescribed values; g = 0 on tangential rows)
-    do r = 1, nc
-      q(r) = 0.0_dp
-      if (r <= cs%nrow) q(r) = cs%g(r)
-      do k = cs%bptr(r), cs%bptr(r + 1) - 1
-        q(r) = q(r) - cs%bval(k) * u0(cs%cdof(cs%bcol(k)))
-      end do
-    end do
     ! column of each contact dof in the free block (0 when fixed)
     allocate(fcol(cs%ncdof))
     nfc = 0
@@ -94,7 +105,9 @@ contains
       end if
     end do
     if (nfc == 0 .or. nc == 0) then
+      call gap_offsets()
       allocate(w(nc, nc), source=0.0_dp)
+      if (present(xc)) allocate(xc(nfc, nc), source=0.0_dp)
       return
     end if
     ! X = B_C' restricted to free contact dofs, (nfc, nc)
@@ -110,6 +123,15 @@ contains
       call set_error(err, 'cannot extract the contact block of the Cholesky factor', 1)
       return
     end if
+    if (present(y)) then
+      ! the end of the backward half of u0 = K^-1 f: u0_C = L_cc'^-1 y_c
+      uc = y(size(y) - nfc + 1:)
+      call dtrsm('L', 'L', 'T', 'N', nfc, 1, 1.0_dp, lcc, nfc, uc, nfc)
+      do k = 1, cs%ncdof
+        if (fcol(k) > 0) u0(cs%cdof(k)) = uc(fcol(k))
+      end do
+    end if
+    call gap_offsets()
     ! X = L_cc^-1 B_C', one diagonal block of L_cc at a time: bodies that K
     ! does not couple give L_cc a block per body, and a block is solved only on
     ! the constraint rows that reach it (the rest of X stays zero there)
@@ -128,6 +150,22 @@ contains
         w(i, j) = w(j, i)
       end do
     end do
+    if (present(xc)) call move_alloc(x, xc)
+
+  contains
+
+    !> q = g - C u0 (fixed contact dofs carry their prescribed values; g = 0
+    !> on tangential rows)
+    subroutine gap_offsets()
+      allocate(q(nc))
+      do r = 1, nc
+        q(r) = 0.0_dp
+        if (r <= cs%nrow) q(r) = cs%g(r)
+        do k = cs%bptr(r), cs%bptr(r + 1) - 1
+          q(r) = q(r) - cs%bval(k) * u0(cs%cdof(cs%bcol(k)))
+        end do
+      end do
+    end subroutine gap_offsets
   end subroutine condense
 
   !> The last row e of the diagonal block of the lower triangle l that starts
@@ -197,17 +235,33 @@ contains
     end do
   end subroutine contact_forces
 
-  !> u = u0 + K^-1 (fc)_f with fc = -B' mu: one more solve.
-  subroutine recover(cs, eq, factor, u0, mu, u)
+  !> u = u0 + K^-1 (fc)_f with fc = -B' mu: one more solve; or, given the
+  !> forward half y of u0's solve and X from condense, one backward solve of
+  !> y - [0; X mu] (u0 then serves for its fixed dofs only).
+  subroutine recover(cs, eq, factor, u0, mu, u, y, xc)
     type(contact_set_t), intent(in) :: cs
     integer, intent(in) :: eq(:)
     type(factor_t), intent(inout) :: factor
     real(dp), intent(in) :: u0(:), mu(:)
     real(dp), intent(out) :: u(:)
-    real(dp), allocatable :: fc(:), rhs(:,:), du(:,:)
-    integer :: i, nfree
+    real(dp), intent(in), optional :: y(:), xc(:,:)
+    real(dp), allocatable :: fc(:), rhs(:,:), du(:,:), yc(:)
+    integer :: i, nfree, nfc
     nfree = maxval(eq)
-    allocate(fc(size(u0)), rhs(nfree, 1), du(nfree, 1))
+    allocate(du(nfree, 1))
+    if (present(y)) then
+      yc = y
+      nfc = size(xc, 1)
+      if (nfc > 0 .and. size(mu) > 0) &
+        call dgemv('N', nfc, size(mu), -1.0_dp, xc, nfc, mu, 1, 1.0_dp, yc(nfree - nfc + 1), 1)
+      call solve_backward(factor, yc, du(:, 1))
+      u = u0
+      do i = 1, size(eq)
+        if (eq(i) > 0) u(i) = du(eq(i), 1)
+      end do
+      return
+    end if
+    allocate(fc(size(u0)), rhs(nfree, 1))
     call contact_forces(cs, mu, fc)
     rhs = 0.0_dp
     do i = 1, size(eq)

@@ -46,6 +46,8 @@
 !>   solve(f, b, x [, err])                 x = A^-1 b, b(n) or b(n, nrhs)
 !>   solve_vector(f, b, x [, err])          the 1-D specific of solve
 !>   solve_block(f, b, x [, err])           the 2-D specific of solve (one CHOLMOD call)
+!>   solve_forward(f, b, y [, err])         y = L^-1 P b (the first half of solve)
+!>   solve_backward(f, y, x [, err])        x = P' L'^-1 y (the second half)
 !>   trailing_factor_block(f, nlast, Lcc [, err])   dense L_cc after factorize(last=)
 !>   free_factor(f)                         release the handle
 !>   factor_nnz(f), factor_flops(f), factor_memory(f), factor_ordering(f)
@@ -60,12 +62,13 @@ module sparse_cholesky
                              c2d_chol_minor, c2d_chol_set_ordering, c2d_order_amd, &
                              c2d_chol_stats, c2d_chol_min_pivot_ratio, c2d_chol_ordering_name, &
                              c2d_chol_status_name, c2d_chol_solve, c2d_chol_trailing_block, &
+                             c2d_chol_solve_half, c2d_solve_whole, c2d_solve_forward, c2d_solve_backward, &
                              cholmod_ok, cholmod_not_posdef, c2d_chol_block_moved, &
                              c2d_chol_not_super_ll
   implicit none
   private
   public :: factor_t, factorize, analyze_pattern, factorize_values, solve, solve_vector, solve_block
-  public :: trailing_factor_block
+  public :: trailing_factor_block, solve_forward, solve_backward
   public :: free_factor, factor_nnz, factor_flops, factor_memory, factor_ordering
 
   !> Floor of the order in the singularity tolerance (see singular_pivot_tolerance).
@@ -359,20 +362,7 @@ contains
     real(dp), intent(in) :: b(:)
     real(dp), intent(out) :: x(:)
     type(error_t), allocatable, intent(out), optional :: err
-    character(len=:), allocatable :: msg
-    integer(c_int) :: status
-
-    if (.not. f%ready) then
-      msg = 'sparse Cholesky solve: no valid factor (factorize failed or was not called)'
-    else if (size(b) /= f%n .or. size(x) /= f%n) then
-      msg = 'sparse Cholesky solve: vectors of size ' // int_to_str(size(b)) // ' and ' // int_to_str(size(x)) &
-            // ' for a factor of order ' // int_to_str(f%n)
-    else
-      status = c2d_chol_solve(f%handle, int(f%n, c_int), 1_c_int, b, x)
-      if (status == cholmod_ok) return
-      msg = 'sparse Cholesky solve failed: ' // status_name(status) // ' (status ' // int_to_str(int(status)) // ')'
-    end if
-    call report(msg, err)
+    call solve_half(f, c2d_solve_whole, b, x, err)
   end subroutine solve_vector
 
   !> X = A^-1 B for a block of right-hand sides, in one CHOLMOD solve.
@@ -402,6 +392,52 @@ contains
     end if
     call report(msg, err)
   end subroutine solve_block
+
+  !> y = L^-1 P b, the forward half of a solve.  With `last`, y(n-nlast+1:)
+  !> belongs to the trailing block: L^-1 P maps a vector that is zero off the
+  !> `last` dofs to [0; L_cc^-1 v], and the backward half ends with
+  !> x(last) = L_cc'^-1 y(n-nlast+1:).
+  !>   f (in) a factor with f%ready; b (in) (n); y (out) (n); err as for solve_vector
+  subroutine solve_forward(f, b, y, err)
+    type(factor_t), intent(in) :: f
+    real(dp), intent(in) :: b(:)
+    real(dp), intent(out) :: y(:)
+    type(error_t), allocatable, intent(out), optional :: err
+    call solve_half(f, c2d_solve_forward, b, y, err)
+  end subroutine solve_forward
+
+  !> x = P' L'^-1 y, the backward half: solve_backward(solve_forward(b)) = A^-1 b.
+  !>   f (in) a factor with f%ready; y (in) (n); x (out) (n); err as for solve_vector
+  subroutine solve_backward(f, y, x, err)
+    type(factor_t), intent(in) :: f
+    real(dp), intent(in) :: y(:)
+    real(dp), intent(out) :: x(:)
+    type(error_t), allocatable, intent(out), optional :: err
+    call solve_half(f, c2d_solve_backward, y, x, err)
+  end subroutine solve_backward
+
+  !> x = the solve or one of its halves (half: c2d_solve_*) for one vector.
+  subroutine solve_half(f, half, b, x, err)
+    type(factor_t), intent(in) :: f
+    integer(c_int), intent(in) :: half
+    real(dp), intent(in) :: b(:)
+    real(dp), intent(out) :: x(:)
+    type(error_t), allocatable, intent(out), optional :: err
+    character(len=:), allocatable :: msg
+    integer(c_int) :: status
+
+    if (.not. f%ready) then
+      msg = 'sparse Cholesky solve: no valid factor (factorize failed or was not called)'
+    else if (size(b) /= f%n .or. size(x) /= f%n) then
+      msg = 'sparse Cholesky solve: vectors of size ' // int_to_str(size(b)) // ' and ' // int_to_str(size(x)) &
+            // ' for a factor of order ' // int_to_str(f%n)
+    else
+      status = c2d_chol_solve_half(f%handle, half, int(f%n, c_int), 1_c_int, b, x)
+      if (status == cholmod_ok) return
+      msg = 'sparse Cholesky solve failed: ' // status_name(status) // ' (status ' // int_to_str(int(status)) // ')'
+    end if
+    call report(msg, err)
+  end subroutine solve_half
 
   !> The trailing block L_cc of L, for a factor computed with `last`: rows and
   !> columns of the last nlast pivots, in the order of `last`, so that

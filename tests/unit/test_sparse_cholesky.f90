@@ -14,6 +14,7 @@ program test_sparse_cholesky
   use testing, only: check, check_close, check_small, finish_tests
   use sparse_matrix, only: csc_t, csc_nnz, csc_symv, csc_from_triplets, csc_check
   use sparse_cholesky, only: factor_t, factorize, solve, solve_vector, solve_block, trailing_factor_block, &
+                             solve_forward, solve_backward, &
                              free_factor, factor_nnz, factor_flops, factor_memory, factor_ordering, &
                              analyze_pattern, factorize_values
   implicit none
@@ -463,7 +464,43 @@ contains
     zinv = inverse_from_factor(lcc)
     call check_small(maxval(abs(zinv - z)) / maxval(abs(z)), 1.0e-12_dp, &
                      'elasticity: (Lcc Lcc'')^-1 = (A^-1)(top edge, top edge)')
+    call check_halves(f, A%n, b, x, last, lcc)
   end subroutine test_elasticity
+
+  !> The two halves of a solve, as contact_condensation uses them: backward
+  !> after forward is the solve; x(last) = L_cc'^-1 y_c; and a vector that
+  !> is zero off `last` goes forward to [0; L_cc^-1 v] (solved here by plain
+  !> substitution on the dense L_cc, independent of CHOLMOD's solve).
+  subroutine check_halves(f, n, b, x, last, lcc)
+    type(factor_t), intent(in) :: f
+    integer, intent(in) :: n, last(:)
+    real(dp), intent(in) :: b(:), x(:), lcc(:,:)
+    real(dp), allocatable :: y(:), x2(:), v(:), yv(:), expect(:)
+    integer :: nl, i
+    nl = size(last)
+    allocate(y(n), x2(n), v(n), yv(n))
+    call solve_forward(f, b, y)
+    call solve_backward(f, y, x2)
+    call check_small(maxval(abs(x2 - x)) / maxval(abs(x)), 1.0e-14_dp, 'elasticity: backward(forward(b)) = A^-1 b')
+    ! L_cc' z = y_c by back substitution
+    expect = y(n - nl + 1:)
+    do i = nl, 1, -1
+      expect(i) = (expect(i) - dot_product(lcc(i + 1:, i), expect(i + 1:))) / lcc(i, i)
+    end do
+    call check_small(maxval(abs(expect - x(last))) / maxval(abs(x)), 1.0e-12_dp, &
+                     'elasticity: x(last) = Lcc''^-1 y(trailing), y the forward half')
+    v = 0.0_dp
+    v(last) = smooth_rhs(nl, 3)
+    call solve_forward(f, v, yv)
+    ! L_cc z = v(last) by forward substitution
+    expect = v(last)
+    do i = 1, nl
+      expect(i) = (expect(i) - dot_product(lcc(i, :i - 1), expect(:i - 1))) / lcc(i, i)
+    end do
+    call check(all(yv(:n - nl) == 0.0_dp), 'elasticity: forward half of a vector on `last` is zero off the block')
+    call check_small(maxval(abs(yv(n - nl + 1:) - expect)) / maxval(abs(expect)), 1.0e-12_dp, &
+                     'elasticity: forward half of [0; v] = [0; Lcc^-1 v]')
+  end subroutine check_halves
 
   !> Singular matrices are reported with the dof of the dependent column.
   subroutine test_singular()
