@@ -56,6 +56,7 @@ module sparse_cholesky
                                          c_int64_t, c_char, c_null_char
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
   use kinds, only: dp, i8
+  use omp_lib, only: omp_get_max_active_levels, omp_set_max_active_levels
   use diagnostics, only: error_t, set_error, int_to_str, fail_numerical
   use sparse_matrix, only: csc_t, csc_nnz, csc_check
   use cholmod_binding, only: c2d_chol_create, c2d_chol_destroy, c2d_chol_analyze, c2d_chol_factorize_values, &
@@ -146,6 +147,7 @@ contains
     character(len=*), intent(in), optional :: method
     integer(c_int), allocatable :: last_c(:), group_c(:)
     integer(c_int) :: status, nlast, ngroup
+    integer :: levels
 
     call free_factor(f)
     f%n = 0
@@ -199,7 +201,11 @@ contains
         return
       end if
     end if
-    if (status == cholmod_ok) status = c2d_chol_analyze(f%handle, int(n, c_int), colptr, rowind, nlast, last_c, ngroup, group_c)
+    if (status == cholmod_ok) then
+      levels = cholmod_serial_begin()
+      status = c2d_chol_analyze(f%handle, int(n, c_int), colptr, rowind, nlast, last_c, ngroup, group_c)
+      call cholmod_serial_end(levels)
+    end if
     call read_statistics(f)
 
     select case (status)
@@ -226,7 +232,7 @@ contains
     type(error_t), allocatable, intent(out) :: err
     integer(c_int) :: status, column, equation
     real(c_double) :: ratio
-    integer :: j, p
+    integer :: j, p, levels
 
     if (.not. c_associated(f%handle) .or. f%n /= A%n) then
       call set_error(err, 'sparse Cholesky: factorize_values without the analysis of this pattern', 1)
@@ -241,7 +247,9 @@ contains
         end if
       end do
     end do
+    levels = cholmod_serial_begin()
     status = c2d_chol_factorize_values(f%handle, int(A%n, c_int), A%colptr, A%rowind, A%val)
+    call cholmod_serial_end(levels)
     call read_statistics(f)
 
     select case (status)
@@ -272,6 +280,23 @@ contains
     end if
     f%ready = .true.
   end subroutine factorize_values
+
+  !> CHOLMOD's OpenMP loops ask for 4 threads (CHOLMOD_OMP_NUM_THREADS, set
+  !> when the library was built), whatever OMP_NUM_THREADS says.  On 2 cores
+  !> those teams of 4 cost 13-20 % of the numeric factorization (hertz_1e5 and
+  !> hertz_1e6 of bench/contact.sh, the same factor to the bit).  With
+  !> max-active-levels 0 every parallel region opened inside a CHOLMOD call runs
+  !> on the calling thread; the BLAS inside the supernodal factorization keeps
+  !> its own threads.  Returns the setting to give back to cholmod_serial_end.
+  integer function cholmod_serial_begin() result(levels)
+    levels = omp_get_max_active_levels()
+    call omp_set_max_active_levels(0)
+  end function cholmod_serial_begin
+
+  subroutine cholmod_serial_end(levels)
+    integer, intent(in) :: levels
+    call omp_set_max_active_levels(levels)
+  end subroutine cholmod_serial_end
 
   !> Statistics of the handle into f (after each half of the factorization).
   subroutine read_statistics(f)
@@ -377,6 +402,7 @@ contains
     type(error_t), allocatable, intent(out), optional :: err
     character(len=:), allocatable :: msg
     integer(c_int) :: status
+    integer :: levels
 
     if (.not. f%ready) then
       msg = 'sparse Cholesky solve: no valid factor (factorize failed or was not called)'
@@ -386,7 +412,9 @@ contains
             // ' columns) for a factor of order ' // int_to_str(f%n)
     else
       if (size(b, 2) == 0) return
+      levels = cholmod_serial_begin()
       status = c2d_chol_solve(f%handle, int(f%n, c_int), int(size(b, 2), c_int), b, x)
+      call cholmod_serial_end(levels)
       if (status == cholmod_ok) return
       msg = 'sparse Cholesky solve failed: ' // status_name(status) // ' (status ' // int_to_str(int(status)) // ')'
     end if
@@ -425,6 +453,7 @@ contains
     type(error_t), allocatable, intent(out), optional :: err
     character(len=:), allocatable :: msg
     integer(c_int) :: status
+    integer :: levels
 
     if (.not. f%ready) then
       msg = 'sparse Cholesky solve: no valid factor (factorize failed or was not called)'
@@ -432,7 +461,9 @@ contains
       msg = 'sparse Cholesky solve: vectors of size ' // int_to_str(size(b)) // ' and ' // int_to_str(size(x)) &
             // ' for a factor of order ' // int_to_str(f%n)
     else
+      levels = cholmod_serial_begin()
       status = c2d_chol_solve_half(f%handle, half, int(f%n, c_int), 1_c_int, b, x)
+      call cholmod_serial_end(levels)
       if (status == cholmod_ok) return
       msg = 'sparse Cholesky solve failed: ' // status_name(status) // ' (status ' // int_to_str(int(status)) // ')'
     end if
