@@ -175,6 +175,52 @@ static cholmod_sparse *remaining_pattern(const cholmod_sparse *A, const int *map
     return S;
 }
 
+
+/* gperm (ng, the groups in elimination order) replaced by a postorder of
+ * the elimination tree of the group graph (xadj, adj: symmetric, no self
+ * loops) in that order.  The tree by Liu's algorithm with path compression,
+ * the postorder by cholmod_postorder.  Returns CHOLMOD_OK or an error. */
+static int postorder_groups(int ng, const int *xadj, const int *adj, int *gperm, cholmod_common *c)
+{
+    int *mem = cholmod_malloc(4 * (size_t) ng + 1, sizeof(int), c);
+    int *inv, *parent, *ancestor, *post;
+    int k, g, p, i, inext, status = CHOLMOD_OK;
+
+    if (mem == NULL) return (c->status < 0) ? c->status : CHOLMOD_OUT_OF_MEMORY;
+    inv = mem;
+    parent = mem + ng;
+    ancestor = mem + 2 * (size_t) ng;
+    post = mem + 3 * (size_t) ng;
+    for (k = 0; k < ng; k++) inv[gperm[k]] = k;
+    for (k = 0; k < ng; k++)
+    {
+        parent[k] = -1;
+        ancestor[k] = -1;
+        g = gperm[k];
+        for (p = xadj[g]; p < xadj[g + 1]; p++)
+        {
+            /* climb from each earlier neighbour to its root, compressing */
+            for (i = inv[adj[p]]; i != -1 && i < k; i = inext)
+            {
+                inext = ancestor[i];
+                ancestor[i] = k;
+                if (inext == -1) parent[i] = k;
+            }
+        }
+    }
+    if (cholmod_postorder(parent, (size_t) ng, NULL, post, c) != ng)
+    {
+        status = (c->status < 0) ? c->status : CHOLMOD_INVALID;
+    }
+    else
+    {
+        for (k = 0; k < ng; k++) ancestor[k] = gperm[post[k]];
+        for (k = 0; k < ng; k++) gperm[k] = ancestor[k];
+    }
+    cholmod_free(4 * (size_t) ng + 1, sizeof(int), mem, c);
+    return status;
+}
+
 /* The fill-reducing ordering of the graph of dof groups (the nodes of the
  * mesh: the dofs of a node share their neighbours), expanded to the dofs and
  * postordered by the elimination tree: the ordering cholmod_metis (or
@@ -194,7 +240,6 @@ static int order_groups(cholmod_sparse *S, const int *group, int method, const i
     int *gid, *gptr, *gdof, *deg, *xadj, *adj, *mark, *vw, *gperm, *giperm, *gset;
     int i, j, p, g, h, k, ng, nadj, ok;
     idx_t nv;
-    cholmod_factor *L;
     int status = CHOLMOD_OK;
     size_t nnz = (size_t) Sp[n];
     int *work = cholmod_malloc(10 * (size_t) n + 1, sizeof(int), c);
@@ -299,21 +344,18 @@ static int order_groups(cholmod_sparse *S, const int *group, int method, const i
     {
         gperm[0] = 0;
     }
+    /* postorder the elimination tree of the group graph in that order: an
+     * equivalent order (the same fill) whose subtrees are contiguous, as the
+     * supernodal analysis wants; a group's dofs are coupled, so the dofs'
+     * tree is the groups' tree with each group a chain */
+    status = postorder_groups(ng, xadj, adj, gperm, c);
+    if (status != CHOLMOD_OK) goto done;
     k = 0;
     for (g = 0; g < ng; g++)
     {
         h = gperm[g];
         for (p = gptr[h]; p < gptr[h + 1]; p++) perm[k++] = gdof[p];
     }
-
-    /* postorder of the elimination tree of S(perm, perm): supernodes */
-    c->nmethods = 1;
-    c->method[0].ordering = CHOLMOD_GIVEN;
-    c->postorder = 1;
-    L = cholmod_analyze_p(S, perm, NULL, 0, c);
-    if (L == NULL) { status = (c->status < 0) ? c->status : CHOLMOD_INVALID; goto done; }
-    for (k = 0; k < n; k++) perm[k] = ((int *) L->Perm)[k];
-    cholmod_free_factor(&L, c);
 
 done:
     cholmod_free(10 * (size_t) n + 1, sizeof(int), work, c);
