@@ -110,11 +110,19 @@ int c2d_chol_solve(void *h, int n, int nrhs, const double *b, double *x);
 #define C2D_SOLVE_BACKWARD 2
 int c2d_chol_solve_half(void *h, int half, int n, int nrhs, const double *b, double *x);
 
-/* The trailing nlast-by-nlast block of L (pivots n-nlast+1..n, i.e. the dofs
- * `last` in the order given to c2d_chol_factorize), written dense and
- * column-major into lcc[nlast*nlast], zero above the diagonal.  Read directly
- * from the supernodes that hold those columns.  Returns 0, C2D_CHOL_NO_FACTOR,
+/* The diagonal sub-block of the trailing nlast-by-nlast block L_cc of L
+ * (pivots n-nlast+1..n, i.e. the dofs `last` in the order given to the
+ * analysis) on its rows and columns first..first+count-1 (1-based within
+ * L_cc), written dense and column-major into lcc[count*count], zero above the
+ * diagonal; first = 1, count = nlast gives the whole L_cc.  Read directly from
+ * the supernodes that hold those columns.  Returns 0, C2D_CHOL_NO_FACTOR,
  * C2D_CHOL_NOT_SUPER_LL, C2D_CHOL_BLOCK_MOVED or C2D_CHOL_BAD_ARGUMENT. */
-int c2d_chol_trailing_block(const void *h, int nlast, double *lcc);
+int c2d_chol_trailing_range(const void *h, int nlast, int first, int count, double *lcc);
+
+/* The end of the diagonal block of L_cc that starts at `first` (1-based):
+ * *last_row = the smallest e >= first with L_cc(e+1:, first:e) = 0 (exact
+ * zeros: K couples no two bodies, so L_cc has a diagonal block per body).
+ * Returns as c2d_chol_trailing_range. */
+int c2d_chol_trailing_block_end(const void *h, int nlast, int first, int *last_row);
 
 #endif /* CONTACT2D_CHOLMOD_SHIM_H */

@@ -22,7 +22,8 @@
 !>   c2d_chol_ordering_name(handle, buf, len)   c2d_chol_status_name(status, buf, len)
 !>   c2d_chol_solve(handle, n, nrhs, b, x) -> status
 !>   c2d_chol_solve_half(handle, half, n, nrhs, b, x) -> status   (c2d_solve_whole / _forward / _backward)
-!>   c2d_chol_trailing_block(handle, nlast, lcc) -> status
+!>   c2d_chol_trailing_range(handle, nlast, first, count, lcc) -> status
+!>   c2d_chol_trailing_block_end(handle, nlast, first, last_row) -> status
 !>   status codes: cholmod_ok, cholmod_not_posdef, c2d_chol_* (shim codes)
 module cholmod_binding
   use, intrinsic :: iso_c_binding, only: c_ptr, c_int, c_double, c_int64_t, c_char
@@ -32,7 +33,8 @@ module cholmod_binding
   public :: c2d_chol_analyze, c2d_chol_factorize_values, c2d_chol_set_ordering
   public :: c2d_order_metis, c2d_order_amd
   public :: c2d_chol_stats, c2d_chol_min_pivot_ratio, c2d_chol_ordering_name
-  public :: c2d_chol_status_name, c2d_chol_solve, c2d_chol_trailing_block
+  public :: c2d_chol_status_name, c2d_chol_solve
+  public :: c2d_chol_trailing_range, c2d_chol_trailing_block_end
   public :: c2d_chol_solve_half, c2d_solve_whole, c2d_solve_forward, c2d_solve_backward
   public :: cholmod_ok, cholmod_not_posdef, cholmod_out_of_memory, cholmod_too_large
   public :: c2d_chol_no_handle, c2d_chol_no_factor, c2d_chol_not_super_ll
@@ -185,15 +187,25 @@ module cholmod_binding
       integer(c_int) :: status
     end function c2d_chol_solve_half
 
-    !> Dense trailing block L_cc (nlast, nlast) of L; returns the status.
-    function c2d_chol_trailing_block(handle, nlast, lcc) bind(c, name='c2d_chol_trailing_block') &
+    !> The diagonal sub-block first..first+count-1 of L_cc, (count, count); returns the status.
+    function c2d_chol_trailing_range(handle, nlast, first, count, lcc) bind(c, name='c2d_chol_trailing_range') &
         result(status)
       import :: c_ptr, c_int, c_double
       type(c_ptr), value :: handle
-      integer(c_int), value :: nlast
+      integer(c_int), value :: nlast, first, count
       real(c_double), intent(inout) :: lcc(*)
       integer(c_int) :: status
-    end function c2d_chol_trailing_block
+    end function c2d_chol_trailing_range
+
+    !> The last row of the diagonal block of L_cc that starts at `first`; returns the status.
+    function c2d_chol_trailing_block_end(handle, nlast, first, last_row) bind(c, name='c2d_chol_trailing_block_end') &
+        result(status)
+      import :: c_ptr, c_int
+      type(c_ptr), value :: handle
+      integer(c_int), value :: nlast, first
+      integer(c_int), intent(out) :: last_row
+      integer(c_int) :: status
+    end function c2d_chol_trailing_block_end
 
   end interface
 

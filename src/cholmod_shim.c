@@ -883,14 +883,11 @@ int c2d_chol_solve_half(void *handle, int half, int n, int nrhs, const double *b
     return C2D_CHOL_BAD_ARGUMENT;
 }
 
-int c2d_chol_trailing_block(const void *handle, int nlast, double *lcc)
+/* Checks shared by the trailing-block readers: the factor is supernodal LL'
+ * with `last` (nlast dofs) at its last pivots. */
+static int trailing_ok(const struct c2d_chol *h, int nlast)
 {
-    const struct c2d_chol *h = handle;
     const cholmod_factor *L;
-    const int *Super, *Lpi, *Lpx, *Ls;
-    const double *Lx;
-    int n, c0, s, k1, k2, nsrow, j, q, i;
-
     if (h == NULL) return C2D_CHOL_NO_HANDLE;
     if (!h->valid || h->L == NULL) return C2D_CHOL_NO_FACTOR;
     L = h->L;
@@ -899,35 +896,92 @@ int c2d_chol_trailing_block(const void *handle, int nlast, double *lcc)
     /* the factorization verified that Perm ends with `last`, in order; a
      * factor analyzed with any other ordering cannot hold the block there */
     if (L->ordering != CHOLMOD_GIVEN) return C2D_CHOL_BLOCK_MOVED;
+    return CHOLMOD_OK;
+}
 
-    n = h->n;
-    c0 = n - nlast; /* first pivot of the block, 0-based */
+/* The supernode that holds pivot j (0-based): Super is increasing. */
+static int supernode_of(const cholmod_factor *L, int j)
+{
+    const int *Super = L->super;
+    int lo = 0, hi = (int) L->nsuper - 1, mid;
+    while (lo < hi)
+    {
+        mid = (lo + hi + 1) / 2;
+        if (Super[mid] <= j) lo = mid; else hi = mid - 1;
+    }
+    return lo;
+}
+
+/* Supernode s holds columns k1..k2-1 of L as a dense nsrow-by-(k2-k1)
+ * column-major block at Lx + Lpx[s]; its row indices are Ls[Lpi[s]..], the
+ * first k2-k1 of them being k1..k2-1. */
+int c2d_chol_trailing_range(const void *handle, int nlast, int first, int count, double *lcc)
+{
+    const struct c2d_chol *h = handle;
+    const cholmod_factor *L;
+    const int *Super, *Lpi, *Lpx, *Ls;
+    const double *Lx;
+    int c0, b0, b1, s, k1, nsrow, j, q, i, status;
+
+    status = trailing_ok(h, nlast);
+    if (status != CHOLMOD_OK) return status;
+    if (first < 1 || count < 1 || first - 1 + count > nlast) return C2D_CHOL_BAD_ARGUMENT;
+    L = h->L;
     Super = L->super;
     Lpi = L->pi;
     Lpx = L->px;
     Ls = L->s;
     Lx = L->x;
-    memset(lcc, 0, (size_t) nlast * (size_t) nlast * sizeof(double));
-
-    /* Supernode s holds columns k1..k2-1 of L as a dense nsrow-by-(k2-k1)
-     * column-major block at Lx + Lpx[s]; its row indices are Ls[Lpi[s]..],
-     * the first k2-k1 of them being k1..k2-1.  Walk back from the last
-     * supernode while it still has columns >= c0. */
-    for (s = (int) L->nsuper - 1; s >= 0 && Super[s + 1] > c0; s--)
+    c0 = h->n - nlast;        /* first pivot of the trailing block, 0-based */
+    b0 = c0 + first - 1;      /* the range: pivots b0..b1-1 */
+    b1 = b0 + count;
+    memset(lcc, 0, (size_t) count * (size_t) count * sizeof(double));
+    for (j = b0; j < b1; j++)
     {
+        s = supernode_of(L, j);
         k1 = Super[s];
-        k2 = Super[s + 1];
         nsrow = Lpi[s + 1] - Lpi[s];
-        for (j = (k1 > c0 ? k1 : c0); j < k2; j++)
+        for (q = j - k1; q < nsrow; q++) /* rows j.. of column j */
         {
-            for (q = j - k1; q < nsrow; q++) /* rows j.. of column j */
-            {
-                i = Ls[Lpi[s] + q];
-                /* L_cc(i-c0, j-c0) = L(i, j), i >= j >= c0 */
-                lcc[(size_t) (j - c0) * (size_t) nlast + (size_t) (i - c0)] =
-                    Lx[Lpx[s] + (size_t) (j - k1) * (size_t) nsrow + (size_t) q];
-            }
+            i = Ls[Lpi[s] + q];
+            if (i >= b1) continue;
+            lcc[(size_t) (j - b0) * (size_t) count + (size_t) (i - b0)] =
+                Lx[Lpx[s] + (size_t) (j - k1) * (size_t) nsrow + (size_t) q];
         }
     }
+    return CHOLMOD_OK;
+}
+
+int c2d_chol_trailing_block_end(const void *handle, int nlast, int first, int *last_row)
+{
+    const struct c2d_chol *h = handle;
+    const cholmod_factor *L;
+    const int *Super, *Lpi, *Lpx, *Ls;
+    const double *Lx;
+    int c0, e, j, s, k1, nsrow, q, i, status;
+
+    status = trailing_ok(h, nlast);
+    if (status != CHOLMOD_OK) return status;
+    if (first < 1 || first > nlast) return C2D_CHOL_BAD_ARGUMENT;
+    L = h->L;
+    Super = L->super;
+    Lpi = L->pi;
+    Lpx = L->px;
+    Ls = L->s;
+    Lx = L->x;
+    c0 = h->n - nlast;
+    e = c0 + first - 1;       /* the block ends at pivot e so far */
+    for (j = c0 + first - 1; j <= e; j++)
+    {
+        s = supernode_of(L, j);
+        k1 = Super[s];
+        nsrow = Lpi[s + 1] - Lpi[s];
+        for (q = j - k1 + 1; q < nsrow; q++) /* the non-zeros below the diagonal */
+        {
+            i = Ls[Lpi[s] + q];
+            if (i > e && Lx[Lpx[s] + (size_t) (j - k1) * (size_t) nsrow + (size_t) q] != 0.0) e = i;
+        }
+    }
+    *last_row = e - c0 + 1;
     return CHOLMOD_OK;
 }

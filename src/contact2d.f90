@@ -162,6 +162,7 @@ program contact2d
     end if
     call contact_measures()
     call lap(ph_lcp)
+    deallocate(w, q)                       ! before the recovery: a lower peak
     allocate(res%u(sc%ndof))
     call system_clock(t_solve)
     if (cs%ntan > 0) then

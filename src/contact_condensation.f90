@@ -36,12 +36,13 @@
 !>   recover(cs, eq, factor, u0, mu, u [, y, xc])
 !>                                          u = u0 + K^-1 (-B' mu) on free dofs;
 !>                                          with y and xc: one backward solve
+!>                                          (y overwritten, xc released)
 module contact_condensation
   use kinds, only: dp
   use lapack_interfaces, only: dgemv, dsyrk, dtrsm
   use diagnostics, only: error_t, set_error
   use contact_set, only: contact_set_t
-  use sparse_cholesky, only: factor_t, trailing_factor_block, solve, solve_backward
+  use sparse_cholesky, only: factor_t, trailing_factor_block, trailing_block_end, solve, solve_backward
   implicit none
   private
   public :: contact_equations, condense, contact_forces, recover, constraint_values
@@ -118,31 +119,32 @@ contains
         if (col > 0) x(col, r) = x(col, r) + cs%bval(k)
       end do
     end do
-    call trailing_factor_block(factor, nfc, lcc)
-    if (.not. allocated(lcc)) then
-      call set_error(err, 'cannot extract the contact block of the Cholesky factor', 1)
-      return
-    end if
-    if (present(y)) then
+    ! X = L_cc^-1 B_C', one diagonal block of L_cc at a time: bodies that K
+    ! does not couple give L_cc a block per body; a block is read out of the
+    ! factor only when it is solved (the whole L_cc is never held), and solved
+    ! only on the constraint rows that reach it (the rest of X stays zero there)
+    if (present(y)) uc = y(size(y) - nfc + 1:)
+    s = 1
+    do while (s <= nfc)
+      call trailing_block_end(factor, nfc, s, e, err)
+      if (.not. allocated(err)) call trailing_factor_block(factor, nfc, lcc, err, first=s, count=e - s + 1)
+      if (allocated(err)) then
+        err%message = 'cannot extract the contact block of the Cholesky factor: ' // err%message
+        return
+      end if
       ! the end of the backward half of u0 = K^-1 f: u0_C = L_cc'^-1 y_c
-      uc = y(size(y) - nfc + 1:)
-      call dtrsm('L', 'L', 'T', 'N', nfc, 1, 1.0_dp, lcc, nfc, uc, nfc)
+      if (present(y)) call dtrsm('L', 'L', 'T', 'N', e - s + 1, 1, 1.0_dp, lcc, e - s + 1, uc(s), nfc)
+      call nonzero_columns(x, s, e, c1, c2)
+      if (c1 <= c2) call dtrsm('L', 'L', 'N', 'N', e - s + 1, c2 - c1 + 1, 1.0_dp, lcc, e - s + 1, x(s, c1), nfc)
+      deallocate(lcc)
+      s = e + 1
+    end do
+    if (present(y)) then
       do k = 1, cs%ncdof
         if (fcol(k) > 0) u0(cs%cdof(k)) = uc(fcol(k))
       end do
     end if
     call gap_offsets()
-    ! X = L_cc^-1 B_C', one diagonal block of L_cc at a time: bodies that K
-    ! does not couple give L_cc a block per body, and a block is solved only on
-    ! the constraint rows that reach it (the rest of X stays zero there)
-    s = 1
-    do while (s <= nfc)
-      e = diagonal_block_end(lcc, s)
-      call nonzero_columns(x, s, e, c1, c2)
-      if (c1 <= c2) call dtrsm('L', 'L', 'N', 'N', e - s + 1, c2 - c1 + 1, 1.0_dp, lcc(s, s), nfc, x(s, c1), nfc)
-      s = e + 1
-    end do
-    deallocate(lcc)                                                        ! before W: a lower peak
     allocate(w(nc, nc))
     call dsyrk('U', 'T', nc, nfc, 1.0_dp, x, nfc, 0.0_dp, w, nc)           ! W = X' X (upper)
     do j = 1, nc
@@ -167,25 +169,6 @@ contains
       end do
     end subroutine gap_offsets
   end subroutine condense
-
-  !> The last row e of the diagonal block of the lower triangle l that starts
-  !> at row and column s: l(e+1:, s:e) = 0 (exact zeros, structural in L).
-  pure integer function diagonal_block_end(l, s) result(e)
-    real(dp), intent(in) :: l(:,:)
-    integer, intent(in) :: s
-    integer :: i, j
-    e = s
-    j = s
-    do while (j <= e)
-      do i = size(l, 1), e + 1, -1
-        if (l(i, j) /= 0.0_dp) then
-          e = i
-          exit
-        end if
-      end do
-      j = j + 1
-    end do
-  end function diagonal_block_end
 
   !> The first and last columns c1..c2 of x with a non-zero in rows s..e
   !> (c1 > c2 when there is none).
@@ -237,31 +220,34 @@ contains
 
   !> u = u0 + K^-1 (fc)_f with fc = -B' mu: one more solve; or, given the
   !> forward half y of u0's solve and X from condense, one backward solve of
-  !> y - [0; X mu] (u0 then serves for its fixed dofs only).
+  !> y - [0; X mu] (u0 then serves for its fixed dofs only; y is overwritten
+  !> and xc released).
   subroutine recover(cs, eq, factor, u0, mu, u, y, xc)
     type(contact_set_t), intent(in) :: cs
     integer, intent(in) :: eq(:)
     type(factor_t), intent(inout) :: factor
     real(dp), intent(in) :: u0(:), mu(:)
     real(dp), intent(out) :: u(:)
-    real(dp), intent(in), optional :: y(:), xc(:,:)
-    real(dp), allocatable :: fc(:), rhs(:,:), du(:,:), yc(:)
+    real(dp), intent(inout), optional, contiguous :: y(:)
+    real(dp), allocatable, intent(inout), optional :: xc(:,:)
+    real(dp), allocatable :: fc(:), rhs(:,:), du(:,:)
     integer :: i, nfree, nfc
     nfree = maxval(eq)
-    allocate(du(nfree, 1))
     if (present(y)) then
-      yc = y
+      ! y - [0; X mu] in place; X is released before the solve (a lower peak)
       nfc = size(xc, 1)
       if (nfc > 0 .and. size(mu) > 0) &
-        call dgemv('N', nfc, size(mu), -1.0_dp, xc, nfc, mu, 1, 1.0_dp, yc(nfree - nfc + 1), 1)
-      call solve_backward(factor, yc, du(:, 1))
+        call dgemv('N', nfc, size(mu), -1.0_dp, xc, nfc, mu, 1, 1.0_dp, y(nfree - nfc + 1:), 1)
+      deallocate(xc)
+      allocate(du(nfree, 1))
+      call solve_backward(factor, y, du(:, 1))
       u = u0
       do i = 1, size(eq)
         if (eq(i) > 0) u(i) = du(eq(i), 1)
       end do
       return
     end if
-    allocate(fc(size(u0)), rhs(nfree, 1))
+    allocate(fc(size(u0)), rhs(nfree, 1), du(nfree, 1))
     call contact_forces(cs, mu, fc)
     rhs = 0.0_dp
     do i = 1, size(eq)

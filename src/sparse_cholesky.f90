@@ -48,7 +48,10 @@
 !>   solve_block(f, b, x [, err])           the 2-D specific of solve (one CHOLMOD call)
 !>   solve_forward(f, b, y [, err])         y = L^-1 P b (the first half of solve)
 !>   solve_backward(f, y, x [, err])        x = P' L'^-1 y (the second half)
-!>   trailing_factor_block(f, nlast, Lcc [, err])   dense L_cc after factorize(last=)
+!>   trailing_factor_block(f, nlast, Lcc [, err] [, first, count])
+!>                                          dense L_cc after factorize(last=), or
+!>                                          its diagonal sub-block first..first+count-1
+!>   trailing_block_end(f, nlast, first, e [, err])  end of L_cc's diagonal block at first
 !>   free_factor(f)                         release the handle
 !>   factor_nnz(f), factor_flops(f), factor_memory(f), factor_ordering(f)
 module sparse_cholesky
@@ -62,14 +65,15 @@ module sparse_cholesky
   use cholmod_binding, only: c2d_chol_create, c2d_chol_destroy, c2d_chol_analyze, c2d_chol_factorize_values, &
                              c2d_chol_minor, c2d_chol_set_ordering, c2d_order_amd, &
                              c2d_chol_stats, c2d_chol_min_pivot_ratio, c2d_chol_ordering_name, &
-                             c2d_chol_status_name, c2d_chol_solve, c2d_chol_trailing_block, &
+                             c2d_chol_status_name, c2d_chol_solve, &
+                             c2d_chol_trailing_range, c2d_chol_trailing_block_end, &
                              c2d_chol_solve_half, c2d_solve_whole, c2d_solve_forward, c2d_solve_backward, &
                              cholmod_ok, cholmod_not_posdef, c2d_chol_block_moved, &
                              c2d_chol_not_super_ll
   implicit none
   private
   public :: factor_t, factorize, analyze_pattern, factorize_values, solve, solve_vector, solve_block
-  public :: trailing_factor_block, solve_forward, solve_backward
+  public :: trailing_factor_block, trailing_block_end, solve_forward, solve_backward
   public :: free_factor, factor_nnz, factor_flops, factor_memory, factor_ordering
 
   !> Floor of the order in the singularity tolerance (see singular_pivot_tolerance).
@@ -479,14 +483,59 @@ contains
   !>   err   (out, optional) allocated when f has no such block (no `last`,
   !>         another nlast, factor not supernodal LL', block not at the end);
   !>         when absent a failure stops the program through fail_numerical
-  subroutine trailing_factor_block(f, nlast, Lcc, err)
+  subroutine trailing_factor_block(f, nlast, Lcc, err, first, count)
     type(factor_t), intent(in) :: f
     integer, intent(in) :: nlast
     real(dp), allocatable, intent(out) :: Lcc(:,:)
     type(error_t), allocatable, intent(out), optional :: err
+    integer, intent(in), optional :: first, count
     character(len=:), allocatable :: msg
     integer(c_int) :: status
+    integer :: k1, m
 
+    k1 = 1
+    m = nlast
+    if (present(first)) k1 = first
+    if (present(count)) m = count
+    msg = trailing_check(f, nlast)
+    if (len(msg) == 0) then
+      allocate(Lcc(max(m, 0), max(m, 0)))
+      status = c2d_chol_trailing_range(f%handle, int(nlast, c_int), int(k1, c_int), int(m, c_int), Lcc)
+      if (status == cholmod_ok) return
+      deallocate(Lcc)
+      msg = trailing_status_message(status)
+    end if
+    call report(msg, err)
+  end subroutine trailing_factor_block
+
+  !> The last row e of the diagonal block of L_cc that starts at row and
+  !> column `first`: L_cc(e+1:, first:e) = 0 (K couples no two bodies: one
+  !> block per body).  f, nlast and err as for trailing_factor_block.
+  subroutine trailing_block_end(f, nlast, first, e, err)
+    type(factor_t), intent(in) :: f
+    integer, intent(in) :: nlast, first
+    integer, intent(out) :: e
+    type(error_t), allocatable, intent(out), optional :: err
+    character(len=:), allocatable :: msg
+    integer(c_int) :: status, last_row
+
+    e = first
+    msg = trailing_check(f, nlast)
+    if (len(msg) == 0) then
+      status = c2d_chol_trailing_block_end(f%handle, int(nlast, c_int), int(first, c_int), last_row)
+      e = int(last_row)
+      if (status == cholmod_ok) return
+      msg = trailing_status_message(status)
+    end if
+    call report(msg, err)
+  end subroutine trailing_block_end
+
+  !> '' when f can have a trailing block of nlast dofs, else why not.
+  function trailing_check(f, nlast) result(msg)
+    type(factor_t), intent(in) :: f
+    integer, intent(in) :: nlast
+    character(len=:), allocatable :: msg
+    msg = ''
     if (.not. f%ready) then
       msg = 'trailing factor block: no valid factor (factorize failed or was not called)'
     else if (f%nlast == 0) then
@@ -494,21 +543,21 @@ contains
     else if (nlast /= f%nlast) then
       msg = 'trailing factor block: ' // int_to_str(nlast) // ' dofs asked, the factor has ' &
             // int_to_str(f%nlast) // ' ordered last'
-    else
-      allocate(Lcc(nlast, nlast))
-      status = c2d_chol_trailing_block(f%handle, int(nlast, c_int), Lcc)
-      if (status == cholmod_ok) return
-      deallocate(Lcc)
-      if (status == c2d_chol_not_super_ll) then
-        msg = 'trailing factor block: the factor is not stored as supernodal LL'' (LDL'' or simplicial)'
-      else if (status == c2d_chol_block_moved) then
-        msg = 'trailing factor block: the `last` dofs are not the last pivots of the factor'
-      else
-        msg = 'trailing factor block: ' // status_name(status) // ' (status ' // int_to_str(int(status)) // ')'
-      end if
     end if
-    call report(msg, err)
-  end subroutine trailing_factor_block
+  end function trailing_check
+
+  function trailing_status_message(status) result(msg)
+    integer(c_int), intent(in) :: status
+    character(len=:), allocatable :: msg
+    if (status == c2d_chol_not_super_ll) then
+      msg = 'trailing factor block: the factor is not stored as supernodal LL'' (LDL'' or simplicial)'
+    else if (status == c2d_chol_block_moved) then
+      msg = 'trailing factor block: the `last` dofs are not the last pivots of the factor'
+    else
+      msg = 'trailing factor block: ' // status_name(status) // ' (status ' // int_to_str(int(status)) // ')'
+    end if
+  end function trailing_status_message
+
 
   !> Release the CHOLMOD handle of f (no-op when it holds none); the
   !> statistics are kept.

@@ -14,7 +14,7 @@ program test_sparse_cholesky
   use testing, only: check, check_close, check_small, finish_tests
   use sparse_matrix, only: csc_t, csc_nnz, csc_symv, csc_from_triplets, csc_check
   use sparse_cholesky, only: factor_t, factorize, solve, solve_vector, solve_block, trailing_factor_block, &
-                             solve_forward, solve_backward, &
+                             solve_forward, solve_backward, trailing_block_end, &
                              free_factor, factor_nnz, factor_flops, factor_memory, factor_ordering, &
                              analyze_pattern, factorize_values
   implicit none
@@ -23,6 +23,7 @@ program test_sparse_cholesky
   call test_laplacian_solves()
   call test_trailing_block_laplacian()
   call test_trailing_block_all()
+  call test_trailing_block_per_body()
   call test_elasticity()
   call test_singular()
   call test_bad_arguments()
@@ -400,6 +401,46 @@ contains
     call check_small(maxval(abs(zinv - z)) / maxval(abs(z)), 1.0e-12_dp, &
                      'Laplacian: (Lcc Lcc'')^-1 = (A^-1)(last,last)')
   end subroutine test_trailing_block_laplacian
+
+  !> Two uncoupled bodies (two grid Laplacians side by side in one matrix),
+  !> each with some dofs last: L_cc has one diagonal block per body, found by
+  !> trailing_block_end (checked against the zeros of the whole L_cc, read
+  !> independently), and each block read alone equals that part of L_cc.
+  subroutine test_trailing_block_per_body()
+    integer, parameter :: m = 20, n1 = m * m, k1 = 12, k2 = 9
+    type(csc_t) :: A1, A
+    type(factor_t) :: f
+    type(error_t), allocatable :: err
+    real(dp), allocatable :: lcc(:,:), blk(:,:)
+    integer :: last(k1 + k2), k, e1, e2, nz1
+    logical :: zero_off
+
+    call grid_laplacian(m, .true., A1)
+    ! A = diag(A1, A1): the second copy's rows shifted by n1
+    nz1 = A1%colptr(n1 + 1) - 1
+    A%n = 2 * n1
+    A%colptr = [A1%colptr(1:n1), A1%colptr + nz1]
+    A%rowind = [A1%rowind(1:nz1), A1%rowind(1:nz1) + n1]
+    A%val = [A1%val(1:nz1), A1%val(1:nz1)]
+    last(1:k1) = [(1 + m * (m - 1) + (k - 1), k = 1, k1)]           ! top row of body 1
+    last(k1 + 1:) = [(n1 + 3 + m * (k - 1), k = 1, k2)]             ! a column of body 2
+    call factorize(f, A, err, last)
+    call check(.not. allocated(err), 'two bodies: factorize with dofs of each last')
+    if (allocated(err)) print '(a)', '  ' // err%message
+    if (allocated(err)) return
+    call trailing_factor_block(f, k1 + k2, lcc)
+    zero_off = all(lcc(k1 + 1:, 1:k1) == 0.0_dp)
+    call check(zero_off .and. any(lcc(2:k1, 1) /= 0.0_dp), 'two bodies: L_cc is block diagonal (read whole)')
+    call trailing_block_end(f, k1 + k2, 1, e1)
+    call trailing_block_end(f, k1 + k2, k1 + 1, e2)
+    call check(e1 == k1 .and. e2 == k1 + k2, 'two bodies: trailing_block_end gives the blocks 1..12 and 13..21')
+    call trailing_factor_block(f, k1 + k2, blk, first=1, count=k1)
+    call check(all(blk == lcc(1:k1, 1:k1)), 'two bodies: block 1 read alone = L_cc(1:12, 1:12)')
+    call trailing_factor_block(f, k1 + k2, blk, first=k1 + 1, count=k2)
+    call check(all(blk == lcc(k1 + 1:, k1 + 1:)), 'two bodies: block 2 read alone = L_cc(13:21, 13:21)')
+    call trailing_factor_block(f, k1 + k2, blk, err, first=k1, count=k2 + 2)
+    call check(allocated(err), 'two bodies: a range past the end of L_cc is an error')
+  end subroutine test_trailing_block_per_body
 
   !> All dofs last (no METIS part): L_cc is the whole factor of A(last, last),
   !> so L_cc L_cc' equals the dense permuted matrix.
