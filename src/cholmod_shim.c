@@ -912,41 +912,41 @@ static int supernode_of(const cholmod_factor *L, int j)
     return lo;
 }
 
-/* Supernode s holds columns k1..k2-1 of L as a dense nsrow-by-(k2-k1)
- * column-major block at Lx + Lpx[s]; its row indices are Ls[Lpi[s]..], the
- * first k2-k1 of them being k1..k2-1. */
+/* Column j of the supernodal L from its diagonal down: rows[0..len-1]
+ * (rows[0] = j) and vals[0..len-1]; returns len.  Supernode s holds columns
+ * k1..k2-1 of L as a dense nsrow-by-(k2-k1) column-major block at
+ * Lx + Lpx[s]; its row indices are Ls[Lpi[s]..], the first k2-k1 of them
+ * being k1..k2-1. */
+static int column_below(const cholmod_factor *L, int j, const int **rows, const double **vals)
+{
+    const int *Super = L->super, *Lpi = L->pi, *Lpx = L->px, *Ls = L->s;
+    int s = supernode_of(L, j);
+    int d = j - Super[s];
+    int nsrow = Lpi[s + 1] - Lpi[s];
+    *rows = Ls + Lpi[s] + d;
+    *vals = (const double *) L->x + Lpx[s] + (size_t) d * (size_t) nsrow + (size_t) d;
+    return nsrow - d;
+}
+
 int c2d_chol_trailing_range(const void *handle, int nlast, int first, int count, double *lcc)
 {
     const struct c2d_chol *h = handle;
-    const cholmod_factor *L;
-    const int *Super, *Lpi, *Lpx, *Ls;
-    const double *Lx;
-    int c0, b0, b1, s, k1, nsrow, j, q, i, status;
+    const int *rows;
+    const double *vals;
+    int b0, b1, j, q, len, status;
 
     status = trailing_ok(h, nlast);
     if (status != CHOLMOD_OK) return status;
     if (first < 1 || count < 1 || first - 1 + count > nlast) return C2D_CHOL_BAD_ARGUMENT;
-    L = h->L;
-    Super = L->super;
-    Lpi = L->pi;
-    Lpx = L->px;
-    Ls = L->s;
-    Lx = L->x;
-    c0 = h->n - nlast;        /* first pivot of the trailing block, 0-based */
-    b0 = c0 + first - 1;      /* the range: pivots b0..b1-1 */
+    b0 = h->n - nlast + first - 1; /* the range: pivots b0..b1-1 (0-based) */
     b1 = b0 + count;
     memset(lcc, 0, (size_t) count * (size_t) count * sizeof(double));
     for (j = b0; j < b1; j++)
     {
-        s = supernode_of(L, j);
-        k1 = Super[s];
-        nsrow = Lpi[s + 1] - Lpi[s];
-        for (q = j - k1; q < nsrow; q++) /* rows j.. of column j */
+        len = column_below(h->L, j, &rows, &vals);
+        for (q = 0; q < len; q++)
         {
-            i = Ls[Lpi[s] + q];
-            if (i >= b1) continue;
-            lcc[(size_t) (j - b0) * (size_t) count + (size_t) (i - b0)] =
-                Lx[Lpx[s] + (size_t) (j - k1) * (size_t) nsrow + (size_t) q];
+            if (rows[q] < b1) lcc[(size_t) (j - b0) * (size_t) count + (size_t) (rows[q] - b0)] = vals[q];
         }
     }
     return CHOLMOD_OK;
@@ -955,31 +955,21 @@ int c2d_chol_trailing_range(const void *handle, int nlast, int first, int count,
 int c2d_chol_trailing_block_end(const void *handle, int nlast, int first, int *last_row)
 {
     const struct c2d_chol *h = handle;
-    const cholmod_factor *L;
-    const int *Super, *Lpi, *Lpx, *Ls;
-    const double *Lx;
-    int c0, e, j, s, k1, nsrow, q, i, status;
+    const int *rows;
+    const double *vals;
+    int c0, e, j, q, len, status;
 
     status = trailing_ok(h, nlast);
     if (status != CHOLMOD_OK) return status;
     if (first < 1 || first > nlast) return C2D_CHOL_BAD_ARGUMENT;
-    L = h->L;
-    Super = L->super;
-    Lpi = L->pi;
-    Lpx = L->px;
-    Ls = L->s;
-    Lx = L->x;
     c0 = h->n - nlast;
-    e = c0 + first - 1;       /* the block ends at pivot e so far */
+    e = c0 + first - 1; /* the block ends at pivot e so far */
     for (j = c0 + first - 1; j <= e; j++)
     {
-        s = supernode_of(L, j);
-        k1 = Super[s];
-        nsrow = Lpi[s + 1] - Lpi[s];
-        for (q = j - k1 + 1; q < nsrow; q++) /* the non-zeros below the diagonal */
+        len = column_below(h->L, j, &rows, &vals);
+        for (q = 1; q < len; q++) /* the non-zeros below the diagonal */
         {
-            i = Ls[Lpi[s] + q];
-            if (i > e && Lx[Lpx[s] + (size_t) (j - k1) * (size_t) nsrow + (size_t) q] != 0.0) e = i;
+            if (rows[q] > e && vals[q] != 0.0) e = rows[q];
         }
     }
     *last_row = e - c0 + 1;
