@@ -150,7 +150,7 @@ program contact2d
   if (with_contact) then
     ! the forward solve counts as condensation when there is contact, as
     ! recovery otherwise: a scene without contact spends nothing on it
-    call condense(cs, eq, factor, u0, w, q, err, y, xc)
+    call condense(cs, eq, factor, y, u0, w, q, xc, err)
     if (allocated(err)) call fail_numerical(err%message)
     if (cs%ntan > 0) then
       call friction_load_paths()
@@ -166,10 +166,10 @@ program contact2d
     allocate(res%u(sc%ndof))
     call system_clock(t_solve)
     if (cs%ntan > 0) then
-      call recover(cs, eq, factor, u0, [res%mu, res%tau], res%u, y, xc)
+      call recover(eq, factor, y, xc, u0, [res%mu, res%tau], res%u)
       call contact_forces(cs, [res%mu, res%tau], fc)
     else
-      call recover(cs, eq, factor, u0, res%mu, res%u, y, xc)
+      call recover(eq, factor, y, xc, u0, res%mu, res%u)
       call contact_forces(cs, res%mu, fc)
     end if
     call system_clock(t_now, t_rate)

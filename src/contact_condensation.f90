@@ -26,23 +26,21 @@
 !> Programming interface
 !>   contact_equations(cs, eq, last)        free equations of the contact dofs, in
 !>                                          the order to be factorized last
-!>   condense(cs, eq, factor, u0, w, q, err [, y, xc])
-!>                                          W (nc, nc), q (nc), nc = nrow + ntan;
-!>                                          with y: u0 on the contact dofs from y,
-!>                                          and X kept in xc for recover
+!>   condense(cs, eq, factor, y, u0, w, q, xc, err)
+!>                                          W (nc, nc), q (nc), nc = nrow + ntan,
+!>                                          u0 on the contact dofs from y, and X
+!>                                          in xc for recover
 !>   constraint_values(cs, u, v)            v = C u, C = [B; T] (the tangential
 !>                                          rows T of friction pairs after B)
 !>   contact_forces(cs, mu, fc)             fc = -B' mu on every dof (fc sized ndof)
-!>   recover(cs, eq, factor, u0, mu, u [, y, xc])
-!>                                          u = u0 + K^-1 (-B' mu) on free dofs;
-!>                                          with y and xc: one backward solve
-!>                                          (y overwritten, xc released)
+!>   recover(eq, factor, y, xc, u0, mu, u)  u = K^-1 (f - C' mu) by one backward
+!>                                          solve (y overwritten, xc released)
 module contact_condensation
   use kinds, only: dp
   use lapack_interfaces, only: dgemv, dsyrk, dtrsm
-  use diagnostics, only: error_t, set_error
+  use diagnostics, only: error_t
   use contact_set, only: contact_set_t
-  use sparse_cholesky, only: factor_t, trailing_factor_block, trailing_block_end, solve, solve_backward
+  use sparse_cholesky, only: factor_t, trailing_factor_block, trailing_block_end, solve_backward
   implicit none
   private
   public :: contact_equations, condense, contact_forces, recover, constraint_values
@@ -72,23 +70,22 @@ contains
   !> of friction pairs, g = 0 there; C = B without friction).
   !>   cs     (in)  constraint rows; factor (in) K = L L' with contact_equations last
   !>   eq     (in)  (ndof) free equation numbers
-  !>   u0     (inout) (ndof) solution without contact (prescribed values on fixed
-  !>                dofs); with y, only its fixed dofs are read, and its free
-  !>                contact dofs are set (u0_C = L_cc'^-1 y_c)
+  !>   u0     (inout) (ndof) on entry the prescribed values on the fixed dofs;
+  !>                on exit also u0 = K^-1 f on the free contact dofs
+  !>                (u0_C = L_cc'^-1 y_c; the other free dofs are not set)
   !>   w      (out) (nc, nc) symmetric positive semi-definite, nc = nrow + ntan
   !>   q      (out) (nc)
   !>   err    (out) allocated when the trailing block cannot be had
-  !>   y      (in, optional) (nfree) the forward half L^-1 P f of u0's solve
-  !>   xc     (out, optional, with y) X = L_cc^-1 B_C' (nfc, nc), for recover
-  subroutine condense(cs, eq, factor, u0, w, q, err, y, xc)
+  !>   y      (in)  (nfree) the forward half L^-1 P f of u0's solve
+  !>   xc     (out) X = L_cc^-1 C_C' (nfc, nc), for recover
+  subroutine condense(cs, eq, factor, y, u0, w, q, xc, err)
     type(contact_set_t), intent(in) :: cs
     integer, intent(in) :: eq(:)
     type(factor_t), intent(inout) :: factor
+    real(dp), intent(in) :: y(:)
     real(dp), intent(inout) :: u0(:)
-    real(dp), allocatable, intent(out) :: w(:,:), q(:)
+    real(dp), allocatable, intent(out) :: w(:,:), q(:), xc(:,:)
     type(error_t), allocatable, intent(out) :: err
-    real(dp), intent(in), optional :: y(:)
-    real(dp), allocatable, intent(out), optional :: xc(:,:)
     integer :: nc, nfc, r, k, col, i, j, s, e, c1, c2
     integer, allocatable :: fcol(:)
     real(dp), allocatable :: x(:,:), lcc(:,:), uc(:)
@@ -108,7 +105,7 @@ contains
     if (nfc == 0 .or. nc == 0) then
       call gap_offsets()
       allocate(w(nc, nc), source=0.0_dp)
-      if (present(xc)) allocate(xc(nfc, nc), source=0.0_dp)
+      allocate(xc(nfc, nc), source=0.0_dp)
       return
     end if
     ! X = B_C' restricted to free contact dofs, (nfc, nc)
@@ -123,7 +120,7 @@ contains
     ! does not couple give L_cc a block per body; a block is read out of the
     ! factor only when it is solved (the whole L_cc is never held), and solved
     ! only on the constraint rows that reach it (the rest of X stays zero there)
-    if (present(y)) uc = y(size(y) - nfc + 1:)
+    uc = y(size(y) - nfc + 1:)
     s = 1
     do while (s <= nfc)
       call trailing_block_end(factor, nfc, s, e, err)
@@ -133,17 +130,15 @@ contains
         return
       end if
       ! the end of the backward half of u0 = K^-1 f: u0_C = L_cc'^-1 y_c
-      if (present(y)) call dtrsm('L', 'L', 'T', 'N', e - s + 1, 1, 1.0_dp, lcc, e - s + 1, uc(s), nfc)
+      call dtrsm('L', 'L', 'T', 'N', e - s + 1, 1, 1.0_dp, lcc, e - s + 1, uc(s), nfc)
       call nonzero_columns(x, s, e, c1, c2)
       if (c1 <= c2) call dtrsm('L', 'L', 'N', 'N', e - s + 1, c2 - c1 + 1, 1.0_dp, lcc, e - s + 1, x(s, c1), nfc)
       deallocate(lcc)
       s = e + 1
     end do
-    if (present(y)) then
-      do k = 1, cs%ncdof
-        if (fcol(k) > 0) u0(cs%cdof(k)) = uc(fcol(k))
-      end do
-    end if
+    do k = 1, cs%ncdof
+      if (fcol(k) > 0) u0(cs%cdof(k)) = uc(fcol(k))
+    end do
     call gap_offsets()
     allocate(w(nc, nc))
     call dsyrk('U', 'T', nc, nfc, 1.0_dp, x, nfc, 0.0_dp, w, nc)           ! W = X' X (upper)
@@ -152,7 +147,7 @@ contains
         w(i, j) = w(j, i)
       end do
     end do
-    if (present(xc)) call move_alloc(x, xc)
+    call move_alloc(x, xc)
 
   contains
 
@@ -218,45 +213,30 @@ contains
     end do
   end subroutine contact_forces
 
-  !> u = u0 + K^-1 (fc)_f with fc = -B' mu: one more solve; or, given the
-  !> forward half y of u0's solve and X from condense, one backward solve of
-  !> y - [0; X mu] (u0 then serves for its fixed dofs only; y is overwritten
-  !> and xc released).
-  subroutine recover(cs, eq, factor, u0, mu, u, y, xc)
-    type(contact_set_t), intent(in) :: cs
+  !> u = K^-1 (f - C' mu): the backward half of the solve, of y - [0; X mu]
+  !> (y the forward half L^-1 P f, X = L_cc^-1 C_C' from condense); u takes
+  !> u0's prescribed values on the fixed dofs.
+  !>   y  (inout) (nfree) overwritten;  xc (inout) X, released before the solve
+  !>   u0 (in) (ndof), only its fixed dofs read;  mu (in) (nc);  u (out) (ndof)
+  subroutine recover(eq, factor, y, xc, u0, mu, u)
     integer, intent(in) :: eq(:)
     type(factor_t), intent(inout) :: factor
+    real(dp), intent(inout), contiguous :: y(:)
+    real(dp), allocatable, intent(inout) :: xc(:,:)
     real(dp), intent(in) :: u0(:), mu(:)
     real(dp), intent(out) :: u(:)
-    real(dp), intent(inout), optional, contiguous :: y(:)
-    real(dp), allocatable, intent(inout), optional :: xc(:,:)
-    real(dp), allocatable :: fc(:), rhs(:,:), du(:,:)
+    real(dp), allocatable :: du(:)
     integer :: i, nfree, nfc
-    nfree = maxval(eq)
-    if (present(y)) then
-      ! y - [0; X mu] in place; X is released before the solve (a lower peak)
-      nfc = size(xc, 1)
-      if (nfc > 0 .and. size(mu) > 0) &
-        call dgemv('N', nfc, size(mu), -1.0_dp, xc, nfc, mu, 1, 1.0_dp, y(nfree - nfc + 1:), 1)
-      deallocate(xc)
-      allocate(du(nfree, 1))
-      call solve_backward(factor, y, du(:, 1))
-      u = u0
-      do i = 1, size(eq)
-        if (eq(i) > 0) u(i) = du(eq(i), 1)
-      end do
-      return
-    end if
-    allocate(fc(size(u0)), rhs(nfree, 1), du(nfree, 1))
-    call contact_forces(cs, mu, fc)
-    rhs = 0.0_dp
-    do i = 1, size(eq)
-      if (eq(i) > 0) rhs(eq(i), 1) = fc(i)
-    end do
-    call solve(factor, rhs, du)
+    nfree = size(y)
+    nfc = size(xc, 1)
+    if (nfc > 0 .and. size(mu) > 0) &
+      call dgemv('N', nfc, size(mu), -1.0_dp, xc, nfc, mu, 1, 1.0_dp, y(nfree - nfc + 1:), 1)
+    deallocate(xc)                                   ! before the solve: a lower peak
+    allocate(du(nfree))
+    call solve_backward(factor, y, du)
     u = u0
     do i = 1, size(eq)
-      if (eq(i) > 0) u(i) = u0(i) + du(eq(i), 1)
+      if (eq(i) > 0) u(i) = du(eq(i))
     end do
   end subroutine recover
 
