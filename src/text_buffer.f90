@@ -13,6 +13,8 @@
 !> Programming interface
 !>   type(text_buffer_t)          byte buffer bound to a stream file
 !>   open_text(tb, path, ok)      create or replace the file
+!>   open_memory(tb)              a buffer bound to no file: it grows, and
+!>                                tb%buf(1:tb%used) holds the text
 !>   put_text(tb, s)              append a string
 !>   put_line(tb, s)              append a string and a newline
 !>   put_real(tb, x)              append ' [-]d.dddddddddE+eee'
@@ -24,7 +26,7 @@ module text_buffer
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
   implicit none
   private
-  public :: text_buffer_t, open_text, put_text, put_line, put_real, put_int, put_newline, close_text
+  public :: text_buffer_t, open_text, open_memory, put_text, put_line, put_real, put_int, put_newline, close_text
 
   integer, parameter :: capacity = 1048576
 
@@ -33,6 +35,7 @@ module text_buffer
     logical :: opened = .false.                    !< the unit is open
     integer :: used = 0                            !< bytes pending in buf(1:used)
     logical :: ok = .true.                         !< no write has failed
+    logical :: memory = .false.                    !< bound to no file (open_memory)
     character(len=:), allocatable :: buf           !< (capacity) pending bytes
   end type text_buffer_t
 
@@ -52,9 +55,24 @@ contains
     tb%used = 0
   end subroutine open_text
 
+  subroutine open_memory(tb)
+    type(text_buffer_t), intent(out) :: tb
+    tb%memory = .true.
+    allocate(character(len=65536) :: tb%buf)
+    tb%used = 0
+  end subroutine open_memory
+
+  !> The buffer is full: write it to the file, or, bound to no file, double it.
   subroutine flush_buffer(tb)
     type(text_buffer_t), intent(inout) :: tb
+    character(len=:), allocatable :: bigger
     integer :: ios
+    if (tb%memory) then
+      allocate(character(len=2 * len(tb%buf)) :: bigger)
+      bigger(1:tb%used) = tb%buf(1:tb%used)
+      call move_alloc(bigger, tb%buf)
+      return
+    end if
     if (tb%used > 0 .and. tb%opened) then
       write(tb%unit, iostat=ios) tb%buf(1:tb%used)
       if (ios /= 0) tb%ok = .false.
@@ -69,8 +87,8 @@ contains
     n = len(s)
     k = 0
     do while (k < n)
-      if (tb%used == capacity) call flush_buffer(tb)
-      chunk = min(n - k, capacity - tb%used)
+      if (tb%used == len(tb%buf)) call flush_buffer(tb)
+      chunk = min(n - k, len(tb%buf) - tb%used)
       tb%buf(tb%used + 1:tb%used + chunk) = s(k + 1:k + chunk)
       tb%used = tb%used + chunk
       k = k + chunk
@@ -190,7 +208,7 @@ contains
     type(text_buffer_t), intent(inout) :: tb
     logical, intent(out) :: ok
     integer :: ios
-    call flush_buffer(tb)
+    if (.not. tb%memory) call flush_buffer(tb)
     ok = tb%ok
     if (tb%opened) then
       close(tb%unit, iostat=ios)
