@@ -1,7 +1,7 @@
 !> text_buffer against the es17.9e3 edit descriptor and integer i0.
 program test_text_buffer
   use kinds, only: dp
-  use text_buffer, only: text_buffer_t, open_text, put_real, put_int, put_newline, close_text
+  use text_buffer, only: text_buffer_t, open_text, open_memory, put_text, put_real, put_int, put_newline, close_text
   use testing, only: check, finish_tests
   implicit none
   type(text_buffer_t) :: tb
@@ -56,5 +56,24 @@ program test_text_buffer
     call check(j == ints(i), 'integer read back')
   end do
   close(u, status='delete')
+  ! a buffer bound to no file grows and keeps every byte: 20000 lines of
+  ! ' 1.000000000E+000' and a newline (18 bytes each) are 360000 bytes
+  block
+    type(text_buffer_t) :: mem
+    character(len=18), parameter :: row = ' 1.000000000E+000' // achar(10)
+    call open_memory(mem)
+    do i = 1, 20000
+      call put_real(mem, 1.0_dp)
+      call put_newline(mem)
+    end do
+    call check(mem%used == 20000 * 18, 'memory buffer: 360000 bytes kept')
+    nbad = 0
+    do i = 1, 20000
+      if (mem%buf(18 * (i - 1) + 1:18 * i) /= row) nbad = nbad + 1
+    end do
+    call check(nbad == 0, 'memory buffer: every row as written')
+    call put_text(mem, 'end')
+    call check(mem%buf(mem%used - 2:mem%used) == 'end', 'memory buffer: text appended after growth')
+  end block
   call finish_tests()
 end program test_text_buffer
