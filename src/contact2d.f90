@@ -96,7 +96,7 @@ program contact2d
   ! while the values are assembled on the other, then the numeric factorization.
   if (nfree == 0) call fail_numerical('every dof is fixed: there is nothing to solve')
   call build_pattern(sc%bodies, eq, nfree, k)
-  allocate(rhs(nfree, 1), x(nfree, 1))
+  allocate(rhs(nfree, 1))
   rhs = 0.0_dp
   do i = 1, sc%ndof
     if (eq(i) > 0) rhs(eq(i), 1) = sc%fext(i)
@@ -135,6 +135,7 @@ program contact2d
     allocate(y(nfree))
     call solve_forward(factor, rhs(:, 1), y)
   else
+    allocate(x(nfree, 1))
     call solve(factor, rhs, x)
     do i = 1, sc%ndof
       if (eq(i) > 0) u0(i) = x(eq(i), 1)
@@ -142,7 +143,8 @@ program contact2d
   end if
   call system_clock(t_now, t_rate)
   res%time_solve = real(t_now - t_solve, dp) / real(t_rate, dp)
-  deallocate(rhs, x)
+  deallocate(rhs)
+  if (allocated(x)) deallocate(x)
 
   allocate(fc(sc%ndof))
   fc = 0.0_dp
