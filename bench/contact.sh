@@ -17,7 +17,7 @@ reps=${1:-3}
 work=${BENCH_OUT:-$top/bench/out/contact}
 mkdir -p "$work"
 . "$top/bench/decks.sh"
-median() { sort -g | awk '{v[NR]=$1} END {print (NR%2) ? v[(NR+1)/2] : (v[NR/2]+v[NR/2+1])/2}'; }
+. "$top/bench/common.sh"
 
 hertz_deck "$work/hertz_1e5.deck" hertz_1e5 0.001 0.04
 hertz_deck "$work/hertz_1e6.deck" hertz_1e6 0.001 0.0095

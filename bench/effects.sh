@@ -16,7 +16,7 @@ prog=${CONTACT2D:-$top/bin/contact2d}
 reps=${1:-3}
 work=${BENCH_OUT:-$top/bench/out/effects}
 mkdir -p "$work"
-median() { sort -g | awk '{v[NR]=$1} END {print (NR%2) ? v[(NR+1)/2] : (v[NR/2]+v[NR/2+1])/2}'; }
+. "$top/bench/common.sh"
 for part in block disk; do
   [ -f "$work/$part.msh" ] || gmsh -2 -format msh41 -v 1 -setnumber hc 0.001 -setnumber hf 0.04 \
     "$top/bench/geo/hertz_${part}_graded.geo" -o "$work/$part.msh"

@@ -11,7 +11,7 @@ reps=${1:-3}
 work=$(mktemp -d "${TMPDIR:-/tmp}/c2d-bench.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 . "$top/bench/decks.sh"
-median() { sort -g | awk '{v[NR]=$1} END {print (NR%2) ? v[(NR+1)/2] : (v[NR/2]+v[NR/2+1])/2}'; }
+. "$top/bench/common.sh"
 printf '%-9s %9s %7s %8s %8s %8s %8s %8s %8s %9s %8s %8s\n' n dofs mesh assemble factor recover output total memMB \
   nnzL asm/fac tot/fac
 for n in 70 223 707; do

@@ -15,7 +15,7 @@ reps=${1:-3}
 work=${BENCH_OUT:-$top/bench/out/ordering}
 mkdir -p "$work"
 . "$top/bench/decks.sh"
-median() { sort -g | awk '{v[NR]=$1} END {print (NR%2) ? v[(NR+1)/2] : (v[NR/2]+v[NR/2+1])/2}'; }
+. "$top/bench/common.sh"
 
 for o in amd metis; do
   for n in 160 223 316 447 707; do plate_deck "$work/plate_${n}_$o.deck" "$n" "SOLVER ordering=$o"; done
