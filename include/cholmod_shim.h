@@ -65,10 +65,13 @@ int c2d_chol_factorize(void *h, int n, const int *colptr, const int *rowind,
  * group of each dof, 1 <= group[i] <= n, e.g. its mesh node: METIS then
  * orders the graph of the groups (vertex weights = group sizes, a quarter of
  * the edges of the dof graph, about half the time) and each group's dofs
- * follow one another. */
-int c2d_chol_analyze(void *h, int n, const int *colptr, const int *rowind,
+ * follow one another.  offset (>= 0): A may be a diagonal block of a larger
+ * matrix B given by its own columns, colptr[0..n] (any colptr[0] >= 1),
+ * rowind and val from the block's first entry, and its rows as B's rows:
+ * A(i,j) = B(offset+i, offset+j); 0 for a whole matrix. */
+int c2d_chol_analyze(void *h, int n, const int *colptr, const int *rowind, int offset,
                      int nlast, const int *last, int ngroup, const int *group);
-int c2d_chol_factorize_values(void *h, int n, const int *colptr, const int *rowind,
+int c2d_chol_factorize_values(void *h, int n, const int *colptr, const int *rowind, int offset,
                               const double *val);
 
 /* Where the last factorization failed: *column = 1-based pivot (column of the
@@ -125,4 +128,14 @@ int c2d_chol_trailing_range(const void *h, int nlast, int first, int count, doub
  * Returns as c2d_chol_trailing_range. */
 int c2d_chol_trailing_block_end(const void *h, int nlast, int first, int *last_row);
 
+/* Set OpenBLAS's thread count to n (n <= 0: leave it) and return the count
+ * it had; 0 and nothing done when the BLAS is not OpenBLAS.  For factors
+ * computed side by side on OpenMP threads, each with a BLAS of one thread. */
+int c2d_blas_threads(int n);
+/* Memory of the process, for parts factorized side by side on threads:
+ * c2d_malloc_arenas lets glibc keep at most two malloc arenas (mallopt
+ * M_ARENA_MAX), c2d_malloc_trim gives the free pages of every arena back
+ * (malloc_trim). */
+void c2d_malloc_arenas(void);
+void c2d_malloc_trim(void);
 #endif /* CONTACT2D_CHOLMOD_SHIM_H */

@@ -14,8 +14,8 @@
 !>   c2d_chol_create() -> handle          c2d_chol_destroy(handle)
 !>   c2d_chol_factorize(handle, n, colptr, rowind, val, nlast, last) -> status
 !>   c2d_chol_set_ordering(handle, method) -> status   method: c2d_order_metis, c2d_order_amd
-!>   c2d_chol_analyze(handle, n, colptr, rowind, nlast, last, ngroup, group) -> status
-!>   c2d_chol_factorize_values(handle, n, colptr, rowind, val) -> status
+!>   c2d_chol_analyze(handle, n, colptr, rowind, offset, nlast, last, ngroup, group) -> status
+!>   c2d_chol_factorize_values(handle, n, colptr, rowind, offset, val) -> status
 !>   c2d_chol_minor(handle, column, equation)
 !>   c2d_chol_stats(handle, lnz, flops, memory_peak, time_analyze, time_factorize)
 !>   c2d_chol_min_pivot_ratio(handle, ratio, column, equation)
@@ -24,6 +24,8 @@
 !>   c2d_chol_solve_half(handle, half, n, nrhs, b, x) -> status   (c2d_solve_whole / _forward / _backward)
 !>   c2d_chol_trailing_range(handle, nlast, first, count, lcc) -> status
 !>   c2d_chol_trailing_block_end(handle, nlast, first, last_row) -> status
+!>   c2d_blas_threads(n) -> the thread count OpenBLAS had (0: not OpenBLAS)
+!>   c2d_malloc_arenas()   c2d_malloc_trim()   at most two glibc malloc arenas; free pages back
 !>   status codes: cholmod_ok, cholmod_not_posdef, c2d_chol_* (shim codes)
 module cholmod_binding
   use, intrinsic :: iso_c_binding, only: c_ptr, c_int, c_double, c_int64_t, c_char
@@ -38,7 +40,7 @@ module cholmod_binding
   public :: c2d_chol_solve_half, c2d_solve_whole, c2d_solve_forward, c2d_solve_backward
   public :: cholmod_ok, cholmod_not_posdef, cholmod_out_of_memory, cholmod_too_large
   public :: c2d_chol_no_handle, c2d_chol_no_factor, c2d_chol_not_super_ll
-  public :: c2d_chol_block_moved, c2d_chol_bad_argument
+  public :: c2d_chol_block_moved, c2d_chol_bad_argument, c2d_blas_threads, c2d_malloc_arenas, c2d_malloc_trim
 
   ! fill-reducing orderings (cholmod_shim.h)
   integer(c_int), parameter :: c2d_order_metis = 0     !< METIS nested dissection
@@ -98,13 +100,14 @@ module cholmod_binding
     end function c2d_chol_set_ordering
 
     !> Ordering and symbolic analysis of the pattern; returns the status.
-    function c2d_chol_analyze(handle, n, colptr, rowind, nlast, last, ngroup, group) &
+    function c2d_chol_analyze(handle, n, colptr, rowind, offset, nlast, last, ngroup, group) &
         bind(c, name='c2d_chol_analyze') result(status)
       import :: c_ptr, c_int
       type(c_ptr), value :: handle
       integer(c_int), value :: n
       integer(c_int), intent(in) :: colptr(*)
       integer(c_int), intent(in) :: rowind(*)
+      integer(c_int), value :: offset
       integer(c_int), value :: nlast
       integer(c_int), intent(in) :: last(*)
       integer(c_int), value :: ngroup
@@ -113,13 +116,14 @@ module cholmod_binding
     end function c2d_chol_analyze
 
     !> Numeric factorization of the analyzed pattern's values; returns the status.
-    function c2d_chol_factorize_values(handle, n, colptr, rowind, val) &
+    function c2d_chol_factorize_values(handle, n, colptr, rowind, offset, val) &
         bind(c, name='c2d_chol_factorize_values') result(status)
       import :: c_ptr, c_int, c_double
       type(c_ptr), value :: handle
       integer(c_int), value :: n
       integer(c_int), intent(in) :: colptr(*)
       integer(c_int), intent(in) :: rowind(*)
+      integer(c_int), value :: offset
       real(c_double), intent(in) :: val(*)
       integer(c_int) :: status
     end function c2d_chol_factorize_values
@@ -206,6 +210,21 @@ module cholmod_binding
       integer(c_int), intent(out) :: last_row
       integer(c_int) :: status
     end function c2d_chol_trailing_block_end
+
+    !> Set OpenBLAS's thread count (n <= 0: leave it); returns the count it had, 0 when not OpenBLAS.
+    function c2d_blas_threads(n) bind(c, name='c2d_blas_threads') result(old)
+      import :: c_int
+      integer(c_int), value :: n
+      integer(c_int) :: old
+    end function c2d_blas_threads
+
+    !> At most two glibc malloc arenas for all threads.
+    subroutine c2d_malloc_arenas() bind(c, name='c2d_malloc_arenas')
+    end subroutine c2d_malloc_arenas
+
+    !> The free pages of every malloc arena back to the system.
+    subroutine c2d_malloc_trim() bind(c, name='c2d_malloc_trim')
+    end subroutine c2d_malloc_trim
 
   end interface
 

@@ -13,6 +13,7 @@
  * L->Perm and the status fields is simple in C against the installed header,
  * and fragile through Fortran interoperable types.
  */
+#include <malloc.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -105,25 +106,28 @@ void c2d_chol_destroy(void *handle)
 }
 
 /* The pattern of A as a CHOLMOD matrix (0-based, upper triangle, no values):
- * what the ordering and the analysis read.  NULL with *status set when the
- * column pointers or row indices are out of range. */
-static cholmod_sparse *copy_pattern(int n, const int *colptr, const int *rowind,
+ * what the ordering and the analysis read.  colptr and rowind may be the
+ * columns of a diagonal block of a larger matrix: the entries are
+ * rowind[0..colptr[n]-colptr[0]-1], their rows rowind - offset (see
+ * c2d_chol_analyze).  NULL with *status set when the column pointers or row
+ * indices are out of range. */
+static cholmod_sparse *copy_pattern(int n, const int *colptr, const int *rowind, int offset,
                                     cholmod_common *c, int *status)
 {
     cholmod_sparse *A;
     int *Ap, *Ai;
-    int j, p, nnz;
+    int j, p, nnz, base = colptr[0];
 
     *status = C2D_CHOL_BAD_ARGUMENT;
-    if (colptr[0] != 1) return NULL;
+    if (base < 1 || offset < 0) return NULL;
     for (j = 0; j < n; j++)
     {
         if (colptr[j + 1] < colptr[j]) return NULL;
     }
-    nnz = colptr[n] - 1;
+    nnz = colptr[n] - base;
     for (p = 0; p < nnz; p++)
     {
-        if (rowind[p] < 1 || rowind[p] > n) return NULL;
+        if (rowind[p] - offset < 1 || rowind[p] - offset > n) return NULL;
     }
     A = cholmod_allocate_sparse((size_t) n, (size_t) n, (size_t) (nnz > 0 ? nnz : 1),
                                 1, 1, 1, CHOLMOD_PATTERN, c);
@@ -134,8 +138,8 @@ static cholmod_sparse *copy_pattern(int n, const int *colptr, const int *rowind,
     }
     Ap = A->p;
     Ai = A->i;
-    for (j = 0; j <= n; j++) Ap[j] = colptr[j] - 1;
-    for (p = 0; p < nnz; p++) Ai[p] = rowind[p] - 1;
+    for (j = 0; j <= n; j++) Ap[j] = colptr[j] - base;
+    for (p = 0; p < nnz; p++) Ai[p] = rowind[p] - offset - 1;
     *status = CHOLMOD_OK;
     return A;
 }
@@ -651,7 +655,7 @@ static int factorize_numeric(struct c2d_chol *h, cholmod_sparse *A, const double
     return CHOLMOD_OK;
 }
 
-int c2d_chol_analyze(void *handle, int n, const int *colptr, const int *rowind,
+int c2d_chol_analyze(void *handle, int n, const int *colptr, const int *rowind, int offset,
                      int nlast, const int *last, int ngroup, const int *group)
 {
     struct c2d_chol *h = handle;
@@ -666,7 +670,7 @@ int c2d_chol_analyze(void *handle, int n, const int *colptr, const int *rowind,
     {
         return C2D_CHOL_BAD_ARGUMENT;
     }
-    A = copy_pattern(n, colptr, rowind, c, &status);
+    A = copy_pattern(n, colptr, rowind, offset, c, &status);
     if (A != NULL)
     {
         status = analyze_pattern(h, A, nlast, last, ngroup > 0 ? group : NULL);
@@ -676,7 +680,7 @@ int c2d_chol_analyze(void *handle, int n, const int *colptr, const int *rowind,
     return status;
 }
 
-int c2d_chol_factorize_values(void *handle, int n, const int *colptr, const int *rowind,
+int c2d_chol_factorize_values(void *handle, int n, const int *colptr, const int *rowind, int offset,
                               const double *val)
 {
     struct c2d_chol *h = handle;
@@ -694,16 +698,16 @@ int c2d_chol_factorize_values(void *handle, int n, const int *colptr, const int 
     /* the 0-based pattern is copied; the values are the caller's own array,
      * lent to CHOLMOD for the factorization (read only) and taken back
      * before the matrix is freed: no second copy of K's values */
-    A = copy_pattern(n, colptr, rowind, c, &status);
+    A = copy_pattern(n, colptr, rowind, offset, c, &status);
     if (A != NULL)
     {
         int j, p;
         for (j = 0; j < n; j++)
         {
             adiag[j] = 0.0;
-            for (p = colptr[j] - 1; p < colptr[j + 1] - 1; p++)
+            for (p = colptr[j] - colptr[0]; p < colptr[j + 1] - colptr[0]; p++)
             {
-                if (rowind[p] - 1 == j) adiag[j] += val[p];
+                if (rowind[p] - offset - 1 == j) adiag[j] += val[p];
             }
         }
         A->x = (void *) val;
@@ -721,8 +725,8 @@ int c2d_chol_factorize_values(void *handle, int n, const int *colptr, const int 
 int c2d_chol_factorize(void *handle, int n, const int *colptr, const int *rowind,
                        const double *val, int nlast, const int *last)
 {
-    int status = c2d_chol_analyze(handle, n, colptr, rowind, nlast, last, 0, NULL);
-    if (status == CHOLMOD_OK) status = c2d_chol_factorize_values(handle, n, colptr, rowind, val);
+    int status = c2d_chol_analyze(handle, n, colptr, rowind, 0, nlast, last, 0, NULL);
+    if (status == CHOLMOD_OK) status = c2d_chol_factorize_values(handle, n, colptr, rowind, 0, val);
     return status;
 }
 
@@ -974,4 +978,34 @@ int c2d_chol_trailing_block_end(const void *handle, int nlast, int first, int *l
     }
     *last_row = e - c0 + 1;
     return CHOLMOD_OK;
+}
+
+/* OpenBLAS's own thread count, when the BLAS is OpenBLAS (weak references:
+ * with another BLAS both are NULL and nothing is done). */
+extern int openblas_get_num_threads(void) __attribute__((weak));
+extern void openblas_set_num_threads(int) __attribute__((weak));
+
+/* At most two malloc arenas (glibc's default is 8 per core): the parts of a
+ * factor are ordered and factorized on the OpenMP threads, and each further
+ * arena keeps freed pages resident.  One arena costs more: on two threads
+ * the numeric factorization of signorini_1e5 (bench/contact.sh) took 0.33 s
+ * with one arena against 0.25-0.26 s with two. */
+void c2d_malloc_arenas(void)
+{
+    (void) mallopt(M_ARENA_MAX, 2);
+}
+
+/* Give the free pages of every arena back to the system (malloc_trim). */
+void c2d_malloc_trim(void)
+{
+    (void) malloc_trim(0);
+}
+
+int c2d_blas_threads(int n)
+{
+    int old;
+    if (openblas_get_num_threads == NULL || openblas_set_num_threads == NULL) return 0;
+    old = openblas_get_num_threads();
+    if (n > 0) openblas_set_num_threads(n);
+    return old;
 }

@@ -27,6 +27,7 @@ program contact2d
   use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use omp_lib, only: omp_get_max_threads, omp_get_thread_num, omp_get_num_threads
+  use cholmod_binding, only: c2d_malloc_arenas, c2d_malloc_trim
   implicit none
 
   character(len=*), parameter :: version = '1.0.0'
@@ -57,6 +58,9 @@ program contact2d
   logical :: with_contact
   real(dp), allocatable :: cu0(:,:)      ! (nrow + ntan, ramps) C u0 of each ramp's loads (friction)
 
+  ! At most two malloc arenas: the bodies' factors are computed side by side
+  ! on the threads, and every further glibc arena keeps its freed pages
+  call c2d_malloc_arenas()
   call parse_command_line(deck_path, outdir, check_only, quiet)
   call system_clock(t_start)
   t_phase = t_start
@@ -106,16 +110,18 @@ program contact2d
   ordering = deck%solver%ordering
   if (ordering == 'auto') ordering = merge('amd  ', 'metis', nfree <= amd_max_free)
   call lap(ph_assemble)
-  ! The ordering on the main thread: AMD, METIS and CHOLMOD allocate, and on
-  ! another thread glibc would give them a malloc arena of their own (7 MB
-  ! more resident memory at 1e5 dofs, in some runs and not in others).  The
-  ! assembly, which allocates nothing per element, runs beside it.
+  ! The ordering starts on the main thread (AMD, METIS and CHOLMOD allocate:
+  ! the main malloc arena); a scene of several bodies orders them side by
+  ! side on a nested team (sparse_cholesky's parts).  The assembly, which
+  ! allocates nothing per element (elements' fixed-size work arrays), runs
+  ! beside it.
   !$omp parallel num_threads(min(2, omp_get_max_threads()))
   if (omp_get_thread_num() == 0) call order_pattern()
   if (omp_get_thread_num() == 1 .or. omp_get_num_threads() == 1) call assemble_values()
   !$omp end parallel
   call split_overlap()
   if (allocated(err_order)) call fail_numerical(err_order%message)
+  call c2d_malloc_trim()     ! what the orderings freed, before the factors take their memory
   call factorize_values(factor, k, err)
   if (allocated(err)) call fail_numerical(err%message // equation_location(err%message))
   res%factor_nnz = factor_nnz(factor)
@@ -597,6 +603,16 @@ contains
     write(line, '(a,es16.8,a,i0)') 'energy   ', res%energy, ',  nnz(L) ', res%factor_nnz
     call say(trim(line) // ' (' // res%ordering // '),  peak memory ' // &
              trim(adjustl(real_fixed(res%memory_peak / 1048576.0_dp))) // ' MB')
+    if (factor%nparts > 1) then
+      write(line, '(a,i0,a)') 'factor   ', factor%nparts, ' parts (blocks of K that no entry couples: the bodies)'
+      if (omp_get_max_threads() > 1) then
+        write(line, '(a,i0,a)') trim(line) // ' ordered and factorized side by side on ', &
+          min(factor%nparts, omp_get_max_threads()), ' threads'
+      else
+        line = trim(line) // ' ordered and factorized one after the other'
+      end if
+      call say(trim(line))
+    end if
     call say('phase        seconds')
     do p = 1, nphase
       write(line, '(a,f12.4)') phase_names(p), res%time(p)

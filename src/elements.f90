@@ -23,6 +23,12 @@ module elements
   public :: quadrature_rule, shape_at, element_stiffness, element_force, element_body_load, element_strain
   public :: edge_load, strain_operator
 
+  !> The most nodes of an element (Q1).  The kernels run once per element:
+  !> their work arrays have this fixed size, not nen, because gfortran puts
+  !> arrays of run-time size on the heap (a malloc and free per call, and
+  !> a lock shared with every thread that allocates meanwhile).
+  integer, parameter :: max_nen = 4
+
 contains
 
   !> Quadrature on the reference triangle (0,0),(1,0),(0,1) or square [-1,1]^2.
@@ -81,7 +87,8 @@ contains
     integer, intent(in) :: nen
     real(dp), intent(in) :: xe(2, nen), xi(2)
     real(dp), intent(out) :: n(nen), dndx(2, nen), detj
-    real(dp) :: dndxi(2, nen), jac(2, 2), jinv(2, 2)
+    real(dp) :: dndxi(2, max_nen), jac(2, 2), jinv(2, 2)
+    integer :: a
     if (nen == 3) then
       n = [1.0_dp - xi(1) - xi(2), xi(1), xi(2)]
       dndxi(:, 1) = [-1.0_dp, -1.0_dp]
@@ -95,13 +102,22 @@ contains
       dndxi(:, 3) = 0.25_dp * [(1 + xi(2)), (1 + xi(1))]
       dndxi(:, 4) = 0.25_dp * [-(1 + xi(2)), (1 - xi(1))]
     end if
-    jac = matmul(xe, transpose(dndxi))          ! jac(i,j) = d x_i / d xi_j
+    ! jac(i,j) = d x_i / d xi_j, and dN/dx = J^-T dN/dxi, written out: no
+    ! array temporary of run-time size (see max_nen)
+    jac = 0.0_dp
+    do a = 1, nen
+      jac(:, 1) = jac(:, 1) + xe(:, a) * dndxi(1, a)
+      jac(:, 2) = jac(:, 2) + xe(:, a) * dndxi(2, a)
+    end do
     detj = jac(1, 1) * jac(2, 2) - jac(1, 2) * jac(2, 1)
     jinv(1, 1) = jac(2, 2) / detj
     jinv(2, 2) = jac(1, 1) / detj
     jinv(1, 2) = -jac(1, 2) / detj
     jinv(2, 1) = -jac(2, 1) / detj
-    dndx = matmul(transpose(jinv), dndxi)       ! dN/dx = J^-T dN/dxi
+    do a = 1, nen
+      dndx(1, a) = jinv(1, 1) * dndxi(1, a) + jinv(2, 1) * dndxi(2, a)
+      dndx(2, a) = jinv(1, 2) * dndxi(1, a) + jinv(2, 2) * dndxi(2, a)
+    end do
   end subroutine shape_at
 
   !> Strain operator B(3, 2 nen) from shape gradients: eps = B u.
@@ -145,16 +161,21 @@ contains
     integer, intent(in) :: nen
     real(dp), intent(in) :: xe(2, nen), d(3, 3), thick
     real(dp), intent(inout) :: ke(:,:)
-    real(dp) :: xi(2, 4), w(4), n(nen), dndx(2, nen), detj, b(3, 2 * nen), db(3, 2 * nen)
-    integer :: q, nq, m
+    real(dp) :: xi(2, 4), w(4), n(max_nen), dndx(2, max_nen), detj, b(3, 2 * max_nen), db(3, 2 * max_nen), c
+    integer :: q, nq, m, i, j
     m = 2 * nen
     call stiffness_rule(nen, nq, xi, w)
     ke(1:m, 1:m) = 0.0_dp
     do q = 1, nq
       call shape_at(nen, xe, xi(:, q), n, dndx, detj)
       call strain_operator(nen, dndx, b)
-      db = matmul(d, b)
-      ke(1:m, 1:m) = ke(1:m, 1:m) + (w(q) * detj * thick) * matmul(transpose(b), db)
+      c = w(q) * detj * thick
+      do j = 1, m                  ! db = D B, ke += c B' D B (no temporary: see max_nen)
+        db(:, j) = d(:, 1) * b(1, j) + d(:, 2) * b(2, j) + d(:, 3) * b(3, j)
+        do i = 1, m
+          ke(i, j) = ke(i, j) + c * (b(1, i) * db(1, j) + b(2, i) * db(2, j) + b(3, i) * db(3, j))
+        end do
+      end do
     end do
   end subroutine element_stiffness
 
@@ -164,15 +185,22 @@ contains
     integer, intent(in) :: nen
     real(dp), intent(in) :: xe(2, nen), d(3, 3), thick, ue(2 * nen)
     real(dp), intent(out) :: fe(2 * nen)
-    real(dp) :: xi(2, 4), w(4), n(nen), dndx(2, nen), detj, b(3, 2 * nen), sig(3)
-    integer :: q, nq
+    real(dp) :: xi(2, 4), w(4), n(max_nen), dndx(2, max_nen), detj, b(3, 2 * max_nen), eps(3), sig(3), c
+    integer :: q, nq, j
     call stiffness_rule(nen, nq, xi, w)
     fe = 0.0_dp
     do q = 1, nq
       call shape_at(nen, xe, xi(:, q), n, dndx, detj)
       call strain_operator(nen, dndx, b)
-      sig = matmul(d, matmul(b, ue))
-      fe = fe + (w(q) * detj * thick) * matmul(sig, b)
+      eps = 0.0_dp
+      do j = 1, 2 * nen
+        eps = eps + b(:, j) * ue(j)
+      end do
+      sig = d(:, 1) * eps(1) + d(:, 2) * eps(2) + d(:, 3) * eps(3)
+      c = w(q) * detj * thick
+      do j = 1, 2 * nen
+        fe(j) = fe(j) + c * (sig(1) * b(1, j) + sig(2) * b(2, j) + sig(3) * b(3, j))
+      end do
     end do
   end subroutine element_force
 
@@ -182,7 +210,7 @@ contains
     real(dp), intent(in) :: xe(2, nen), bf(2), thick
     real(dp), intent(out) :: fe(2 * nen)
     real(dp), allocatable :: xi(:,:), w(:)
-    real(dp) :: n(nen), dndx(2, nen), detj
+    real(dp) :: n(max_nen), dndx(2, max_nen), detj
     integer :: q, a
     call quadrature_rule(nen, 2, xi, w)
     fe = 0.0_dp
@@ -199,7 +227,8 @@ contains
     integer, intent(in) :: nen
     real(dp), intent(in) :: xe(2, nen), ue(2 * nen)
     real(dp), intent(out) :: eps(3)
-    real(dp) :: n(nen), dndx(2, nen), detj, b(3, 2 * nen), xc(2)
+    real(dp) :: n(max_nen), dndx(2, max_nen), detj, b(3, 2 * max_nen), xc(2)
+    integer :: j
     if (nen == 3) then
       xc = [1.0_dp, 1.0_dp] / 3.0_dp
     else
@@ -207,7 +236,10 @@ contains
     end if
     call shape_at(nen, xe, xc, n, dndx, detj)
     call strain_operator(nen, dndx, b)
-    eps = matmul(b, ue)
+    eps = 0.0_dp
+    do j = 1, 2 * nen
+      eps = eps + b(:, j) * ue(j)
+    end do
   end subroutine element_strain
 
   !> Nodal forces of a constant traction t on the straight edge xa-xb (2-node

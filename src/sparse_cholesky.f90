@@ -30,15 +30,26 @@
 !> Any other status != CHOLMOD_OK (out of memory, too large) is reported with
 !> CHOLMOD's code name.
 !>
-!> Ownership.  A factor_t owns its CHOLMOD handle (common and factor, in C);
-!> free_factor or the final procedure releases it.  Do not copy a factor_t by
+!> Independent blocks.  When no entry of A couples dofs 1..s to dofs s+1..n
+!> (bodies meshed each on its own, numbered one after the other: K has a
+!> diagonal block per body), A is cut there into parts, each ordered and
+!> factorized by its own CHOLMOD handle, the parts side by side on the OpenMP
+!> threads (largest first), each with a BLAS of one thread.  Blocks smaller
+!> than n / max_parts are merged with the next.  The caller sees one factor:
+!> the pivots are [the other dofs of part 1, of part 2, ..., last(:)], so
+!> that with `last` the trailing block is still L_cc, block diagonal by part,
+!> in the order of `last`; `last` must then visit the parts in order (the
+!> dofs of a contact interface, ascending, do), else A is kept whole.
+!>
+!> Ownership.  A factor_t owns its CHOLMOD handles (common and factor, in C);
+!> free_factor or the final procedure releases them.  Do not copy a factor_t by
 !> assignment: both copies would hold the same handle.  The statistics stay
 !> readable after free_factor.
 !>
 !> Programming interface
-!>   type(factor_t)   opaque handle (private); ready, n, nlast, nnz_l, flops,
-!>                    time_analyze, time_factorize, ordering, memory_peak,
-!>                    min_pivot_ratio
+!>   type(factor_t)   opaque handles (private); ready, n, nlast, nparts, nnz_l,
+!>                    flops, time_analyze, time_factorize, ordering,
+!>                    memory_peak, min_pivot_ratio
 !>   factorize(f, A, err [, last])          P A P' = L L' (the two halves below)
 !>   analyze_pattern(f, n, colptr, rowind, err [, last] [, group] [, method])
 !>                                          ordering (METIS or AMD) and symbolic analysis
@@ -59,17 +70,19 @@ module sparse_cholesky
                                          c_int64_t, c_char, c_null_char
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
   use kinds, only: dp, i8
-  use omp_lib, only: omp_get_max_active_levels, omp_set_max_active_levels
+  use omp_lib, only: omp_get_max_active_levels, omp_set_max_active_levels, omp_get_active_level, &
+                     omp_get_max_threads, omp_get_wtime
   use diagnostics, only: error_t, set_error, int_to_str, fail_numerical
   use sparse_matrix, only: csc_t, csc_nnz, csc_check
   use cholmod_binding, only: c2d_chol_create, c2d_chol_destroy, c2d_chol_analyze, c2d_chol_factorize_values, &
-                             c2d_chol_minor, c2d_chol_set_ordering, c2d_order_amd, &
+                             c2d_chol_minor, c2d_chol_set_ordering, c2d_order_amd, c2d_order_metis, &
                              c2d_chol_stats, c2d_chol_min_pivot_ratio, c2d_chol_ordering_name, &
                              c2d_chol_status_name, c2d_chol_solve, &
                              c2d_chol_trailing_range, c2d_chol_trailing_block_end, &
                              c2d_chol_solve_half, c2d_solve_whole, c2d_solve_forward, c2d_solve_backward, &
                              cholmod_ok, cholmod_not_posdef, c2d_chol_block_moved, &
-                             c2d_chol_not_super_ll
+                             c2d_chol_not_super_ll, c2d_chol_bad_argument, c2d_chol_no_handle, &
+                             c2d_blas_threads
   implicit none
   private
   public :: factor_t, factorize, analyze_pattern, factorize_values, solve, solve_vector, solve_block
@@ -79,12 +92,28 @@ module sparse_cholesky
   !> Floor of the order in the singularity tolerance (see singular_pivot_tolerance).
   integer, parameter :: tolerance_order_floor = 1000
 
+  !> At most this many parts; smaller independent blocks are merged.
+  integer, parameter :: max_parts = 16
+
+  !> One part of A: the diagonal block A(first:first+n-1, first:first+n-1),
+  !> which no entry couples to the rest, with its own CHOLMOD handle.
+  type :: part_t
+    type(c_ptr) :: handle = c_null_ptr    !< owned CHOLMOD handle (common + L)
+    integer :: first = 1                  !< its dofs: first..first+n-1
+    integer :: n = 0                      !< their number
+    integer :: nlast = 0                  !< its dofs in `last`: last(last0+1:last0+nlast)
+    integer :: last0 = 0
+    integer :: rest0 = 0                  !< its other dofs: pivots rest0+1..rest0+n-nlast
+    integer(c_int) :: status = 0          !< status of its last CHOLMOD call
+  end type part_t
+
   !> A Cholesky factor P A P' = L L' and its statistics.
   type :: factor_t
-    type(c_ptr), private :: handle = c_null_ptr  !< owned CHOLMOD handle (common + L)
+    type(part_t), allocatable, private :: part(:)  !< the parts of A (one when A does not split)
     logical :: ready = .false.            !< .true. when L is a valid numeric factor
     integer :: n = 0                      !< order of A
     integer :: nlast = 0                  !< size of the block ordered last (0: none)
+    integer :: nparts = 0                 !< number of parts factorized side by side
     integer(i8) :: nnz_l = 0_i8           !< nnz(L), without zeros of supernodal amalgamation
     real(dp) :: flops = 0.0_dp            !< flop count of the numeric factorization
     real(dp) :: time_analyze = 0.0_dp     !< wall seconds: ordering and symbolic analysis
@@ -150,12 +179,15 @@ contains
     integer, intent(in), optional :: group(:)
     character(len=*), intent(in), optional :: method
     integer(c_int), allocatable :: last_c(:), group_c(:)
-    integer(c_int) :: status, nlast, ngroup
-    integer :: levels
+    integer(c_int) :: ordering, ngroup
+    integer :: i, p, nthreads, levels, blas
+    type(part_t), allocatable :: parts(:)
+    real(dp) :: t0
 
     call free_factor(f)
     f%n = 0
     f%nlast = 0
+    f%nparts = 0
     f%nnz_l = 0_i8
     f%flops = 0.0_dp
     f%time_analyze = 0.0_dp
@@ -166,64 +198,218 @@ contains
     call check_pattern(n, colptr, rowind, err, last)
     if (allocated(err)) return
 
-    nlast = 0
     if (present(last)) then
-      nlast = int(size(last), c_int)
       last_c = int(last, c_int)
     else
-      allocate(last_c(1))
-      last_c = 0
+      allocate(last_c(0))
     end if
 
     ngroup = 0
+    allocate(group_c(n))
+    group_c = 0
     if (present(group)) then
       if (size(group) /= n .or. any(group < 1) .or. any(group > n)) then
         call set_error(err, 'sparse Cholesky: `group` must give each of the ' // int_to_str(n) // &
                        ' dofs a group in 1..' // int_to_str(n), 1)
         return
       end if
-      ngroup = int(n, c_int)
-      group_c = int(group, c_int)
-    else
-      allocate(group_c(1))
-      group_c = 0
+      ngroup = 1
     end if
 
-    f%handle = c2d_chol_create()
-    if (.not. c_associated(f%handle)) then
-      call set_error(err, 'sparse Cholesky: CHOLMOD could not start (out of memory)', 1)
-      return
-    end if
-    f%n = n
-    f%nlast = int(nlast)
-    status = cholmod_ok
+    ordering = c2d_order_metis
     if (present(method)) then
       if (method == 'amd') then
-        status = c2d_chol_set_ordering(f%handle, c2d_order_amd)
+        ordering = c2d_order_amd
       else if (method /= 'metis') then
         call set_error(err, 'sparse Cholesky: unknown ordering "' // method // '" (expected metis or amd)', 1)
         return
       end if
     end if
-    if (status == cholmod_ok) then
-      levels = cholmod_serial_begin()
-      status = c2d_chol_analyze(f%handle, int(n, c_int), colptr, rowind, nlast, last_c, ngroup, group_c)
-      call cholmod_serial_end(levels)
-    end if
+
+    call find_parts(n, colptr, rowind, last_c, parts)
+    ! each part's `last` and groups in its own numbering
+    do p = 1, size(parts)
+      associate (pt => parts(p))
+        last_c(pt%last0 + 1:pt%last0 + pt%nlast) = last_c(pt%last0 + 1:pt%last0 + pt%nlast) - (pt%first - 1)
+        if (ngroup > 0) call local_groups(group(pt%first:pt%first + pt%n - 1), group_c(pt%first:pt%first + pt%n - 1))
+      end associate
+    end do
+    call move_alloc(parts, f%part)
+    f%n = n
+    f%nlast = size(last_c)
+    f%nparts = size(f%part)
+    do p = 1, f%nparts
+      f%part(p)%handle = c2d_chol_create()
+      if (.not. c_associated(f%part(p)%handle)) then
+        call set_error(err, 'sparse Cholesky: CHOLMOD could not start (out of memory)', 1)
+        return
+      end if
+      f%part(p)%status = c2d_chol_set_ordering(f%part(p)%handle, ordering)
+    end do
+
+    t0 = omp_get_wtime()
+    call parts_begin(f, nthreads, levels, blas)
+    !$omp parallel do num_threads(nthreads) schedule(dynamic, 1) if (nthreads > 1)
+    do i = 1, f%nparts
+      associate (pt => f%part(largest(f, i)))
+        if (pt%status == cholmod_ok) &
+          pt%status = c2d_chol_analyze(pt%handle, int(pt%n, c_int), colptr(pt%first:pt%first + pt%n), &
+                                       rowind(colptr(pt%first):), int(pt%first - 1, c_int), &
+                                       int(pt%nlast, c_int), last_c(pt%last0 + 1:), int(pt%n, c_int) * ngroup, &
+                                       group_c(pt%first:))
+      end associate
+    end do
+    !$omp end parallel do
+    call parts_end(levels, blas)
+    f%time_analyze = omp_get_wtime() - t0
     call read_statistics(f)
 
-    select case (status)
-    case (cholmod_ok)
-      continue
-    case (c2d_chol_block_moved)
-      call set_error(err, 'sparse Cholesky: the analysis did not keep the ' // int_to_str(int(nlast)) &
-                     // ' dofs given as `last` at the last pivots (' // status_name(status) // ')', 1)
-    case default
-      call set_error(err, 'sparse Cholesky analysis failed: ' // status_name(status) // ' (status ' &
-                     // int_to_str(int(status)) // ') for a matrix of order ' // int_to_str(n) &
-                     // ' with ' // int_to_str(colptr(n + 1) - 1) // ' stored entries', 1)
-    end select
+    do p = 1, f%nparts
+      select case (f%part(p)%status)
+      case (cholmod_ok)
+        continue
+      case (c2d_chol_block_moved)
+        call set_error(err, 'sparse Cholesky: the analysis did not keep the ' // int_to_str(f%nlast) &
+                       // ' dofs given as `last` at the last pivots (' // status_name(f%part(p)%status) // ')', 1)
+        return
+      case default
+        call set_error(err, 'sparse Cholesky analysis failed: ' // status_name(f%part(p)%status) // ' (status ' &
+                       // int_to_str(int(f%part(p)%status)) // ') for a matrix of order ' // int_to_str(n) &
+                       // ' with ' // int_to_str(colptr(n + 1) - 1) // ' stored entries', 1)
+        return
+      end select
+    end do
   end subroutine analyze_pattern
+
+  !> The parts of a pattern: the finest cut into diagonal blocks that no entry
+  !> couples, blocks of fewer than n / max_parts dofs merged with the next.
+  !> A single part when `last` does not visit the parts in order.
+  !>   n, colptr, rowind (in) the pattern (checked)
+  !>   last  (in)  (nlast) dofs ordered last
+  !>   parts (out) first, n, nlast, last0 and rest0 of each part
+  subroutine find_parts(n, colptr, rowind, last, parts)
+    integer, intent(in) :: n, colptr(:), rowind(:)
+    integer(c_int), intent(in) :: last(:)
+    type(part_t), allocatable, intent(out) :: parts(:)
+    integer, allocatable :: span(:), part_of(:)
+    integer :: j, q, i, np, start, open, target
+
+    ! span(s) = the number of entries (i, j) with min(i, j) <= s < max(i, j)
+    allocate(span(n + 1))
+    span = 0
+    do j = 1, n
+      do q = colptr(j), colptr(j + 1) - 1
+        i = rowind(q)
+        span(min(i, j)) = span(min(i, j)) + 1
+        span(max(i, j)) = span(max(i, j)) - 1
+      end do
+    end do
+    target = max(1, n / max_parts)
+    allocate(part_of(n))
+    np = 0
+    start = 1
+    open = 0
+    do j = 1, n
+      open = open + span(j)
+      if (j == n .or. (open == 0 .and. j - start + 1 >= target)) then
+        np = np + 1
+        part_of(start:j) = np
+        start = j + 1
+      end if
+    end do
+    ! `last` must visit the parts in order
+    do q = 2, size(last)
+      if (part_of(last(q)) < part_of(last(q - 1))) then
+        np = 1
+        part_of = 1
+        exit
+      end if
+    end do
+
+    allocate(parts(np))
+    start = 1
+    do q = 1, np
+      parts(q)%first = start
+      do while (start <= n)
+        if (part_of(start) /= q) exit
+        start = start + 1
+      end do
+      parts(q)%n = start - parts(q)%first
+    end do
+    do q = 1, size(last)
+      parts(part_of(last(q)))%nlast = parts(part_of(last(q)))%nlast + 1
+    end do
+    do q = 2, np
+      parts(q)%last0 = parts(q - 1)%last0 + parts(q - 1)%nlast
+      parts(q)%rest0 = parts(q - 1)%rest0 + parts(q - 1)%n - parts(q - 1)%nlast
+    end do
+  end subroutine find_parts
+
+  !> A part's groups renumbered 1, 2, ... in order of first appearance.
+  subroutine local_groups(group, local)
+    integer, intent(in) :: group(:)
+    integer(c_int), intent(out) :: local(:)
+    integer, allocatable :: number(:)
+    integer :: i, ng
+    allocate(number(minval(group):maxval(group)))
+    number = 0
+    ng = 0
+    do i = 1, size(group)
+      if (number(group(i)) == 0) then
+        ng = ng + 1
+        number(group(i)) = ng
+      end if
+      local(i) = int(number(group(i)), c_int)
+    end do
+  end subroutine local_groups
+
+  !> The index of the i-th largest part (loops start with the largest).
+  pure integer function largest(f, i)
+    type(factor_t), intent(in) :: f
+    integer, intent(in) :: i
+    integer :: p, rank
+    do p = 1, size(f%part)
+      rank = count(f%part%n > f%part(p)%n) + count(f%part(1:p - 1)%n == f%part(p)%n) + 1
+      if (rank == i) then
+        largest = p
+        return
+      end if
+    end do
+    largest = i
+  end function largest
+
+  !> Begin a loop over the parts of f: nthreads to run it on (one thread per
+  !> part, at most the OpenMP threads), CHOLMOD's own OpenMP loops kept on
+  !> the thread that calls it, and, on several threads, a BLAS of one thread
+  !> each.  CHOLMOD's loops ask for 4 threads (CHOLMOD_OMP_NUM_THREADS, set
+  !> when the library was built), whatever OMP_NUM_THREADS says; on 2 cores
+  !> those teams cost 13-20 % of the numeric factorization (hertz_1e5 and
+  !> hertz_1e6 of bench/contact.sh, the same factor to the bit).  A second
+  !> BLAS thread inside one factor gains nothing at 1e5-1e6 dofs
+  !> (doc/performance.md).  Give levels and blas back to parts_end.  (The
+  !> parts' allocations on other threads take malloc arenas of their own: a
+  !> program should call c2d_malloc_arenas first.)
+  subroutine parts_begin(f, nthreads, levels, blas)
+    type(factor_t), intent(in) :: f
+    integer, intent(out) :: nthreads, levels, blas
+    nthreads = min(size(f%part), omp_get_max_threads())
+    levels = omp_get_max_active_levels()
+    blas = 0
+    if (nthreads > 1) then
+      call omp_set_max_active_levels(omp_get_active_level() + 1)   ! this loop's team, none inside it
+      blas = int(c2d_blas_threads(1_c_int))
+    else
+      nthreads = 1
+      call omp_set_max_active_levels(omp_get_active_level())
+    end if
+  end subroutine parts_begin
+
+  subroutine parts_end(levels, blas)
+    integer, intent(in) :: levels, blas
+    integer(c_int) :: old
+    call omp_set_max_active_levels(levels)
+    if (blas > 0) old = c2d_blas_threads(int(blas, c_int))
+  end subroutine parts_end
 
   !> The numeric factorization of A, whose pattern analyze_pattern analyzed:
   !> the second half of factorize.
@@ -234,11 +420,16 @@ contains
     type(factor_t), intent(inout) :: f
     type(csc_t), intent(in) :: A
     type(error_t), allocatable, intent(out) :: err
-    integer(c_int) :: status, column, equation
+    integer(c_int) :: column, equation
     real(c_double) :: ratio
-    integer :: j, p, levels
+    integer :: i, j, p, nthreads, levels, blas, worst
+    real(dp) :: t0, worst_ratio
 
-    if (.not. c_associated(f%handle) .or. f%n /= A%n) then
+    if (.not. allocated(f%part) .or. f%n /= A%n) then
+      call set_error(err, 'sparse Cholesky: factorize_values without the analysis of this pattern', 1)
+      return
+    end if
+    if (.not. all(f%part%status == cholmod_ok)) then
       call set_error(err, 'sparse Cholesky: factorize_values without the analysis of this pattern', 1)
       return
     end if
@@ -251,72 +442,109 @@ contains
         end if
       end do
     end do
-    levels = cholmod_serial_begin()
-    status = c2d_chol_factorize_values(f%handle, int(A%n, c_int), A%colptr, A%rowind, A%val)
-    call cholmod_serial_end(levels)
+    t0 = omp_get_wtime()
+    call parts_begin(f, nthreads, levels, blas)
+    !$omp parallel do num_threads(nthreads) schedule(dynamic, 1) if (nthreads > 1)
+    do i = 1, f%nparts
+      associate (pt => f%part(largest(f, i)))
+        pt%status = c2d_chol_factorize_values(pt%handle, int(pt%n, c_int), A%colptr(pt%first:pt%first + pt%n), &
+                                              A%rowind(A%colptr(pt%first):), int(pt%first - 1, c_int), &
+                                              A%val(A%colptr(pt%first):))
+      end associate
+    end do
+    !$omp end parallel do
+    call parts_end(levels, blas)
     call read_statistics(f)
+    f%time_factorize = omp_get_wtime() - t0
 
-    select case (status)
-    case (cholmod_ok)
-      continue
-    case (cholmod_not_posdef)
-      call c2d_chol_minor(f%handle, column, equation)
-      call set_error(err, singular_message(int(equation), int(column)), 1)
-      return
-    case default
-      call set_error(err, 'sparse Cholesky factorization failed: ' // status_name(status) // ' (status ' &
-                     // int_to_str(int(status)) // ') for a matrix of order ' // int_to_str(A%n) &
-                     // ' with ' // int_to_str(csc_nnz(A)) // ' stored entries', 1)
-      return
-    end select
+    do p = 1, f%nparts
+      select case (f%part(p)%status)
+      case (cholmod_ok)
+        continue
+      case (cholmod_not_posdef)
+        call c2d_chol_minor(f%part(p)%handle, column, equation)
+        call set_error(err, singular_message(global_equation(f%part(p), equation), &
+                                             global_pivot(f, f%part(p), column)), 1)
+        return
+      case default
+        call set_error(err, 'sparse Cholesky factorization failed: ' // status_name(f%part(p)%status) // &
+                       ' (status ' // int_to_str(int(f%part(p)%status)) // ') for a matrix of order ' // &
+                       int_to_str(A%n) // ' with ' // int_to_str(csc_nnz(A)) // ' stored entries', 1)
+        return
+      end select
+    end do
 
     ! a dependent column whose pivot came out tiny but positive through rounding
-    call c2d_chol_min_pivot_ratio(f%handle, ratio, column, equation)
-    f%min_pivot_ratio = real(ratio, dp)
-    if (ieee_is_nan(ratio)) then
-      call set_error(err, 'sparse Cholesky: non-finite pivot at equation ' // int_to_str(int(equation)) &
-                     // ' (column ' // int_to_str(int(column)) // ' of the permuted matrix): overflow in the factor', 1)
-      return
-    end if
-    if (ratio < singular_pivot_tolerance(A%n)) then
-      call set_error(err, singular_message(int(equation), int(column)), 1)
+    worst = 1
+    worst_ratio = huge(1.0_dp)
+    do p = 1, f%nparts
+      call c2d_chol_min_pivot_ratio(f%part(p)%handle, ratio, column, equation)
+      if (ieee_is_nan(ratio)) then
+        call set_error(err, 'sparse Cholesky: non-finite pivot at equation ' // &
+                       int_to_str(global_equation(f%part(p), equation)) // ' (column ' // &
+                       int_to_str(global_pivot(f, f%part(p), column)) // &
+                       ' of the permuted matrix): overflow in the factor', 1)
+        f%min_pivot_ratio = real(ratio, dp)
+        return
+      end if
+      if (real(ratio, dp) < worst_ratio) then
+        worst = p
+        worst_ratio = real(ratio, dp)
+      end if
+    end do
+    f%min_pivot_ratio = worst_ratio
+    if (worst_ratio < singular_pivot_tolerance(A%n)) then
+      call c2d_chol_min_pivot_ratio(f%part(worst)%handle, ratio, column, equation)
+      call set_error(err, singular_message(global_equation(f%part(worst), equation), &
+                                           global_pivot(f, f%part(worst), column)), 1)
       return
     end if
     f%ready = .true.
   end subroutine factorize_values
 
-  !> CHOLMOD's OpenMP loops ask for 4 threads (CHOLMOD_OMP_NUM_THREADS, set
-  !> when the library was built), whatever OMP_NUM_THREADS says.  On 2 cores
-  !> those teams of 4 cost 13-20 % of the numeric factorization (hertz_1e5 and
-  !> hertz_1e6 of bench/contact.sh, the same factor to the bit).  With
-  !> max-active-levels 0 every parallel region opened inside a CHOLMOD call runs
-  !> on the calling thread; the BLAS inside the supernodal factorization keeps
-  !> its own threads.  Returns the setting to give back to cholmod_serial_end.
-  integer function cholmod_serial_begin() result(levels)
-    levels = omp_get_max_active_levels()
-    call omp_set_max_active_levels(0)
-  end function cholmod_serial_begin
+  !> The dof of A of a part's equation (1-based within the part).
+  pure integer function global_equation(pt, equation)
+    type(part_t), intent(in) :: pt
+    integer(c_int), intent(in) :: equation
+    global_equation = pt%first - 1 + int(equation)
+  end function global_equation
 
-  subroutine cholmod_serial_end(levels)
-    integer, intent(in) :: levels
-    call omp_set_max_active_levels(levels)
-  end subroutine cholmod_serial_end
+  !> The pivot of P A P' of a part's pivot (1-based within the part).
+  pure integer function global_pivot(f, pt, column)
+    type(factor_t), intent(in) :: f
+    type(part_t), intent(in) :: pt
+    integer(c_int), intent(in) :: column
+    if (column <= pt%n - pt%nlast) then
+      global_pivot = pt%rest0 + int(column)
+    else
+      global_pivot = f%n - f%nlast + pt%last0 + int(column) - (pt%n - pt%nlast)
+    end if
+  end function global_pivot
 
-  !> Statistics of the handle into f (after each half of the factorization).
+  !> Statistics of the parts' handles into f: nnz(L), flops and CHOLMOD's
+  !> peak memory summed (the parts are factorized side by side), the ordering
+  !> of a part with dofs last (all parts use the same).
   subroutine read_statistics(f)
     type(factor_t), intent(inout) :: f
     integer(c_int64_t) :: lnz, memory_peak
     real(c_double) :: flops, time_analyze, time_factorize
     character(kind=c_char) :: buf(32)
-    call c2d_chol_stats(f%handle, lnz, flops, memory_peak, time_analyze, time_factorize)
-    f%nnz_l = int(lnz, i8)
-    f%flops = real(flops, dp)
-    f%memory_peak = int(memory_peak, i8)
-    f%time_analyze = real(time_analyze, dp)
-    f%time_factorize = real(time_factorize, dp)
-    call c2d_chol_ordering_name(f%handle, buf, int(size(buf), c_int))
+    integer :: p, named
+    f%nnz_l = 0_i8
+    f%flops = 0.0_dp
+    f%memory_peak = 0_i8
+    named = 1
+    do p = 1, f%nparts
+      call c2d_chol_stats(f%part(p)%handle, lnz, flops, memory_peak, time_analyze, time_factorize)
+      f%nnz_l = f%nnz_l + int(lnz, i8)
+      f%flops = f%flops + real(flops, dp)
+      f%memory_peak = f%memory_peak + int(memory_peak, i8)
+      if (f%part(p)%nlast > 0 .and. f%part(named)%nlast == 0) named = p
+    end do
+    call c2d_chol_ordering_name(f%part(named)%handle, buf, int(size(buf), c_int))
     f%ordering = c_string(buf)
   end subroutine read_statistics
+
 
   !> Checks of a pattern and `last` before CHOLMOD sees them.
   subroutine check_pattern(n, colptr, rowind, err, last)
@@ -394,7 +622,7 @@ contains
     call solve_half(f, c2d_solve_whole, b, x, err)
   end subroutine solve_vector
 
-  !> X = A^-1 B for a block of right-hand sides, in one CHOLMOD solve.
+  !> X = A^-1 B for a block of right-hand sides, one CHOLMOD solve per part.
   !>   f   (in)  a factor with f%ready
   !>   b   (in)  (n, nrhs) right-hand sides, nrhs >= 0
   !>   x   (out) (n, nrhs) solutions
@@ -405,8 +633,7 @@ contains
     real(dp), intent(out) :: x(:,:)
     type(error_t), allocatable, intent(out), optional :: err
     character(len=:), allocatable :: msg
-    integer(c_int) :: status
-    integer :: levels
+    integer(c_int), allocatable :: status(:)
 
     if (.not. f%ready) then
       msg = 'sparse Cholesky solve: no valid factor (factorize failed or was not called)'
@@ -416,11 +643,9 @@ contains
             // ' columns) for a factor of order ' // int_to_str(f%n)
     else
       if (size(b, 2) == 0) return
-      levels = cholmod_serial_begin()
-      status = c2d_chol_solve(f%handle, int(f%n, c_int), int(size(b, 2), c_int), b, x)
-      call cholmod_serial_end(levels)
-      if (status == cholmod_ok) return
-      msg = 'sparse Cholesky solve failed: ' // status_name(status) // ' (status ' // int_to_str(int(status)) // ')'
+      call solve_parts(f, c2d_solve_whole, b, x, status)
+      msg = solve_status(f, status)
+      if (len(msg) == 0) return
     end if
     call report(msg, err)
   end subroutine solve_block
@@ -456,8 +681,8 @@ contains
     real(dp), intent(out) :: x(:)
     type(error_t), allocatable, intent(out), optional :: err
     character(len=:), allocatable :: msg
-    integer(c_int) :: status
-    integer :: levels
+    real(dp), allocatable :: x2(:,:)
+    integer(c_int), allocatable :: status(:)
 
     if (.not. f%ready) then
       msg = 'sparse Cholesky solve: no valid factor (factorize failed or was not called)'
@@ -465,14 +690,76 @@ contains
       msg = 'sparse Cholesky solve: vectors of size ' // int_to_str(size(b)) // ' and ' // int_to_str(size(x)) &
             // ' for a factor of order ' // int_to_str(f%n)
     else
-      levels = cholmod_serial_begin()
-      status = c2d_chol_solve_half(f%handle, half, int(f%n, c_int), 1_c_int, b, x)
-      call cholmod_serial_end(levels)
-      if (status == cholmod_ok) return
-      msg = 'sparse Cholesky solve failed: ' // status_name(status) // ' (status ' // int_to_str(int(status)) // ')'
+      allocate(x2(f%n, 1))
+      call solve_parts(f, half, reshape(b, [f%n, 1]), x2, status)
+      x = x2(:, 1)
+      msg = solve_status(f, status)
+      if (len(msg) == 0) return
     end if
     call report(msg, err)
   end subroutine solve_half
+
+  !> x = the solve or one of its halves for the columns of b, part by part
+  !> (side by side on the OpenMP threads when A has several parts), with
+  !> each part's status in status(:).  In the pivot order of y
+  !> (forward output, backward input) the part's other dofs are
+  !> rest0+1..rest0+n-nlast and its `last` dofs n-nlast+last0+1.., as its
+  !> own y has them one after the other.
+  subroutine solve_parts(f, half, b, x, status)
+    type(factor_t), intent(in) :: f
+    integer(c_int), intent(in) :: half
+    real(dp), intent(in) :: b(:,:)
+    real(dp), intent(inout) :: x(:,:)
+    integer(c_int), allocatable, intent(out) :: status(:)
+    real(dp), allocatable :: bp(:,:), xp(:,:)
+    integer :: i, p, nthreads, levels, blas, r0, l0, nr, m
+
+    m = size(b, 2)
+    allocate(status(f%nparts))
+    call parts_begin(f, nthreads, levels, blas)
+    !$omp parallel do num_threads(nthreads) schedule(dynamic, 1) if (nthreads > 1) private(bp, xp, r0, l0, nr, p)
+    do i = 1, f%nparts
+      p = largest(f, i)
+      associate (pt => f%part(p))
+        nr = pt%n - pt%nlast
+        r0 = pt%rest0
+        l0 = f%n - f%nlast + pt%last0
+        allocate(bp(pt%n, m), xp(pt%n, m))
+        if (half == c2d_solve_backward) then          ! y in pivot order
+          bp(1:nr, :) = b(r0 + 1:r0 + nr, :)
+          bp(nr + 1:, :) = b(l0 + 1:l0 + pt%nlast, :)
+        else                                          ! b in the order of A
+          bp = b(pt%first:pt%first + pt%n - 1, :)
+        end if
+        status(p) = c2d_chol_solve_half(pt%handle, half, int(pt%n, c_int), int(m, c_int), bp, xp)
+        if (half == c2d_solve_forward) then
+          x(r0 + 1:r0 + nr, :) = xp(1:nr, :)
+          x(l0 + 1:l0 + pt%nlast, :) = xp(nr + 1:, :)
+        else
+          x(pt%first:pt%first + pt%n - 1, :) = xp
+        end if
+        deallocate(bp, xp)
+      end associate
+    end do
+    !$omp end parallel do
+    call parts_end(levels, blas)
+  end subroutine solve_parts
+
+  !> '' when every part's solve succeeded, else the message of the first failure.
+  function solve_status(f, status) result(msg)
+    type(factor_t), intent(in) :: f
+    integer(c_int), intent(in) :: status(:)
+    character(len=:), allocatable :: msg
+    integer :: p
+    msg = ''
+    do p = 1, f%nparts
+      if (status(p) /= cholmod_ok) then
+        msg = 'sparse Cholesky solve failed: ' // status_name(status(p)) // ' (status ' // &
+              int_to_str(int(status(p))) // ')'
+        return
+      end if
+    end do
+  end function solve_status
 
   !> The trailing block L_cc of L, for a factor computed with `last`: rows and
   !> columns of the last nlast pivots, in the order of `last`, so that
@@ -483,6 +770,8 @@ contains
   !>   err   (out, optional) allocated when f has no such block (no `last`,
   !>         another nlast, factor not supernodal LL', block not at the end);
   !>         when absent a failure stops the program through fail_numerical
+  !>   first, count (in, optional) only the diagonal sub-block on rows and
+  !>         columns first..first+count-1 of L_cc
   subroutine trailing_factor_block(f, nlast, Lcc, err, first, count)
     type(factor_t), intent(in) :: f
     integer, intent(in) :: nlast
@@ -490,17 +779,39 @@ contains
     type(error_t), allocatable, intent(out), optional :: err
     integer, intent(in), optional :: first, count
     character(len=:), allocatable :: msg
+    real(dp), allocatable :: block(:,:)
     integer(c_int) :: status
-    integer :: k1, m
+    integer :: k1, m, p, lo, hi
 
     k1 = 1
     m = nlast
     if (present(first)) k1 = first
     if (present(count)) m = count
     msg = trailing_check(f, nlast)
+    if (len(msg) == 0 .and. (k1 < 1 .or. m < 1 .or. k1 - 1 + m > nlast)) &
+      msg = trailing_status_message(c2d_chol_bad_argument)
     if (len(msg) == 0) then
-      allocate(Lcc(max(m, 0), max(m, 0)))
-      status = c2d_chol_trailing_range(f%handle, int(nlast, c_int), int(k1, c_int), int(m, c_int), Lcc)
+      allocate(Lcc(m, m), source=0.0_dp)
+      status = cholmod_ok
+      ! L_cc is block diagonal by part: each part's piece of the range from its own factor
+      do p = 1, f%nparts
+        associate (pt => f%part(p))
+          lo = max(k1, pt%last0 + 1)
+          hi = min(k1 + m - 1, pt%last0 + pt%nlast)
+          if (lo > hi) cycle
+          if (lo == k1 .and. hi == k1 + m - 1) then
+            status = c2d_chol_trailing_range(pt%handle, int(pt%nlast, c_int), int(lo - pt%last0, c_int), &
+                                             int(m, c_int), Lcc)
+          else
+            allocate(block(hi - lo + 1, hi - lo + 1))
+            status = c2d_chol_trailing_range(pt%handle, int(pt%nlast, c_int), int(lo - pt%last0, c_int), &
+                                             int(hi - lo + 1, c_int), block)
+            Lcc(lo - k1 + 1:hi - k1 + 1, lo - k1 + 1:hi - k1 + 1) = block
+            deallocate(block)
+          end if
+        end associate
+        if (status /= cholmod_ok) exit
+      end do
       if (status == cholmod_ok) return
       deallocate(Lcc)
       msg = trailing_status_message(status)
@@ -518,12 +829,22 @@ contains
     type(error_t), allocatable, intent(out), optional :: err
     character(len=:), allocatable :: msg
     integer(c_int) :: status, last_row
+    integer :: p
 
     e = first
     msg = trailing_check(f, nlast)
+    if (len(msg) == 0 .and. (first < 1 .or. first > nlast)) msg = trailing_status_message(c2d_chol_bad_argument)
     if (len(msg) == 0) then
-      status = c2d_chol_trailing_block_end(f%handle, int(nlast, c_int), int(first, c_int), last_row)
-      e = int(last_row)
+      do p = 1, f%nparts
+        associate (pt => f%part(p))
+          if (first > pt%last0 .and. first <= pt%last0 + pt%nlast) then
+            status = c2d_chol_trailing_block_end(pt%handle, int(pt%nlast, c_int), int(first - pt%last0, c_int), &
+                                                 last_row)
+            e = pt%last0 + int(last_row)
+            exit
+          end if
+        end associate
+      end do
       if (status == cholmod_ok) return
       msg = trailing_status_message(status)
     end if
@@ -559,17 +880,22 @@ contains
   end function trailing_status_message
 
 
-  !> Release the CHOLMOD handle of f (no-op when it holds none); the
+  !> Release the CHOLMOD handles of f (no-op when it holds none); the
   !> statistics are kept.
   !>   f (inout) the factor; on return f%ready = .false.
   subroutine free_factor(f)
     type(factor_t), intent(inout) :: f
-    if (c_associated(f%handle)) call c2d_chol_destroy(f%handle)
-    f%handle = c_null_ptr
+    integer :: p
+    if (allocated(f%part)) then
+      do p = 1, size(f%part)
+        if (c_associated(f%part(p)%handle)) call c2d_chol_destroy(f%part(p)%handle)
+      end do
+      deallocate(f%part)
+    end if
     f%ready = .false.
   end subroutine free_factor
 
-  !> Final procedure: a factor going out of scope releases its handle.
+  !> Final procedure: a factor going out of scope releases its handles.
   subroutine finalize_factor(f)
     type(factor_t), intent(inout) :: f
     call free_factor(f)

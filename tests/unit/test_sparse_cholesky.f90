@@ -24,6 +24,7 @@ program test_sparse_cholesky
   call test_trailing_block_laplacian()
   call test_trailing_block_all()
   call test_trailing_block_per_body()
+  call test_parts()
   call test_elasticity()
   call test_singular()
   call test_bad_arguments()
@@ -428,6 +429,7 @@ contains
     call check(.not. allocated(err), 'two bodies: factorize with dofs of each last')
     if (allocated(err)) print '(a)', '  ' // err%message
     if (allocated(err)) return
+    call check(f%nparts == 2, 'two bodies: A is factorized as two parts')
     call trailing_factor_block(f, k1 + k2, lcc)
     zero_off = all(lcc(k1 + 1:, 1:k1) == 0.0_dp)
     call check(zero_off .and. any(lcc(2:k1, 1) /= 0.0_dp), 'two bodies: L_cc is block diagonal (read whole)')
@@ -441,6 +443,89 @@ contains
     call trailing_factor_block(f, k1 + k2, blk, err, first=k1, count=k2 + 2)
     call check(allocated(err), 'two bodies: a range past the end of L_cc is an error')
   end subroutine test_trailing_block_per_body
+
+  !> A = diag(A1, A2) with no entry between the blocks.
+  subroutine block_diagonal(A1, A2, A)
+    type(csc_t), intent(in) :: A1, A2
+    type(csc_t), intent(out) :: A
+    integer :: nz1, nz2
+    nz1 = A1%colptr(A1%n + 1) - 1
+    nz2 = A2%colptr(A2%n + 1) - 1
+    A%n = A1%n + A2%n
+    A%colptr = [A1%colptr(1:A1%n), A2%colptr + nz1]
+    A%rowind = [A1%rowind(1:nz1), A2%rowind(1:nz2) + A1%n]
+    A%val = [A1%val(1:nz1), A2%val(1:nz2)]
+  end subroutine block_diagonal
+
+  !> Bodies that A does not couple are factorized as parts, side by side: an
+  !> elasticity block and a Laplacian block of other sizes.  Checked against
+  !> the residual, against the same matrix factorized whole (`last` given in
+  !> an order that keeps it one part), the halves of the solve against
+  !> substitution on L_cc, a range of L_cc across the parts, and the dof a
+  !> singular second block is reported at.
+  subroutine test_parts()
+    type(csc_t) :: A1, A2, A
+    type(factor_t) :: f, g
+    type(error_t), allocatable :: err
+    integer, allocatable :: dof_of(:,:), last(:), back(:)
+    real(dp), allocatable :: b(:), x(:), xw(:), bb(:,:), xx(:,:), lcc(:,:), blk(:,:)
+    real(dp) :: worst
+    integer :: n, n1, k, j
+
+    call elasticity(24, 18, .true., A1, dof_of)
+    call grid_laplacian(17, .true., A2)
+    call block_diagonal(A1, A2, A)
+    n = A%n
+    n1 = A1%n
+    allocate(b(n), x(n), xw(n))
+    b = [(sin(0.37_dp * k) + 0.1_dp, k = 1, n)]
+
+    call factorize(f, A, err)
+    call check(.not. allocated(err) .and. f%nparts == 2, 'parts: diag(elasticity, Laplacian) in two parts')
+    if (allocated(err)) return
+    call solve(f, b, x)
+    call check_small(residual_ratio(A, x, b), 1.0e-14_dp, 'parts: scaled residual < 1e-14')
+    allocate(bb(n, 3), xx(n, 3))
+    bb(:, 1) = b
+    bb(:, 2) = 1.0_dp
+    bb(:, 3) = [(cos(1.3_dp * k), k = 1, n)]
+    call solve(f, bb, xx)
+    worst = 0.0_dp
+    do j = 1, 3
+      worst = max(worst, residual_ratio(A, xx(:, j), bb(:, j)))
+    end do
+    call check_small(worst, 1.0e-14_dp, 'parts: 3-column block, scaled residual < 1e-14 for each')
+
+    ! dofs of both bodies last, ascending: two parts; in the other order: one
+    last = [(n1 - 6 + j, j = 1, 6), (n1 + 17 * 16 + k, k = 1, 17)]
+    call factorize(f, A, err, last)
+    call check(.not. allocated(err) .and. f%nparts == 2, 'parts: with `last` ascending, two parts')
+    if (allocated(err)) return
+    back = [last(7:), last(1:6)]
+    call factorize(g, A, err, back)
+    call check(.not. allocated(err) .and. g%nparts == 1, 'parts: `last` visiting body 2 first keeps A whole')
+    if (allocated(err)) return
+    call solve(f, b, x)
+    call solve(g, b, xw)
+    call check_small(maxval(abs(x - xw)) / maxval(abs(x)), 1.0e-12_dp, 'parts: the same solution as A whole')
+    call trailing_factor_block(f, size(last), lcc)
+    call check_halves(f, n, b, x, last, lcc)
+    call trailing_factor_block(f, size(last), blk, first=5, count=4)
+    call check(all(blk == lcc(5:8, 5:8)) .and. all(blk(3:, 1:2) == 0.0_dp), &
+               'parts: a range of L_cc across the two parts = that part of L_cc, zero between')
+
+    ! a singular second block (pure Neumann Laplacian), its corner dof last:
+    ! that is the dependent pivot, the last one of the whole factor
+    call grid_laplacian(17, .false., A2)
+    call block_diagonal(A1, A2, A)
+    call factorize(f, A, err, [n1 + 1])
+    call check(allocated(err), 'parts: a singular second block is reported')
+    if (allocated(err)) then
+      print '(a)', '  ' // err%message
+      call check(contains_text(err%message, 'at equation ' // itoa(n1 + 1) // ' (column ' // itoa(n) // ' '), &
+                 'parts: the error names equation ' // itoa(n1 + 1) // ' at column ' // itoa(n))
+    end if
+  end subroutine test_parts
 
   !> All dofs last (no METIS part): L_cc is the whole factor of A(last, last),
   !> so L_cc L_cc' equals the dense permuted matrix.
