@@ -605,9 +605,9 @@ contains
              trim(adjustl(real_fixed(res%memory_peak / 1048576.0_dp))) // ' MB')
     if (factor%nparts > 1) then
       write(line, '(a,i0,a)') 'factor   ', factor%nparts, ' parts (blocks of K that no entry couples: the bodies)'
-      if (omp_get_max_threads() > 1) then
+      if (factor%side_by_side > 1) then
         write(line, '(a,i0,a)') trim(line) // ' ordered and factorized side by side on ', &
-          min(factor%nparts, omp_get_max_threads()), ' threads'
+          factor%side_by_side, ' threads'
       else
         line = trim(line) // ' ordered and factorized one after the other'
       end if

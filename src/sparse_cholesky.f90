@@ -34,8 +34,9 @@
 !> (bodies meshed each on its own, numbered one after the other: K has a
 !> diagonal block per body), A is cut there into parts, each ordered and
 !> factorized by its own CHOLMOD handle, the parts side by side on the OpenMP
-!> threads (largest first), each with a BLAS of one thread.  Blocks smaller
-!> than n / max_parts are merged with the next.  The caller sees one factor:
+!> threads (largest first), each with a BLAS of one thread, when the second
+!> largest has side_by_side_min dofs or more.  Blocks smaller than
+!> n / max_parts are merged with the next.  The caller sees one factor:
 !> the pivots are [the other dofs of part 1, of part 2, ..., last(:)], so
 !> that with `last` the trailing block is still L_cc, block diagonal by part,
 !> in the order of `last`; `last` must then visit the parts in order (the
@@ -47,7 +48,7 @@
 !> readable after free_factor.
 !>
 !> Programming interface
-!>   type(factor_t)   opaque handles (private); ready, n, nlast, nparts, nnz_l,
+!>   type(factor_t)   opaque handles (private); ready, n, nlast, nparts, side_by_side, nnz_l,
 !>                    flops, time_analyze, time_factorize, ordering,
 !>                    memory_peak, min_pivot_ratio
 !>   factorize(f, A, err [, last])          P A P' = L L' (the two halves below)
@@ -95,6 +96,13 @@ module sparse_cholesky
   !> At most this many parts; smaller independent blocks are merged.
   integer, parameter :: max_parts = 16
 
+  !> Parts run side by side only when the second largest has this many dofs:
+  !> below it, starting the threads and setting the BLAS to one thread (a few
+  !> ms, and idle threads spinning against the working ones) cost more than
+  !> the part saves: input/patch.deck's factorization took 0.6 ms one part
+  !> after the other and 1-30 ms side by side.
+  integer, parameter :: side_by_side_min = 10000
+
   !> One part of A: the diagonal block A(first:first+n-1, first:first+n-1),
   !> which no entry couples to the rest, with its own CHOLMOD handle.
   type :: part_t
@@ -113,7 +121,8 @@ module sparse_cholesky
     logical :: ready = .false.            !< .true. when L is a valid numeric factor
     integer :: n = 0                      !< order of A
     integer :: nlast = 0                  !< size of the block ordered last (0: none)
-    integer :: nparts = 0                 !< number of parts factorized side by side
+    integer :: nparts = 0                 !< number of parts, each factorized on its own
+    integer :: side_by_side = 1           !< threads the parts run on (1: one after the other)
     integer(i8) :: nnz_l = 0_i8           !< nnz(L), without zeros of supernodal amalgamation
     real(dp) :: flops = 0.0_dp            !< flop count of the numeric factorization
     real(dp) :: time_analyze = 0.0_dp     !< wall seconds: ordering and symbolic analysis
@@ -249,6 +258,7 @@ contains
 
     t0 = omp_get_wtime()
     call parts_begin(f, nthreads, levels, blas)
+    f%side_by_side = nthreads
     !$omp parallel do num_threads(nthreads) schedule(dynamic, 1) if (nthreads > 1)
     do i = 1, f%nparts
       associate (pt => f%part(largest(f, i)))
@@ -393,6 +403,9 @@ contains
     type(factor_t), intent(in) :: f
     integer, intent(out) :: nthreads, levels, blas
     nthreads = min(size(f%part), omp_get_max_threads())
+    if (size(f%part) > 1) then
+      if (f%part(largest(f, 2))%n < side_by_side_min) nthreads = 1
+    end if
     levels = omp_get_max_active_levels()
     blas = 0
     if (nthreads > 1) then

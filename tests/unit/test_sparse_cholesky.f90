@@ -13,6 +13,7 @@ program test_sparse_cholesky
   use diagnostics, only: error_t
   use testing, only: check, check_close, check_small, finish_tests
   use sparse_matrix, only: csc_t, csc_nnz, csc_symv, csc_from_triplets, csc_check
+  use omp_lib, only: omp_get_max_threads
   use sparse_cholesky, only: factor_t, factorize, solve, solve_vector, solve_block, trailing_factor_block, &
                              solve_forward, solve_backward, trailing_block_end, &
                              free_factor, factor_nnz, factor_flops, factor_memory, factor_ordering, &
@@ -470,10 +471,12 @@ contains
     integer, allocatable :: dof_of(:,:), last(:), back(:)
     real(dp), allocatable :: b(:), x(:), xw(:), bb(:,:), xx(:,:), lcc(:,:), blk(:,:)
     real(dp) :: worst
+    integer, parameter :: m2 = 105
     integer :: n, n1, k, j
 
-    call elasticity(24, 18, .true., A1, dof_of)
-    call grid_laplacian(17, .true., A2)
+    ! both blocks above side_by_side_min (10000 dofs): the parts run on the threads
+    call elasticity(80, 70, .true., A1, dof_of)
+    call grid_laplacian(m2, .true., A2)
     call block_diagonal(A1, A2, A)
     n = A%n
     n1 = A1%n
@@ -483,6 +486,7 @@ contains
     call factorize(f, A, err)
     call check(.not. allocated(err) .and. f%nparts == 2, 'parts: diag(elasticity, Laplacian) in two parts')
     if (allocated(err)) return
+    call check(f%side_by_side == min(2, omp_get_max_threads()), 'parts: factorized side by side on the threads')
     call solve(f, b, x)
     call check_small(residual_ratio(A, x, b), 1.0e-14_dp, 'parts: scaled residual < 1e-14')
     allocate(bb(n, 3), xx(n, 3))
@@ -497,7 +501,7 @@ contains
     call check_small(worst, 1.0e-14_dp, 'parts: 3-column block, scaled residual < 1e-14 for each')
 
     ! dofs of both bodies last, ascending: two parts; in the other order: one
-    last = [(n1 - 6 + j, j = 1, 6), (n1 + 17 * 16 + k, k = 1, 17)]
+    last = [(n1 - 6 + j, j = 1, 6), (n1 + m2 * (m2 - 1) + k, k = 1, 17)]
     call factorize(f, A, err, last)
     call check(.not. allocated(err) .and. f%nparts == 2, 'parts: with `last` ascending, two parts')
     if (allocated(err)) return
@@ -516,7 +520,7 @@ contains
 
     ! a singular second block (pure Neumann Laplacian), its corner dof last:
     ! that is the dependent pivot, the last one of the whole factor
-    call grid_laplacian(17, .false., A2)
+    call grid_laplacian(m2, .false., A2)
     call block_diagonal(A1, A2, A)
     call factorize(f, A, err, [n1 + 1])
     call check(allocated(err), 'parts: a singular second block is reported')
