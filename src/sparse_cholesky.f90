@@ -656,7 +656,7 @@ contains
             // ' columns) for a factor of order ' // int_to_str(f%n)
     else
       if (size(b, 2) == 0) return
-      call solve_parts(f, c2d_solve_whole, b, x, status)
+      call solve_parts(f, c2d_solve_whole, size(b, 2), b, x, status)
       msg = solve_status(f, status)
       if (len(msg) == 0) return
     end if
@@ -694,7 +694,6 @@ contains
     real(dp), intent(out) :: x(:)
     type(error_t), allocatable, intent(out), optional :: err
     character(len=:), allocatable :: msg
-    real(dp), allocatable :: x2(:,:)
     integer(c_int), allocatable :: status(:)
 
     if (.not. f%ready) then
@@ -703,9 +702,7 @@ contains
       msg = 'sparse Cholesky solve: vectors of size ' // int_to_str(size(b)) // ' and ' // int_to_str(size(x)) &
             // ' for a factor of order ' // int_to_str(f%n)
     else
-      allocate(x2(f%n, 1))
-      call solve_parts(f, half, reshape(b, [f%n, 1]), x2, status)
-      x = x2(:, 1)
+      call solve_parts(f, half, 1, b, x, status)
       msg = solve_status(f, status)
       if (len(msg) == 0) return
     end if
@@ -718,18 +715,23 @@ contains
   !> (forward output, backward input) the part's other dofs are
   !> rest0+1..rest0+n-nlast and its `last` dofs n-nlast+last0+1.., as its
   !> own y has them one after the other.
-  subroutine solve_parts(f, half, b, x, status)
+  subroutine solve_parts(f, half, m, b, x, status)
     type(factor_t), intent(in) :: f
     integer(c_int), intent(in) :: half
-    real(dp), intent(in) :: b(:,:)
-    real(dp), intent(inout) :: x(:,:)
+    integer, intent(in) :: m
+    real(dp), intent(in) :: b(f%n, m)
+    real(dp), intent(inout) :: x(f%n, m)
     integer(c_int), allocatable, intent(out) :: status(:)
     real(dp), allocatable :: bp(:,:), xp(:,:)
-    integer :: i, p, nthreads, levels, blas, r0, l0, nr, m
+    integer :: i, p, nthreads, levels, blas, r0, l0, nr
 
-    m = size(b, 2)
     allocate(status(f%nparts))
     call parts_begin(f, nthreads, levels, blas)
+    if (f%nparts == 1) then                 ! the part's own order is A's: no copy
+      status(1) = c2d_chol_solve_half(f%part(1)%handle, half, int(f%n, c_int), int(m, c_int), b, x)
+      call parts_end(levels, blas)
+      return
+    end if
     !$omp parallel do num_threads(nthreads) schedule(dynamic, 1) if (nthreads > 1) private(bp, xp, r0, l0, nr, p)
     do i = 1, f%nparts
       p = largest(f, i)
