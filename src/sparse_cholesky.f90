@@ -82,7 +82,7 @@ module sparse_cholesky
                              c2d_chol_trailing_range, c2d_chol_trailing_block_end, &
                              c2d_chol_solve_half, c2d_solve_whole, c2d_solve_forward, c2d_solve_backward, &
                              cholmod_ok, cholmod_not_posdef, c2d_chol_block_moved, &
-                             c2d_chol_not_super_ll, c2d_chol_bad_argument, c2d_chol_no_handle, &
+                             c2d_chol_not_super_ll, c2d_chol_bad_argument, &
                              c2d_blas_threads
   implicit none
   private
@@ -188,7 +188,8 @@ contains
     integer, intent(in), optional :: group(:)
     character(len=*), intent(in), optional :: method
     integer(c_int), allocatable :: last_c(:), group_c(:)
-    integer(c_int) :: ordering, ngroup
+    integer(c_int) :: ordering
+    logical :: grouped
     integer :: i, p, nthreads, levels, blas
     type(part_t), allocatable :: parts(:)
     real(dp) :: t0
@@ -213,16 +214,15 @@ contains
       allocate(last_c(0))
     end if
 
-    ngroup = 0
+    grouped = present(group)
     allocate(group_c(n))
     group_c = 0
-    if (present(group)) then
+    if (grouped) then
       if (size(group) /= n .or. any(group < 1) .or. any(group > n)) then
         call set_error(err, 'sparse Cholesky: `group` must give each of the ' // int_to_str(n) // &
                        ' dofs a group in 1..' // int_to_str(n), 1)
         return
       end if
-      ngroup = 1
     end if
 
     ordering = c2d_order_metis
@@ -240,7 +240,7 @@ contains
     do p = 1, size(parts)
       associate (pt => parts(p))
         last_c(pt%last0 + 1:pt%last0 + pt%nlast) = last_c(pt%last0 + 1:pt%last0 + pt%nlast) - (pt%first - 1)
-        if (ngroup > 0) call local_groups(group(pt%first:pt%first + pt%n - 1), group_c(pt%first:pt%first + pt%n - 1))
+        if (grouped) call local_groups(group(pt%first:pt%first + pt%n - 1), group_c(pt%first:pt%first + pt%n - 1))
       end associate
     end do
     call move_alloc(parts, f%part)
@@ -265,8 +265,8 @@ contains
         if (pt%status == cholmod_ok) &
           pt%status = c2d_chol_analyze(pt%handle, int(pt%n, c_int), colptr(pt%first:pt%first + pt%n), &
                                        rowind(colptr(pt%first):), int(pt%first - 1, c_int), &
-                                       int(pt%nlast, c_int), last_c(pt%last0 + 1:), int(pt%n, c_int) * ngroup, &
-                                       group_c(pt%first:))
+                                       int(pt%nlast, c_int), last_c(pt%last0 + 1:), &
+                                       merge(int(pt%n, c_int), 0_c_int, grouped), group_c(pt%first:))
       end associate
     end do
     !$omp end parallel do
@@ -437,12 +437,11 @@ contains
     real(c_double) :: ratio
     integer :: i, j, p, nthreads, levels, blas, worst
     real(dp) :: t0, worst_ratio
+    logical :: analyzed
 
-    if (.not. allocated(f%part) .or. f%n /= A%n) then
-      call set_error(err, 'sparse Cholesky: factorize_values without the analysis of this pattern', 1)
-      return
-    end if
-    if (.not. all(f%part%status == cholmod_ok)) then
+    analyzed = allocated(f%part) .and. f%n == A%n
+    if (analyzed) analyzed = all(f%part%status == cholmod_ok)
+    if (.not. analyzed) then
       call set_error(err, 'sparse Cholesky: factorize_values without the analysis of this pattern', 1)
       return
     end if
@@ -847,8 +846,9 @@ contains
     integer :: p
 
     e = first
+    status = c2d_chol_bad_argument
     msg = trailing_check(f, nlast)
-    if (len(msg) == 0 .and. (first < 1 .or. first > nlast)) msg = trailing_status_message(c2d_chol_bad_argument)
+    if (len(msg) == 0 .and. (first < 1 .or. first > nlast)) msg = trailing_status_message(status)
     if (len(msg) == 0) then
       do p = 1, f%nparts
         associate (pt => f%part(p))
