@@ -57,14 +57,14 @@
 !>   factorize_values(f, A, err)            numeric factorization of the analyzed pattern
 !>   solve(f, b, x [, err])                 x = A^-1 b, b(n) or b(n, nrhs)
 !>   solve_vector(f, b, x [, err])          the 1-D specific of solve
-!>   solve_block(f, b, x [, err])           the 2-D specific of solve (one CHOLMOD call)
+!>   solve_block(f, b, x [, err])           the 2-D specific of solve (one CHOLMOD call per part)
 !>   solve_forward(f, b, y [, err])         y = L^-1 P b (the first half of solve)
 !>   solve_backward(f, y, x [, err])        x = P' L'^-1 y (the second half)
 !>   trailing_factor_block(f, nlast, Lcc [, err] [, first, count])
 !>                                          dense L_cc after factorize(last=), or
 !>                                          its diagonal sub-block first..first+count-1
 !>   trailing_block_end(f, nlast, first, e [, err])  end of L_cc's diagonal block at first
-!>   free_factor(f)                         release the handle
+!>   free_factor(f)                         release the handles
 !>   factor_nnz(f), factor_flops(f), factor_memory(f), factor_ordering(f)
 module sparse_cholesky
   use, intrinsic :: iso_c_binding, only: c_ptr, c_null_ptr, c_associated, c_int, c_double, &
