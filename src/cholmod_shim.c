@@ -246,25 +246,27 @@ static int order_groups(cholmod_sparse *S, const int *group, int method, const i
     idx_t nv;
     int status = CHOLMOD_OK;
     size_t nnz = (size_t) Sp[n];
-    int *work = cholmod_malloc(10 * (size_t) n + 1, sizeof(int), c);
+    int *work = cholmod_malloc(10 * (size_t) n + 2, sizeof(int), c);
     int *adjmem = cholmod_malloc(2 * nnz + 1, sizeof(int), c);
 
     if (work == NULL || adjmem == NULL)
     {
-        cholmod_free(10 * (size_t) n + 1, sizeof(int), work, c);
+        cholmod_free(10 * (size_t) n + 2, sizeof(int), work, c);
         cholmod_free(2 * nnz + 1, sizeof(int), adjmem, c);
         return (c->status < 0) ? c->status : CHOLMOD_OUT_OF_MEMORY;
     }
-    gid = work;             /* [n] compact group of a column */
-    gptr = work + n;        /* [ng+1] dofs of each group (CSR) */
-    gdof = work + 2 * n;    /* [n] */
-    deg = work + 3 * n;     /* [n] */
-    xadj = work + 4 * n;    /* [ng+1] group graph (CSR, no self loops) */
-    mark = work + 5 * n + 1;/* [n] */
-    vw = work + 6 * n + 1;  /* [ng] dofs per group: METIS vertex weights */
-    gperm = work + 7 * n + 1;  /* [ng] */
-    giperm = work + 8 * n + 1; /* [ng] */
-    gset = work + 9 * n + 1;   /* [ng] constraint set of each group (CAMD) */
+    /* ng <= n groups: the CSR pointers take n + 1 entries (ng = n when every
+     * group is one dof, e.g. every node with one dof held) */
+    gid = work;                /* [n] compact group of a column */
+    gptr = work + n;           /* [ng+1] dofs of each group (CSR) */
+    gdof = work + 2 * n + 1;   /* [n] */
+    deg = work + 3 * n + 1;    /* [n] */
+    xadj = work + 4 * n + 1;   /* [ng+1] group graph (CSR, no self loops) */
+    mark = work + 5 * n + 2;   /* [n] */
+    vw = work + 6 * n + 2;     /* [ng] dofs per group: METIS vertex weights */
+    gperm = work + 7 * n + 2;  /* [ng] */
+    giperm = work + 8 * n + 2; /* [ng] */
+    gset = work + 9 * n + 2;   /* [ng] constraint set of each group (CAMD) */
     adj = adjmem;
 
     /* compact group numbers in order of first appearance */
@@ -362,7 +364,7 @@ static int order_groups(cholmod_sparse *S, const int *group, int method, const i
     }
 
 done:
-    cholmod_free(10 * (size_t) n + 1, sizeof(int), work, c);
+    cholmod_free(10 * (size_t) n + 2, sizeof(int), work, c);
     cholmod_free(2 * nnz + 1, sizeof(int), adjmem, c);
     return status;
 }
