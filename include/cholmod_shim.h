@@ -138,4 +138,14 @@ int c2d_blas_threads(int n);
  * (malloc_trim). */
 void c2d_malloc_arenas(void);
 void c2d_malloc_trim(void);
+
+/* METIS orderings side by side (src/metis_random.c): METIS draws its random
+ * numbers from a sequence per thread, so an ordering does not depend on what
+ * runs beside it.  c2d_metis_per_thread: 1 when the per-thread sequences are
+ * in use, 0 when this METIS does not call them (then METIS calls run one at a
+ * time).  Every METIS call of the shim sits between c2d_metis_begin and
+ * c2d_metis_end. */
+int c2d_metis_per_thread(void);
+void c2d_metis_begin(void);
+void c2d_metis_end(void);
 #endif /* CONTACT2D_CHOLMOD_SHIM_H */

@@ -26,6 +26,7 @@
 !>   c2d_chol_trailing_block_end(handle, nlast, first, last_row) -> status
 !>   c2d_blas_threads(n) -> the thread count OpenBLAS had (0: not OpenBLAS)
 !>   c2d_malloc_arenas()   c2d_malloc_trim()   at most two glibc malloc arenas; free pages back
+!>   c2d_metis_per_thread() -> 1 when METIS draws its random numbers per thread
 !>   status codes: cholmod_ok, cholmod_not_posdef, c2d_chol_* (shim codes)
 module cholmod_binding
   use, intrinsic :: iso_c_binding, only: c_ptr, c_int, c_double, c_int64_t, c_char
@@ -41,6 +42,7 @@ module cholmod_binding
   public :: cholmod_ok, cholmod_not_posdef, cholmod_out_of_memory, cholmod_too_large
   public :: c2d_chol_no_handle, c2d_chol_no_factor, c2d_chol_not_super_ll
   public :: c2d_chol_block_moved, c2d_chol_bad_argument, c2d_blas_threads, c2d_malloc_arenas, c2d_malloc_trim
+  public :: c2d_metis_per_thread
 
   ! fill-reducing orderings (cholmod_shim.h)
   integer(c_int), parameter :: c2d_order_metis = 0     !< METIS nested dissection
@@ -225,6 +227,14 @@ module cholmod_binding
     !> The free pages of every malloc arena back to the system.
     subroutine c2d_malloc_trim() bind(c, name='c2d_malloc_trim')
     end subroutine c2d_malloc_trim
+
+    !> 1 when METIS orderings draw from a random sequence per thread (they
+    !> may run side by side and give what each gives alone), 0 when METIS
+    !> calls run one at a time instead.
+    function c2d_metis_per_thread() bind(c, name='c2d_metis_per_thread') result(yes)
+      import :: c_int
+      integer(c_int) :: yes
+    end function c2d_metis_per_thread
 
   end interface
 

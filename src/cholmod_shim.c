@@ -343,7 +343,9 @@ static int order_groups(cholmod_sparse *S, const int *group, int method, const i
     }
     else if (ng > 1)
     {
+        c2d_metis_begin();
         ok = METIS_NodeND(&nv, xadj, adj, vw, NULL, gperm, giperm);
+        c2d_metis_end();
         if (ok != METIS_OK) { status = (ok == METIS_ERROR_MEMORY) ? CHOLMOD_OUT_OF_MEMORY : CHOLMOD_INVALID; goto done; }
     }
     else
@@ -479,8 +481,16 @@ static int order_block_last(const cholmod_sparse *A, int nlast, const int *last,
         }
         else
         {
-            ok = (method == C2D_ORDER_AMD) ? cholmod_amd(S, NULL, 0, permS, c)
-                                           : cholmod_metis(S, NULL, 0, 1, permS, c);
+            if (method == C2D_ORDER_AMD)
+            {
+                ok = cholmod_amd(S, NULL, 0, permS, c);
+            }
+            else
+            {
+                c2d_metis_begin();
+                ok = cholmod_metis(S, NULL, 0, 1, permS, c);
+                c2d_metis_end();
+            }
             cholmod_free_sparse(&S, c);
             if (!ok) return (c->status < 0) ? c->status : CHOLMOD_INVALID;
         }
@@ -602,7 +612,9 @@ static int analyze_pattern(struct c2d_chol *h, cholmod_sparse *A, int nlast, con
         c->nmethods = 1;
         c->method[0].ordering = (h->method == C2D_ORDER_AMD) ? CHOLMOD_AMD : CHOLMOD_METIS;
         c->postorder = 1;
+        if (h->method == C2D_ORDER_METIS) c2d_metis_begin();
         h->L = cholmod_analyze(A, c);
+        if (h->method == C2D_ORDER_METIS) c2d_metis_end();
         if (h->L == NULL) status = (c->status < 0) ? c->status : CHOLMOD_INVALID;
     }
     else

@@ -13,7 +13,8 @@ program test_sparse_cholesky
   use diagnostics, only: error_t
   use testing, only: check, check_close, check_small, finish_tests
   use sparse_matrix, only: csc_t, csc_nnz, csc_symv, csc_from_triplets, csc_check
-  use omp_lib, only: omp_get_max_threads
+  use omp_lib, only: omp_get_max_threads, omp_set_num_threads
+  use cholmod_binding, only: c2d_metis_per_thread
   use sparse_cholesky, only: factor_t, factorize, solve, solve_vector, solve_block, trailing_factor_block, &
                              solve_forward, solve_backward, trailing_block_end, &
                              free_factor, factor_nnz, factor_flops, factor_memory, factor_ordering, &
@@ -26,6 +27,7 @@ program test_sparse_cholesky
   call test_trailing_block_all()
   call test_trailing_block_per_body()
   call test_parts()
+  call test_metis_side_by_side()
   call test_elasticity()
   call test_singular()
   call test_bad_arguments()
@@ -530,6 +532,72 @@ contains
                  'parts: the error names equation ' // itoa(n1 + 1) // ' at column ' // itoa(n))
     end if
   end subroutine test_parts
+
+  !> METIS orders two parts side by side as it orders them on one thread: the
+  !> same nnz(L) and flop count on every run, with the node groups (METIS on
+  !> the node graph) and without (CHOLMOD's own METIS call).  METIS draws its
+  !> random numbers per thread; from one sequence for the process, the two
+  !> orderings interleaved their draws and nnz(L) changed from run to run.
+  subroutine test_metis_side_by_side()
+    type(csc_t) :: A1, A2, A
+    type(factor_t) :: f
+    type(error_t), allocatable :: err
+    integer, allocatable :: dof_of(:,:), group(:)
+    integer(i8) :: nnz1(2), nnz
+    real(dp) :: flops1(2)
+    integer :: threads, k, run, grouped, differ
+    character(len=*), parameter :: how(2) = ['node groups   ', 'no node groups']
+
+    call check(c2d_metis_per_thread() == 1, 'METIS side by side: its random numbers come from a sequence per thread')
+    call elasticity(80, 70, .true., A1, dof_of)
+    call grid_laplacian(105, .true., A2)
+    call block_diagonal(A1, A2, A)
+    group = [((k + 1) / 2, k = 1, A1%n), (A1%n / 2 + k, k = 1, A2%n)]
+    threads = omp_get_max_threads()
+
+    call omp_set_num_threads(1)
+    do grouped = 1, 2
+      call order_metis(f, A, group, grouped == 1, err)
+      if (allocated(err)) exit
+      nnz1(grouped) = factor_nnz(f)
+      flops1(grouped) = factor_flops(f)
+    end do
+    call omp_set_num_threads(threads)
+    if (allocated(err)) then
+      call check(.false., 'METIS side by side: one thread: ' // err%message)
+      return
+    end if
+
+    do grouped = 1, 2
+      differ = 0
+      do run = 1, 6
+        call order_metis(f, A, group, grouped == 1, err)
+        if (allocated(err)) exit
+        nnz = factor_nnz(f)
+        if (nnz /= nnz1(grouped) .or. factor_flops(f) /= flops1(grouped)) differ = differ + 1
+      end do
+      call check(.not. allocated(err) .and. f%side_by_side == min(2, threads), &
+                 'METIS side by side (' // trim(how(grouped)) // '): two parts on ' // itoa(min(2, threads)) // ' threads')
+      call check(differ == 0, 'METIS side by side (' // trim(how(grouped)) // '): nnz(L) and flops of 6 runs = one thread''s (' &
+                 // itoa(differ) // ' differ)')
+    end do
+
+  end subroutine test_metis_side_by_side
+
+  !> METIS ordering and factorization of A, on the node graph or not.
+  subroutine order_metis(f, A, group, by_node, err)
+    type(factor_t), intent(inout) :: f
+    type(csc_t), intent(in) :: A
+    integer, intent(in) :: group(:)
+    logical, intent(in) :: by_node
+    type(error_t), allocatable, intent(out) :: err
+    if (by_node) then
+      call analyze_pattern(f, A%n, A%colptr, A%rowind, err, group=group, method='metis')
+    else
+      call analyze_pattern(f, A%n, A%colptr, A%rowind, err, method='metis')
+    end if
+    if (.not. allocated(err)) call factorize_values(f, A, err)
+  end subroutine order_metis
 
   !> All dofs last (no METIS part): L_cc is the whole factor of A(last, last),
   !> so L_cc L_cc' equals the dense permuted matrix.
