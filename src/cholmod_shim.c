@@ -225,6 +225,120 @@ static int postorder_groups(int ng, const int *xadj, const int *adj, int *gperm,
     return status;
 }
 
+/* Graphs of at least this many groups are split at the first level of the
+ * nested dissection, so that the two halves can be ordered side by side.  A
+ * constant, not a thread count: the order is the same on any number of
+ * threads. */
+#define SPLIT_MIN_GROUPS 20000
+
+/* METIS_NodeND of the side `side` of the top separator (where[g] == side):
+ * the subgraph of its groups (loc[g]: the group's number in its side), its
+ * order written as group numbers into order[0..m).  METIS's status. */
+static int order_side(int ng, const int *xadj, const int *adj, const int *vw, const int *where,
+                      const int *loc, int side, int m, int *order)
+{
+    int *sx, *sa, *sw, *sp, *sip, *glob;
+    int g, p, k, nadj = 0, ok = METIS_OK;
+    idx_t nv = m;
+
+    if (m == 0) return METIS_OK;
+    for (g = 0; g < ng; g++)
+    {
+        if (where[g] != side) continue;
+        for (p = xadj[g]; p < xadj[g + 1]; p++) nadj += (where[adj[p]] == side);
+    }
+    sx = malloc(((size_t) m + 1) * sizeof(int));
+    sa = malloc(((size_t) nadj + 1) * sizeof(int));
+    sw = malloc((size_t) m * sizeof(int));
+    sp = malloc((size_t) m * sizeof(int));
+    sip = malloc((size_t) m * sizeof(int));
+    glob = malloc((size_t) m * sizeof(int));
+    if (sx == NULL || sa == NULL || sw == NULL || sp == NULL || sip == NULL || glob == NULL)
+    {
+        ok = METIS_ERROR_MEMORY;
+    }
+    else
+    {
+        sx[0] = 0;
+        k = 0;
+        for (g = 0; g < ng; g++)
+        {
+            if (where[g] != side) continue;
+            for (p = xadj[g]; p < xadj[g + 1]; p++)
+            {
+                if (where[adj[p]] == side) sa[k++] = loc[adj[p]];
+            }
+            glob[loc[g]] = g;
+            sw[loc[g]] = vw[g];
+            sx[loc[g] + 1] = k;
+        }
+        if (m > 1)
+        {
+            c2d_metis_begin();
+            ok = METIS_NodeND(&nv, sx, sa, sw, NULL, sp, sip);
+            c2d_metis_end();
+        }
+        else
+        {
+            sp[0] = 0;
+        }
+        if (ok == METIS_OK)
+        {
+            for (k = 0; k < m; k++) order[k] = glob[sp[k]];
+        }
+    }
+    free(sx);
+    free(sa);
+    free(sw);
+    free(sp);
+    free(sip);
+    free(glob);
+    return ok;
+}
+
+/* METIS nested dissection of the group graph into gperm[0..ng).  From
+ * SPLIT_MIN_GROUPS groups on, its first level is taken apart: the top vertex
+ * separator (METIS_ComputeVertexSeparator), each side ordered by METIS_NodeND
+ * as an OpenMP task (another thread of the caller's team takes one when it is
+ * free), the separator last: the order METIS_NodeND builds, its two halves
+ * side by side.  giperm: [ng] workspace.  METIS's status. */
+static int nested_dissection(int ng, int *xadj, int *adj, int *vw, int *gperm, int *giperm)
+{
+    idx_t nv = ng, sepsize = 0;
+    int *where, *loc;
+    int g, k, m[3] = {0, 0, 0}, ok, ok0 = METIS_OK, ok1 = METIS_OK;
+
+    if (ng < SPLIT_MIN_GROUPS)
+    {
+        c2d_metis_begin();
+        ok = METIS_NodeND(&nv, xadj, adj, vw, NULL, gperm, giperm);
+        c2d_metis_end();
+        return ok;
+    }
+    where = giperm;
+    loc = malloc((size_t) ng * sizeof(int));
+    if (loc == NULL) return METIS_ERROR_MEMORY;
+    c2d_metis_begin();
+    ok = METIS_ComputeVertexSeparator(&nv, xadj, adj, vw, NULL, &sepsize, where);
+    c2d_metis_end();
+    if (ok == METIS_OK)
+    {
+        for (g = 0; g < ng; g++) loc[g] = m[where[g]]++;
+        #pragma omp task default(none) shared(ok1, ng, xadj, adj, vw, where, loc, m, gperm)
+        ok1 = order_side(ng, xadj, adj, vw, where, loc, 1, m[1], gperm + m[0]);
+        ok0 = order_side(ng, xadj, adj, vw, where, loc, 0, m[0], gperm);
+        #pragma omp taskwait
+        k = m[0] + m[1];
+        for (g = 0; g < ng; g++)
+        {
+            if (where[g] == 2) gperm[k++] = g;
+        }
+        ok = (ok0 != METIS_OK) ? ok0 : ok1;
+    }
+    free(loc);
+    return ok;
+}
+
 /* The fill-reducing ordering of the graph of dof groups (the nodes of the
  * mesh: the dofs of a node share their neighbours), expanded to the dofs and
  * postordered by the elimination tree: the ordering cholmod_metis (or
@@ -243,7 +357,6 @@ static int order_groups(cholmod_sparse *S, const int *group, int method, const i
     const int *Sp = S->p, *Si = S->i;
     int *gid, *gptr, *gdof, *deg, *xadj, *adj, *mark, *vw, *gperm, *giperm, *gset;
     int i, j, p, g, h, k, ng, nadj, ok;
-    idx_t nv;
     int status = CHOLMOD_OK;
     size_t nnz = (size_t) Sp[n];
     int *work = cholmod_malloc(10 * (size_t) n + 2, sizeof(int), c);
@@ -324,7 +437,6 @@ static int order_groups(cholmod_sparse *S, const int *group, int method, const i
     xadj[ng] = nadj;
 
     /* the ordering of the group graph, then the dofs group by group */
-    nv = ng;
     if (ng > 1 && method == C2D_ORDER_AMD)
     {
         double control[AMD_CONTROL], info[AMD_INFO];
@@ -343,9 +455,7 @@ static int order_groups(cholmod_sparse *S, const int *group, int method, const i
     }
     else if (ng > 1)
     {
-        c2d_metis_begin();
-        ok = METIS_NodeND(&nv, xadj, adj, vw, NULL, gperm, giperm);
-        c2d_metis_end();
+        ok = nested_dissection(ng, xadj, adj, vw, gperm, giperm);
         if (ok != METIS_OK) { status = (ok == METIS_ERROR_MEMORY) ? CHOLMOD_OUT_OF_MEMORY : CHOLMOD_INVALID; goto done; }
     }
     else

@@ -259,17 +259,20 @@ contains
     t0 = omp_get_wtime()
     call parts_begin(f, nthreads, levels, blas)
     f%side_by_side = nthreads
-    !$omp parallel do num_threads(nthreads) schedule(dynamic, 1) if (nthreads > 1)
-    do i = 1, f%nparts
-      associate (pt => f%part(largest(f, i)))
-        if (pt%status == cholmod_ok) &
-          pt%status = c2d_chol_analyze(pt%handle, int(pt%n, c_int), colptr(pt%first:pt%first + pt%n), &
-                                       rowind(colptr(pt%first):), int(pt%first - 1, c_int), &
-                                       int(pt%nlast, c_int), last_c(pt%last0 + 1:), &
-                                       merge(int(pt%n, c_int), 0_c_int, grouped), group_c(pt%first:))
-      end associate
-    end do
-    !$omp end parallel do
+    ! A METIS ordering splits its first level into two OpenMP tasks, which the
+    ! other threads of the team take when they are free: the parts' team, or,
+    ! one part after the other, the caller's (no team of one is opened then)
+    if (nthreads > 1) then
+      !$omp parallel do num_threads(nthreads) schedule(dynamic, 1)
+      do i = 1, f%nparts
+        call analyze_part(f%part(largest(f, i)))
+      end do
+      !$omp end parallel do
+    else
+      do i = 1, f%nparts
+        call analyze_part(f%part(largest(f, i)))
+      end do
+    end if
     call parts_end(levels, blas)
     f%time_analyze = omp_get_wtime() - t0
     call read_statistics(f)
@@ -289,6 +292,17 @@ contains
         return
       end select
     end do
+
+  contains
+
+    subroutine analyze_part(pt)
+      type(part_t), intent(inout) :: pt
+      if (pt%status == cholmod_ok) &
+        pt%status = c2d_chol_analyze(pt%handle, int(pt%n, c_int), colptr(pt%first:pt%first + pt%n), &
+                                     rowind(colptr(pt%first):), int(pt%first - 1, c_int), &
+                                     int(pt%nlast, c_int), last_c(pt%last0 + 1:), &
+                                     merge(int(pt%n, c_int), 0_c_int, grouped), group_c(pt%first:))
+    end subroutine analyze_part
   end subroutine analyze_pattern
 
   !> The parts of a pattern: the finest cut into diagonal blocks that no entry

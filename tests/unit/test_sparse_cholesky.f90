@@ -28,6 +28,7 @@ program test_sparse_cholesky
   call test_trailing_block_per_body()
   call test_parts()
   call test_metis_side_by_side()
+  call test_metis_split()
   call test_elasticity()
   call test_singular()
   call test_bad_arguments()
@@ -583,6 +584,51 @@ contains
     end do
 
   end subroutine test_metis_side_by_side
+
+  !> A METIS ordering of 20,000 node groups or more is split at its first
+  !> level, the two halves ordered as OpenMP tasks: the same nnz(L) whether
+  !> another thread of the team takes a half (called from a team of two) or
+  !> not (no team), the fill within 5% of CHOLMOD's own METIS on the dof
+  !> graph, and a solve to round-off.
+  subroutine test_metis_split()
+    type(csc_t) :: A
+    type(factor_t) :: f
+    type(error_t), allocatable :: err
+    integer, allocatable :: dof_of(:,:), group(:)
+    real(dp), allocatable :: b(:), x(:)
+    integer(i8) :: nnz1, nnz_dof
+    integer :: k, run, differ
+
+    call elasticity(150, 140, .true., A, dof_of)     ! 150 x 141 = 21,150 free nodes
+    group = [((k + 1) / 2, k = 1, A%n)]
+    call order_metis(f, A, group, .true., err)
+    if (allocated(err)) then
+      call check(.false., 'METIS split: ' // err%message)
+      return
+    end if
+    nnz1 = factor_nnz(f)
+    allocate(b(A%n), x(A%n))
+    b = [(sin(0.11_dp * k), k = 1, A%n)]
+    call solve(f, b, x)
+    call check_small(residual_ratio(A, x, b), 1.0e-14_dp, 'METIS split: 42,300 dofs, scaled residual < 1e-14')
+    differ = 0
+    do run = 1, 3
+      !$omp parallel num_threads(2) default(shared)
+      !$omp single
+      call order_metis(f, A, group, .true., err)
+      !$omp end single
+      !$omp end parallel
+      if (allocated(err)) exit
+      if (factor_nnz(f) /= nnz1) differ = differ + 1
+    end do
+    call check(.not. allocated(err) .and. differ == 0, &
+               'METIS split: the halves taken by a team of two give the nnz(L) of one thread (' // itoa(differ) // ' of 3 differ)')
+    call order_metis(f, A, group, .false., err)
+    if (allocated(err)) return
+    nnz_dof = factor_nnz(f)
+    call check(real(nnz1, dp) <= 1.05_dp * real(nnz_dof, dp), 'METIS split: nnz(L) ' // itoa(int(nnz1)) // &
+               ' within 5% of CHOLMOD''s METIS on the dof graph (' // itoa(int(nnz_dof)) // ')')
+  end subroutine test_metis_split
 
   !> METIS ordering and factorization of A, on the node graph or not.
   subroutine order_metis(f, A, group, by_node, err)
