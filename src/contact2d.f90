@@ -12,6 +12,7 @@ program contact2d
   use diagnostics, only: diag_t, add_error, stop_input_errors, fail_numerical, exit_program, error_t, int_to_str
   use deck_reader, only: deck_t, read_deck
   use scene, only: scene_t, build_scene, load_factor
+  use mesh, only: node_in_file
   use body, only: number_equations, build_pattern, assemble_stiffness, element_response, internal_forces
   use sparse_matrix, only: csc_t
   use sparse_cholesky, only: factor_t, analyze_pattern, factorize_values, solve, solve_forward, factor_nnz, factor_memory, &
@@ -730,7 +731,8 @@ contains
       end do
       node = (d - sc%bodies(b)%dof0 + 1) / 2
       write(buf, '(a,es11.4,a,es11.4,a)') ' at (', sc%bodies(b)%mesh%x(1, node), ',', sc%bodies(b)%mesh%x(2, node), ')'
-      where = '; that is body "' // sc%bodies(b)%name // '", node ' // int_to_str(node) // trim(buf) // &
+      where = '; that is body "' // sc%bodies(b)%name // '", node ' // int_to_str(node_in_file(sc%bodies(b)%mesh, node)) // &
+              trim(buf) // &
               ', component ' // merge('u_x', 'u_y', mod(d - sc%bodies(b)%dof0, 2) == 1)
       return
     end do

@@ -15,6 +15,7 @@ module results_writer
   use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char
   use kinds, only: dp, i8
   use body, only: body_t
+  use mesh, only: file_node, file_elem, node_in_file
   use contact_set, only: contact_set_t, row_of_node
   use diagnostics, only: int_to_str
   use text_buffer, only: text_buffer_t, open_text, open_memory, put_text, put_line, put_real, put_int, put_newline, &
@@ -74,11 +75,14 @@ module results_writer
   integer, parameter :: row_point = 1, row_cell = 2, row_cell_type = 3, row_displacement = 4, &
                         row_scalar = 5, row_body = 6, row_stress = 7
 
-  !> What a VTK row needs besides the bodies and the results.
+  !> The rows of the VTK file, in the mesh files' numbering (each body's
+  !> nodes and elements as its file gives them, the bodies in deck order).
   type :: vtk_rows_t
-    integer, allocatable :: node_body(:), elem_body(:)    !< (nnode), (nelem) the body of a point, of a cell
-    integer, allocatable :: node0(:), elem0(:)            !< (nbody) points, cells before the body's first
-    real(dp), allocatable :: scalars(:)                   !< the SCALARS array being written
+    integer, allocatable :: node_index(:)   !< (nnode) the solver's global node of each point row
+    integer, allocatable :: elem_index(:)   !< (nelem) the solver's global element of each cell row
+    integer, allocatable :: elem_body(:)    !< (nelem) the body of each cell row
+    integer, allocatable :: cells(:,:)      !< (0:4, nelem) node count and 0-based points of each cell row
+    real(dp), allocatable :: vals(:,:)      !< (ncomp, rows) the values of the section being written
   end type vtk_rows_t
 
   interface
@@ -99,7 +103,7 @@ contains
     logical, intent(out) :: ok
     type(text_buffer_t) :: tb
     type(vtk_rows_t) :: v
-    integer :: b, nnode, nelem, ncon
+    integer :: b, nnode, nelem, ncon, i
     character(len=256) :: head
 
     nnode = 0; nelem = 0; ncon = 0
@@ -110,17 +114,7 @@ contains
     end do
     call open_text(tb, path, ok)
     if (.not. ok) return
-    ! body and local number of every global node and element
-    allocate(v%node_body(nnode), v%elem_body(nelem), v%node0(size(bodies)), v%elem0(size(bodies)))
-    nnode = 0; nelem = 0
-    do b = 1, size(bodies)
-      v%node0(b) = nnode
-      v%elem0(b) = nelem
-      v%node_body(nnode + 1:nnode + bodies(b)%mesh%nnode) = b
-      v%elem_body(nelem + 1:nelem + bodies(b)%mesh%nelem) = b
-      nnode = nnode + bodies(b)%mesh%nnode
-      nelem = nelem + bodies(b)%mesh%nelem
-    end do
+    call vtk_rows(bodies, v)
     head = title
     if (len_trim(head) == 0) head = 'contact2d'
     call put_line(tb, '# vtk DataFile Version 3.0')
@@ -128,54 +122,113 @@ contains
     call put_line(tb, 'ASCII')
     call put_line(tb, 'DATASET UNSTRUCTURED_GRID')
     call put_line(tb, 'POINTS ' // int_to_str(nnode) // ' double')
-    call put_rows(tb, row_point, nnode, bodies, r, v)
+    allocate(v%vals(2, nnode))
+    nnode = 0
+    do b = 1, size(bodies)
+      associate(m => bodies(b)%mesh)
+        !$omp parallel do num_threads(min(2, omp_get_max_threads())) if(m%nnode > 4096)
+        do i = 1, m%nnode
+          v%vals(:, nnode + i) = m%x(:, v%node_index(nnode + i) - nnode)
+        end do
+        !$omp end parallel do
+        nnode = nnode + m%nnode
+      end associate
+    end do
+    call put_rows(tb, row_point, nnode, v)
     call put_line(tb, 'CELLS ' // int_to_str(nelem) // ' ' // int_to_str(ncon))
-    call put_rows(tb, row_cell, nelem, bodies, r, v)
+    call put_rows(tb, row_cell, nelem, v)
     call put_line(tb, 'CELL_TYPES ' // int_to_str(nelem))
-    call put_rows(tb, row_cell_type, nelem, bodies, r, v)
+    call put_rows(tb, row_cell_type, nelem, v)
     if (any(fields(1:3))) call put_line(tb, 'POINT_DATA ' // int_to_str(nnode))
     if (fields(1)) then
       call put_line(tb, 'VECTORS displacement double')
-      call put_rows(tb, row_displacement, nnode, bodies, r, v)
+      call gather(reshape(r%u, [2, nnode]), v%node_index, v)
+      call put_rows(tb, row_displacement, nnode, v)
     end if
-    if (fields(2)) call put_scalars(tb, 'contact_pressure', r%node_pressure, bodies, r, v)
-    if (fields(3)) call put_scalars(tb, 'gap', r%node_gap, bodies, r, v)
-    if (fields(2) .and. allocated(r%node_shear)) call put_scalars(tb, 'contact_shear', r%node_shear, bodies, r, v)
+    if (fields(2)) call put_scalars(tb, 'contact_pressure', r%node_pressure, v%node_index, v)
+    if (fields(3)) call put_scalars(tb, 'gap', r%node_gap, v%node_index, v)
+    if (fields(2) .and. allocated(r%node_shear)) call put_scalars(tb, 'contact_shear', r%node_shear, v%node_index, v)
     call put_line(tb, 'CELL_DATA ' // int_to_str(nelem))
     call put_line(tb, 'SCALARS body int 1')
     call put_line(tb, 'LOOKUP_TABLE default')
-    call put_rows(tb, row_body, nelem, bodies, r, v)
+    call put_rows(tb, row_body, nelem, v)
     if (fields(4)) then
       call put_line(tb, 'SCALARS stress double 3')
       call put_line(tb, 'LOOKUP_TABLE default')
-      call put_rows(tb, row_stress, nelem, bodies, r, v)
+      call gather(r%stress, v%elem_index, v)
+      call put_rows(tb, row_stress, nelem, v)
     end if
-    if (fields(5)) call put_scalars(tb, 'von_mises', r%vm, bodies, r, v)
+    if (fields(5)) call put_scalars(tb, 'von_mises', r%vm, v%elem_index, v)
     call close_text(tb, ok)
   end subroutine write_vtk
 
-  !> One SCALARS array, a value per line.
-  subroutine put_scalars(tb, name, values, bodies, r, v)
+  !> The rows of the VTK file: which of the solver's nodes and elements each
+  !> point and cell row shows, and each cell's points in the files' numbering.
+  subroutine vtk_rows(bodies, v)
+    type(body_t), intent(in) :: bodies(:)
+    type(vtk_rows_t), intent(out) :: v
+    integer :: b, p, e, k, n0, e0, nnode, nelem
+    nnode = sum([(bodies(b)%mesh%nnode, b = 1, size(bodies))])
+    nelem = sum([(bodies(b)%mesh%nelem, b = 1, size(bodies))])
+    allocate(v%node_index(nnode), v%elem_index(nelem), v%elem_body(nelem), v%cells(0:4, nelem))
+    n0 = 0; e0 = 0
+    do b = 1, size(bodies)
+      associate(m => bodies(b)%mesh)
+        do p = 1, m%nnode
+          v%node_index(n0 + p) = n0 + file_node(m, p)
+        end do
+        !$omp parallel do private(e, k) num_threads(min(2, omp_get_max_threads())) if(m%nelem > 4096)
+        do p = 1, m%nelem
+          e = file_elem(m, p)
+          v%elem_index(e0 + p) = e0 + e
+          v%elem_body(e0 + p) = b
+          v%cells(:, e0 + p) = 0
+          v%cells(0, e0 + p) = m%nen(e)
+          do k = 1, m%nen(e)
+            v%cells(k, e0 + p) = n0 + node_in_file(m, m%conn(k, e)) - 1
+          end do
+        end do
+        !$omp end parallel do
+        n0 = n0 + m%nnode
+        e0 = e0 + m%nelem
+      end associate
+    end do
+  end subroutine vtk_rows
+
+  !> v%vals(:, i) = src(:, index(i)): a section's values in the order of its rows.
+  subroutine gather(src, index, v)
+    real(dp), intent(in) :: src(:,:)
+    integer, intent(in) :: index(:)
+    type(vtk_rows_t), intent(inout) :: v
+    integer :: i
+    if (allocated(v%vals)) deallocate(v%vals)
+    allocate(v%vals(size(src, 1), size(index)))
+    !$omp parallel do num_threads(min(2, omp_get_max_threads())) if(size(index) > 4096)
+    do i = 1, size(index)
+      v%vals(:, i) = src(:, index(i))
+    end do
+    !$omp end parallel do
+  end subroutine gather
+
+  !> One SCALARS array, a value per line; index: the rows' nodes or elements.
+  subroutine put_scalars(tb, name, values, index, v)
     type(text_buffer_t), intent(inout) :: tb
     character(len=*), intent(in) :: name
     real(dp), intent(in) :: values(:)
-    type(body_t), intent(in) :: bodies(:)
-    type(results_t), intent(in) :: r
+    integer, intent(in) :: index(:)
     type(vtk_rows_t), intent(inout) :: v
     call put_line(tb, 'SCALARS ' // name // ' double 1')
     call put_line(tb, 'LOOKUP_TABLE default')
-    v%scalars = values
-    call put_rows(tb, row_scalar, size(values), bodies, r, v)
+    call gather(reshape(values, [1, size(values)]), index, v)
+    call put_rows(tb, row_scalar, size(values), v)
   end subroutine put_scalars
 
   !> Rows 1..n of one section of the VTK file (kind: row_*), formatted in
   !> chunks on two threads and written in order: the text is the same as
   !> one thread's, the formatting (most of the output time) is halved.
-  subroutine put_rows(tb, kind, n, bodies, r, v)
+  subroutine put_rows(tb, kind, n, v)
     type(text_buffer_t), intent(inout) :: tb
     integer, intent(in) :: kind, n
-    type(body_t), intent(in) :: bodies(:)
-    type(results_t), intent(in) :: r
     type(vtk_rows_t), intent(in) :: v
     integer, parameter :: chunk = 4096
     type(text_buffer_t) :: part
@@ -185,7 +238,7 @@ contains
     do c = 0, (n - 1) / chunk
       call open_memory(part)
       do i = c * chunk + 1, min((c + 1) * chunk, n)
-        call put_row(part, kind, i, bodies, r, v)
+        call put_row(part, kind, i, v)
       end do
       !$omp ordered
       call put_text(tb, part%buf(1:part%used))
@@ -195,45 +248,33 @@ contains
   end subroutine put_rows
 
   !> Row i of a section of the VTK file.
-  subroutine put_row(tb, kind, i, bodies, r, v)
+  subroutine put_row(tb, kind, i, v)
     type(text_buffer_t), intent(inout) :: tb
     integer, intent(in) :: kind, i
-    type(body_t), intent(in) :: bodies(:)
-    type(results_t), intent(in) :: r
     type(vtk_rows_t), intent(in) :: v
-    integer :: b, e, a
+    integer :: k
     select case (kind)
-    case (row_point)
-      b = v%node_body(i)
-      a = i - v%node0(b)
-      call put_real(tb, bodies(b)%mesh%x(1, a))
-      call put_real(tb, bodies(b)%mesh%x(2, a))
+    case (row_point, row_displacement)
+      call put_real(tb, v%vals(1, i))
+      call put_real(tb, v%vals(2, i))
       call put_line(tb, ' 0')
     case (row_cell)
-      b = v%elem_body(i)
-      e = i - v%elem0(b)
-      call put_int(tb, bodies(b)%mesh%nen(e))
-      do a = 1, bodies(b)%mesh%nen(e)
-        call put_int(tb, bodies(b)%mesh%conn(a, e) - 1 + v%node0(b))
+      do k = 0, v%cells(0, i)
+        call put_int(tb, v%cells(k, i))
       end do
       call put_newline(tb)
     case (row_cell_type)
-      b = v%elem_body(i)
-      call put_line(tb, merge(' 5', ' 9', bodies(b)%mesh%nen(i - v%elem0(b)) == 3))
-    case (row_displacement)
-      call put_real(tb, r%u(2 * i - 1))
-      call put_real(tb, r%u(2 * i))
-      call put_line(tb, ' 0')
+      call put_line(tb, merge(' 5', ' 9', v%cells(0, i) == 3))
     case (row_scalar)
-      call put_real(tb, v%scalars(i))
+      call put_real(tb, v%vals(1, i))
       call put_newline(tb)
     case (row_body)
       call put_int(tb, v%elem_body(i))
       call put_newline(tb)
     case (row_stress)
-      call put_real(tb, r%stress(1, i))
-      call put_real(tb, r%stress(2, i))
-      call put_real(tb, r%stress(3, i))
+      call put_real(tb, v%vals(1, i))
+      call put_real(tb, v%vals(2, i))
+      call put_real(tb, v%vals(3, i))
       call put_newline(tb)
     end select
   end subroutine put_row

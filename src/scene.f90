@@ -16,7 +16,7 @@ module scene
   use kinds, only: dp
   use diagnostics, only: diag_t, add_error, has_errors, int_to_str
   use deck_reader, only: deck_t, body_deck_t, LOAD_TRACTION, LOAD_PRESSURE
-  use mesh, only: mesh_t, finalize_mesh, find_boundary, boundary_nodes, find_region
+  use mesh, only: mesh_t, finalize_mesh, find_boundary, boundary_nodes, find_region, order_for_locality, node_in_file
   use mesh_rect, only: make_rect_mesh
   use gmsh_reader, only: read_gmsh_file, mesh_geo_file
   use material, only: make_isotropic, make_orthotropic
@@ -67,12 +67,21 @@ contains
     integer :: b, nb, nfix, ifix, ndof, ip
     logical :: has_traction, has_pressure, has_bforce, has_gravity, has_dirichlet, has_thermal, has_offset
 
+    ! The bodies are read one after the other: gfortran 12 keeps the length of
+    ! a deferred-length character function result (int_to_str, the reader's
+    ! names and messages) in a static variable of the caller, so two threads
+    ! reading meshes garble each other's strings (doc/robustness.md)
     nb = size(deck%bodies)
     allocate(sc%bodies(nb))
     do b = 1, nb
       call make_body(deck, deck%bodies(b), workdir, sc%bodies(b), diag)
     end do
     if (has_errors(diag)) return
+    ! a mesh file's numbering is its generator's: renumber for locality (the
+    ! generated rectangles are numbered row by row already)
+    do b = 1, nb
+      if (deck%bodies(b)%mesh%kind /= 'rect') call order_for_locality(sc%bodies(b)%mesh)
+    end do
 
     ! dof and element offsets
     ndof = 0
@@ -342,8 +351,8 @@ contains
               if (sum(sc%ugroup(dof, :)) /= val(c) .or. &
                   (val(c) /= 0.0_dp .and. sc%ugroup(dof, ramp_group(sc, fx%ramp)) /= val(c))) then
                 call add_error(diag, deck%file, fx%line, 'FIX ' // fx%boundary // ' gives node ' // &
-                  int_to_str(nodes(i)) // ' a value that conflicts with an earlier FIX (equal values where FIX ' // &
-                  'statements share nodes expected)')
+                  int_to_str(node_in_file(sc%bodies(b)%mesh, nodes(i))) // ' a value that conflicts with an earlier ' // &
+                  'FIX (equal values where FIX statements share nodes expected)')
                 exit
               end if
             else
