@@ -23,6 +23,7 @@
 !>        the edge, -1 when two do (an interior edge)
 module body
   use kinds, only: dp
+  use omp_lib, only: omp_get_max_threads
   use mesh, only: mesh_t
   use material, only: elasticity_t, von_mises
   use elements, only: element_stiffness, element_force, element_strain, quadrature_rule, shape_at, strain_operator
@@ -113,8 +114,7 @@ contains
     type(body_t), intent(in) :: bodies(:)
     integer, intent(in) :: eq(:), nfree
     type(csc_t), intent(out) :: k
-    integer :: b, pass, a, j, c, cb, col, row, nb, p, e, ie, nnz
-    integer, allocatable :: eptr(:), elist(:), mark(:), nbr(:)
+    integer :: b, pass, col, nnz
 
     k%n = nfree
     allocate(k%colptr(nfree + 1))
@@ -128,52 +128,70 @@ contains
         end do
         nnz = k%colptr(nfree + 1) - 1
         allocate(k%rowind(nnz), k%val(nnz))
-        k%val = 0.0_dp
       end if
       do b = 1, size(bodies)
-        associate(m => bodies(b)%mesh, d0 => bodies(b)%dof0)
-          call node_elements(m, eptr, elist)
-          if (allocated(mark)) deallocate(mark)
-          allocate(mark(m%nnode), nbr(64))
-          mark = 0
-          do a = 1, m%nnode
-            ! distinct neighbour nodes of a (a included), ascending
-            nb = 0
-            do ie = eptr(a), eptr(a + 1) - 1
-              e = elist(ie)
-              do j = 1, m%nen(e)
-                if (mark(m%conn(j, e)) /= a) then
-                  mark(m%conn(j, e)) = a
-                  nb = nb + 1
-                  if (nb > size(nbr)) call grow(nbr)
-                  nbr(nb) = m%conn(j, e)
-                end if
-              end do
-            end do
-            call sort_small(nbr(1:nb))
-            do c = 1, 2
-              col = eq(d0 + 2 * (a - 1) + c)
-              if (col == 0) cycle
-              p = k%colptr(col)
-              do j = 1, nb
-                do cb = 1, 2
-                  row = eq(d0 + 2 * (nbr(j) - 1) + cb)
-                  if (row == 0 .or. row > col) cycle
-                  if (pass == 1) then
-                    k%colptr(col + 1) = k%colptr(col + 1) + 1
-                  else
-                    k%rowind(p) = row
-                    p = p + 1
-                  end if
-                end do
-              end do
-            end do
-          end do
-          deallocate(mark, nbr)
-        end associate
+        call pattern_pass(bodies(b), pass, eq, k)
       end do
     end do
   end subroutine build_pattern
+
+  !> One pass of build_pattern over the nodes of one body, on two threads
+  !> (a node writes only its own two columns): pass 1 counts the entries of
+  !> each column into k%colptr(col + 1), pass 2 writes their rows (and zero
+  !> values) from k%colptr(col) on.
+  subroutine pattern_pass(bd, pass, eq, k)
+    type(body_t), intent(in) :: bd
+    integer, intent(in) :: pass, eq(:)
+    type(csc_t), intent(inout) :: k
+    integer :: a, j, c, cb, col, row, nb, p, e, ie
+    integer, allocatable :: eptr(:), elist(:), mark(:), nbr(:)
+
+    associate(m => bd%mesh, d0 => bd%dof0)
+      call node_elements(m, eptr, elist)
+      !$omp parallel private(mark, nbr, nb, ie, e, j, c, col, p, cb, row) &
+      !$omp num_threads(min(2, omp_get_max_threads())) if(m%nnode > 20000)
+      allocate(mark(m%nnode), nbr(64))
+      mark = 0
+      !$omp do schedule(static)
+      do a = 1, m%nnode
+        ! distinct neighbour nodes of a (a included), ascending
+        nb = 0
+        do ie = eptr(a), eptr(a + 1) - 1
+          e = elist(ie)
+          do j = 1, m%nen(e)
+            if (mark(m%conn(j, e)) /= a) then
+              mark(m%conn(j, e)) = a
+              nb = nb + 1
+              if (nb > size(nbr)) call grow(nbr)
+              nbr(nb) = m%conn(j, e)
+            end if
+          end do
+        end do
+        call sort_small(nbr(1:nb))
+        do c = 1, 2
+          col = eq(d0 + 2 * (a - 1) + c)
+          if (col == 0) cycle
+          p = k%colptr(col)
+          do j = 1, nb
+            do cb = 1, 2
+              row = eq(d0 + 2 * (nbr(j) - 1) + cb)
+              if (row == 0 .or. row > col) cycle
+              if (pass == 1) then
+                k%colptr(col + 1) = k%colptr(col + 1) + 1
+              else
+                k%rowind(p) = row
+                k%val(p) = 0.0_dp
+                p = p + 1
+              end if
+            end do
+          end do
+        end do
+      end do
+      !$omp end do
+      deallocate(mark, nbr)
+      !$omp end parallel
+    end associate
+  end subroutine pattern_pass
 
   subroutine grow(a)
     integer, allocatable, intent(inout) :: a(:)
