@@ -3,8 +3,8 @@
 !> numbering), the maps to the file's numbering are inverse permutations, and
 !> neighbours in the mesh become neighbours in memory.
 program test_mesh_order
-  use kinds, only: dp
-  use mesh, only: mesh_t, order_for_locality, file_node, file_elem, node_in_file
+  use kinds, only: dp, i8
+  use mesh, only: mesh_t, order_for_locality, file_node, file_elem, node_in_file, hilbert_index
   use testing, only: check, check_small, finish_tests
   implicit none
   integer, parameter :: nx = 60, ny = 40
@@ -113,6 +113,11 @@ program test_mesh_order
   r = spread_ratio(m)
   call check(r < 0.05_dp, 'renumbered: mean node spread within an element below 5% of the nodes')
 
+  ! the Hilbert curve: on a 2^b x 2^b grid the indices are 0 .. 4^b - 1, each
+  ! once, and consecutive indices are cells side by side
+  call check(hilbert_walk(1) .and. hilbert_walk(4) .and. hilbert_walk(7), &
+             'Hilbert index: a walk through every cell, one step to a side neighbour at a time')
+
   deallocate(nperm, eperm, seen)
   call finish_tests()
 
@@ -153,6 +158,33 @@ contains
       end if
     end do
   end function file_elem_inverse
+
+  !> Every cell of the 2^b grid has its own index in 0 .. 4^b - 1, and the
+  !> cells of indices d and d + 1 share a side.
+  logical function hilbert_walk(b) result(ok)
+    integer, intent(in) :: b
+    integer :: x, y, n
+    integer, allocatable :: cx(:), cy(:)
+    integer(i8) :: d
+    n = 2**b
+    allocate(cx(0:n * n - 1), cy(0:n * n - 1), source=-1)
+    ok = .true.
+    do x = 0, n - 1
+      do y = 0, n - 1
+        d = hilbert_index(b, x, y)
+        if (d < 0 .or. d >= int(n, i8)**2) then
+          ok = .false.
+          return
+        end if
+        if (cx(d) >= 0) ok = .false.
+        cx(d) = x
+        cy(d) = y
+      end do
+    end do
+    do d = 1, int(n, i8)**2 - 1
+      if (abs(cx(d) - cx(d - 1)) + abs(cy(d) - cy(d - 1)) /= 1) ok = .false.
+    end do
+  end function hilbert_walk
 
   !> Mean over elements of (largest - smallest node number), over nnode.
   real(dp) function spread_ratio(g)
