@@ -16,7 +16,8 @@ module scene
   use kinds, only: dp
   use diagnostics, only: diag_t, add_error, has_errors, int_to_str
   use deck_reader, only: deck_t, body_deck_t, LOAD_TRACTION, LOAD_PRESSURE
-  use mesh, only: mesh_t, finalize_mesh, find_boundary, boundary_nodes, find_region, order_for_locality, node_in_file
+  use mesh, only: mesh_t, finalize_mesh, find_boundary, boundary_nodes, find_region, order_for_locality, node_in_file, &
+                  locality_min_nodes
   use mesh_rect, only: make_rect_mesh
   use gmsh_reader, only: read_gmsh_file, mesh_geo_file
   use material, only: make_isotropic, make_orthotropic
@@ -77,10 +78,11 @@ contains
       call make_body(deck, deck%bodies(b), workdir, sc%bodies(b), diag)
     end do
     if (has_errors(diag)) return
-    ! a mesh file's numbering is its generator's: renumber for locality (the
-    ! generated rectangles are numbered row by row already)
+    ! a large mesh file's numbering is its generator's: renumber for locality
+    ! (the generated rectangles are numbered row by row already)
     do b = 1, nb
-      if (deck%bodies(b)%mesh%kind /= 'rect') call order_for_locality(sc%bodies(b)%mesh)
+      if (deck%bodies(b)%mesh%kind /= 'rect' .and. sc%bodies(b)%mesh%nnode > locality_min_nodes) &
+        call order_for_locality(sc%bodies(b)%mesh)
     end do
 
     ! dof and element offsets
