@@ -409,25 +409,30 @@ contains
   pure integer function file_node(mesh, p) result(a)
     type(mesh_t), intent(in) :: mesh
     integer, intent(in) :: p
-    a = p
-    if (allocated(mesh%file%file_nodes)) a = mesh%file%file_nodes(p)
+    a = mapped(mesh%file%file_nodes, p)
   end function file_node
 
   !> The element that is element p of the mesh file.
   pure integer function file_elem(mesh, p) result(e)
     type(mesh_t), intent(in) :: mesh
     integer, intent(in) :: p
-    e = p
-    if (allocated(mesh%file%file_elems)) e = mesh%file%file_elems(p)
+    e = mapped(mesh%file%file_elems, p)
   end function file_elem
 
   !> The number in the mesh file of node a.
   pure integer function node_in_file(mesh, a) result(p)
     type(mesh_t), intent(in) :: mesh
     integer, intent(in) :: a
-    p = a
-    if (allocated(mesh%file%node_file)) p = mesh%file%node_file(a)
+    p = mapped(mesh%file%node_file, a)
   end function node_in_file
+
+  !> map(i), or i when the map is not allocated (the file's own numbering).
+  pure integer function mapped(map, i) result(j)
+    integer, allocatable, intent(in) :: map(:)
+    integer, intent(in) :: i
+    j = i
+    if (allocated(map)) j = map(i)
+  end function mapped
 
   !> Line of element e in its mesh file, 0 when unknown (generated meshes).
   pure integer function source_line(mesh, e) result(line)
