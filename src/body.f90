@@ -45,6 +45,12 @@ module body
                                            !< when the body has a THERMAL statement
   end type body_t
 
+
+  !> The elements around each node of a mesh (node_elements).
+  type :: node_elements_t
+    integer, allocatable :: ptr(:), list(:)
+  end type node_elements_t
+
 contains
 
   !> Free equation numbers: eq(dof) = rank among free dofs, 0 for fixed dofs.
@@ -115,7 +121,12 @@ contains
     integer, intent(in) :: eq(:), nfree
     type(csc_t), intent(out) :: k
     integer :: b, pass, col, nnz
+    type(node_elements_t), allocatable :: around(:)
 
+    allocate(around(size(bodies)))            ! the elements around each node, for both passes
+    do b = 1, size(bodies)
+      call node_elements(bodies(b)%mesh, around(b)%ptr, around(b)%list)
+    end do
     k%n = nfree
     allocate(k%colptr(nfree + 1))
     k%colptr = 0
@@ -130,7 +141,7 @@ contains
         allocate(k%rowind(nnz), k%val(nnz))
       end if
       do b = 1, size(bodies)
-        call pattern_pass(bodies(b), pass, eq, k)
+        call pattern_pass(bodies(b), around(b), pass, eq, k)
       end do
     end do
   end subroutine build_pattern
@@ -139,15 +150,15 @@ contains
   !> (a node writes only its own two columns): pass 1 counts the entries of
   !> each column into k%colptr(col + 1), pass 2 writes their rows (and zero
   !> values) from k%colptr(col) on.
-  subroutine pattern_pass(bd, pass, eq, k)
+  subroutine pattern_pass(bd, around, pass, eq, k)
     type(body_t), intent(in) :: bd
+    type(node_elements_t), intent(in) :: around
     integer, intent(in) :: pass, eq(:)
     type(csc_t), intent(inout) :: k
     integer :: a, j, c, cb, col, row, nb, p, e, ie
-    integer, allocatable :: eptr(:), elist(:), mark(:), nbr(:)
+    integer, allocatable :: mark(:), nbr(:)
 
-    associate(m => bd%mesh, d0 => bd%dof0)
-      call node_elements(m, eptr, elist)
+    associate(m => bd%mesh, d0 => bd%dof0, eptr => around%ptr, elist => around%list)
       !$omp parallel private(mark, nbr, nb, ie, e, j, c, col, p, cb, row) &
       !$omp num_threads(min(2, omp_get_max_threads())) if(m%nnode > 20000)
       allocate(mark(m%nnode), nbr(64))
