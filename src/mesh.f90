@@ -342,8 +342,10 @@ contains
     if (allocated(mesh%reg)) then
       allocate(in_reg(mesh%nelem))
       do b = 1, size(mesh%reg)                     ! each region's elements, ascending again
-        if (size(mesh%reg(b)%elems) == mesh%nelem) then
-          mesh%reg(b)%elems = [(e, e = 1, mesh%nelem)] ! the whole mesh (elements are listed once)
+        if (size(mesh%reg(b)%elems) == mesh%nelem) then   ! the whole mesh (elements are listed once)
+          do e = 1, mesh%nelem
+            mesh%reg(b)%elems(e) = e
+          end do
           cycle
         end if
         in_reg = .false.
@@ -360,7 +362,6 @@ contains
         mesh%reg(b)%elems = mesh%reg(b)%elems(1:k)
       end do
     end if
-
   end subroutine order_for_locality
 
   !> Index along the Hilbert curve of order bits of the cell (x0, y0): two bits
