@@ -142,7 +142,7 @@ contains
     if (any(fields(1:3))) call put_line(tb, 'POINT_DATA ' // int_to_str(nnode))
     if (fields(1)) then
       call put_line(tb, 'VECTORS displacement double')
-      call gather(reshape(r%u, [2, nnode]), v%node_index, v)
+      call gather(r%u, 2, v%node_index, v)
       call put_rows(tb, row_displacement, nnode, v)
     end if
     if (fields(2)) call put_scalars(tb, 'contact_pressure', r%node_pressure, v%node_index, v)
@@ -155,7 +155,7 @@ contains
     if (fields(4)) then
       call put_line(tb, 'SCALARS stress double 3')
       call put_line(tb, 'LOOKUP_TABLE default')
-      call gather(r%stress, v%elem_index, v)
+      call gather(r%stress, 3, v%elem_index, v)
       call put_rows(tb, row_stress, nelem, v)
     end if
     if (fields(5)) call put_scalars(tb, 'von_mises', r%vm, v%elem_index, v)
@@ -196,13 +196,15 @@ contains
   end subroutine vtk_rows
 
   !> v%vals(:, i) = src(:, index(i)): a section's values in the order of its rows.
-  subroutine gather(src, index, v)
-    real(dp), intent(in) :: src(:,:)
+  !> src is (ncomp, *): ncomp values per node or element, in the solver's order.
+  subroutine gather(src, ncomp, index, v)
+    integer, intent(in) :: ncomp
+    real(dp), intent(in) :: src(ncomp, *)
     integer, intent(in) :: index(:)
     type(vtk_rows_t), intent(inout) :: v
     integer :: i
     if (allocated(v%vals)) deallocate(v%vals)
-    allocate(v%vals(size(src, 1), size(index)))
+    allocate(v%vals(ncomp, size(index)))
     !$omp parallel do num_threads(min(2, omp_get_max_threads())) if(size(index) > 4096)
     do i = 1, size(index)
       v%vals(:, i) = src(:, index(i))
@@ -219,7 +221,7 @@ contains
     type(vtk_rows_t), intent(inout) :: v
     call put_line(tb, 'SCALARS ' // name // ' double 1')
     call put_line(tb, 'LOOKUP_TABLE default')
-    call gather(reshape(values, [1, size(values)]), index, v)
+    call gather(values, 1, index, v)
     call put_rows(tb, row_scalar, size(values), v)
   end subroutine put_scalars
 
