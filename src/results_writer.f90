@@ -73,7 +73,7 @@ module results_writer
 
   ! the sections of the VTK file, row by row (put_rows)
   integer, parameter :: row_point = 1, row_cell = 2, row_cell_type = 3, row_displacement = 4, &
-                        row_scalar = 5, row_body = 6, row_stress = 7
+                        row_values = 5, row_body = 6
 
   !> The rows of the VTK file, in the mesh files' numbering (each body's
   !> nodes and elements as its file gives them, the bodies in deck order).
@@ -114,7 +114,7 @@ contains
     end do
     call open_text(tb, path, ok)
     if (.not. ok) return
-    call vtk_rows(bodies, v)
+    call vtk_rows(bodies, nnode, nelem, v)
     head = title
     if (len_trim(head) == 0) head = 'contact2d'
     call put_line(tb, '# vtk DataFile Version 3.0')
@@ -156,7 +156,7 @@ contains
       call put_line(tb, 'SCALARS stress double 3')
       call put_line(tb, 'LOOKUP_TABLE default')
       call gather(r%stress, 3, v%elem_index, v)
-      call put_rows(tb, row_stress, nelem, v)
+      call put_rows(tb, row_values, nelem, v)
     end if
     if (fields(5)) call put_scalars(tb, 'von_mises', r%vm, v%elem_index, v)
     call close_text(tb, ok)
@@ -164,12 +164,11 @@ contains
 
   !> The rows of the VTK file: which of the solver's nodes and elements each
   !> point and cell row shows, and each cell's points in the files' numbering.
-  subroutine vtk_rows(bodies, v)
+  subroutine vtk_rows(bodies, nnode, nelem, v)
     type(body_t), intent(in) :: bodies(:)
+    integer, intent(in) :: nnode, nelem       !< over all bodies
     type(vtk_rows_t), intent(out) :: v
-    integer :: b, p, e, k, n0, e0, nnode, nelem
-    nnode = sum([(bodies(b)%mesh%nnode, b = 1, size(bodies))])
-    nelem = sum([(bodies(b)%mesh%nelem, b = 1, size(bodies))])
+    integer :: b, p, e, k, n0, e0
     allocate(v%node_index(nnode), v%elem_index(nelem), v%elem_body(nelem), v%cells(0:4, nelem))
     n0 = 0; e0 = 0
     do b = 1, size(bodies)
@@ -222,7 +221,7 @@ contains
     call put_line(tb, 'SCALARS ' // name // ' double 1')
     call put_line(tb, 'LOOKUP_TABLE default')
     call gather(values, 1, index, v)
-    call put_rows(tb, row_scalar, size(values), v)
+    call put_rows(tb, row_values, size(values), v)
   end subroutine put_scalars
 
   !> Rows 1..n of one section of the VTK file (kind: row_*), formatted in
@@ -267,16 +266,13 @@ contains
       call put_newline(tb)
     case (row_cell_type)
       call put_line(tb, merge(' 5', ' 9', v%cells(0, i) == 3))
-    case (row_scalar)
-      call put_real(tb, v%vals(1, i))
+    case (row_values)                            ! SCALARS rows: the section's components
+      do k = 1, size(v%vals, 1)
+        call put_real(tb, v%vals(k, i))
+      end do
       call put_newline(tb)
     case (row_body)
       call put_int(tb, v%elem_body(i))
-      call put_newline(tb)
-    case (row_stress)
-      call put_real(tb, v%vals(1, i))
-      call put_real(tb, v%vals(2, i))
-      call put_real(tb, v%vals(3, i))
       call put_newline(tb)
     end select
   end subroutine put_row
