@@ -53,6 +53,7 @@
 !>        holds gmsh's first error lines
 module gmsh_reader
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+  use omp_lib, only: omp_get_max_threads
   use kinds, only: dp, i8
   use diagnostics, only: diag_t, add_error, int_to_str
   use mesh, only: mesh_t
@@ -66,6 +67,12 @@ module gmsh_reader
   integer, parameter :: echo_length = 100          !< characters of a line echoed
   integer, parameter :: quote_length = 40          !< characters of an item quoted
   integer, parameter :: raw_width = 6              !< nen, 4 nodes, line: an element read
+  integer, parameter :: max_fast_items = 8         !< items of a line on the fast path
+  integer, parameter :: fast_parallel_min = 4096   !< lines parsed on two threads from
+  integer(i8), parameter :: fast_parallel_bytes = 262144  !< files split into lines on two threads from
+  integer(i8) :: no_integers(0, 0)                 !< iv of scan_data_lines for no integers
+  real(dp) :: no_reals(0, 0)                       !< rv of scan_data_lines for no reals
+  integer(i8) :: no_lower_bounds(0)                !< lo of scan_data_lines for no integers
   character(len=*), parameter :: order_hint = &
     'P1 triangles/Q1 quads and 2-node lines expected; mesh with gmsh -order 1'
 
@@ -157,9 +164,9 @@ contains
     type(msh_text_t), intent(inout) :: t
     type(diag_t), intent(inout) :: diag
     logical, intent(out) :: ok
-    character, parameter :: lf = achar(10)
-    integer :: status, n, k
-    integer(i8) :: p, q, nbytes, nlf
+    character, parameter :: lf = achar(10), cr = achar(13)
+    integer :: status, n, k, c
+    integer(i8) :: p, q, nbytes, nlf, chunk_end(2), chunk_lf(2)
 
     ok = .false.
     call read_whole_file(t%path, t%buf, status)
@@ -180,11 +187,20 @@ contains
       return
     end if
 
-    ! Count the lines: one per LF, plus an unterminated last line.
-    nlf = 0
-    do p = 1, nbytes
-      if (t%buf(p:p) == lf) nlf = nlf + 1
+    ! Count the lines: one per LF, plus an unterminated last line.  The file is
+    ! scanned in two halves side by side, LF counts first, then the lines.
+    chunk_end = [nbytes / 2, nbytes]
+    chunk_lf = 0
+    !$omp parallel do num_threads(min(2, omp_get_max_threads())) if(nbytes > fast_parallel_bytes) private(p, q)
+    do c = 1, 2
+      q = 0                                          ! a register, not the shared array
+      do p = merge(1_i8, chunk_end(1) + 1, c == 1), chunk_end(c)
+        q = q + merge(1_i8, 0_i8, t%buf(p:p) == lf)   ! no branch to mispredict
+      end do
+      chunk_lf(c) = q
     end do
+    !$omp end parallel do
+    nlf = sum(chunk_lf)
     if (t%buf(nbytes:nbytes) /= lf) nlf = nlf + 1
     if (nlf > int(huge(1), i8) - 4_i8) then
       call add_error(diag, t%path, 0, 'mesh file has too many lines (fewer than 2**31 expected)')
@@ -194,23 +210,26 @@ contains
     ! Line k runs from lbeg(k) to the byte before its LF (or to the end of the
     ! file), less a CR before the LF.
     allocate(t%lbeg(n), t%lend(n))
-    k = 1
     t%lbeg(1) = 1
-    do p = 1, nbytes
-      if (t%buf(p:p) == lf) then
-        t%lend(k) = p - 1
-        k = k + 1
-        if (k > n) exit
-        t%lbeg(k) = p + 1
-      end if
+    !$omp parallel do num_threads(min(2, omp_get_max_threads())) if(nbytes > fast_parallel_bytes) private(p, k)
+    do c = 1, 2
+      k = int(merge(0_i8, chunk_lf(1), c == 1))      ! the LFs before the chunk
+      do p = merge(1_i8, chunk_end(1) + 1, c == 1), chunk_end(c)
+        if (t%buf(p:p) == lf) then
+          k = k + 1
+          t%lend(k) = p - 1
+          if (p > 1) then
+            if (t%buf(p - 1:p - 1) == cr) t%lend(k) = p - 2
+          end if
+          if (k < n) t%lbeg(k + 1) = p + 1
+        end if
+      end do
     end do
-    if (k == n) t%lend(n) = nbytes
-    do k = 1, n
-      q = t%lend(k)
-      if (q >= t%lbeg(k)) then
-        if (t%buf(q:q) == achar(13)) t%lend(k) = q - 1
-      end if
-    end do
+    !$omp end parallel do
+    if (t%buf(nbytes:nbytes) /= lf) then
+      t%lend(n) = nbytes
+      if (t%buf(nbytes:nbytes) == cr) t%lend(n) = nbytes - 1
+    end if
     t%nline = n
     t%ln = 0
     allocate(t%tbeg(16), t%tend(16))
@@ -519,13 +538,26 @@ contains
     type(msh_data_t), intent(inout) :: d
     type(diag_t), intent(inout) :: diag
     logical, intent(out) :: ok
-    integer :: n, k
+    integer :: n, k, first
+    real(dp), allocatable :: xyz(:,:)
+    logical :: fast
 
     call read_data_line(t, diag, 'Nodes', 1, 'the number of nodes', ok)
     if (.not. ok) return
     call get_count(t, diag, 1, 'number of nodes', remaining_lines(t), n, ok)
     if (.not. ok) return
     call allocate_nodes(d, n)
+    first = t%ln + 1
+    allocate(xyz(3, n))
+    call scan_data_lines(t, n, [1_i8], 3, d%ntag, xyz, fast)
+    if (fast) then
+      d%x = xyz(1:2, :)
+      d%z = xyz(3, :)
+      d%tag_line = [(first + k, k = 0, n - 1)]
+      d%coord_line = d%tag_line
+      call expect_section_end(t, diag, 'Nodes', ok)
+      return
+    end if
     do k = 1, n
       call read_data_line(t, diag, 'Nodes', 4, 'node-tag x y z', ok)
       if (.not. ok) return
@@ -548,10 +580,12 @@ contains
     type(msh_data_t), intent(inout) :: d
     type(diag_t), intent(inout) :: diag
     logical, intent(out) :: ok
-    integer :: nblock, n, b, m, k, j, i, left, header, nitem
+    integer :: nblock, n, b, m, k, j, i, left, header, nitem, first
     integer(i8) :: dim, param, tag
     real(dp) :: r
+    real(dp), allocatable :: xyz(:,:)
     character(len=:), allocatable :: line_what
+    logical :: fast
 
     call read_data_line(t, diag, 'Nodes', 4, 'numEntityBlocks numNodes minNodeTag maxNodeTag', ok)
     if (.not. ok) return
@@ -584,30 +618,46 @@ contains
       if (.not. ok) return
       call get_count(t, diag, 4, 'number of nodes in the block', n - k, m, ok)
       if (.not. ok) return
-      do j = k + 1, k + m
-        call read_data_line(t, diag, 'Nodes', 1, 'node-tag', ok)
-        if (.not. ok) return
-        call get_integer(t, diag, 1, 'node tag', 1_i8, huge(1_i8), d%ntag(1, j), ok)
-        if (.not. ok) return
-        d%tag_line(j) = t%ln
-      end do
-      nitem = 3 + int(param * dim)
-      if (nitem == 3) then
-        line_what = 'x y z'
+      first = t%ln + 1
+      call scan_data_lines(t, m, [1_i8], 0, d%ntag(:, k + 1:k + m), no_reals, fast)
+      if (fast) then
+        d%tag_line(k + 1:k + m) = [(first + j, j = 0, m - 1)]
       else
-        line_what = 'x y z and ' // i8_to_str(dim) // ' parametric coordinates'
-      end if
-      do j = k + 1, k + m
-        call read_data_line(t, diag, 'Nodes', nitem, line_what, ok)
-        if (.not. ok) return
-        call get_coordinates(t, diag, 1, d%x(:, j), d%z(j), ok)
-        if (.not. ok) return
-        do i = 4, nitem
-          call get_real(t, diag, i, 'a parametric coordinate', r, ok)
+        do j = k + 1, k + m
+          call read_data_line(t, diag, 'Nodes', 1, 'node-tag', ok)
           if (.not. ok) return
+          call get_integer(t, diag, 1, 'node tag', 1_i8, huge(1_i8), d%ntag(1, j), ok)
+          if (.not. ok) return
+          d%tag_line(j) = t%ln
         end do
-        d%coord_line(j) = t%ln
-      end do
+      end if
+      nitem = 3 + int(param * dim)
+      first = t%ln + 1
+      allocate(xyz(3, m))
+      call scan_data_lines(t, m, no_lower_bounds, nitem, no_integers, xyz, fast)
+      if (fast) then
+        d%x(:, k + 1:k + m) = xyz(1:2, :)
+        d%z(k + 1:k + m) = xyz(3, :)
+        d%coord_line(k + 1:k + m) = [(first + j, j = 0, m - 1)]
+      else
+        if (nitem == 3) then
+          line_what = 'x y z'
+        else
+          line_what = 'x y z and ' // i8_to_str(dim) // ' parametric coordinates'
+        end if
+        do j = k + 1, k + m
+          call read_data_line(t, diag, 'Nodes', nitem, line_what, ok)
+          if (.not. ok) return
+          call get_coordinates(t, diag, 1, d%x(:, j), d%z(j), ok)
+          if (.not. ok) return
+          do i = 4, nitem
+            call get_real(t, diag, i, 'a parametric coordinate', r, ok)
+            if (.not. ok) return
+          end do
+          d%coord_line(j) = t%ln
+        end do
+      end if
+      deallocate(xyz)
       k = k + m
     end do
     if (k /= n) then
@@ -780,6 +830,7 @@ contains
     integer(i8) :: dim, tag, v
     integer(i8), allocatable :: phys(:)
     character(len=:), allocatable :: line_what
+    logical :: fast
 
     call read_data_line(t, diag, 'Elements', 4, 'numEntityBlocks numElements minElementTag maxElementTag', ok)
     if (.not. ok) return
@@ -826,15 +877,19 @@ contains
         count = d%ent_count(ient)
         if (count > 0) phys = d%ent_phys%v(1, first:first + count - 1)
       end if
-      line_what = 'element-tag and ' // int_to_str(nn) // ' node tags'
-      do j = 1, m
-        call read_data_line(t, diag, 'Elements', 1 + nn, line_what, ok)
-        if (.not. ok) return
-        call get_integer(t, diag, 1, 'element tag', -huge(1_i8), huge(1_i8), v, ok)
-        if (.not. ok) return
-        call add_element(t, d, diag, etype, 2, phys, ok)
-        if (.not. ok) return
-      end do
+      fast = .false.
+      if (etype == 2 .or. etype == 3) call scan_elements(t, d, m, nn, phys, fast)
+      if (.not. fast) then
+        line_what = 'element-tag and ' // int_to_str(nn) // ' node tags'
+        do j = 1, m
+          call read_data_line(t, diag, 'Elements', 1 + nn, line_what, ok)
+          if (.not. ok) return
+          call get_integer(t, diag, 1, 'element tag', -huge(1_i8), huge(1_i8), v, ok)
+          if (.not. ok) return
+          call add_element(t, d, diag, etype, 2, phys, ok)
+          if (.not. ok) return
+        end do
+      end if
       deallocate(phys)
       k = k + m
     end do
@@ -985,47 +1040,14 @@ contains
   subroutine build_mesh(d, mesh)
     type(msh_data_t), intent(in) :: d
     type(mesh_t), intent(out) :: mesh
-    integer(i8), allocatable :: keys(:,:)
-    integer, allocatable :: rep(:), elem_of_raw(:), slot(:,:)
-    integer :: nraw, r, nelem, nen, h
-    integer(i8) :: nslot, s
+    integer, allocatable :: rep(:), elem_of_raw(:)
+    integer :: nraw, r, nelem
 
     ! Elements with the same node set are one element, represented by the first
-    ! of them in the file.  Key of an element: nen and its sorted nodes.  An open
-    ! addressing hash table (linear probing, at most half full) holds the
-    ! representatives and their hashes; each element in file order finds the
-    ! earlier one with its key, or becomes one.
+    ! of them in the file.
     nraw = d%raw%n
-    allocate(keys(5, nraw))
-    do r = 1, nraw
-      nen = int(d%raw%v(1, r))
-      keys(:, r) = d%raw%v(1:5, r)
-      call sort_small(keys(2:1 + nen, r))
-    end do
-    nslot = 1
-    do while (nslot < 2_i8 * nraw)
-      nslot = 2 * nslot
-    end do
-    allocate(slot(2, 0:nslot - 1), source=0)        ! (element, hash) of each slot
-    allocate(rep(nraw), elem_of_raw(nraw))
-    do r = 1, nraw
-      h = element_hash(keys(:, r))
-      s = iand(int(h, i8), nslot - 1)
-      do
-        if (slot(1, s) == 0) then
-          slot(:, s) = [r, h]
-          rep(r) = r
-          exit
-        end if
-        if (slot(2, s) == h) then
-          if (all(keys(:, slot(1, s)) == keys(:, r))) then
-            rep(r) = slot(1, s)
-            exit
-          end if
-        end if
-        s = iand(s + 1, nslot - 1)
-      end do
-    end do
+    call find_repeated_elements(d, rep)
+    allocate(elem_of_raw(nraw))
     nelem = 0
     do r = 1, nraw
       if (rep(r) == r) then
@@ -1050,19 +1072,115 @@ contains
     call build_regions(d, elem_of_raw, mesh)
   end subroutine build_mesh
 
-  !> Hash of an element key (non-negative integers), in [0, 2**31 - 1).
-  pure integer function element_hash(key) result(h)
-    integer(i8), intent(in) :: key(:)
-    integer(i8), parameter :: multiplier = 1000003_i8
-    integer(i8), parameter :: modulus = 2147483647_i8     ! 2**31 - 1, a prime
-    integer(i8) :: a
-    integer :: i
-    a = 0
-    do i = 1, size(key)
-      a = modulo(a * multiplier + key(i), modulus)      ! a < 2**31: no overflow
+  !> rep(r) = the first raw element with the node set of raw element r (r when
+  !> no earlier one has it).  Two elements with the same node set have the
+  !> same lowest node: the elements' keys (lowest node, nen, the other nodes
+  !> ascending, element) are sorted by lowest node with a stable counting sort
+  !> in two levels, on its high bits, then within each of those buckets on
+  !> its low bits, so that every pass stays in the cache (gmsh numbers the
+  !> nodes of an element far apart: a hash table, or a counting sort in one
+  !> level, missed the cache on every element).  Each run of one lowest node
+  !> is then compared pairwise when it is short, by sorting its keys when it
+  !> is not (a fan of many elements at a node).
+  subroutine find_repeated_elements(d, rep)
+    type(msh_data_t), intent(in) :: d
+    integer, allocatable, intent(out) :: rep(:)
+    integer, parameter :: pairwise_max = 16, low_bits = 10
+    integer, allocatable :: first(:), perm(:), item(:,:), sorted(:,:)
+    integer(i8), allocatable :: keys(:,:)
+    integer :: nraw, nhigh, r, lo, h, i, j, m, p0, q, key(4), low_first(0:2**low_bits)
+    logical :: leads(pairwise_max)
+
+    nraw = d%raw%n
+    nhigh = shiftr(max(d%nnode - 1, 0), low_bits) + 1
+    allocate(rep(nraw), first(0:nhigh), item(6, nraw), sorted(6, nraw))
+    ! level 1: buckets of the high bits of lowest node - 1, in file order
+    first = 0
+    do r = 1, nraw
+      call split_key(d%raw%v(:, r), lo, key)
+      h = shiftr(lo - 1, low_bits)
+      first(h + 1) = first(h + 1) + 1
     end do
-    h = int(a)
-  end function element_hash
+    first(0) = 1
+    do h = 1, nhigh
+      first(h) = first(h) + first(h - 1)
+    end do
+    do r = 1, nraw
+      call split_key(d%raw%v(:, r), lo, key)
+      h = shiftr(lo - 1, low_bits)
+      q = first(h)
+      item(:, q) = [lo, key, r]
+      first(h) = q + 1
+      rep(r) = r
+    end do
+    ! first(h) is now where bucket h + 1 starts; level 2: the low bits
+    do h = nhigh - 1, 1, -1
+      first(h) = first(h - 1)
+    end do
+    first(0) = 1
+    first(nhigh) = nraw + 1
+    do h = 0, nhigh - 1
+      low_first = 0
+      do i = first(h), first(h + 1) - 1
+        j = iand(item(1, i) - 1, 2**low_bits - 1)
+        low_first(j + 1) = low_first(j + 1) + 1
+      end do
+      low_first(0) = first(h)
+      do j = 1, 2**low_bits
+        low_first(j) = low_first(j) + low_first(j - 1)
+      end do
+      do i = first(h), first(h + 1) - 1
+        j = iand(item(1, i) - 1, 2**low_bits - 1)
+        sorted(:, low_first(j)) = item(:, i)
+        low_first(j) = low_first(j) + 1
+      end do
+    end do
+    ! runs of one lowest node, in file order within the run
+    p0 = 1
+    do while (p0 <= nraw)
+      m = 1
+      do while (p0 + m <= nraw)
+        if (sorted(1, p0 + m) /= sorted(1, p0)) exit
+        m = m + 1
+      end do
+      if (m > 1 .and. m <= pairwise_max) then
+        leads(1:m) = .true.                          ! (not rep: it is in file order)
+        do i = 2, m
+          do j = 1, i - 1
+            if (.not. leads(j)) cycle
+            if (all(sorted(2:5, p0 - 1 + j) == sorted(2:5, p0 - 1 + i))) then
+              rep(sorted(6, p0 - 1 + i)) = sorted(6, p0 - 1 + j)
+              leads(i) = .false.
+              exit
+            end if
+          end do
+        end do
+      else if (m > 1) then
+        ! a stable sort: equal keys in file order, the first of each run leads it
+        keys = int(sorted(2:5, p0:p0 + m - 1), i8)
+        call sort_columns(keys, perm)
+        do i = 2, m
+          if (all(keys(:, perm(i)) == keys(:, perm(i - 1)))) &
+            rep(sorted(6, p0 - 1 + perm(i))) = rep(sorted(6, p0 - 1 + perm(i - 1)))
+        end do
+      end if
+      p0 = p0 + m
+    end do
+  end subroutine find_repeated_elements
+
+  !> A raw element record (nen, 4 nodes, line) as its lowest node lo and the
+  !> rest of its key: nen and its other nodes ascending, 0 for none.
+  pure subroutine split_key(rec, lo, key)
+    integer(i8), intent(in) :: rec(:)
+    integer, intent(out) :: lo, key(4)
+    integer(i8) :: a(4)
+    integer :: nen
+    nen = int(rec(1))
+    a = rec(2:5)
+    call sort_small(a(1:nen))
+    lo = int(a(1))
+    key = [nen, int(a(2:4))]
+  end subroutine split_key
 
   !> Boundaries from the edges (physical curves) and points (physical points).
   subroutine build_boundaries(d, mesh)
@@ -1128,6 +1246,8 @@ contains
   end subroutine build_boundaries
 
   !> Regions from the physical surfaces: sorted distinct element indices.
+  !> Each region's elements are gathered in file order, which is ascending
+  !> when no element is repeated; only a region that is not gets sorted.
   subroutine build_regions(d, elem_of_raw, mesh)
     type(msh_data_t), intent(in) :: d
     integer, intent(in) :: elem_of_raw(:)
@@ -1135,42 +1255,47 @@ contains
     integer(i8), allocatable :: gkeys(:,:), keys(:,:)
     integer, allocatable :: set_of(:), perm(:), nel(:)
     type(string_t), allocatable :: set_name(:)
-    integer :: n, i, k, s, nset
+    integer :: n, i, k, s, nset, e, m
 
     n = d%region_pairs%n
-    allocate(gkeys(2, n), keys(2, n))
+    allocate(gkeys(2, n))
     do i = 1, n
       gkeys(:, i) = [2_i8, d%region_pairs%v(1, i)]
     end do
     call name_sets(d, gkeys, set_of, set_name)
     nset = size(set_name)
-    do i = 1, n
-      keys(:, i) = [int(set_of(i), i8), int(elem_of_raw(d%region_pairs%v(2, i)), i8)]
-    end do
-    call sort_columns(keys, perm)
-    allocate(nel(nset))
+    allocate(nel(nset), mesh%reg(nset))
     nel = 0
     do i = 1, n
-      if (i > 1) then
-        if (all(keys(:, perm(i)) == keys(:, perm(i - 1)))) cycle
-      end if
-      s = int(keys(1, perm(i)))
-      nel(s) = nel(s) + 1
+      nel(set_of(i)) = nel(set_of(i)) + 1
     end do
-    allocate(mesh%reg(nset))
     do s = 1, nset
       mesh%reg(s)%name = set_name(s)%s
       allocate(mesh%reg(s)%elems(nel(s)))
     end do
     nel = 0
     do i = 1, n
-      if (i > 1) then
-        if (all(keys(:, perm(i)) == keys(:, perm(i - 1)))) cycle
-      end if
-      s = int(keys(1, perm(i)))
-      k = nel(s) + 1
-      nel(s) = k
-      mesh%reg(s)%elems(k) = int(keys(2, perm(i)))
+      s = set_of(i)
+      nel(s) = nel(s) + 1
+      mesh%reg(s)%elems(nel(s)) = elem_of_raw(d%region_pairs%v(2, i))
+    end do
+    do s = 1, nset
+      associate (el => mesh%reg(s)%elems)
+        m = size(el)
+        if (all(el(2:m) > el(1:m - 1))) cycle
+        keys = reshape(int(el, i8), [1, m])
+        call sort_columns(keys, perm)
+        k = 0
+        do i = 1, m
+          e = int(keys(1, perm(i)))
+          if (k > 0) then
+            if (e == el(k)) cycle
+          end if
+          k = k + 1
+          el(k) = e
+        end do
+      end associate
+      mesh%reg(s)%elems = mesh%reg(s)%elems(1:k)
     end do
   end subroutine build_regions
 
@@ -1185,24 +1310,39 @@ contains
     integer(i8), intent(in) :: gkeys(:,:)
     integer, allocatable, intent(out) :: set_of(:)
     type(string_t), allocatable, intent(out) :: set_name(:)
-    integer, allocatable :: perm(:), group_of(:), nperm(:), leader(:), set_of_group(:)
-    integer(i8), allocatable :: gkey(:,:)
+    integer, allocatable :: perm(:), run_of(:), group_of_run(:), nperm(:), leader(:), set_of_group(:)
+    integer(i8), allocatable :: gkey(:,:), run_key(:,:)
     type(string_t), allocatable :: gname(:)
-    integer :: n, ng, i, g, nset
+    integer :: n, nrun, ng, i, g, nset
 
+    ! Runs of equal keys first (the records of a block share their group), so
+    ! that only the runs are sorted.
     n = size(gkeys, 2)
-    call sort_columns(gkeys, perm)
-    allocate(group_of(n), gkey(2, n))
-    ng = 0
+    allocate(run_of(n), run_key(2, n))
+    nrun = 0
     do i = 1, n
+      if (nrun > 0) then
+        if (all(gkeys(:, i) == run_key(:, nrun))) then
+          run_of(i) = nrun
+          cycle
+        end if
+      end if
+      nrun = nrun + 1
+      run_key(:, nrun) = gkeys(:, i)
+      run_of(i) = nrun
+    end do
+    call sort_columns(run_key(:, 1:nrun), perm)
+    allocate(group_of_run(nrun), gkey(2, nrun))
+    ng = 0
+    do i = 1, nrun
       if (i == 1) then
         ng = 1
-        gkey(:, 1) = gkeys(:, perm(1))
-      else if (any(gkeys(:, perm(i)) /= gkey(:, ng))) then
+        gkey(:, 1) = run_key(:, perm(1))
+      else if (any(run_key(:, perm(i)) /= gkey(:, ng))) then
         ng = ng + 1
-        gkey(:, ng) = gkeys(:, perm(i))
+        gkey(:, ng) = run_key(:, perm(i))
       end if
-      group_of(perm(i)) = ng
+      group_of_run(perm(i)) = ng
     end do
     allocate(gname(ng))
     do g = 1, ng
@@ -1231,7 +1371,7 @@ contains
     end do
     allocate(set_of(n))
     do i = 1, n
-      set_of(i) = set_of_group(group_of(i))
+      set_of(i) = set_of_group(group_of_run(run_of(i)))
     end do
   end subroutine name_sets
 
@@ -1253,6 +1393,126 @@ contains
   ! ---------------------------------------------------------------------------
   ! Lines and items
   ! ---------------------------------------------------------------------------
+
+  !> The fast path of a block of nl data lines after the current one: each
+  !> line must hold exactly size(lo) integers, item k at least lo(k), then nr
+  !> reals, all as the line-by-line reading accepts them.  The lines are
+  !> parsed on up to two threads (no string is built there: see scene.f90).
+  !>   iv (out) (size(lo), nl) the integers of each line
+  !>   rv (out) (*, nl) the first size(rv, 1) reals of each line
+  !>   ok (out) .false., t unchanged, when a line does not qualify: the caller
+  !>            then reads the block line by line, which reports the first
+  !>            defect as always; else t%ln is the block's last line
+  subroutine scan_data_lines(t, nl, lo, nr, iv, rv, ok)
+    type(msh_text_t), intent(inout) :: t
+    integer, intent(in) :: nl, nr
+    integer(i8), intent(in) :: lo(:)
+    integer(i8), intent(inout) :: iv(:,:)
+    real(dp), intent(inout) :: rv(:,:)
+    logical, intent(out) :: ok
+    integer :: ni, n, j, k, l0
+    integer(i8) :: b(max_fast_items + 1), e(max_fast_items + 1)
+    real(dp) :: r
+
+    ni = size(lo)
+    ok = ni + nr <= max_fast_items .and. int(t%ln, i8) + nl <= t%nline
+    if (.not. ok) return
+    l0 = t%ln
+    !$omp parallel do num_threads(min(2, omp_get_max_threads())) if(nl > fast_parallel_min) &
+    !$omp private(b, e, n, k, r) reduction(.and.: ok)
+    do j = 1, nl
+      if (.not. ok) cycle
+      call line_items(t, l0 + j, b, e, n)
+      ok = n == ni + nr
+      do k = 1, merge(ni, 0, ok)
+        ok = parse_integer(t%buf(b(k):e(k)), iv(k, j))
+        if (ok) ok = iv(k, j) >= lo(k)
+        if (.not. ok) exit
+      end do
+      do k = 1, merge(nr, 0, ok)
+        ok = parse_real(t%buf(b(ni + k):e(ni + k)), r) == 0
+        if (.not. ok) exit
+        if (k <= size(rv, 1)) rv(k, j) = r
+      end do
+    end do
+    !$omp end parallel do
+    if (ok) t%ln = l0 + nl
+  end subroutine scan_data_lines
+
+  !> The fast path of a block of m elements of MSH 4.1 (`tag` and nn node
+  !> tags a line) of a 2D type, whose physical tags are phys: as
+  !> scan_data_lines, then every node tag must be defined.  ok = .false.
+  !> (t and d unchanged) when a line does not qualify.
+  subroutine scan_elements(t, d, m, nn, phys, ok)
+    type(msh_text_t), intent(inout) :: t
+    type(msh_data_t), intent(inout) :: d
+    integer, intent(in) :: m, nn
+    integer(i8), intent(in) :: phys(:)
+    logical, intent(out) :: ok
+    integer(i8), allocatable :: ev(:,:)
+    integer :: l0, j, q, node, r0, np
+
+    l0 = t%ln
+    allocate(ev(1 + nn, m))
+    call scan_data_lines(t, m, [-huge(1_i8), (1_i8, q = 1, nn)], 0, ev, no_reals, ok)
+    if (.not. ok) return
+    r0 = d%raw%n
+    call ensure_room(d%raw, raw_width, m)
+    !$omp parallel do num_threads(min(2, omp_get_max_threads())) if(m > fast_parallel_min) &
+    !$omp private(q, node) reduction(.and.: ok)
+    do j = 1, m
+      d%raw%v(:, r0 + j) = 0
+      d%raw%v(1, r0 + j) = nn
+      d%raw%v(6, r0 + j) = l0 + j
+      do q = 1, nn
+        node = node_of_tag(d, ev(1 + q, j))
+        if (node == 0) ok = .false.
+        d%raw%v(1 + q, r0 + j) = node
+      end do
+    end do
+    !$omp end parallel do
+    if (.not. ok) then
+      t%ln = l0
+      return
+    end if
+    d%raw%n = r0 + m
+    np = size(phys)
+    call ensure_room(d%region_pairs, 2, m * np)
+    do j = 1, m
+      do q = 1, np
+        d%region_pairs%v(:, d%region_pairs%n + q) = [phys(q), int(r0 + j, i8)]
+      end do
+      d%region_pairs%n = d%region_pairs%n + np
+    end do
+  end subroutine scan_elements
+
+  !> Items of line l (at most max_fast_items + 1 of them): n items, item k
+  !> from byte b(k) to e(k).
+  pure subroutine line_items(t, l, b, e, n)
+    type(msh_text_t), intent(in) :: t
+    integer, intent(in) :: l
+    integer(i8), intent(out) :: b(:), e(:)
+    integer, intent(out) :: n
+    integer(i8) :: p, last
+    p = t%lbeg(l)
+    last = t%lend(l)
+    n = 0
+    do
+      do while (p <= last)
+        if (.not. is_blank(t%buf(p:p))) exit
+        p = p + 1
+      end do
+      if (p > last .or. n == size(b)) exit
+      n = n + 1
+      b(n) = p
+      do while (p <= last)
+        if (is_blank(t%buf(p:p))) exit
+        p = p + 1
+      end do
+      e(n) = p - 1
+    end do
+    if (p <= last) n = n + 1          ! more items than b holds
+  end subroutine line_items
 
   !> Move to the next line and split it into items; more = .false. at the end.
   subroutine advance_line(t, more)
@@ -1875,17 +2135,24 @@ contains
     if (.not. allocated(list%v)) allocate(list%v(width, max(capacity, 64)))
   end subroutine reserve_records
 
+  !> Room in a list of records of a given width for nmore more records.
+  subroutine ensure_room(list, width, nmore)
+    type(record_list_t), intent(inout) :: list
+    integer, intent(in) :: width, nmore
+    integer(i8), allocatable :: grown(:,:)
+    if (.not. allocated(list%v)) allocate(list%v(width, max(nmore, 64)))
+    if (list%n + nmore > size(list%v, 2)) then
+      allocate(grown(width, max(2 * list%n, list%n + nmore)))
+      grown(:, 1:list%n) = list%v(:, 1:list%n)
+      call move_alloc(grown, list%v)
+    end if
+  end subroutine ensure_room
+
   !> Append one record to a list (width = size(rec), fixed by the first push).
   subroutine push_record(list, rec)
     type(record_list_t), intent(inout) :: list
     integer(i8), intent(in) :: rec(:)
-    integer(i8), allocatable :: grown(:,:)
-    if (.not. allocated(list%v)) allocate(list%v(size(rec), 64))
-    if (list%n == size(list%v, 2)) then
-      allocate(grown(size(rec), 2 * list%n))
-      grown(:, 1:list%n) = list%v(:, 1:list%n)
-      call move_alloc(grown, list%v)
-    end if
+    call ensure_room(list, size(rec), 1)
     list%n = list%n + 1
     list%v(:, list%n) = rec
   end subroutine push_record
