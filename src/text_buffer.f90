@@ -29,6 +29,15 @@ module text_buffer
   public :: text_buffer_t, open_text, open_memory, put_text, put_line, put_real, put_int, put_newline, close_text
 
   integer, parameter :: capacity = 1048576
+  character(len=2), parameter :: digit_pairs(0:99) = [character(len=2) :: &
+    '00', '01', '02', '03', '04', '05', '06', '07', '08', '09', '10', '11', '12', '13', '14', '15', '16', '17', &
+    '18', '19', '20', '21', '22', '23', '24', '25', '26', '27', '28', '29', '30', '31', '32', '33', '34', '35', &
+    '36', '37', '38', '39', '40', '41', '42', '43', '44', '45', '46', '47', '48', '49', '50', '51', '52', '53', &
+    '54', '55', '56', '57', '58', '59', '60', '61', '62', '63', '64', '65', '66', '67', '68', '69', '70', '71', &
+    '72', '73', '74', '75', '76', '77', '78', '79', '80', '81', '82', '83', '84', '85', '86', '87', '88', '89', &
+    '90', '91', '92', '93', '94', '95', '96', '97', '98', '99']
+  real(dp), save :: pow10(-350:350)               !< 10.0_dp**s, see fill_pow10
+  logical, save :: pow10_ready = .false.
 
   type :: text_buffer_t
     integer :: unit = 0                            !< stream unit (newunit: negative)
@@ -108,11 +117,16 @@ contains
   end subroutine put_line
 
   !> Append ' [-]d.dddddddddE+eee'.
+  !> The decade e = floor(log10 |x|) comes from the binary exponent
+  !> (floor((k - 1) log10 2) = ((k - 1) 78913) >> 18 for |k| < 1200) and one
+  !> comparison with a power of ten; the powers of ten are those the run-time
+  !> power 10.0_dp**s gives (a table, see fill_pow10), so the digits are the
+  !> same as computing them directly.
   subroutine put_real(tb, x)
     type(text_buffer_t), intent(inout) :: tb
     real(dp), intent(in) :: x
     character(len=18) :: s
-    integer(i8) :: n
+    integer(i8) :: n, q
     integer :: e, k, p
     real(dp) :: a
 
@@ -131,9 +145,11 @@ contains
       call put_text(tb, ' 0.000000000E+000')
       return
     end if
-    e = floor(log10(a))
+    if (.not. pow10_ready) call fill_pow10()
+    e = shifta((exponent(a) - 1) * 78913, 18)
+    if (a >= pow10(e + 1)) e = e + 1
     n = scaled_digits(a, e)
-    if (n >= 10000000000_i8) then          ! log10 or rounding went up a decade
+    if (n >= 10000000000_i8) then          ! rounding went up a decade
       e = e + 1
       n = scaled_digits(a, e)
     else if (n < 1000000000_i8) then
@@ -146,14 +162,16 @@ contains
       p = p + 1
       s(p:p) = '-'
     end if
-    ! n holds 10 digits d0 d1 ... d9
-    do k = 9, 0, -1
-      s(p + 2 + k:p + 2 + k) = achar(48 + int(mod(n, 10_i8)))
-      n = n / 10_i8
+    ! n holds 10 digits d0 d1 ... d9: d0 '.' then d1..d9, two at a time
+    do k = 8, 2, -2
+      q = n / 100_i8
+      s(p + 2 + k:p + 3 + k) = digit_pairs(n - 100_i8 * q)
+      n = q
     end do
-    s(p + 1:p + 1) = s(p + 2:p + 2)
+    q = n / 10_i8
+    s(p + 3:p + 3) = achar(48 + int(n - 10_i8 * q))
     s(p + 2:p + 2) = '.'
-    ! mantissa now at s(p+1:p+11): d . ddddddddd
+    s(p + 1:p + 1) = achar(48 + int(q))
     s(p + 12:p + 12) = 'E'
     if (e < 0) then
       s(p + 13:p + 13) = '-'
@@ -162,37 +180,54 @@ contains
     end if
     k = abs(e)
     s(p + 14:p + 14) = achar(48 + k / 100)
-    s(p + 15:p + 15) = achar(48 + mod(k / 10, 10))
-    s(p + 16:p + 16) = achar(48 + mod(k, 10))
-    call put_text(tb, s(1:p + 16))
+    s(p + 15:p + 16) = digit_pairs(mod(k, 100))
+    call append(tb, s(1:p + 16))
   end subroutine put_real
 
   !> nint(a 10^(9 - e)): the 10 leading digits of a, scaled in at most two
   !> steps so that neither factor overflows.
-  pure integer(i8) function scaled_digits(a, e) result(n)
+  integer(i8) function scaled_digits(a, e) result(n)
     real(dp), intent(in) :: a
     integer, intent(in) :: e
     integer :: s
     s = 9 - e
-    if (s > 300) then
-      n = nint((a * 10.0_dp**300) * 10.0_dp**(s - 300), i8)
+    if (s > 300) then                      ! (the constant 10**300 is the compiler's)
+      n = nint((a * 10.0_dp**300) * pow10(s - 300), i8)
     else if (s < -300) then
-      n = nint((a * 10.0_dp**(-300)) * 10.0_dp**(s + 300), i8)
+      n = nint((a * 10.0_dp**(-300)) * pow10(s + 300), i8)
     else
-      n = nint(a * 10.0_dp**s, i8)
+      n = nint(a * pow10(s), i8)
     end if
   end function scaled_digits
+
+  !> pow10(s) = 10.0_dp**s as the run-time integer power computes it (not
+  !> the compiler's correctly rounded constants: the digits written stay
+  !> those of the direct computation).  Filled once, by the first caller.
+  subroutine fill_pow10()
+    integer :: s
+    real(dp) :: ten
+    !$omp critical (text_buffer_pow10)
+    if (.not. pow10_ready) then
+      ten = 10.0_dp
+      do s = lbound(pow10, 1), ubound(pow10, 1)
+        pow10(s) = ten**s
+      end do
+      pow10_ready = .true.
+    end if
+    !$omp end critical (text_buffer_pow10)
+  end subroutine fill_pow10
 
   subroutine put_int(tb, i)
     type(text_buffer_t), intent(inout) :: tb
     integer, intent(in) :: i
     character(len=12) :: s
-    integer :: k, v
+    integer :: k, v, q
     k = 12
     v = abs(i)
     do
-      s(k:k) = achar(48 + mod(v, 10))
-      v = v / 10
+      q = v / 10
+      s(k:k) = achar(48 + v - 10 * q)
+      v = q
       k = k - 1
       if (v == 0) exit
     end do
@@ -201,8 +236,20 @@ contains
       k = k - 1
     end if
     s(k:k) = ' '
-    call put_text(tb, s(k:12))
+    call append(tb, s(k:12))
   end subroutine put_int
+
+  !> put_text for a short string: one copy when it fits the buffer.
+  subroutine append(tb, s)
+    type(text_buffer_t), intent(inout) :: tb
+    character(len=*), intent(in) :: s
+    if (tb%used + len(s) <= len(tb%buf)) then
+      tb%buf(tb%used + 1:tb%used + len(s)) = s
+      tb%used = tb%used + len(s)
+    else
+      call put_text(tb, s)
+    end if
+  end subroutine append
 
   subroutine close_text(tb, ok)
     type(text_buffer_t), intent(inout) :: tb

@@ -56,6 +56,43 @@ program test_text_buffer
     call check(j == ints(i), 'integer read back')
   end do
   close(u, status='delete')
+  ! the decade comes from the binary exponent and a table of powers of ten:
+  ! at and next to every power of ten (and just below it, where rounding to
+  ! 10 digits goes up a decade) the mantissa must be in [1, 10) and the value
+  ! right to the 10 digits; exactly the edit descriptor's digits while the
+  ! scaling is exact (|exponent| <= 22)
+  block
+    type(text_buffer_t) :: mem
+    real(dp) :: v(4), back, mant
+    integer :: k, m, pos, nbad_exact, nbad_form, nbad_value
+    nbad_exact = 0; nbad_form = 0; nbad_value = 0
+    do k = -307, 307
+      v(1) = 10.0_dp**k
+      v(2) = nearest(v(1), 1.0_dp)
+      v(3) = nearest(v(1), -1.0_dp)
+      v(4) = v(1) * (1.0_dp - 4.0e-11_dp)
+      do m = 1, 4
+        call open_memory(mem)
+        call put_real(mem, v(m))
+        line = mem%buf(1:mem%used)
+        read(line, *, iostat=ios) back
+        pos = index(line, 'E')
+        read(line(1:pos - 1), *, iostat=ios) mant
+        if (ios /= 0 .or. .not. (mant >= 1.0_dp .and. mant < 10.0_dp) .or. line(3:3) /= '.') nbad_form = nbad_form + 1
+        if (.not. abs(back - v(m)) <= 1.0e-9_dp * v(m)) nbad_value = nbad_value + 1
+        if (abs(k) <= 21) then
+          write(ref, '(es17.9e3)') v(m)
+          if (adjustl(line) /= adjustl(ref)) then
+            nbad_exact = nbad_exact + 1
+            write(*, '(a)') '# ' // trim(line) // ' vs ' // trim(ref)
+          end if
+        end if
+      end do
+    end do
+    call check(nbad_form == 0, 'powers of ten and their neighbours: d.ddddddddd, mantissa in [1, 10)')
+    call check(nbad_value == 0, 'powers of ten and their neighbours: the value to 10 digits')
+    call check(nbad_exact == 0, 'powers of ten and their neighbours up to 1e21: equal es17.9e3')
+  end block
   ! a buffer bound to no file grows and keeps every byte: 20000 lines of
   ! ' 1.000000000E+000' and a newline (18 bytes each) are 360000 bytes
   block
