@@ -226,7 +226,7 @@ contains
     v = abs(i)
     do
       q = v / 10
-      s(k:k) = achar(48 + v - 10 * q)
+      s(k:k) = achar(48 + (v - 10 * q))
       v = q
       k = k - 1
       if (v == 0) exit
