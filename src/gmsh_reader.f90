@@ -41,8 +41,12 @@
 !> Speed
 !>   Items are parsed in place in the file's buffer (no substring copies), node
 !>   tags are looked up in a table tag -> node when they are dense (else by a
-!>   binary search of the sorted tags), and repeated elements are found with a
-!>   hash table: reading costs O(file size).
+!>   binary search of the sorted tags), and repeated elements are found by a
+!>   counting sort on their lowest node: reading costs O(file size).  The file
+!>   is split into lines on two threads, and so are the data lines of a block
+!>   (nodes, and 2D elements of MSH 4.1): a fast path that accepts exactly
+!>   what the line-by-line reading accepts and, on any defect, leaves the
+!>   block to it, so that messages are built on one thread only.
 !>
 !> Programming interface
 !>   read_gmsh_file(path, mesh, diag)
