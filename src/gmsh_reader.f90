@@ -1426,7 +1426,7 @@ contains
     !$omp private(b, e, n, k, r) reduction(.and.: ok)
     do j = 1, nl
       if (.not. ok) cycle
-      call line_items(t, l0 + j, b, e, n)
+      call line_items(t%buf, t%lbeg(l0 + j), t%lend(l0 + j), b, e, n)
       ok = n == ni + nr
       do k = 1, merge(ni, 0, ok)
         ok = parse_integer(t%buf(b(k):e(k)), iv(k, j))
@@ -1490,71 +1490,53 @@ contains
     end do
   end subroutine scan_elements
 
-  !> Items of line l (at most max_fast_items + 1 of them): n items, item k
-  !> from byte b(k) to e(k).
-  pure subroutine line_items(t, l, b, e, n)
-    type(msh_text_t), intent(in) :: t
-    integer, intent(in) :: l
+  !> The items of the text buf(first:last): n items, item k from byte b(k) to
+  !> e(k); n = size(b) + 1 when there are more than b holds.
+  pure subroutine line_items(buf, first, last, b, e, n)
+    character(len=*), intent(in) :: buf
+    integer(i8), intent(in) :: first, last
     integer(i8), intent(out) :: b(:), e(:)
     integer, intent(out) :: n
-    integer(i8) :: p, last
-    p = t%lbeg(l)
-    last = t%lend(l)
+    integer(i8) :: p
+    p = first
     n = 0
     do
       do while (p <= last)
-        if (.not. is_blank(t%buf(p:p))) exit
+        if (.not. is_blank(buf(p:p))) exit
         p = p + 1
       end do
       if (p > last .or. n == size(b)) exit
       n = n + 1
       b(n) = p
       do while (p <= last)
-        if (is_blank(t%buf(p:p))) exit
+        if (is_blank(buf(p:p))) exit
         p = p + 1
       end do
       e(n) = p - 1
     end do
-    if (p <= last) n = n + 1          ! more items than b holds
+    if (p <= last) n = n + 1
   end subroutine line_items
 
   !> Move to the next line and split it into items; more = .false. at the end.
   subroutine advance_line(t, more)
     type(msh_text_t), intent(inout) :: t
     logical, intent(out) :: more
-    integer(i8) :: p, e, start
+    integer :: n
     integer(i8), allocatable :: grown(:)
 
     more = t%ln < t%nline
     t%ntok = 0
     if (.not. more) return
     t%ln = t%ln + 1
-    p = t%lbeg(t%ln)
-    e = t%lend(t%ln)
     do
-      do while (p <= e)
-        if (.not. is_blank(t%buf(p:p))) exit
-        p = p + 1
-      end do
-      if (p > e) exit
-      start = p
-      p = p + 1
-      do while (p <= e)
-        if (is_blank(t%buf(p:p))) exit
-        p = p + 1
-      end do
-      if (t%ntok == size(t%tbeg)) then
-        allocate(grown(2 * t%ntok))
-        grown(1:t%ntok) = t%tbeg(1:t%ntok)
-        call move_alloc(grown, t%tbeg)
-        allocate(grown(2 * t%ntok))
-        grown(1:t%ntok) = t%tend(1:t%ntok)
-        call move_alloc(grown, t%tend)
-      end if
-      t%ntok = t%ntok + 1
-      t%tbeg(t%ntok) = start
-      t%tend(t%ntok) = p - 1
+      call line_items(t%buf, t%lbeg(t%ln), t%lend(t%ln), t%tbeg, t%tend, n)
+      if (n <= size(t%tbeg)) exit
+      allocate(grown(2 * size(t%tbeg)))               ! more items than held: grow, split again
+      call move_alloc(grown, t%tbeg)
+      allocate(grown(2 * size(t%tend)))
+      call move_alloc(grown, t%tend)
     end do
+    t%ntok = n
   end subroutine advance_line
 
   !> c is a space, TAB, LF, VT, FF or CR (on the byte code: a comparison with the
