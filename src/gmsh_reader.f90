@@ -1100,8 +1100,8 @@ contains
     allocate(rep(nraw), first(0:nhigh), item(6, nraw), sorted(6, nraw))
     ! level 1: buckets of the high bits of lowest node - 1, in file order
     first = 0
-    do r = 1, nraw
-      call split_key(d%raw%v(:, r), lo, key)
+    do r = 1, nraw                            ! (only the lowest node is needed here)
+      lo = int(minval(d%raw%v(2:1 + d%raw%v(1, r), r)))
       h = shiftr(lo - 1, low_bits)
       first(h + 1) = first(h + 1) + 1
     end do
