@@ -25,6 +25,7 @@
 !>   c2d_chol_trailing_range(handle, nlast, first, count, lcc) -> status
 !>   c2d_chol_trailing_block_end(handle, nlast, first, last_row) -> status
 !>   c2d_blas_threads(n) -> the thread count OpenBLAS had (0: not OpenBLAS)
+!>   c2d_blas_park()   end OpenBLAS's spinning worker threads (restarted by the next threaded call)
 !>   c2d_malloc_arenas()   c2d_malloc_trim()   at most two glibc malloc arenas; free pages back
 !>   c2d_metis_per_thread() -> 1 when METIS draws its random numbers per thread
 !>   status codes: cholmod_ok, cholmod_not_posdef, c2d_chol_* (shim codes)
@@ -41,7 +42,7 @@ module cholmod_binding
   public :: c2d_chol_solve_half, c2d_solve_whole, c2d_solve_forward, c2d_solve_backward
   public :: cholmod_ok, cholmod_not_posdef, cholmod_out_of_memory, cholmod_too_large
   public :: c2d_chol_no_handle, c2d_chol_no_factor, c2d_chol_not_super_ll
-  public :: c2d_chol_block_moved, c2d_chol_bad_argument, c2d_blas_threads, c2d_malloc_arenas, c2d_malloc_trim
+  public :: c2d_chol_block_moved, c2d_chol_bad_argument, c2d_blas_threads, c2d_blas_park, c2d_malloc_arenas, c2d_malloc_trim
   public :: c2d_metis_per_thread
 
   ! fill-reducing orderings (cholmod_shim.h)
@@ -219,6 +220,12 @@ module cholmod_binding
       integer(c_int), value :: n
       integer(c_int) :: old
     end function c2d_blas_threads
+
+    !> End OpenBLAS's worker threads, which spin for a while after each
+    !> call and take a core from the OpenMP threads; the next threaded BLAS
+    !> call starts them again.  Nothing when the BLAS is not OpenBLAS.
+    subroutine c2d_blas_park() bind(c, name='c2d_blas_park')
+    end subroutine c2d_blas_park
 
     !> At most two glibc malloc arenas for all threads.
     subroutine c2d_malloc_arenas() bind(c, name='c2d_malloc_arenas')

@@ -1125,6 +1125,20 @@ void c2d_malloc_trim(void)
     (void) malloc_trim(0);
 }
 
+/* OpenBLAS's pthreads build starts its worker threads when it is loaded,
+ * and a worker spins (sched_yield) for about 2^28 cycles after each piece
+ * of work before it sleeps.  Spinning, it takes a core from the OpenMP
+ * threads of the phases that use no BLAS: on hertz_1e5 (bench/contact.sh)
+ * it slowed reading the meshes from 0.073 s to 0.153 s (medians of 10).
+ * blas_thread_shutdown_ ends the workers, as OpenBLAS does before a fork;
+ * the next BLAS call that wants threads starts them again. */
+extern int blas_thread_shutdown_(void) __attribute__((weak));
+
+void c2d_blas_park(void)
+{
+    if (blas_thread_shutdown_ != NULL) (void) blas_thread_shutdown_();
+}
+
 int c2d_blas_threads(int n)
 {
     int old;

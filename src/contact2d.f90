@@ -28,7 +28,7 @@ program contact2d
   use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use omp_lib, only: omp_get_max_threads, omp_get_thread_num, omp_get_num_threads
-  use cholmod_binding, only: c2d_malloc_arenas, c2d_malloc_trim
+  use cholmod_binding, only: c2d_malloc_arenas, c2d_malloc_trim, c2d_blas_park
   implicit none
 
   character(len=*), parameter :: version = '1.0.0'
@@ -62,6 +62,9 @@ program contact2d
   ! At most two malloc arenas: the bodies' factors are computed side by side
   ! on the threads, and every further glibc arena keeps its freed pages
   call c2d_malloc_arenas()
+  ! OpenBLAS's workers would spin on the second core through the phases
+  ! before the factorization, which use OpenMP and no BLAS
+  call c2d_blas_park()
   call parse_command_line(deck_path, outdir, check_only, quiet)
   call system_clock(t_start)
   t_phase = t_start
@@ -189,6 +192,7 @@ program contact2d
   end if
   if (.not. all(ieee_is_finite(res%u))) call fail_numerical('the displacement is not finite (overflow in the solve)')
   call lap(ph_recover)
+  call c2d_blas_park()            ! no BLAS after this: the stresses and the files get both cores
 
   ! --- stresses, reactions, energy -----------------------------------------
   allocate(res%stress(3, sc%nelem), res%vm(sc%nelem), fint(sc%ndof))
