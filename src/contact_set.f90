@@ -77,6 +77,14 @@ module contact_set
     real(dp), allocatable :: tan_bound(:)   !< (ntan) Tresca force bound tresca * weight, 0 for Coulomb
   end type contact_set_t
 
+  !> The rows first..last of a pair's projection P, its entries above 1e-16
+  !> of their row's largest, in increasing master index (CSR).
+  type :: projection_rows_t
+    integer, allocatable :: ptr(:)         !< (first:last+1) row pointers
+    integer, allocatable :: col(:)         !< master polyline index j
+    real(dp), allocatable :: val(:)        !< P_ij
+  end type projection_rows_t
+
 contains
 
   !> Order the edges of boundary ib of mesh into one open chain of nodes.
@@ -216,16 +224,16 @@ contains
     type(pair_spec_t), intent(in) :: specs(:)
     type(contact_set_t), intent(out) :: cs
     type(error_t), allocatable, intent(out) :: err
-    integer :: ip, i, j, r, nm, nnz, k, c, d0s, d0m, maxdof
+    integer :: ip, i, j, r, nm, nnz, k, c, q, d0s, d0m, maxdof
     integer, allocatable :: mnodes(:), colmap(:)
     real(dp), allocatable :: xm(:,:), nsl(:,:), nms(:,:)
     character(len=:), allocatable :: why
     type(error_t), allocatable :: merr
-    real(dp) :: pmax, drop
     logical, allocatable :: touched(:)
+    type(projection_rows_t), allocatable :: prj(:)
 
     cs%npair = size(specs)
-    allocate(cs%pair(cs%npair))
+    allocate(cs%pair(cs%npair), prj(cs%npair))
     cs%nrow = 0
     do ip = 1, cs%npair
       associate(pr => cs%pair(ip), sp => specs(ip))
@@ -254,6 +262,10 @@ contains
         ! segments at once), so one mean-value row replaces the two nodal ones
         pr%single = pr%mortar%first > 0 .and. pr%mortar%last == pr%mortar%first + 1
         if (pr%single) pr%nrow = 1
+        ! the projection lives on in the rows of B and T: the dense (ns, nm)
+        ! matrix P is not kept (5 MB for 852 x 741 nodes)
+        if (pr%mortar%first > 0 .and. .not. pr%single) call projection_rows(pr%mortar, prj(ip))
+        if (allocated(pr%mortar%P)) deallocate(pr%mortar%P)
         cs%nrow = cs%nrow + pr%nrow
       end associate
     end do
@@ -308,11 +320,6 @@ contains
       end do
       call fill_pair_rows(.true.)
     end do
-    ! the projection lives on in the rows of B and T: the dense (ns, nm)
-    ! matrix P is not kept (5 MB for 852 x 741 nodes, through the whole run)
-    do ip = 1, cs%npair
-      if (allocated(cs%pair(ip)%mortar%P)) deallocate(cs%pair(ip)%mortar%P)
-    end do
   contains
 
     !> Direction of the rows of slave node i: the nodal normal n_i, or the
@@ -351,17 +358,12 @@ contains
         do i = mo%first, mo%last
           if (.not. pr%row(i)) cycle
           v = row_direction(mo, i, tangent)
-          pmax = maxval(abs(mo%p(i, :)))
-          drop = 1.0e-16_dp * pmax
           do c = 1, 2                       ! a dof is a contact dof only where its coefficient is non-zero
             if (v(c) == 0.0_dp) cycle
             touched(d0s + 2 * (pr%snode(i) - 1) + c) = .true.
-            nnz = nnz + 1
-            do j = 1, nm
-              if (abs(mo%p(i, j)) > drop) then
-                touched(d0m + 2 * (pr%mnode(j) - 1) + c) = .true.
-                nnz = nnz + 1
-              end if
+            nnz = nnz + 1 + prj(ip)%ptr(i + 1) - prj(ip)%ptr(i)
+            do q = prj(ip)%ptr(i), prj(ip)%ptr(i + 1) - 1
+              touched(d0m + 2 * (pr%mnode(prj(ip)%col(q)) - 1) + c) = .true.
             end do
           end do
         end do
@@ -391,18 +393,15 @@ contains
             cs%g(r) = mo%gap0(i)
           end if
           v = row_direction(mo, i, tangent)
-          pmax = maxval(abs(mo%p(i, :)))
-          drop = 1.0e-16_dp * pmax
           do c = 1, 2
             if (v(c) == 0.0_dp) cycle
             k = k + 1                                   ! + v_i . u1(x_i)
             cs%bcol(k) = colmap(d0s + 2 * (pr%snode(i) - 1) + c)
             cs%bval(k) = v(c)
-            do j = 1, nm                                ! - v_i . sum_j P_ij u2(y_j)
-              if (abs(mo%p(i, j)) <= drop) cycle
+            do q = prj(ip)%ptr(i), prj(ip)%ptr(i + 1) - 1   ! - v_i . sum_j P_ij u2(y_j)
               k = k + 1
-              cs%bcol(k) = colmap(d0m + 2 * (pr%mnode(j) - 1) + c)
-              cs%bval(k) = -v(c) * mo%p(i, j)
+              cs%bcol(k) = colmap(d0m + 2 * (pr%mnode(prj(ip)%col(q)) - 1) + c)
+              cs%bval(k) = -v(c) * prj(ip)%val(q)
             end do
           end do
           cs%bptr(r + 1) = k + 1
@@ -454,6 +453,49 @@ contains
     end subroutine single_row
 
   end subroutine build_contact_set
+
+  !> The rows first..last of mo%P, the entries above 1e-16 of their row's
+  !> largest (pi_h^1 decays exponentially away from the diagonal: the
+  !> dropped part is below round-off), in increasing j.  P is (ns, nm) and
+  !> column-major: it is read column by column, three passes (row maxima,
+  !> counts, entries), never along its rows.
+  subroutine projection_rows(mo, pr)
+    type(mortar_t), intent(in) :: mo
+    type(projection_rows_t), intent(out) :: pr
+    real(dp), allocatable :: drop(:)
+    integer, allocatable :: next(:)
+    integer :: i, j, f, l
+    f = mo%first
+    l = mo%last
+    allocate(drop(f:l), source=0.0_dp)
+    do j = 1, size(mo%P, 2)
+      do i = f, l
+        drop(i) = max(drop(i), abs(mo%P(i, j)))
+      end do
+    end do
+    drop = 1.0e-16_dp * drop
+    allocate(pr%ptr(f:l + 1), source=0)
+    do j = 1, size(mo%P, 2)
+      do i = f, l
+        if (abs(mo%P(i, j)) > drop(i)) pr%ptr(i + 1) = pr%ptr(i + 1) + 1
+      end do
+    end do
+    pr%ptr(f) = 1
+    do i = f, l
+      pr%ptr(i + 1) = pr%ptr(i + 1) + pr%ptr(i)
+    end do
+    allocate(pr%col(pr%ptr(l + 1) - 1), pr%val(pr%ptr(l + 1) - 1))
+    next = pr%ptr(f:l)
+    do j = 1, size(mo%P, 2)
+      do i = f, l
+        if (abs(mo%P(i, j)) > drop(i)) then
+          pr%col(next(i - f + 1)) = j
+          pr%val(next(i - f + 1)) = mo%P(i, j)
+          next(i - f + 1) = next(i - f + 1) + 1
+        end if
+      end do
+    end do
+  end subroutine projection_rows
 
   !> mcov(j) = integral of master hat j over the covered part of the slave
   !> zone (sub-segments: chi is linear in the slave coordinate on each).
