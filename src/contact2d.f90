@@ -18,7 +18,8 @@ program contact2d
   use sparse_cholesky, only: factor_t, analyze_pattern, factorize_values, solve, solve_forward, factor_nnz, factor_memory, &
                              factor_ordering
   use contact_set, only: contact_set_t, pair_spec_t, build_contact_set, row_of_node, has_friction
-  use contact_condensation, only: contact_equations, condense, contact_forces, recover, constraint_values
+  use contact_condensation, only: contact_equations, condense, contact_forces, recover, constraint_values, &
+                                  condensed_t, condensed_report
   use lcp_solvers, only: lcp_options_t, lcp_report_t
   use friction_lcp, only: solve_friction_lcp, friction_state
   use contact_lcp, only: contact_solution_t, solve_contact
@@ -55,7 +56,8 @@ program contact2d
   integer :: nfree, i, nlabel
   integer(i8) :: t_start, t_phase, t_solve, t_now, t_rate, t_asm0, t_asm1
   real(dp), allocatable :: rhs(:,:), x(:,:), u0(:), w(:,:), q(:), fint(:), fc(:)
-  real(dp), allocatable :: y(:), xc(:,:)  ! forward half of u0's solve; X = L_cc^-1 C_C' (condense)
+  real(dp), allocatable :: y(:)           ! forward half of u0's solve
+  type(condensed_t) :: cd                 ! X_b = L_b^-1 C_b' or L_b per block of L_cc (condense)
   logical :: with_contact
   real(dp), allocatable :: cu0(:,:)      ! (nrow + ntan, ramps) C u0 of each ramp's loads (friction)
 
@@ -162,7 +164,7 @@ program contact2d
   if (with_contact) then
     ! the forward solve counts as condensation when there is contact, as
     ! recovery otherwise: a scene without contact spends nothing on it
-    call condense(cs, eq, factor, y, u0, w, q, xc, err)
+    call condense(cs, eq, factor, y, u0, w, q, cd, err, deck%solver%condense)
     if (allocated(err)) call fail_numerical(err%message)
     if (cs%ntan > 0) then
       call friction_load_paths()
@@ -178,10 +180,10 @@ program contact2d
     allocate(res%u(sc%ndof))
     call system_clock(t_solve)
     if (cs%ntan > 0) then
-      call recover(eq, factor, y, xc, u0, [res%mu, res%tau], res%u)
+      call recover(eq, factor, y, cd, u0, [res%mu, res%tau], res%u)
       call contact_forces(cs, [res%mu, res%tau], fc)
     else
-      call recover(eq, factor, y, xc, u0, res%mu, res%u)
+      call recover(eq, factor, y, cd, u0, res%mu, res%u)
       call contact_forces(cs, res%mu, fc)
     end if
     call system_clock(t_now, t_rate)
@@ -618,6 +620,9 @@ contains
       end if
       call say(trim(line))
     end if
+    if (allocated(cd%block)) then
+      if (len(condensed_report(cd)) > 0) call say('condense W from L_cc by body: ' // condensed_report(cd))
+    end if
     call say('phase        seconds')
     do p = 1, nphase
       write(line, '(a,f12.4)') phase_names(p), res%time(p)
@@ -847,6 +852,7 @@ contains
       '                                    (frictionless unless mu= (Coulomb) or tresca= (slip bound))', &
       '  SOLVER lcp=auto|lemke|pgs|pdas [tol=1e-10] [maxit=N] [omega=1.0]   (pdas: frictionless only)', &
       '         [ordering=auto|metis|amd]  (fill-reducing ordering; auto: AMD up to 5e5 free dofs, METIS above)', &
+      '         [condense=auto|solve|inverse]  (W per body: triangular solves or the block''s inverse)', &
       '  STEPS n                           (load steps; ramp=k0:k1: load 0 at step k0 rising to 1 at k1)', &
       '  OUTPUT [vtk=FILE] [contact=FILE.csv] [summary=FILE] [fields=displacement,contact_pressure,gap,stress,von_mises]', &
       '', &

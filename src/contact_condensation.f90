@@ -12,7 +12,15 @@
 !> at the cost of a dense triangular solve, not of ncdof sparse solves.  K
 !> does not couple two bodies, so L_cc has one diagonal block per body that
 !> has contact dofs: the solve runs block by block (half the flops of the
-!> whole block for two bodies of equal share).
+!> whole block for two bodies of equal share), W = sum_b X_b' X_b.
+!>
+!> A block of nb dofs reached by mb rows costs nb^2 mb / 2 + mb^2 nb / 2
+!> multiply-adds that way.  Where a row touches one dof of the block (a flat
+!> slave side: nb = mb), its share is cheaper from the inverse,
+!>     Z_b = (L_b L_b')^-1  (LAPACK dpotri, nb^3 / 3),   W_b = B_b Z_b B_b'
+!> with B_b sparse: a third of the flops.  Each block takes the cheaper way
+!> (inverse_pays; SOLVER condense= forces one); the answer is the same to
+!> round-off.
 !>
 !> One solve in all.  With y = L^-1 P f (the forward half of u0 = K^-1 f),
 !> the contact dofs of u0 are the end of the backward half,
@@ -20,31 +28,50 @@
 !> which is all that q needs; and the contact forces -B' mu reach only the
 !> trailing pivots, so the forward half of the recovery is
 !>     L^-1 P (f - B' mu) = y - [0; X mu]
-!> and one backward solve gives u.  The displacement costs one forward and
+!> (X_b mu = L_b^-1 (B_b' mu) by one triangular solve for a block condensed
+!> by its inverse) and one backward solve gives u.  The displacement costs one forward and
 !> one backward solve, not two solves.
 !>
 !> Programming interface
 !>   contact_equations(cs, eq, last)        free equations of the contact dofs, in
 !>                                          the order to be factorized last
-!>   condense(cs, eq, factor, y, u0, w, q, xc, err)
+!>   type(condensed_t)                      what recover needs, per block of L_cc
+!>   condense(cs, eq, factor, y, u0, w, q, cd, err [, method])
 !>                                          W (nc, nc), q (nc), nc = nrow + ntan,
-!>                                          u0 on the contact dofs from y, and X
-!>                                          in xc for recover
+!>                                          u0 on the contact dofs from y, and X_b
+!>                                          or L_b in cd for recover
 !>   constraint_values(cs, u, v)            v = C u, C = [B; T] (the tangential
 !>                                          rows T of friction pairs after B)
 !>   contact_forces(cs, mu, fc)             fc = -B' mu on every dof (fc sized ndof)
-!>   recover(eq, factor, y, xc, u0, mu, u)  u = K^-1 (f - C' mu) by one backward
-!>                                          solve (y overwritten, xc released)
+!>   recover(eq, factor, y, cd, u0, mu, u)  u = K^-1 (f - C' mu) by one backward
+!>                                          solve (y overwritten, cd's arrays released)
+!>   condensed_report(cd)                   how each block was condensed, one line
 module contact_condensation
   use kinds, only: dp
-  use lapack_interfaces, only: dgemv, dsyrk, dtrsm
-  use diagnostics, only: error_t
+  use lapack_interfaces, only: dgemv, dpotri, dsyrk, dtrsm, dtrsv
+  use diagnostics, only: error_t, int_to_str
   use contact_set, only: contact_set_t
   use sparse_cholesky, only: factor_t, trailing_factor_block, trailing_block_end, solve_backward
   implicit none
   private
-  public :: contact_equations, condense, contact_forces, recover, constraint_values
+  public :: contact_equations, condense, contact_forces, recover, constraint_values, condensed_report
 
+  !> What condense keeps of one diagonal block of L_cc (the contact dofs of
+  !> one body) for the recovery.
+  type :: condensed_block_t
+    integer :: s = 1, e = 0                  !< free contact dofs s..e (rows of L_cc)
+    integer :: c1 = 1, c2 = 0                !< the constraint rows that reach them (none: c1 > c2)
+    logical :: inverse = .false.             !< the block's share of W came from (L_b L_b')^-1
+    real(dp), allocatable :: a(:,:)          !< inverse: L_b (nb, nb); else X_b = L_b^-1 C_b' (nb, c2-c1+1)
+    integer, allocatable :: cptr(:), crow(:) !< inverse: C_b' by columns c1..c2 (CSC), rows 1..nb
+    real(dp), allocatable :: cval(:)
+  end type condensed_block_t
+
+  !> The condensation's per-block factors, kept for the recovery.
+  type, public :: condensed_t
+    integer :: nfc = 0                       !< free contact dofs
+    type(condensed_block_t), allocatable :: block(:)
+  end type condensed_t
 
 contains
 
@@ -70,26 +97,33 @@ contains
   !> of friction pairs, g = 0 there; C = B without friction).
   !>   cs     (in)  constraint rows; factor (in) K = L L' with contact_equations last
   !>   eq     (in)  (ndof) free equation numbers
+  !>   y      (in)  (nfree) the forward half L^-1 P f of u0's solve
   !>   u0     (inout) (ndof) on entry the prescribed values on the fixed dofs;
   !>                on exit also u0 = K^-1 f on the free contact dofs
   !>                (u0_C = L_cc'^-1 y_c; the other free dofs are not set)
   !>   w      (out) (nc, nc) symmetric positive semi-definite, nc = nrow + ntan
   !>   q      (out) (nc)
+  !>   cd     (out) per block of L_cc, what recover needs (X_b, or L_b)
   !>   err    (out) allocated when the trailing block cannot be had
-  !>   y      (in)  (nfree) the forward half L^-1 P f of u0's solve
-  !>   xc     (out) X = L_cc^-1 C_C' (nfc, nc), for recover
-  subroutine condense(cs, eq, factor, y, u0, w, q, xc, err)
+  !>   method (in, optional) 'auto' (default), 'solve' or 'inverse': how each
+  !>          block's share of W is had (module header)
+  subroutine condense(cs, eq, factor, y, u0, w, q, cd, err, method)
     type(contact_set_t), intent(in) :: cs
     integer, intent(in) :: eq(:)
     type(factor_t), intent(inout) :: factor
     real(dp), intent(in) :: y(:)
     real(dp), intent(inout) :: u0(:)
-    real(dp), allocatable, intent(out) :: w(:,:), q(:), xc(:,:)
+    real(dp), allocatable, intent(out) :: w(:,:), q(:)
+    type(condensed_t), intent(out) :: cd
     type(error_t), allocatable, intent(out) :: err
-    integer :: nc, nfc, r, k, col, i, j, s, e, c1, c2
-    integer, allocatable :: fcol(:)
-    real(dp), allocatable :: x(:,:), lcc(:,:), uc(:)
+    character(len=*), intent(in), optional :: method
+    integer :: nc, nfc, r, k, i, j, s, e, nblock, b, nb
+    integer, allocatable :: fcol(:), bend(:)
+    real(dp), allocatable :: lcc(:,:), uc(:)
+    character(len=:), allocatable :: how
 
+    how = 'auto'
+    if (present(method)) how = method
     nc = cs%nrow + cs%ntan
     ! column of each contact dof in the free block (0 when fixed)
     allocate(fcol(cs%ncdof))
@@ -102,52 +136,71 @@ contains
         fcol(k) = 0
       end if
     end do
+    cd%nfc = nfc
+    allocate(w(nc, nc), source=0.0_dp)
     if (nfc == 0 .or. nc == 0) then
+      allocate(cd%block(0))
       call gap_offsets()
-      allocate(w(nc, nc), source=0.0_dp)
-      allocate(xc(nfc, nc), source=0.0_dp)
       return
     end if
-    ! X = B_C' restricted to free contact dofs, (nfc, nc)
-    allocate(x(nfc, nc), source=0.0_dp)
-    do r = 1, nc
-      do k = cs%bptr(r), cs%bptr(r + 1) - 1
-        col = fcol(cs%bcol(k))
-        if (col > 0) x(col, r) = x(col, r) + cs%bval(k)
-      end do
-    end do
-    ! X = L_cc^-1 B_C', one diagonal block of L_cc at a time: bodies that K
-    ! does not couple give L_cc a block per body; a block is read out of the
-    ! factor only when it is solved (the whole L_cc is never held), and solved
-    ! only on the constraint rows that reach it (the rest of X stays zero there)
-    uc = y(size(y) - nfc + 1:)
+    ! the diagonal blocks of L_cc: bodies that K does not couple give L_cc a
+    ! block per body
+    allocate(bend(nfc))
+    nblock = 0
     s = 1
     do while (s <= nfc)
       call trailing_block_end(factor, nfc, s, e, err)
-      if (.not. allocated(err)) call trailing_factor_block(factor, nfc, lcc, err, first=s, count=e - s + 1)
+      if (allocated(err)) then
+        err%message = 'cannot extract the contact block of the Cholesky factor: ' // err%message
+        return
+      end if
+      nblock = nblock + 1
+      bend(nblock) = e
+      s = e + 1
+    end do
+    ! Each block is read out of the factor only when it is used (the whole
+    ! L_cc is never held), and only the constraint rows that reach it enter
+    ! its share of W
+    allocate(cd%block(nblock))
+    uc = y(size(y) - nfc + 1:)
+    s = 1
+    do b = 1, nblock
+      e = bend(b)
+      nb = e - s + 1
+      call trailing_factor_block(factor, nfc, lcc, err, first=s, count=nb)
       if (allocated(err)) then
         err%message = 'cannot extract the contact block of the Cholesky factor: ' // err%message
         return
       end if
       ! the end of the backward half of u0 = K^-1 f: u0_C = L_cc'^-1 y_c
-      call dtrsm('L', 'L', 'T', 'N', e - s + 1, 1, 1.0_dp, lcc, e - s + 1, uc(s), nfc)
-      call nonzero_columns(x, s, e, c1, c2)
-      if (c1 <= c2) call dtrsm('L', 'L', 'N', 'N', e - s + 1, c2 - c1 + 1, 1.0_dp, lcc, e - s + 1, x(s, c1), nfc)
-      deallocate(lcc)
+      call dtrsm('L', 'L', 'T', 'N', nb, 1, 1.0_dp, lcc, nb, uc(s), nfc)
+      associate(bk => cd%block(b))
+        bk%s = s
+        bk%e = e
+        call block_columns(cs, fcol, bk)
+        if (bk%c1 <= bk%c2) then
+          bk%inverse = how == 'inverse' .or. &
+                       (how == 'auto' .and. inverse_pays(nb, bk%c2 - bk%c1 + 1, size(bk%crow)))
+          if (bk%inverse) then
+            call inverse_share(lcc, bk, w, nc, err)
+            if (allocated(err)) return
+          else
+            call solve_share(lcc, bk, w, nc)
+          end if
+        end if
+      end associate
+      if (allocated(lcc)) deallocate(lcc)
       s = e + 1
     end do
     do k = 1, cs%ncdof
       if (fcol(k) > 0) u0(cs%cdof(k)) = uc(fcol(k))
     end do
     call gap_offsets()
-    allocate(w(nc, nc))
-    call dsyrk('U', 'T', nc, nfc, 1.0_dp, x, nfc, 0.0_dp, w, nc)           ! W = X' X (upper)
-    do j = 1, nc
+    do j = 1, nc                                    ! the shares fill the upper triangle
       do i = j + 1, nc
         w(i, j) = w(j, i)
       end do
     end do
-    call move_alloc(x, xc)
 
   contains
 
@@ -165,22 +218,196 @@ contains
     end subroutine gap_offsets
   end subroutine condense
 
-  !> The first and last columns c1..c2 of x with a non-zero in rows s..e
-  !> (c1 > c2 when there is none).
-  pure subroutine nonzero_columns(x, s, e, c1, c2)
-    real(dp), intent(in) :: x(:,:)
-    integer, intent(in) :: s, e
-    integer, intent(out) :: c1, c2
-    integer :: j
-    c1 = size(x, 2) + 1
-    c2 = 0
-    do j = 1, size(x, 2)
-      if (any(x(s:e, j) /= 0.0_dp)) then
-        c1 = min(c1, j)
-        c2 = j
-      end if
+  !> The columns c1..c2 of C_C' (constraint rows) with an entry in the
+  !> block's free contact dofs s..e, and those entries by columns (CSC, rows
+  !> local to the block, repeated entries kept: every use sums them).
+  subroutine block_columns(cs, fcol, bk)
+    type(contact_set_t), intent(in) :: cs
+    integer, intent(in) :: fcol(:)
+    type(condensed_block_t), intent(inout) :: bk
+    integer :: r, k, col, n
+    bk%c1 = cs%nrow + cs%ntan + 1
+    bk%c2 = 0
+    n = 0
+    do r = 1, cs%nrow + cs%ntan
+      do k = cs%bptr(r), cs%bptr(r + 1) - 1
+        col = fcol(cs%bcol(k))
+        if (col < bk%s .or. col > bk%e) cycle
+        n = n + 1
+        bk%c1 = min(bk%c1, r)
+        bk%c2 = r
+      end do
     end do
-  end subroutine nonzero_columns
+    if (bk%c1 > bk%c2) return
+    allocate(bk%cptr(bk%c2 - bk%c1 + 2), bk%crow(n), bk%cval(n))
+    n = 0
+    bk%cptr(1) = 1
+    do r = bk%c1, bk%c2
+      do k = cs%bptr(r), cs%bptr(r + 1) - 1
+        col = fcol(cs%bcol(k))
+        if (col < bk%s .or. col > bk%e) cycle
+        n = n + 1
+        bk%crow(n) = col - bk%s + 1
+        bk%cval(n) = cs%bval(k)
+      end do
+      bk%cptr(r - bk%c1 + 2) = n + 1
+    end do
+  end subroutine block_columns
+
+  !> Whether the block's share of W costs less from the inverse of L_b L_b'
+  !> than by triangular solves, with nb dofs, mb constraint rows and nnz
+  !> entries of C_b, in multiply-adds weighted by their measured speed:
+  !>   solves   nb^2 mb / 2 (dtrsm) + mb^2 nb / 2 (dsyrk)
+  !>   inverse  1.3 nb^3 / 3 (dpotri, 1.3: it ran at 30 Gflop/s where dtrsm
+  !>            and dsyrk ran at 39-49) + 20 nnz (nb + mb / 2) (the sparse
+  !>            products with C_b, at 1.7 Gflop/s)
+  !> (two-body Signorini, 1000 to 5000 slave nodes, 2 threads).  A flat
+  !> slave side (one dof per row, nnz = mb = nb) costs a third to a half by
+  !> the inverse; a master side (some 44 entries per row) from about 4000
+  !> dofs up.
+  pure logical function inverse_pays(nb, mb, nnz)
+    integer, intent(in) :: nb, mb, nnz
+    real(dp) :: n, m
+    n = real(nb, dp)
+    m = real(mb, dp)
+    inverse_pays = 1.3_dp * n**3 / 3 + 20 * real(nnz, dp) * (n + m / 2) < n**2 * m / 2 + m**2 * n / 2
+  end function inverse_pays
+
+  !> W(c1:c2, c1:c2) += X_b' X_b (upper), X_b = L_b^-1 C_b' by triangular
+  !> solves; X_b is kept for the recovery.
+  subroutine solve_share(lcc, bk, w, ldw)
+    real(dp), intent(in) :: lcc(:,:)
+    type(condensed_block_t), intent(inout) :: bk
+    integer, intent(in) :: ldw
+    real(dp), intent(inout) :: w(ldw, *)
+    integer :: nb, mb, j, k
+    nb = bk%e - bk%s + 1
+    mb = bk%c2 - bk%c1 + 1
+    allocate(bk%a(nb, mb), source=0.0_dp)
+    do j = 1, mb
+      do k = bk%cptr(j), bk%cptr(j + 1) - 1
+        bk%a(bk%crow(k), j) = bk%a(bk%crow(k), j) + bk%cval(k)
+      end do
+    end do
+    deallocate(bk%cptr, bk%crow, bk%cval)
+    call dtrsm('L', 'L', 'N', 'N', nb, mb, 1.0_dp, lcc, nb, bk%a, nb)
+    call dsyrk('U', 'T', mb, nb, 1.0_dp, bk%a, nb, 1.0_dp, w(bk%c1, bk%c1), ldw)
+  end subroutine solve_share
+
+  !> W(c1:c2, c1:c2) += C_b Z C_b' (upper), Z = (L_b L_b')^-1 by LAPACK
+  !> dpotri; L_b (lcc, moved) and C_b are kept for the recovery.
+  subroutine inverse_share(lcc, bk, w, ldw, err)
+    real(dp), allocatable, intent(inout) :: lcc(:,:)
+    type(condensed_block_t), intent(inout) :: bk
+    integer, intent(in) :: ldw
+    real(dp), intent(inout) :: w(ldw, *)
+    type(error_t), allocatable, intent(out) :: err
+    real(dp), allocatable :: z(:,:), t(:,:)
+    integer :: nb, mb, info
+    nb = bk%e - bk%s + 1
+    mb = bk%c2 - bk%c1 + 1
+    allocate(z, source=lcc)
+    call dpotri('L', nb, z, nb, info)
+    if (info /= 0) then
+      allocate(err)
+      err%status = 1
+      err%message = 'the contact block of the Cholesky factor is singular (LAPACK dpotri info ' // &
+                    int_to_str(info) // ')'
+      return
+    end if
+    call fill_upper(z)
+    ! T = Z C_b' (nb, mb), then W += C_b T, both by the columns of C_b'
+    allocate(t(nb, mb))
+    call sparse_product(nb, mb, size(bk%crow), bk%cptr, bk%crow, bk%cval, z, t)
+    deallocate(z)
+    call sparse_share(nb, mb, size(bk%crow), bk%cptr, bk%crow, bk%cval, t, ldw, w(bk%c1, bk%c1))
+    call move_alloc(lcc, bk%a)
+  end subroutine inverse_share
+
+  !> T = Z C' for a dense Z (nb, nb) and C' (nb, mb) by columns (CSC).
+  !> Neighbouring columns of C' (neighbouring slave nodes) use nearly the
+  !> same columns of Z: T is made by tiles of 64 columns and 512 rows, so
+  !> that the pieces of Z a tile reads stay in cache from column to column.
+  subroutine sparse_product(nb, mb, nnz, cptr, crow, cval, z, t)
+    integer, intent(in) :: nb, mb, nnz, cptr(mb + 1), crow(nnz)
+    real(dp), intent(in) :: cval(nnz), z(nb, nb)
+    real(dp), intent(out) :: t(nb, mb)
+    integer, parameter :: tile_rows = 512, tile_cols = 64
+    integer :: i0, i1, j0, j, k
+    !$omp parallel do private(i0, i1, j, k) schedule(static)
+    do j0 = 1, mb, tile_cols
+      do i0 = 1, nb, tile_rows
+        i1 = min(i0 + tile_rows - 1, nb)
+        do j = j0, min(j0 + tile_cols - 1, mb)
+          t(i0:i1, j) = 0.0_dp
+          do k = cptr(j), cptr(j + 1) - 1
+            t(i0:i1, j) = t(i0:i1, j) + cval(k) * z(i0:i1, crow(k))
+          end do
+        end do
+      end do
+    end do
+    !$omp end parallel do
+  end subroutine sparse_product
+
+  !> W(i, j) += (C T)(i, j) for i <= j, C' (nb, mb) by columns (CSC), T (nb, mb);
+  !> W from its first row and column, leading dimension ldw.
+  subroutine sparse_share(nb, mb, nnz, cptr, crow, cval, t, ldw, w)
+    integer, intent(in) :: nb, mb, nnz, cptr(mb + 1), crow(nnz), ldw
+    real(dp), intent(in) :: cval(nnz), t(nb, mb)
+    real(dp), intent(inout) :: w(ldw, *)
+    integer :: i, j, k
+    real(dp) :: acc
+    !$omp parallel do private(i, k, acc) schedule(dynamic, 8)
+    do j = 1, mb
+      do i = 1, j
+        acc = 0.0_dp
+        do k = cptr(i), cptr(i + 1) - 1
+          acc = acc + cval(k) * t(crow(k), j)
+        end do
+        w(i, j) = w(i, j) + acc
+      end do
+    end do
+    !$omp end parallel do
+  end subroutine sparse_share
+
+  !> The upper triangle of a square matrix from its lower one, by tiles.
+  subroutine fill_upper(a)
+    real(dp), intent(inout) :: a(:,:)
+    integer, parameter :: tile = 64
+    integer :: n, i0, j0, i, j
+    n = size(a, 1)
+    !$omp parallel do private(i0, i, j) schedule(dynamic)
+    do j0 = 1, n, tile
+      do i0 = 1, j0, tile                           ! tile (i0, j0) above the diagonal
+        do j = j0, min(j0 + tile - 1, n)
+          do i = i0, min(i0 + tile - 1, j - 1)
+            a(i, j) = a(j, i)
+          end do
+        end do
+      end do
+    end do
+    !$omp end parallel do
+  end subroutine fill_upper
+
+  !> One line on how W was had, block by block (for the run's report).
+  function condensed_report(cd) result(line)
+    type(condensed_t), intent(in) :: cd
+    character(len=:), allocatable :: line
+    integer :: b
+    line = ''
+    do b = 1, size(cd%block)
+      associate(bk => cd%block(b))
+        if (bk%c1 > bk%c2) cycle
+        if (len(line) > 0) line = line // ', '
+        line = line // int_to_str(bk%e - bk%s + 1) // ' dofs x ' // int_to_str(bk%c2 - bk%c1 + 1) // ' rows '
+        if (bk%inverse) then
+          line = line // 'by its inverse (dpotri)'
+        else
+          line = line // 'by triangular solves (dtrsm)'
+        end if
+      end associate
+    end do
+  end function condensed_report
 
   !> v = C u: the values of every constraint row (B u, then T u) at u.
   !>   cs (in) rows; u (in) (ndof); v (out) (nrow + ntan)
@@ -214,24 +441,45 @@ contains
   end subroutine contact_forces
 
   !> u = K^-1 (f - C' mu): the backward half of the solve, of y - [0; X mu]
-  !> (y the forward half L^-1 P f, X = L_cc^-1 C_C' from condense); u takes
-  !> u0's prescribed values on the fixed dofs.
-  !>   y  (inout) (nfree) overwritten;  xc (inout) X, released before the solve
+  !> (y the forward half L^-1 P f, X = L_cc^-1 C_C' from condense: X_b mu,
+  !> or L_b^-1 (C_b' mu) by one triangular solve for a block condensed by
+  !> its inverse); u takes u0's prescribed values on the fixed dofs.
+  !>   y  (inout) (nfree) overwritten;  cd (inout) from condense, its arrays
+  !>   released before the solve
   !>   u0 (in) (ndof), only its fixed dofs read;  mu (in) (nc);  u (out) (ndof)
-  subroutine recover(eq, factor, y, xc, u0, mu, u)
+  subroutine recover(eq, factor, y, cd, u0, mu, u)
     integer, intent(in) :: eq(:)
     type(factor_t), intent(inout) :: factor
     real(dp), intent(inout), contiguous :: y(:)
-    real(dp), allocatable, intent(inout) :: xc(:,:)
+    type(condensed_t), intent(inout) :: cd
     real(dp), intent(in) :: u0(:), mu(:)
     real(dp), intent(out) :: u(:)
-    real(dp), allocatable :: du(:)
-    integer :: i, nfree, nfc
+    real(dp), allocatable :: du(:), t(:)
+    integer :: i, nfree, b, nb, mb, o, j, k
     nfree = size(y)
-    nfc = size(xc, 1)
-    if (nfc > 0 .and. size(mu) > 0) &
-      call dgemv('N', nfc, size(mu), -1.0_dp, xc, nfc, mu, 1, 1.0_dp, y(nfree - nfc + 1:), 1)
-    deallocate(xc)                                   ! before the solve: a lower peak
+    do b = 1, size(cd%block)
+      associate(bk => cd%block(b))
+        if (bk%c1 <= bk%c2 .and. size(mu) >= bk%c2) then
+          nb = bk%e - bk%s + 1
+          mb = bk%c2 - bk%c1 + 1
+          o = nfree - cd%nfc + bk%s                      ! y's entry of the block's first dof
+          if (bk%inverse) then
+            allocate(t(nb), source=0.0_dp)
+            do j = 1, mb
+              do k = bk%cptr(j), bk%cptr(j + 1) - 1
+                t(bk%crow(k)) = t(bk%crow(k)) + bk%cval(k) * mu(bk%c1 + j - 1)
+              end do
+            end do
+            call dtrsv('L', 'N', 'N', nb, bk%a, nb, t, 1)
+            y(o:o + nb - 1) = y(o:o + nb - 1) - t
+            deallocate(t)
+          else
+            call dgemv('N', nb, mb, -1.0_dp, bk%a, nb, mu(bk%c1:bk%c2), 1, 1.0_dp, y(o:o + nb - 1), 1)
+          end if
+        end if
+        if (allocated(bk%a)) deallocate(bk%a)          ! before the solve: a lower peak
+      end associate
+    end do
     allocate(du(nfree))
     call solve_backward(factor, y, du)
     u = u0

@@ -4,13 +4,13 @@
 !> libraries (OpenBLAS, LAPACK); nothing is implemented here.
 !>
 !> Programming interface: the routines below, by their standard names.
-!>   BLAS    daxpy, drot, dgemv, dger, dtrsm, dsyrk
-!>   LAPACK  dgtsv, dpotrf, dpotrs, dpstrf, dsysv, dgesvd, dgeqp3
+!>   BLAS    daxpy, drot, dgemv, dger, dtrsv, dtrsm, dsyrk
+!>   LAPACK  dgtsv, dpotrf, dpotri, dpotrs, dpstrf, dsysv, dgesvd, dgeqp3
 module lapack_interfaces
   use kinds, only: dp
   implicit none
   private
-  public :: daxpy, drot, dgemv, dger, dtrsm, dsyrk, dgtsv, dpotrf, dpotrs, dpstrf, dsysv, dgesvd, dgeqp3
+  public :: daxpy, drot, dgemv, dger, dtrsv, dtrsm, dsyrk, dgtsv, dpotrf, dpotri, dpotrs, dpstrf, dsysv, dgesvd, dgeqp3
 
   interface
     subroutine daxpy(n, alpha, x, incx, y, incy)
@@ -38,6 +38,13 @@ module lapack_interfaces
       real(dp), intent(in) :: alpha, x(*), y(*)
       real(dp), intent(inout) :: a(lda, *)
     end subroutine dger
+    subroutine dtrsv(uplo, trans, diag, n, a, lda, x, incx)
+      import :: dp
+      character, intent(in) :: uplo, trans, diag
+      integer, intent(in) :: n, lda, incx
+      real(dp), intent(in) :: a(lda, *)
+      real(dp), intent(inout) :: x(*)
+    end subroutine dtrsv
     subroutine dtrsm(side, uplo, transa, diag, m, n, alpha, a, lda, b, ldb)
       import :: dp
       character, intent(in) :: side, uplo, transa, diag
@@ -66,6 +73,14 @@ module lapack_interfaces
       real(dp), intent(inout) :: a(lda, *)
       integer, intent(out) :: info
     end subroutine dpotrf
+    !> LAPACK: the inverse of A = L L' (uplo 'L') from its Cholesky factor, in place.
+    subroutine dpotri(uplo, n, a, lda, info)
+      import :: dp
+      character, intent(in) :: uplo
+      integer, intent(in) :: n, lda
+      real(dp), intent(inout) :: a(lda, *)
+      integer, intent(out) :: info
+    end subroutine dpotri
     subroutine dpotrs(uplo, n, nrhs, a, lda, b, ldb, info)
       import :: dp
       character, intent(in) :: uplo
