@@ -39,7 +39,7 @@
 !>    all integrals over the covered part of Gamma_c only (the sub-segments), so that
 !>    pi 1 = 1 and int (pi phi) = int phi hold exactly even where the master covers only
 !>    part of an end segment.  D is tridiagonal, symmetric positive definite (no holes);
-!>    it is solved by LAPACK dgtsv for all master columns at once:
+!>    it is solved by LAPACK dgtsv for all master columns, 128 at a time:
 !>       P(interior, :) = D^-1 (M - E_0 P(first, :) - E_n P(last, :)).
 !>    End values: phi(a_i) is the master trace at the master point hit by the line
 !>    through a_i along the slave nodal normal (the facing master segment nearest along
@@ -243,7 +243,9 @@ contains
     integer, intent(in) :: jlo, jhi
     integer, intent(out) :: info
     real(dp), parameter :: gauss = 0.57735026918962576451_dp   ! 1/sqrt(3)
-    real(dp), allocatable :: dl(:), dd(:), du(:), e0(:), en(:)
+    integer, parameter :: chunk = 128
+    real(dp), allocatable :: dl(:), dd(:), du(:), e0(:), en(:), cl(:), cd(:), cu(:)
+    integer :: ci
     real(dp) :: half, mid, sq, rq, wq, wa, v, phi(0:1), chi(0:1)
     integer :: n, first, last, k, m, f, q, ia, ib, a, b, kp, ns
 
@@ -301,7 +303,19 @@ contains
       mortar%P(first + 1:last - 1, f) = mortar%P(first + 1:last - 1, f) - e0(1:n - 1) * mortar%P(first, f) &
                                         - en(1:n - 1) * mortar%P(last, f)
     end do
-    call dgtsv(n - 1, jhi - jlo + 1, dl, dd, du, mortar%P(first + 1, jlo), ns, info)
+    ! dgtsv's elimination runs along the rows across all its right-hand
+    ! sides: in chunks of 128 master columns a row's pieces stay in cache,
+    ! and the chunks run on the threads side by side.  Each chunk eliminates
+    ! its own copy of D the same way, so every column gets the same digits.
+    !$omp parallel do private(cl, cd, cu, ci) reduction(max:info) schedule(dynamic)
+    do f = jlo, jhi, chunk
+      cl = dl
+      cd = dd
+      cu = du
+      call dgtsv(n - 1, min(chunk, jhi - f + 1), cl, cd, cu, mortar%P(first + 1, f), ns, ci)
+      info = max(info, ci)
+    end do
+    !$omp end parallel do
   end subroutine project_interior
 
   !> The master point that gives the end value (pi phi)(a) = phi(a), eq. (8): the
