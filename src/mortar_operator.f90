@@ -391,12 +391,12 @@ contains
     type(intersection_t), intent(out) :: inter
     integer :: nss, nms, e, f, nc, i, j, cap
     real(dp) :: xa(2), t(2), length, sa, sb, lo, hi
-    real(dp), allocatable :: clo(:), chi(:), rlo(:), rhi(:)
+    real(dp), allocatable :: clo(:), chi(:), rlo(:), rhi(:), sm(:)
     integer, allocatable :: cf(:)
 
     nss = size(xs, 2) - 1
     nms = size(xm, 2) - 1
-    allocate(clo(nms), chi(nms), rlo(nms), rhi(nms), cf(nms))
+    allocate(clo(nms), chi(nms), rlo(nms), rhi(nms), cf(nms), sm(nms + 1))
     cap = max(16, nss + nms)
     allocate(inter%slave_seg(cap), inter%master_seg(cap), inter%s(2, cap), inter%r(2, cap))
     inter%nsub = 0
@@ -406,10 +406,13 @@ contains
       length = norm2(t)
       t = t / length
       nc = 0
+      do f = 1, nms + 1                    ! each master node's coordinate along segment e, once
+        sm(f) = dot_product(xm(:, f) - xa, t) / length
+      end do
       do f = 1, nms
         if (dot_product(nm_out(:, f), ns_out(:, e)) >= 0.0_dp) cycle   ! not facing
-        sa = dot_product(xm(:, f) - xa, t) / length
-        sb = dot_product(xm(:, f + 1) - xa, t) / length
+        sa = sm(f)
+        sb = sm(f + 1)
         lo = max(0.0_dp, min(sa, sb))
         hi = min(1.0_dp, max(sa, sb))
         if (hi - lo <= tol_overlap) cycle
