@@ -598,6 +598,7 @@ contains
 
   subroutine report_run()
     character(len=160) :: line
+    character(len=:), allocatable :: how
     integer :: p
     if (cs%nrow > 0) then
       write(line, '(a,i0,a,i0,a,es10.3,a,es10.3)') 'lcp      ' // res%lcp_method // ': ', res%lcp_iterations, &
@@ -621,7 +622,8 @@ contains
       call say(trim(line))
     end if
     if (allocated(cd%block)) then
-      if (len(condensed_report(cd)) > 0) call say('condense W from L_cc by body: ' // condensed_report(cd))
+      how = condensed_report(cd)
+      if (len(how) > 0) call say('condense W from L_cc by body: ' // how)
     end if
     call say('phase        seconds')
     do p = 1, nphase
