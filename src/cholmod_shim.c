@@ -1144,6 +1144,13 @@ int c2d_blas_threads(int n)
     int old;
     if (openblas_get_num_threads == NULL || openblas_set_num_threads == NULL) return 0;
     old = openblas_get_num_threads();
-    if (n > 0) openblas_set_num_threads(n);
+    if (n > 0)
+    {
+        /* setting the count starts the workers again (OpenBLAS's re-init
+         * after a fork), and they would spin unused: park them until a
+         * call wants them */
+        openblas_set_num_threads(n);
+        c2d_blas_park();
+    }
     return old;
 }
