@@ -1147,10 +1147,12 @@ int c2d_blas_threads(int n)
     if (n > 0)
     {
         /* setting the count starts the workers again (OpenBLAS's re-init
-         * after a fork), and they would spin unused: park them until a
-         * call wants them */
+         * after a fork).  With one thread they would spin unused: park
+         * them until a call wants them.  With more, the calls that follow
+         * want them (restarting them there cost the solve after the
+         * factorization 5 ms on hertz_1e5) */
         openblas_set_num_threads(n);
-        c2d_blas_park();
+        if (n == 1) c2d_blas_park();
     }
     return old;
 }
