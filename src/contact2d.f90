@@ -597,13 +597,18 @@ contains
   end function real_fixed
 
   subroutine report_run()
-    character(len=160) :: line
+    character(len=200) :: line
     character(len=:), allocatable :: how
     integer :: p
     if (cs%nrow > 0) then
       write(line, '(a,i0,a,i0,a,es10.3,a,es10.3)') 'lcp      ' // res%lcp_method // ': ', res%lcp_iterations, &
         ' iterations, ', res%active_nodes, ' active nodes, residual ', res%lcp_residual, &
         ', complementarity ', res%complementarity
+      if (res%lcp_method == 'lemke' .and. res%lcp_iterations > 0) then
+        ! Lemke's cost per pivot: O(n^2) on its dense tableau (performance.md)
+        write(line(len_trim(line) + 1:), '(a,es9.3,a)') ', ', &
+          res%time(ph_lcp) / res%lcp_iterations, ' s per pivot'
+      end if
       call say(trim(line))
       write(line, '(a,es12.4,a,es12.4)') 'contact  min gap ', res%min_gap, ', min pressure ', res%min_pressure
       call say(trim(line))
