@@ -71,6 +71,14 @@ int c2d_chol_factorize(void *h, int n, const int *colptr, const int *rowind,
  * A(i,j) = B(offset+i, offset+j); 0 for a whole matrix. */
 int c2d_chol_analyze(void *h, int n, const int *colptr, const int *rowind, int offset,
                      int nlast, const int *last, int ngroup, const int *group);
+
+/* The top vertex separator of the node graph of the pattern (the arguments
+ * of c2d_chol_analyze, groups required) without its nlast < n dofs `last`:
+ * side[k] = 0 or 1 (the two halves), 2 (the separator) or 3 (a dof of
+ * `last`), k < n.  Returns CHOLMOD_OK, C2D_CHOL_BAD_ARGUMENT (also when the
+ * graph has fewer than 3 nodes) or an error status. */
+int c2d_chol_separator(void *h, int n, const int *colptr, const int *rowind, int offset,
+                       int nlast, const int *last, const int *group, int *side);
 int c2d_chol_factorize_values(void *h, int n, const int *colptr, const int *rowind, int offset,
                               const double *val);
 

@@ -15,6 +15,7 @@
 !>   c2d_chol_factorize(handle, n, colptr, rowind, val, nlast, last) -> status
 !>   c2d_chol_set_ordering(handle, method) -> status   method: c2d_order_metis, c2d_order_amd
 !>   c2d_chol_analyze(handle, n, colptr, rowind, offset, nlast, last, ngroup, group) -> status
+!>   c2d_chol_separator(handle, n, colptr, rowind, offset, nlast, last, group, side) -> status
 !>   c2d_chol_factorize_values(handle, n, colptr, rowind, offset, val) -> status
 !>   c2d_chol_minor(handle, column, equation)
 !>   c2d_chol_stats(handle, lnz, flops, memory_peak, time_analyze, time_factorize)
@@ -34,7 +35,7 @@ module cholmod_binding
   implicit none
   private
   public :: c2d_chol_create, c2d_chol_destroy, c2d_chol_factorize, c2d_chol_minor
-  public :: c2d_chol_analyze, c2d_chol_factorize_values, c2d_chol_set_ordering
+  public :: c2d_chol_analyze, c2d_chol_separator, c2d_chol_factorize_values, c2d_chol_set_ordering
   public :: c2d_order_metis, c2d_order_amd
   public :: c2d_chol_stats, c2d_chol_min_pivot_ratio, c2d_chol_ordering_name
   public :: c2d_chol_status_name, c2d_chol_solve
@@ -117,6 +118,23 @@ module cholmod_binding
       integer(c_int), intent(in) :: group(*)
       integer(c_int) :: status
     end function c2d_chol_analyze
+
+    !> The top vertex separator of the node graph without `last`: side(k) = 0, 1
+    !> (the halves), 2 (the separator) or 3 (`last`); returns the status.
+    function c2d_chol_separator(handle, n, colptr, rowind, offset, nlast, last, group, side) &
+        bind(c, name='c2d_chol_separator') result(status)
+      import :: c_ptr, c_int
+      type(c_ptr), value :: handle
+      integer(c_int), value :: n
+      integer(c_int), intent(in) :: colptr(*)
+      integer(c_int), intent(in) :: rowind(*)
+      integer(c_int), value :: offset
+      integer(c_int), value :: nlast
+      integer(c_int), intent(in) :: last(*)
+      integer(c_int), intent(in) :: group(*)
+      integer(c_int), intent(out) :: side(*)
+      integer(c_int) :: status
+    end function c2d_chol_separator
 
     !> Numeric factorization of the analyzed pattern's values; returns the status.
     function c2d_chol_factorize_values(handle, n, colptr, rowind, offset, val) &

@@ -350,37 +350,27 @@ static int nested_dissection(int ng, int *xadj, int *adj, int *vw, int *gperm, i
  *   cset   [n] or NULL: with AMD, a constraint set per column (0 or 1, the
  *          same within a group): CAMD orders set 0 before set 1
  *   perm   [n] out: the permutation (perm[k] = column at pivot k) */
-static int order_groups(cholmod_sparse *S, const int *group, int method, const int *cset, int *perm,
-                        cholmod_common *c)
+/* The graph of the dof groups of the pattern S (n x n, upper triangle):
+ * compact group numbers gid[n] (in order of first appearance), the dofs of
+ * each group (gptr[ng+1], gdof[n]), its dof count vw[ng] (METIS vertex
+ * weights) and the graph xadj[ng+1], adj (g ~ h when a dof of g and a dof of
+ * h are coupled; symmetric, no self loops, no repeats).  work holds them at
+ * the offsets below (10 n + 2 ints), adj: 2 nnz(S) + 1 ints.  Returns
+ * CHOLMOD_OK or C2D_CHOL_BAD_ARGUMENT (a group out of 0..n-1). */
+#define GG_GID(w, n)    (w)
+#define GG_GPTR(w, n)   ((w) + (n))
+#define GG_GDOF(w, n)   ((w) + 2 * (n) + 1)
+#define GG_DEG(w, n)    ((w) + 3 * (n) + 1)
+#define GG_XADJ(w, n)   ((w) + 4 * (n) + 1)
+#define GG_MARK(w, n)   ((w) + 5 * (n) + 2)
+#define GG_VW(w, n)     ((w) + 6 * (n) + 2)
+static int group_graph(const cholmod_sparse *S, const int *group, int *work, int *adj, int *ngroups)
 {
     int n = (int) S->ncol;
     const int *Sp = S->p, *Si = S->i;
-    int *gid, *gptr, *gdof, *deg, *xadj, *adj, *mark, *vw, *gperm, *giperm, *gset;
-    int i, j, p, g, h, k, ng, nadj, ok;
-    int status = CHOLMOD_OK;
-    size_t nnz = (size_t) Sp[n];
-    int *work = cholmod_malloc(10 * (size_t) n + 2, sizeof(int), c);
-    int *adjmem = cholmod_malloc(2 * nnz + 1, sizeof(int), c);
-
-    if (work == NULL || adjmem == NULL)
-    {
-        cholmod_free(10 * (size_t) n + 2, sizeof(int), work, c);
-        cholmod_free(2 * nnz + 1, sizeof(int), adjmem, c);
-        return (c->status < 0) ? c->status : CHOLMOD_OUT_OF_MEMORY;
-    }
-    /* ng <= n groups: the CSR pointers take n + 1 entries (ng = n when every
-     * group is one dof, e.g. every node with one dof held) */
-    gid = work;                /* [n] compact group of a column */
-    gptr = work + n;           /* [ng+1] dofs of each group (CSR) */
-    gdof = work + 2 * n + 1;   /* [n] */
-    deg = work + 3 * n + 1;    /* [n] */
-    xadj = work + 4 * n + 1;   /* [ng+1] group graph (CSR, no self loops) */
-    mark = work + 5 * n + 2;   /* [n] */
-    vw = work + 6 * n + 2;     /* [ng] dofs per group: METIS vertex weights */
-    gperm = work + 7 * n + 2;  /* [ng] */
-    giperm = work + 8 * n + 2; /* [ng] */
-    gset = work + 9 * n + 2;   /* [ng] constraint set of each group (CAMD) */
-    adj = adjmem;
+    int *gid = GG_GID(work, n), *gptr = GG_GPTR(work, n), *gdof = GG_GDOF(work, n);
+    int *deg = GG_DEG(work, n), *xadj = GG_XADJ(work, n), *mark = GG_MARK(work, n), *vw = GG_VW(work, n);
+    int i, j, p, g, h, ng, nadj;
 
     /* compact group numbers in order of first appearance */
     for (i = 0; i < n; i++) mark[i] = -1;
@@ -388,7 +378,7 @@ static int order_groups(cholmod_sparse *S, const int *group, int method, const i
     for (j = 0; j < n; j++)
     {
         g = group[j];
-        if (g < 0 || g >= n) { status = C2D_CHOL_BAD_ARGUMENT; goto done; }
+        if (g < 0 || g >= n) return C2D_CHOL_BAD_ARGUMENT;
         if (mark[g] < 0) mark[g] = ng++;
         gid[j] = mark[g];
     }
@@ -398,7 +388,6 @@ static int order_groups(cholmod_sparse *S, const int *group, int method, const i
     for (g = 0; g < ng; g++) deg[g] = gptr[g];
     for (j = 0; j < n; j++) gdof[deg[gid[j]]++] = j;
     for (g = 0; g < ng; g++) vw[g] = gptr[g + 1] - gptr[g];
-    for (g = 0; g < ng; g++) gset[g] = (cset != NULL) ? cset[gdof[gptr[g]]] : 0;
 
     /* group graph: g ~ h when a dof of g and a dof of h are coupled */
     for (g = 0; g < ng; g++) deg[g] = 0;
@@ -435,6 +424,41 @@ static int order_groups(cholmod_sparse *S, const int *group, int method, const i
         }
     }
     xadj[ng] = nadj;
+    *ngroups = ng;
+    return CHOLMOD_OK;
+}
+
+static int order_groups(cholmod_sparse *S, const int *group, int method, const int *cset, int *perm,
+                        cholmod_common *c)
+{
+    int n = (int) S->ncol;
+    const int *Sp = S->p;
+    int *gptr, *gdof, *xadj, *adj, *vw, *gperm, *giperm, *gset;
+    int p, g, h, k, ng, ok;
+    int status = CHOLMOD_OK;
+    size_t nnz = (size_t) Sp[n];
+    int *work = cholmod_malloc(10 * (size_t) n + 2, sizeof(int), c);
+    int *adjmem = cholmod_malloc(2 * nnz + 1, sizeof(int), c);
+
+    if (work == NULL || adjmem == NULL)
+    {
+        cholmod_free(10 * (size_t) n + 2, sizeof(int), work, c);
+        cholmod_free(2 * nnz + 1, sizeof(int), adjmem, c);
+        return (c->status < 0) ? c->status : CHOLMOD_OUT_OF_MEMORY;
+    }
+    /* ng <= n groups: the CSR pointers take n + 1 entries (ng = n when every
+     * group is one dof, e.g. every node with one dof held) */
+    gptr = GG_GPTR(work, n);
+    gdof = GG_GDOF(work, n);
+    xadj = GG_XADJ(work, n);
+    vw = GG_VW(work, n);
+    gperm = work + 7 * n + 2;  /* [ng] */
+    giperm = work + 8 * n + 2; /* [ng] */
+    gset = work + 9 * n + 2;   /* [ng] constraint set of each group (CAMD) */
+    adj = adjmem;
+    status = group_graph(S, group, work, adj, &ng);
+    if (status != CHOLMOD_OK) goto done;
+    for (g = 0; g < ng; g++) gset[g] = (cset != NULL) ? cset[gdof[gptr[g]]] : 0;
 
     /* the ordering of the group graph, then the dofs group by group */
     if (ng > 1 && method == C2D_ORDER_AMD)
@@ -479,6 +503,22 @@ done:
     cholmod_free(10 * (size_t) n + 2, sizeof(int), work, c);
     cholmod_free(2 * nnz + 1, sizeof(int), adjmem, c);
     return status;
+}
+
+/* gS[k] = the group (0-based, numbered by first appearance) of the k-th
+ * remaining dof rem[k], k < nr, from the 1-based groups of all n dofs.
+ * seen: [n] workspace. */
+static void rest_groups(int n, int nr, const int *group, const int *rem, int *seen, int *gS)
+{
+    int i, k, ng = 0;
+    for (i = 0; i < n; i++) seen[i] = -1;
+    for (k = 0; k < nr; k++)
+    {
+        i = group[rem[k]] - 1;
+        if (i < 0 || i >= n) i = n - 1;        /* checked by the caller */
+        if (seen[i] < 0) seen[i] = ng++;
+        gS[k] = seen[i];
+    }
 }
 
 /* perm = [order of the remaining dofs R, last(:)] (0-based): the METIS order
@@ -567,7 +607,7 @@ static int order_block_last(const cholmod_sparse *A, int nlast, const int *last,
             /* the groups of the remaining dofs (0-based, < nr: first appearance) */
             int *gS = cholmod_malloc((size_t) n, sizeof(int), c);
             int *seen = cholmod_malloc((size_t) n, sizeof(int), c);
-            int ng = 0, st;
+            int st;
             if (gS == NULL || seen == NULL)
             {
                 cholmod_free((size_t) n, sizeof(int), gS, c);
@@ -575,14 +615,7 @@ static int order_block_last(const cholmod_sparse *A, int nlast, const int *last,
                 cholmod_free_sparse(&S, c);
                 return (c->status < 0) ? c->status : CHOLMOD_OUT_OF_MEMORY;
             }
-            for (i = 0; i < n; i++) seen[i] = -1;
-            for (k = 0; k < nr; k++)
-            {
-                i = group[rem[k]] - 1;
-                if (i < 0 || i >= n) i = n - 1;        /* checked by the caller */
-                if (seen[i] < 0) seen[i] = ng++;
-                gS[k] = seen[i];
-            }
+            rest_groups(n, nr, group, rem, seen, gS);
             st = order_groups(S, gS, method, NULL, permS, c);
             cholmod_free((size_t) n, sizeof(int), gS, c);
             cholmod_free((size_t) n, sizeof(int), seen, c);
@@ -801,6 +834,92 @@ int c2d_chol_analyze(void *handle, int n, const int *colptr, const int *rowind, 
         cholmod_free_sparse(&A, c);
     }
     if (status != CHOLMOD_OK && h->L != NULL) cholmod_free_factor(&h->L, c);
+    return status;
+}
+
+/* The top vertex separator of the node graph of the pattern without its
+ * `last` dofs (METIS_ComputeVertexSeparator, as the first level of a nested
+ * dissection): side[k] (k < n) = 0 or 1 for the two halves, 2 for the
+ * separator, 3 for a dof of `last`.  Arguments as c2d_chol_analyze's, the
+ * groups required. */
+int c2d_chol_separator(void *handle, int n, const int *colptr, const int *rowind, int offset,
+                       int nlast, const int *last, const int *group, int *side)
+{
+    struct c2d_chol *h = handle;
+    cholmod_common *c;
+    cholmod_sparse *A, *S = NULL;
+    int *map = NULL, *rem = NULL, *seen = NULL, *gS = NULL, *work = NULL, *adj = NULL, *where = NULL;
+    int i, k, nr, ng = 0, status;
+    size_t nnz = 0;
+
+    if (h == NULL) return C2D_CHOL_NO_HANDLE;
+    c = &h->common;
+    if (n < 1 || nlast < 0 || nlast >= n || (nlast > 0 && last == NULL) || group == NULL || side == NULL)
+    {
+        return C2D_CHOL_BAD_ARGUMENT;
+    }
+    A = copy_pattern(n, colptr, rowind, offset, c, &status);
+    if (A == NULL) return status;
+    nr = n - nlast;
+    map = cholmod_malloc((size_t) n, sizeof(int), c);
+    rem = cholmod_malloc((size_t) n, sizeof(int), c);
+    seen = cholmod_malloc((size_t) n, sizeof(int), c);
+    gS = cholmod_malloc((size_t) n, sizeof(int), c);
+    status = CHOLMOD_OUT_OF_MEMORY;
+    if (map == NULL || rem == NULL || seen == NULL || gS == NULL) goto done;
+    status = C2D_CHOL_BAD_ARGUMENT;
+    for (i = 0; i < n; i++) map[i] = 0;
+    for (k = 0; k < nlast; k++)
+    {
+        i = last[k] - 1;
+        if (i < 0 || i >= n || map[i] != 0) goto done;
+        map[i] = -1;
+        side[i] = 3;
+    }
+    for (i = 0, k = 0; i < n; i++)
+    {
+        if (map[i] == 0) { rem[k] = i; map[i] = k++; }
+    }
+    status = CHOLMOD_OUT_OF_MEMORY;
+    S = remaining_pattern(A, map, nr, c);
+    if (S == NULL) goto done;
+    rest_groups(n, nr, group, rem, seen, gS);
+    nnz = (size_t) ((int *) S->p)[nr];
+    work = cholmod_malloc(10 * (size_t) nr + 2, sizeof(int), c);
+    adj = cholmod_malloc(2 * nnz + 1, sizeof(int), c);
+    where = cholmod_malloc((size_t) nr, sizeof(int), c);
+    if (work == NULL || adj == NULL || where == NULL) goto done;
+    status = group_graph(S, gS, work, adj, &ng);
+    if (status != CHOLMOD_OK) goto done;
+    if (ng < 3)
+    {
+        status = C2D_CHOL_BAD_ARGUMENT;
+    }
+    else
+    {
+        idx_t nv = ng, sepsize = 0;
+        int ok;
+        c2d_metis_begin();
+        ok = METIS_ComputeVertexSeparator(&nv, GG_XADJ(work, nr), adj, GG_VW(work, nr), NULL, &sepsize, where);
+        c2d_metis_end();
+        status = (ok == METIS_OK) ? CHOLMOD_OK : (ok == METIS_ERROR_MEMORY) ? CHOLMOD_OUT_OF_MEMORY : CHOLMOD_INVALID;
+        if (status == CHOLMOD_OK)
+        {
+            for (k = 0; k < nr; k++) side[rem[k]] = where[GG_GID(work, nr)[k]];
+        }
+    }
+
+done:
+    if (status != CHOLMOD_OK && c->status < 0 && status == CHOLMOD_OUT_OF_MEMORY) status = c->status;
+    cholmod_free_sparse(&S, c);
+    cholmod_free_sparse(&A, c);
+    cholmod_free((size_t) n, sizeof(int), map, c);
+    cholmod_free((size_t) n, sizeof(int), rem, c);
+    cholmod_free((size_t) n, sizeof(int), seen, c);
+    cholmod_free((size_t) n, sizeof(int), gS, c);
+    cholmod_free(10 * (size_t) nr + 2, sizeof(int), work, c);
+    cholmod_free(2 * nnz + 1, sizeof(int), adj, c);
+    cholmod_free((size_t) nr, sizeof(int), where, c);
     return status;
 }
 

@@ -626,6 +626,13 @@ contains
       end if
       call say(trim(line))
     end if
+    if (factor%ncut > 0) then
+      write(line, '(a,i0,a,i0,a)') 'factor   ', factor%ncut, trim(merge(' part cut ', ' parts cut', factor%ncut == 1)) &
+        // ' at the top separator (', factor%separator, &
+        ' dofs): the halves factorized side by side, the separator' // &
+        trim(merge(' and the contact dofs', '                     ', factor%nlast > 0)) // ' as a dense block'
+      call say(trim(line))
+    end if
     if (allocated(cd%block)) then
       how = condensed_report(cd)
       if (len(how) > 0) call say('condense W from L_cc by body: ' // how)

@@ -4,13 +4,14 @@
 !> libraries (OpenBLAS, LAPACK); nothing is implemented here.
 !>
 !> Programming interface: the routines below, by their standard names.
-!>   BLAS    daxpy, drot, dgemv, dger, dtrsv, dtrsm, dsyrk
-!>   LAPACK  dgtsv, dpotrf, dpotri, dpotrs, dpstrf, dsysv, dgesvd, dgeqp3
+!>   BLAS    daxpy, drot, dgemv, dger, dtrsv, dtrsm, dtrmm, dsyrk
+!>   LAPACK  dgtsv, dpotrf, dlauum, dpotri, dpotrs, dpstrf, dsysv, dgesvd, dgeqp3
 module lapack_interfaces
   use kinds, only: dp
   implicit none
   private
-  public :: daxpy, drot, dgemv, dger, dtrsv, dtrsm, dsyrk, dgtsv, dpotrf, dpotri, dpotrs, dpstrf, dsysv, dgesvd, dgeqp3
+  public :: daxpy, drot, dgemv, dger, dtrsv, dtrsm, dtrmm, dsyrk, dgtsv, dpotrf, dlauum, dpotri, dpotrs, dpstrf, &
+            dsysv, dgesvd, dgeqp3
 
   interface
     subroutine daxpy(n, alpha, x, incx, y, incy)
@@ -66,6 +67,22 @@ module lapack_interfaces
       real(dp), intent(inout) :: dl(*), d(*), du(*), b(ldb, *)
       integer, intent(out) :: info
     end subroutine dgtsv
+    !> BLAS: B = alpha op(A) B or alpha B op(A), A triangular.
+    subroutine dtrmm(side, uplo, transa, diag, m, n, alpha, a, lda, b, ldb)
+      import :: dp
+      character, intent(in) :: side, uplo, transa, diag
+      integer, intent(in) :: m, n, lda, ldb
+      real(dp), intent(in) :: alpha, a(lda, *)
+      real(dp), intent(inout) :: b(ldb, *)
+    end subroutine dtrmm
+    !> LAPACK: U U' (uplo 'U') or L' L (uplo 'L') in place of the triangle.
+    subroutine dlauum(uplo, n, a, lda, info)
+      import :: dp
+      character, intent(in) :: uplo
+      integer, intent(in) :: n, lda
+      real(dp), intent(inout) :: a(lda, *)
+      integer, intent(out) :: info
+    end subroutine dlauum
     subroutine dpotrf(uplo, n, a, lda, info)
       import :: dp
       character, intent(in) :: uplo

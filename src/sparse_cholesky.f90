@@ -42,13 +42,24 @@
 !> in the order of `last`; `last` must then visit the parts in order (the
 !> dofs of a contact interface, ascending, do), else A is kept whole.
 !>
+!> Cut parts.  A part of split_min dofs or more that is larger than twice the
+!> other parts together (a body alone, or one much larger than the others:
+!> one thread would factorize it while the other waits) is cut at the top
+!> separator of its nested dissection (METIS, node groups) into two halves,
+!> each a CHOLMOD factor of its own with the separator's and the `last` dofs
+!> coupled to it ordered last; the separator and `last` are then condensed
+!> into one dense factor (split_factor).  The halves are work items of the
+!> loop over the parts like any part.  The part's pivots are [half 1, half 2,
+!> separator, its `last`], so the trailing block is still L_cc.  The rule is
+!> on sizes only: the factor is the same on any number of threads.
+!>
 !> Ownership.  A factor_t owns its CHOLMOD handles (common and factor, in C);
 !> free_factor or the final procedure releases them.  Do not copy a factor_t by
 !> assignment: both copies would hold the same handle.  The statistics stay
 !> readable after free_factor.
 !>
 !> Programming interface
-!>   type(factor_t)   opaque handles (private); ready, n, nlast, nparts, side_by_side, nnz_l,
+!>   type(factor_t)   opaque handles (private); ready, n, nlast, nparts, ncut, separator, side_by_side, nnz_l,
 !>                    flops, time_analyze, time_factorize, ordering,
 !>                    memory_peak, min_pivot_ratio
 !>   factorize(f, A, err [, last])          P A P' = L L' (the two halves below)
@@ -65,6 +76,7 @@
 !>                                          its diagonal sub-block first..first+count-1
 !>   trailing_block_end(f, nlast, first, e [, err])  end of L_cc's diagonal block at first
 !>   free_factor(f)                         release the handles
+!>   set_split_min(n)                       cut parts from n dofs on (default 200,000)
 !>   factor_nnz(f), factor_flops(f), factor_memory(f), factor_ordering(f)
 module sparse_cholesky
   use, intrinsic :: iso_c_binding, only: c_ptr, c_null_ptr, c_associated, c_int, c_double, &
@@ -75,6 +87,8 @@ module sparse_cholesky
                      omp_get_max_threads, omp_get_wtime
   use diagnostics, only: error_t, set_error, int_to_str, fail_numerical
   use sparse_matrix, only: csc_t, csc_nnz, csc_check
+  use split_factor, only: split_t, split_analyze, split_factorize_half, split_finish, split_solve, &
+                          split_trailing_range, split_block_end, split_stats, split_failure, split_min_ratio, split_free
   use cholmod_binding, only: c2d_chol_create, c2d_chol_destroy, c2d_chol_analyze, c2d_chol_factorize_values, &
                              c2d_chol_minor, c2d_chol_set_ordering, c2d_order_amd, c2d_order_metis, &
                              c2d_chol_stats, c2d_chol_min_pivot_ratio, c2d_chol_ordering_name, &
@@ -88,7 +102,7 @@ module sparse_cholesky
   private
   public :: factor_t, factorize, analyze_pattern, factorize_values, solve, solve_vector, solve_block
   public :: trailing_factor_block, trailing_block_end, solve_forward, solve_backward
-  public :: free_factor, factor_nnz, factor_flops, factor_memory, factor_ordering
+  public :: free_factor, factor_nnz, factor_flops, factor_memory, factor_ordering, set_split_min
 
   !> Floor of the order in the singularity tolerance (see singular_pivot_tolerance).
   integer, parameter :: tolerance_order_floor = 1000
@@ -103,6 +117,14 @@ module sparse_cholesky
   !> after the other and 1-30 ms side by side.
   integer, parameter :: side_by_side_min = 10000
 
+  !> A part of this many dofs or more, larger than twice the other parts
+  !> together (a body alone, or one much larger than the others), is cut at
+  !> its top separator into two halves factorized side by side (split_factor):
+  !> else one core would wait while it is factorized.  A rule on sizes, not
+  !> on threads: the factor is the same on any number of threads.
+  !> set_split_min changes it (the unit tests cut small matrices).
+  integer, protected :: split_min = 200000
+
   !> One part of A: the diagonal block A(first:first+n-1, first:first+n-1),
   !> which no entry couples to the rest, with its own CHOLMOD handle.
   type :: part_t
@@ -113,6 +135,8 @@ module sparse_cholesky
     integer :: last0 = 0
     integer :: rest0 = 0                  !< its other dofs: pivots rest0+1..rest0+n-nlast
     integer(c_int) :: status = 0          !< status of its last CHOLMOD call
+    logical :: cut = .false.              !< cut in two halves (split_factor)
+    type(split_t), allocatable :: split   !< the halves, when cut
   end type part_t
 
   !> A Cholesky factor P A P' = L L' and its statistics.
@@ -122,6 +146,8 @@ module sparse_cholesky
     integer :: n = 0                      !< order of A
     integer :: nlast = 0                  !< size of the block ordered last (0: none)
     integer :: nparts = 0                 !< number of parts, each factorized on its own
+    integer :: ncut = 0                   !< parts cut in two halves (split_factor)
+    integer :: separator = 0              !< dofs of their separators
     integer :: side_by_side = 1           !< threads the parts run on (1: one after the other)
     integer(i8) :: nnz_l = 0_i8           !< nnz(L), without zeros of supernodal amalgamation
     real(dp) :: flops = 0.0_dp            !< flop count of the numeric factorization
@@ -256,6 +282,12 @@ contains
       f%part(p)%status = c2d_chol_set_ordering(f%part(p)%handle, ordering)
     end do
 
+    do p = 1, f%nparts
+      associate (pt => f%part(p))
+        pt%cut = grouped .and. ordering == c2d_order_metis .and. pt%n >= split_min .and. pt%n > 2 * (n - pt%n)
+      end associate
+    end do
+
     t0 = omp_get_wtime()
     call parts_begin(f, nthreads, levels, blas)
     f%side_by_side = nthreads
@@ -297,6 +329,18 @@ contains
 
     subroutine analyze_part(pt)
       type(part_t), intent(inout) :: pt
+      if (pt%cut .and. pt%status == cholmod_ok) then
+        allocate(pt%split)
+        pt%status = split_analyze(pt%split, pt%handle, ordering, pt%n, colptr(pt%first:pt%first + pt%n), &
+                                  rowind(colptr(pt%first):), pt%first - 1, last_c(pt%last0 + 1:pt%last0 + pt%nlast), &
+                                  group_c(pt%first:pt%first + pt%n - 1))
+        if (pt%status == cholmod_ok) return
+        ! no two halves to cut it into (a degenerate graph): whole, as any part
+        call split_free(pt%split)
+        deallocate(pt%split)
+        pt%cut = .false.
+        pt%status = cholmod_ok
+      end if
       if (pt%status == cholmod_ok) &
         pt%status = c2d_chol_analyze(pt%handle, int(pt%n, c_int), colptr(pt%first:pt%first + pt%n), &
                                      rowind(colptr(pt%first):), int(pt%first - 1, c_int), &
@@ -416,9 +460,11 @@ contains
   subroutine parts_begin(f, nthreads, levels, blas)
     type(factor_t), intent(in) :: f
     integer, intent(out) :: nthreads, levels, blas
-    nthreads = min(size(f%part), omp_get_max_threads())
-    if (size(f%part) > 1) then
-      if (f%part(largest(f, 2))%n < side_by_side_min) nthreads = 1
+    integer, allocatable :: item(:,:)
+    call work_items(f, item)
+    nthreads = min(size(item, 2), omp_get_max_threads())
+    if (size(item, 2) > 1) then
+      if (item(3, 2) < side_by_side_min) nthreads = 1
     end if
     levels = omp_get_max_active_levels()
     blas = 0
@@ -430,6 +476,42 @@ contains
       call omp_set_max_active_levels(omp_get_active_level())
     end if
   end subroutine parts_begin
+
+  !> The work of a loop over the parts: item(:, k) = [part, half (0: the
+  !> whole part), dofs], a cut part giving its two halves, largest first.
+  subroutine work_items(f, item)
+    type(factor_t), intent(in) :: f
+    integer, allocatable, intent(out) :: item(:,:)
+    integer :: p, k, h, j
+    integer :: tmp(3)
+    allocate(item(3, size(f%part) + count(f%part%cut)))
+    k = 0
+    do p = 1, size(f%part)
+      if (f%part(p)%cut) then
+        do h = 1, 2
+          k = k + 1
+          if (allocated(f%part(p)%split)) then
+            item(:, k) = [p, h, f%part(p)%split%half(h)%n]
+          else                            ! before the analysis cuts it
+            item(:, k) = [p, h, f%part(p)%n / 2]
+          end if
+        end do
+      else
+        k = k + 1
+        item(:, k) = [p, 0, f%part(p)%n]
+      end if
+    end do
+    do k = 2, size(item, 2)               ! stable insertion sort, largest first
+      tmp = item(:, k)
+      j = k - 1
+      do while (j >= 1)
+        if (item(3, j) >= tmp(3)) exit
+        item(:, j + 1) = item(:, j)
+        j = j - 1
+      end do
+      item(:, j + 1) = tmp
+    end do
+  end subroutine work_items
 
   subroutine parts_end(levels, blas)
     integer, intent(in) :: levels, blas
@@ -450,6 +532,7 @@ contains
     integer(c_int) :: column, equation
     real(c_double) :: ratio
     integer :: i, j, p, nthreads, levels, blas, worst
+    integer, allocatable :: item(:,:)
     real(dp) :: t0, worst_ratio
     logical :: analyzed
 
@@ -469,17 +552,28 @@ contains
       end do
     end do
     t0 = omp_get_wtime()
+    call work_items(f, item)
     call parts_begin(f, nthreads, levels, blas)
     !$omp parallel do num_threads(nthreads) schedule(dynamic, 1) if (nthreads > 1)
-    do i = 1, f%nparts
-      associate (pt => f%part(largest(f, i)))
-        pt%status = c2d_chol_factorize_values(pt%handle, int(pt%n, c_int), A%colptr(pt%first:pt%first + pt%n), &
-                                              A%rowind(A%colptr(pt%first):), int(pt%first - 1, c_int), &
-                                              A%val(A%colptr(pt%first):))
+    do i = 1, size(item, 2)
+      associate (pt => f%part(item(1, i)))
+        if (item(2, i) == 0) then
+          pt%status = c2d_chol_factorize_values(pt%handle, int(pt%n, c_int), A%colptr(pt%first:pt%first + pt%n), &
+                                                A%rowind(A%colptr(pt%first):), int(pt%first - 1, c_int), &
+                                                A%val(A%colptr(pt%first):))
+        else
+          call split_factorize_half(pt%split, item(2, i), A%val(A%colptr(pt%first):A%colptr(pt%first + pt%n) - 1))
+        end if
       end associate
     end do
     !$omp end parallel do
     call parts_end(levels, blas)
+    ! the dense block of each cut part, on every BLAS thread
+    do p = 1, f%nparts
+      associate (pt => f%part(p))
+        if (pt%cut) pt%status = split_finish(pt%split, A%val(A%colptr(pt%first):A%colptr(pt%first + pt%n) - 1))
+      end associate
+    end do
     call read_statistics(f)
     f%time_factorize = omp_get_wtime() - t0
 
@@ -488,7 +582,7 @@ contains
       case (cholmod_ok)
         continue
       case (cholmod_not_posdef)
-        call c2d_chol_minor(f%part(p)%handle, column, equation)
+        call part_minor(f%part(p), column, equation)
         call set_error(err, singular_message(global_equation(f%part(p), equation), &
                                              global_pivot(f, f%part(p), column)), 1)
         return
@@ -504,7 +598,7 @@ contains
     worst = 1
     worst_ratio = huge(1.0_dp)
     do p = 1, f%nparts
-      call c2d_chol_min_pivot_ratio(f%part(p)%handle, ratio, column, equation)
+      call part_min_ratio(f%part(p), ratio, column, equation)
       if (ieee_is_nan(ratio)) then
         call set_error(err, 'sparse Cholesky: non-finite pivot at equation ' // &
                        int_to_str(global_equation(f%part(p), equation)) // ' (column ' // &
@@ -520,12 +614,45 @@ contains
     end do
     f%min_pivot_ratio = worst_ratio
     if (worst_ratio < singular_pivot_tolerance(A%n)) then
-      call c2d_chol_min_pivot_ratio(f%part(worst)%handle, ratio, column, equation)
+      call part_min_ratio(f%part(worst), ratio, column, equation)
       call set_error(err, singular_message(global_equation(f%part(worst), equation), &
                                            global_pivot(f, f%part(worst), column)), 1)
       return
     end if
     f%ready = .true.
+
+  contains
+
+    !> The failing pivot and dof of a part (its own numbering).
+    subroutine part_minor(pt, column, equation)
+      type(part_t), intent(in) :: pt
+      integer(c_int), intent(out) :: column, equation
+      integer :: c, e
+      if (pt%cut) then
+        call split_failure(pt%split, c, e)
+        column = int(c, c_int)
+        equation = int(e, c_int)
+      else
+        call c2d_chol_minor(pt%handle, column, equation)
+      end if
+    end subroutine part_minor
+
+    !> The least pivot ratio of a part, its pivot and dof.
+    subroutine part_min_ratio(pt, ratio, column, equation)
+      type(part_t), intent(in) :: pt
+      real(c_double), intent(out) :: ratio
+      integer(c_int), intent(out) :: column, equation
+      real(dp) :: r
+      integer :: c, e
+      if (pt%cut) then
+        call split_min_ratio(pt%split, A%val(A%colptr(pt%first):A%colptr(pt%first + pt%n) - 1), r, c, e)
+        ratio = real(r, c_double)
+        column = int(c, c_int)
+        equation = int(e, c_int)
+      else
+        call c2d_chol_min_pivot_ratio(pt%handle, ratio, column, equation)
+      end if
+    end subroutine part_min_ratio
   end subroutine factorize_values
 
   !> The dof of A of a part's equation (1-based within the part).
@@ -556,18 +683,35 @@ contains
     real(c_double) :: flops, time_analyze, time_factorize
     character(kind=c_char) :: buf(32)
     integer :: p, named
+    integer(i8) :: cut_lnz, cut_memory
+    real(dp) :: cut_flops
     f%nnz_l = 0_i8
     f%flops = 0.0_dp
     f%memory_peak = 0_i8
     named = 1
+    f%ncut = 0
+    f%separator = 0
     do p = 1, f%nparts
-      call c2d_chol_stats(f%part(p)%handle, lnz, flops, memory_peak, time_analyze, time_factorize)
-      f%nnz_l = f%nnz_l + int(lnz, i8)
-      f%flops = f%flops + real(flops, dp)
-      f%memory_peak = f%memory_peak + int(memory_peak, i8)
+      if (f%part(p)%cut) then
+        call split_stats(f%part(p)%split, cut_lnz, cut_flops, cut_memory)
+        f%nnz_l = f%nnz_l + cut_lnz
+        f%flops = f%flops + cut_flops
+        f%memory_peak = f%memory_peak + cut_memory
+        f%ncut = f%ncut + 1
+        f%separator = f%separator + f%part(p)%split%nsep
+      else
+        call c2d_chol_stats(f%part(p)%handle, lnz, flops, memory_peak, time_analyze, time_factorize)
+        f%nnz_l = f%nnz_l + int(lnz, i8)
+        f%flops = f%flops + real(flops, dp)
+        f%memory_peak = f%memory_peak + int(memory_peak, i8)
+      end if
       if (f%part(p)%nlast > 0 .and. f%part(named)%nlast == 0) named = p
     end do
-    call c2d_chol_ordering_name(f%part(named)%handle, buf, int(size(buf), c_int))
+    if (f%part(named)%cut) then
+      call c2d_chol_ordering_name(f%part(named)%split%half(1)%handle, buf, int(size(buf), c_int))
+    else
+      call c2d_chol_ordering_name(f%part(named)%handle, buf, int(size(buf), c_int))
+    end if
     f%ordering = c_string(buf)
   end subroutine read_statistics
 
@@ -741,7 +885,7 @@ contains
     allocate(status(f%nparts))
     call parts_begin(f, nthreads, levels, blas)
     if (f%nparts == 1) then                 ! the part's own order is A's: no copy
-      status(1) = c2d_chol_solve_half(f%part(1)%handle, half, int(f%n, c_int), int(m, c_int), b, x)
+      status(1) = part_solve(f%part(1), half, m, b, x)
       call parts_end(levels, blas)
       return
     end if
@@ -759,7 +903,7 @@ contains
         else                                          ! b in the order of A
           bp = b(pt%first:pt%first + pt%n - 1, :)
         end if
-        status(p) = c2d_chol_solve_half(pt%handle, half, int(pt%n, c_int), int(m, c_int), bp, xp)
+        status(p) = part_solve(pt, half, m, bp, xp)
         if (half == c2d_solve_forward) then
           x(r0 + 1:r0 + nr, :) = xp(1:nr, :)
           x(l0 + 1:l0 + pt%nlast, :) = xp(nr + 1:, :)
@@ -772,6 +916,21 @@ contains
     !$omp end parallel do
     call parts_end(levels, blas)
   end subroutine solve_parts
+
+  !> A part's solve or one of its halves, for m columns.
+  function part_solve(pt, half, m, b, x) result(status)
+    type(part_t), intent(in) :: pt
+    integer(c_int), intent(in) :: half
+    integer, intent(in) :: m
+    real(dp), intent(in) :: b(pt%n, m)
+    real(dp), intent(inout) :: x(pt%n, m)
+    integer(c_int) :: status
+    if (pt%cut) then
+      status = split_solve(pt%split, half, m, b, x)
+    else
+      status = c2d_chol_solve_half(pt%handle, half, int(pt%n, c_int), int(m, c_int), b, x)
+    end if
+  end function part_solve
 
   !> '' when every part's solve succeeded, else the message of the first failure.
   function solve_status(f, status) result(msg)
@@ -828,12 +987,10 @@ contains
           hi = min(k1 + m - 1, pt%last0 + pt%nlast)
           if (lo > hi) cycle
           if (lo == k1 .and. hi == k1 + m - 1) then
-            status = c2d_chol_trailing_range(pt%handle, int(pt%nlast, c_int), int(lo - pt%last0, c_int), &
-                                             int(m, c_int), Lcc)
+            status = part_trailing_range(pt, lo - pt%last0, m, Lcc)
           else
             allocate(block(hi - lo + 1, hi - lo + 1))
-            status = c2d_chol_trailing_range(pt%handle, int(pt%nlast, c_int), int(lo - pt%last0, c_int), &
-                                             int(hi - lo + 1, c_int), block)
+            status = part_trailing_range(pt, lo - pt%last0, hi - lo + 1, block)
             Lcc(lo - k1 + 1:hi - k1 + 1, lo - k1 + 1:hi - k1 + 1) = block
             deallocate(block)
           end if
@@ -867,8 +1024,12 @@ contains
       do p = 1, f%nparts
         associate (pt => f%part(p))
           if (first > pt%last0 .and. first <= pt%last0 + pt%nlast) then
-            status = c2d_chol_trailing_block_end(pt%handle, int(pt%nlast, c_int), int(first - pt%last0, c_int), &
-                                                 last_row)
+            if (pt%cut) then
+              status = split_block_end(pt%split, pt%nlast, first - pt%last0, last_row)
+            else
+              status = c2d_chol_trailing_block_end(pt%handle, int(pt%nlast, c_int), int(first - pt%last0, c_int), &
+                                                   last_row)
+            end if
             e = pt%last0 + int(last_row)
             exit
           end if
@@ -879,6 +1040,19 @@ contains
     end if
     call report(msg, err)
   end subroutine trailing_block_end
+
+  !> Rows and columns first..first+count-1 of a part's trailing block.
+  function part_trailing_range(pt, first, count, block) result(status)
+    type(part_t), intent(in) :: pt
+    integer, intent(in) :: first, count
+    real(dp), intent(out) :: block(count, count)
+    integer(c_int) :: status
+    if (pt%cut) then
+      status = split_trailing_range(pt%split, pt%nlast, first, count, block)
+    else
+      status = c2d_chol_trailing_range(pt%handle, int(pt%nlast, c_int), int(first, c_int), int(count, c_int), block)
+    end if
+  end function part_trailing_range
 
   !> '' when f can have a trailing block of nlast dofs, else why not.
   function trailing_check(f, nlast) result(msg)
@@ -918,6 +1092,7 @@ contains
     if (allocated(f%part)) then
       do p = 1, size(f%part)
         if (c_associated(f%part(p)%handle)) call c2d_chol_destroy(f%part(p)%handle)
+        if (allocated(f%part(p)%split)) call split_free(f%part(p)%split)
       end do
       deallocate(f%part)
     end if
@@ -929,6 +1104,13 @@ contains
     type(factor_t), intent(inout) :: f
     call free_factor(f)
   end subroutine finalize_factor
+
+  !> Cut parts of split_min_dofs dofs or more (split_min); the unit tests
+  !> lower it to cut small matrices.
+  subroutine set_split_min(n)
+    integer, intent(in) :: n
+    split_min = n
+  end subroutine set_split_min
 
   !> nnz(L) of the last factorization (without amalgamation zeros).
   pure integer(i8) function factor_nnz(f)

@@ -18,7 +18,7 @@ program test_sparse_cholesky
   use sparse_cholesky, only: factor_t, factorize, solve, solve_vector, solve_block, trailing_factor_block, &
                              solve_forward, solve_backward, trailing_block_end, &
                              free_factor, factor_nnz, factor_flops, factor_memory, factor_ordering, &
-                             analyze_pattern, factorize_values
+                             analyze_pattern, factorize_values, set_split_min
   implicit none
 
   call test_triplets()
@@ -34,6 +34,7 @@ program test_sparse_cholesky
   call test_bad_arguments()
   call test_fill_with_last()
   call test_node_groups()
+  call test_cut()
   call finish_tests()
 
 contains
@@ -745,6 +746,102 @@ contains
     call check_small(maxval(abs(yv(n - nl + 1:) - expect)) / maxval(abs(expect)), 1.0e-12_dp, &
                      'elasticity: forward half of [0; v] = [0; Lcc^-1 v]')
   end subroutine check_halves
+
+  !> A part cut at its top separator into two halves (split_factor) against
+  !> the same matrix factorized whole: the solution, L_cc (the Cholesky
+  !> factor of the Schur complement on `last`, unique: the same to rounding
+  !> whatever the elimination before it), the halves of the solve, a second
+  !> body left whole beside it, and a singular cut part reported at a dof.
+  subroutine test_cut()
+    type(csc_t) :: A1, A2, A
+    type(factor_t) :: f, g
+    type(error_t), allocatable :: err
+    integer, allocatable :: dof_of(:,:), group(:), last(:)
+    real(dp), allocatable :: b(:), x(:), xw(:), lcc(:,:), lw(:,:), bb(:,:), xx(:,:)
+    integer :: k, ix, node, nx, ny, j
+    real(dp) :: worst
+
+    nx = 60
+    ny = 40
+    call elasticity(nx, ny, .true., A, dof_of)
+    group = [((k + 1) / 2, k = 1, A%n)]
+    allocate(last(2 * nx))
+    k = 0
+    do ix = 1, nx                                   ! the top edge, as a contact interface
+      node = 1 + ix + (nx + 1) * ny
+      last(k + 1:k + 2) = dof_of(:, node)
+      k = k + 2
+    end do
+    allocate(b(A%n), x(A%n), xw(A%n))
+    b = smooth_rhs(A%n, 7)
+
+    call set_split_min(huge(1))
+    call analyze_pattern(g, A%n, A%colptr, A%rowind, err, last=last, group=group, method='metis')
+    if (.not. allocated(err)) call factorize_values(g, A, err)
+    call check(.not. allocated(err) .and. g%ncut == 0, 'cut: the whole factor (no cut)')
+    if (allocated(err)) return
+    call set_split_min(1000)
+    call analyze_pattern(f, A%n, A%colptr, A%rowind, err, last=last, group=group, method='metis')
+    if (.not. allocated(err)) call factorize_values(f, A, err)
+    call check(.not. allocated(err) .and. f%ncut == 1 .and. f%separator > 0, &
+               'cut: one part cut at a separator of ' // itoa(f%separator) // ' dofs')
+    if (allocated(err)) then
+      print '(a)', '  ' // err%message
+      call set_split_min(200000)
+      return
+    end if
+    call solve(f, b, x)
+    call solve(g, b, xw)
+    call check_small(residual_ratio(A, x, b), 1.0e-14_dp, 'cut: scaled residual < 1e-14')
+    call check_small(maxval(abs(x - xw)) / maxval(abs(xw)), 1.0e-11_dp, 'cut: the solution of the whole factor')
+    allocate(bb(A%n, 3), xx(A%n, 3))
+    bb(:, 1) = b
+    bb(:, 2) = 1.0_dp
+    bb(:, 3) = [(cos(0.7_dp * k), k = 1, A%n)]
+    call solve(f, bb, xx)
+    worst = 0.0_dp
+    do j = 1, 3
+      worst = max(worst, residual_ratio(A, xx(:, j), bb(:, j)))
+    end do
+    call check_small(worst, 1.0e-14_dp, 'cut: 3-column block, scaled residual < 1e-14 for each')
+    call trailing_factor_block(f, size(last), lcc)
+    call trailing_factor_block(g, size(last), lw)
+    call check_small(maxval(abs(lcc - lw)) / maxval(abs(lw)), 1.0e-11_dp, &
+                     'cut: L_cc = the whole factor''s (the factor of the Schur complement on `last`)')
+    call check_halves(f, A%n, b, x, last, lcc)
+    call trailing_block_end(f, size(last), 1, k)
+    call check(k == size(last), 'cut: L_cc is one block (trailing_block_end)')
+
+    ! beside a second, smaller body, left whole
+    call grid_laplacian(30, .true., A2)
+    call block_diagonal(A, A2, A1)
+    group = [group, [(A%n + k, k = 1, A2%n)]]
+    call analyze_pattern(f, A1%n, A1%colptr, A1%rowind, err, last=[last, A%n + 5, A%n + 6], group=group, &
+                         method='metis')
+    if (.not. allocated(err)) call factorize_values(f, A1, err)
+    call check(.not. allocated(err) .and. f%nparts == 2 .and. f%ncut == 1, 'cut: two bodies, the larger cut')
+    if (allocated(err)) then
+      call set_split_min(200000)
+      return
+    end if
+    deallocate(b, x)
+    allocate(b(A1%n), x(A1%n))
+    b = smooth_rhs(A1%n, 3)
+    call solve(f, b, x)
+    call check_small(residual_ratio(A1, x, b), 1.0e-14_dp, 'cut: two bodies, scaled residual < 1e-14')
+    call trailing_factor_block(f, size(last) + 2, lcc)
+    call check_halves(f, A1%n, b, x, [last, A%n + 5, A%n + 6], lcc)
+
+    ! no fixed edge: rigid-body modes, reported at a dof whatever half they fall in
+    call elasticity(nx, ny, .false., A, dof_of)
+    group = [((k + 1) / 2, k = 1, A%n)]
+    call analyze_pattern(f, A%n, A%colptr, A%rowind, err, group=group, method='metis')
+    if (.not. allocated(err)) call factorize_values(f, A, err)
+    call check(allocated(err), 'cut: a free body (singular) is reported')
+    if (allocated(err)) call check(contains_text(err%message, 'singular or not positive definite at equation'), &
+                                   'cut: ... at an equation: ' // err%message)
+    call set_split_min(200000)
+  end subroutine test_cut
 
   !> Singular matrices are reported with the dof of the dependent column.
   subroutine test_singular()
