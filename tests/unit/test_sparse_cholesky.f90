@@ -180,6 +180,26 @@ contains
     s = maxval(rowsum)
   end function norm_inf
 
+  !> The worst scaled residual of a 3-column block solve (b, ones and
+  !> cos(w k), solved in one call).
+  function block_residual(f, A, b, w) result(worst)
+    type(factor_t), intent(in) :: f
+    type(csc_t), intent(in) :: A
+    real(dp), intent(in) :: b(:), w
+    real(dp) :: worst
+    real(dp), allocatable :: bb(:,:), xx(:,:)
+    integer :: j, k
+    allocate(bb(A%n, 3), xx(A%n, 3))
+    bb(:, 1) = b
+    bb(:, 2) = 1.0_dp
+    bb(:, 3) = [(cos(w * k), k = 1, A%n)]
+    call solve(f, bb, xx)
+    worst = 0.0_dp
+    do j = 1, 3
+      worst = max(worst, residual_ratio(A, xx(:, j), bb(:, j)))
+    end do
+  end function block_residual
+
   !> Scale-free residual ||A x - b||_inf / (||A||_inf ||x||_inf + ||b||_inf).
   function residual_ratio(A, x, b) result(r)
     type(csc_t), intent(in) :: A
@@ -473,8 +493,7 @@ contains
     type(factor_t) :: f, g
     type(error_t), allocatable :: err
     integer, allocatable :: dof_of(:,:), last(:), back(:)
-    real(dp), allocatable :: b(:), x(:), xw(:), bb(:,:), xx(:,:), lcc(:,:), blk(:,:)
-    real(dp) :: worst
+    real(dp), allocatable :: b(:), x(:), xw(:), lcc(:,:), blk(:,:)
     integer, parameter :: m2 = 105
     integer :: n, n1, k, j
 
@@ -493,16 +512,8 @@ contains
     call check(f%side_by_side == min(2, omp_get_max_threads()), 'parts: factorized side by side on the threads')
     call solve(f, b, x)
     call check_small(residual_ratio(A, x, b), 1.0e-14_dp, 'parts: scaled residual < 1e-14')
-    allocate(bb(n, 3), xx(n, 3))
-    bb(:, 1) = b
-    bb(:, 2) = 1.0_dp
-    bb(:, 3) = [(cos(1.3_dp * k), k = 1, n)]
-    call solve(f, bb, xx)
-    worst = 0.0_dp
-    do j = 1, 3
-      worst = max(worst, residual_ratio(A, xx(:, j), bb(:, j)))
-    end do
-    call check_small(worst, 1.0e-14_dp, 'parts: 3-column block, scaled residual < 1e-14 for each')
+    call check_small(block_residual(f, A, b, 1.3_dp), 1.0e-14_dp, &
+                     'parts: 3-column block, scaled residual < 1e-14 for each')
 
     ! dofs of both bodies last, ascending: two parts; in the other order: one
     last = [(n1 - 6 + j, j = 1, 6), (n1 + m2 * (m2 - 1) + k, k = 1, 17)]
@@ -757,9 +768,8 @@ contains
     type(factor_t) :: f, g
     type(error_t), allocatable :: err
     integer, allocatable :: dof_of(:,:), group(:), last(:)
-    real(dp), allocatable :: b(:), x(:), xw(:), lcc(:,:), lw(:,:), bb(:,:), xx(:,:)
-    integer :: k, ix, node, nx, ny, j
-    real(dp) :: worst
+    real(dp), allocatable :: b(:), x(:), xw(:), lcc(:,:), lw(:,:)
+    integer :: k, ix, node, nx, ny
 
     nx = 60
     ny = 40
@@ -794,16 +804,8 @@ contains
     call solve(g, b, xw)
     call check_small(residual_ratio(A, x, b), 1.0e-14_dp, 'cut: scaled residual < 1e-14')
     call check_small(maxval(abs(x - xw)) / maxval(abs(xw)), 1.0e-11_dp, 'cut: the solution of the whole factor')
-    allocate(bb(A%n, 3), xx(A%n, 3))
-    bb(:, 1) = b
-    bb(:, 2) = 1.0_dp
-    bb(:, 3) = [(cos(0.7_dp * k), k = 1, A%n)]
-    call solve(f, bb, xx)
-    worst = 0.0_dp
-    do j = 1, 3
-      worst = max(worst, residual_ratio(A, xx(:, j), bb(:, j)))
-    end do
-    call check_small(worst, 1.0e-14_dp, 'cut: 3-column block, scaled residual < 1e-14 for each')
+    call check_small(block_residual(f, A, b, 0.7_dp), 1.0e-14_dp, &
+                     'cut: 3-column block, scaled residual < 1e-14 for each')
     call trailing_factor_block(f, size(last), lcc)
     call trailing_factor_block(g, size(last), lw)
     call check_small(maxval(abs(lcc - lw)) / maxval(abs(lw)), 1.0e-11_dp, &
