@@ -16,7 +16,7 @@
 !> L_T, as in an unsplit factor.
 !>
 !> The price: each half factorizes its dense block M_i (|T_i|^3/3 flops) and
-!> forms M_i M_i' (as much again), and S is factorized once more; the gain is
+!> forms M_i M_i' (as much again), and S is factorized (|T|^3/3); the gain is
 !> the two halves side by side (doc/performance.md, "A body cut in two").
 !>
 !> All indices are the part's own (1..n); 1-based.
@@ -575,8 +575,8 @@ contains
   end subroutine split_failure
 
   !> The least L(k,k)^2 / A(p_k,p_k) over the halves' pivots of H_i and
-  !> over L_T, with its pivot and dof as split_failure gives them; diag: the
-  !> part's diagonal entries by entry of the pattern (val).
+  !> over L_T, with its pivot and dof as split_failure gives them; val: the
+  !> part's values, entries in the order of its pattern (A(t,t) for L_T).
   subroutine split_min_ratio(sp, val, ratio, column, equation)
     type(split_t), intent(in) :: sp
     real(dp), intent(in) :: val(:)
