@@ -44,6 +44,7 @@ module split_factor
     integer, allocatable :: colptr(:)      !< (n + 1) its upper triangle (CSC)
     integer, allocatable :: rowind(:)
     integer, allocatable :: src(:)         !< the part's entry of each of its entries
+                                           !< (the pattern is freed once factorized)
     real(dp), allocatable :: m(:,:)        !< M_i, lower triangular
     integer(c_int) :: status = cholmod_ok
   end type half_t
@@ -302,9 +303,10 @@ contains
       nt = h%n - h%nh
       allocate(hv(size(h%src)))
       hv = real(val(h%src), c_double)
+      deallocate(h%src)               ! a factor takes its values once (c2d_chol_factorize_values)
       h%status = c2d_chol_factorize_values(h%handle, int(h%n, c_int), int(h%colptr, c_int), int(h%rowind, c_int), &
                                            0_c_int, hv)
-      deallocate(hv)
+      deallocate(hv, h%colptr, h%rowind)
       if (h%status /= cholmod_ok) return
       allocate(h%m(nt, nt))
       if (nt > 0) h%status = c2d_chol_trailing_range(h%handle, int(nt, c_int), 1_c_int, int(nt, c_int), h%m)
@@ -574,8 +576,8 @@ contains
     end if
   end subroutine split_failure
 
-  !> The least L(k,k)^2 / A(p_k,p_k) over the halves' pivots of H_i and
-  !> over L_T, with its pivot and dof as split_failure gives them; val: the
+  !> The least L(k,k)^2 / A(p_k,p_k) over the halves' pivots (H_i and T_i)
+  !> and over L_T, with its pivot and dof as split_failure gives them; val: the
   !> part's values, entries in the order of its pattern (A(t,t) for L_T).
   subroutine split_min_ratio(sp, val, ratio, column, equation)
     type(split_t), intent(in) :: sp
