@@ -265,9 +265,11 @@ contains
   !> contact dofs last).
   subroutine order_pattern()
     if (size(last) > 0) then
-      call analyze_pattern(factor, k%n, k%colptr, k%rowind, err_order, last=last, group=group, method=trim(ordering))
+      call analyze_pattern(factor, k%n, k%colptr, k%rowind, err_order, last=last, group=group, method=trim(ordering), &
+                           cut=deck%solver%cut == 'auto')
     else
-      call analyze_pattern(factor, k%n, k%colptr, k%rowind, err_order, group=group, method=trim(ordering))
+      call analyze_pattern(factor, k%n, k%colptr, k%rowind, err_order, group=group, method=trim(ordering), &
+                           cut=deck%solver%cut == 'auto')
     end if
   end subroutine order_pattern
 
@@ -867,6 +869,7 @@ contains
       '  SOLVER lcp=auto|lemke|pgs|pdas [tol=1e-10] [maxit=N] [omega=1.0]   (pdas: frictionless only)', &
       '         [ordering=auto|metis|amd]  (fill-reducing ordering; auto: AMD up to 5e5 free dofs, METIS above)', &
       '         [condense=auto|solve|inverse]  (W per body: triangular solves or the block''s inverse)', &
+      '         [cut=auto|off]  (auto: a body of more than 2e5 dofs and twice the others cut in two halves)', &
       '  STEPS n                           (load steps; ramp=k0:k1: load 0 at step k0 rising to 1 at k1)', &
       '  OUTPUT [vtk=FILE] [contact=FILE.csv] [summary=FILE] [fields=displacement,contact_pressure,gap,stress,von_mises]', &
       '', &

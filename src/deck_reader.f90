@@ -31,7 +31,7 @@
 !>   CONTACT slave=body:boundary master=body:boundary [gap=geometry|zero]
 !>           [mu=number | tresca=number]           (default frictionless)
 !>   SOLVER [lcp=auto|lemke|pgs|pdas] [tol=1e-10] [maxit=0] [omega=1] [ordering=auto|metis|amd]
-!>          [condense=auto|solve|inverse]
+!>          [condense=auto|solve|inverse] [cut=auto|off]
 !>   STEPS n                             default 1; 1 <= n <= 100000
 !>   OUTPUT [vtk=NAME.vtk] [contact=NAME_contact.csv] [summary=NAME.summary]
 !>                                      (NAME: deck file name without folder and
@@ -154,11 +154,12 @@ module deck_reader
     integer :: line = 0
   end type contact_deck_t
 
-  !> SOLVER [lcp=] [tol=] [maxit=] [omega=] [ordering=] [condense=]
+  !> SOLVER [lcp=] [tol=] [maxit=] [omega=] [ordering=] [condense=] [cut=]
   type :: solver_deck_t
     character(len=:), allocatable :: lcp        !< 'auto' (default), 'lemke', 'pgs', 'pdas'
     character(len=:), allocatable :: ordering   !< 'auto' (default), 'metis', 'amd'
     character(len=:), allocatable :: condense   !< 'auto' (default), 'solve', 'inverse'
+    character(len=:), allocatable :: cut        !< 'auto' (default), 'off': a large body cut in two halves
     real(dp) :: tol = 1.0e-10_dp
     integer :: maxit = 0                        !< 0: the solver's default
     real(dp) :: omega = 1.0_dp
@@ -1609,20 +1610,21 @@ contains
                               '=body:boundary, names made of letters, digits, _ . -)')
   end subroutine split_side
 
-  !> SOLVER [lcp=] [tol=] [maxit=] [omega=] [ordering=] [condense=]
+  !> SOLVER [lcp=] [tol=] [maxit=] [omega=] [ordering=] [condense=] [cut=]
   subroutine do_solver(s, deck, st)
     type(state_t), intent(inout) :: s
     type(deck_t), intent(inout) :: deck
     type(stmt_t), intent(in) :: st
     character(len=*), parameter :: usage = 'SOLVER [lcp=auto|lemke|pgs|pdas] [tol=number] [maxit=integer] ' // &
-                                           '[omega=number] [ordering=auto|metis|amd] [condense=auto|solve|inverse]'
-    character(len=8), parameter :: names(6) = [character(len=8) :: 'lcp', 'tol', 'maxit', 'omega', 'ordering', &
-                                               'condense']
-    character(len=19), parameter :: forms(6) = [character(len=19) :: 'auto|lemke|pgs|pdas', 'number', 'integer', &
-                                                'number', 'auto|metis|amd', 'auto|solve|inverse']
-    logical :: seen(6), ok
-    type(text_t) :: val(6)
-    character(len=:), allocatable :: lcp, ordering, condense
+                                           '[omega=number] [ordering=auto|metis|amd] [condense=auto|solve|inverse] ' // &
+                                           '[cut=auto|off]'
+    character(len=8), parameter :: names(7) = [character(len=8) :: 'lcp', 'tol', 'maxit', 'omega', 'ordering', &
+                                               'condense', 'cut']
+    character(len=19), parameter :: forms(7) = [character(len=19) :: 'auto|lemke|pgs|pdas', 'number', 'integer', &
+                                                'number', 'auto|metis|amd', 'auto|solve|inverse', 'auto|off']
+    logical :: seen(7), ok
+    type(text_t) :: val(7)
+    character(len=:), allocatable :: lcp, ordering, condense, halves
 
     if (s%solver_line > 0) then
       call report(s, st%line, 'second SOLVER (first at line ' // int_to_str(s%solver_line) // &
@@ -1644,6 +1646,10 @@ contains
     if (allocated(val(6)%s)) then
       condense = get_choice(s, st, val(6), 'condense', ['auto   ', 'solve  ', 'inverse'])
       if (len(condense) > 0) deck%solver%condense = condense
+    end if
+    if (allocated(val(7)%s)) then
+      halves = get_choice(s, st, val(7), 'cut', ['auto', 'off '])
+      if (len(halves) > 0) deck%solver%cut = halves
     end if
     call get_positive(s, st, val(2), 'tol', deck%solver%tol, ok)
     call get_integer(s, st, val(3), 'maxit', 0, deck%solver%maxit, ok)
@@ -2040,6 +2046,7 @@ contains
     if (.not. allocated(deck%solver%lcp)) deck%solver%lcp = 'auto'
     if (.not. allocated(deck%solver%ordering)) deck%solver%ordering = 'auto'
     if (.not. allocated(deck%solver%condense)) deck%solver%condense = 'auto'
+    if (.not. allocated(deck%solver%cut)) deck%solver%cut = 'auto'
     if (.not. allocated(deck%output%vtk)) deck%output%vtk = deck%name // '.vtk'
     if (.not. allocated(deck%output%contact)) deck%output%contact = deck%name // '_contact.csv'
     if (.not. allocated(deck%output%summary)) deck%output%summary = deck%name // '.summary'

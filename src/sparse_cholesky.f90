@@ -63,7 +63,7 @@
 !>                    flops, time_analyze, time_factorize, ordering,
 !>                    memory_peak, min_pivot_ratio
 !>   factorize(f, A, err [, last])          P A P' = L L' (the two halves below)
-!>   analyze_pattern(f, n, colptr, rowind, err [, last] [, group] [, method])
+!>   analyze_pattern(f, n, colptr, rowind, err [, last] [, group] [, method] [, cut])
 !>                                          ordering (METIS or AMD) and symbolic analysis
 !>   factorize_values(f, A, err)            numeric factorization of the analyzed pattern
 !>   solve(f, b, x [, err])                 x = A^-1 b, b(n) or b(n, nrhs)
@@ -205,7 +205,9 @@ contains
   !>   method (in, optional) 'metis' (default: nested dissection) or 'amd'
   !>          (approximate minimum degree: cheaper to compute, more fill on
   !>          large meshes)
-  subroutine analyze_pattern(f, n, colptr, rowind, err, last, group, method)
+  !>   cut    (in, optional) .false.: no part is cut in two halves (default
+  !>          .true.: a large part that dwarfs the others is, see "Cut parts")
+  subroutine analyze_pattern(f, n, colptr, rowind, err, last, group, method, cut)
     type(factor_t), intent(inout) :: f
     integer, intent(in) :: n
     integer, intent(in) :: colptr(:), rowind(:)
@@ -213,6 +215,7 @@ contains
     integer, intent(in), optional :: last(:)
     integer, intent(in), optional :: group(:)
     character(len=*), intent(in), optional :: method
+    logical, intent(in), optional :: cut
     integer(c_int), allocatable :: last_c(:), group_c(:)
     integer(c_int) :: ordering
     logical :: grouped
@@ -285,6 +288,7 @@ contains
     do p = 1, f%nparts
       associate (pt => f%part(p))
         pt%cut = grouped .and. ordering == c2d_order_metis .and. pt%n >= split_min .and. pt%n > 2 * (n - pt%n)
+        if (present(cut)) pt%cut = pt%cut .and. cut
       end associate
     end do
 

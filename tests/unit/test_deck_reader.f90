@@ -432,6 +432,9 @@ contains
 
     call read_text_deck(two // pair // ' mu=0' // nl // 'SOLVER lcp=pdas' // nl, d, g)
     call check(g%count == 0, 'friction: mu=0 (frictionless) with lcp=pdas accepted')
+    call check(d%solver%cut == 'auto', 'solver: cut=auto by default')
+    call read_text_deck(two // pair // nl // 'SOLVER CUT=Off' // nl, d, g)
+    call check(g%count == 0 .and. d%solver%cut == 'off', 'solver: cut=off read (key and value in any case)')
     call read_text_deck(two // pair // nl // 'SOLVER lcp=pdas' // nl // 'STEPS 5' // nl, d, g)
     call check(g%count == 0, 'friction: STEPS without friction with lcp=pdas accepted')
     call expect_error(two // pair // ' mu=0.2' // nl // 'SOLVER lcp=pdas' // nl, 12, 'lcp=pdas solves ' // &
