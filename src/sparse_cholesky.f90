@@ -339,7 +339,8 @@ contains
                                   rowind(colptr(pt%first):), pt%first - 1, last_c(pt%last0 + 1:pt%last0 + pt%nlast), &
                                   group_c(pt%first:pt%first + pt%n - 1))
         if (pt%status == cholmod_ok) return
-        ! no two halves to cut it into (a degenerate graph): whole, as any part
+        ! no two halves to cut it into (a degenerate graph) or a half's analysis
+        ! failed: the part is analyzed whole, which reports a failure of its own
         call split_free(pt%split)
         deallocate(pt%split)
         pt%cut = .false.
