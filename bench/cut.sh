@@ -2,8 +2,10 @@
 # bench/cut.sh [REPEATS]: what cutting a large body in two halves factorized
 # side by side (SOLVER cut=auto, the default) buys against factorizing it
 # whole (cut=off), measured in one run: Hertz at 1e6 dofs (the block seven
-# times the disk) with CONTACT and without, and one body of 1e6 dofs (a
-# clamped square, MESH rect, METIS).  The two settings run in turn on each
+# times the disk; METIS) with CONTACT and without, one body of 1e6 dofs (a
+# clamped square, MESH rect, METIS), and Hertz at 2.8e5 dofs (the block of
+# 230,000 dofs; `ordering=auto` takes AMD there, the halves ordered by CAMD)
+# with CONTACT and without.  The two settings run in turn on each
 # deck; prints the medians over REPEATS runs (default 3) of the factor phase
 # (ordering + numeric factorization), the ordering, the solve (time_solve:
 # with contact the two halves of one solve), the whole run and the peak
@@ -21,11 +23,13 @@ for cut in auto off; do
   hertz_deck "$work/cut_hertz_$cut.deck" hertz_1e6 0.001 0.0095 "SOLVER cut=$cut"
   grep -v '^CONTACT' "$work/cut_hertz_$cut.deck" > "$work/cut_hertz_base_$cut.deck"
   plate_deck "$work/cut_plate_$cut.deck" 707 "SOLVER ordering=metis cut=$cut"
+  hertz_deck "$work/cut_hertz3_$cut.deck" hertz_3e5 0.001 0.021 "SOLVER cut=$cut"
+  grep -v '^CONTACT' "$work/cut_hertz3_$cut.deck" > "$work/cut_hertz3_base_$cut.deck"
 done
 
 keys="time_factor time_ordering time_solve time_total memory_peak_mb"
 printf '%-12s %-5s %8s %9s %8s %8s %8s\n' case cut factor ordering solve total memMB
-for c in cut_hertz cut_hertz_base cut_plate; do
+for c in cut_hertz cut_hertz_base cut_plate cut_hertz3 cut_hertz3_base; do
   i=0
   while [ $i -lt "$reps" ]; do
     for cut in auto off; do

@@ -44,10 +44,12 @@
 !>
 !> Cut parts.  A part of split_min dofs or more that is larger than twice the
 !> other parts together (a body alone, or one much larger than the others:
-!> one thread would factorize it while the other waits) is cut at the top
-!> separator of its nested dissection (METIS, node groups) into two halves,
-!> each a CHOLMOD factor of its own with the separator's and the `last` dofs
-!> coupled to it ordered last; the separator and `last` are then condensed
+!> one thread would factorize it while the other waits) is cut at a vertex
+!> separator of its node graph (METIS_ComputeVertexSeparator: the top level
+!> of a nested dissection, whatever the ordering) into two halves, each a
+!> CHOLMOD factor of its own, ordered by the part's method (METIS, or AMD
+!> with CAMD's constraint) with the separator's and the `last` dofs coupled
+!> to it ordered last; the separator and `last` are then condensed
 !> into one dense factor (split_factor).  The halves are work items of the
 !> loop over the parts like any part.  The part's pivots are [half 1, half 2,
 !> separator, its `last`], so the trailing block is still L_cc.  The rule is
@@ -287,7 +289,7 @@ contains
 
     do p = 1, f%nparts
       associate (pt => f%part(p))
-        pt%cut = grouped .and. ordering == c2d_order_metis .and. pt%n >= split_min .and. pt%n > 2 * (n - pt%n)
+        pt%cut = grouped .and. pt%n >= split_min .and. pt%n > 2 * (n - pt%n)
         if (present(cut)) pt%cut = pt%cut .and. cut
       end associate
     end do

@@ -71,7 +71,7 @@ contains
   !> Cut the part at its top separator and analyze the two halves.
   !>   sp      (out) the split part, its halves analyzed
   !>   handle  (in)  the part's CHOLMOD handle (its workspace for the separator)
-  !>   method  (in)  the ordering of the halves (c2d_order_metis)
+  !>   method  (in)  the ordering of the halves (c2d_order_metis or c2d_order_amd)
   !>   n, colptr, rowind, offset  the part's pattern, as c2d_chol_analyze takes it
   !>   last    (in)  (nlast) the part's dofs ordered last
   !>   group   (in)  (n) the node of each dof, 1..n

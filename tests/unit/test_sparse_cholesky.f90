@@ -769,7 +769,9 @@ contains
     type(error_t), allocatable :: err
     integer, allocatable :: dof_of(:,:), group(:), last(:)
     real(dp), allocatable :: b(:), x(:), xw(:), lcc(:,:), lw(:,:)
-    integer :: k, ix, node, nx, ny
+    integer :: k, ix, node, nx, ny, im
+    character(len=5), parameter :: methods(2) = ['metis', 'amd  ']
+    character(len=:), allocatable :: how
 
     nx = 60
     ny = 40
@@ -785,34 +787,42 @@ contains
     allocate(b(A%n), x(A%n), xw(A%n))
     b = smooth_rhs(A%n, 7)
 
+    ! the halves ordered by METIS, then by AMD (CAMD with T_i last); the
+    ! whole factor by METIS either way
     call set_split_min(huge(1))
     call analyze_pattern(g, A%n, A%colptr, A%rowind, err, last=last, group=group, method='metis')
     if (.not. allocated(err)) call factorize_values(g, A, err)
     call check(.not. allocated(err) .and. g%ncut == 0, 'cut: the whole factor (no cut)')
     if (allocated(err)) return
-    call set_split_min(1000)
-    call analyze_pattern(f, A%n, A%colptr, A%rowind, err, last=last, group=group, method='metis')
-    if (.not. allocated(err)) call factorize_values(f, A, err)
-    call check(.not. allocated(err) .and. f%ncut == 1 .and. f%separator > 0, &
-               'cut: one part cut at a separator of ' // itoa(f%separator) // ' dofs')
-    if (allocated(err)) then
-      print '(a)', '  ' // err%message
-      call set_split_min(200000)
-      return
-    end if
-    call solve(f, b, x)
     call solve(g, b, xw)
-    call check_small(residual_ratio(A, x, b), 1.0e-14_dp, 'cut: scaled residual < 1e-14')
-    call check_small(maxval(abs(x - xw)) / maxval(abs(xw)), 1.0e-11_dp, 'cut: the solution of the whole factor')
-    call check_small(block_residual(f, A, b, 0.7_dp), 1.0e-14_dp, &
-                     'cut: 3-column block, scaled residual < 1e-14 for each')
-    call trailing_factor_block(f, size(last), lcc)
     call trailing_factor_block(g, size(last), lw)
-    call check_small(maxval(abs(lcc - lw)) / maxval(abs(lw)), 1.0e-11_dp, &
-                     'cut: L_cc = the whole factor''s (the factor of the Schur complement on `last`)')
-    call check_halves(f, A%n, b, x, last, lcc)
-    call trailing_block_end(f, size(last), 1, k)
-    call check(k == size(last), 'cut: L_cc is one block (trailing_block_end)')
+    call set_split_min(1000)
+    do im = 1, 2
+      how = trim(methods(im))
+      call analyze_pattern(f, A%n, A%colptr, A%rowind, err, last=last, group=group, method=how)
+      if (.not. allocated(err)) call factorize_values(f, A, err)
+      call check(.not. allocated(err) .and. f%ncut == 1 .and. f%separator > 0, &
+                 'cut (' // how // '): one part cut at a separator of ' // itoa(f%separator) // ' dofs')
+      if (allocated(err)) then
+        print '(a)', '  ' // err%message
+        call set_split_min(200000)
+        return
+      end if
+      call check(index(factor_ordering(f), how) == 1, 'cut (' // how // '): the halves ordered by ' // how // &
+                 ' (' // factor_ordering(f) // ')')
+      call solve(f, b, x)
+      call check_small(residual_ratio(A, x, b), 1.0e-14_dp, 'cut (' // how // '): scaled residual < 1e-14')
+      call check_small(maxval(abs(x - xw)) / maxval(abs(xw)), 1.0e-11_dp, &
+                       'cut (' // how // '): the solution of the whole factor')
+      call check_small(block_residual(f, A, b, 0.7_dp), 1.0e-14_dp, &
+                       'cut (' // how // '): 3-column block, scaled residual < 1e-14 for each')
+      call trailing_factor_block(f, size(last), lcc)
+      call check_small(maxval(abs(lcc - lw)) / maxval(abs(lw)), 1.0e-11_dp, &
+                       'cut (' // how // '): L_cc = the whole factor''s (the factor of the Schur complement on `last`)')
+      call check_halves(f, A%n, b, x, last, lcc)
+      call trailing_block_end(f, size(last), 1, k)
+      call check(k == size(last), 'cut (' // how // '): L_cc is one block (trailing_block_end)')
+    end do
 
     ! beside a second, smaller body, left whole
     call grid_laplacian(30, .true., A2)
