@@ -689,7 +689,7 @@ contains
     integer(c_int64_t) :: lnz, memory_peak
     real(c_double) :: flops, time_analyze, time_factorize
     character(kind=c_char) :: buf(32)
-    integer :: p, named
+    integer :: p, named, k
     integer(i8) :: cut_lnz, cut_memory
     real(dp) :: cut_flops
     f%nnz_l = 0_i8
@@ -720,6 +720,10 @@ contains
       call c2d_chol_ordering_name(f%part(named)%handle, buf, int(size(buf), c_int))
     end if
     f%ordering = c_string(buf)
+    ! a cut part's halves order their share of the separator last: "+last"
+    ! names the caller's `last` only
+    k = index(f%ordering, '+last')
+    if (f%nlast == 0 .and. k > 0) f%ordering = f%ordering(1:k - 1)
   end subroutine read_statistics
 
 
