@@ -9,7 +9,7 @@
 #   whole    = total(contact) / (factor + solve)(baseline)      target <= 1.3
 #   base     = total(baseline) / (factor + solve)(baseline)     (for reference:
 #              what reading, assembling and writing add to a run without contact)
-#   whole_whole = total(contact) / (factor + solve)(baseline with SOLVER
+#   whole_uncut = total(contact) / (factor + solve)(baseline with SOLVER
 #              cut=off): the same against K factorized whole by CHOLMOD, as
 #              the reference figures were (no body cut in two halves);
 #              equal to `whole` where nothing is cut
@@ -29,7 +29,7 @@ signorini_deck "$work/signorini_1e5.deck" 500 50 400 60
 signorini_deck "$work/signorini_1e6.deck" 800 400 600 300
 
 printf '%-14s %8s %5s %6s %7s %8s %8s %7s %7s %8s %8s %7s | %8s %9s %8s %6s %11s\n' case dofs nodes active assemble factor \
-  condense lcp recover total memMB fmemMB overhead whole memory base whole_whole
+  condense lcp recover total memMB fmemMB overhead whole memory base whole_uncut
 for c in hertz_1e5 signorini_1e5 hertz_1e6 signorini_1e6; do
   grep -v '^CONTACT' "$work/$c.deck" > "$work/${c}_base.deck"
   { cat "$work/${c}_base.deck"; echo "SOLVER cut=off"; } > "$work/${c}_whole.deck"
