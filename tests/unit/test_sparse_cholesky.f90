@@ -852,8 +852,58 @@ contains
     call check(allocated(err), 'cut: a free body (singular) is reported')
     if (allocated(err)) call check(contains_text(err%message, 'singular or not positive definite at equation'), &
                                    'cut: ... at an equation: ' // err%message)
+
+    ! no two halves to cut into, analyzed whole: a clique (removing any set of
+    ! its nodes leaves the rest connected: a side of the separator is empty)
+    ! and two nodes (fewer than three groups)
+    call set_split_min(1)
+    call dense_spd(12, A)
+    do im = 1, 2
+      how = trim(methods(im))
+      call uncuttable(A, [(k, k = 1, 12)], how, 'a clique of 12 nodes')
+      call uncuttable(A, [((k + 5) / 6, k = 1, 12)], how, 'two nodes of 6 dofs')
+    end do
     call set_split_min(200000)
   end subroutine test_cut
+
+  !> A matrix with no two halves to cut into, split_min lowered: analyzed and
+  !> factorized whole.
+  subroutine uncuttable(A, group, how, what)
+    type(csc_t), intent(in) :: A
+    integer, intent(in) :: group(:)
+    character(len=*), intent(in) :: how, what
+    type(factor_t) :: h
+    type(error_t), allocatable :: err
+    real(dp) :: b(A%n), x(A%n)
+    call analyze_pattern(h, A%n, A%colptr, A%rowind, err, group=group, method=how)
+    if (.not. allocated(err)) call factorize_values(h, A, err)
+    call check(.not. allocated(err), 'cut (' // how // '): ' // what // ' factorized')
+    if (allocated(err)) return
+    call check(h%ncut == 0, 'cut (' // how // '): ' // what // ' analyzed whole, not cut')
+    b = smooth_rhs(A%n, 2)
+    call solve(h, b, x)
+    call check_small(residual_ratio(A, x, b), 1.0e-14_dp, 'cut (' // how // '): ' // what // &
+                     ', scaled residual < 1e-14')
+  end subroutine uncuttable
+
+  !> A dense SPD matrix of order n: n I + the matrix of ones.
+  subroutine dense_spd(n, A)
+    integer, intent(in) :: n
+    type(csc_t), intent(out) :: A
+    integer :: i, j, nt
+    integer :: ti(n * (n + 1) / 2), tj(n * (n + 1) / 2)
+    real(dp) :: tv(n * (n + 1) / 2)
+    nt = 0
+    do j = 1, n
+      do i = j, n
+        nt = nt + 1
+        ti(nt) = i
+        tj(nt) = j
+        tv(nt) = 1.0_dp + merge(real(n, dp), 0.0_dp, i == j)
+      end do
+    end do
+    call csc_from_triplets(n, ti, tj, tv, A)
+  end subroutine dense_spd
 
   !> Singular matrices are reported with the dof of the dependent column.
   subroutine test_singular()
