@@ -17,7 +17,7 @@ program contact2d
   use sparse_matrix, only: csc_t
   use sparse_cholesky, only: factor_t, analyze_pattern, factorize_values, solve, solve_forward, factor_nnz, factor_memory, &
                              factor_ordering
-  use contact_set, only: contact_set_t, pair_spec_t, build_contact_set, row_of_node, has_friction
+  use contact_set, only: contact_set_t, pair_spec_t, build_contact_set, row_of_node, node_rows, node_traction, has_friction
   use contact_condensation, only: contact_equations, condense, contact_forces, recover, constraint_values, &
                                   condensed_t, condensed_report
   use lcp_solvers, only: lcp_options_t, lcp_report_t
@@ -375,7 +375,7 @@ contains
   !> Pressures, status, node counts and complementarity of the solved
   !> contact problem (res%mu, res%gap set).
   subroutine contact_measures()
-    integer :: r, ip, node
+    integer :: r, ip, node, rows(3), nr
     real(dp) :: dmax, pmax, gmax
     allocate(res%pressure(cs%nrow), res%status(cs%nrow))
     res%contact_nodes = cs%nrow
@@ -400,10 +400,10 @@ contains
     res%active_nodes = 0
     do ip = 1, cs%npair
       do node = 1, size(cs%pair(ip)%snode)
-        r = row_of_node(cs, ip, node)
-        if (r == 0) cycle
+        call node_rows(cs, ip, node, rows, nr)
+        if (nr == 0) cycle
         res%contact_nodes = res%contact_nodes + 1
-        if (res%status(r) == 1) res%active_nodes = res%active_nodes + 1
+        if (any(res%status(rows(1:nr)) == 1)) res%active_nodes = res%active_nodes + 1
       end do
     end do
     ! length scale: the initial gaps, or the gaps the loads open without contact forces (q)
@@ -506,26 +506,29 @@ contains
     res%slip_nodes = count(res%fstate == 2)
   end subroutine solve_friction_steps
 
-  !> contact_pressure and gap on the nodes, for the VTK file.
+  !> contact_pressure, gap (and shear) on the nodes, for the VTK file: what
+  !> the contact table reports (node_traction).
   subroutine nodal_contact_fields()
-    integer :: r, ip, node, gnode
+    integer :: r, ip, node, gnode, rows(3), nr
+    real(dp), allocatable :: tforce(:)
     allocate(res%node_pressure(sc%ndof / 2), res%node_gap(sc%ndof / 2))
     res%node_pressure = 0.0_dp
     res%node_gap = 0.0_dp
-    do r = 1, cs%nrow
-      ip = cs%row_pair(r)
-      node = cs%row_node(r)
-      gnode = sc%bodies(cs%pair(ip)%spec%slave_body)%dof0 / 2 + cs%pair(ip)%snode(node)
-      res%node_pressure(gnode) = res%pressure(r)
-      res%node_gap(gnode) = res%gap(r)
-    end do
-    if (.not. allocated(res%tau)) return
-    allocate(res%node_shear(sc%ndof / 2), source=0.0_dp)
-    do r = 1, cs%ntan
-      ip = cs%row_pair(cs%tan_row(r))
-      node = cs%row_node(cs%tan_row(r))
-      gnode = sc%bodies(cs%pair(ip)%spec%slave_body)%dof0 / 2 + cs%pair(ip)%snode(node)
-      res%node_shear(gnode) = res%shear(r)
+    if (allocated(res%tau)) then
+      allocate(res%node_shear(sc%ndof / 2), source=0.0_dp)
+      allocate(tforce(cs%nrow), source=0.0_dp)
+      tforce(cs%tan_row) = -res%tau                   ! the force on the slave is -tau t
+    end if
+    do ip = 1, cs%npair
+      do node = 1, size(cs%pair(ip)%snode)
+        r = row_of_node(cs, ip, node)
+        if (r == 0) cycle
+        gnode = sc%bodies(cs%pair(ip)%spec%slave_body)%dof0 / 2 + cs%pair(ip)%snode(node)
+        res%node_pressure(gnode) = node_traction(cs, ip, node, res%mu)
+        call node_rows(cs, ip, node, rows, nr)
+        res%node_gap(gnode) = minval(res%gap(rows(1:nr)))
+        if (allocated(tforce)) res%node_shear(gnode) = node_traction(cs, ip, node, tforce)
+      end do
     end do
   end subroutine nodal_contact_fields
 

@@ -27,11 +27,11 @@ module contact_set
   use diagnostics, only: error_t, set_error, int_to_str
   use mesh, only: mesh_t
   use body, only: body_t, node_elements, edge_outward_normal
-  use mortar_operator, only: mortar_t, build_mortar
+  use mortar_operator, only: mortar_t, build_mortar, zone_node_terms
   implicit none
   private
   public :: contact_set_t, pair_spec_t, contact_pair_t, chain_boundary, boundary_polyline
-  public :: build_contact_set, row_of_node, has_friction
+  public :: build_contact_set, row_of_node, node_rows, node_traction, has_friction
 
   !> What a CONTACT statement says, resolved to indices.
   type :: pair_spec_t
@@ -53,6 +53,8 @@ module contact_set
     logical, allocatable :: row(:)         !< (ns) slave node carries a constraint row: in the
                                            !< effective zone and with master opposite
     logical :: single = .false.            !< the zone is one slave segment: one mean-value row
+    logical :: fold(2) = .false.           !< the row of a cut zone start (1) / end (2) is reported on
+                                           !< the node next to it: the end node has no master opposite
     real(dp), allocatable :: mcov(:)       !< (nm) int of each master hat over the covered part
   end type contact_pair_t
 
@@ -262,6 +264,7 @@ contains
         ! segments at once), so one mean-value row replaces the two nodal ones
         pr%single = pr%mortar%first > 0 .and. pr%mortar%last == pr%mortar%first + 1
         if (pr%single) pr%nrow = 1
+        pr%fold = [pr%mortar%cut(1) > 0.0_dp, pr%mortar%cut(2) < 1.0_dp] .and. .not. pr%single
         ! the projection lives on in the rows of B and T: the dense (ns, nm)
         ! matrix P is not kept (5 MB for 852 x 741 nodes)
         if (pr%mortar%first > 0 .and. .not. pr%single) call projection_rows(pr%mortar, prj(ip))
@@ -337,7 +340,8 @@ contains
     !> count their entries in nnz.
     subroutine mark_pair_dofs(tangent)
       logical, intent(in) :: tangent
-      real(dp) :: v(2)
+      real(dp) :: v(2), sc(2)
+      integer :: sn(2), nt
       associate(pr => cs%pair(ip), mo => cs%pair(ip)%mortar)
         if (pr%nrow == 0) return
         d0s = bodies(pr%spec%slave_body)%dof0
@@ -358,10 +362,11 @@ contains
         do i = mo%first, mo%last
           if (.not. pr%row(i)) cycle
           v = row_direction(mo, i, tangent)
+          call zone_node_terms(mo, i, sn, sc, nt)
           do c = 1, 2                       ! a dof is a contact dof only where its coefficient is non-zero
             if (v(c) == 0.0_dp) cycle
-            touched(d0s + 2 * (pr%snode(i) - 1) + c) = .true.
-            nnz = nnz + 1 + prj(ip)%ptr(i + 1) - prj(ip)%ptr(i)
+            touched(d0s + 2 * (pr%snode(sn(1:nt)) - 1) + c) = .true.
+            nnz = nnz + nt + prj(ip)%ptr(i + 1) - prj(ip)%ptr(i)
             do q = prj(ip)%ptr(i), prj(ip)%ptr(i + 1) - 1
               touched(d0m + 2 * (pr%mnode(prj(ip)%col(q)) - 1) + c) = .true.
             end do
@@ -374,7 +379,8 @@ contains
     !> gaps and weights, or tangential rows.
     subroutine fill_pair_rows(tangent)
       logical, intent(in) :: tangent
-      real(dp) :: v(2)
+      real(dp) :: v(2), sc(2)
+      integer :: sn(2), nt, t
       associate(pr => cs%pair(ip), mo => cs%pair(ip)%mortar)
         d0s = bodies(pr%spec%slave_body)%dof0
         d0m = bodies(pr%spec%master_body)%dof0
@@ -387,17 +393,20 @@ contains
           if (.not. pr%row(i)) cycle
           r = r + 1
           if (.not. tangent) then
-            cs%weight(r) = mo%covered_weight(i)
+            cs%weight(r) = mo%zone_weight(i)
             cs%row_pair(r) = ip
             cs%row_node(r) = i
             cs%g(r) = mo%gap0(i)
           end if
           v = row_direction(mo, i, tangent)
+          call zone_node_terms(mo, i, sn, sc, nt)
           do c = 1, 2
             if (v(c) == 0.0_dp) cycle
-            k = k + 1                                   ! + v_i . u1(x_i)
-            cs%bcol(k) = colmap(d0s + 2 * (pr%snode(i) - 1) + c)
-            cs%bval(k) = v(c)
+            do t = 1, nt                                ! + v_i . u1(x_i), at a cut end interpolated
+              k = k + 1
+              cs%bcol(k) = colmap(d0s + 2 * (pr%snode(sn(t)) - 1) + c)
+              cs%bval(k) = v(c) * sc(t)
+            end do
             do q = prj(ip)%ptr(i), prj(ip)%ptr(i + 1) - 1   ! - v_i . sum_j P_ij u2(y_j)
               k = k + 1
               cs%bcol(k) = colmap(d0m + 2 * (pr%mnode(prj(ip)%col(q)) - 1) + c)
@@ -516,32 +525,15 @@ contains
     end do
   end subroutine covered_master_integrals
 
-  !> Slave nodes that carry a constraint row: those of the effective zone
-  !> first..last that have master opposite.  Where the master covers only part
-  !> of an end segment, the end node lies beyond the master: a nodal
-  !> constraint there would press it against the master's extrapolated edge
-  !> (a spurious force); the master's corner is held by the covered node next
-  !> to it.  When no node is covered (a master inside one slave segment) both
-  !> end nodes keep their rows.
+  !> Slave nodes that carry a constraint row: the nodes first..last of the
+  !> effective zone, a cut end's row standing for the point where the zone ends
+  !> inside the end segment (mortar_operator, 2.).
   subroutine constrained_nodes(mo, row)
     type(mortar_t), intent(in) :: mo
     logical, allocatable, intent(out) :: row(:)
-    real(dp), parameter :: tol = 1.0e-10_dp
-    integer :: k, i
     allocate(row(mo%ns), source=.false.)
     if (mo%first == 0) return
     row(mo%first:mo%last) = .true.
-    do i = mo%first, mo%last, max(1, mo%last - mo%first)
-      row(i) = .false.
-      do k = 1, mo%inter%nsub
-        if (mo%inter%slave_seg(k) == i .and. mo%inter%s(1, k) <= tol) row(i) = .true.
-        if (mo%inter%slave_seg(k) == i - 1 .and. mo%inter%s(2, k) >= 1.0_dp - tol) row(i) = .true.
-      end do
-    end do
-    if (.not. any(row)) then
-      row(mo%first) = .true.
-      row(mo%last) = .true.
-    end if
   end subroutine constrained_nodes
 
   !> A pair has tangential rows when its friction bound is not identically
@@ -551,12 +543,54 @@ contains
     has_friction = spec%mu > 0.0_dp .or. spec%tresca > 0.0_dp
   end function has_friction
 
-  !> Constraint row of slave node i of pair ip, 0 when it has none.
+  !> The rows that slave node i of pair ip reports in the outputs: its own
+  !> row first, then the rows of cut zone ends folded onto it (nr = 0: none).
+  !> The node's pressure is the sum of their multipliers over the sum of their
+  !> weights, int (phi_a + phi_i) over the covered part: the mean pressure
+  !> on the support of the multiplier basis function psi of the end segment.
+  pure subroutine node_rows(cs, ip, i, rows, nr)
+    type(contact_set_t), intent(in) :: cs
+    integer, intent(in) :: ip, i
+    integer, intent(out) :: rows(3), nr
+    rows = 0
+    nr = 0
+    rows(1) = row_of_node(cs, ip, i)
+    if (rows(1) == 0) return
+    nr = 1
+    associate(pr => cs%pair(ip))
+      if (pr%fold(1) .and. i == pr%mortar%first + 1) then
+        nr = nr + 1
+        rows(nr) = pr%row0 + 1
+      end if
+      if (pr%fold(2) .and. i == pr%mortar%last - 1) then
+        nr = nr + 1
+        rows(nr) = pr%row0 + pr%nrow
+      end if
+    end associate
+  end subroutine node_rows
+
+  !> The traction slave node i of pair ip reports: the forces of its rows
+  !> (node_rows) over their weights; 0 when it has no row.
+  !>   force (in) (nrow) a force per normal row (mu, or the tangential force of its row)
+  pure real(dp) function node_traction(cs, ip, i, force) result(p)
+    type(contact_set_t), intent(in) :: cs
+    integer, intent(in) :: ip, i
+    real(dp), intent(in) :: force(:)
+    integer :: rows(3), nr
+    call node_rows(cs, ip, i, rows, nr)
+    p = 0.0_dp
+    if (nr > 0) p = sum(force(rows(1:nr))) / sum(cs%weight(rows(1:nr)))
+  end function node_traction
+
+  !> Constraint row of slave node i of pair ip, 0 when it has none or when
+  !> it is a cut zone end reported on its neighbour (node_rows).
   pure integer function row_of_node(cs, ip, i) result(r)
     type(contact_set_t), intent(in) :: cs
     integer, intent(in) :: ip, i
     r = 0
     if (.not. cs%pair(ip)%row(i)) return
+    if (cs%pair(ip)%fold(1) .and. i == cs%pair(ip)%mortar%first) return
+    if (cs%pair(ip)%fold(2) .and. i == cs%pair(ip)%mortar%last) return
     if (cs%pair(ip)%single) then
       r = cs%pair(ip)%row0 + 1
       return

@@ -69,7 +69,7 @@ module mortar_operator
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
   private
-  public :: mortar_t, intersection_t, build_mortar, intersect_segments
+  public :: mortar_t, intersection_t, build_mortar, intersect_segments, zone_node_terms, zone_point
 
   !> Sub-segments of the intersection of the slave and master 1D meshes, ordered by
   !> slave segment and, within one, by increasing s.
@@ -90,7 +90,12 @@ module mortar_operator
     real(dp), allocatable :: P(:,:)           !< (ns, nm) pi_h^1: (pi phi)(x_i) = sum_j P(i,j) c_j; zero rows off the zone
     real(dp), allocatable :: gap0(:)          !< (ns) initial normal gap n_i.((P y)_i - x_i); 0 for gap=zero or off the zone
     real(dp), allocatable :: weight(:)        !< (ns) w_i = int phi_i over the zone (full segments first..last)
-    real(dp), allocatable :: covered_weight(:) !< (ns) int phi_i over the covered part only: P' covered_weight = master weights
+    real(dp), allocatable :: covered_weight(:) !< (ns) int phi_i over the covered part only
+    real(dp), allocatable :: zone_weight(:)   !< (ns) int of the zone's hat i (the slave mesh cut at the zone's
+                                              !< ends, 4.): the row weights, P' zone_weight = master weights
+    real(dp) :: cut(2) = [0.0_dp, 1.0_dp]     !< slave coordinates of the zone's ends on segments first and
+                                              !< last-1: cut(1) > 0 or cut(2) < 1 where the zone ends inside
+                                              !< a slave segment (the master stops there)
     real(dp), allocatable :: arc(:)           !< (ns) arc length along the slave polyline from node 1
     logical, allocatable :: constrained(:)    !< (ns) true for first..last
     type(intersection_t) :: inter             !< the sub-segments used for the integrals
@@ -100,6 +105,8 @@ module mortar_operator
   real(dp), parameter :: tol_length = 1.0e-12_dp   ! zero length, relative to the polyline's extent
   real(dp), parameter :: tol_overlap = 1.0e-10_dp  ! shortest sub-segment / double cover, relative to L
   real(dp), parameter :: tol_ray = 1.0e-10_dp      ! slack on the master coordinate of a ray hit
+  real(dp), parameter :: tol_piece = 1.0e-3_dp     ! shortest covered piece of a zone-end segment kept
+  real(dp), parameter :: tol_sliver = 2.0e-2_dp    ! longest uncovered piece of a zone-end segment extended
 
 
 contains
@@ -122,6 +129,7 @@ contains
     type(error_t), allocatable, intent(out) :: err
     integer :: ns, nm, i, e, k, first, last, f, jlo, jhi, info
     integer, allocatable :: ncover(:)
+    logical :: ext(2)
     real(dp) :: r, y(2)
     real(dp), allocatable :: seglen(:), py(:,:)
 
@@ -135,8 +143,9 @@ contains
     mortar%ns = ns
     mortar%nm = nm
     allocate(mortar%normal(2, ns), mortar%P(ns, nm), mortar%gap0(ns), mortar%weight(ns))
-    allocate(mortar%covered_weight(ns), mortar%arc(ns), mortar%constrained(ns))
+    allocate(mortar%covered_weight(ns), mortar%zone_weight(ns), mortar%arc(ns), mortar%constrained(ns))
     mortar%P = 0.0_dp
+    mortar%zone_weight = 0.0_dp
     mortar%gap0 = 0.0_dp
     mortar%weight = 0.0_dp
     mortar%covered_weight = 0.0_dp
@@ -191,9 +200,38 @@ contains
       end if
       e = e + 1
     end do
+    ! A zone end inside a slave segment (the master stops there): a piece
+    ! shorter than tol_piece of its segment is left out of the zone, the rows
+    ! at its two ends would be nearly the same constraint (module header, 2.).
+    if (last - first > 1) then
+      if (1.0_dp - mortar%inter%s(1, 1) < tol_piece) then
+        call drop_pieces(mortar%inter, first)
+        first = first + 1
+      end if
+    end if
+    if (last - first > 1) then
+      if (maxval(mortar%inter%s(2, 1:mortar%inter%nsub), &
+                 mask=mortar%inter%slave_seg(1:mortar%inter%nsub) == last - 1) < tol_piece) then
+        call drop_pieces(mortar%inter, last - 1)
+        last = last - 1
+      end if
+    end if
     mortar%first = first
     mortar%last = last
     mortar%constrained(first:last) = .true.
+    ! A master that stops short of a zone end node by less than tol_sliver of
+    ! the segment is extended to it by a constant (its end value): a sliver the
+    ! mesh cannot resolve, most often the sag of two polygons that approximate
+    ! one curve (module header, 2.).
+    call extend_sliver(mortar%inter, .true., ext(1))
+    call extend_sliver(mortar%inter, .false., ext(2))
+    mortar%cut(1) = mortar%inter%s(1, 1)
+    mortar%cut(2) = mortar%inter%s(2, mortar%inter%nsub)
+    if (mortar%cut(1) <= tol_overlap) mortar%cut(1) = 0.0_dp
+    if (mortar%cut(2) >= 1.0_dp - tol_overlap) mortar%cut(2) = 1.0_dp
+    ! the row of a cut end acts at a point inside a segment: its normal is the segment's
+    if (mortar%cut(1) > 0.0_dp) mortar%normal(:, first) = ns_out(:, first)
+    if (mortar%cut(2) < 1.0_dp) mortar%normal(:, last) = ns_out(:, last - 1)
 
     ! Lumped weights over the full zone segments.
     do e = first, last - 1
@@ -201,13 +239,25 @@ contains
       mortar%weight(e + 1) = mortar%weight(e + 1) + 0.5_dp * seglen(e)
     end do
 
-    ! End rows: the master trace opposite a1 and a2, eq. (8) first line.
-    call end_row(xs(:, first), mortar%normal(:, first), xm, nm_out, mortar%inter, first, .true., f, r)
+    ! End rows: the master trace at the zone's ends, eq. (8) first line.  A cut
+    ! end is where the master ends: its value is the master's end point.
+    if (mortar%cut(1) > 0.0_dp .or. ext(1)) then
+      f = mortar%inter%master_seg(1)
+      r = mortar%inter%r(1, 1)
+    else
+      call end_row(xs(:, first), mortar%normal(:, first), xm, nm_out, mortar%inter, first, .true., f, r)
+    end if
     mortar%P(first, f) = 1.0_dp - r
     mortar%P(first, f + 1) = r
     jlo = f
     jhi = f + 1
-    call end_row(xs(:, last), mortar%normal(:, last), xm, nm_out, mortar%inter, last - 1, .false., f, r)
+    if (mortar%cut(2) < 1.0_dp .or. ext(2)) then
+      k = mortar%inter%nsub
+      f = mortar%inter%master_seg(k)
+      r = mortar%inter%r(2, k)
+    else
+      call end_row(xs(:, last), mortar%normal(:, last), xm, nm_out, mortar%inter, last - 1, .false., f, r)
+    end if
     mortar%P(last, f) = mortar%P(last, f) + (1.0_dp - r)
     mortar%P(last, f + 1) = mortar%P(last, f + 1) + r
     jlo = min(jlo, f, minval(mortar%inter%master_seg(1:mortar%inter%nsub)))
@@ -221,18 +271,19 @@ contains
       return
     end if
 
-    ! Initial normal gap, gap=geometry.
+    ! Initial normal gap, gap=geometry, at the zone's nodes (a cut end: at its point).
     if (.not. gap_zero) then
       allocate(py(first:last, 2))
       py = matmul(mortar%P(first:last, jlo:jhi), transpose(xm(:, jlo:jhi)))   ! (P y)_i, componentwise
       do i = first, last
-        mortar%gap0(i) = dot_product(mortar%normal(:, i), py(i, :) - xs(:, i))
+        mortar%gap0(i) = dot_product(mortar%normal(:, i), py(i, :) - zone_point(mortar, xs, i))
       end do
     end if
   end subroutine build_mortar
 
-  !> Assemble D, M, E_0, E_n on the sub-segments (2-point Gauss, exact) and solve for
-  !> the interior rows of P; also accumulate mortar%covered_weight.
+  !> Assemble D, M, E_0, E_n on the sub-segments (2-point Gauss, exact) with the
+  !> zone's hats (a cut end segment rescaled to the zone's part of it) and solve
+  !> for the interior rows of P; also accumulate covered_weight and zone_weight.
   !>   mortar (inout) in: first, last, end rows of P, inter; out: interior rows of P
   !>   seglen (in)    (ns-1) slave segment lengths
   !>   jlo, jhi (in)  range of master columns that can be nonzero
@@ -246,7 +297,7 @@ contains
     integer, parameter :: chunk = 128
     real(dp), allocatable :: dl(:), dd(:), du(:), e0(:), en(:), cl(:), cd(:), cu(:)
     integer :: ci
-    real(dp) :: half, mid, sq, rq, wq, wa, v, phi(0:1), chi(0:1)
+    real(dp) :: half, mid, sq, rq, wq, wa, v, lo, hi, phi(0:1), chi(0:1)
     integer :: n, first, last, k, m, f, q, ia, ib, a, b, kp, ns
 
     info = 0
@@ -263,16 +314,23 @@ contains
       half = 0.5_dp * (mortar%inter%s(2, k) - mortar%inter%s(1, k))
       mid = 0.5_dp * (mortar%inter%s(2, k) + mortar%inter%s(1, k))
       wq = half * seglen(mortar%inter%slave_seg(k))      ! Gauss weight (each of two) in length
+      lo = 0.0_dp                                        ! the zone's part [lo, hi] of the segment
+      hi = 1.0_dp
+      if (m == 1) lo = mortar%cut(1)
+      if (m == n) hi = mortar%cut(2)
       do q = -1, 1, 2
         sq = mid + real(q, dp) * gauss * half
         rq = 0.5_dp * (mortar%inter%r(1, k) + mortar%inter%r(2, k)) + &
              real(q, dp) * gauss * 0.5_dp * (mortar%inter%r(2, k) - mortar%inter%r(1, k))
-        phi = [1.0_dp - sq, sq]
         chi = [1.0_dp - rq, rq]
+        phi = [1.0_dp - sq, sq]
+        mortar%covered_weight(first + m - 1:first + m) = mortar%covered_weight(first + m - 1:first + m) + wq * phi
+        sq = (sq - lo) / (hi - lo)                         ! the zone's hats: a cut segment is rescaled
+        phi = [1.0_dp - sq, sq]
         do ia = 0, 1
           a = m - 1 + ia
           wa = wq * phi(ia)
-          mortar%covered_weight(first + a) = mortar%covered_weight(first + a) + wa
+          mortar%zone_weight(first + a) = mortar%zone_weight(first + a) + wa
           if (n < 2) cycle
           kp = max(1, min(n - 1, a))                       ! phi_a is part of psi_kp
           do ib = 0, 1
@@ -317,6 +375,84 @@ contains
     end do
     !$omp end parallel do
   end subroutine project_interior
+
+  !> The point of zone node i (first..last): the slave node, or for a cut end
+  !> the point of its segment where the zone ends.
+  pure function zone_point(mo, xs, i) result(x)
+    type(mortar_t), intent(in) :: mo
+    real(dp), intent(in) :: xs(:,:)
+    integer, intent(in) :: i
+    real(dp) :: x(2)
+    integer :: node(2), nt
+    real(dp) :: coef(2)
+    call zone_node_terms(mo, i, node, coef, nt)
+    x = matmul(xs(:, node(1:nt)), coef(1:nt))
+  end function zone_point
+
+  !> The slave nodes and coefficients that give the slave trace at zone node
+  !> i: the node itself (nt = 1), or for a cut end the two ends of its segment
+  !> with the linear interpolation weights (nt = 2).
+  !>   mo   (in)  the operator
+  !>   i    (in)  zone node, first..last
+  !>   node (out) (nt) slave polyline indices;  coef (out) (nt) their weights;  nt (out) 1 or 2
+  pure subroutine zone_node_terms(mo, i, node, coef, nt)
+    type(mortar_t), intent(in) :: mo
+    integer, intent(in) :: i
+    integer, intent(out) :: node(2), nt
+    real(dp), intent(out) :: coef(2)
+    nt = 1
+    node = i
+    coef = [1.0_dp, 0.0_dp]
+    if (i == mo%first .and. mo%cut(1) > 0.0_dp) then
+      nt = 2
+      node = [i, i + 1]
+      coef = [1.0_dp - mo%cut(1), mo%cut(1)]
+    else if (i == mo%last .and. mo%cut(2) < 1.0_dp) then
+      nt = 2
+      node = [i - 1, i]
+      coef = [1.0_dp - mo%cut(2), mo%cut(2)]
+    end if
+  end subroutine zone_node_terms
+
+  !> Where the cover of the zone's first (at_start) or last slave segment stops
+  !> short of the segment's end node by less than tol_sliver, the master's end
+  !> piece is stretched to the node: its sub-segment is given the node as its
+  !> end, the master coordinates unchanged (the master is not made longer; its
+  !> end segment faces a little more of the slave).
+  !>   inter    (inout) the sub-segments, ordered
+  !>   at_start (in)    the zone's first segment (s -> 0) or its last (s -> 1)
+  !>   done     (out)   whether the piece was stretched
+  subroutine extend_sliver(inter, at_start, done)
+    type(intersection_t), intent(inout) :: inter
+    logical, intent(in) :: at_start
+    logical, intent(out) :: done
+    integer :: n
+    n = inter%nsub
+    if (at_start) then
+      done = inter%s(1, 1) > tol_overlap .and. inter%s(1, 1) < tol_sliver
+      if (done) inter%s(1, 1) = 0.0_dp
+    else
+      done = inter%s(2, n) < 1.0_dp - tol_overlap .and. inter%s(2, n) > 1.0_dp - tol_sliver
+      if (done) inter%s(2, n) = 1.0_dp
+    end if
+  end subroutine extend_sliver
+
+  !> Remove the sub-segments on slave segment e from inter (they stay ordered).
+  subroutine drop_pieces(inter, e)
+    type(intersection_t), intent(inout) :: inter
+    integer, intent(in) :: e
+    logical, allocatable :: keep(:)
+    integer :: n
+    keep = inter%slave_seg(1:inter%nsub) /= e
+    n = count(keep)
+    inter%slave_seg(1:n) = pack(inter%slave_seg(1:inter%nsub), keep)
+    inter%master_seg(1:n) = pack(inter%master_seg(1:inter%nsub), keep)
+    inter%s(1, 1:n) = pack(inter%s(1, 1:inter%nsub), keep)
+    inter%s(2, 1:n) = pack(inter%s(2, 1:inter%nsub), keep)
+    inter%r(1, 1:n) = pack(inter%r(1, 1:inter%nsub), keep)
+    inter%r(2, 1:n) = pack(inter%r(2, 1:inter%nsub), keep)
+    inter%nsub = n
+  end subroutine drop_pieces
 
   !> The master point that gives the end value (pi phi)(a) = phi(a), eq. (8): the
   !> nearest hit of the line a + tau n on a master segment facing n; when there is

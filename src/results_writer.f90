@@ -16,7 +16,7 @@ module results_writer
   use kinds, only: dp, i8
   use body, only: body_t
   use mesh, only: file_node, file_elem, node_in_file
-  use contact_set, only: contact_set_t, row_of_node
+  use contact_set, only: contact_set_t, row_of_node, node_rows, node_traction
   use diagnostics, only: int_to_str
   use text_buffer, only: text_buffer_t, open_text, open_memory, put_text, put_line, put_real, put_int, put_newline, &
                          close_text
@@ -285,7 +285,8 @@ contains
     type(contact_set_t), intent(in) :: cs
     type(results_t), intent(in) :: r
     logical, intent(out) :: ok
-    integer :: u, ios, ip, i, row, t
+    integer :: u, ios, ip, i, row, t, rows(3), nr
+    real(dp), allocatable :: tforce(:)
     character(len=32) :: sx(4)
     character(len=:), allocatable :: extra
     logical :: friction
@@ -293,6 +294,10 @@ contains
     ok = ios == 0
     if (.not. ok) return
     friction = allocated(r%tau)
+    if (friction) then
+      allocate(tforce(cs%nrow), source=0.0_dp)
+      tforce(cs%tan_row) = -r%tau              ! the force on the slave is -tau t
+    end if
     if (friction) then                         ! friction: three more columns
       write(u, '(a)') 'pair,s,x,y,gap0,gap,pressure,status,shear,slip,friction_state'
     else
@@ -310,13 +315,16 @@ contains
             extra = ',0,,0'                    ! no tangential row: no shear, no slip, open
             if (row > 0) then
               t = r%tan_of_row(row)
-              if (t > 0) extra = ',' // num(r%shear(t)) // ',' // num(r%slip(t)) // ',' // int_to_str(r%fstate(t))
+              if (t > 0) extra = ',' // num(node_traction(cs, ip, i, tforce)) // ',' // num(r%slip(t)) // ',' // &
+                                 int_to_str(r%fstate(t))
             end if
           end if
           if (row > 0) then
+            call node_rows(cs, ip, i, rows, nr)           ! in contact where any of its rows is
             write(u, '(a,i0,a)') int_to_str(ip) // ',' // trim(adjustl(sx(1))) // ',' // &
               trim(adjustl(sx(2))) // ',' // trim(adjustl(sx(3))) // ',' // num(mo%gap0(i)) // ',' // &
-              num(r%gap(row)) // ',' // num(r%pressure(row)) // ',', r%status(row), extra
+              num(minval(r%gap(rows(1:nr)))) // ',' // num(node_traction(cs, ip, i, r%mu)) // ',', &
+              maxval(r%status(rows(1:nr))), extra
           else
             write(u, '(a)') int_to_str(ip) // ',' // trim(adjustl(sx(1))) // ',' // &
               trim(adjustl(sx(2))) // ',' // trim(adjustl(sx(3))) // ',,,0,-1' // extra

@@ -202,6 +202,7 @@ def line_cover(m0, m1):
 
 
 FULL = None   # the master covers every slave segment of the zone entirely
+SLIVER = 0.02  # a master stopping short of the zone's end node by less than this part of its segment reaches it
 
 
 def nodal_forces(rows, inside, cover=FULL):
@@ -227,9 +228,21 @@ def nodal_forces(rows, inside, cover=FULL):
             t0, t1 = (0.0, 1.0) if both else (0.0, 0.0)
         else:
             t0, t1 = cover(pa, pb)
+        if 0.0 < t0 < SLIVER and rows[k]["status"] >= 0:
+            t0 = 0.0          # a master that stops short of the zone's end node by a sliver reaches it
+        if 1.0 - SLIVER < t1 < 1.0 and rows[k + 1]["status"] >= 0:
+            t1 = 1.0
         if t1 > t0:
             w[k] += L * ((t1 - t1 * t1 / 2) - (t0 - t0 * t0 / 2))
             w[k + 1] += L * (t1 * t1 - t0 * t0) / 2
+    # a zone that ends inside a slave segment: the segment's outer node has no
+    # master opposite (status -1); its share of the covered part is reported
+    # on the node next to it (doc/outputs.md)
+    for i in range(n):
+        if rows[i]["status"] < 0 and w[i] > 0.0:
+            j = i + 1 if i + 1 < n and rows[i + 1]["status"] >= 0 else i - 1
+            w[j] += w[i]
+            w[i] = 0.0
     out = []
     for i, r in enumerate(rows):
         if i == 0:

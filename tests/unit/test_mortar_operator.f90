@@ -113,24 +113,29 @@ contains
   end function integral_product
 
   !> Largest |int psi_k (pi phi - phi)| over k = 1..n-1 on the covered part [lo, hi],
-  !> relative to max|c| (hi - lo): the defining orthogonality of eq. (8).
-  !>   xs1 (ns) slave 1D coordinates ascending, v (ns) nodal values of pi phi,
+  !> relative to max|c| (hi - lo): the defining orthogonality of eq. (8) on the
+  !> zone's mesh, the slave nodes first..last with the end nodes moved to lo
+  !> and hi where the cover ends inside an end segment.
+  !>   xs1 (ns) slave 1D coordinates ascending, v (ns) nodal values of pi phi on the zone's mesh,
   !>   xm1 (nm) master 1D coordinates ascending, c (nm) master nodal values.
   real(dp) function orthogonality_defect(xs1, first, last, v, xm1, c, lo, hi) result(worst)
     real(dp), intent(in) :: xs1(:), v(:), xm1(:), c(:), lo, hi
     integer, intent(in) :: first, last
-    real(dp), allocatable :: psi(:)
+    real(dp), allocatable :: psi(:), xz(:)
     integer :: n, k, l
     n = last - first
     worst = 0.0_dp
+    xz = xs1
+    xz(first) = max(xz(first), lo)
+    xz(last) = min(xz(last), hi)
     allocate(psi(size(xs1)))
     do k = 1, n - 1
       psi = 0.0_dp
       do l = 0, n
         if (max(1, min(n - 1, l)) == k) psi(first + l) = 1.0_dp   ! psi_k = sum of phi_l
       end do
-      worst = max(worst, abs(integral_product(xs1, psi, xs1, v, lo, hi) - &
-                             integral_product(xs1, psi, xm1, c, lo, hi)))
+      worst = max(worst, abs(integral_product(xz, psi, xz, v, lo, hi) - &
+                             integral_product(xz, psi, xm1, c, lo, hi)))
     end do
     worst = worst / (maxval(abs(c)) * (hi - lo))
   end function orthogonality_defect
@@ -242,7 +247,7 @@ contains
   !> Master [2.5, 7.3] inside the slave [0, 10]: the zone is slave nodes 3..9 (x = 2..8),
   !> end values are the master end values (constant extension), integrals over [2.5, 7.3].
   subroutine test_master_shorter()
-    real(dp) :: xi_s(11), xs(2, 11), xm(2, 7), c(7), v(11), w2(7), wc(11), xi_asc(7)
+    real(dp) :: xi_s(11), xs(2, 11), xm(2, 7), c(7), v(11), w2(7), wc(11), xi_asc(7), wz(7)
     real(dp), parameter :: xi_m(7) = [7.3_dp, 6.6_dp, 5.9_dp, 5.0_dp, 4.1_dp, 3.2_dp, 2.5_dp]
     real(dp), parameter :: ex(2) = [1.0_dp, 0.0_dp], ey(2) = [0.0_dp, 1.0_dp]
     type(mortar_t) :: m
@@ -269,8 +274,14 @@ contains
     xi_asc = xi_m(7:1:-1)
     w2 = hat_integrals(xi_asc, 2.5_dp, 7.3_dp)
     w2 = w2(7:1:-1)
-    call check_small(maxval(abs(matmul(wc, m%P) - w2)) / maxval(w2), 1.0e-13_dp, &
-      'master shorter: covered_weight'' P = int chi_j over the overlap')
+    ! the zone's mesh: nodes 3..9 with the ends moved to the master's ends 2.5 and 7.3
+    call check_small(m%cut(1) - 0.5_dp, 1.0e-14_dp, 'master shorter: the zone starts inside segment 3')
+    call check_small(m%cut(2) - 0.3_dp, 1.0e-14_dp, 'master shorter: the zone ends inside segment 8')
+    wz = hat_integrals([2.5_dp, 3.0_dp, 4.0_dp, 5.0_dp, 6.0_dp, 7.0_dp, 7.3_dp], 2.5_dp, 7.3_dp)
+    call check_small(maxval(abs(m%zone_weight(3:9) - wz)) + sum(abs(m%zone_weight(1:2))) + &
+      sum(abs(m%zone_weight(10:11))), 1.0e-14_dp, 'master shorter: zone weights (the zone''s hats)')
+    call check_small(maxval(abs(matmul(m%zone_weight, m%P) - w2)) / maxval(w2), 1.0e-13_dp, &
+      'master shorter: zone_weight'' P = int chi_j over the overlap')
     do j = 1, 7
       c(j) = 2.0_dp * rnd() - 1.0_dp
     end do
