@@ -579,6 +579,21 @@ contains
       write(line, '(a,i0,a,i0,a,i0,a,i0,a)') 'contact  pair ', ip, ': ', size(cs%pair(ip)%snode), &
         ' slave nodes, ', size(cs%pair(ip)%mnode), ' master nodes, ', cs%pair(ip)%nrow, ' constrained (mortar, '
       call say(trim(line) // ' ' // friction_law(deck%contacts(ip)%friction, cs%pair(ip)%spec) // ')')
+      associate(pr => cs%pair(ip), mo => cs%pair(ip)%mortar)
+        if (mo%first > 0) then
+          write(line, '(a,es11.4,a,es11.4)') 'contact  pair ' // int_to_str(ip) // ': initial gap from ', &
+            minval(mo%gap0(mo%first:mo%last)), ' to ', maxval(mo%gap0(mo%first:mo%last))
+          if (pr%closed .and. mo%first == 1 .and. mo%last == size(pr%snode)) then
+            line = trim(line) // ', a closed curve covered all round (no zone ends)'
+          else if (any(pr%fold)) then
+            line = trim(line) // ', a zone end inside a slave segment (the master''s end)'
+          end if
+          if (pr%spec%interference) line = trim(line) // ', interference=allow'
+        else
+          line = 'contact  pair ' // int_to_str(ip) // ': the master faces no slave segment (no contact possible)'
+        end if
+        call say(trim(line))
+      end associate
     end do
     if (sc%steps > 1 .and. cs%ntan > 0) then
       call say('steps    ' // int_to_str(sc%steps) // ' load steps (friction: the answer depends on the load path)')

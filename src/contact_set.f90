@@ -27,7 +27,7 @@ module contact_set
   use diagnostics, only: error_t, set_error, int_to_str
   use mesh, only: mesh_t
   use body, only: body_t, node_elements, edge_outward_normal
-  use mortar_operator, only: mortar_t, build_mortar, zone_node_terms
+  use mortar_operator, only: mortar_t, intersection_t, build_mortar, intersect_segments, zone_node_terms, zone_point
   implicit none
   private
   public :: contact_set_t, pair_spec_t, contact_pair_t, chain_boundary, boundary_polyline
@@ -38,6 +38,7 @@ module contact_set
     integer :: slave_body = 0, slave_bnd = 0   !< body index, boundary index in its mesh
     integer :: master_body = 0, master_bnd = 0
     logical :: gap_zero = .false.
+    logical :: interference = .false.         !< initial penetrations deeper than a slave element accepted
     real(dp) :: mu = 0.0_dp                   !< Coulomb coefficient (0: none)
     real(dp) :: tresca = 0.0_dp               !< Tresca slip bound, a shear stress (0: none)
   end type pair_spec_t
@@ -53,6 +54,7 @@ module contact_set
     logical, allocatable :: row(:)         !< (ns) slave node carries a constraint row: in the
                                            !< effective zone and with master opposite
     logical :: single = .false.            !< the zone is one slave segment: one mean-value row
+    logical :: closed = .false.            !< the slave polyline is a closed curve (snode(ns) = snode(1))
     logical :: fold(2) = .false.           !< the row of a cut zone start (1) / end (2) is reported on
                                            !< the node next to it: the end node has no master opposite
     real(dp), allocatable :: mcov(:)       !< (nm) int of each master hat over the covered part
@@ -89,7 +91,8 @@ module contact_set
 
 contains
 
-  !> Order the edges of boundary ib of mesh into one open chain of nodes.
+  !> Order the edges of boundary ib of mesh into one chain of nodes, open or
+  !> closed (then its last node is its first).
   !>   nodes (out) the chain (nseg + 1 nodes), in the edges' own direction when
   !>               possible; why (out) '' on success, else the reason
   subroutine chain_boundary(mesh, ib, nodes, why)
@@ -121,10 +124,6 @@ contains
       return
     end if
     nends = count(deg == 1)
-    if (nends == 0) then
-      why = 'it is a closed curve (an open curve with two ends expected)'
-      return
-    end if
     if (nends > 2) then
       why = 'it is made of ' // int_to_str(nends / 2) // ' separate pieces (one connected curve expected)'
       return
@@ -159,6 +158,7 @@ contains
         end if
       end do
     end if
+    if (nends == 0) start = mesh%bnd(ib)%seg(1, 1)      ! a closed curve: nodes(nseg + 1) = nodes(1)
     allocate(nodes(nseg + 1), used(nseg))
     used = .false.
     nodes(1) = start
@@ -251,15 +251,37 @@ contains
           return
         end if
         pr%mnode = mnodes
+        ! a closed slave curve that the master does not cover all round is
+        ! opened where it is not covered (its zone has two ends)
+        if (pr%snode(1) == pr%snode(size(pr%snode))) call open_at_gap(pr%snode, pr%xs, nsl, xm, nms)
         call build_mortar(pr%xs, nsl, xm, nms, sp%gap_zero, pr%mortar, merr)
         if (allocated(merr)) then
           call set_error(err, 'CONTACT ' // int_to_str(ip) // ': ' // merr%message, merr%status)
           return
         end if
+        if (.not. sp%interference) then
+          call check_penetration(pr, err)
+          if (allocated(err)) then
+            err%message = 'CONTACT ' // int_to_str(ip) // ': ' // err%message
+            return
+          end if
+        end if
         pr%row0 = cs%nrow
         call constrained_nodes(pr%mortar, pr%row)
+        pr%closed = pr%snode(1) == pr%snode(size(pr%snode))
+        if (pr%closed .and. pr%mortar%first == 1 .and. pr%mortar%last == size(pr%snode)) &
+          pr%row(size(pr%snode)) = .false.                 ! periodic: the last node is the first
         pr%nrow = count(pr%row)
+        if (mnodes(1) == mnodes(size(mnodes)) .and. allocated(pr%mortar%P)) then
+          ! a closed master curve: its last hat is its first
+          pr%mortar%P(:, 1) = pr%mortar%P(:, 1) + pr%mortar%P(:, size(mnodes))
+          pr%mortar%P(:, size(mnodes)) = 0.0_dp
+        end if
         call covered_master_integrals(pr%mortar, pr%mcov)
+        if (mnodes(1) == mnodes(size(mnodes))) then
+          pr%mcov(1) = pr%mcov(1) + pr%mcov(size(mnodes))
+          pr%mcov(size(mnodes)) = 0.0_dp
+        end if
         ! one slave segment: the multiplier space is the constants (both end
         ! segments at once), so one mean-value row replaces the two nodal ones
         pr%single = pr%mortar%first > 0 .and. pr%mortar%last == pr%mortar%first + 1
@@ -462,6 +484,88 @@ contains
     end subroutine single_row
 
   end subroutine build_contact_set
+
+  !> An initial penetration deeper than the slave elements beside the node
+  !> (the mean length of its zone segments) is an input error (status 2): the
+  !> bodies overlap by several elements, pass through each other, or the
+  !> boundaries face away from each other (the master behind the slave body).
+  !> Small interferences (shrink fits) stay legal; interference=allow lifts it.
+  subroutine check_penetration(pr, err)
+    type(contact_pair_t), intent(in) :: pr
+    type(error_t), allocatable, intent(out) :: err
+    integer :: i, worst
+    real(dp) :: depth, size, ratio, x(2)
+    character(len=48) :: buf
+    associate(mo => pr%mortar)
+      if (mo%first == 0) return
+      worst = 0
+      ratio = 1.0_dp
+      do i = mo%first, mo%last
+        depth = -mo%gap0(i)
+        size = element_size(i)
+        if (depth > ratio * size) then
+          worst = i
+          ratio = depth / size
+        end if
+      end do
+      if (worst == 0) return
+      x = zone_point(mo, pr%xs, worst)
+      buf = '(' // trim(real_text(x(1))) // ', ' // trim(real_text(x(2))) // ')'
+      call set_error(err, 'the slave point at ' // trim(buf) // ' starts ' // trim(real_text(-mo%gap0(worst))) // &
+        ' inside the master, deeper than its slave elements (' // trim(real_text(element_size(worst))) // &
+        '): the bodies overlap, or the two boundaries face away from each other (a gap, or a penetration ' // &
+        'smaller than the slave elements, expected; interference=allow accepts it)', 2)
+    end associate
+  contains
+    real(dp) function element_size(i)
+      integer, intent(in) :: i
+      integer :: a, b
+      a = max(i - 1, pr%mortar%first)
+      b = min(i + 1, pr%mortar%last)
+      if (b == a) b = a + 1
+      element_size = norm2(pr%xs(:, b) - pr%xs(:, a)) / real(b - a, dp)
+    end function element_size
+  end subroutine check_penetration
+
+  !> Short decimal text of a real, for messages.
+  function real_text(v) result(t)
+    real(dp), intent(in) :: v
+    character(len=16) :: t
+    write(t, '(g0.4)') v
+    t = adjustl(t)
+  end function real_text
+
+  !> Open a closed slave polyline (nodes(n) = nodes(1)) where the master does
+  !> not cover it: rotate it to start at an uncovered segment, preferably one
+  !> after another uncovered one (so that its first node lies off the zone).
+  !> Left as it is when the master covers every segment (a periodic zone).
+  !>   nodes (inout) (n) slave node ids;  x (inout) (2, n) coordinates;
+  !>   nout (inout) (2, n-1) segment normals;  xm, nms (in) the master polyline and normals
+  subroutine open_at_gap(nodes, x, nout, xm, nms)
+    integer, intent(inout) :: nodes(:)
+    real(dp), intent(inout) :: x(:,:), nout(:,:)
+    real(dp), intent(in) :: xm(:,:), nms(:,:)
+    type(intersection_t) :: inter
+    logical, allocatable :: covered(:)
+    integer :: n, e, k, start
+    n = size(nodes) - 1
+    call intersect_segments(x, nout, xm, nms, inter)
+    allocate(covered(n), source=.false.)
+    covered(inter%slave_seg(1:inter%nsub)) = .true.
+    if (all(covered)) return
+    start = 0
+    do e = 1, n
+      k = modulo(e - 2, n) + 1                               ! the segment before e
+      if (.not. covered(e) .and. (start == 0 .or. .not. covered(k))) start = e
+      if (.not. covered(e) .and. .not. covered(k)) exit
+    end do
+    if (start == 1) return
+    nodes(1:n) = cshift(nodes(1:n), start - 1)
+    nodes(n + 1) = nodes(1)
+    x(:, 1:n) = cshift(x(:, 1:n), start - 1, dim=2)
+    x(:, n + 1) = x(:, 1)
+    nout = cshift(nout, start - 1, dim=2)
+  end subroutine open_at_gap
 
   !> The rows first..last of mo%P, the entries above 1e-16 of their row's
   !> largest (pi_h^1 decays exponentially away from the diagonal: the

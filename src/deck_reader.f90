@@ -148,6 +148,7 @@ module deck_reader
     integer :: slave_body = 0, master_body = 0  !< indices into deck%bodies
     character(len=:), allocatable :: slave_boundary, master_boundary
     logical :: gap_zero = .false.               !< gap=zero; default gap=geometry
+    logical :: interference = .false.           !< interference=allow: any initial penetration accepted
     character(len=:), allocatable :: friction   !< 'none' (default), 'coulomb' (mu=) or 'tresca' (tresca=)
     real(dp) :: mu = 0                          !< Coulomb coefficient, 0 <= mu <= 1000
     real(dp) :: tresca = 0                      !< Tresca slip bound (a shear stress), >= 0
@@ -1509,17 +1510,19 @@ contains
   end subroutine do_gravity
 
   !> CONTACT slave=body:boundary master=body:boundary [gap=geometry|zero] [mu=number | tresca=number]
+  !>         [interference=allow|reject]
   subroutine do_contact(s, deck, st)
     type(state_t), intent(inout) :: s
     type(deck_t), intent(inout) :: deck
     type(stmt_t), intent(in) :: st
     character(len=*), parameter :: usage = 'CONTACT slave=body:boundary master=body:boundary [gap=geometry|zero] ' // &
-                                           '[mu=number|tresca=number]'
-    character(len=6), parameter :: names(5) = [character(len=6) :: 'slave', 'master', 'gap', 'mu', 'tresca']
-    character(len=13), parameter :: forms(5) = [character(len=13) :: 'body:boundary', 'body:boundary', &
-                                                'geometry|zero', 'number', 'number']
-    logical :: seen(5), ok_s, ok_m, ok
-    type(text_t) :: val(5)
+                                           '[mu=number|tresca=number] [interference=allow|reject]'
+    character(len=12), parameter :: names(6) = [character(len=12) :: 'slave', 'master', 'gap', 'mu', 'tresca', &
+                                                'interference']
+    character(len=13), parameter :: forms(6) = [character(len=13) :: 'body:boundary', 'body:boundary', &
+                                                'geometry|zero', 'number', 'number', 'allow|reject']
+    logical :: seen(6), ok_s, ok_m, ok
+    type(text_t) :: val(6)
     type(contact_deck_t) :: c
     type(contact_deck_t), allocatable :: grown(:)
     type(text_t), allocatable :: gs(:), gm(:)
@@ -1541,6 +1544,8 @@ contains
     gap = 'geometry'
     if (allocated(val(3)%s)) gap = get_choice(s, st, val(3), 'gap', ['geometry', 'zero    '])
     c%gap_zero = gap == 'zero'
+    ! an initial penetration deeper than a slave element is an input error unless allowed
+    if (allocated(val(6)%s)) c%interference = get_choice(s, st, val(6), 'interference', ['allow ', 'reject']) == 'allow'
     ! friction (beyond the paper): |tau| <= mu p (Coulomb) or |tau| <= tresca
     c%friction = 'none'
     if (seen(4) .and. seen(5)) &

@@ -164,6 +164,11 @@ contains
       y = ns_out(:, i - 1) + ns_out(:, i)
       mortar%normal(:, i) = y / norm2(y)
     end do
+    if (all(xs(:, 1) == xs(:, ns))) then                 ! a closed curve: its first node is its last
+      y = ns_out(:, ns - 1) + ns_out(:, 1)
+      mortar%normal(:, 1) = y / norm2(y)
+      mortar%normal(:, ns) = mortar%normal(:, 1)
+    end if
 
     call intersect_segments(xs, ns_out, xm, nm_out, mortar%inter)
     if (mortar%inter%nsub == 0) return
@@ -184,6 +189,11 @@ contains
         end if
       end if
     end do
+    ! A closed slave curve covered all round: the periodic zone (module header, 6.).
+    if (all(xs(:, 1) == xs(:, ns)) .and. all(ncover > 0)) then
+      call build_periodic(mortar, xs, ns_out, xm, seglen, gap_zero, err)
+      return
+    end if
     first = mortar%inter%slave_seg(1)
     last = mortar%inter%slave_seg(mortar%inter%nsub) + 1
     e = first
@@ -375,6 +385,99 @@ contains
     end do
     !$omp end parallel do
   end subroutine project_interior
+
+  !> The operator on a closed slave curve that the master covers all round:
+  !> no zone ends, the multiplier space is the periodic P1 space (psi_k =
+  !> phi_k, k = 1..n, node n+1 = node 1), pi_h^1 is the L2 projection onto it,
+  !>    D v = M c,   D_kl = int phi_k phi_l (cyclic tridiagonal),  M_kj = int phi_k chi_j,
+  !> solved by bordering: the last unknown eliminated, the tridiagonal rest by
+  !> dgtsv with one more right-hand side.  Row n+1 of P repeats row 1.
+  !>   mortar (inout) in: ns, nm, inter, arrays allocated; out: the operator
+  !>   xs, ns_out, xm (in) the polylines;  seglen (in) (ns-1) slave segment lengths
+  !>   gap_zero (in) as build_mortar;  err (out) status 2 for fewer than 3 segments, 1 when D is singular
+  subroutine build_periodic(mortar, xs, ns_out, xm, seglen, gap_zero, err)
+    type(mortar_t), intent(inout) :: mortar
+    real(dp), intent(in) :: xs(:,:), ns_out(:,:), xm(:,:), seglen(:)
+    logical, intent(in) :: gap_zero
+    type(error_t), allocatable, intent(out) :: err
+    real(dp), parameter :: gauss = 0.57735026918962576451_dp   ! 1/sqrt(3)
+    real(dp), allocatable :: dd(:), du(:), dl(:), rhs(:,:), b(:), py(:,:)
+    real(dp) :: half, mid, sq, rq, wq, phi(0:1), chi(0:1), y(2), piv
+    integer :: n, k, e, f, q, ia, ib, node(0:1), jlo, jhi, nc, info, i
+
+    n = mortar%ns - 1
+    if (n < 3) then
+      call set_error(err, 'closed slave boundary has ' // int_to_str(n) // &
+        ' segment(s) (at least 3 expected on a closed contact curve)', 2)
+      return
+    end if
+    mortar%first = 1
+    mortar%last = mortar%ns
+    mortar%constrained = .true.
+    do e = 1, n
+      mortar%weight(e) = mortar%weight(e) + 0.5_dp * seglen(e)
+      mortar%weight(e + 1) = mortar%weight(e + 1) + 0.5_dp * seglen(e)
+    end do
+    mortar%weight(1) = mortar%weight(1) + mortar%weight(mortar%ns)
+    allocate(dd(n), du(n), source=0.0_dp)
+    do k = 1, mortar%inter%nsub                          ! D, M on the sub-segments, 2-point Gauss (exact)
+      e = mortar%inter%slave_seg(k)
+      f = mortar%inter%master_seg(k)
+      node = [e, modulo(e, n) + 1]
+      half = 0.5_dp * (mortar%inter%s(2, k) - mortar%inter%s(1, k))
+      mid = 0.5_dp * (mortar%inter%s(2, k) + mortar%inter%s(1, k))
+      wq = half * seglen(e)
+      do q = -1, 1, 2
+        sq = mid + real(q, dp) * gauss * half
+        rq = 0.5_dp * (mortar%inter%r(1, k) + mortar%inter%r(2, k)) + &
+             real(q, dp) * gauss * 0.5_dp * (mortar%inter%r(2, k) - mortar%inter%r(1, k))
+        phi = [1.0_dp - sq, sq]
+        chi = [1.0_dp - rq, rq]
+        do ia = 0, 1
+          mortar%covered_weight(node(ia)) = mortar%covered_weight(node(ia)) + wq * phi(ia)
+          do ib = 0, 1
+            if (ib == ia) dd(node(ia)) = dd(node(ia)) + wq * phi(ia) * phi(ib)
+          end do
+          mortar%P(node(ia), f) = mortar%P(node(ia), f) + wq * phi(ia) * chi(0)
+          mortar%P(node(ia), f + 1) = mortar%P(node(ia), f + 1) + wq * phi(ia) * chi(1)
+        end do
+        du(e) = du(e) + wq * phi(0) * phi(1)             ! D_e,e+1 (e = n: D_n,1)
+      end do
+    end do
+    mortar%zone_weight(1:n) = mortar%covered_weight(1:n)
+    ! bordering: T X = [M(1:n-1, :) | b],  b = D(1:n-1, n) = du(n-1) e_(n-1) + du(n) e_1
+    jlo = minval(mortar%inter%master_seg(1:mortar%inter%nsub))
+    jhi = maxval(mortar%inter%master_seg(1:mortar%inter%nsub)) + 1
+    nc = jhi - jlo + 1
+    allocate(rhs(n - 1, nc + 1), b(n - 1), source=0.0_dp)
+    b(1) = du(n)
+    b(n - 1) = b(n - 1) + du(n - 1)
+    rhs(:, 1:nc) = mortar%P(1:n - 1, jlo:jhi)
+    rhs(:, nc + 1) = b
+    dl = du(1:n - 2)
+    call dgtsv(n - 1, nc + 1, dl, dd(1:n - 1), du(1:n - 2), rhs, n - 1, info)
+    piv = dd(n) - dot_product(b, rhs(:, nc + 1))          ! Schur complement of T in D
+    if (info /= 0 .or. .not. piv > 0.0_dp) then
+      call set_error(err, 'mortar matrix D of the closed contact curve is singular (LAPACK dgtsv info ' // &
+        int_to_str(info) // ')', 1)
+      return
+    end if
+    do f = 1, nc
+      mortar%P(n, jlo + f - 1) = (mortar%P(n, jlo + f - 1) - dot_product(b, rhs(:, f))) / piv
+      mortar%P(1:n - 1, jlo + f - 1) = rhs(:, f) - rhs(:, nc + 1) * mortar%P(n, jlo + f - 1)
+    end do
+    mortar%P(mortar%ns, :) = mortar%P(1, :)
+    mortar%zone_weight(mortar%ns) = mortar%zone_weight(1)
+    mortar%covered_weight(mortar%ns) = mortar%covered_weight(1)
+    if (.not. gap_zero) then
+      allocate(py(n, 2))
+      py = matmul(mortar%P(1:n, jlo:jhi), transpose(xm(:, jlo:jhi)))
+      do i = 1, n
+        mortar%gap0(i) = dot_product(mortar%normal(:, i), py(i, :) - xs(:, i))
+      end do
+      mortar%gap0(mortar%ns) = mortar%gap0(1)
+    end if
+  end subroutine build_periodic
 
   !> The point of zone node i (first..last): the slave node, or for a cut end
   !> the point of its segment where the zone ends.

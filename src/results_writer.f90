@@ -306,6 +306,11 @@ contains
     do ip = 1, cs%npair
       associate(pr => cs%pair(ip), mo => cs%pair(ip)%mortar)
         do i = 1, size(pr%snode)
+          if (pr%closed) then                  ! a closed curve lists its first node once
+            if (i == size(pr%snode) .neqv. pr%row(size(pr%snode))) then
+              if (i == size(pr%snode) .or. i == 1) cycle
+            end if
+          end if
           write(sx(1), '(es24.16e3)') mo%arc(i)
           write(sx(2), '(es24.16e3)') pr%xs(1, i)
           write(sx(3), '(es24.16e3)') pr%xs(2, i)
