@@ -27,7 +27,8 @@ module contact_set
   use diagnostics, only: error_t, set_error, int_to_str
   use mesh, only: mesh_t
   use body, only: body_t, node_elements, edge_outward_normal
-  use mortar_operator, only: mortar_t, intersection_t, build_mortar, intersect_segments, zone_node_terms, zone_point
+  use mortar_operator, only: mortar_t, intersection_t, build_mortar, intersect_segments, common_normals, &
+                             zone_node_terms, zone_point
   implicit none
   private
   public :: contact_set_t, pair_spec_t, contact_pair_t, chain_boundary, boundary_polyline
@@ -55,6 +56,7 @@ module contact_set
                                            !< effective zone and with master opposite
     logical :: single = .false.            !< the zone is one slave segment: one mean-value row
     logical :: closed = .false.            !< the slave polyline is a closed curve (snode(ns) = snode(1))
+    real(dp) :: slave_weight = 1.0_dp      !< friction: the slave normal's weight in the common normal
     logical :: fold(2) = .false.           !< the row of a cut zone start (1) / end (2) is reported on
                                            !< the node next to it: the end node has no master opposite
     real(dp), allocatable :: mcov(:)       !< (nm) int of each master hat over the covered part
@@ -228,7 +230,7 @@ contains
     type(error_t), allocatable, intent(out) :: err
     integer :: ip, i, j, r, nm, nnz, k, c, q, d0s, d0m, maxdof
     integer, allocatable :: mnodes(:), colmap(:)
-    real(dp), allocatable :: xm(:,:), nsl(:,:), nms(:,:)
+    real(dp), allocatable :: xm(:,:), nsl(:,:), nms(:,:), pairing(:,:)
     character(len=:), allocatable :: why
     type(error_t), allocatable :: merr
     logical, allocatable :: touched(:)
@@ -254,7 +256,14 @@ contains
         ! a closed slave curve that the master does not cover all round is
         ! opened where it is not covered (its zone has two ends)
         if (pr%snode(1) == pr%snode(size(pr%snode))) call open_at_gap(pr%snode, pr%xs, nsl, xm, nms)
-        call build_mortar(pr%xs, nsl, xm, nms, sp%gap_zero, pr%mortar, merr)
+        if (has_friction(sp)) then
+          ! friction: the pair's rows along the common normal, which pairs the
+          ! points that meet and leaves the normal approach out of the slip
+          call common_normals(pr%xs, nsl, xm, nms, pairing, pr%slave_weight)
+          call build_mortar(pr%xs, nsl, xm, nms, sp%gap_zero, pr%mortar, merr, pairing)
+        else
+          call build_mortar(pr%xs, nsl, xm, nms, sp%gap_zero, pr%mortar, merr)
+        end if
         if (allocated(merr)) then
           call set_error(err, 'CONTACT ' // int_to_str(ip) // ': ' // merr%message, merr%status)
           return

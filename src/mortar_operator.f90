@@ -69,7 +69,7 @@ module mortar_operator
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
   private
-  public :: mortar_t, intersection_t, build_mortar, intersect_segments, zone_node_terms, zone_point
+  public :: mortar_t, intersection_t, build_mortar, intersect_segments, common_normals, zone_node_terms, zone_point
 
   !> Sub-segments of the intersection of the slave and master 1D meshes, ordered by
   !> slave segment and, within one, by increasing s.
@@ -122,11 +122,12 @@ contains
   !>   err      (out) allocated on failure: status 2 for bad geometry (sizes, zero-length
   !>                  segments, normals, holes or folds in the master cover), 1 when the
   !>                  tridiagonal solve fails
-  subroutine build_mortar(xs, ns_out, xm, nm_out, gap_zero, mortar, err)
+  subroutine build_mortar(xs, ns_out, xm, nm_out, gap_zero, mortar, err, pairing)
     real(dp), intent(in) :: xs(:,:), ns_out(:,:), xm(:,:), nm_out(:,:)
     logical, intent(in) :: gap_zero
     type(mortar_t), intent(out) :: mortar
     type(error_t), allocatable, intent(out) :: err
+    real(dp), intent(in), optional :: pairing(:,:)
     integer :: ns, nm, i, e, k, first, last, f, jlo, jhi, info
     integer, allocatable :: ncover(:)
     logical :: ext(2)
@@ -164,13 +165,14 @@ contains
       y = ns_out(:, i - 1) + ns_out(:, i)
       mortar%normal(:, i) = y / norm2(y)
     end do
-    if (all(xs(:, 1) == xs(:, ns))) then                 ! a closed curve: its first node is its last
+    if (all(xs(:, 1) == xs(:, ns)) .and. .not. present(pairing)) then   ! a closed curve: its first node is its last
       y = ns_out(:, ns - 1) + ns_out(:, 1)
       mortar%normal(:, 1) = y / norm2(y)
       mortar%normal(:, ns) = mortar%normal(:, 1)
     end if
 
-    call intersect_segments(xs, ns_out, xm, nm_out, mortar%inter)
+    if (present(pairing)) mortar%normal = pairing
+    call intersect_segments(xs, ns_out, xm, nm_out, mortar%inter, pairing)
     if (mortar%inter%nsub == 0) return
 
     ! Coverage per slave segment; double cover (folds) and holes.
@@ -191,7 +193,7 @@ contains
     end do
     ! A closed slave curve covered all round: the periodic zone (module header, 6.).
     if (all(xs(:, 1) == xs(:, ns)) .and. all(ncover > 0)) then
-      call build_periodic(mortar, xs, ns_out, xm, seglen, gap_zero, err)
+      call build_periodic(mortar, xs, xm, seglen, gap_zero, err)
       return
     end if
     first = mortar%inter%slave_seg(1)
@@ -240,8 +242,10 @@ contains
     if (mortar%cut(1) <= tol_overlap) mortar%cut(1) = 0.0_dp
     if (mortar%cut(2) >= 1.0_dp - tol_overlap) mortar%cut(2) = 1.0_dp
     ! the row of a cut end acts at a point inside a segment: its normal is the segment's
-    if (mortar%cut(1) > 0.0_dp) mortar%normal(:, first) = ns_out(:, first)
-    if (mortar%cut(2) < 1.0_dp) mortar%normal(:, last) = ns_out(:, last - 1)
+    if (.not. present(pairing)) then
+      if (mortar%cut(1) > 0.0_dp) mortar%normal(:, first) = ns_out(:, first)
+      if (mortar%cut(2) < 1.0_dp) mortar%normal(:, last) = ns_out(:, last - 1)
+    end if
 
     ! Lumped weights over the full zone segments.
     do e = first, last - 1
@@ -393,16 +397,16 @@ contains
   !> solved by bordering: the last unknown eliminated, the tridiagonal rest by
   !> dgtsv with one more right-hand side.  Row n+1 of P repeats row 1.
   !>   mortar (inout) in: ns, nm, inter, arrays allocated; out: the operator
-  !>   xs, ns_out, xm (in) the polylines;  seglen (in) (ns-1) slave segment lengths
+  !>   xs, xm (in) the polylines;  seglen (in) (ns-1) slave segment lengths
   !>   gap_zero (in) as build_mortar;  err (out) status 2 for fewer than 3 segments, 1 when D is singular
-  subroutine build_periodic(mortar, xs, ns_out, xm, seglen, gap_zero, err)
+  subroutine build_periodic(mortar, xs, xm, seglen, gap_zero, err)
     type(mortar_t), intent(inout) :: mortar
-    real(dp), intent(in) :: xs(:,:), ns_out(:,:), xm(:,:), seglen(:)
+    real(dp), intent(in) :: xs(:,:), xm(:,:), seglen(:)
     logical, intent(in) :: gap_zero
     type(error_t), allocatable, intent(out) :: err
     real(dp), parameter :: gauss = 0.57735026918962576451_dp   ! 1/sqrt(3)
     real(dp), allocatable :: dd(:), du(:), dl(:), rhs(:,:), b(:), py(:,:)
-    real(dp) :: half, mid, sq, rq, wq, phi(0:1), chi(0:1), y(2), piv
+    real(dp) :: half, mid, sq, rq, wq, phi(0:1), chi(0:1), piv
     integer :: n, k, e, f, q, ia, ib, node(0:1), jlo, jhi, nc, info, i
 
     n = mortar%ns - 1
@@ -479,6 +483,116 @@ contains
     end if
   end subroutine build_periodic
 
+  !> The common normal of a frictional pair at each slave node (module header,
+  !> 7.): the direction along which the two surfaces approach, which pairs the
+  !> points that meet and is the normal of the slip's tangent plane.  Near the
+  !> first contact of two surfaces of curvatures k1 (slave) and k2 (master),
+  !> their normals at a distance x are tilted by k1 x and -k2 x from it, so
+  !>    n_c = normalize(w n1 - (1 - w) n2),   w = k2 / (k1 + k2)  in [0, 1],
+  !> n1 the slave nodal normal, n2 the master normal at the point its ray
+  !> meets.  k1, k2 are the mean curvatures of the two polylines over the
+  !> part of them that faces the other (convex > 0).  w = 1/2 (the bisector)
+  !> when they agree to tol_curv (a polygon's curvature is no better; mirror
+  !> images then pair exactly), when k1 + k2 is not positive (conforming
+  !> surfaces, whose normals are parallel anyway) and on flat pairs; w = 1 or
+  !> 0 when one side is flat to tol_curv of the other.
+  !>   xs, ns_out, xm, nm_out (in) the polylines and segment normals, as build_mortar
+  !>   nc (out) (2, ns) unit common normals; the slave nodal normal where no master faces
+  !>   w  (out) the weight of the slave normal
+  subroutine common_normals(xs, ns_out, xm, nm_out, nc, w)
+    real(dp), intent(in) :: xs(:,:), ns_out(:,:), xm(:,:), nm_out(:,:)
+    real(dp), allocatable, intent(out) :: nc(:,:)
+    real(dp), intent(out) :: w
+    real(dp), parameter :: tol_curv = 5.0e-2_dp
+    type(intersection_t) :: inter
+    real(dp), allocatable :: n1(:,:), n2(:,:)
+    logical, allocatable :: sface(:), mface(:)
+    real(dp) :: k1, k2, y(2), rr, m(2)
+    integer :: ns, nm, i, f, iter
+
+    ns = size(xs, 2)
+    nm = size(xm, 2)
+    call nodal_normals(xs, ns_out, n1)
+    call nodal_normals(xm, nm_out, n2)
+    nc = n1
+    w = 0.5_dp
+    call intersect_segments(xs, ns_out, xm, nm_out, inter)
+    if (inter%nsub == 0) return
+    allocate(sface(ns - 1), mface(nm - 1), source=.false.)
+    sface(inter%slave_seg(1:inter%nsub)) = .true.
+    mface(inter%master_seg(1:inter%nsub)) = .true.
+    k1 = mean_curvature(xs, ns_out, sface)
+    k2 = mean_curvature(xm, nm_out, mface)
+    if (abs(k1 - k2) <= tol_curv * 0.5_dp * (abs(k1) + abs(k2)) .or. .not. k1 + k2 > 0.0_dp) then
+      w = 0.5_dp
+    else if (abs(k1) <= tol_curv * abs(k2)) then
+      w = 1.0_dp
+    else if (abs(k2) <= tol_curv * abs(k1)) then
+      w = 0.0_dp
+    else
+      w = min(1.0_dp, max(0.0_dp, k2 / (k1 + k2)))
+    end if
+    do i = 1, ns
+      if (.not. (any(sface(max(1, i - 1):min(ns - 1, i))))) cycle
+      ! the master point on the ray along the current estimate, a few times:
+      ! each pass moves it closer to the point the common normal meets
+      do iter = 1, 4
+        call ray_hit(xs(:, i), nc(:, i), xm, nm_out, f, rr)
+        if (f == 0) exit
+        if (rr < 1.0e-8_dp) rr = 0.0_dp                    ! on a master node: its normal exactly
+        if (rr > 1.0_dp - 1.0e-8_dp) rr = 1.0_dp
+        m = (1.0_dp - rr) * n2(:, f) + rr * n2(:, f + 1)
+        m = m / norm2(m)
+        y = w * n1(:, i) - (1.0_dp - w) * m
+        if (.not. norm2(y) > 0.0_dp) exit
+        nc(:, i) = y / norm2(y)
+      end do
+    end do
+  end subroutine common_normals
+
+  !> Unit nodal normals of a polyline: the normalized sum of the two segment
+  !> normals at a node, the segment's own at an end (a closed curve has none).
+  subroutine nodal_normals(x, nrm, n)
+    real(dp), intent(in) :: x(:,:), nrm(:,:)
+    real(dp), allocatable, intent(out) :: n(:,:)
+    real(dp) :: y(2)
+    integer :: np, i
+    np = size(x, 2)
+    allocate(n(2, np))
+    n(:, 1) = nrm(:, 1)
+    n(:, np) = nrm(:, np - 1)
+    do i = 2, np - 1
+      y = nrm(:, i - 1) + nrm(:, i)
+      n(:, i) = y / norm2(y)
+    end do
+    if (all(x(:, 1) == x(:, np))) then
+      y = nrm(:, np - 1) + nrm(:, 1)
+      n(:, 1) = y / norm2(y)
+      n(:, np) = n(:, 1)
+    end if
+  end subroutine nodal_normals
+
+  !> Mean curvature of the segments of a polyline marked in seg (convex > 0):
+  !> the turning of the outward normal along the tangent, summed over
+  !> consecutive marked segments, over their half lengths.
+  real(dp) function mean_curvature(x, nrm, seg) result(k)
+    real(dp), intent(in) :: x(:,:), nrm(:,:)
+    logical, intent(in) :: seg(:)
+    real(dp) :: turn, length, ta(2), tb(2)
+    integer :: e
+    turn = 0.0_dp
+    length = 0.0_dp
+    do e = 1, size(seg) - 1
+      if (.not. (seg(e) .and. seg(e + 1))) cycle
+      ta = x(:, e + 1) - x(:, e)
+      tb = x(:, e + 2) - x(:, e + 1)
+      turn = turn + dot_product(nrm(:, e + 1) - nrm(:, e), ta / norm2(ta) + tb / norm2(tb)) * 0.5_dp
+      length = length + 0.5_dp * (norm2(ta) + norm2(tb))
+    end do
+    k = 0.0_dp
+    if (length > 0.0_dp) k = turn / length
+  end function mean_curvature
+
   !> The point of zone node i (first..last): the slave node, or for a cut end
   !> the point of its segment where the zone ends.
   pure function zone_point(mo, xs, i) result(x)
@@ -489,7 +603,8 @@ contains
     integer :: node(2), nt
     real(dp) :: coef(2)
     call zone_node_terms(mo, i, node, coef, nt)
-    x = matmul(xs(:, node(1:nt)), coef(1:nt))
+    x = coef(1) * xs(:, node(1))
+    if (nt == 2) x = x + coef(2) * xs(:, node(2))
   end function zone_point
 
   !> The slave nodes and coefficients that give the slave trace at zone node
@@ -544,7 +659,7 @@ contains
   subroutine drop_pieces(inter, e)
     type(intersection_t), intent(inout) :: inter
     integer, intent(in) :: e
-    logical, allocatable :: keep(:)
+    logical :: keep(inter%nsub)
     integer :: n
     keep = inter%slave_seg(1:inter%nsub) /= e
     n = count(keep)
@@ -576,27 +691,9 @@ contains
     logical, intent(in) :: at_start
     integer, intent(out) :: f
     real(dp), intent(out) :: r
-    real(dp) :: d(2), w(2), den, tau, rr, best
-    integer :: g, k
+    integer :: k
 
-    f = 0
-    r = 0.0_dp
-    best = huge(1.0_dp)
-    do g = 1, size(xm, 2) - 1
-      if (dot_product(nm_out(:, g), n) >= 0.0_dp) cycle
-      d = xm(:, g + 1) - xm(:, g)
-      w = xm(:, g) - a
-      den = cross(n, d)
-      if (abs(den) <= 1.0e-12_dp * norm2(d)) cycle        ! segment along the ray
-      rr = -cross(n, w) / den                              ! a + tau n = y_g + rr d
-      if (rr < -tol_ray .or. rr > 1.0_dp + tol_ray) cycle
-      tau = cross(w, d) / den
-      if (abs(tau) < best) then
-        best = abs(tau)
-        f = g
-        r = min(1.0_dp, max(0.0_dp, rr))
-      end if
-    end do
+    call ray_hit(a, n, xm, nm_out, f, r)
     if (f > 0) return
 
     ! Constant extension of the master trace beyond its end.
@@ -619,17 +716,49 @@ contains
     end if
   end subroutine end_row
 
+  !> The nearest hit of the line a + tau n on a master segment facing n.
+  !>   a, n (in) (2) point and unit direction;  xm, nm_out (in) master nodes and segment normals
+  !>   f (out) the master segment, 0 when the line misses the master;  r (out) its coordinate in [0, 1]
+  subroutine ray_hit(a, n, xm, nm_out, f, r)
+    real(dp), intent(in) :: a(2), n(2), xm(:,:), nm_out(:,:)
+    integer, intent(out) :: f
+    real(dp), intent(out) :: r
+    real(dp) :: d(2), w(2), den, tau, rr, best
+    integer :: g
+    f = 0
+    r = 0.0_dp
+    best = huge(1.0_dp)
+    do g = 1, size(xm, 2) - 1
+      if (dot_product(nm_out(:, g), n) >= 0.0_dp) cycle
+      d = xm(:, g + 1) - xm(:, g)
+      w = xm(:, g) - a
+      den = cross(n, d)
+      if (abs(den) <= 1.0e-12_dp * norm2(d)) cycle        ! segment along the ray
+      rr = -cross(n, w) / den                              ! a + tau n = y_g + rr d
+      if (rr < -tol_ray .or. rr > 1.0_dp + tol_ray) cycle
+      tau = cross(w, d) / den
+      if (abs(tau) < best) then
+        best = abs(tau)
+        f = g
+        r = min(1.0_dp, max(0.0_dp, rr))
+      end if
+    end do
+  end subroutine ray_hit
+
   !> Intersect the slave and master 1D meshes: for each slave segment, the master
   !> segments facing it projected along its normal onto its line (module header, 1.).
   !> The polylines are assumed valid (as checked by build_mortar).
   !>   xs     (in)  (2, ns) slave nodes;  ns_out (in) (2, ns-1) slave segment normals
   !>   xm     (in)  (2, nm) master nodes; nm_out (in) (2, nm-1) master segment normals
   !>   inter  (out) the sub-segments, ordered by slave segment and increasing s
-  subroutine intersect_segments(xs, ns_out, xm, nm_out, inter)
+  !>   pairing (in, optional) (2, ns) unit nodal pairing directions: the master is
+  !>                  projected onto segment e along their sum, not along its normal
+  subroutine intersect_segments(xs, ns_out, xm, nm_out, inter, pairing)
     real(dp), intent(in) :: xs(:,:), ns_out(:,:), xm(:,:), nm_out(:,:)
     type(intersection_t), intent(out) :: inter
+    real(dp), intent(in), optional :: pairing(:,:)
     integer :: nss, nms, e, f, nc, i, j, cap
-    real(dp) :: xa(2), t(2), length, sa, sb, lo, hi
+    real(dp) :: xa(2), t(2), d(2), length, sa, sb, lo, hi
     real(dp), allocatable :: clo(:), chi(:), rlo(:), rhi(:), sm(:)
     integer, allocatable :: cf(:)
 
@@ -645,9 +774,16 @@ contains
       length = norm2(t)
       t = t / length
       nc = 0
-      do f = 1, nms + 1                    ! each master node's coordinate along segment e, once
-        sm(f) = dot_product(xm(:, f) - xa, t) / length
-      end do
+      if (present(pairing)) then           ! projected along the pairing direction d
+        d = pairing(:, e) + pairing(:, e + 1)
+        do f = 1, nms + 1
+          sm(f) = cross(xm(:, f) - xa, d) / cross(xs(:, e + 1) - xa, d)
+        end do
+      else
+        do f = 1, nms + 1                  ! each master node's coordinate along segment e, once
+          sm(f) = dot_product(xm(:, f) - xa, t) / length
+        end do
+      end if
       do f = 1, nms
         if (dot_product(nm_out(:, f), ns_out(:, e)) >= 0.0_dp) cycle   ! not facing
         sa = sm(f)
