@@ -24,8 +24,10 @@ program contact2d
   use friction_lcp, only: solve_friction_lcp, friction_state
   use contact_lcp, only: contact_solution_t, solve_contact
   use rigid_modes, only: floating_t, find_floating_modes, mode_name
-  use results_writer, only: results_t, write_vtk, write_contact_csv, write_summary, commit_outputs, &
-                            discard_outputs, phase_names, nphase, peak_memory
+  use results_writer, only: results_t, write_vtk, write_contact_csv, write_summary, phase_names, nphase, peak_memory
+  use safe_files, only: make_folders, temporary_t, create_temporary, close_temporary, commit_temporaries, &
+                        discard_temporaries
+  use gmsh_runner, only: gmsh_options_t
   use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use omp_lib, only: omp_get_max_threads, omp_get_thread_num, omp_get_num_threads
@@ -42,6 +44,7 @@ program contact2d
   character(len=:), allocatable :: deck_path, outdir
   character(len=5) :: ordering              !< 'metis' or 'amd' (SOLVER ordering=, auto resolved)
   logical :: check_only, quiet
+  type(gmsh_options_t) :: gmsh              !< --trust-geo, --gmsh-timeout
   type(diag_t) :: diag
   type(deck_t) :: deck
   type(scene_t) :: sc
@@ -67,7 +70,7 @@ program contact2d
   ! OpenBLAS's workers would spin on the second core through the phases
   ! before the factorization, which use OpenMP and no BLAS
   call c2d_blas_park()
-  call parse_command_line(deck_path, outdir, check_only, quiet)
+  call parse_command_line(deck_path, outdir, check_only, quiet, gmsh)
   call system_clock(t_start)
   t_phase = t_start
 
@@ -76,7 +79,7 @@ program contact2d
   call stop_input_errors(diag)
   if (.not. check_only) call make_folder(outdir, diag)
   call stop_input_errors(diag)
-  call build_scene(deck, temp_folder(), sc, diag)
+  call build_scene(deck, gmsh, sc, diag)
   call stop_input_errors(diag)
   call build_contact_set(sc%bodies, sc%specs, cs, err)
   if (allocated(err)) call contact_error(err)
@@ -532,27 +535,26 @@ contains
     end do
   end subroutine nodal_contact_fields
 
-  !> Write every output to a temporary name, then rename them all.
+  !> Write every output to a temporary of its own, then commit them all.
   subroutine write_outputs()
-    character(len=512) :: tmp(3), final(3)
+    type(temporary_t) :: tmp(3)
     logical :: ok
-    final(1) = outdir // '/' // deck%output%vtk
-    final(2) = outdir // '/' // deck%output%contact
-    final(3) = outdir // '/' // deck%output%summary
-    do i = 1, 3
-      tmp(i) = trim(final(i)) // '.part'
-    end do
-    if (cs%npair == 0) tmp(2) = ''
-    call write_vtk(trim(tmp(1)), deck%title, sc%bodies, res, deck%output%fields, ok)
-    if (ok .and. cs%npair > 0) call write_contact_csv(trim(tmp(2)), cs, res, ok)
+    call create_temporary(outdir, deck%output%vtk, tmp(1), ok)
+    if (ok .and. cs%npair > 0) call create_temporary(outdir, deck%output%contact, tmp(2), ok)
+    if (ok) call create_temporary(outdir, deck%output%summary, tmp(3), ok)
+    if (ok) call write_vtk(tmp(1)%io_path, deck%title, sc%bodies, res, deck%output%fields, ok)
+    if (ok .and. cs%npair > 0) call write_contact_csv(tmp(2)%io_path, cs, res, ok)
     if (ok) then
       call lap(ph_output)
       res%memory_peak = peak_memory()
-      call write_summary(trim(tmp(3)), res, ok)
+      call write_summary(tmp(3)%io_path, res, ok)
     end if
-    if (ok) call commit_outputs(tmp, final, ok)
+    do i = 1, 3
+      call close_temporary(tmp(i))
+    end do
+    if (ok) call commit_temporaries(outdir, tmp, ok)
     if (.not. ok) then
-      call discard_outputs(tmp)
+      call discard_temporaries(tmp)
       write(error_unit, '(a)') 'contact2d: error: ' // outdir // ': cannot write the output files (a writable folder expected)'
       call exit_program(2)
     end if
@@ -725,19 +727,6 @@ contains
       'are not finite): the loads or prescribed values are out of the range of double precision arithmetic')
   end subroutine check_finite_results
 
-  !> Folder for temporary files (gmsh's meshes of .geo files): $TMPDIR or /tmp.
-  function temp_folder() result(path)
-    character(len=:), allocatable :: path
-    integer :: n, stat
-    call get_environment_variable('TMPDIR', length=n, status=stat)
-    if (stat == 0 .and. n > 0) then
-      allocate(character(len=n) :: path)
-      call get_environment_variable('TMPDIR', path)
-    else
-      path = '/tmp'
-    end if
-  end function temp_folder
-
   !> A body whose FIX leaves a rigid mode free must be held by a CONTACT.
   subroutine check_floating_bodies()
     integer :: j, ip, b
@@ -781,23 +770,21 @@ contains
     end do
   end function equation_location
 
-  !> Create the output folder (and its parents) when missing.
+  !> Create the output folder (and its parents) when missing: mkdir(2), no
+  !> shell, so any name a user can type works.
   subroutine make_folder(path, d)
     character(len=*), intent(in) :: path
     type(diag_t), intent(inout) :: d
-    integer :: stat, cstat
-    logical :: there
-    inquire(file=path // '/.', exist=there)
-    if (there) return
-    call execute_command_line("mkdir -p -- '" // path // "' 2>/dev/null", exitstat=stat, cmdstat=cstat)
-    inquire(file=path // '/.', exist=there)
-    if (.not. there) call add_error(d, path, 0, 'cannot create the output folder (a writable path expected)')
+    logical :: ok
+    call make_folders(path, ok)
+    if (.not. ok) call add_error(d, path, 0, 'cannot create the output folder (a writable path expected)')
   end subroutine make_folder
 
-  subroutine parse_command_line(deck_path, outdir, check_only, quiet)
+  subroutine parse_command_line(deck_path, outdir, check_only, quiet, gmsh)
     character(len=:), allocatable, intent(out) :: deck_path, outdir
     logical, intent(out) :: check_only, quiet
-    integer :: n, j, length
+    type(gmsh_options_t), intent(out) :: gmsh
+    integer :: n, j, length, ios
     character(len=:), allocatable :: arg
     check_only = .false.
     quiet = .false.
@@ -821,6 +808,20 @@ contains
         check_only = .true.
       case ('-q')
         quiet = .true.
+      case ('--trust-geo')
+        gmsh%trust_geo = .true.
+      case ('--gmsh-timeout')
+        if (j == n) call usage_error('option --gmsh-timeout needs a number of seconds (--gmsh-timeout SECONDS)')
+        j = j + 1
+        deallocate(arg)
+        call get_command_argument(j, length=length)
+        allocate(character(len=length) :: arg)
+        call get_command_argument(j, arg)
+        ios = 1
+        if (verify(arg, '0123456789.eE+') == 0 .and. len(arg) > 0) read(arg, *, iostat=ios) gmsh%timeout
+        if (ios /= 0 .or. .not. (gmsh%timeout > 0.0_dp .and. gmsh%timeout <= 1.0e6_dp)) &
+          call usage_error('bad value "' // arg // '" for --gmsh-timeout (seconds, a number > 0 and <= 1e6, ' // &
+                           'expected)')
       case ('-o')
         if (j == n) call usage_error('option -o needs a folder (-o DIR)')
         j = j + 1
@@ -832,7 +833,7 @@ contains
       case default
         if (len(arg) > 0) then
           if (arg(1:1) == '-') call usage_error('unknown option "' // arg // '" (expected -o DIR, --check, -q, ' // &
-                                                '--version, -h)')
+                                                '--trust-geo, --gmsh-timeout SECONDS, --version, -h)')
         end if
         if (len(deck_path) > 0) call usage_error('more than one deck given ("' // deck_path // '" and "' // arg // &
                                                   '"; one DECK expected)')
@@ -862,6 +863,11 @@ contains
       '  -o DIR       write all outputs into DIR (created if missing; default .)', &
       '  --check      read and validate the deck and meshes, print the scene, solve nothing', &
       '  -q           quiet: only errors on stderr (the summary file is still written)', &
+      '  --trust-geo  let gmsh run a .geo as it is: no screen, no sandbox (it may then run', &
+      '               commands and write files); without it, a .geo that runs commands, writes', &
+      '               files or reads outside the deck''s folder is refused (exit 2)', &
+      '  --gmsh-timeout SECONDS', &
+      '               time limit of gmsh on each .geo (default 600); gmsh is then stopped', &
       '  --version    print the version', &
       '  -h, --help   this help', &
       '', &

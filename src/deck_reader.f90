@@ -67,6 +67,7 @@
 module deck_reader
   use kinds, only: dp
   use diagnostics, only: diag_t, add_error, int_to_str
+  use safe_files, only: open_input, file_kind, kind_name, folder_of, c2d_regular, c2d_missing, c2d_unreadable
   use, intrinsic :: iso_fortran_env, only: iostat_eor, iostat_end, int64
   implicit none
   private
@@ -257,9 +258,9 @@ contains
     type(diag_t), intent(inout) :: diag
     type(state_t) :: s
     character(len=:), allocatable :: line
-    integer :: u, ios
+    integer :: u, ios, kind
     integer(int64) :: fsize
-    logical :: exists, readable
+    logical :: readable
 
     deck%file = path
     call split_path(path, deck%dir, deck%name)
@@ -267,13 +268,14 @@ contains
     allocate(s%errs(16), s%echo(64), s%slave_name(4), s%master_name(4))
 
     readable = .false.
-    inquire(file=path, exist=exists)
-    if (.not. exists) then
+    ! a FIFO or a device would block or never end: refused before it is read
+    call open_input(path, u, .false., kind)
+    if (kind == c2d_missing) then
       call report(s, 0, 'cannot open the deck: no such file (expected an existing deck file)')
     else
-      open(newunit=u, file=path, status='old', action='read', form='formatted', &
-           access='sequential', iostat=ios)
-      if (ios /= 0) then
+      if (kind /= c2d_regular .and. kind /= c2d_unreadable) then
+        call report(s, 0, 'the deck is ' // kind_name(kind) // ', not a regular file: refused (a deck file expected)')
+      else if (kind /= c2d_regular) then
         call report(s, 0, 'cannot open the deck (expected a readable file)')
       else
         readable = .true.
@@ -355,14 +357,8 @@ contains
     character(len=*), intent(in) :: path
     character(len=:), allocatable, intent(out) :: dir, name
     integer :: slash, dot
+    dir = folder_of(path)
     slash = index(path, '/', back=.true.)
-    if (slash == 0) then
-      dir = '.'
-    else if (slash == 1) then
-      dir = '/'
-    else
-      dir = path(1:slash - 1)
-    end if
     name = path(slash + 1:)
     dot = index(name, '.', back=.true.)
     if (dot > 1) name = name(1:dot - 1)
@@ -1086,8 +1082,8 @@ contains
     type(mesh_spec_t), intent(inout) :: m
     type(stmt_t), intent(in) :: st
     character(len=*), parameter :: usage = 'MESH gmsh file=NAME.msh or file=NAME.geo [name=number ...]'
-    integer :: i, j, nset, ifile
-    logical :: exists, ok, is_msh
+    integer :: i, j, nset, ifile, kind
+    logical :: ok, is_msh
     real(dp) :: x
 
     m%elem = ''
@@ -1124,9 +1120,13 @@ contains
     else
       m%path = dir // '/' // m%file
     end if
-    inquire(file=m%path, exist=exists)
-    if (.not. exists) call report(s, st%line, 'cannot find mesh file ' // quoted(m%file) // ' (looked for ' // &
-                                  cut(m%path) // ')')
+    kind = file_kind(m%path)
+    if (kind == c2d_missing) then
+      call report(s, st%line, 'cannot find mesh file ' // quoted(m%file) // ' (looked for ' // cut(m%path) // ')')
+    else if (kind /= c2d_regular .and. kind /= c2d_unreadable) then
+      call report(s, st%line, 'mesh file ' // quoted(m%file) // ' is ' // kind_name(kind) // &
+                  ', not a regular file: refused (a .msh or .geo file expected)')
+    end if
 
     nset = 0
     allocate(m%set_names(st%npair), m%set_values(st%npair))

@@ -17,6 +17,7 @@
 !>   fail_numerical(text) print `contact2d: error: text` and exit 1
 !>   exit_program(status) terminate with the given status, printing nothing
 !>   type(error_t)        a mid-level error: message and exit status (1 or 2)
+!>   printable(text)      text with control and non-ASCII bytes replaced by '?'
 module diagnostics
   use kinds, only: dp
   use, intrinsic :: iso_c_binding, only: c_int
@@ -24,7 +25,7 @@ module diagnostics
   implicit none
   private
   public :: diag_t, add_error, has_errors, print_errors, stop_input_errors
-  public :: fail_numerical, exit_program, error_t, set_error, int_to_str, real_to_str
+  public :: fail_numerical, exit_program, error_t, set_error, int_to_str, real_to_str, printable
 
   !> One collected message.
   type :: message_t

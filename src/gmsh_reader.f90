@@ -1,5 +1,5 @@
 !> gmsh_reader: read a gmsh mesh file (MSH ASCII, format 2.2 or 4.1) into a
-!> mesh_t, and run gmsh on a .geo file.
+!> mesh_t (gmsh_runner runs gmsh on a .geo file).
 !>
 !> What is read
 !>   - nodes: tags may be sparse and in any order; node k of the mesh is the k-th
@@ -51,19 +51,16 @@
 !> Programming interface
 !>   read_gmsh_file(path, mesh, diag)
 !>        read the MSH file path into mesh; errors go to diag
-!>   mesh_geo_file(geo_path, names, values, msh_path, log_path, ok, message)
-!>        run `gmsh -2 -order 1 -format msh41 -v 2 [-setnumber NAME VALUE]... GEO
-!>        -o MSH > LOG 2>&1`; ok when gmsh exits 0 and wrote MSH, else message
-!>        holds gmsh's first error lines
 module gmsh_reader
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use omp_lib, only: omp_get_max_threads
   use kinds, only: dp, i8
-  use diagnostics, only: diag_t, add_error, int_to_str
+  use diagnostics, only: diag_t, add_error, int_to_str, printable
+  use safe_files, only: read_file
   use mesh, only: mesh_t
   implicit none
   private
-  public :: read_gmsh_file, mesh_geo_file
+  public :: read_gmsh_file
 
   real(dp), parameter :: z_tolerance = 1.0e-10_dp  !< |z| / extent allowed
   integer, parameter :: max_decimal_exponent = 99  !< numbers below 1e100 in magnitude
@@ -173,7 +170,7 @@ contains
     integer(i8) :: p, q, nbytes, nlf, chunk_end(2), chunk_lf(2)
 
     ok = .false.
-    call read_whole_file(t%path, t%buf, status)
+    call read_file(t%path, t%buf, status)
     select case (status)
     case (1)
       call add_error(diag, t%path, 0, 'cannot open the mesh file (an existing, readable gmsh .msh file expected)')
@@ -183,6 +180,10 @@ contains
       return
     case (3)
       call add_error(diag, t%path, 0, 'mesh file too large to hold in memory (a smaller mesh expected)')
+      return
+    case (4)
+      call add_error(diag, t%path, 0, 'the mesh file is not a regular file (a FIFO, a device or a folder): ' // &
+                     'refused (a gmsh .msh file expected)')
       return
     end select
     nbytes = len(t%buf, kind=i8)
@@ -1569,7 +1570,7 @@ contains
     character(len=:), allocatable :: s
     integer(i8) :: last
     last = min(t%tend(k), t%tbeg(k) + quote_length - 1)
-    s = '"' // printable_text(t%buf(t%tbeg(k):last))
+    s = '"' // printable(t%buf(t%tbeg(k):last))
     if (last < t%tend(k)) s = s // '...'
     s = s // '"'
   end function quoted_item
@@ -2026,17 +2027,6 @@ contains
     same = .true.
   end function same_lower_text
 
-  !> s with control and non-ASCII bytes replaced by '?'.
-  pure function printable_text(s) result(p)
-    character(len=*), intent(in) :: s
-    character(len=len(s)) :: p
-    integer :: i, c
-    p = s
-    do i = 1, len(s)
-      c = iachar(s(i:i))
-      if (c < 32 .or. c > 126) p(i:i) = '?'
-    end do
-  end function printable_text
 
   pure function i8_to_str(i) result(s)
     integer(i8), intent(in) :: i
@@ -2359,190 +2349,5 @@ contains
       a(j + 1) = v
     end do
   end subroutine sort_small
-
-  ! ---------------------------------------------------------------------------
-  ! Files and gmsh
-  ! ---------------------------------------------------------------------------
-
-  !> The bytes of a file.
-  !>   status (out) 0 read, 1 cannot open, 2 cannot read, 3 too large for memory
-  subroutine read_whole_file(path, buf, status)
-    character(len=*), intent(in) :: path
-    character(len=:), allocatable, intent(out) :: buf
-    integer, intent(out) :: status
-    integer :: u, ios, st
-    integer(i8) :: nbytes
-
-    open(newunit=u, file=path, access='stream', form='unformatted', action='read', status='old', iostat=ios)
-    if (ios /= 0) then
-      status = 1
-      return
-    end if
-    inquire(unit=u, size=nbytes)
-    if (nbytes < 0) then
-      close(u)
-      status = 2
-      return
-    end if
-    allocate(character(len=nbytes) :: buf, stat=st)
-    if (st /= 0) then
-      close(u)
-      status = 3
-      return
-    end if
-    status = 0
-    if (nbytes > 0) then
-      read(u, iostat=ios) buf
-      if (ios /= 0) status = 2
-    end if
-    close(u)
-  end subroutine read_whole_file
-
-  !> Mesh a .geo file with gmsh (2D, first order, MSH 4.1 ASCII).
-  !> Runs `gmsh -2 -order 1 -format msh41 -v 2 [-setnumber NAME VALUE]... GEO
-  !> -o MSH > LOG 2>&1`, every word shell-quoted.
-  !>   geo_path (in)  the .geo file
-  !>   names    (in)  (n) names given to -setnumber (n may be 0)
-  !>   values   (in)  (n) their values
-  !>   msh_path (in)  the mesh file to write (an old one is removed first)
-  !>   log_path (in)  where gmsh's output goes
-  !>   ok       (out) .true. when gmsh exited with status 0 and wrote msh_path
-  !>   message  (out) '' when ok; else what went wrong: gmsh's first "Error" lines,
-  !>                  or "gmsh not found (install the Debian package gmsh)"
-  subroutine mesh_geo_file(geo_path, names, values, msh_path, log_path, ok, message)
-    character(len=*), intent(in) :: geo_path, msh_path, log_path
-    character(len=*), intent(in) :: names(:)
-    real(dp), intent(in) :: values(:)
-    logical, intent(out) :: ok
-    character(len=:), allocatable, intent(out) :: message
-    character(len=:), allocatable :: cmd
-    character(len=256) :: cmdmsg
-    integer :: exitstat, cmdstat, i, u, ios
-    logical :: exists
-
-    ok = .false.
-    message = ''
-    if (size(names) /= size(values)) then
-      message = 'gmsh parameters: ' // int_to_str(size(names)) // ' names but ' // int_to_str(size(values)) // &
-        ' values (one value per name expected)'
-      return
-    end if
-    do i = 1, size(names)
-      if (len_trim(names(i)) == 0) then
-        message = 'gmsh parameter ' // int_to_str(i) // ' has an empty name (a name for -setnumber expected)'
-        return
-      end if
-      if (.not. ieee_is_finite(values(i))) then
-        message = 'gmsh parameter ' // trim(names(i)) // ' is not finite (a finite number expected)'
-        return
-      end if
-    end do
-
-    exitstat = -1
-    cmdstat = -1
-    call execute_command_line('command -v gmsh > /dev/null 2>&1', wait=.true., exitstat=exitstat, cmdstat=cmdstat)
-    if (cmdstat /= 0 .or. exitstat /= 0) then
-      message = 'gmsh not found (install the Debian package gmsh)'
-      return
-    end if
-
-    ! Remove an old mesh so that its presence afterwards means gmsh wrote it.
-    inquire(file=msh_path, exist=exists)
-    if (exists) then
-      open(newunit=u, file=msh_path, status='old', iostat=ios)
-      if (ios == 0) close(u, status='delete', iostat=ios)
-    end if
-
-    cmd = 'gmsh -2 -order 1 -format msh41 -v 2'
-    do i = 1, size(names)
-      cmd = cmd // ' -setnumber ' // shell_quote(trim(names(i))) // ' ' // shell_quote(real_to_text(values(i)))
-    end do
-    cmd = cmd // ' ' // shell_quote(geo_path) // ' -o ' // shell_quote(msh_path) // ' > ' // &
-      shell_quote(log_path) // ' 2>&1'
-    exitstat = -1
-    cmdstat = -1
-    cmdmsg = ''
-    call execute_command_line(cmd, wait=.true., exitstat=exitstat, cmdstat=cmdstat, cmdmsg=cmdmsg)
-    if (cmdstat /= 0) then
-      message = 'cannot run gmsh: ' // trim(cmdmsg)
-      return
-    end if
-    inquire(file=msh_path, exist=exists)
-    ok = exitstat == 0 .and. exists
-    if (ok) return
-    message = gmsh_errors(log_path)
-    if (len(message) == 0) then
-      if (exitstat /= 0) then
-        message = 'gmsh failed with exit status ' // int_to_str(exitstat) // ' (see ' // log_path // ')'
-      else
-        message = 'gmsh wrote no mesh file ' // msh_path // ' (see ' // log_path // ')'
-      end if
-    end if
-  end subroutine mesh_geo_file
-
-  !> The first two lines of gmsh's log starting with "Error", joined by "; ".
-  function gmsh_errors(log_path) result(text)
-    character(len=*), intent(in) :: log_path
-    character(len=:), allocatable :: text
-    character(len=:), allocatable :: buf, line
-    integer :: status, nfound
-    integer(i8) :: p, q, n
-
-    text = ''
-    call read_whole_file(log_path, buf, status)
-    if (status /= 0) return
-    n = len(buf, kind=i8)
-    nfound = 0
-    p = 1
-    do while (p <= n .and. nfound < 2)
-      q = index(buf(p:), achar(10), kind=i8)
-      if (q == 0) then
-        line = buf(p:n)
-        p = n + 1
-      else
-        line = buf(p:p + q - 2)
-        p = p + q
-      end if
-      line = trim(adjustl(printable_text(line)))
-      if (len(line) >= 5) then
-        if (line(1:5) == 'Error') then
-          if (len(line) > 300) line = line(1:300) // ' ...'
-          if (nfound > 0) text = text // '; '
-          text = text // line
-          nfound = nfound + 1
-        end if
-      end if
-    end do
-  end function gmsh_errors
-
-  !> s in single quotes for the shell, embedded quotes written '\''.
-  pure function shell_quote(s) result(q)
-    character(len=*), intent(in) :: s
-    character(len=:), allocatable :: q
-    integer :: i
-    q = "'"
-    do i = 1, len(s)
-      if (s(i:i) == "'") then
-        q = q // "'\''"
-      else
-        q = q // s(i:i)
-      end if
-    end do
-    q = q // "'"
-  end function shell_quote
-
-  !> A real number as text that reads back exactly: an integer when it is
-  !> one, else 17 significant digits.
-  function real_to_text(v) result(s)
-    real(dp), intent(in) :: v
-    character(len=:), allocatable :: s
-    character(len=32) :: buf
-    if (abs(v) < 1.0e15_dp .and. v == aint(v)) then
-      write(buf, '(i0)') int(v, i8)
-    else
-      write(buf, '(es25.16e3)') v
-    end if
-    s = trim(adjustl(buf))
-  end function real_to_text
 
 end module gmsh_reader

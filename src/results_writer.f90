@@ -1,7 +1,7 @@
 !> results_writer: the output files of DECK.md — the VTK legacy file, the
-!> contact table (CSV) and the summary — written atomically: each goes to a
-!> temporary name first, and commit_outputs renames them all only after every
-!> one was written, so a failed run never leaves half-written files nor
+!> contact table (CSV) and the summary.  The caller writes each to a
+!> temporary of its own and commits them all only after every one was
+!> written (safe_files), so a failed run never leaves half-written files nor
 !> overwrites the outputs of an earlier successful run.
 !>
 !> Programming interface
@@ -9,10 +9,7 @@
 !>   write_vtk(path, title, bodies, r, ok)
 !>   write_contact_csv(path, cs, r, ok)
 !>   write_summary(path, r, ok)
-!>   commit_outputs(tmp, final, ok)      rename tmp(i) -> final(i)
-!>   discard_outputs(tmp)                remove the temporary files
 module results_writer
-  use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char
   use kinds, only: dp, i8
   use body, only: body_t
   use mesh, only: file_node, file_elem, node_in_file
@@ -23,7 +20,7 @@ module results_writer
   use omp_lib, only: omp_get_max_threads
   implicit none
   private
-  public :: results_t, write_vtk, write_contact_csv, write_summary, commit_outputs, discard_outputs
+  public :: results_t, write_vtk, write_contact_csv, write_summary
   public :: phase_names, nphase, peak_memory
 
   integer, parameter :: nphase = 8
@@ -84,13 +81,6 @@ module results_writer
     integer, allocatable :: cells(:,:)      !< (0:4, nelem) node count and 0-based points of each cell row
     real(dp), allocatable :: vals(:,:)      !< (ncomp, rows) the values of the section being written
   end type vtk_rows_t
-
-  interface
-    integer(c_int) function c_rename(from, to) bind(c, name='rename')
-      import :: c_int, c_char
-      character(kind=c_char), intent(in) :: from(*), to(*)
-    end function c_rename
-  end interface
 
 contains
 
@@ -392,79 +382,6 @@ contains
     close(u, iostat=ios)
     ok = ios == 0
   end subroutine write_summary
-
-  !> Rename every tmp(i) to final(i), all or nothing: existing finals are first
-  !> moved aside to final(i).old; when any rename fails, what was renamed is
-  !> undone and the earlier outputs are restored, ok = .false.
-  subroutine commit_outputs(tmp, final, ok)
-    character(len=*), intent(in) :: tmp(:), final(:)
-    logical, intent(out) :: ok
-    integer :: i, j, n
-    logical :: there
-    logical :: saved(size(tmp)), moved(size(tmp))
-    saved = .false.
-    moved = .false.
-    ok = .true.
-    n = size(tmp)
-    do i = 1, n                             ! a folder in the way: fail before touching anything
-      if (len_trim(tmp(i)) == 0) cycle
-      inquire(file=trim(final(i)) // '/.', exist=there)
-      if (there) then
-        ok = .false.
-        return
-      end if
-    end do
-    do i = 1, n
-      if (len_trim(tmp(i)) == 0) cycle
-      inquire(file=trim(final(i)), exist=there)
-      if (there) then
-        if (c_rename(trim(final(i)) // c_null_char, trim(final(i)) // '.old' // c_null_char) /= 0) then
-          ok = .false.
-          exit
-        end if
-        saved(i) = .true.
-      end if
-      if (c_rename(trim(tmp(i)) // c_null_char, trim(final(i)) // c_null_char) /= 0) then
-        ok = .false.
-        exit
-      end if
-      moved(i) = .true.
-    end do
-    if (.not. ok) then
-      do j = n, 1, -1                       ! undo: new outputs back to tmp, old ones back in place
-        if (moved(j)) then
-          if (c_rename(trim(final(j)) // c_null_char, trim(tmp(j)) // c_null_char) /= 0) continue
-        end if
-        if (saved(j)) then
-          if (c_rename(trim(final(j)) // '.old' // c_null_char, trim(final(j)) // c_null_char) /= 0) continue
-        end if
-      end do
-      return
-    end if
-    do i = 1, n                              ! success: drop the earlier outputs
-      if (saved(i)) call delete_file(trim(final(i)) // '.old')
-    end do
-  end subroutine commit_outputs
-
-  subroutine delete_file(path)
-    character(len=*), intent(in) :: path
-    integer :: u, ios
-    open(newunit=u, file=path, status='old', iostat=ios)
-    if (ios == 0) close(u, status='delete', iostat=ios)
-  end subroutine delete_file
-
-  subroutine discard_outputs(tmp)
-    character(len=*), intent(in) :: tmp(:)
-    integer :: i, u, ios
-    logical :: there
-    do i = 1, size(tmp)
-      if (len_trim(tmp(i)) == 0) cycle
-      inquire(file=trim(tmp(i)), exist=there)
-      if (.not. there) cycle
-      open(newunit=u, file=trim(tmp(i)), status='old', iostat=ios)
-      if (ios == 0) close(u, status='delete', iostat=ios)
-    end do
-  end subroutine discard_outputs
 
   !> Peak resident set size of this process in bytes (VmHWM of
   !> /proc/self/status on Linux); 0 when it cannot be read.

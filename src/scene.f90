@@ -10,8 +10,8 @@
 !>
 !> Programming interface
 !>   type(scene_t)                       bodies, dof data, loads, pair specs, effects
-!>   build_scene(deck, workdir, sc, diag)  workdir: where gmsh writes its
-!>        temporary .msh (the output folder); errors go to diag with deck lines
+!>   build_scene(deck, gmsh, sc, diag)  gmsh: how .geo files are meshed (trust,
+!>        time limit); errors go to diag with deck lines
 module scene
   use kinds, only: dp
   use diagnostics, only: diag_t, add_error, has_errors, int_to_str
@@ -19,7 +19,10 @@ module scene
   use mesh, only: mesh_t, finalize_mesh, find_boundary, boundary_nodes, find_region, order_for_locality, node_in_file, &
                   locality_min_nodes
   use mesh_rect, only: make_rect_mesh
-  use gmsh_reader, only: read_gmsh_file, mesh_geo_file
+  use gmsh_reader, only: read_gmsh_file
+  use gmsh_runner, only: gmsh_options_t, mesh_geo_file
+  use geo_screen, only: screen_geo
+  use safe_files, only: private_folder, real_path
   use material, only: make_isotropic, make_orthotropic
   use elements, only: element_body_load, edge_load
   use body, only: body_t, node_elements, edge_outward_normal, element_dofs, thermal_loads
@@ -57,12 +60,12 @@ contains
 
   !> Build the scene of a deck read without errors.
   !>   deck    (in)  the deck
-  !>   workdir (in)  folder for gmsh's temporary files
+  !>   gmsh    (in)  how .geo files are meshed: trusted or screened, time limit
   !>   sc      (out) the scene (incomplete when diag has errors)
   !>   diag    (inout) input errors, FILE:LINE of the deck or the mesh file
-  subroutine build_scene(deck, workdir, sc, diag)
+  subroutine build_scene(deck, gmsh, sc, diag)
     type(deck_t), intent(in) :: deck
-    character(len=*), intent(in) :: workdir
+    type(gmsh_options_t), intent(in) :: gmsh
     type(scene_t), intent(out) :: sc
     type(diag_t), intent(inout) :: diag
     integer :: b, nb, nfix, ifix, ndof, ip
@@ -75,7 +78,7 @@ contains
     nb = size(deck%bodies)
     allocate(sc%bodies(nb))
     do b = 1, nb
-      call make_body(deck, deck%bodies(b), workdir, sc%bodies(b), diag)
+      call make_body(deck, b, gmsh, sc%bodies(b), diag)
     end do
     if (has_errors(diag)) return
     ! a large mesh file's numbering is its generator's: renumber for locality
@@ -218,19 +221,17 @@ contains
     f = min(1.0_dp, max(0.0_dp, real(k - ramp(1), dp) / real(ramp(2) - ramp(1), dp)))
   end function load_factor
 
-  !> Mesh and elasticity tensor of one body.
-  subroutine make_body(deck, bdeck, workdir, bd, diag)
+  !> Mesh and elasticity tensor of body ib.
+  subroutine make_body(deck, ib, gmsh, bd, diag)
     type(deck_t), intent(in) :: deck
-    type(body_deck_t), intent(in) :: bdeck
-    character(len=*), intent(in) :: workdir
+    integer, intent(in) :: ib
+    type(gmsh_options_t), intent(in) :: gmsh
     type(body_t), intent(out) :: bd
     type(diag_t), intent(inout) :: diag
-    character(len=:), allocatable :: msh, log, message
-    logical :: ok
-    integer :: n0, u
+    integer :: n0
 
-    bd%name = bdeck%name
-    associate(ms => bdeck%mesh)
+    bd%name = deck%bodies(ib)%name
+    associate(ms => deck%bodies(ib)%mesh, bdeck => deck%bodies(ib))
       select case (ms%kind)
       case ('rect')
         call make_rect_mesh(ms%x0, ms%y0, ms%x1, ms%y1, ms%nx, ms%ny, ms%elem == 'quad4', ms%diag, bd%mesh)
@@ -238,49 +239,66 @@ contains
       case default
         n0 = diag%count
         if (ms%is_geo) then
-          msh = workdir // '/.contact2d-' // deck%name // '-' // bdeck%name // '.msh'
-          log = workdir // '/.contact2d-' // deck%name // '-' // bdeck%name // '.log'
-          call mesh_geo_file(ms%path, ms%set_names, ms%set_values, msh, log, ok, message)
-          if (.not. ok) then
-            call add_error(diag, deck%file, ms%line, 'gmsh could not mesh "' // ms%file // '": ' // message)
-          else
-            call read_gmsh_file(msh, bd%mesh, diag)
-            if (diag%count == n0) call finalize_mesh(bd%mesh, ms%path, diag)
-          end if
-          call delete_file(msh)
-          if (ok) call delete_file(log)
+          call mesh_geo_body(deck, ib, gmsh, bd, diag)
         else
           call read_gmsh_file(ms%path, bd%mesh, diag)
           if (diag%count == n0) call finalize_mesh(bd%mesh, ms%path, diag)
         end if
       end select
     end associate
-    u = 0
-    ! OFFSET: a rigid shift of the geometry, before any contact geometry is made
-    if (bdeck%has_offset .and. bd%mesh%nnode > 0) then
-      bd%mesh%x(1, :) = bd%mesh%x(1, :) + bdeck%dx
-      bd%mesh%x(2, :) = bd%mesh%x(2, :) + bdeck%dy
-    end if
-    associate(mt => bdeck%material)
-      if (mt%kind == 'orthotropic') then
-        call make_orthotropic(mt%e1, mt%e2, mt%e3, mt%nu12, mt%nu13, mt%nu23, mt%g12, mt%angle, deck%plane_stress, bd%law)
-      else
-        call make_isotropic(mt%e, mt%nu, deck%plane_stress, bd%law)
+    associate(bdeck => deck%bodies(ib))
+      ! OFFSET: a rigid shift of the geometry, before any contact geometry is made
+      if (bdeck%has_offset .and. bd%mesh%nnode > 0) then
+        bd%mesh%x(1, :) = bd%mesh%x(1, :) + bdeck%dx
+        bd%mesh%x(2, :) = bd%mesh%x(2, :) + bdeck%dy
       end if
+      associate(mt => bdeck%material)
+        if (mt%kind == 'orthotropic') then
+          call make_orthotropic(mt%e1, mt%e2, mt%e3, mt%nu12, mt%nu13, mt%nu23, mt%g12, mt%angle, deck%plane_stress, &
+                                bd%law)
+        else
+          call make_isotropic(mt%e, mt%nu, deck%plane_stress, bd%law)
+        end if
+      end associate
     end associate
     bd%thick = 1.0_dp
     if (deck%plane_stress) bd%thick = deck%thickness
   end subroutine make_body
 
-  subroutine delete_file(path)
-    character(len=*), intent(in) :: path
-    integer :: u, ios
-    logical :: there
-    inquire(file=path, exist=there)
-    if (.not. there) return
-    open(newunit=u, file=path, status='old', iostat=ios)
-    if (ios == 0) close(u, status='delete', iostat=ios)
-  end subroutine delete_file
+  !> Body ib's .geo meshed by gmsh into the run's private folder, after the
+  !> screen of what the .geo may do (unless trusted), and read.
+  subroutine mesh_geo_body(deck, ib, gmsh, bd, diag)
+    type(deck_t), intent(in) :: deck
+    integer, intent(in) :: ib
+    type(gmsh_options_t), intent(in) :: gmsh
+    type(body_t), intent(inout) :: bd
+    type(diag_t), intent(inout) :: diag
+    character(len=:), allocatable :: work, deck_folder, msh, log, message
+    logical :: ok
+    integer :: n0
+    n0 = diag%count
+    associate(ms => deck%bodies(ib)%mesh)
+      call real_path(deck%dir, deck_folder, ok)
+      if (.not. ok) deck_folder = deck%dir
+      if (.not. gmsh%trust_geo) call screen_geo(ms%path, deck_folder, diag)
+      if (diag%count > n0) return
+      call private_folder(work, ok)
+      if (.not. ok) then
+        call add_error(diag, deck%file, ms%line, 'cannot make a private folder for gmsh''s files in $TMPDIR ' // &
+                       '(or /tmp) (a writable folder expected)')
+        return
+      end if
+      msh = work // '/body' // int_to_str(ib) // '.msh'
+      log = work // '/body' // int_to_str(ib) // '.log'
+      call mesh_geo_file(ms%path, ms%set_names, ms%set_values, gmsh, deck_folder, msh, log, ok, message)
+      if (.not. ok) then
+        call add_error(diag, deck%file, ms%line, 'gmsh could not mesh "' // ms%file // '": ' // message)
+      else
+        call read_gmsh_file(msh, bd%mesh, diag)
+        if (diag%count == n0) call finalize_mesh(bd%mesh, ms%path, diag)
+      end if
+    end associate
+  end subroutine mesh_geo_body
 
   !> Boundary index of `name` in body bd, reporting at `line` when unknown.
   integer function boundary_index(deck, line, bd, name, what, diag) result(ib)

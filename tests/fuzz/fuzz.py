@@ -778,7 +778,7 @@ def classify(case_dir, files, opts, rc, stderr, sentinels):
         line = next(l for l in text.split("\n") if any(m in l for m in marks))
         return "crash", f"exit {rc}, stderr has {marks[0]!r}: {line[:200]}"
     produced = sorted(p.name for p in out.iterdir()) if out.is_dir() else []
-    parts = [n for n in produced if n.endswith(".part")]
+    parts = [n for n in produced if n.endswith(".part") or (n.startswith(".") and "~" in n)]   # temporaries
     changed = [n for n, b in sentinels.items() if not (out / n).is_file() or (out / n).read_bytes() != b]
     new = [n for n in produced if n not in sentinels]
     if parts:

@@ -17,7 +17,8 @@ program test_gmsh_reader
   use kinds, only: dp, i8
   use diagnostics, only: diag_t
   use mesh, only: mesh_t, finalize_mesh, find_boundary, find_region, element_area, boundary_nodes
-  use gmsh_reader, only: read_gmsh_file, mesh_geo_file
+  use gmsh_reader, only: read_gmsh_file
+  use gmsh_runner, only: gmsh_options_t, mesh_geo_file
   use testing, only: check, check_close, check_small, finish_tests
   implicit none
 
@@ -359,11 +360,13 @@ contains
     next_int = int(mod(state, int(n, i8)))
   end function next_int
 
-  !> mesh_geo_file: -setnumber, default values, shell quoting, failure.
+  !> mesh_geo_file (gmsh_runner): -setnumber, default values, a path with a
+  !> quote, failure.
   subroutine test_geo_meshing()
     type(mesh_t) :: m
     type(diag_t) :: d
     character(len=:), allocatable :: message, msh, log, geo
+    type(gmsh_options_t) :: opts
     character(len=8) :: no_names(0)
     real(dp) :: no_values(0)
     logical :: ok
@@ -371,7 +374,7 @@ contains
 
     msh = tmp // 'square.msh'
     log = tmp // 'square.log'
-    call mesh_geo_file(data_dir // 'square.geo', ['n'], [6.0_dp], msh, log, ok, message)
+    call mesh_geo_file(data_dir // 'square.geo', ['n'], [6.0_dp], opts, data_dir, msh, log, ok, message)
     call check(ok, 'geo: gmsh meshes square.geo with -setnumber n 6' // failure(message))
     if (ok) then
       call read_gmsh_file(msh, m, d)
@@ -379,7 +382,8 @@ contains
       ib = find_boundary(m, 'bottom')
       if (ib > 0) call check(m%bnd(ib)%nseg == 5, 'geo: bottom has n-1 = 5 edges')
     end if
-    call mesh_geo_file(data_dir // 'square.geo', no_names, no_values, msh, log, ok, message)
+    call delete_file(log)
+    call mesh_geo_file(data_dir // 'square.geo', no_names, no_values, opts, data_dir, msh, log, ok, message)
     call check(ok, 'geo: gmsh meshes square.geo with no parameter' // failure(message))
     if (ok) then
       call read_gmsh_file(msh, m, d)
@@ -393,7 +397,8 @@ contains
       'Line(1) = {1,2}; Line(2) = {2,3}; Line(3) = {3,4}; Line(4) = {4,1};' // achar(10) // &
       'Curve Loop(1) = {1,2,3,4}; Plane Surface(1) = {1};' // achar(10) // &
       'Transfinite Curve{1,2,3,4} = n; Transfinite Surface{1}; Recombine Surface{1};' // achar(10))
-    call mesh_geo_file(geo, ['n'], [3.0_dp], msh, log, ok, message)
+    call delete_file(log)
+    call mesh_geo_file(geo, ['n'], [3.0_dp], opts, tmp, msh, log, ok, message)
     call check(ok, 'geo: gmsh meshes a path with a blank and a quote' // failure(message))
     if (ok) then
       call read_gmsh_file(msh, m, d)
@@ -403,9 +408,10 @@ contains
     end if
     call delete_file(geo)
 
-    call mesh_geo_file(tmp // 'no such file.geo', ['n'], [3.0_dp], msh, log, ok, message)
+    call delete_file(log)
+    call mesh_geo_file(tmp // 'no such file.geo', ['n'], [3.0_dp], opts, tmp, msh, log, ok, message)
     call check(.not. ok, 'geo: a missing .geo file fails')
-    call check(index(message, 'Error') == 1, 'geo: message is gmsh''s Error line: ' // message)
+    call check(index(message, 'cannot find') == 1, 'geo: message says the .geo is missing: ' // message)
     call delete_file(msh)
     call delete_file(log)
   end subroutine test_geo_meshing

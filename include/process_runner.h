@@ -1,0 +1,36 @@
+/* process_runner: start a program with an argument vector (no shell), in a
+ * process group of its own, with its output sent to a log file, and wait for
+ * it with a time limit.  The group is killed when the limit passes, when the
+ * program ends normally (strays it left behind), and by c2d_kill_running
+ * (the run's exit and signal cleanup, file_guard.c).
+ *
+ * One program at a time: the running group is process state, read by the
+ * signal handler, so calls must not overlap (the gmsh runs are sequential). */
+#ifndef CONTACT2D_PROCESS_RUNNER_H
+#define CONTACT2D_PROCESS_RUNNER_H
+
+/* how a run ended (c2d_run_program's *how) */
+enum { C2D_RUN_EXITED = 0,      /* *status = exit status                 */
+       C2D_RUN_SIGNALED = 1,    /* *status = the signal that killed it   */
+       C2D_RUN_TIMEOUT = 2,     /* killed at the time limit              */
+       C2D_RUN_NOT_STARTED = 3  /* *status = errno of fork, open or exec */
+};
+
+/* Search PATH for an executable regular file `name` (or take `name` when it
+ * holds a '/').  path: (len) receives the absolute path, NUL-terminated.
+ * Returns 0 found, 1 not found, 2 too long for path. */
+int c2d_find_program(const char *name, char *path, int len);
+
+/* Run args[0] (an absolute path) with the argument vector packed in args:
+ * nargs NUL-terminated strings one after the other.  Its stdin is /dev/null,
+ * stdout and stderr go to log_path (created, must not exist: O_EXCL, no
+ * symbolic link followed).  It runs in a new process group with
+ * PR_SET_PDEATHSIG = SIGKILL, so it ends with this process even on SIGKILL.
+ * timeout: seconds (> 0).  Returns 0; *how and *status as above. */
+int c2d_run_program(const char *args, int nargs, const char *log_path, double timeout, int *how, int *status);
+
+/* Kill the running program's group (SIGKILL) and reap it; nothing when none
+ * runs.  Async-signal-safe. */
+void c2d_kill_running(void);
+
+#endif
