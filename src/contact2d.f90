@@ -596,7 +596,7 @@ contains
     do ip = 1, size(split%unheld, 2)
       b = split%unheld_body(ip)
       how = '(the contact normals do not resist it)'
-      if (split%tau(b) > 1.0e-10_dp) how = '(the contact normals do not resist it beyond the contact polygon''s ' // &
+      if (split%tau(b) > 1.0e-10_dp) how = '(the contact normals do not resist it beyond the contact polygon''s median ' // &
         'turning angle, ' // trim(adjustl(real_short(split%tau(b)))) // ' rad)'
       call say('rigid    body ' // sc%bodies(b)%name // ': ' // motion_name(fl, split%unheld(:, ip)) // &
         ' held by neither FIX nor contact ' // how // '; ' // int_to_str(count(fl%mode_body == b) - &

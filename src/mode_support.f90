@@ -18,9 +18,10 @@
 !>    scaled modes: what a motion of unit size normal to the contact opens;
 !>  - a right singular vector v (singular value s) is held when
 !>        s > tau_b ref_b   (summed over the bodies v involves, |v_b| weights),
-!>    tau_b = max(1e-10, theta_b), theta_b the largest turning angle (radians)
+!>    tau_b = max(1e-10, theta_b), theta_b the median turning angle (radians)
 !>    between consecutive segments of the contact polylines (slave rows and
-!>    covered master nodes) of the pairs that touch body b.
+!>    covered master nodes) of the pairs that touch body b (the median: a
+!>    true corner of the geometry is exact in the polygon and must not count).
 !> Why theta_b: on a polygonal boundary the discrete normals (nodal normals,
 !> and the mortar rows' average of the master motion over the support of phi_i)
 !> differ from the exact ones by up to the angle the polygon turns between two
@@ -249,34 +250,80 @@ contains
     end do
   end function pack_rows
 
-  !> tau(b) = max(1e-10, largest turning angle between consecutive segments of
-  !> the contact polylines of the pairs touching body b): on the slave side
-  !> at the nodes that carry a row, on the master side at the covered nodes.
+  !> tau(b) = max(1e-10, median turning angle between consecutive segments
+  !> of the contact polylines of the pairs touching body b): on the slave
+  !> side at the nodes that carry a row, on the master side at the covered
+  !> nodes.  The median, not the largest: a contact that cannot resist a
+  !> rotation about P lies on a circle about P along its whole length, where
+  !> every angle is about h/R, while a true corner of the geometry (exact in
+  !> the polygon) is one node among many and must not blur the others.
   subroutine body_resolution(cs, bodies, tau)
     type(contact_set_t), intent(in) :: cs
     type(body_t), intent(in) :: bodies(:)
     real(dp), allocatable, intent(out) :: tau(:)
-    integer :: ip, i, ns, nm, sb, mb
-    real(dp) :: theta
+    integer :: ip, i, b, ns, nm
+    real(dp), allocatable :: angles(:)
     allocate(tau(size(bodies)))
     tau = tau_exact
-    do ip = 1, cs%npair
-      theta = 0.0_dp
-      sb = cs%pair(ip)%spec%slave_body
-      mb = cs%pair(ip)%spec%master_body
-      ns = size(cs%pair(ip)%snode)
-      do i = 2, ns - 1
-        if (cs%pair(ip)%row(i)) theta = max(theta, turning(cs%pair(ip)%xs(:, i - 1:i + 1)))
+    do b = 1, size(bodies)
+      allocate(angles(0))
+      do ip = 1, cs%npair
+        if (cs%pair(ip)%spec%slave_body /= b .and. cs%pair(ip)%spec%master_body /= b) cycle
+        ns = size(cs%pair(ip)%snode)
+        do i = 2, ns - 1
+          if (cs%pair(ip)%row(i)) angles = [angles, turning(cs%pair(ip)%xs(:, i - 1:i + 1))]
+        end do
+        nm = size(cs%pair(ip)%mnode)
+        do i = 2, nm - 1
+          if (cs%pair(ip)%mcov(i) > 0.0_dp) angles = [angles, &
+            turning(bodies(cs%pair(ip)%spec%master_body)%mesh%x(:, cs%pair(ip)%mnode(i - 1:i + 1)))]
+        end do
       end do
-      nm = size(cs%pair(ip)%mnode)
-      do i = 2, nm - 1
-        if (cs%pair(ip)%mcov(i) > 0.0_dp) &
-          theta = max(theta, turning(bodies(mb)%mesh%x(:, cs%pair(ip)%mnode(i - 1:i + 1))))
-      end do
-      tau(sb) = max(tau(sb), theta)
-      tau(mb) = max(tau(mb), theta)
+      if (size(angles) > 0) tau(b) = max(tau_exact, median(angles))
+      deallocate(angles)
     end do
   end subroutine body_resolution
+
+  !> Median of a (the lower one for an even count), by quickselect.
+  function median(a) result(m)
+    real(dp), intent(in) :: a(:)
+    real(dp) :: m
+    real(dp), allocatable :: w(:)
+    real(dp) :: pivot, t
+    integer :: lo, hi, i, j, kth
+    w = a
+    kth = (size(w) + 1) / 2
+    lo = 1
+    hi = size(w)
+    do while (lo < hi)
+      pivot = w((lo + hi) / 2)
+      i = lo
+      j = hi
+      do while (i <= j)
+        do while (w(i) < pivot)
+          i = i + 1
+        end do
+        do while (w(j) > pivot)
+          j = j - 1
+        end do
+        if (i <= j) then
+          t = w(i)
+          w(i) = w(j)
+          w(j) = t
+          i = i + 1
+          j = j - 1
+        end if
+      end do
+      if (kth <= j) then
+        hi = j
+      else if (kth >= i) then
+        lo = i
+      else
+        exit
+      end if
+    end do
+    m = w(kth)
+  end function median
 
   !> Angle (radians, in [0, pi]) between segments p1-p2 and p2-p3.
   pure real(dp) function turning(p) result(theta)
