@@ -23,7 +23,8 @@ program contact2d
   use lcp_solvers, only: lcp_options_t, lcp_report_t
   use friction_lcp, only: solve_friction_lcp, friction_state
   use contact_lcp, only: contact_solution_t, solve_contact
-  use rigid_modes, only: floating_t, find_floating_modes, mode_name
+  use rigid_modes, only: floating_t, find_floating_modes, mode_name, motion_name, describe_motion, remove_motions
+  use mode_support, only: mode_split_t, split_free_modes
   use results_writer, only: results_t, write_vtk, write_contact_csv, write_summary, phase_names, nphase, peak_memory
   use safe_files, only: make_folders, temporary_t, create_temporary, close_temporary, commit_temporaries, &
                         discard_temporaries
@@ -54,6 +55,7 @@ program contact2d
   type(results_t) :: res
   type(error_t), allocatable :: err, err_order
   type(floating_t) :: fl
+  type(mode_split_t) :: split            ! the free modes that contact holds, and those it does not
   integer, allocatable :: eq(:), last(:), group(:)
   logical, allocatable :: held(:)
   integer :: nfree, i, nlabel
@@ -92,6 +94,7 @@ program contact2d
   call find_floating_modes(sc%bodies, sc%fixed, fl)
   call check_floating_bodies()
   call check_friction_support()
+  call split_free_modes(cs, sc%bodies, fl, sc%fext, split)
   held = sc%fixed
   if (fl%k > 0) held(fl%pin) = .true.
   call number_equations(held, eq, nfree)
@@ -102,6 +105,7 @@ program contact2d
     call say('check: the deck and its meshes are valid; nothing solved, nothing written')
     call exit_program(0)
   end if
+  call check_unheld_loads()
   call lap(ph_mesh)
 
   ! --- assembly and factorization (contact dofs last) ----------------------
@@ -192,6 +196,7 @@ program contact2d
     call system_clock(t_now, t_rate)
     res%time_solve = res%time_solve + real(t_now - t_solve, dp) / real(t_rate, dp)
     if (fl%k > 0) res%u = res%u + matmul(fl%r, res%alpha)    ! + R alpha: the free rigid modes
+    call remove_motions(fl, split%unheld, res%u)              ! no component along the unheld ones
   else
     res%u = u0
   end if
@@ -324,8 +329,7 @@ contains
     type(lcp_options_t) :: opts
     type(contact_solution_t) :: sol
     character(len=:), allocatable :: method
-    real(dp), allocatable :: h(:,:), e(:)
-    integer :: r, kk, j
+    integer :: j
 
     opts%tol = deck%solver%tol
     opts%maxit = deck%solver%maxit
@@ -342,18 +346,9 @@ contains
         method = 'pdas'
       end if
     end if
-    ! H = B R (how the free modes open the gaps), e = R' f (their load)
-    allocate(h(cs%nrow, fl%k), e(fl%k))
-    h = 0.0_dp
-    do j = 1, fl%k
-      do r = 1, cs%nrow
-        do kk = cs%bptr(r), cs%bptr(r + 1) - 1
-          h(r, j) = h(r, j) + cs%bval(kk) * fl%r(cs%cdof(cs%bcol(kk)), j)
-        end do
-      end do
-      e(j) = dot_product(fl%r(:, j), sc%fext)
-    end do
-    call solve_contact(w, q, h, e, method, opts, sol)
+    ! H = B R (how the free modes open the gaps), e = R' f (their load), the
+    ! combinations that the rows hold: mode_support (split)
+    call solve_contact(w, q, split%h, split%e, split%held, method, opts, sol)
     res%lcp_method = method
     res%lcp_iterations = sol%rep%iterations
     res%lcp_residual = sol%rep%residual
@@ -367,9 +362,12 @@ contains
     if (.not. all(ieee_is_finite(sol%mu))) call fail_numerical('the contact multipliers are not finite')
     call move_alloc(sol%mu, res%mu)
     call move_alloc(sol%alpha, res%alpha)
-    do j = 1, fl%k
-      if (sol%unheld(j)) call say('note     body ' // sc%bodies(fl%mode_body(j))%name // ': rigid mode (' // &
-        mode_name(fl, j) // ') held by neither FIX nor contact and unloaded: its amplitude is set to 0')
+    allocate(character(len=256) :: res%unheld_mode(size(split%unheld, 2)))
+    do j = 1, size(split%unheld, 2)
+      call say('note     body ' // sc%bodies(split%unheld_body(j))%name // ': rigid mode (' // &
+        motion_name(fl, split%unheld(:, j)) // ') held by neither FIX nor contact and unloaded: its amplitude ' // &
+        'is set to 0 (the displacement has no component along it; the pressures do not depend on it)')
+      res%unheld_mode(j) = unheld_summary(j)
     end do
 
     call move_alloc(sol%gap, res%gap)
@@ -562,6 +560,7 @@ contains
 
   subroutine report_scene()
     integer :: b, ip
+    character(len=:), allocatable :: how
     character(len=160) :: line
     call say('contact2d ' // version // ': ' // deck%file)
     if (len(deck%title) > 0) call say('title    ' // deck%title)
@@ -604,12 +603,60 @@ contains
                'depend on the load path: the final step alone is solved')
     end if
     do ip = 1, fl%k
-      call say('rigid    body ' // sc%bodies(fl%mode_body(ip))%name // ': ' // mode_name(fl, ip) // &
-               ' not held by FIX: held by contact (equilibrium as an equality constraint)')
+      if (any(split%unheld_body == fl%mode_body(ip))) then
+        call say('rigid    body ' // sc%bodies(fl%mode_body(ip))%name // ': ' // mode_name(fl, ip) // ' not held by FIX')
+      else
+        call say('rigid    body ' // sc%bodies(fl%mode_body(ip))%name // ': ' // mode_name(fl, ip) // &
+                 ' not held by FIX: held by contact (equilibrium as an equality constraint)')
+      end if
+    end do
+    do ip = 1, size(split%unheld, 2)
+      b = split%unheld_body(ip)
+      how = '(the contact normals do not resist it)'
+      if (split%tau(b) > 1.0e-10_dp) how = '(the contact normals do not resist it beyond the contact polygon''s median ' // &
+        'turning angle, ' // trim(adjustl(real_short(split%tau(b)))) // ' rad)'
+      call say('rigid    body ' // sc%bodies(b)%name // ': ' // motion_name(fl, split%unheld(:, ip)) // &
+        ' held by neither FIX nor contact ' // how // '; ' // int_to_str(count(fl%mode_body == b) - &
+        count(split%unheld_body == b)) // ' other combination(s) held by contact')
     end do
     write(line, '(a,i0,a,i0,a,i0,a)') 'sizes    ', sc%ndof, ' dofs, ', nfree, ' free, ', cs%nrow, ' contact constraints'
     call say(trim(line))
   end subroutine report_scene
+
+  !> x in es10.3
+  function real_short(x) result(s)
+    real(dp), intent(in) :: x
+    character(len=10) :: s
+    write(s, '(es10.3)') x
+  end function real_short
+
+  !> 'BODY KIND X Y' of unheld combination j for the summary: KIND rotation
+  !> (X Y its centre) or translation (X Y its unit direction).
+  function unheld_summary(j) result(t)
+    integer, intent(in) :: j
+    character(len=:), allocatable :: t, kind
+    real(dp) :: point(2)
+    character(len=32) :: bx, by
+    call describe_motion(fl, split%unheld(:, j), kind, point)
+    write(bx, '(es24.16e3)') point(1)
+    write(by, '(es24.16e3)') point(2)
+    t = sc%bodies(split%unheld_body(j))%name // ' ' // kind // ' ' // trim(adjustl(bx)) // ' ' // trim(adjustl(by))
+  end function unheld_summary
+
+  !> A rigid motion that neither FIX nor contact holds must carry no load:
+  !> else no static equilibrium exists (exit 1, naming the body and motion).
+  subroutine check_unheld_loads()
+    integer :: j
+    character(len=16) :: buf
+    do j = 1, size(split%unheld, 2)
+      if (.not. split%loaded(j)) cycle
+      write(buf, '(es10.3)') split%load(j)
+      call fail_numerical('no equilibrium: body "' // sc%bodies(split%unheld_body(j))%name // '" is loaded along ' // &
+        'a rigid mode (' // motion_name(fl, split%unheld(:, j)) // ') that neither FIX nor contact holds ' // &
+        '(frictionless contact holds only normal to the contact surface; load along it ' // trim(adjustl(buf)) // &
+        ' of the loads'' scale)')
+    end do
+  end subroutine check_unheld_loads
 
   !> x with one decimal (f10.1)
   function real_fixed(x) result(s)

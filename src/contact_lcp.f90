@@ -7,9 +7,9 @@
 !> modes), alpha the modes' amplitudes: the KKT conditions of
 !>     min 1/2 mu'W mu + q'mu  subject to  mu >= 0, H' mu = e.
 !> It is solved in three steps, each exact or checked:
-!>  1. modes that no contact row can hold (zero singular values of H) must
-!>     carry no load (else: no equilibrium, exit 1); they are dropped, their
-!>     amplitude 0 (the body can slide along them freely: reported);
+!>  1. only the combinations of the modes that the contact rows hold enter
+!>     (held, decided by mode_support from H before the solve); the others
+!>     are unloaded and keep amplitude 0;
 !>  2. feasibility: min |H'mu - e| over mu >= 0 (nonnegative least squares,
 !>     itself the LCP(H H', -H e), by Lemke); a positive minimum means the
 !>     loads pull the body away from its contacts: no equilibrium, exit 1;
@@ -20,10 +20,10 @@
 !>
 !> Programming interface
 !>   type(contact_solution_t)   mu, alpha, gap, report, notes
-!>   solve_contact(w, q, h, e, method, opts, sol)
+!>   solve_contact(w, q, h, e, held, method, opts, sol)
 module contact_lcp
   use kinds, only: dp
-  use lapack_interfaces, only: dgesvd, dpotrs, dpstrf, dsysv
+  use lapack_interfaces, only: dpotrs, dpstrf, dsysv
   use lcp_solvers, only: lcp_options_t, lcp_report_t, solve_lcp_lemke, solve_lcp_pgs, lcp_natural_residual
   use lcp_newton, only: solve_lcp_pdas
   use diagnostics, only: int_to_str
@@ -38,7 +38,6 @@ module contact_lcp
     type(lcp_report_t) :: rep                !< info 0 solved; else failure and message
     real(dp) :: equality_residual = 0        !< |H'mu - e| / max(|e|, scale)
     integer :: outer = 0                     !< multiplier iterations
-    logical, allocatable :: unheld(:)        !< (k) mode held by no contact row
   end type contact_solution_t
 
 
@@ -49,63 +48,38 @@ contains
   !>   q      (in) (nc) gaps without contact forces
   !>   h      (in) (nc, k) B R; k = 0 for a problem without free modes
   !>   e      (in) (k) R' f
+  !>   held   (in) (k, kh) basis of the combinations of the modes that the rows
+  !>               hold (mode_support); alpha = held lambda, 0 along the others
   !>   method (in) 'lemke', 'pgs' or 'pdas'
   !>   opts   (in) tolerances
   !>   sol    (out) the solution; sol%rep%info /= 0 on failure with a message
-  subroutine solve_contact(w, q, h, e, method, opts, sol)
-    real(dp), intent(in) :: w(:,:), q(:), h(:,:), e(:)
+  subroutine solve_contact(w, q, h, e, held, method, opts, sol)
+    real(dp), intent(in) :: w(:,:), q(:), h(:,:), e(:), held(:,:)
     character(len=*), intent(in) :: method
     type(lcp_options_t), intent(in) :: opts
     type(contact_solution_t), intent(out) :: sol
-    integer :: nc, k, kh, j, it, info, lwork
-    real(dp), allocatable :: a(:,:), s(:), vt(:,:), work(:), hh(:,:), eh(:), lam(:), wr(:,:), qr(:), r(:)
-    real(dp) :: u1(1, 1), wq(1), smax, escale, rho, res, wdiag, hnorm
+    integer :: nc, k, kh, j, it
+    real(dp), allocatable :: hh(:,:), eh(:), lam(:), wr(:,:), qr(:), r(:)
+    real(dp) :: rho, res, wdiag, hnorm
     type(lcp_report_t) :: rep
     integer :: total
 
     nc = size(q)
     k = size(e)
-    allocate(sol%mu(nc), sol%alpha(k), sol%gap(nc), sol%unheld(k))
+    allocate(sol%mu(nc), sol%alpha(k), sol%gap(nc))
     sol%mu = 0.0_dp
     sol%alpha = 0.0_dp
-    sol%unheld = .false.
     if (k == 0) then
       call run_solver(method, w, q, opts, sol%mu, sol%rep)
       sol%gap = q + matmul(w, sol%mu)
       return
     end if
 
-    ! 1. held and unheld modes: SVD of H (nc x k)
-    escale = maxval(abs(e))
-    allocate(s(k), vt(k, k))
-    s = 0.0_dp
-    if (nc > 0) then
-      a = h
-      call dgesvd('N', 'A', nc, k, a, nc, s, u1, 1, vt, k, wq, -1, info)
-      lwork = int(wq(1))
-      allocate(work(lwork))
-      call dgesvd('N', 'A', nc, k, a, nc, s, u1, 1, vt, k, work, lwork, info)
-      deallocate(work)
-    else
-      vt = 0.0_dp
-      do j = 1, k
-        vt(j, j) = 1.0_dp
-      end do
-    end if
-    smax = maxval(s)
-    kh = count(s > 1.0e-10_dp * max(smax, tiny(1.0_dp)) .and. s > 0.0_dp)
-    ! modes beyond kh (rows kh+1.. of vt) move no gap: they must carry no load
-    do j = kh + 1, k
-      if (abs(dot_product(vt(j, :), e)) > 1.0e-9_dp * max(escale, 1.0e-300_dp) .and. escale > 0.0_dp) then
-        sol%rep%info = 1
-        sol%rep%message = 'no equilibrium: a body held only by contact is loaded along a rigid mode that no ' // &
-          'contact can resist (frictionless contact holds only normal to the contact surface)'
-        return
-      end if
-      sol%unheld = sol%unheld .or. abs(vt(j, :)) > 1.0e-8_dp
-    end do
-    hh = matmul(h, transpose(vt(1:kh, :)))      ! held directions: H V_h
-    eh = matmul(vt(1:kh, :), e)
+    ! 1. the held combinations only (mode_support decided them from H's
+    ! rows, unheld ones are unloaded): Hh = H V_h, eh = V_h' e
+    kh = size(held, 2)
+    hh = matmul(h, held)
+    eh = matmul(transpose(held), e)
     allocate(lam(kh))
     lam = 0.0_dp
     if (kh == 0) then
@@ -155,7 +129,7 @@ contains
       sol%rep%message = 'the equilibrium of a body held only by contact was not reached (relative residual ' // &
         real_str(sol%equality_residual) // ' after ' // int_to_str(sol%outer) // ' multiplier iterations)'
     end if
-    sol%alpha = matmul(transpose(vt(1:kh, :)), lam)
+    sol%alpha = matmul(held, lam)
     sol%gap = q + matmul(w, sol%mu) - matmul(h, sol%alpha)
     sol%rep%residual = lcp_natural_residual(w, q - matmul(h, sol%alpha), sol%mu)
   end subroutine solve_contact

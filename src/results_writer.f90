@@ -37,6 +37,8 @@ module results_writer
     real(dp), allocatable :: node_gap(:)         !< (ndof/2) final gap at slave nodes (0 elsewhere)
     real(dp), allocatable :: mu(:)               !< (nrow) multipliers (nodal forces)
     real(dp), allocatable :: alpha(:)            !< (k) amplitudes of the free rigid modes
+    character(len=:), allocatable :: unheld_mode(:) !< (nu) 'BODY KIND X Y' of each rigid motion held by
+                                                 !< neither FIX nor contact (summary unheld_mode)
     real(dp), allocatable :: gap(:)              !< (nrow) final gaps
     real(dp), allocatable :: pressure(:)         !< (nrow) pressures mu / w
     integer, allocatable :: status(:)            !< (nrow) 1 contact, 0 open
@@ -369,6 +371,11 @@ contains
     do k = 1, size(r%fix_label)
       write(u, '(a)') 'reaction ' // trim(r%fix_label(k)) // ' ' // num(r%reaction(1, k)) // ' ' // num(r%reaction(2, k))
     end do
+    if (allocated(r%unheld_mode)) then
+      do k = 1, size(r%unheld_mode)
+        write(u, '(a)') 'unheld_mode ' // trim(r%unheld_mode(k))
+      end do
+    end if
     write(u, '(a,i0)') 'factor_nnz ', r%factor_nnz
     if (allocated(r%ordering)) write(u, '(a)') 'factor_ordering ' // r%ordering
     write(u, '(a,a)') 'memory_peak_mb ', num(r%memory_peak / 1048576.0_dp)

@@ -21,13 +21,17 @@
 !>   type(floating_t)                          k modes, R, their bodies, pinned dofs
 !>   find_floating_modes(bodies, fixed, fl)    fixed (ndof): Dirichlet dofs
 !>   mode_name(fl, j)                          'translation x', 'rotation', ...
+!>   describe_motion(fl, c, kind, point)       the rigid motion R c of one body: a rotation
+!>                                             about a point, or a translation along a direction
+!>   motion_name(fl, c)                        'rotation about (x, y)', 'translation along (dx, dy)'
+!>   remove_motions(fl, c, u)                  u <- u minus its components along R c(:, i)
 module rigid_modes
   use kinds, only: dp
-  use lapack_interfaces, only: dgeqp3, dgesvd
+  use lapack_interfaces, only: dgeqp3, dgesvd, dsysv
   use body, only: body_t
   implicit none
   private
-  public :: floating_t, find_floating_modes, mode_name
+  public :: floating_t, find_floating_modes, mode_name, describe_motion, motion_name, remove_motions
 
   type :: floating_t
     integer :: k = 0                         !< number of free rigid modes, all bodies
@@ -35,6 +39,9 @@ module rigid_modes
     integer, allocatable :: mode_body(:)     !< (k) body of each mode
     real(dp), allocatable :: coef(:,:)       !< (3, k) mode = coef(1) tx + coef(2) ty + coef(3) rotation
     integer, allocatable :: pin(:)           !< (k) dofs held at zero in the factorization
+    real(dp), allocatable :: centre(:,:)     !< (2, k) centroid of the mode's body (its rotation centre)
+    real(dp), allocatable :: length(:)       !< (k) size of the body (rotation scale)
+    real(dp), allocatable :: norm(:)         !< (k) |r3 coef| before normalization: mode = r3 coef / norm
   end type floating_t
 
 
@@ -49,16 +56,17 @@ contains
     logical, intent(in) :: fixed(:)
     type(floating_t), intent(out) :: fl
     integer :: b, nb, kb, ndof, j
-    real(dp), allocatable :: modes(:,:), coefs(:,:)
+    real(dp), allocatable :: modes(:,:), coefs(:,:), norms(:)
     integer, allocatable :: pins(:)
-    real(dp), allocatable :: r(:,:), c(:,:)
+    real(dp), allocatable :: r(:,:), c(:,:), xc(:,:), lb(:), nr(:)
     integer, allocatable :: mb(:), pn(:)
+    real(dp) :: centre(2), length
 
     ndof = size(fixed)
-    allocate(r(ndof, 0), c(3, 0), mb(0), pn(0))
+    allocate(r(ndof, 0), c(3, 0), mb(0), pn(0), xc(2, 0), lb(0), nr(0))
     nb = size(bodies)
     do b = 1, nb
-      call body_modes(bodies(b), fixed, modes, coefs, pins)
+      call body_modes(bodies(b), fixed, modes, coefs, pins, norms, centre, length)
       kb = size(modes, 2)
       if (kb == 0) cycle
       r = reshape([r, [(0.0_dp, j = 1, ndof * kb)]], [ndof, size(r, 2) + kb])
@@ -66,23 +74,31 @@ contains
       c = reshape([c, coefs], [3, size(c, 2) + kb])
       mb = [mb, [(b, j = 1, kb)]]
       pn = [pn, bodies(b)%dof0 + pins]
+      xc = reshape([xc, [(centre, j = 1, kb)]], [2, size(xc, 2) + kb])
+      lb = [lb, [(length, j = 1, kb)]]
+      nr = [nr, norms]
     end do
     fl%k = size(mb)
     call move_alloc(r, fl%r)
     call move_alloc(c, fl%coef)
     call move_alloc(mb, fl%mode_body)
     call move_alloc(pn, fl%pin)
+    call move_alloc(xc, fl%centre)
+    call move_alloc(lb, fl%length)
+    call move_alloc(nr, fl%norm)
   end subroutine find_floating_modes
 
   !> Free modes of one body: modes (2 nnode, kb), coefs (3, kb), pins (kb)
-  !> as dofs local to the body.
-  subroutine body_modes(bd, fixed, modes, coefs, pins)
+  !> as dofs local to the body, norms (kb) |r3 coef| before normalization,
+  !> xc the centroid and size_b the size that scale the rotation.
+  subroutine body_modes(bd, fixed, modes, coefs, pins, norms, xc, size_b)
     type(body_t), intent(in) :: bd
     logical, intent(in) :: fixed(:)
-    real(dp), allocatable, intent(out) :: modes(:,:), coefs(:,:)
+    real(dp), allocatable, intent(out) :: modes(:,:), coefs(:,:), norms(:)
     integer, allocatable, intent(out) :: pins(:)
+    real(dp), intent(out) :: xc(2), size_b
     real(dp), allocatable :: r3(:,:), cmat(:,:), a(:,:), tau(:), work(:)
-    real(dp) :: xc(2), size_b, s(3), u(1, 1), vt(3, 3), wq(1)
+    real(dp) :: s(3), u(1, 1), vt(3, 3), wq(1)
     integer :: n, nd, a_, i, nfix, m, info, kb, j, lwork
     integer, allocatable :: fdofs(:), free(:), jpvt(:)
 
@@ -115,14 +131,15 @@ contains
       ! singular values beyond min(m, 3) are zero; tolerance relative to s(1) >= 1
       kb = count(s(1:3) <= 1.0e-10_dp * max(s(1), 1.0_dp))
     end if
-    allocate(modes(nd, kb), coefs(3, kb), pins(kb))
+    allocate(modes(nd, kb), coefs(3, kb), pins(kb), norms(kb))
     if (kb == 0) return
     ! the last kb right singular vectors span the null space
     coefs = transpose(vt(3 - kb + 1:3, :))
     modes = matmul(r3, coefs)
     do j = 1, kb
       modes(fdofs, j) = 0.0_dp
-      modes(:, j) = modes(:, j) / norm2(modes(:, j))
+      norms(j) = norm2(modes(:, j))
+      modes(:, j) = modes(:, j) / norms(j)
     end do
     ! pinned dofs: QR with column pivoting of modes' over the free dofs
     free = pack([(i, i = 1, nd)], .not. fixed(bd%dof0 + 1:bd%dof0 + nd))
@@ -149,5 +166,87 @@ contains
     if (c(3) > 1.0e-8_dp) name = name // '+rotation'
     name = name(2:)
   end function mode_name
+
+  !> The rigid motion R c, c (k) a combination of the modes of one body:
+  !> u(x) = (a_x - omega (y - y0), a_y + omega (x - x0)).  kind = 'rotation'
+  !> with point the centre about which it turns, or kind = 'translation' with
+  !> point its unit direction (when |omega| size <= 1e-8 |a|: no turning).
+  !>   fl    (in)  the modes
+  !>   c     (in)  (k) amplitudes; only the modes of one body nonzero
+  !>   kind  (out) 'rotation' or 'translation'
+  !>   point (out) (2) the centre, or the direction
+  subroutine describe_motion(fl, c, kind, point)
+    type(floating_t), intent(in) :: fl
+    real(dp), intent(in) :: c(:)
+    character(len=:), allocatable, intent(out) :: kind
+    real(dp), intent(out) :: point(2)
+    real(dp) :: a(3), omega, xc(2), length
+    integer :: j
+    a = 0.0_dp
+    xc = 0.0_dp
+    length = 1.0_dp
+    do j = 1, fl%k
+      if (c(j) == 0.0_dp) cycle
+      a = a + c(j) * fl%coef(:, j) / fl%norm(j)    ! mode j = r3 coef_j / norm_j
+      xc = fl%centre(:, j)
+      length = fl%length(j)
+    end do
+    omega = a(3) / length                          ! r3's rotation is scaled by 1 / size
+    if (abs(a(3)) > 1.0e-8_dp * max(norm2(a(1:2)), tiny(1.0_dp))) then
+      kind = 'rotation'
+      point = [xc(1) - a(2) / omega, xc(2) + a(1) / omega]   ! where u(x) = 0
+    else
+      kind = 'translation'
+      point = a(1:2) / norm2(a(1:2))
+    end if
+  end subroutine describe_motion
+
+  !> The rigid motion R c in words: 'rotation about (x, y)' or 'translation
+  !> along (dx, dy)' (coordinates below 1e-9 of the body's size written as 0).
+  function motion_name(fl, c) result(name)
+    type(floating_t), intent(in) :: fl
+    real(dp), intent(in) :: c(:)
+    character(len=:), allocatable :: name
+    character(len=:), allocatable :: kind
+    real(dp) :: point(2), length
+    character(len=32) :: bx, by
+    call describe_motion(fl, c, kind, point)
+    length = fl%length(maxloc(abs(c), dim=1))
+    if (kind == 'translation') length = 1.0_dp
+    where (abs(point) <= 1.0e-9_dp * length) point = 0.0_dp
+    write(bx, '(es11.4)') point(1)
+    write(by, '(es11.4)') point(2)
+    if (kind == 'rotation') then
+      name = 'rotation about (' // trim(adjustl(bx)) // ', ' // trim(adjustl(by)) // ')'
+    else
+      name = 'translation along (' // trim(adjustl(bx)) // ', ' // trim(adjustl(by)) // ')'
+    end if
+  end function motion_name
+
+  !> u <- u - D (D'D)^-1 D'u, D = R c (ndof, m): u loses its components along
+  !> the rigid motions D (made orthogonal to each of them).
+  !>   fl (in)    the modes
+  !>   c  (in)    (k, m) combinations of the modes
+  !>   u  (inout) (ndof) displacement
+  subroutine remove_motions(fl, c, u)
+    type(floating_t), intent(in) :: fl
+    real(dp), intent(in) :: c(:,:)
+    real(dp), intent(inout) :: u(:)
+    real(dp), allocatable :: d(:,:), g(:,:), y(:,:)
+    integer, allocatable :: ipiv(:)
+    real(dp), allocatable :: work(:)
+    real(dp) :: wq(1)
+    integer :: m, info
+    m = size(c, 2)
+    if (m == 0) return
+    d = matmul(fl%r, c)
+    g = matmul(transpose(d), d)                    ! D'D (m, m), symmetric positive definite
+    y = reshape(matmul(transpose(d), u), [m, 1])   ! D'u
+    allocate(ipiv(m))
+    call dsysv('U', m, 1, g, m, ipiv, y, m, wq, -1, info)
+    allocate(work(max(1, int(wq(1)))))
+    call dsysv('U', m, 1, g, m, ipiv, y, m, work, size(work), info)
+    if (info == 0) u = u - matmul(d, y(:, 1))
+  end subroutine remove_motions
 
 end module rigid_modes
