@@ -307,11 +307,10 @@ contains
     real(dp), intent(in) :: seglen(:)
     integer, intent(in) :: jlo, jhi
     integer, intent(out) :: info
-    real(dp), parameter :: gauss = 0.57735026918962576451_dp   ! 1/sqrt(3)
     integer, parameter :: chunk = 128
     real(dp), allocatable :: dl(:), dd(:), du(:), e0(:), en(:), cl(:), cd(:), cu(:)
     integer :: ci
-    real(dp) :: half, mid, sq, rq, wq, wa, v, lo, hi, phi(0:1), chi(0:1)
+    real(dp) :: sq, rq, wq, wa, v, lo, hi, phi(0:1), chi(0:1)
     integer :: n, first, last, k, m, f, q, ia, ib, a, b, kp, ns
 
     info = 0
@@ -325,17 +324,13 @@ contains
     do k = 1, mortar%inter%nsub
       m = mortar%inter%slave_seg(k) - first + 1          ! zone segment m: local nodes m-1, m
       f = mortar%inter%master_seg(k)
-      half = 0.5_dp * (mortar%inter%s(2, k) - mortar%inter%s(1, k))
-      mid = 0.5_dp * (mortar%inter%s(2, k) + mortar%inter%s(1, k))
-      wq = half * seglen(mortar%inter%slave_seg(k))      ! Gauss weight (each of two) in length
+      wq = 0.5_dp * (mortar%inter%s(2, k) - mortar%inter%s(1, k)) * seglen(mortar%inter%slave_seg(k))
       lo = 0.0_dp                                        ! the zone's part [lo, hi] of the segment
       hi = 1.0_dp
       if (m == 1) lo = mortar%cut(1)
       if (m == n) hi = mortar%cut(2)
       do q = -1, 1, 2
-        sq = mid + real(q, dp) * gauss * half
-        rq = 0.5_dp * (mortar%inter%r(1, k) + mortar%inter%r(2, k)) + &
-             real(q, dp) * gauss * 0.5_dp * (mortar%inter%r(2, k) - mortar%inter%r(1, k))
+        call gauss_point(mortar%inter, k, q, sq, rq)
         chi = [1.0_dp - rq, rq]
         phi = [1.0_dp - sq, sq]
         mortar%covered_weight(first + m - 1:first + m) = mortar%covered_weight(first + m - 1:first + m) + wq * phi
@@ -404,9 +399,8 @@ contains
     real(dp), intent(in) :: xs(:,:), xm(:,:), seglen(:)
     logical, intent(in) :: gap_zero
     type(error_t), allocatable, intent(out) :: err
-    real(dp), parameter :: gauss = 0.57735026918962576451_dp   ! 1/sqrt(3)
     real(dp), allocatable :: dd(:), du(:), dl(:), rhs(:,:), b(:), py(:,:)
-    real(dp) :: half, mid, sq, rq, wq, phi(0:1), chi(0:1), piv
+    real(dp) :: sq, rq, wq, phi(0:1), chi(0:1), piv
     integer :: n, k, e, f, q, ia, ib, node(0:1), jlo, jhi, nc, info, i
 
     n = mortar%ns - 1
@@ -428,13 +422,9 @@ contains
       e = mortar%inter%slave_seg(k)
       f = mortar%inter%master_seg(k)
       node = [e, modulo(e, n) + 1]
-      half = 0.5_dp * (mortar%inter%s(2, k) - mortar%inter%s(1, k))
-      mid = 0.5_dp * (mortar%inter%s(2, k) + mortar%inter%s(1, k))
-      wq = half * seglen(e)
+      wq = 0.5_dp * (mortar%inter%s(2, k) - mortar%inter%s(1, k)) * seglen(e)
       do q = -1, 1, 2
-        sq = mid + real(q, dp) * gauss * half
-        rq = 0.5_dp * (mortar%inter%r(1, k) + mortar%inter%r(2, k)) + &
-             real(q, dp) * gauss * 0.5_dp * (mortar%inter%r(2, k) - mortar%inter%r(1, k))
+        call gauss_point(mortar%inter, k, q, sq, rq)
         phi = [1.0_dp - sq, sq]
         chi = [1.0_dp - rq, rq]
         do ia = 0, 1
@@ -592,6 +582,18 @@ contains
     k = 0.0_dp
     if (length > 0.0_dp) k = turn / length
   end function mean_curvature
+
+  !> Gauss point q (-1 or +1) of the 2-point rule on sub-segment k: its slave
+  !> coordinate s and master coordinate r (each of the two weighs half the
+  !> sub-segment's length).
+  pure subroutine gauss_point(inter, k, q, s, r)
+    type(intersection_t), intent(in) :: inter
+    integer, intent(in) :: k, q
+    real(dp), intent(out) :: s, r
+    real(dp), parameter :: gauss = 0.57735026918962576451_dp   ! 1/sqrt(3)
+    s = 0.5_dp * (inter%s(1, k) + inter%s(2, k)) + real(q, dp) * gauss * 0.5_dp * (inter%s(2, k) - inter%s(1, k))
+    r = 0.5_dp * (inter%r(1, k) + inter%r(2, k)) + real(q, dp) * gauss * 0.5_dp * (inter%r(2, k) - inter%r(1, k))
+  end subroutine gauss_point
 
   !> The point of zone node i (first..last): the slave node, or for a cut end
   !> the point of its segment where the zone ends.
