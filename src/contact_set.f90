@@ -27,8 +27,8 @@ module contact_set
   use diagnostics, only: error_t, set_error, int_to_str
   use mesh, only: mesh_t
   use body, only: body_t, node_elements, edge_outward_normal
-  use mortar_operator, only: mortar_t, intersection_t, build_mortar, intersect_segments, common_normals, &
-                             zone_node_terms, zone_point
+  use mortar_operator, only: mortar_t, build_mortar, zone_node_terms, zone_point
+  use mortar_geometry, only: intersection_t, intersect_segments, common_normals
   implicit none
   private
   public :: contact_set_t, pair_spec_t, contact_pair_t, chain_boundary, boundary_polyline

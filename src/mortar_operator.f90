@@ -11,20 +11,19 @@
 !>     K_h = { v_h : v_h^1.n^1 + pi_h^1 (v_h^2.n^2) <= 0 on Gamma_c }        (K_h, eq. (10))
 !> and this module builds the matrix P of pi_h^1 restricted to the master traces.
 !>
-!> 1. Segment intersection ("1D segment quadrature").  For each slave segment
-!>    [x_a, x_b] (length L, unit tangent t, outward unit normal n) every master segment
-!>    that faces it (n_master . n < 0) is projected onto the slave segment's line along
-!>    n: s(y) = (y - x_a).t / L.  The overlap of the projected interval with [0, 1], when
-!>    longer than 1e-10, is a sub-segment; on it the slave hats (affine in s) and the
-!>    master hats (affine in the master coordinate r, itself affine in s) are both
-!>    linear, so 2-point Gauss on each sub-segment integrates every product
-!>    phi_i chi_j and phi_i phi_l exactly.  A master part counts whatever its distance
-!>    along n (initial gaps may be large); a slave part covered twice (a master that
-!>    folds back in front of the slave) is rejected.
+!> 1. Segment intersection ("1D segment quadrature", module mortar_geometry): the
+!>    sub-segments on which every slave hat and master hat is linear, so that 2-point
+!>    Gauss integrates each product exactly.
 !> 2. Effective contact zone Gamma_c.  The slave segments with a positive covered length
 !>    form the zone, slave nodes first..last, renumbered x_0 = a1, ..., x_n = a2
 !>    (n = last - first segments).  An uncovered slave segment inside the zone (a hole)
 !>    is an input error; no coverage at all gives first = last = 0 (no contact).
+!>    Where the master ends inside a slave segment (its end projects to the point
+!>    (1 - c) x_0 + c x_1), the zone's mesh is the slave mesh cut there (cut(1) = c,
+!>    cut(2) likewise at the other end): items 3 to 5 hold on it, the cut node's trace
+!>    being the slave's linear interpolation (zone_node_terms).  A cover that stops
+!>    short of the end node by less than tol_sliver of the segment is stretched to it;
+!>    a covered piece shorter than tol_piece is left out (doc/theory.md, Zone ends).
 !> 3. Multiplier space M_h^1 (continuous P1, constant on the two end segments):
 !>       psi_1 = phi_0 + phi_1,  psi_k = phi_k (2 <= k <= n-2),  psi_{n-1} = phi_{n-1} + phi_n;
 !>    for n = 2, psi_1 = phi_0 + phi_1 + phi_2 = 1; for n = 1 there is no multiplier
@@ -52,34 +51,28 @@
 !>    gap=zero is the paper's setting (coinciding boundaries), gap0 = 0.
 !>    Constraint row of slave node i (the caller assembles it on the displacements):
 !>       B_i u = n_i . u^1(x_i) - n_i . sum_j P(i,j) u^2(y_j) <= gap0_i.
+!> 6. A closed slave curve that the master covers all round (build_periodic): no zone
+!>    ends, M_h^1 the periodic P1 space, D cyclic, solved by bordering.
+!> 7. A frictional pair passes its common normals (mortar_geometry: common_normals) as
+!>    `pairing`: the projection onto the slave segments and the rows go along them.
 !>
 !> Programming interface
 !>   type(mortar_t)        the operator of one pair (fields commented below)
-!>   type(intersection_t)  the list of sub-segments of the two 1D meshes
-!>   build_mortar(xs, ns_out, xm, nm_out, gap_zero, mortar, err)
+!>   build_mortar(xs, ns_out, xm, nm_out, gap_zero, mortar, err [, pairing])
 !>                         check the polylines, intersect, build pi_h^1, gaps, weights;
 !>                         err (status 2) for geometric input problems, (status 1) when
 !>                         the LAPACK solve fails
-!>   intersect_segments(xs, ns_out, xm, nm_out, inter)
-!>                         the sub-segment list alone (valid polylines assumed)
+!>   zone_node_terms(mo, i, node, coef, nt), zone_point(mo, xs, i)
+!>                         the slave nodes (and weights) and the point of zone node i
 module mortar_operator
   use kinds, only: dp
   use lapack_interfaces, only: dgtsv
   use diagnostics, only: error_t, set_error, int_to_str
-  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+  use mortar_geometry, only: intersection_t, intersect_segments, check_polyline, ray_hit, real_to_str, &
+                             tol_overlap
   implicit none
   private
-  public :: mortar_t, intersection_t, build_mortar, intersect_segments, common_normals, zone_node_terms, zone_point
-
-  !> Sub-segments of the intersection of the slave and master 1D meshes, ordered by
-  !> slave segment and, within one, by increasing s.
-  type :: intersection_t
-    integer :: nsub = 0                       !< number of sub-segments
-    integer, allocatable :: slave_seg(:)      !< (nsub) slave segment e (nodes e, e+1)
-    integer, allocatable :: master_seg(:)     !< (nsub) master segment f (nodes f, f+1)
-    real(dp), allocatable :: s(:,:)           !< (2, nsub) slave coordinates of the ends, 0 <= s(1) < s(2) <= 1
-    real(dp), allocatable :: r(:,:)           !< (2, nsub) master coordinates at the same ends (y = (1-r) y_f + r y_f+1)
-  end type intersection_t
+  public :: mortar_t, build_mortar, zone_node_terms, zone_point
 
   !> The mortar operator of one contact pair.
   type :: mortar_t
@@ -101,13 +94,8 @@ module mortar_operator
     type(intersection_t) :: inter             !< the sub-segments used for the integrals
   end type mortar_t
 
-  real(dp), parameter :: tol_unit = 1.0e-8_dp      ! |n| = 1 and n.t = 0 up to this
-  real(dp), parameter :: tol_length = 1.0e-12_dp   ! zero length, relative to the polyline's extent
-  real(dp), parameter :: tol_overlap = 1.0e-10_dp  ! shortest sub-segment / double cover, relative to L
-  real(dp), parameter :: tol_ray = 1.0e-10_dp      ! slack on the master coordinate of a ray hit
   real(dp), parameter :: tol_piece = 1.0e-3_dp     ! shortest covered piece of a zone-end segment kept
   real(dp), parameter :: tol_sliver = 2.0e-2_dp    ! longest uncovered piece of a zone-end segment extended
-
 
 contains
 
@@ -473,116 +461,6 @@ contains
     end if
   end subroutine build_periodic
 
-  !> The common normal of a frictional pair at each slave node (module header,
-  !> 7.): the direction along which the two surfaces approach, which pairs the
-  !> points that meet and is the normal of the slip's tangent plane.  Near the
-  !> first contact of two surfaces of curvatures k1 (slave) and k2 (master),
-  !> their normals at a distance x are tilted by k1 x and -k2 x from it, so
-  !>    n_c = normalize(w n1 - (1 - w) n2),   w = k2 / (k1 + k2)  in [0, 1],
-  !> n1 the slave nodal normal, n2 the master normal at the point its ray
-  !> meets.  k1, k2 are the mean curvatures of the two polylines over the
-  !> part of them that faces the other (convex > 0).  w = 1/2 (the bisector)
-  !> when they agree to tol_curv (a polygon's curvature is no better; mirror
-  !> images then pair exactly), when k1 + k2 is not positive (conforming
-  !> surfaces, whose normals are parallel anyway) and on flat pairs; w = 1 or
-  !> 0 when one side is flat to tol_curv of the other.
-  !>   xs, ns_out, xm, nm_out (in) the polylines and segment normals, as build_mortar
-  !>   nc (out) (2, ns) unit common normals; the slave nodal normal where no master faces
-  !>   w  (out) the weight of the slave normal
-  subroutine common_normals(xs, ns_out, xm, nm_out, nc, w)
-    real(dp), intent(in) :: xs(:,:), ns_out(:,:), xm(:,:), nm_out(:,:)
-    real(dp), allocatable, intent(out) :: nc(:,:)
-    real(dp), intent(out) :: w
-    real(dp), parameter :: tol_curv = 5.0e-2_dp
-    type(intersection_t) :: inter
-    real(dp), allocatable :: n1(:,:), n2(:,:)
-    logical, allocatable :: sface(:), mface(:)
-    real(dp) :: k1, k2, y(2), rr, m(2)
-    integer :: ns, nm, i, f, iter
-
-    ns = size(xs, 2)
-    nm = size(xm, 2)
-    call nodal_normals(xs, ns_out, n1)
-    call nodal_normals(xm, nm_out, n2)
-    nc = n1
-    w = 0.5_dp
-    call intersect_segments(xs, ns_out, xm, nm_out, inter)
-    if (inter%nsub == 0) return
-    allocate(sface(ns - 1), mface(nm - 1), source=.false.)
-    sface(inter%slave_seg(1:inter%nsub)) = .true.
-    mface(inter%master_seg(1:inter%nsub)) = .true.
-    k1 = mean_curvature(xs, ns_out, sface)
-    k2 = mean_curvature(xm, nm_out, mface)
-    if (abs(k1 - k2) <= tol_curv * 0.5_dp * (abs(k1) + abs(k2)) .or. .not. k1 + k2 > 0.0_dp) then
-      w = 0.5_dp
-    else if (abs(k1) <= tol_curv * abs(k2)) then
-      w = 1.0_dp
-    else if (abs(k2) <= tol_curv * abs(k1)) then
-      w = 0.0_dp
-    else
-      w = min(1.0_dp, max(0.0_dp, k2 / (k1 + k2)))
-    end if
-    do i = 1, ns
-      if (.not. (any(sface(max(1, i - 1):min(ns - 1, i))))) cycle
-      ! the master point on the ray along the current estimate, a few times:
-      ! each pass moves it closer to the point the common normal meets
-      do iter = 1, 4
-        call ray_hit(xs(:, i), nc(:, i), xm, nm_out, f, rr)
-        if (f == 0) exit
-        if (rr < 1.0e-8_dp) rr = 0.0_dp                    ! on a master node: its normal exactly
-        if (rr > 1.0_dp - 1.0e-8_dp) rr = 1.0_dp
-        m = (1.0_dp - rr) * n2(:, f) + rr * n2(:, f + 1)
-        m = m / norm2(m)
-        y = w * n1(:, i) - (1.0_dp - w) * m
-        if (.not. norm2(y) > 0.0_dp) exit
-        nc(:, i) = y / norm2(y)
-      end do
-    end do
-  end subroutine common_normals
-
-  !> Unit nodal normals of a polyline: the normalized sum of the two segment
-  !> normals at a node, the segment's own at an end (a closed curve has none).
-  subroutine nodal_normals(x, nrm, n)
-    real(dp), intent(in) :: x(:,:), nrm(:,:)
-    real(dp), allocatable, intent(out) :: n(:,:)
-    real(dp) :: y(2)
-    integer :: np, i
-    np = size(x, 2)
-    allocate(n(2, np))
-    n(:, 1) = nrm(:, 1)
-    n(:, np) = nrm(:, np - 1)
-    do i = 2, np - 1
-      y = nrm(:, i - 1) + nrm(:, i)
-      n(:, i) = y / norm2(y)
-    end do
-    if (all(x(:, 1) == x(:, np))) then
-      y = nrm(:, np - 1) + nrm(:, 1)
-      n(:, 1) = y / norm2(y)
-      n(:, np) = n(:, 1)
-    end if
-  end subroutine nodal_normals
-
-  !> Mean curvature of the segments of a polyline marked in seg (convex > 0):
-  !> the turning of the outward normal along the tangent, summed over
-  !> consecutive marked segments, over their half lengths.
-  real(dp) function mean_curvature(x, nrm, seg) result(k)
-    real(dp), intent(in) :: x(:,:), nrm(:,:)
-    logical, intent(in) :: seg(:)
-    real(dp) :: turn, length, ta(2), tb(2)
-    integer :: e
-    turn = 0.0_dp
-    length = 0.0_dp
-    do e = 1, size(seg) - 1
-      if (.not. (seg(e) .and. seg(e + 1))) cycle
-      ta = x(:, e + 1) - x(:, e)
-      tb = x(:, e + 2) - x(:, e + 1)
-      turn = turn + dot_product(nrm(:, e + 1) - nrm(:, e), ta / norm2(ta) + tb / norm2(tb)) * 0.5_dp
-      length = length + 0.5_dp * (norm2(ta) + norm2(tb))
-    end do
-    k = 0.0_dp
-    if (length > 0.0_dp) k = turn / length
-  end function mean_curvature
-
   !> Gauss point q (-1 or +1) of the 2-point rule on sub-segment k: its slave
   !> coordinate s and master coordinate r (each of the two weighs half the
   !> sub-segment's length).
@@ -717,234 +595,5 @@ contains
       end do
     end if
   end subroutine end_row
-
-  !> The nearest hit of the line a + tau n on a master segment facing n.
-  !>   a, n (in) (2) point and unit direction;  xm, nm_out (in) master nodes and segment normals
-  !>   f (out) the master segment, 0 when the line misses the master;  r (out) its coordinate in [0, 1]
-  subroutine ray_hit(a, n, xm, nm_out, f, r)
-    real(dp), intent(in) :: a(2), n(2), xm(:,:), nm_out(:,:)
-    integer, intent(out) :: f
-    real(dp), intent(out) :: r
-    real(dp) :: d(2), w(2), den, tau, rr, best
-    integer :: g
-    f = 0
-    r = 0.0_dp
-    best = huge(1.0_dp)
-    do g = 1, size(xm, 2) - 1
-      if (dot_product(nm_out(:, g), n) >= 0.0_dp) cycle
-      d = xm(:, g + 1) - xm(:, g)
-      w = xm(:, g) - a
-      den = cross(n, d)
-      if (abs(den) <= 1.0e-12_dp * norm2(d)) cycle        ! segment along the ray
-      rr = -cross(n, w) / den                              ! a + tau n = y_g + rr d
-      if (rr < -tol_ray .or. rr > 1.0_dp + tol_ray) cycle
-      tau = cross(w, d) / den
-      if (abs(tau) < best) then
-        best = abs(tau)
-        f = g
-        r = min(1.0_dp, max(0.0_dp, rr))
-      end if
-    end do
-  end subroutine ray_hit
-
-  !> Intersect the slave and master 1D meshes: for each slave segment, the master
-  !> segments facing it projected along its normal onto its line (module header, 1.).
-  !> The polylines are assumed valid (as checked by build_mortar).
-  !>   xs     (in)  (2, ns) slave nodes;  ns_out (in) (2, ns-1) slave segment normals
-  !>   xm     (in)  (2, nm) master nodes; nm_out (in) (2, nm-1) master segment normals
-  !>   inter  (out) the sub-segments, ordered by slave segment and increasing s
-  !>   pairing (in, optional) (2, ns) unit nodal pairing directions: the master is
-  !>                  projected onto segment e along their sum, not along its normal
-  subroutine intersect_segments(xs, ns_out, xm, nm_out, inter, pairing)
-    real(dp), intent(in) :: xs(:,:), ns_out(:,:), xm(:,:), nm_out(:,:)
-    type(intersection_t), intent(out) :: inter
-    real(dp), intent(in), optional :: pairing(:,:)
-    integer :: nss, nms, e, f, nc, i, j, cap
-    real(dp) :: xa(2), t(2), d(2), length, sa, sb, lo, hi
-    real(dp), allocatable :: clo(:), chi(:), rlo(:), rhi(:), sm(:)
-    integer, allocatable :: cf(:)
-
-    nss = size(xs, 2) - 1
-    nms = size(xm, 2) - 1
-    allocate(clo(nms), chi(nms), rlo(nms), rhi(nms), cf(nms), sm(nms + 1))
-    cap = max(16, nss + nms)
-    allocate(inter%slave_seg(cap), inter%master_seg(cap), inter%s(2, cap), inter%r(2, cap))
-    inter%nsub = 0
-    do e = 1, nss
-      xa = xs(:, e)
-      t = xs(:, e + 1) - xa
-      length = norm2(t)
-      t = t / length
-      nc = 0
-      if (present(pairing)) then           ! projected along the pairing direction d
-        d = pairing(:, e) + pairing(:, e + 1)
-        do f = 1, nms + 1
-          sm(f) = cross(xm(:, f) - xa, d) / cross(xs(:, e + 1) - xa, d)
-        end do
-      else
-        do f = 1, nms + 1                  ! each master node's coordinate along segment e, once
-          sm(f) = dot_product(xm(:, f) - xa, t) / length
-        end do
-      end if
-      do f = 1, nms
-        if (dot_product(nm_out(:, f), ns_out(:, e)) >= 0.0_dp) cycle   ! not facing
-        sa = sm(f)
-        sb = sm(f + 1)
-        lo = max(0.0_dp, min(sa, sb))
-        hi = min(1.0_dp, max(sa, sb))
-        if (hi - lo <= tol_overlap) cycle
-        nc = nc + 1
-        clo(nc) = lo
-        chi(nc) = hi
-        rlo(nc) = min(1.0_dp, max(0.0_dp, (lo - sa) / (sb - sa)))   ! y = y_f + r (y_f+1 - y_f)
-        rhi(nc) = min(1.0_dp, max(0.0_dp, (hi - sa) / (sb - sa)))
-        cf(nc) = f
-      end do
-      ! insertion sort by lo
-      do i = 2, nc
-        j = i
-        do while (j > 1)
-          if (clo(j - 1) <= clo(j)) exit
-          call swap_real(clo(j - 1), clo(j))
-          call swap_real(chi(j - 1), chi(j))
-          call swap_real(rlo(j - 1), rlo(j))
-          call swap_real(rhi(j - 1), rhi(j))
-          call swap_int(cf(j - 1), cf(j))
-          j = j - 1
-        end do
-      end do
-      if (inter%nsub + nc > cap) then
-        cap = max(2 * cap, inter%nsub + nc)
-        call grow_intersection(inter, cap)
-      end if
-      do i = 1, nc
-        inter%nsub = inter%nsub + 1
-        inter%slave_seg(inter%nsub) = e
-        inter%master_seg(inter%nsub) = cf(i)
-        inter%s(:, inter%nsub) = [clo(i), chi(i)]
-        inter%r(:, inter%nsub) = [rlo(i), rhi(i)]
-      end do
-    end do
-  end subroutine intersect_segments
-
-  !> Check one polyline and its segment normals; err (status 2) on the first defect.
-  !>   x     (in)  (2, np) nodes
-  !>   nrm   (in)  (2, np-1) outward unit segment normals
-  !>   side  (in)  'slave' or 'master', for messages
-  !>   err   (out) allocated when the polyline is not usable
-  subroutine check_polyline(x, nrm, side, err)
-    real(dp), intent(in) :: x(:,:), nrm(:,:)
-    character(len=*), intent(in) :: side
-    type(error_t), allocatable, intent(out) :: err
-    integer :: np, k
-    real(dp) :: scale, length, t(2), orient, c
-
-    np = size(x, 2)
-    if (size(x, 1) /= 2 .or. size(nrm, 1) /= 2) then
-      call set_error(err, side // ' boundary coordinates or normals are not 2D (arrays (2, n) expected)', 2)
-      return
-    end if
-    if (np < 2) then
-      call set_error(err, side // ' boundary has ' // int_to_str(np) // &
-        ' node(s) (at least 2 nodes, one segment, expected)', 2)
-      return
-    end if
-    if (size(nrm, 2) /= np - 1) then
-      call set_error(err, side // ' boundary has ' // int_to_str(size(nrm, 2)) // ' segment normals for ' // &
-        int_to_str(np) // ' nodes (one normal per segment, ' // int_to_str(np - 1) // ', expected)', 2)
-      return
-    end if
-    if (.not. (all(ieee_is_finite(x)) .and. all(ieee_is_finite(nrm)))) then
-      call set_error(err, side // ' boundary has non-finite coordinates or normals (finite numbers expected)', 2)
-      return
-    end if
-    scale = max(maxval(x(1, :)) - minval(x(1, :)), maxval(x(2, :)) - minval(x(2, :)))
-    orient = 0.0_dp
-    do k = 1, np - 1
-      t = x(:, k + 1) - x(:, k)
-      length = norm2(t)
-      if (length <= tol_length * scale) then
-        call set_error(err, 'zero-length segment on the ' // side // ' boundary at node ' // int_to_str(k) // &
-          ' (distinct consecutive nodes expected)', 2)
-        return
-      end if
-      t = t / length
-      if (abs(norm2(nrm(:, k)) - 1.0_dp) > tol_unit) then
-        call set_error(err, 'normal of ' // side // ' segment ' // int_to_str(k) // &
-          ' is not a unit vector (outward unit normals expected)', 2)
-        return
-      end if
-      if (abs(dot_product(nrm(:, k), t)) > tol_unit) then
-        call set_error(err, 'normal of ' // side // ' segment ' // int_to_str(k) // &
-          ' is not perpendicular to the segment (outward unit normals expected)', 2)
-        return
-      end if
-      c = cross(t, nrm(:, k))                              ! +1 or -1: the side of the normal
-      if (k == 1) then
-        orient = c
-      else if (c * orient < 0.0_dp) then
-        call set_error(err, 'normals of the ' // side // ' boundary change side at segment ' // int_to_str(k) // &
-          ' (outward normals, all on the body''s side, expected)', 2)
-        return
-      end if
-      if (k > 1) then
-        if (dot_product(nrm(:, k - 1), nrm(:, k)) <= -1.0_dp + tol_unit) then
-          call set_error(err, side // ' boundary turns back on itself at node ' // int_to_str(k) // &
-            ' (a boundary without folds expected)', 2)
-          return
-        end if
-      end if
-    end do
-  end subroutine check_polyline
-
-  !> Enlarge the arrays of inter to capacity cap, keeping the first nsub entries.
-  subroutine grow_intersection(inter, cap)
-    type(intersection_t), intent(inout) :: inter
-    integer, intent(in) :: cap
-    integer, allocatable :: ia(:)
-    real(dp), allocatable :: ra(:,:)
-    integer :: n
-    n = inter%nsub
-    allocate(ia(cap)); ia(1:n) = inter%slave_seg(1:n); call move_alloc(ia, inter%slave_seg)
-    allocate(ia(cap)); ia(1:n) = inter%master_seg(1:n); call move_alloc(ia, inter%master_seg)
-    allocate(ra(2, cap)); ra(:, 1:n) = inter%s(:, 1:n); call move_alloc(ra, inter%s)
-    allocate(ra(2, cap)); ra(:, 1:n) = inter%r(:, 1:n); call move_alloc(ra, inter%r)
-  end subroutine grow_intersection
-
-  !> z-component of the cross product of two plane vectors.
-  pure real(dp) function cross(u, v)
-    real(dp), intent(in) :: u(2), v(2)
-    cross = u(1) * v(2) - u(2) * v(1)
-  end function cross
-
-  pure subroutine swap_real(a, b)
-    real(dp), intent(inout) :: a, b
-    real(dp) :: c
-    c = a; a = b; b = c
-  end subroutine swap_real
-
-  pure subroutine swap_int(a, b)
-    integer, intent(inout) :: a, b
-    integer :: c
-    c = a; a = b; b = c
-  end subroutine swap_int
-
-  !> Short decimal text of a real (6 significant digits, trailing zeros dropped), for messages.
-  function real_to_str(v) result(s)
-    real(dp), intent(in) :: v
-    character(len=:), allocatable :: s
-    character(len=32) :: buf
-    integer :: k
-    write(buf, '(g0.6)') v
-    s = trim(adjustl(buf))
-    if (index(s, '.') > 0 .and. scan(s, 'EeDd') == 0) then
-      k = len_trim(s)
-      do while (s(k:k) == '0')
-        k = k - 1
-      end do
-      if (s(k:k) == '.') k = k - 1
-      s = s(1:k)
-    end if
-  end function real_to_str
 
 end module mortar_operator
