@@ -137,6 +137,8 @@ module deck_reader
     logical :: has_density = .false.; real(dp) :: rho = 0; integer :: density_line = 0
     type(fix_t), allocatable :: fixes(:)        !< (nfix), always allocated
     type(load_t), allocatable :: loads(:)       !< (nload), always allocated
+    integer :: nfix = 0, nload = 0              !< statements held while reading: the arrays
+                                                !< grow by doubling and are cut to these at the end
     logical :: has_bodyforce = .false.; real(dp) :: fx = 0, fy = 0; integer :: bodyforce_line = 0
     integer :: bodyforce_ramp(2) = [0, 1]       !< BODYFORCE ramp k0, k1; default [0, steps]
     type(thermal_t), allocatable :: thermals(:) !< (nthermal), always allocated
@@ -305,6 +307,7 @@ contains
         end if
       end if
     end if
+    call cut_statement_lists(s, deck)
     if (readable .and. .not. s%gave_up) call finish_checks(s, deck)
     call fill_defaults(deck)
     call hand_over(s, deck%file, diag)
@@ -1334,12 +1337,14 @@ contains
       fix%has_ux = .true.
       fix%has_uy = .true.
     end if
-    allocate(grown(size(body%fixes) + 1))
-    do i = 1, size(body%fixes)
-      grown(i) = body%fixes(i)
-    end do
-    grown(size(grown)) = fix
-    call move_alloc(grown, body%fixes)
+    ! capacity doubles: 1e5 FIX statements cost 1e5 copies in all, not 5e9
+    if (body%nfix == size(body%fixes)) then
+      allocate(grown(max(8, 2 * size(body%fixes))))
+      grown(1:body%nfix) = body%fixes(1:body%nfix)
+      call move_alloc(grown, body%fixes)
+    end if
+    body%nfix = body%nfix + 1
+    body%fixes(body%nfix) = fix
   end subroutine do_fix
 
   !> TRACTION boundary tx= ty= [ramp=] | PRESSURE boundary p= [ramp=]
@@ -1385,12 +1390,13 @@ contains
       call get_ramp(s, st, val(2), load%ramp)
     end if
     if (s%nerr /= nerr0) return
-    allocate(grown(size(body%loads) + 1))
-    do i = 1, size(body%loads)
-      grown(i) = body%loads(i)
-    end do
-    grown(size(grown)) = load
-    call move_alloc(grown, body%loads)
+    if (body%nload == size(body%loads)) then        ! capacity doubles, as for FIX
+      allocate(grown(max(8, 2 * size(body%loads))))
+      grown(1:body%nload) = body%loads(1:body%nload)
+      call move_alloc(grown, body%loads)
+    end if
+    body%nload = body%nload + 1
+    body%loads(body%nload) = load
   end subroutine do_load
 
   !> BODYFORCE fx= fy= [ramp=]
@@ -2039,6 +2045,34 @@ contains
 
   !> Allocate every character component left unset; resolve the ramps not given
   !> (or not valid) to [0, steps].
+  !> Cut each body's FIX and load lists, grown by doubling while reading, to the
+  !> statements they hold: from here on size() is the count.
+  subroutine cut_statement_lists(s, deck)
+    type(state_t), intent(in) :: s
+    type(deck_t), intent(inout) :: deck
+    integer :: b
+    type(fix_t), allocatable :: fixes(:)
+    type(load_t), allocatable :: loads(:)
+
+    if (.not. allocated(deck%bodies)) return
+    do b = 1, min(s%nbody, size(deck%bodies))
+      associate (body => deck%bodies(b))
+        if (allocated(body%fixes)) then
+          if (size(body%fixes) /= body%nfix) then
+            fixes = body%fixes(1:body%nfix)
+            call move_alloc(fixes, body%fixes)
+          end if
+        end if
+        if (allocated(body%loads)) then
+          if (size(body%loads) /= body%nload) then
+            loads = body%loads(1:body%nload)
+            call move_alloc(loads, body%loads)
+          end if
+        end if
+      end associate
+    end do
+  end subroutine cut_statement_lists
+
   subroutine fill_defaults(deck)
     type(deck_t), intent(inout) :: deck
     integer :: b, i
