@@ -76,8 +76,9 @@ program contact2d
   call stop_input_errors(diag)
   if (.not. check_only) call make_folder(outdir, diag)
   call stop_input_errors(diag)
-  call build_scene(deck, temp_folder(), sc, diag)
+  call build_scene(deck, temp_folder(), sc, diag, err)
   call stop_input_errors(diag)
+  if (allocated(err)) call fail_numerical(err%message)
   call build_contact_set(sc%bodies, sc%specs, cs, err)
   if (allocated(err)) call contact_error(err)
   do i = 1, cs%npair
@@ -105,7 +106,8 @@ program contact2d
   ! The ordering (AMD or METIS) reads only the pattern: it runs on one core
   ! while the values are assembled on the other, then the numeric factorization.
   if (nfree == 0) call fail_numerical('every dof is fixed: there is nothing to solve')
-  call build_pattern(sc%bodies, eq, nfree, k)
+  call build_pattern(sc%bodies, eq, nfree, k, err)
+  if (allocated(err)) call fail_numerical(err%message)
   allocate(rhs(nfree, 1))
   rhs = 0.0_dp
   do i = 1, sc%ndof

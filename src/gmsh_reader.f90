@@ -59,7 +59,7 @@ module gmsh_reader
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use omp_lib, only: omp_get_max_threads
   use kinds, only: dp, i8
-  use diagnostics, only: diag_t, add_error, int_to_str
+  use diagnostics, only: diag_t, add_error, int_to_str, i8_to_str, real_to_str
   use mesh, only: mesh_t
   implicit none
   private
@@ -708,7 +708,6 @@ contains
     integer :: i, dup_line, z_line, dup_node, z_node
     integer(i8) :: max_tag, tag
     real(dp) :: extent
-    character(len=16) :: zbuf
 
     dup_line = huge(1)
     dup_node = 0
@@ -760,8 +759,7 @@ contains
       call fail_at(t, diag, dup_line, 'duplicate node tag ' // i8_to_str(d%ntag(1, dup_node)) // &
         ' (each node tag defined once expected)')
     else
-      write(zbuf, '(es11.3)') d%z(z_node)
-      call fail_at(t, diag, z_line, 'node ' // i8_to_str(d%ntag(1, z_node)) // ' has z = ' // trim(adjustl(zbuf)) // &
+      call fail_at(t, diag, z_line, 'node ' // i8_to_str(d%ntag(1, z_node)) // ' has z = ' // real_to_str(d%z(z_node)) // &
         ' (a planar mesh in z = 0 expected)')
     end if
   end subroutine check_nodes
@@ -2037,14 +2035,6 @@ contains
       if (c < 32 .or. c > 126) p(i:i) = '?'
     end do
   end function printable_text
-
-  pure function i8_to_str(i) result(s)
-    integer(i8), intent(in) :: i
-    character(len=:), allocatable :: s
-    character(len=24) :: buf
-    write(buf, '(i0)') i
-    s = trim(buf)
-  end function i8_to_str
 
   ! ---------------------------------------------------------------------------
   ! Element types

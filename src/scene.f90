@@ -14,7 +14,7 @@
 !>        temporary .msh (the output folder); errors go to diag with deck lines
 module scene
   use kinds, only: dp
-  use diagnostics, only: diag_t, add_error, has_errors, int_to_str
+  use diagnostics, only: diag_t, add_error, has_errors, int_to_str, error_t
   use deck_reader, only: deck_t, body_deck_t, LOAD_TRACTION, LOAD_PRESSURE
   use mesh, only: mesh_t, finalize_mesh, find_boundary, boundary_nodes, find_region, order_for_locality, node_in_file, &
                   locality_min_nodes
@@ -60,11 +60,13 @@ contains
   !>   workdir (in)  folder for gmsh's temporary files
   !>   sc      (out) the scene (incomplete when diag has errors)
   !>   diag    (inout) input errors, FILE:LINE of the deck or the mesh file
-  subroutine build_scene(deck, workdir, sc, diag)
+  !>   err     (out) allocated when the memory ran out (status 1)
+  subroutine build_scene(deck, workdir, sc, diag, err)
     type(deck_t), intent(in) :: deck
     character(len=*), intent(in) :: workdir
     type(scene_t), intent(out) :: sc
     type(diag_t), intent(inout) :: diag
+    type(error_t), allocatable, intent(out) :: err
     integer :: b, nb, nfix, ifix, ndof, ip
     logical :: has_traction, has_pressure, has_bforce, has_gravity, has_dirichlet, has_thermal, has_offset
 
@@ -75,7 +77,8 @@ contains
     nb = size(deck%bodies)
     allocate(sc%bodies(nb))
     do b = 1, nb
-      call make_body(deck, deck%bodies(b), workdir, sc%bodies(b), diag)
+      call make_body(deck, deck%bodies(b), workdir, sc%bodies(b), diag, err)
+      if (allocated(err)) return
     end do
     if (has_errors(diag)) return
     ! a large mesh file's numbering is its generator's: renumber for locality
@@ -218,12 +221,13 @@ contains
   end function load_factor
 
   !> Mesh and elasticity tensor of one body.
-  subroutine make_body(deck, bdeck, workdir, bd, diag)
+  subroutine make_body(deck, bdeck, workdir, bd, diag, err)
     type(deck_t), intent(in) :: deck
     type(body_deck_t), intent(in) :: bdeck
     character(len=*), intent(in) :: workdir
     type(body_t), intent(out) :: bd
     type(diag_t), intent(inout) :: diag
+    type(error_t), allocatable, intent(out) :: err
     character(len=:), allocatable :: msh, log, message
     logical :: ok
     integer :: n0, u
@@ -232,7 +236,8 @@ contains
     associate(ms => bdeck%mesh)
       select case (ms%kind)
       case ('rect')
-        call make_rect_mesh(ms%x0, ms%y0, ms%x1, ms%y1, ms%nx, ms%ny, ms%elem == 'quad4', ms%diag, bd%mesh)
+        call make_rect_mesh(ms%x0, ms%y0, ms%x1, ms%y1, ms%nx, ms%ny, ms%elem == 'quad4', ms%diag, bd%mesh, err)
+        if (allocated(err)) return
         call finalize_mesh(bd%mesh, deck%file, diag)
       case default
         n0 = diag%count
