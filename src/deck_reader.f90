@@ -72,7 +72,7 @@ module deck_reader
   private
   public :: fix_t, load_t, mesh_spec_t, material_t, body_deck_t, contact_deck_t
   public :: solver_deck_t, output_deck_t, deck_t, read_deck
-  public :: load_traction, load_pressure
+  public :: load_traction, load_pressure, path_too_long
 
   integer, parameter :: load_traction = 1   !< load_t%kind of TRACTION
   integer, parameter :: load_pressure = 2   !< load_t%kind of PRESSURE
@@ -2041,10 +2041,46 @@ contains
     else if (c == m .and. len(c) == len(m)) then
       call report(s, line, 'OUTPUT files must differ (contact and summary are both ' // quoted(c) // ')')
     end if
+    ! each is written as NAME.part first, then renamed: 5 bytes kept for that
+    if (len(path_too_long(v, 5)) > 0) call report(s, line, 'OUTPUT vtk: ' // path_too_long(v, 5))
+    if (len(path_too_long(c, 5)) > 0) call report(s, line, 'OUTPUT contact: ' // path_too_long(c, 5))
+    if (len(path_too_long(m, 5)) > 0) call report(s, line, 'OUTPUT summary: ' // path_too_long(m, 5))
   end subroutine check_output_names
 
-  !> Allocate every character component left unset; resolve the ramps not given
-  !> (or not valid) to [0, steps].
+  !> '' when the system can take path as a file name, else what is wrong: a
+  !> component longer than NAME_MAX (255 bytes) or a path longer than PATH_MAX
+  !> (4096), which open() refuses with ENAMETOOLONG whatever the folder.
+  !>   path    (in) the name, as it will be opened
+  !>   reserve (in) bytes the program adds to the last name (a temporary suffix)
+  function path_too_long(path, reserve) result(msg)
+    character(len=*), intent(in) :: path
+    integer, intent(in) :: reserve
+    character(len=:), allocatable :: msg
+    integer, parameter :: name_max = 255, path_max = 4096
+    integer :: i, first, limit
+    msg = ''
+    if (len(path) + reserve >= path_max) then
+      msg = 'the path is ' // int_to_str(len(path)) // ' characters long (fewer than ' // &
+            int_to_str(path_max - reserve) // ' expected: PATH_MAX)'
+      return
+    end if
+    first = 1
+    do i = 1, len(path) + 1
+      if (i <= len(path)) then
+        if (path(i:i) /= '/') cycle
+      end if
+      limit = name_max - merge(reserve, 0, i > len(path))
+      if (i - first > limit) then
+        msg = 'the name "' // path(first:first + 19) // '..." is ' // int_to_str(i - first) // &
+              ' characters long (at most ' // int_to_str(limit) // ' expected: NAME_MAX'
+        if (limit < name_max) msg = msg // ' is 255, less ' // int_to_str(reserve) // ' for the temporary suffix .part'
+        msg = msg // ')'
+        return
+      end if
+      first = i + 1
+    end do
+  end function path_too_long
+
   !> Cut each body's FIX and load lists, grown by doubling while reading, to the
   !> statements they hold: from here on size() is the count.
   subroutine cut_statement_lists(s, deck)
@@ -2073,6 +2109,8 @@ contains
     end do
   end subroutine cut_statement_lists
 
+  !> Allocate every character component left unset; resolve the ramps not given
+  !> (or not valid) to [0, steps].
   subroutine fill_defaults(deck)
     type(deck_t), intent(inout) :: deck
     integer :: b, i
