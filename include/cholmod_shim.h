@@ -153,6 +153,11 @@ void c2d_malloc_trim(void);
  * in use, 0 when this METIS does not call them (then METIS calls run one at a
  * time).  Every METIS call of the shim sits between c2d_metis_begin and
  * c2d_metis_end. */
+/* Bytes this process can still allocate (src/memory_limit.c): the address
+ * space left under RLIMIT_AS and the machine's MemAvailable + SwapFree, the
+ * smaller; -1 when neither is known. */
+int64_t c2d_memory_available(void);
+
 int c2d_metis_per_thread(void);
 void c2d_metis_begin(void);
 void c2d_metis_end(void);

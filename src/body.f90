@@ -22,7 +22,8 @@
 !>        pointing out of its element; owner = that element, 0 when no element has
 !>        the edge, -1 when two do (an interior edge)
 module body
-  use kinds, only: dp
+  use kinds, only: dp, i8
+  use diagnostics, only: error_t, set_out_of_memory, int_to_str
   use omp_lib, only: omp_get_max_threads
   use mesh, only: mesh_t
   use material, only: elasticity_t, von_mises
@@ -116,11 +117,13 @@ contains
   !>   eq     (in)  (ndof) free equation numbers
   !>   nfree  (in)  number of free equations
   !>   k      (out) n = nfree, colptr, rowind (sorted), val = 0
-  subroutine build_pattern(bodies, eq, nfree, k)
+  !>   err    (out) allocated when the memory for K ran out (status 1)
+  subroutine build_pattern(bodies, eq, nfree, k, err)
     type(body_t), intent(in) :: bodies(:)
     integer, intent(in) :: eq(:), nfree
     type(csc_t), intent(out) :: k
-    integer :: b, pass, col, nnz
+    type(error_t), allocatable, intent(out) :: err
+    integer :: b, pass, col, nnz, stat
     type(node_elements_t), allocatable :: around(:)
 
     allocate(around(size(bodies)))            ! the elements around each node, for both passes
@@ -138,7 +141,13 @@ contains
           k%colptr(col + 1) = k%colptr(col + 1) + k%colptr(col)
         end do
         nnz = k%colptr(nfree + 1) - 1
-        allocate(k%rowind(nnz), k%val(nnz))
+        ! K's entries, the largest arrays before the factor: one that does not
+        ! fit is reported with K's size (12 bytes per entry)
+        allocate(k%rowind(nnz), k%val(nnz), stat=stat)
+        if (stat /= 0) then
+          call set_out_of_memory(err, 'assembling K (' // int_to_str(nnz) // ' entries)', 12_i8 * nnz)
+          return
+        end if
       end if
       do b = 1, size(bodies)
         call pattern_pass(bodies(b), around(b), pass, eq, k)

@@ -29,6 +29,7 @@
 !>   c2d_blas_park()   end OpenBLAS's spinning worker threads (restarted by the next threaded call)
 !>   c2d_malloc_arenas()   c2d_malloc_trim()   at most two glibc malloc arenas; free pages back
 !>   c2d_metis_per_thread() -> 1 when METIS draws its random numbers per thread
+!>   c2d_memory_available() -> bytes the process can still allocate (-1 unknown)
 !>   status codes: cholmod_ok, cholmod_not_posdef, c2d_chol_* (shim codes)
 module cholmod_binding
   use, intrinsic :: iso_c_binding, only: c_ptr, c_int, c_double, c_int64_t, c_char
@@ -44,7 +45,7 @@ module cholmod_binding
   public :: cholmod_ok, cholmod_not_posdef, cholmod_out_of_memory, cholmod_too_large
   public :: c2d_chol_no_handle, c2d_chol_no_factor, c2d_chol_not_super_ll
   public :: c2d_chol_block_moved, c2d_chol_bad_argument, c2d_blas_threads, c2d_blas_park, c2d_malloc_arenas, c2d_malloc_trim
-  public :: c2d_metis_per_thread
+  public :: c2d_metis_per_thread, c2d_memory_available
 
   ! fill-reducing orderings (cholmod_shim.h)
   integer(c_int), parameter :: c2d_order_metis = 0     !< METIS nested dissection
@@ -260,6 +261,13 @@ module cholmod_binding
       import :: c_int
       integer(c_int) :: yes
     end function c2d_metis_per_thread
+
+    !> Bytes the process can still allocate: the smaller of the address space
+    !> left under RLIMIT_AS and MemAvailable + SwapFree; -1 when unknown.
+    function c2d_memory_available() bind(c, name='c2d_memory_available') result(bytes)
+      import :: c_int64_t
+      integer(c_int64_t) :: bytes
+    end function c2d_memory_available
 
   end interface
 

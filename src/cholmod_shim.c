@@ -23,6 +23,7 @@
 #include "amd.h"
 #include "camd.h"
 #include "cholmod_shim.h"
+#include "metis_guard.h"
 
 /* One factorization and the CHOLMOD workspace that built it. */
 struct c2d_chol
@@ -44,6 +45,40 @@ struct c2d_chol
 };
 
 /* Copy a C string into buf[len], truncated and NUL-terminated. */
+/* The METIS calls of the shim, each in a frame of its own so that the jump
+ * back from an abort inside METIS (include/metis_guard.h) finds nothing of
+ * the caller's in registers.  Out of memory inside METIS: METIS_ERROR_MEMORY,
+ * or NULL / FALSE with Common->status = CHOLMOD_OUT_OF_MEMORY. */
+static int guarded_node_nd(idx_t *nv, idx_t *xadj, idx_t *adj, idx_t *vw, idx_t *perm, idx_t *iperm)
+{
+    int ok = METIS_ERROR_MEMORY;
+    C2D_METIS_CALL(ok = METIS_NodeND(nv, xadj, adj, vw, NULL, perm, iperm), ok = METIS_ERROR_MEMORY);
+    return ok;
+}
+
+static int guarded_separator(idx_t *nv, idx_t *xadj, idx_t *adj, idx_t *vw, idx_t *sepsize, idx_t *where)
+{
+    int ok = METIS_ERROR_MEMORY;
+    C2D_METIS_CALL(ok = METIS_ComputeVertexSeparator(nv, xadj, adj, vw, NULL, sepsize, where),
+                   ok = METIS_ERROR_MEMORY);
+    return ok;
+}
+
+static int guarded_cholmod_metis(cholmod_sparse *S, int *perm, cholmod_common *c)
+{
+    int ok = 0;
+    C2D_METIS_CALL(ok = cholmod_metis(S, NULL, 0, 1, perm, c), (ok = 0, c->status = CHOLMOD_OUT_OF_MEMORY));
+    return ok;
+}
+
+/* cholmod_analyze orders with METIS when Common->method[0] says so */
+static cholmod_factor *guarded_analyze(cholmod_sparse *A, cholmod_common *c)
+{
+    cholmod_factor *L = NULL;
+    C2D_METIS_CALL(L = cholmod_analyze(A, c), (L = NULL, c->status = CHOLMOD_OUT_OF_MEMORY));
+    return L;
+}
+
 static void copy_name(const char *name, char *buf, int len)
 {
     size_t m;
@@ -274,9 +309,7 @@ static int order_side(int ng, const int *xadj, const int *adj, const int *vw, co
         }
         if (m > 1)
         {
-            c2d_metis_begin();
-            ok = METIS_NodeND(&nv, sx, sa, sw, NULL, sp, sip);
-            c2d_metis_end();
+            ok = guarded_node_nd(&nv, sx, sa, sw, sp, sip);
         }
         else
         {
@@ -310,17 +343,13 @@ static int nested_dissection(int ng, int *xadj, int *adj, int *vw, int *gperm, i
 
     if (ng < SPLIT_MIN_GROUPS)
     {
-        c2d_metis_begin();
-        ok = METIS_NodeND(&nv, xadj, adj, vw, NULL, gperm, giperm);
-        c2d_metis_end();
+        ok = guarded_node_nd(&nv, xadj, adj, vw, gperm, giperm);
         return ok;
     }
     where = giperm;
     loc = malloc((size_t) ng * sizeof(int));
     if (loc == NULL) return METIS_ERROR_MEMORY;
-    c2d_metis_begin();
-    ok = METIS_ComputeVertexSeparator(&nv, xadj, adj, vw, NULL, &sepsize, where);
-    c2d_metis_end();
+    ok = guarded_separator(&nv, xadj, adj, vw, &sepsize, where);
     if (ok == METIS_OK)
     {
         for (g = 0; g < ng; g++) loc[g] = m[where[g]]++;
@@ -630,9 +659,7 @@ static int order_block_last(const cholmod_sparse *A, int nlast, const int *last,
             }
             else
             {
-                c2d_metis_begin();
-                ok = cholmod_metis(S, NULL, 0, 1, permS, c);
-                c2d_metis_end();
+                ok = guarded_cholmod_metis(S, permS, c);
             }
             cholmod_free_sparse(&S, c);
             if (!ok) return (c->status < 0) ? c->status : CHOLMOD_INVALID;
@@ -755,9 +782,7 @@ static int analyze_pattern(struct c2d_chol *h, cholmod_sparse *A, int nlast, con
         c->nmethods = 1;
         c->method[0].ordering = (h->method == C2D_ORDER_AMD) ? CHOLMOD_AMD : CHOLMOD_METIS;
         c->postorder = 1;
-        if (h->method == C2D_ORDER_METIS) c2d_metis_begin();
-        h->L = cholmod_analyze(A, c);
-        if (h->method == C2D_ORDER_METIS) c2d_metis_end();
+        h->L = (h->method == C2D_ORDER_METIS) ? guarded_analyze(A, c) : cholmod_analyze(A, c);
         if (h->L == NULL) status = (c->status < 0) ? c->status : CHOLMOD_INVALID;
     }
     else
@@ -899,9 +924,7 @@ int c2d_chol_separator(void *handle, int n, const int *colptr, const int *rowind
     {
         idx_t nv = ng, sepsize = 0;
         int ok;
-        c2d_metis_begin();
-        ok = METIS_ComputeVertexSeparator(&nv, GG_XADJ(work, nr), adj, GG_VW(work, nr), NULL, &sepsize, where);
-        c2d_metis_end();
+        ok = guarded_separator(&nv, GG_XADJ(work, nr), adj, GG_VW(work, nr), &sepsize, where);
         status = (ok == METIS_OK) ? CHOLMOD_OK : (ok == METIS_ERROR_MEMORY) ? CHOLMOD_OUT_OF_MEMORY : CHOLMOD_INVALID;
         if (status == CHOLMOD_OK)
         {

@@ -9,10 +9,12 @@
 !>   -> stresses, reactions, energy -> VTK, contact table, summary.
 program contact2d
   use kinds, only: dp, i8
-  use diagnostics, only: diag_t, add_error, stop_input_errors, fail_numerical, exit_program, error_t, int_to_str
-  use deck_reader, only: deck_t, read_deck
+  use diagnostics, only: diag_t, add_error, stop_input_errors, fail_numerical, exit_program, error_t, int_to_str, &
+                         real_to_str
+  use deck_reader, only: deck_t, read_deck, path_too_long
   use scene, only: scene_t, build_scene, load_factor
   use mesh, only: node_in_file
+  use material, only: tensor_condition
   use body, only: number_equations, build_pattern, assemble_stiffness, element_response, internal_forces
   use sparse_matrix, only: csc_t
   use sparse_cholesky, only: factor_t, analyze_pattern, factorize_values, solve, solve_forward, factor_nnz, factor_memory, &
@@ -81,8 +83,9 @@ program contact2d
   call stop_input_errors(diag)
   if (.not. check_only) call make_folder(outdir, diag)
   call stop_input_errors(diag)
-  call build_scene(deck, gmsh, sc, diag)
+  call build_scene(deck, gmsh, sc, diag, err)
   call stop_input_errors(diag)
+  if (allocated(err)) call fail_numerical(err%message)
   call build_contact_set(sc%bodies, sc%specs, cs, err)
   if (allocated(err)) call contact_error(err)
   do i = 1, cs%npair
@@ -112,7 +115,8 @@ program contact2d
   ! The ordering (AMD or METIS) reads only the pattern: it runs on one core
   ! while the values are assembled on the other, then the numeric factorization.
   if (nfree == 0) call fail_numerical('every dof is fixed: there is nothing to solve')
-  call build_pattern(sc%bodies, eq, nfree, k)
+  call build_pattern(sc%bodies, eq, nfree, k, err)
+  if (allocated(err)) call fail_numerical(err%message)
   allocate(rhs(nfree, 1))
   rhs = 0.0_dp
   do i = 1, sc%ndof
@@ -136,7 +140,7 @@ program contact2d
   if (allocated(err_order)) call fail_numerical(err_order%message)
   call c2d_malloc_trim()     ! what the orderings freed, before the factors take their memory
   call factorize_values(factor, k, err)
-  if (allocated(err)) call fail_numerical(err%message // equation_location(err%message))
+  if (allocated(err)) call fail_numerical(factor_failure(err%message))
   res%factor_nnz = factor_nnz(factor)
   res%ordering = factor_ordering(factor)
   res%factor_memory = real(factor_memory(factor), dp)
@@ -791,6 +795,28 @@ contains
     call stop_input_errors(diag)
   end subroutine check_floating_bodies
 
+  !> The factorization's message, with the dof it names located in the mesh.
+  !> A singular K from a body whose law is nearly incompressible (nu close to
+  !> 0.5 in plane strain) is said so instead: the dependent column is then
+  !> round-off, not a rigid-body mode.
+  function factor_failure(message) result(text)
+    character(len=*), intent(in) :: message
+    character(len=:), allocatable :: text
+    integer :: b
+    text = message // equation_location(message)
+    if (index(message, 'stiffness matrix is singular') /= 1) return
+    do b = 1, size(sc%bodies)
+      ! beyond 1e12, K keeps fewer than 4 digits of u = 1.1e-16
+      if (tensor_condition(sc%bodies(b)%law) > 1.0e12_dp) then
+        text = 'stiffness matrix is singular to working precision: body "' // sc%bodies(b)%name // &
+          '" is nearly incompressible (its elasticity tensor has condition number ' // &
+          real_to_str(tensor_condition(sc%bodies(b)%law)) // ', nu too close to 0.5; expected a Poisson ratio ' // &
+          'that leaves 1 - 2 nu well above the round-off, such as nu <= 0.4999)'
+        return
+      end if
+    end do
+  end function factor_failure
+
   !> ': body NAME node N at (x, y), component u_x' for a message naming a free
   !> equation ('at equation K'); '' when it names none.
   function equation_location(message) result(where)
@@ -823,6 +849,10 @@ contains
     character(len=*), intent(in) :: path
     type(diag_t), intent(inout) :: d
     logical :: ok
+    if (len(path_too_long(path, 0)) > 0) then
+      call add_error(d, path(1:min(len(path), 40)) // '...', 0, 'cannot create the output folder: ' // path_too_long(path, 0))
+      return
+    end if
     call make_folders(path, ok)
     if (.not. ok) call add_error(d, path, 0, 'cannot create the output folder (a writable path expected)')
   end subroutine make_folder

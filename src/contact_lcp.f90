@@ -26,7 +26,7 @@ module contact_lcp
   use lapack_interfaces, only: dpotrs, dpstrf, dsysv
   use lcp_solvers, only: lcp_options_t, lcp_report_t, solve_lcp_lemke, solve_lcp_pgs, lcp_natural_residual
   use lcp_newton, only: solve_lcp_pdas
-  use diagnostics, only: int_to_str
+  use diagnostics, only: int_to_str, real_to_str
   implicit none
   private
   public :: contact_solution_t, solve_contact
@@ -94,7 +94,7 @@ contains
     if (res > 1.0e-8_dp * norm2(eh)) then
       sol%rep%info = 1
       sol%rep%message = 'no equilibrium: the loads pull a body held only by contact away from its contacts ' // &
-        '(the contact forces cannot balance them; residual ' // real_str(res / max(norm2(eh), tiny(1.0_dp))) // ')'
+        '(the contact forces cannot balance them; residual ' // real_to_str(res / max(norm2(eh), tiny(1.0_dp))) // ')'
       return
     end if
 
@@ -127,7 +127,7 @@ contains
     if (sol%equality_residual > 1.0e3_dp * opts%tol) then
       sol%rep%info = 2
       sol%rep%message = 'the equilibrium of a body held only by contact was not reached (relative residual ' // &
-        real_str(sol%equality_residual) // ' after ' // int_to_str(sol%outer) // ' multiplier iterations)'
+        real_to_str(sol%equality_residual) // ' after ' // int_to_str(sol%outer) // ' multiplier iterations)'
     end if
     sol%alpha = matmul(held, lam)
     sol%gap = q + matmul(w, sol%mu) - matmul(h, sol%alpha)
@@ -245,12 +245,5 @@ contains
     b(piv(1:rank)) = y
   end subroutine solve_psd_subset
 
-  function real_str(x) result(s)
-    real(dp), intent(in) :: x
-    character(len=:), allocatable :: s
-    character(len=16) :: buf
-    write(buf, '(es10.3)') x
-    s = trim(adjustl(buf))
-  end function real_str
 
 end module contact_lcp

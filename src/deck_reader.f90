@@ -73,7 +73,7 @@ module deck_reader
   private
   public :: fix_t, load_t, mesh_spec_t, material_t, body_deck_t, contact_deck_t
   public :: solver_deck_t, output_deck_t, deck_t, read_deck
-  public :: load_traction, load_pressure
+  public :: load_traction, load_pressure, path_too_long
 
   integer, parameter :: load_traction = 1   !< load_t%kind of TRACTION
   integer, parameter :: load_pressure = 2   !< load_t%kind of PRESSURE
@@ -138,6 +138,8 @@ module deck_reader
     logical :: has_density = .false.; real(dp) :: rho = 0; integer :: density_line = 0
     type(fix_t), allocatable :: fixes(:)        !< (nfix), always allocated
     type(load_t), allocatable :: loads(:)       !< (nload), always allocated
+    integer :: nfix = 0, nload = 0              !< statements held while reading: the arrays
+                                                !< grow by doubling and are cut to these at the end
     logical :: has_bodyforce = .false.; real(dp) :: fx = 0, fy = 0; integer :: bodyforce_line = 0
     integer :: bodyforce_ramp(2) = [0, 1]       !< BODYFORCE ramp k0, k1; default [0, steps]
     type(thermal_t), allocatable :: thermals(:) !< (nthermal), always allocated
@@ -308,6 +310,7 @@ contains
         end if
       end if
     end if
+    call cut_statement_lists(s, deck)
     if (readable .and. .not. s%gave_up) call finish_checks(s, deck)
     call fill_defaults(deck)
     call hand_over(s, deck%file, diag)
@@ -1335,12 +1338,14 @@ contains
       fix%has_ux = .true.
       fix%has_uy = .true.
     end if
-    allocate(grown(size(body%fixes) + 1))
-    do i = 1, size(body%fixes)
-      grown(i) = body%fixes(i)
-    end do
-    grown(size(grown)) = fix
-    call move_alloc(grown, body%fixes)
+    ! capacity doubles: 1e5 FIX statements cost 1e5 copies in all, not 5e9
+    if (body%nfix == size(body%fixes)) then
+      allocate(grown(max(8, 2 * size(body%fixes))))
+      grown(1:body%nfix) = body%fixes(1:body%nfix)
+      call move_alloc(grown, body%fixes)
+    end if
+    body%nfix = body%nfix + 1
+    body%fixes(body%nfix) = fix
   end subroutine do_fix
 
   !> TRACTION boundary tx= ty= [ramp=] | PRESSURE boundary p= [ramp=]
@@ -1386,12 +1391,13 @@ contains
       call get_ramp(s, st, val(2), load%ramp)
     end if
     if (s%nerr /= nerr0) return
-    allocate(grown(size(body%loads) + 1))
-    do i = 1, size(body%loads)
-      grown(i) = body%loads(i)
-    end do
-    grown(size(grown)) = load
-    call move_alloc(grown, body%loads)
+    if (body%nload == size(body%loads)) then        ! capacity doubles, as for FIX
+      allocate(grown(max(8, 2 * size(body%loads))))
+      grown(1:body%nload) = body%loads(1:body%nload)
+      call move_alloc(grown, body%loads)
+    end if
+    body%nload = body%nload + 1
+    body%loads(body%nload) = load
   end subroutine do_load
 
   !> BODYFORCE fx= fy= [ramp=]
@@ -2040,7 +2046,73 @@ contains
     else if (c == m .and. len(c) == len(m)) then
       call report(s, line, 'OUTPUT files must differ (contact and summary are both ' // quoted(c) // ')')
     end if
+    ! each is written as NAME.part first, then renamed: 5 bytes kept for that
+    if (len(path_too_long(v, 5)) > 0) call report(s, line, 'OUTPUT vtk: ' // path_too_long(v, 5))
+    if (len(path_too_long(c, 5)) > 0) call report(s, line, 'OUTPUT contact: ' // path_too_long(c, 5))
+    if (len(path_too_long(m, 5)) > 0) call report(s, line, 'OUTPUT summary: ' // path_too_long(m, 5))
   end subroutine check_output_names
+
+  !> '' when the system can take path as a file name, else what is wrong: a
+  !> component longer than NAME_MAX (255 bytes) or a path longer than PATH_MAX
+  !> (4096), which open() refuses with ENAMETOOLONG whatever the folder.
+  !>   path    (in) the name, as it will be opened
+  !>   reserve (in) bytes the program adds to the last name (a temporary suffix)
+  function path_too_long(path, reserve) result(msg)
+    character(len=*), intent(in) :: path
+    integer, intent(in) :: reserve
+    character(len=:), allocatable :: msg
+    integer, parameter :: name_max = 255, path_max = 4096
+    integer :: i, first, limit
+    msg = ''
+    if (len(path) + reserve >= path_max) then
+      msg = 'the path is ' // int_to_str(len(path)) // ' characters long (fewer than ' // &
+            int_to_str(path_max - reserve) // ' expected: PATH_MAX)'
+      return
+    end if
+    first = 1
+    do i = 1, len(path) + 1
+      if (i <= len(path)) then
+        if (path(i:i) /= '/') cycle
+      end if
+      limit = name_max - merge(reserve, 0, i > len(path))
+      if (i - first > limit) then
+        msg = 'the name "' // path(first:first + 19) // '..." is ' // int_to_str(i - first) // &
+              ' characters long (at most ' // int_to_str(limit) // ' expected: NAME_MAX'
+        if (limit < name_max) msg = msg // ' is 255, less ' // int_to_str(reserve) // ' for the temporary suffix .part'
+        msg = msg // ')'
+        return
+      end if
+      first = i + 1
+    end do
+  end function path_too_long
+
+  !> Cut each body's FIX and load lists, grown by doubling while reading, to the
+  !> statements they hold: from here on size() is the count.
+  subroutine cut_statement_lists(s, deck)
+    type(state_t), intent(in) :: s
+    type(deck_t), intent(inout) :: deck
+    integer :: b
+    type(fix_t), allocatable :: fixes(:)
+    type(load_t), allocatable :: loads(:)
+
+    if (.not. allocated(deck%bodies)) return
+    do b = 1, min(s%nbody, size(deck%bodies))
+      associate (body => deck%bodies(b))
+        if (allocated(body%fixes)) then
+          if (size(body%fixes) /= body%nfix) then
+            fixes = body%fixes(1:body%nfix)
+            call move_alloc(fixes, body%fixes)
+          end if
+        end if
+        if (allocated(body%loads)) then
+          if (size(body%loads) /= body%nload) then
+            loads = body%loads(1:body%nload)
+            call move_alloc(loads, body%loads)
+          end if
+        end if
+      end associate
+    end do
+  end subroutine cut_statement_lists
 
   !> Allocate every character component left unset; resolve the ramps not given
   !> (or not valid) to [0, steps].

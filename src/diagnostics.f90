@@ -18,14 +18,18 @@
 !>   exit_program(status) terminate with the given status, printing nothing
 !>   type(error_t)        a mid-level error: message and exit status (1 or 2)
 !>   printable(text)      text with control and non-ASCII bytes replaced by '?'
+!>   set_out_of_memory(err, phase, bytes)
+!>                        err = `out of memory while PHASE (about N MB needed)`, status 1
+!>   real_to_str(x)       4 significant digits, any exponent (1.000E-05, 1.000E-300)
 module diagnostics
-  use kinds, only: dp
+  use kinds, only: dp, i8
   use, intrinsic :: iso_c_binding, only: c_int
   use, intrinsic :: iso_fortran_env, only: error_unit
   implicit none
   private
   public :: diag_t, add_error, has_errors, print_errors, stop_input_errors
-  public :: fail_numerical, exit_program, error_t, set_error, int_to_str, real_to_str, printable
+  public :: fail_numerical, exit_program, error_t, set_error, set_out_of_memory, int_to_str, i8_to_str, real_to_str
+  public :: printable
 
   !> One collected message.
   type :: message_t
@@ -145,6 +149,19 @@ contains
     if (present(status)) err%status = status
   end subroutine set_error
 
+  !> Exhausted memory is a diagnosis, not a crash: the run ends with exit 1 and
+  !> `out of memory while PHASE (about N MB needed)`.
+  !>   err    (out) the error, status 1
+  !>   phase  (in)  what the program was doing ('meshing body "b"', 'factorizing K')
+  !>   bytes  (in)  what that phase needs (an estimate), >= 0
+  subroutine set_out_of_memory(err, phase, bytes)
+    type(error_t), allocatable, intent(out) :: err
+    character(len=*), intent(in) :: phase
+    integer(i8), intent(in) :: bytes
+    call set_error(err, 'out of memory while ' // phase // ' (about ' // &
+                   i8_to_str(max(1_i8, (bytes + 1048575_i8) / 1048576_i8)) // ' MB needed)', 1)
+  end subroutine set_out_of_memory
+
   !> Decimal text of an integer, no blanks.
   pure function int_to_str(i) result(s)
     integer, intent(in) :: i
@@ -154,13 +171,30 @@ contains
     s = trim(buf)
   end function int_to_str
 
+  !> Decimal text of a 64-bit integer (counts beyond 2**31: nnz(L), file tags).
+  pure function i8_to_str(i) result(s)
+    integer(i8), intent(in) :: i
+    character(len=:), allocatable :: s
+    character(len=24) :: buf
+    write(buf, '(i0)') i
+    s = trim(buf)
+  end function i8_to_str
+
   !> Short scientific text of a real (4 significant digits), for messages.
   function real_to_str(x) result(s)
     real(dp), intent(in) :: x
     character(len=:), allocatable :: s
     character(len=32) :: buf
-    write(buf, '(es10.3)') x
+    integer :: e, k
+    ! room for a 3-digit exponent (es10.3 writes 1e-300 as `1.000-300`), then
+    ! the exponent's leading zero dropped down to two digits: 1.000E-05
+    write(buf, '(es12.3e3)') x
     s = trim(adjustl(buf))
+    e = scan(s, 'E')
+    if (e > 0 .and. len(s) >= e + 4) then
+      k = e + 2
+      if (s(k:k) == '0') s = s(1:k - 1) // s(k + 1:)
+    end if
   end function real_to_str
 
 end module diagnostics

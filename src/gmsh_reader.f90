@@ -16,7 +16,8 @@
 !>     groups of the same name (e.g. a physical point and a physical curve) make
 !>     one boundary_t.  Boundaries and regions come in order of (dimension, tag).
 !>   - MSH 4.1: the physical tags of an element are those of its entity, listed in
-!>     $Entities; node blocks with parametric coordinates are accepted.
+!>     $Entities, or in $PartitionedEntities for a partitioned mesh (gmsh -part N:
+!>     the partitioning is ignored); node blocks with parametric coordinates are accepted.
 !>   Unknown sections ($Periodic, $NodeData, ...) are skipped.  The mesh is left as
 !>   read: compaction of unused nodes, orientation and quality checks are the
 !>   caller's (finalize_mesh of module mesh).
@@ -55,7 +56,7 @@ module gmsh_reader
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use omp_lib, only: omp_get_max_threads
   use kinds, only: dp, i8
-  use diagnostics, only: diag_t, add_error, int_to_str, printable
+  use diagnostics, only: diag_t, add_error, int_to_str, i8_to_str, real_to_str, printable
   use safe_files, only: read_file
   use mesh, only: mesh_t
   implicit none
@@ -106,6 +107,7 @@ module gmsh_reader
     logical :: v41 = .false.                  !< format 4.1 (else 2.2)
     logical :: have_names = .false.           !< $PhysicalNames seen
     logical :: have_entities = .false.        !< $Entities seen
+    logical :: have_partitions = .false.      !< $PartitionedEntities seen (gmsh -part)
     logical :: have_nodes = .false.           !< $Nodes seen
     logical :: have_elements = .false.        !< $Elements seen
     integer :: nnode = 0                      !< number of nodes
@@ -247,7 +249,7 @@ contains
     type(msh_data_t), intent(inout) :: d
     type(diag_t), intent(inout) :: diag
     logical, intent(out) :: ok
-    logical :: more
+    logical :: more, partitioned
     character(len=:), allocatable :: w
 
     ok = .false.
@@ -293,18 +295,22 @@ contains
         end if
         d%have_names = .true.
         call read_physical_names(t, d, diag, ok)
-      case ('$Entities')
+      case ('$Entities', '$PartitionedEntities')
+        ! $PartitionedEntities (gmsh -part) comes after $Entities and replaces it
+        partitioned = w == '$PartitionedEntities'
         if (.not. d%v41) then
-          call skip_section(t, diag, 'Entities', ok)
-        else if (d%have_entities) then
-          call fail(t, diag, 'second $Entities section (one per file expected)')
+          call skip_section(t, diag, w(2:), ok)
+        else if (merge(d%have_partitions, d%have_entities, partitioned)) then
+          call fail(t, diag, 'second ' // w // ' section (one per file expected)')
           return
-        else if (d%have_nodes .or. d%have_elements) then
-          call fail(t, diag, '$Entities after $Nodes or $Elements ($Entities expected before them)')
+        else if (d%have_nodes .or. d%have_elements .or. (partitioned .neqv. d%have_entities)) then
+          call fail(t, diag, w // ' out of place (' // trim(merge('after $Entities and before', &
+            'before                    ', partitioned)) // ' $Nodes and $Elements expected)')
           return
         else
           d%have_entities = .true.
-          call read_entities(t, d, diag, ok)
+          d%have_partitions = partitioned
+          call read_entities(t, d, diag, partitioned, ok)
         end if
       case ('$Nodes')
         if (d%have_nodes) then
@@ -439,22 +445,56 @@ contains
   end subroutine read_physical_names
 
   !> $Entities (4.1): the physical tags of every point, curve, surface, volume.
-  subroutine read_entities(t, d, diag, ok)
+  !> $PartitionedEntities (4.1, written by gmsh -part N): the same for the
+  !> entities of the partitions, which then replace those of $Entities (the
+  !> $Nodes and $Elements blocks name them).  Lines come first
+  !> (numPartitions; numGhostEntities, then `tag partition` each), and each entity line
+  !> begins `tag parentDim parentTag numPartitions partitionTags...` before
+  !> what $Entities has.  The partitioning itself is not kept: the mesh is
+  !> the one that was partitioned.  An entity of a partition keeps the
+  !> physical tags it lists only when its parent has its dimension: the
+  !> curves and points gmsh adds where partitions meet list the tags of their
+  !> parent surface or curve, which would name the wrong group.
+  !>   partitioned (in) .true. for $PartitionedEntities
+  subroutine read_entities(t, d, diag, partitioned, ok)
     type(msh_text_t), intent(inout) :: t
     type(msh_data_t), intent(inout) :: d
     type(diag_t), intent(inout) :: diag
+    logical, intent(in) :: partitioned
     logical, intent(out) :: ok
     character(len=*), parameter :: what(0:3) = [character(len=18) :: 'number of points', &
       'number of curves', 'number of surfaces', 'number of volumes']
-    character(len=*), parameter :: point_line = 'tag x y z numPhysicalTags physicalTags'
-    character(len=*), parameter :: entity_line = &
-      'tag minX minY minZ maxX maxY maxZ numPhysicalTags physicalTags numBounding boundingTags'
-    integer :: counts(0:3), dim, k, j, nent, nfixed, left
-    integer(i8) :: nphys, nbound, tag, btag, phys
+    character(len=*), parameter :: parent = 'tag parentDim parentTag numPartitions partitionTags'
+    character(len=:), allocatable :: point_line, entity_line, section
+    integer :: counts(0:3), dim, k, j, nent, nfixed, left, o
+    integer(i8) :: nphys, nbound, tag, btag, phys, pdim, npart, v
     real(dp) :: r
     character(len=:), allocatable :: line_what
 
-    call read_data_line(t, diag, 'Entities', 4, 'numPoints numCurves numSurfaces numVolumes', ok)
+    point_line = 'tag x y z numPhysicalTags physicalTags'
+    entity_line = 'tag minX minY minZ maxX maxY maxZ numPhysicalTags physicalTags numBounding boundingTags'
+    section = 'Entities'
+    if (partitioned) then
+      point_line = parent // point_line(4:)
+      entity_line = parent // entity_line(4:)
+      section = 'PartitionedEntities'
+      call read_data_line(t, diag, section, 1, 'numPartitions', ok)
+      if (.not. ok) return
+      call get_integer(t, diag, 1, 'number of partitions', 1_i8, huge(1_i8), v, ok)
+      if (.not. ok) return
+      call read_data_line(t, diag, section, 1, 'numGhostEntities', ok)
+      if (.not. ok) return
+      call get_integer(t, diag, 1, 'number of ghost entities', 0_i8, int(remaining_lines(t), i8), v, ok)
+      if (.not. ok) return
+      do k = 1, int(v)
+        call read_data_line(t, diag, section, 2, 'ghostEntityTag partition', ok)
+        if (.not. ok) return
+      end do
+      ! the partitions' entities replace those of $Entities
+      deallocate(d%ent_key, d%ent_first, d%ent_count, d%ent_perm)
+      d%ent_phys%n = 0
+    end if
+    call read_data_line(t, diag, section, 4, 'numPoints numCurves numSurfaces numVolumes', ok)
     if (.not. ok) return
     left = remaining_lines(t)
     do dim = 0, 3
@@ -471,16 +511,34 @@ contains
     allocate(d%ent_key(2, nent), d%ent_first(nent), d%ent_count(nent))
     nent = 0
     do dim = 0, 3
-      nfixed = merge(4, 7, dim == 0)
       do k = 1, counts(dim)
         if (dim == 0) then
           line_what = point_line
         else
           line_what = entity_line
         end if
-        call read_data_line(t, diag, 'Entities', 0, line_what, ok)
+        call read_data_line(t, diag, section, 0, line_what, ok)
         if (.not. ok) return
         ok = .false.
+        ! o: the items before the coordinates that a partition's entity adds
+        o = 0
+        pdim = dim
+        if (partitioned) then
+          if (t%ntok < 4) then
+            call fail(t, diag, 'wrong number of items: ' // int_to_str(t%ntok) // ' (at least 4 expected: ' // &
+              line_what // ')')
+            return
+          end if
+          call get_integer(t, diag, 2, 'parent dimension', 0_i8, 3_i8, pdim, ok)
+          if (.not. ok) return
+          call get_integer(t, diag, 3, 'parent tag', -huge(1_i8), huge(1_i8), v, ok)
+          if (.not. ok) return
+          call get_integer(t, diag, 4, 'number of partitions', 0_i8, int(t%ntok - 4, i8), npart, ok)
+          if (.not. ok) return
+          ok = .false.
+          o = 3 + int(npart)
+        end if
+        nfixed = merge(4, 7, dim == 0) + o
         if (t%ntok < nfixed + 1) then
           call fail(t, diag, 'wrong number of items: ' // int_to_str(t%ntok) // ' (at least ' // &
             int_to_str(nfixed + 1) // ' expected: ' // line_what // ')')
@@ -488,7 +546,7 @@ contains
         end if
         call get_integer(t, diag, 1, 'entity tag', -huge(1_i8), huge(1_i8), tag, ok)
         if (.not. ok) return
-        do j = 2, nfixed
+        do j = 2 + o, nfixed
           call get_real(t, diag, j, 'a coordinate', r, ok)
           if (.not. ok) return
         end do
@@ -525,6 +583,7 @@ contains
         nent = nent + 1
         d%ent_key(:, nent) = [int(dim, i8), tag]
         d%ent_first(nent) = d%ent_phys%n + 1
+        if (pdim /= dim) nphys = 0            ! where partitions meet: no group of its own
         d%ent_count(nent) = int(nphys)
         do j = nfixed + 2, nfixed + 1 + int(nphys)
           call get_integer(t, diag, j, 'physical tag', -huge(1_i8), huge(1_i8), phys, ok)
@@ -534,7 +593,7 @@ contains
       end do
     end do
     call sort_columns(d%ent_key, d%ent_perm)
-    call expect_section_end(t, diag, 'Entities', ok)
+    call expect_section_end(t, diag, section, ok)
   end subroutine read_entities
 
   !> $Nodes of MSH 2.2: count, then `tag x y z` lines.
@@ -709,7 +768,6 @@ contains
     integer :: i, dup_line, z_line, dup_node, z_node
     integer(i8) :: max_tag, tag
     real(dp) :: extent
-    character(len=16) :: zbuf
 
     dup_line = huge(1)
     dup_node = 0
@@ -761,8 +819,7 @@ contains
       call fail_at(t, diag, dup_line, 'duplicate node tag ' // i8_to_str(d%ntag(1, dup_node)) // &
         ' (each node tag defined once expected)')
     else
-      write(zbuf, '(es11.3)') d%z(z_node)
-      call fail_at(t, diag, z_line, 'node ' // i8_to_str(d%ntag(1, z_node)) // ' has z = ' // trim(adjustl(zbuf)) // &
+      call fail_at(t, diag, z_line, 'node ' // i8_to_str(d%ntag(1, z_node)) // ' has z = ' // real_to_str(d%z(z_node)) // &
         ' (a planar mesh in z = 0 expected)')
     end if
   end subroutine check_nodes
@@ -2027,14 +2084,6 @@ contains
     same = .true.
   end function same_lower_text
 
-
-  pure function i8_to_str(i) result(s)
-    integer(i8), intent(in) :: i
-    character(len=:), allocatable :: s
-    character(len=24) :: buf
-    write(buf, '(i0)') i
-    s = trim(buf)
-  end function i8_to_str
 
   ! ---------------------------------------------------------------------------
   ! Element types

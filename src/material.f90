@@ -13,6 +13,7 @@
 !>   make_orthotropic(E1, E2, E3, nu12, nu13, nu23, G12, angle_deg, plane_stress, mat)
 !>   out_of_plane_stress(mat, sigma)  sigma_zz for an in-plane stress (sxx, syy, sxy)
 !>   von_mises(mat, sigma [, adt])    equivalent stress, sigma_zz included
+!>   tensor_condition(mat)            ||D||_F ||D^-1||_F (large: nearly incompressible)
 !>
 !> Thermal strain: alpha dT (1, 1, 1) in 3D.  Plane stress: eps0 = alpha dT
 !> (1, 1, 0).  Plane strain (eps_zz = 0): the in-plane part becomes
@@ -22,7 +23,7 @@ module material
   use kinds, only: dp
   implicit none
   private
-  public :: elasticity_t, make_isotropic, make_orthotropic, out_of_plane_stress, von_mises
+  public :: elasticity_t, make_isotropic, make_orthotropic, out_of_plane_stress, von_mises, tensor_condition
 
   type :: elasticity_t
     real(dp) :: d(3, 3) = 0.0_dp     !< sigma = D eps, global axes, Voigt (xx, yy, xy) with gamma_xy
@@ -134,5 +135,32 @@ contains
     vm = sqrt(max(0.0_dp, sig(1)**2 + sig(2)**2 + szz**2 - sig(1) * sig(2) - sig(2) * szz &
                           - szz * sig(1) + 3.0_dp * sig(3)**2))
   end function von_mises
+
+  !> Condition number of D in the Frobenius norm, ||D||_F ||D^-1||_F (within a
+  !> factor 3 of the 2-norm's).  For an isotropic law in plane strain it is
+  !> about 2 lambda / mu = 4 nu / (1 - 2 nu): it grows without bound as nu
+  !> tends to 0.5, and K inherits it; near 1 / u (u the unit roundoff) K is
+  !> singular to working precision whatever the FIX statements.
+  pure real(dp) function tensor_condition(mat) result(kappa)
+    type(elasticity_t), intent(in) :: mat
+    real(dp) :: cof(3, 3), det
+    associate (d => mat%d)
+      cof(1, 1) = d(2, 2) * d(3, 3) - d(2, 3) * d(3, 2)
+      cof(1, 2) = d(2, 3) * d(3, 1) - d(2, 1) * d(3, 3)
+      cof(1, 3) = d(2, 1) * d(3, 2) - d(2, 2) * d(3, 1)
+      cof(2, 1) = d(1, 3) * d(3, 2) - d(1, 2) * d(3, 3)
+      cof(2, 2) = d(1, 1) * d(3, 3) - d(1, 3) * d(3, 1)
+      cof(2, 3) = d(1, 2) * d(3, 1) - d(1, 1) * d(3, 2)
+      cof(3, 1) = d(1, 2) * d(2, 3) - d(1, 3) * d(2, 2)
+      cof(3, 2) = d(1, 3) * d(2, 1) - d(1, 1) * d(2, 3)
+      cof(3, 3) = d(1, 1) * d(2, 2) - d(1, 2) * d(2, 1)
+      det = d(1, 1) * cof(1, 1) + d(1, 2) * cof(1, 2) + d(1, 3) * cof(1, 3)   ! D^-1 = cof' / det
+      if (abs(det) <= tiny(1.0_dp)) then
+        kappa = huge(1.0_dp)
+      else
+        kappa = norm2(d) * norm2(cof) / abs(det)
+      end if
+    end associate
+  end function tensor_condition
 
 end module material

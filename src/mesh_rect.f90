@@ -8,10 +8,14 @@
 !> ordered along the boundary in the direction of increasing x or y).
 !>
 !> Programming interface
-!>   make_rect_mesh(x0, y0, x1, y1, nx, ny, quads, diag, mesh)
+!>   make_rect_mesh(x0, y0, x1, y1, nx, ny, quads, diag, mesh, err)
+!>
+!> The arrays scale with nx*ny (1e8 cells are accepted): an allocation that
+!> fails is an out-of-memory error with the mesh's size, not a runtime abort.
 module mesh_rect
-  use kinds, only: dp
+  use kinds, only: dp, i8
   use mesh, only: mesh_t
+  use diagnostics, only: error_t, set_out_of_memory
   implicit none
   private
   public :: make_rect_mesh
@@ -23,17 +27,28 @@ contains
   !>   quads   (in) .true. quad4 cells, .false. tri3
   !>   diag    (in) 'right', 'left' or 'alt' (tri3 only)
   !>   mesh    (out) the mesh, counter-clockwise elements
-  subroutine make_rect_mesh(x0, y0, x1, y1, nx, ny, quads, diag, mesh)
+  !>   err     (out) allocated when the memory ran out (status 1)
+  subroutine make_rect_mesh(x0, y0, x1, y1, nx, ny, quads, diag, mesh, err)
     real(dp), intent(in) :: x0, y0, x1, y1
     integer, intent(in) :: nx, ny
     logical, intent(in) :: quads
     character(len=*), intent(in) :: diag
     type(mesh_t), intent(out) :: mesh
-    integer :: i, j, e, n1, n2, n3, n4
+    type(error_t), allocatable, intent(out) :: err
+    integer :: i, j, e, n1, n2, n3, n4, stat
     logical :: rising
+    integer(i8) :: bytes
 
     mesh%nnode = (nx + 1) * (ny + 1)
-    allocate(mesh%x(2, mesh%nnode))
+    mesh%nelem = merge(nx * ny, 2 * nx * ny, quads)
+    ! x(2, nnode) reals, nen and conn(4, nelem) integers, the boundary segments
+    bytes = 16_i8 * mesh%nnode + 20_i8 * mesh%nelem + 16_i8 * (nx + ny)
+    allocate(mesh%x(2, mesh%nnode), stat=stat)
+    if (stat == 0) allocate(mesh%nen(mesh%nelem), mesh%conn(4, mesh%nelem), stat=stat)
+    if (stat /= 0) then
+      call set_out_of_memory(err, 'meshing a rectangle of ' // trim(cells()) // ' cells', bytes)
+      return
+    end if
     do j = 0, ny
       do i = 0, nx
         mesh%x(:, node(i, j)) = [x0 + (x1 - x0) * real(i, dp) / nx, y0 + (y1 - y0) * real(j, dp) / ny]
@@ -43,12 +58,6 @@ contains
       end do
     end do
 
-    if (quads) then
-      mesh%nelem = nx * ny
-    else
-      mesh%nelem = 2 * nx * ny
-    end if
-    allocate(mesh%nen(mesh%nelem), mesh%conn(4, mesh%nelem))
     mesh%conn = 0
     e = 0
     do j = 0, ny - 1
@@ -100,6 +109,11 @@ contains
     allocate(mesh%reg(0))
 
   contains
+    function cells() result(t)
+      character(len=40) :: t
+      write(t, '(i0,a,i0)') nx, ' x ', ny
+    end function cells
+
     pure integer function node(ii, jj)
       integer, intent(in) :: ii, jj
       node = jj * (nx + 1) + ii + 1

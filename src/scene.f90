@@ -14,7 +14,7 @@
 !>        time limit); errors go to diag with deck lines
 module scene
   use kinds, only: dp
-  use diagnostics, only: diag_t, add_error, has_errors, int_to_str
+  use diagnostics, only: diag_t, add_error, has_errors, int_to_str, error_t
   use deck_reader, only: deck_t, body_deck_t, LOAD_TRACTION, LOAD_PRESSURE
   use mesh, only: mesh_t, finalize_mesh, find_boundary, boundary_nodes, find_region, order_for_locality, node_in_file, &
                   locality_min_nodes
@@ -63,11 +63,13 @@ contains
   !>   gmsh    (in)  how .geo files are meshed: trusted or screened, time limit
   !>   sc      (out) the scene (incomplete when diag has errors)
   !>   diag    (inout) input errors, FILE:LINE of the deck or the mesh file
-  subroutine build_scene(deck, gmsh, sc, diag)
+  !>   err     (out) allocated when the memory ran out (status 1)
+  subroutine build_scene(deck, gmsh, sc, diag, err)
     type(deck_t), intent(in) :: deck
     type(gmsh_options_t), intent(in) :: gmsh
     type(scene_t), intent(out) :: sc
     type(diag_t), intent(inout) :: diag
+    type(error_t), allocatable, intent(out) :: err
     integer :: b, nb, nfix, ifix, ndof, ip
     logical :: has_traction, has_pressure, has_bforce, has_gravity, has_dirichlet, has_thermal, has_offset
 
@@ -78,7 +80,8 @@ contains
     nb = size(deck%bodies)
     allocate(sc%bodies(nb))
     do b = 1, nb
-      call make_body(deck, b, gmsh, sc%bodies(b), diag)
+      call make_body(deck, b, gmsh, sc%bodies(b), diag, err)
+      if (allocated(err)) return
     end do
     if (has_errors(diag)) return
     ! a large mesh file's numbering is its generator's: renumber for locality
@@ -222,19 +225,21 @@ contains
   end function load_factor
 
   !> Mesh and elasticity tensor of body ib.
-  subroutine make_body(deck, ib, gmsh, bd, diag)
+  subroutine make_body(deck, ib, gmsh, bd, diag, err)
     type(deck_t), intent(in) :: deck
     integer, intent(in) :: ib
     type(gmsh_options_t), intent(in) :: gmsh
     type(body_t), intent(out) :: bd
     type(diag_t), intent(inout) :: diag
+    type(error_t), allocatable, intent(out) :: err
     integer :: n0
 
     bd%name = deck%bodies(ib)%name
     associate(ms => deck%bodies(ib)%mesh, bdeck => deck%bodies(ib))
       select case (ms%kind)
       case ('rect')
-        call make_rect_mesh(ms%x0, ms%y0, ms%x1, ms%y1, ms%nx, ms%ny, ms%elem == 'quad4', ms%diag, bd%mesh)
+        call make_rect_mesh(ms%x0, ms%y0, ms%x1, ms%y1, ms%nx, ms%ny, ms%elem == 'quad4', ms%diag, bd%mesh, err)
+        if (allocated(err)) return
         call finalize_mesh(bd%mesh, deck%file, diag)
       case default
         n0 = diag%count

@@ -87,7 +87,7 @@ module sparse_cholesky
   use kinds, only: dp, i8
   use omp_lib, only: omp_get_max_active_levels, omp_set_max_active_levels, omp_get_active_level, &
                      omp_get_max_threads, omp_get_wtime
-  use diagnostics, only: error_t, set_error, int_to_str, fail_numerical
+  use diagnostics, only: error_t, set_error, set_out_of_memory, int_to_str, i8_to_str, fail_numerical
   use sparse_matrix, only: csc_t, csc_nnz, csc_check
   use split_factor, only: split_t, split_analyze, split_factorize_half, split_finish, split_solve, &
                           split_trailing_range, split_block_end, split_stats, split_failure, split_min_ratio, split_free
@@ -99,7 +99,7 @@ module sparse_cholesky
                              c2d_chol_solve_half, c2d_solve_whole, c2d_solve_forward, c2d_solve_backward, &
                              cholmod_ok, cholmod_not_posdef, c2d_chol_block_moved, &
                              c2d_chol_not_super_ll, c2d_chol_bad_argument, &
-                             c2d_blas_threads
+                             c2d_blas_threads, cholmod_out_of_memory, c2d_memory_available
   implicit none
   private
   public :: factor_t, factorize, analyze_pattern, factorize_values, solve, solve_vector, solve_block
@@ -322,6 +322,13 @@ contains
       case (c2d_chol_block_moved)
         call set_error(err, 'sparse Cholesky: the analysis did not keep the ' // int_to_str(f%nlast) &
                        // ' dofs given as `last` at the last pivots (' // status_name(f%part(p)%status) // ')', 1)
+        return
+      case (cholmod_out_of_memory)
+        ! the ordering's graphs and CHOLMOD's symbolic workspace: a few
+        ! integers per stored entry and per dof (an order of magnitude)
+        call set_out_of_memory(err, 'ordering K (' // int_to_str(n) // ' dofs, ' // &
+                               trim(merge('AMD  ', 'METIS', ordering == c2d_order_amd)) // ')', &
+                               ordering_bytes(n, int(colptr(n + 1) - 1, i8)))
         return
       case default
         call set_error(err, 'sparse Cholesky analysis failed: ' // status_name(f%part(p)%status) // ' (status ' &
@@ -558,6 +565,14 @@ contains
         end if
       end do
     end do
+    ! The factor's size is known from the analysis: a factor that cannot fit
+    ! is said before the numeric factorization starts taking the memory
+    if (c2d_memory_available() >= 0 .and. factor_bytes(f) > c2d_memory_available()) then
+      call set_out_of_memory(err, 'factorizing K (nnz(L) = ' // i8_to_str(f%nnz_l) // ' from the analysis; ' // &
+                             i8_to_str(max(0_i8, int(c2d_memory_available(), i8)) / 1048576_i8) // &
+                             ' MB available)', factor_bytes(f))
+      return
+    end if
     t0 = omp_get_wtime()
     call work_items(f, item)
     call parts_begin(f, nthreads, levels, blas)
@@ -592,6 +607,9 @@ contains
         call part_minor(f%part(p), column, equation)
         call set_error(err, singular_message(global_equation(f%part(p), equation), &
                                              global_pivot(f, f%part(p), column)), 1)
+        return
+      case (cholmod_out_of_memory)
+        call set_out_of_memory(err, 'factorizing K (nnz(L) = ' // i8_to_str(f%nnz_l) // ')', factor_bytes(f))
         return
       case default
         call set_error(err, 'sparse Cholesky factorization failed: ' // status_name(f%part(p)%status) // &
@@ -1134,6 +1152,22 @@ contains
     type(factor_t), intent(in) :: f
     factor_flops = f%flops
   end function factor_flops
+
+  !> Bytes the numeric factor takes, from the analysis: 8 per entry of L and
+  !> about 4 for its indices and the supernodes' padding.
+  pure integer(i8) function factor_bytes(f)
+    type(factor_t), intent(in) :: f
+    factor_bytes = 12_i8 * f%nnz_l
+  end function factor_bytes
+
+  !> Bytes an ordering of an n-by-n pattern with nnz stored entries takes,
+  !> about: the symmetric graph (both triangles) and its coarser copies in
+  !> METIS, CHOLMOD's symbolic workspace; 4-byte integers.
+  pure integer(i8) function ordering_bytes(n, nnz)
+    integer, intent(in) :: n
+    integer(i8), intent(in) :: nnz
+    ordering_bytes = 4_i8 * (4_i8 * nnz + 20_i8 * n)
+  end function ordering_bytes
 
   !> Peak memory used by CHOLMOD for this factor, bytes.
   pure integer(i8) function factor_memory(f)

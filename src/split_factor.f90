@@ -242,9 +242,13 @@ contains
     subroutine analyze_half(h)
       type(half_t), intent(inout) :: h
       integer(c_int), allocatable :: lastc(:), groupc(:), number(:)
-      integer :: m, ng
+      integer :: m, ng, stat
       if (h%status /= cholmod_ok) return
-      allocate(lastc(h%n - h%nh), groupc(h%n), number(n))
+      allocate(lastc(h%n - h%nh), groupc(h%n), number(n), stat=stat)
+      if (stat /= 0) then
+        h%status = cholmod_out_of_memory
+        return
+      end if
       lastc = [(int(m, c_int), m = h%nh + 1, h%n)]
       number = 0
       ng = 0
@@ -255,7 +259,10 @@ contains
         end if
         groupc(m) = int(number(group(h%dof(m))), c_int)
       end do
-      h%status = c2d_chol_analyze(h%handle, int(h%n, c_int), int(h%colptr, c_int), int(h%rowind, c_int), 0_c_int, &
+      ! colptr and rowind as they are (default integers are c_int, as for A in
+      ! sparse_cholesky): int(..., c_int) made copies in temporaries that
+      ! gfortran allocates unchecked, a crash instead of a status when memory is short
+      h%status = c2d_chol_analyze(h%handle, int(h%n, c_int), h%colptr, h%rowind, 0_c_int, &
                                   int(h%n - h%nh, c_int), lastc, int(h%n, c_int), groupc)
     end subroutine analyze_half
   end function split_analyze
@@ -298,14 +305,17 @@ contains
     integer, intent(in) :: i
     real(dp), intent(in) :: val(:)
     real(c_double), allocatable :: hv(:)
-    integer :: nt
+    integer :: nt, stat
     associate (h => sp%half(i))
       nt = h%n - h%nh
-      allocate(hv(size(h%src)))
+      allocate(hv(size(h%src)), stat=stat)
+      if (stat /= 0) then
+        h%status = cholmod_out_of_memory
+        return
+      end if
       hv = real(val(h%src), c_double)
       deallocate(h%src)               ! a factor takes its values once (c2d_chol_factorize_values)
-      h%status = c2d_chol_factorize_values(h%handle, int(h%n, c_int), int(h%colptr, c_int), int(h%rowind, c_int), &
-                                           0_c_int, hv)
+      h%status = c2d_chol_factorize_values(h%handle, int(h%n, c_int), h%colptr, h%rowind, 0_c_int, hv)
       deallocate(hv, h%colptr, h%rowind)
       if (h%status /= cholmod_ok) return
       allocate(h%m(nt, nt))

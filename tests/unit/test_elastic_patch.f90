@@ -45,9 +45,9 @@ contains
     logical :: boundary
 
     nx = 5; ny = 4
-    if (ielem == 1) call make_rect_mesh(0.0_dp, 0.0_dp, 2.0_dp, 1.5_dp, nx, ny, .false., 'right', bd(1)%mesh)
-    if (ielem == 2) call make_rect_mesh(0.0_dp, 0.0_dp, 2.0_dp, 1.5_dp, nx, ny, .false., 'alt', bd(1)%mesh)
-    if (ielem == 3) call make_rect_mesh(0.0_dp, 0.0_dp, 2.0_dp, 1.5_dp, nx, ny, .true., 'right', bd(1)%mesh)
+    if (ielem == 1) call make_rect_mesh(0.0_dp, 0.0_dp, 2.0_dp, 1.5_dp, nx, ny, .false., 'right', bd(1)%mesh, err)
+    if (ielem == 2) call make_rect_mesh(0.0_dp, 0.0_dp, 2.0_dp, 1.5_dp, nx, ny, .false., 'alt', bd(1)%mesh, err)
+    if (ielem == 3) call make_rect_mesh(0.0_dp, 0.0_dp, 2.0_dp, 1.5_dp, nx, ny, .true., 'right', bd(1)%mesh, err)
     ! distort the interior nodes (deterministic pseudo-random shifts up to 0.25 h)
     h = 0.375_dp
     do i = 1, bd(1)%mesh%nnode
@@ -83,7 +83,7 @@ contains
       fixed(2 * i - 1:2 * i) = boundary
     end do
     call number_equations(fixed, eq, nfree)
-    call build_pattern(bd, eq, nfree, k)
+    call build_pattern(bd, eq, nfree, k, err)
     allocate(rhs(nfree, 1), x(nfree, 1))
     rhs = 0.0_dp
     call assemble_stiffness(bd, eq, ubar, k, rhs(:, 1))

@@ -85,7 +85,7 @@ contains
     integer :: nd, nfree, i, e, q, nen, a
     integer :: dofs(8)
 
-    call make_rect_mesh(0.0_dp, 0.0_dp, 1.0_dp, 1.0_dp, n, n, quads, 'alt', bd(1)%mesh)
+    call make_rect_mesh(0.0_dp, 0.0_dp, 1.0_dp, 1.0_dp, n, n, quads, 'alt', bd(1)%mesh, err)
     call finalize_mesh(bd(1)%mesh, 'mms', diag)
     call make_isotropic(e_mod, nu, .false., bd(1)%law)
     nd = 2 * bd(1)%mesh%nnode
@@ -97,7 +97,7 @@ contains
       end associate
     end do
     call number_equations(fixed, eq, nfree)
-    call build_pattern(bd, eq, nfree, k)
+    call build_pattern(bd, eq, nfree, k, err)
     allocate(rhs(nfree, 1), x(nfree, 1))
     rhs = 0.0_dp
     ! consistent load of the variable body force, degree-2 quadrature
