@@ -966,6 +966,8 @@ contains
       '    OFFSET dx= dy=                    (rigid shift of the body''s geometry)', &
       '  GRAVITY gx= gy= [ramp=k0:k1]', &
       '  CONTACT slave=body:boundary master=body:boundary [gap=geometry|zero] [mu=C | tresca=S]', &
+      '          [interference=allow|reject]  (a boundary may be a closed curve; an initial penetration', &
+      '                                    deeper than a slave element is refused unless allowed)', &
       '                                    (frictionless unless mu= (Coulomb) or tresca= (slip bound))', &
       '  SOLVER lcp=auto|lemke|pgs|pdas [tol=1e-10] [maxit=N] [omega=1.0]   (pdas: frictionless only)', &
       '         [ordering=auto|metis|amd]  (fill-reducing ordering; auto: AMD up to 5e5 free dofs, METIS above)', &
