@@ -339,10 +339,10 @@ contains
     opts%maxit = deck%solver%maxit
     opts%omega = deck%solver%omega
     method = deck%solver%lcp
-    ! lcp=auto from the measured crossovers (doc/performance.md): the three
-    ! solvers tie up to about 100 constraints, where Lemke's exact pivoting is
-    ! kept; above, the primal-dual active set method needs 7-12 Newton steps
-    ! on contact Delassus matrices (50x faster than Lemke, 6x than PGS at 5000)
+    ! lcp=auto from the measured crossovers (doc/performance.md, "The three LCP
+    ! solvers"): up to about 100 constraints the three tie and Lemke's exact
+    ! pivoting is kept; above, the primal-dual active set method needs a few
+    ! Newton steps where the others need many pivots or sweeps
     if (method == 'auto') then
       if (cs%nrow <= 100) then
         method = 'lemke'

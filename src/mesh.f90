@@ -36,11 +36,8 @@ module mesh
   public :: order_for_locality, file_node, file_elem, node_in_file, hilbert_index, locality_min_nodes
 
   !> Meshes of more nodes than this are renumbered for locality.  Below it the
-  !> arrays stay in the cache and the renumbering (about 0.3 us a node) does not
-  !> pay: single-threaded runs of Hertz at 6,178 / 20,086 / 72,732 dofs took
-  !> 2-4% longer with it (medians of 15), hertz_1e5 (a 34,173-node block) the
-  !> same within the noise, a 115,004-node block 2% less, hertz_1e6 8-29% less
-  !> (doc/performance.md).
+  !> arrays stay in the cache and the renumbering does not pay for itself
+  !> (measured in doc/performance.md, "A mesh file's numbering and the solver's").
   integer, parameter :: locality_min_nodes = 65536
 
   !> A named boundary: a set of edges (a physical curve) or of points.
