@@ -72,6 +72,7 @@ program contact2d
   type(temporary_t), allocatable :: step_tmp(:)   ! (steps) the per-step VTK files' temporaries
   real(dp), allocatable :: step_table(:,:)        ! (ncol, steps) the rows of NAME_steps.csv
   integer :: step_iterations = 0                  ! LCP iterations of the step being recorded
+  character(len=:), allocatable :: step_note      ! 'load step k of n: ' in messages while steps are solved
 
   ! At most two malloc arenas: the bodies' factors are computed side by side
   ! on the threads, and every further glibc arena keeps its freed pages
@@ -190,6 +191,11 @@ program contact2d
       if (deck%output%steps_all) call solve_earlier_steps()
       call solve_contact_problem()
       step_iterations = res%lcp_iterations
+      if (deck%output%steps_all) then
+        call contact_measures()
+        call say_step(sc%steps, res%lcp_method, step_iterations, res%active_nodes)
+        deallocate(res%pressure, res%status)         ! measured again below, as without steps
+      end if
     end if
     call contact_measures()
     call lap(ph_lcp)
@@ -340,6 +346,7 @@ contains
     allocate(fk(sc%ndof), ubk(sc%ndof), u0k(sc%ndof), cq(cs%nrow + cs%ntan))
     do kstep = 1, sc%steps - 1
       res = saved
+      step_note = 'load step ' // int_to_str(kstep) // ' of ' // int_to_str(sc%steps) // ': '
       call step_loads(sc, kstep, fk, ubk)
       call solve_loads(fk, ubk, [real(dp) ::], u0k)
       if (with_contact) then
@@ -353,6 +360,7 @@ contains
         call contact_measures()
         step_iterations = res%lcp_iterations
         call record_step(kstep, fk, ubk, res%mu)
+        call say_step(kstep, res%lcp_method, step_iterations, res%active_nodes)
       else
         step_iterations = 0
         call record_step(kstep, fk, ubk, [real(dp) ::])
@@ -361,8 +369,19 @@ contains
     res = saved
     split = split_n
     if (allocated(q_n)) q = q_n
+    step_note = 'load step ' // int_to_str(sc%steps) // ' of ' // int_to_str(sc%steps) // ': '
     call step_loads(sc, sc%steps, fk, ubk)         ! the bodies' thermal strains of the final step
   end subroutine solve_earlier_steps
+
+  !> The run log's line of a step solved on its own (OUTPUT steps=all).
+  subroutine say_step(kstep, method, iterations, active)
+    integer, intent(in) :: kstep, iterations, active
+    character(len=*), intent(in) :: method
+    character(len=160) :: line
+    write(line, '(a,i0,a,i0,a,i0,a,i0,a)') 'step     ', kstep, '/', sc%steps, ': ' // method // ' ', iterations, &
+      ' iterations, ', active, ' active'
+    call say(trim(line))
+  end subroutine say_step
 
   !> u = K^-1 (f - K_fd ubar - C' z) on the free dofs, ubar on the fixed ones
   !> (one solve with the factorization).
@@ -593,9 +612,10 @@ contains
     res%lcp_residual = sol%rep%residual
     if (sol%rep%info /= 0) then
       if (allocated(sol%rep%message)) then
-        call fail_numerical('contact problem not solved: ' // sol%rep%message)
+        call fail_numerical(step_prefix() // 'contact problem not solved: ' // sol%rep%message)
       else
-        call fail_numerical('contact problem not solved by ' // method // ' (info ' // int_to_str(sol%rep%info) // ')')
+        call fail_numerical(step_prefix() // 'contact problem not solved by ' // method // ' (info ' // &
+                            int_to_str(sol%rep%info) // ')')
       end if
     end if
     if (.not. all(ieee_is_finite(sol%mu))) call fail_numerical('the contact multipliers are not finite')
@@ -932,7 +952,8 @@ contains
     do j = 1, size(split%unheld, 2)
       if (.not. split%loaded(j)) cycle
       write(buf, '(es10.3)') split%load(j)
-      call fail_numerical('no equilibrium: body "' // sc%bodies(split%unheld_body(j))%name // '" is loaded along ' // &
+      call fail_numerical(step_prefix() // 'no equilibrium: body "' // sc%bodies(split%unheld_body(j))%name // &
+        '" is loaded along ' // &
         'a rigid mode (' // motion_name(fl, split%unheld(:, j)) // ') that neither FIX nor contact holds ' // &
         '(frictionless contact holds only normal to the contact surface; load along it ' // trim(adjustl(buf)) // &
         ' of the loads'' scale)')
@@ -1002,7 +1023,16 @@ contains
     else
       call say('wrote    ' // outdir // '/' // deck%output%vtk // ', ' // deck%output%summary)
     end if
+    if (deck%output%steps_all) call say('wrote    ' // step_file(1) // ' .. ' // step_file(sc%steps) // ', ' // &
+                                        output_stem() // '.pvd, ' // output_stem() // '_steps.csv')
   end subroutine report_run
+
+  !> 'load step k of n: ' while the steps of OUTPUT steps=all are solved, else ''.
+  function step_prefix() result(t)
+    character(len=:), allocatable :: t
+    t = ''
+    if (allocated(step_note)) t = step_note
+  end function step_prefix
 
   !> How a pair's tangential behaviour is described in the log.
   function friction_law(kind, spec) result(t)

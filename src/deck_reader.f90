@@ -2281,6 +2281,12 @@ contains
       call report(s, line, 'OUTPUT files must differ (vtk and summary are both ' // quoted(v) // ')')
     else if (c == m .and. len(c) == len(m)) then
       call report(s, line, 'OUTPUT files must differ (contact and summary are both ' // quoted(c) // ')')
+    else if (deck%output%steps_all) then
+      ! steps=all adds STEM.pvd and STEM_steps.csv (STEM: the vtk name without .vtk)
+      v = v(1:len(v) - 4)
+      if (c == v // '.pvd' .or. m == v // '.pvd' .or. c == v // '_steps.csv' .or. m == v // '_steps.csv') &
+        call report(s, line, 'OUTPUT files must differ (steps=all writes ' // quoted(v // '.pvd') // ' and ' // &
+                    quoted(v // '_steps.csv') // ', which contact= or summary= names too)')
     end if
   end subroutine check_output_names
 
