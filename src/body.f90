@@ -9,6 +9,14 @@
 !> K_ff is stored as the upper triangle of a compressed-column matrix whose
 !> pattern comes from the node adjacency of each mesh (no triplets, no dense N x N).
 !>
+!> Local axes.  A node held by FIX un=/ut= (doc/theory.md, "Supports in local
+!> axes") has its two dofs in the axes (n, t) of its nodal normal n, t =
+!> (-n_y, n_x): bd%axes(:, a) = n, [0, 0] for a node in global axes.  Every
+!> routine here works in that solver basis: K = Q' K_xy Q element by element,
+!> fint = Q' K_xy (Q u), so a prescribed un is an ordinary Dirichlet dof and is
+!> eliminated like ux.  to_global_axes turns a solver-basis vector (a
+!> displacement, a nodal force) into x, y components, to_local_axes back.
+!>
 !> Programming interface
 !>   type(body_t)                      one body: name, mesh, law, thickness, dof0
 !>   number_equations(fixed, eq, nfree)
@@ -16,7 +24,8 @@
 !>   assemble_stiffness(bodies, eq, ubar, k, rhs)   add K_ff to k, subtract K_fd ubar from rhs
 !>   internal_forces(bodies, u, fint)               fint = K u (all dofs, element by element)
 !>   element_response(bodies, u, fint [, stress, vm])  both in one element loop (OpenMP, reproducible)
-!>   thermal_loads(bd, f)                           f += int B' D eps0 t dA (THERMAL)
+!>   thermal_loads(bd, f)                           f += int B' D eps0 t dA (THERMAL), x, y axes
+!>   to_global_axes(bodies, v), to_local_axes(bodies, v)   v (ndof) between the solver basis and x, y
 !>   node_elements(mesh, ptr, list)                 elements around each node (CSR)
 !>   edge_outward_normal(mesh, eptr, elist, a, b, nrm, owner)  unit normal of edge a-b
 !>        pointing out of its element; owner = that element, 0 when no element has
@@ -33,7 +42,7 @@ module body
   private
   public :: body_t, number_equations, build_pattern, assemble_stiffness, internal_forces
   public :: node_elements, element_dofs, edge_outward_normal, element_response
-  public :: thermal_loads
+  public :: thermal_loads, to_global_axes, to_local_axes
 
   type :: body_t
     character(len=:), allocatable :: name  !< as in the deck
@@ -44,6 +53,9 @@ module body
     integer :: elem0 = 0                   !< global element offset (output order)
     real(dp), allocatable :: adt(:)        !< (nelem) alpha dT per element; allocated only
                                            !< when the body has a THERMAL statement
+    real(dp), allocatable :: axes(:,:)     !< (2, nnode) unit normal n of a node whose dofs are
+                                           !< (u.n, u.t), [0, 0] in x, y; allocated only when a
+                                           !< FIX un=/ut= holds some node of the body
   end type body_t
 
 
@@ -256,6 +268,7 @@ contains
           nen = m%nen(e)
           call element_coordinates(m, e, xe)
           call element_stiffness(nen, xe(:, 1:nen), bodies(b)%law%d, bodies(b)%thick, ke)
+          if (allocated(bodies(b)%axes)) call rotate_element_matrix(bodies(b), e, ke)   ! Q' K Q
           call element_dofs(bodies(b), e, dofs)
           do q = 1, 2 * nen
             eq_q = eq(dofs(q))
@@ -287,6 +300,102 @@ contains
       xe(:, a) = m%x(:, m%conn(a, e))
     end do
   end subroutine element_coordinates
+
+  !> ke = Q' ke Q for the nodes of element e in local axes (Q = [n t] on
+  !> their two dofs, the identity elsewhere).
+  pure subroutine rotate_element_matrix(bd, e, ke)
+    type(body_t), intent(in) :: bd
+    integer, intent(in) :: e
+    real(dp), intent(inout) :: ke(8, 8)
+    integer :: a, i, n
+    real(dp) :: q(2, 2)
+    logical :: local
+    n = 2 * bd%mesh%nen(e)
+    do a = 1, bd%mesh%nen(e)
+      call axes_of_node(bd, bd%mesh%conn(a, e), q, local)
+      if (.not. local) cycle
+      i = 2 * a - 1
+      ke(i:i + 1, 1:n) = matmul(transpose(q), ke(i:i + 1, 1:n))
+      ke(1:n, i:i + 1) = matmul(ke(1:n, i:i + 1), q)
+    end do
+  end subroutine rotate_element_matrix
+
+  !> v = Q v (to_global) or v = Q' v on the nodes of element e in local axes.
+  pure subroutine rotate_element_vector(bd, e, v, to_global)
+    type(body_t), intent(in) :: bd
+    integer, intent(in) :: e
+    real(dp), intent(inout) :: v(:)
+    logical, intent(in) :: to_global
+    integer :: a, i
+    real(dp) :: q(2, 2)
+    logical :: local
+    do a = 1, bd%mesh%nen(e)
+      call axes_of_node(bd, bd%mesh%conn(a, e), q, local)
+      if (.not. local) cycle
+      i = 2 * a - 1
+      v(i:i + 1) = turn(q, v(i:i + 1), to_global)
+    end do
+  end subroutine rotate_element_vector
+
+  !> Q v (to_global) or Q' v.
+  pure function turn(q, v, to_global) result(w)
+    real(dp), intent(in) :: q(2, 2), v(2)
+    logical, intent(in) :: to_global
+    real(dp) :: w(2)
+    if (to_global) then
+      w = matmul(q, v)
+    else
+      w = matmul(v, q)                            ! Q' v
+    end if
+  end function turn
+
+  !> Q = [n t] of node a, t = (-n_y, n_x); local false when a is in x, y axes.
+  pure subroutine axes_of_node(bd, a, q, local)
+    type(body_t), intent(in) :: bd
+    integer, intent(in) :: a
+    real(dp), intent(out) :: q(2, 2)
+    logical, intent(out) :: local
+    local = .false.
+    q = 0.0_dp
+    if (.not. allocated(bd%axes)) return
+    if (all(bd%axes(:, a) == 0.0_dp)) return
+    local = .true.
+    q(:, 1) = bd%axes(:, a)
+    q(:, 2) = [-bd%axes(2, a), bd%axes(1, a)]
+  end subroutine axes_of_node
+
+  !> v (ndof, solver basis) to x, y components: v_a = Q_a v_a at every node
+  !> in local axes.
+  subroutine to_global_axes(bodies, v)
+    type(body_t), intent(in) :: bodies(:)
+    real(dp), intent(inout) :: v(:)
+    call rotate_nodes(bodies, v, .true.)
+  end subroutine to_global_axes
+
+  !> v (ndof, x, y components) to the solver basis: v_a = Q_a' v_a.
+  subroutine to_local_axes(bodies, v)
+    type(body_t), intent(in) :: bodies(:)
+    real(dp), intent(inout) :: v(:)
+    call rotate_nodes(bodies, v, .false.)
+  end subroutine to_local_axes
+
+  subroutine rotate_nodes(bodies, v, to_global)
+    type(body_t), intent(in) :: bodies(:)
+    real(dp), intent(inout) :: v(:)
+    logical, intent(in) :: to_global
+    integer :: b, a, i
+    real(dp) :: q(2, 2)
+    logical :: local
+    do b = 1, size(bodies)
+      if (.not. allocated(bodies(b)%axes)) cycle
+      do a = 1, bodies(b)%mesh%nnode
+        call axes_of_node(bodies(b), a, q, local)
+        if (.not. local) cycle
+        i = bodies(b)%dof0 + 2 * a - 1
+        v(i:i + 1) = turn(q, v(i:i + 1), to_global)
+      end do
+    end do
+  end subroutine rotate_nodes
 
   !> Position of (row, col) in k by bisection over the sorted column.
   pure integer function find_row(k, row, col) result(pos)
@@ -322,7 +431,9 @@ contains
           call element_dofs(bodies(b), e, dofs)
           call element_coordinates(m, e, xe)
           ue(1:2 * nen) = u(dofs(1:2 * nen))
+          if (allocated(bodies(b)%axes)) call rotate_element_vector(bodies(b), e, ue, .true.)    ! Q u
           call element_force(nen, xe(:, 1:nen), bodies(b)%law%d, bodies(b)%thick, ue(1:2 * nen), fe(1:2 * nen))
+          if (allocated(bodies(b)%axes)) call rotate_element_vector(bodies(b), e, fe, .false.)   ! Q' f
           fint(dofs(1:2 * nen)) = fint(dofs(1:2 * nen)) + fe(1:2 * nen)
         end do
       end associate
@@ -405,7 +516,9 @@ contains
           call element_dofs(bd, e, dofs)
           call element_coordinates(m, e, xe)
           ue(1:2 * nen) = u(dofs(1:2 * nen))
+          if (allocated(bd%axes)) call rotate_element_vector(bd, e, ue, .true.)            ! Q u
           call element_force(nen, xe(:, 1:nen), bd%law%d, bd%thick, ue(1:2 * nen), fe(1:2 * nen, e))
+          if (allocated(bd%axes)) call rotate_element_vector(bd, e, fe(:, e), .false.)     ! Q' f
           if (.not. present(stress)) cycle
           call element_strain(nen, xe(:, 1:nen), ue(1:2 * nen), eps)
           if (allocated(bd%adt)) then                   ! sigma = D (eps - alpha dT eth)

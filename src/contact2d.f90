@@ -12,10 +12,11 @@ program contact2d
   use diagnostics, only: diag_t, add_error, stop_input_errors, fail_numerical, exit_program, error_t, int_to_str, &
                          real_to_str
   use deck_reader, only: deck_t, read_deck, path_too_long
-  use scene, only: scene_t, build_scene, load_factor
+  use scene, only: scene_t, build_scene, group_factor, step_loads, group_name
   use mesh, only: node_in_file
   use material, only: tensor_condition
-  use body, only: number_equations, build_pattern, assemble_stiffness, element_response, internal_forces
+  use body, only: number_equations, build_pattern, assemble_stiffness, element_response, internal_forces, &
+                  to_global_axes
   use sparse_matrix, only: csc_t
   use sparse_cholesky, only: factor_t, analyze_pattern, factorize_values, solve, solve_forward, factor_nnz, factor_memory, &
                              factor_ordering
@@ -27,10 +28,12 @@ program contact2d
   use contact_lcp, only: contact_solution_t, solve_contact
   use rigid_modes, only: floating_t, find_floating_modes, mode_name, motion_name, describe_motion, remove_motions
   use mode_support, only: mode_split_t, split_free_modes
-  use results_writer, only: results_t, write_vtk, write_contact_csv, write_summary, phase_names, nphase, peak_memory
+  use results_writer, only: results_t, write_vtk, write_contact_csv, write_summary, write_pvd, write_step_table, &
+                            phase_names, nphase, peak_memory
   use safe_files, only: make_folders, temporary_t, create_temporary, close_temporary, commit_temporaries, &
                         discard_temporaries
   use gmsh_runner, only: gmsh_options_t
+  use local_axes, only: rotate_constraint_rows
   use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use omp_lib, only: omp_get_max_threads, omp_get_thread_num, omp_get_num_threads
@@ -67,6 +70,11 @@ program contact2d
   type(condensed_t) :: cd                 ! X_b = L_b^-1 C_b' or L_b per block of L_cc (condense)
   logical :: with_contact
   real(dp), allocatable :: cu0(:,:)      ! (nrow + ntan, ramps) C u0 of each ramp's loads (friction)
+  ! OUTPUT steps=all: a VTK file per step and a row per step of NAME_steps.csv
+  type(temporary_t), allocatable :: step_tmp(:)   ! (steps) the per-step VTK files' temporaries
+  real(dp), allocatable :: step_table(:,:)        ! (ncol, steps) the rows of NAME_steps.csv
+  integer :: step_iterations = 0                  ! LCP iterations of the step being recorded
+  character(len=:), allocatable :: step_note      ! 'load step k of n: ' in messages while steps are solved
 
   ! At most two malloc arenas: the bodies' factors are computed side by side
   ! on the threads, and every further glibc arena keeps its freed pages
@@ -88,6 +96,7 @@ program contact2d
   if (allocated(err)) call fail_numerical(err%message)
   call build_contact_set(sc%bodies, sc%specs, cs, err)
   if (allocated(err)) call contact_error(err)
+  call rotate_constraint_rows(cs, sc%bodies)     ! nodes in local axes (FIX un=/ut=)
   do i = 1, cs%npair
     if (cs%pair(i)%nrow == 0) write(error_unit, '(a)') 'contact2d: warning: ' // deck%file // ':' // &
       int_to_str(deck%contacts(i)%line) // ': no part of the master boundary faces the slave boundary: ' // &
@@ -183,7 +192,14 @@ program contact2d
       call solve_friction_steps()
     else
       call lap(ph_condense)
+      if (deck%output%steps_all) call solve_earlier_steps()
       call solve_contact_problem()
+      step_iterations = res%lcp_iterations
+      if (deck%output%steps_all) then
+        call contact_measures()
+        call say_step(sc%steps, res%lcp_method, step_iterations, res%active_nodes)
+        deallocate(res%pressure, res%status)         ! measured again below, as without steps
+      end if
     end if
     call contact_measures()
     call lap(ph_lcp)
@@ -202,6 +218,7 @@ program contact2d
     if (fl%k > 0) res%u = res%u + matmul(fl%r, res%alpha)    ! + R alpha: the free rigid modes
     call remove_motions(fl, split%unheld, res%u)              ! no component along the unheld ones
   else
+    if (deck%output%steps_all) call solve_earlier_steps()
     res%u = u0
   end if
   if (.not. all(ieee_is_finite(res%u))) call fail_numerical('the displacement is not finite (overflow in the solve)')
@@ -209,31 +226,19 @@ program contact2d
   call c2d_blas_park()            ! no BLAS after this: the stresses and the files get both cores
 
   ! --- stresses, reactions, energy -----------------------------------------
-  allocate(res%stress(3, sc%nelem), res%vm(sc%nelem), fint(sc%ndof))
-  if (deck%output%fields(4) .or. deck%output%fields(5)) then
-    call element_response(sc%bodies, res%u, fint, res%stress, res%vm)
-  else
-    call element_response(sc%bodies, res%u, fint)        ! no stress field asked for: none computed
-  end if
-  res%energy = 0.5_dp * dot_product(res%u, fint)
-  allocate(res%reaction(2, size(sc%fixes)), source=0.0_dp)
-  nlabel = 1
-  do i = 1, size(sc%fixes)
-    nlabel = max(nlabel, len(sc%fixes(i)%label))
-  end do
-  allocate(character(len=nlabel) :: res%fix_label(size(sc%fixes)))
-  do i = 1, size(sc%fixes)
-    res%fix_label(i) = sc%fixes(i)%label
-  end do
-  do i = 1, sc%ndof
-    if (sc%fix_owner(i) > 0) then
-      ! R = K u - f_ext - f_contact on a fixed dof
-      res%reaction(2 - mod(i, 2), sc%fix_owner(i)) = res%reaction(2 - mod(i, 2), sc%fix_owner(i)) &
-        + fint(i) - sc%fext(i) - fc(i)
+  if (with_contact) then
+    if (cs%ntan > 0) then
+      call pair_resultants([res%mu, res%tau])
+    else
+      call pair_resultants(res%mu)
     end if
-  end do
+  else
+    call pair_resultants([real(dp) ::])
+  end if
+  call post_process(sc%fext)
   call nodal_contact_fields()
   call check_finite_results()
+  if (deck%output%steps_all) call add_step_row(sc%steps)
   call lap(ph_output)             ! stresses, reactions and energy are post-processing
 
   ! --- outputs ------------------------------------------------------------
@@ -243,6 +248,259 @@ program contact2d
   call exit_program(0)
 
 contains
+
+  !> Stresses (when the VTK file asks for them), energy and the reaction of
+  !> each FIX, R = K u - f_ext - f_contact on its fixed dofs, from res%u and
+  !> the contact forces fc; then res%u in x, y components (nodes in local
+  !> axes: the reaction of a fixed dof along n or t is that force along n or
+  !> t, summed in x, y into its FIX's reaction).
+  !>   fext (in) (ndof) the external forces of the step (solver basis)
+  subroutine post_process(fext)
+    real(dp), intent(in) :: fext(:)
+    integer :: j, b, a
+    real(dp), allocatable :: axis(:,:)
+    if (allocated(fint)) deallocate(fint)
+    if (allocated(res%stress)) deallocate(res%stress, res%vm)
+    if (allocated(res%reaction)) deallocate(res%reaction)
+    if (allocated(res%fix_label)) deallocate(res%fix_label)
+    allocate(res%stress(3, sc%nelem), res%vm(sc%nelem), fint(sc%ndof))
+    if (deck%output%fields(4) .or. deck%output%fields(5)) then
+      call element_response(sc%bodies, res%u, fint, res%stress, res%vm)
+    else
+      call element_response(sc%bodies, res%u, fint)        ! no stress field asked for: none computed
+    end if
+    res%energy = 0.5_dp * dot_product(res%u, fint)
+    allocate(res%reaction(2, size(sc%fixes)), source=0.0_dp)
+    nlabel = 1
+    do j = 1, size(sc%fixes)
+      nlabel = max(nlabel, len(sc%fixes(j)%label))
+    end do
+    allocate(character(len=nlabel) :: res%fix_label(size(sc%fixes)))
+    do j = 1, size(sc%fixes)
+      res%fix_label(j) = sc%fixes(j)%label
+    end do
+    ! the direction of each dof: e_x, e_y, or n, t at a node in local axes
+    allocate(axis(2, sc%ndof), source=0.0_dp)
+    axis(1, 1::2) = 1.0_dp
+    axis(2, 2::2) = 1.0_dp
+    do b = 1, size(sc%bodies)
+      if (.not. allocated(sc%bodies(b)%axes)) cycle
+      do a = 1, sc%bodies(b)%mesh%nnode
+        if (all(sc%bodies(b)%axes(:, a) == 0.0_dp)) cycle
+        j = sc%bodies(b)%dof0 + 2 * a - 1
+        axis(:, j) = sc%bodies(b)%axes(:, a)
+        axis(:, j + 1) = [-sc%bodies(b)%axes(2, a), sc%bodies(b)%axes(1, a)]
+      end do
+    end do
+    do j = 1, sc%ndof
+      if (sc%fix_owner(j) > 0) then
+        ! R = K u - f_ext - f_contact on a fixed dof, along its direction
+        res%reaction(:, sc%fix_owner(j)) = res%reaction(:, sc%fix_owner(j)) + (fint(j) - fext(j) - fc(j)) * axis(:, j)
+      end if
+    end do
+    call to_global_axes(sc%bodies, res%u)
+  end subroutine post_process
+
+  !> res%contact_force: per pair, the resultant of the contact forces on its
+  !> slave body, the sum over the slave dofs of -C' z restricted to the
+  !> pair's rows (-sum_i mu_i n_i - tau_i t_i, the slave's outward normal n);
+  !> and fc = -C' z, all pairs, on every dof.
+  !>   z (in) (nrow) normal multipliers, or (nrow + ntan) with the tangential ones
+  subroutine pair_resultants(z)
+    real(dp), intent(in) :: z(:)
+    real(dp), allocatable :: zp(:)
+    integer :: ip, r, d0, nn
+    if (.not. allocated(fc)) allocate(fc(sc%ndof))
+    fc = 0.0_dp
+    if (allocated(res%contact_force)) deallocate(res%contact_force)
+    allocate(res%contact_force(2, cs%npair), source=0.0_dp)
+    if (size(z) == 0) return
+    allocate(zp(size(z)))
+    do ip = 1, cs%npair
+      zp = 0.0_dp
+      do r = 1, cs%nrow
+        if (cs%row_pair(r) == ip) zp(r) = z(r)
+      end do
+      do r = 1, size(z) - cs%nrow
+        if (cs%row_pair(cs%tan_row(r)) == ip) zp(cs%nrow + r) = z(cs%nrow + r)
+      end do
+      call contact_forces(cs, zp, fc)
+      call to_global_axes(sc%bodies, fc)
+      d0 = sc%bodies(cs%pair(ip)%spec%slave_body)%dof0
+      nn = sc%bodies(cs%pair(ip)%spec%slave_body)%mesh%nnode
+      res%contact_force(1, ip) = sum(fc(d0 + 1:d0 + 2 * nn:2))
+      res%contact_force(2, ip) = sum(fc(d0 + 2:d0 + 2 * nn:2))
+    end do
+    call contact_forces(cs, z, fc)
+  end subroutine pair_resultants
+
+  !> OUTPUT steps=all without friction: steps 1 .. n-1, each an independent
+  !> solve at its load factors with the factorization and W of the final
+  !> step (only the right-hand side changes): u0_k = K^-1 f_k, q_k = g - B u0_k,
+  !> LCP(W, q_k), u_k = K^-1 (f_k - B' mu_k).  Each step's VTK file and table
+  !> row are written; res is then as before (the final step is solved next).
+  subroutine solve_earlier_steps()
+    type(results_t) :: saved
+    type(mode_split_t) :: split_n
+    real(dp), allocatable :: fk(:), ubk(:), u0k(:), cq(:), q_n(:)
+    integer :: kstep
+    saved = res
+    split_n = split
+    if (allocated(q)) q_n = q
+    allocate(fk(sc%ndof), ubk(sc%ndof), u0k(sc%ndof), cq(cs%nrow + cs%ntan))
+    do kstep = 1, sc%steps - 1
+      res = saved
+      step_note = 'load step ' // int_to_str(kstep) // ' of ' // int_to_str(sc%steps) // ': '
+      call step_loads(sc, kstep, fk, ubk)
+      call solve_loads(fk, ubk, [real(dp) ::], u0k)
+      if (with_contact) then
+        call constraint_values(cs, u0k, cq)
+        q = cs%g - cq(1:cs%nrow)                   ! gaps without contact forces
+        if (fl%k > 0) then
+          call split_free_modes(cs, sc%bodies, fl, fk, split)
+          call check_unheld_loads()
+        end if
+        call solve_contact_problem()
+        call contact_measures()
+        step_iterations = res%lcp_iterations
+        call record_step(kstep, fk, ubk, res%mu)
+        call say_step(kstep, res%lcp_method, step_iterations, res%active_nodes)
+      else
+        step_iterations = 0
+        call record_step(kstep, fk, ubk, [real(dp) ::])
+      end if
+    end do
+    res = saved
+    split = split_n
+    if (allocated(q_n)) q = q_n
+    step_note = 'load step ' // int_to_str(sc%steps) // ' of ' // int_to_str(sc%steps) // ': '
+    call step_loads(sc, sc%steps, fk, ubk)         ! the bodies' thermal strains of the final step
+  end subroutine solve_earlier_steps
+
+  !> The run log's line of a step solved on its own (OUTPUT steps=all).
+  subroutine say_step(kstep, method, iterations, active)
+    integer, intent(in) :: kstep, iterations, active
+    character(len=*), intent(in) :: method
+    character(len=160) :: line
+    write(line, '(a,i0,a,i0,a,i0,a,i0,a)') 'step     ', kstep, '/', sc%steps, ': ' // method // ' ', iterations, &
+      ' iterations, ', active, ' active'
+    call say(trim(line))
+  end subroutine say_step
+
+  !> u = K^-1 (f - K_fd ubar - C' z) on the free dofs, ubar on the fixed ones
+  !> (one solve with the factorization).
+  !>   fk, ubk (in) (ndof) loads and prescribed values;  z (in) multipliers (may be empty)
+  !>   u (out) (ndof)
+  subroutine solve_loads(fk, ubk, z, u)
+    real(dp), intent(in) :: fk(:), ubk(:), z(:)
+    real(dp), intent(out) :: u(:)
+    real(dp), allocatable :: kub(:), fz(:), b(:,:), xb(:,:)
+    integer :: j
+    allocate(kub(sc%ndof), fz(sc%ndof), b(nfree, 1), xb(nfree, 1))
+    call internal_forces(sc%bodies, ubk, kub)      ! its free rows are K_fd ubar
+    fz = 0.0_dp
+    if (size(z) > 0) call contact_forces(cs, z, fz)
+    do j = 1, sc%ndof
+      if (eq(j) > 0) b(eq(j), 1) = fk(j) - kub(j) + fz(j)
+    end do
+    call solve(factor, b, xb)
+    u = ubk
+    do j = 1, sc%ndof
+      if (eq(j) > 0) u(j) = xb(eq(j), 1)
+    end do
+  end subroutine solve_loads
+
+  !> One step's displacement from its multipliers z (res%mu, res%gap, ...
+  !> set), its post-processing, VTK file and table row.
+  subroutine record_step(kstep, fk, ubk, z)
+    integer, intent(in) :: kstep
+    real(dp), intent(in) :: fk(:), ubk(:), z(:)
+    logical :: ok
+    if (allocated(res%u)) deallocate(res%u)
+    allocate(res%u(sc%ndof))
+    call solve_loads(fk, ubk, z, res%u)
+    if (fl%k > 0) res%u = res%u + matmul(fl%r, res%alpha)
+    call remove_motions(fl, split%unheld, res%u)
+    if (.not. all(ieee_is_finite(res%u))) call fail_numerical('load step ' // int_to_str(kstep) // &
+      ': the displacement is not finite (overflow in the solve)')
+    call pair_resultants(z)
+    call post_process(fk)
+    if (allocated(res%node_pressure)) deallocate(res%node_pressure, res%node_gap)
+    if (allocated(res%node_shear)) deallocate(res%node_shear)
+    call nodal_contact_fields()
+    call check_finite_results()
+    call add_step_row(kstep)
+    call create_step_file(kstep, ok)
+    if (ok) call write_vtk(step_tmp(kstep)%io_path, deck%title, sc%bodies, res, deck%output%fields, ok)
+    call close_temporary(step_tmp(kstep))
+    if (.not. ok) call output_failure()
+  end subroutine record_step
+
+  !> The temporary of step k's VTK file (STEM_000k.vtk).
+  subroutine create_step_file(kstep, ok)
+    integer, intent(in) :: kstep
+    logical, intent(out) :: ok
+    if (.not. allocated(step_tmp)) allocate(step_tmp(sc%steps))
+    call create_temporary(outdir, step_file(kstep), step_tmp(kstep), ok)
+  end subroutine create_step_file
+
+  !> STEM_000k.vtk, STEM the vtk= name without .vtk.
+  function step_file(kstep) result(name)
+    integer, intent(in) :: kstep
+    character(len=:), allocatable :: name
+    character(len=16) :: buf
+    write(buf, '(i4.4)') kstep
+    name = output_stem() // '_' // trim(buf) // '.vtk'
+  end function step_file
+
+  function output_stem() result(stem)
+    character(len=:), allocatable :: stem
+    stem = deck%output%vtk(1:len(deck%output%vtk) - 4)
+  end function output_stem
+
+  !> Row k of NAME_steps.csv from res: step, the load factor of each load
+  !> path, the reactions of every FIX, the contact resultant of every pair,
+  !> active nodes, LCP iterations.
+  subroutine add_step_row(kstep)
+    integer, intent(in) :: kstep
+    integer :: ng, nc, g, c
+    ng = size(sc%ramp, 2)
+    nc = 1 + ng + 2 * size(sc%fixes) + 2 * cs%npair + 2
+    if (.not. allocated(step_table)) allocate(step_table(nc, sc%steps), source=0.0_dp)
+    step_table(1, kstep) = kstep
+    do g = 1, ng
+      step_table(1 + g, kstep) = group_factor(sc, g, kstep)
+    end do
+    c = 1 + ng
+    step_table(c + 1:c + 2 * size(sc%fixes), kstep) = reshape(res%reaction, [2 * size(sc%fixes)])
+    c = c + 2 * size(sc%fixes)
+    step_table(c + 1:c + 2 * cs%npair, kstep) = reshape(res%contact_force, [2 * cs%npair])
+    step_table(nc - 1, kstep) = res%active_nodes
+    step_table(nc, kstep) = step_iterations
+  end subroutine add_step_row
+
+  !> The header line of NAME_steps.csv.
+  function step_header() result(h)
+    character(len=:), allocatable :: h
+    integer :: g, j
+    h = 'step'
+    do g = 1, size(sc%ramp, 2)
+      h = h // ',factor_' // group_name(sc, g)
+    end do
+    do j = 1, size(sc%fixes)
+      h = h // ',' // sc%fixes(j)%label // '_Fx,' // sc%fixes(j)%label // '_Fy'
+    end do
+    do j = 1, cs%npair
+      h = h // ',contact_' // int_to_str(j) // '_Fx,contact_' // int_to_str(j) // '_Fy'
+    end do
+    h = h // ',active_nodes,lcp_iterations'
+  end function step_header
+
+  subroutine output_failure()
+    if (allocated(step_tmp)) call discard_temporaries(step_tmp)
+    write(error_unit, '(a)') 'contact2d: error: ' // outdir // ': cannot write the output files (a writable folder expected)'
+    call exit_program(2)
+  end subroutine output_failure
 
   !> Seconds since the last lap go to phase ph; the total is kept up to date.
   subroutine lap(ph)
@@ -358,9 +616,10 @@ contains
     res%lcp_residual = sol%rep%residual
     if (sol%rep%info /= 0) then
       if (allocated(sol%rep%message)) then
-        call fail_numerical('contact problem not solved: ' // sol%rep%message)
+        call fail_numerical(step_prefix() // 'contact problem not solved: ' // sol%rep%message)
       else
-        call fail_numerical('contact problem not solved by ' // method // ' (info ' // int_to_str(sol%rep%info) // ')')
+        call fail_numerical(step_prefix() // 'contact problem not solved by ' // method // ' (info ' // &
+                            int_to_str(sol%rep%info) // ')')
       end if
     end if
     if (.not. all(ieee_is_finite(sol%mu))) call fail_numerical('the contact multipliers are not finite')
@@ -428,7 +687,7 @@ contains
     integer :: g, j
     real(dp), allocatable :: rhsg(:,:), xg(:,:), ug(:), fk(:)
     allocate(cu0(cs%nrow + cs%ntan, size(sc%ramp, 2)))
-    if (size(sc%ramp, 2) == 1) then
+    if (size(sc%ramp, 2) == 1 .and. group_factor(sc, 1, sc%steps) == 1.0_dp) then
       call constraint_values(cs, u0, cu0(:, 1))
       return
     end if
@@ -456,8 +715,9 @@ contains
     type(lcp_options_t) :: opts
     type(lcp_report_t) :: rep
     character(len=:), allocatable :: method
-    real(dp), allocatable :: z(:), cu(:), qn(:), qt(:), sprev(:)
-    integer :: n, nt, kstep, g, r
+    real(dp), allocatable :: z(:), cu(:), qn(:), qt(:), sprev(:), fk(:), ubk(:)
+    integer :: n, nt, kstep, g, r, iterations
+    type(results_t) :: saved
     character(len=200) :: line
 
     n = cs%nrow
@@ -471,18 +731,22 @@ contains
     if (method == 'auto') method = merge('lemke', 'pgs  ', n + 3 * nt <= 400)
     method = trim(method)
     allocate(z(n + nt), cu(n + nt), qn(n), qt(nt), sprev(nt), res%fstate(nt))
+    if (deck%output%steps_all) then
+      saved = res
+      allocate(fk(sc%ndof), ubk(sc%ndof))
+    end if
     z = 0.0_dp
     sprev = 0.0_dp
-    res%lcp_iterations = 0
+    iterations = 0
     do kstep = 1, sc%steps
       cu = 0.0_dp
       do g = 1, size(sc%ramp, 2)
-        cu = cu + load_factor(sc%ramp(:, g), kstep) * cu0(:, g)
+        cu = cu + group_factor(sc, g, kstep) * cu0(:, g)
       end do
       qn = cs%g - cu(1:n)                          ! gaps without contact forces
       qt = sprev - cu(n + 1:)                      ! minus the slip of the step without contact forces
       call solve_friction_lcp(w, qn, qt, cs%tan_row, cs%tan_mu, cs%tan_bound, method, opts, z, rep)
-      res%lcp_iterations = res%lcp_iterations + rep%iterations
+      iterations = iterations + rep%iterations
       if (rep%info /= 0) call fail_numerical('friction, load step ' // int_to_str(kstep) // ' of ' // &
         int_to_str(sc%steps) // ': contact problem not solved: ' // rep%message)
       if (.not. all(ieee_is_finite(z))) call fail_numerical('friction, load step ' // int_to_str(kstep) // &
@@ -493,8 +757,23 @@ contains
         rep%iterations, ' iterations, ', count(z(1:n) > 0.0_dp), ' active, ', count(res%fstate == 2), &
         ' slipping, residual ', rep%residual
       call say(trim(line))
+      step_iterations = rep%iterations
+      if (deck%output%steps_all .and. kstep < sc%steps) then
+        ! this step's displacement, fields and row (the final step is the run's own)
+        res%mu = z(1:n)
+        res%tau = z(n + 1:)
+        res%gap = qn + matmul(w(1:n, :), z)
+        call contact_measures()
+        call step_loads(sc, kstep, fk, ubk)
+        call record_step(kstep, fk, ubk, z)
+        call step_loads(sc, sc%steps, fk, ubk)
+        call move_alloc(res%fstate, saved%fstate)
+        res = saved
+        call move_alloc(saved%fstate, res%fstate)
+      end if
     end do
     res%lcp_method = method
+    res%lcp_iterations = iterations
     res%lcp_residual = rep%residual
     res%steps = sc%steps
     res%mu = z(1:n)
@@ -539,19 +818,38 @@ contains
 
   !> Write every output to a temporary of its own, then commit them all.
   subroutine write_outputs()
-    type(temporary_t) :: tmp(3)
+    type(temporary_t), allocatable :: tmp(:)
     logical :: ok
+    character(len=:), allocatable :: names(:)
+    integer :: kstep, nl
+    ! the run's three files, then with steps=all the .pvd, the step table and
+    ! the per-step VTK files (all but the last one written as they were solved)
+    allocate(tmp(3))
     call create_temporary(outdir, deck%output%vtk, tmp(1), ok)
     if (ok .and. cs%npair > 0) call create_temporary(outdir, deck%output%contact, tmp(2), ok)
     if (ok) call create_temporary(outdir, deck%output%summary, tmp(3), ok)
     if (ok) call write_vtk(tmp(1)%io_path, deck%title, sc%bodies, res, deck%output%fields, ok)
     if (ok .and. cs%npair > 0) call write_contact_csv(tmp(2)%io_path, cs, res, ok)
+    if (ok .and. deck%output%steps_all) then
+      call create_step_file(sc%steps, ok)
+      if (ok) call write_vtk(step_tmp(sc%steps)%io_path, deck%title, sc%bodies, res, deck%output%fields, ok)
+      nl = len(step_file(sc%steps))
+      allocate(character(len=nl) :: names(sc%steps))
+      do kstep = 1, sc%steps
+        names(kstep) = step_file(kstep)
+      end do
+      tmp = [tmp, temporary_t(), temporary_t(), step_tmp]
+      if (ok) call create_temporary(outdir, output_stem() // '.pvd', tmp(4), ok)
+      if (ok) call write_pvd(tmp(4)%io_path, names, ok)
+      if (ok) call create_temporary(outdir, output_stem() // '_steps.csv', tmp(5), ok)
+      if (ok) call write_step_table(tmp(5)%io_path, step_header(), step_table, ok)
+    end if
     if (ok) then
       call lap(ph_output)
       res%memory_peak = peak_memory()
       call write_summary(tmp(3)%io_path, res, ok)
     end if
-    do i = 1, 3
+    do i = 1, size(tmp)
       call close_temporary(tmp(i))
     end do
     if (ok) call commit_temporaries(outdir, tmp, ok)
@@ -602,6 +900,9 @@ contains
     end do
     if (sc%steps > 1 .and. cs%ntan > 0) then
       call say('steps    ' // int_to_str(sc%steps) // ' load steps (friction: the answer depends on the load path)')
+    else if (sc%steps > 1 .and. deck%output%steps_all) then
+      call say('steps    ' // int_to_str(sc%steps) // ' load steps, each solved at its load factors (without ' // &
+               'friction the steps are independent; one factorization for all)')
     else if (sc%steps > 1) then
       call say('steps    ' // int_to_str(sc%steps) // ' load steps declared; without friction the answer does not ' // &
                'depend on the load path: the final step alone is solved')
@@ -655,7 +956,8 @@ contains
     do j = 1, size(split%unheld, 2)
       if (.not. split%loaded(j)) cycle
       write(buf, '(es10.3)') split%load(j)
-      call fail_numerical('no equilibrium: body "' // sc%bodies(split%unheld_body(j))%name // '" is loaded along ' // &
+      call fail_numerical(step_prefix() // 'no equilibrium: body "' // sc%bodies(split%unheld_body(j))%name // &
+        '" is loaded along ' // &
         'a rigid mode (' // motion_name(fl, split%unheld(:, j)) // ') that neither FIX nor contact holds ' // &
         '(frictionless contact holds only normal to the contact surface; load along it ' // trim(adjustl(buf)) // &
         ' of the loads'' scale)')
@@ -725,7 +1027,16 @@ contains
     else
       call say('wrote    ' // outdir // '/' // deck%output%vtk // ', ' // deck%output%summary)
     end if
+    if (deck%output%steps_all) call say('wrote    ' // step_file(1) // ' .. ' // step_file(sc%steps) // ', ' // &
+                                        output_stem() // '.pvd, ' // output_stem() // '_steps.csv')
   end subroutine report_run
+
+  !> 'load step k of n: ' while the steps of OUTPUT steps=all are solved, else ''.
+  function step_prefix() result(t)
+    character(len=:), allocatable :: t
+    t = ''
+    if (allocated(step_note)) t = step_note
+  end function step_prefix
 
   !> How a pair's tangential behaviour is described in the log.
   function friction_law(kind, spec) result(t)
@@ -958,13 +1269,15 @@ contains
       '    MATERIAL isotropic E= nu=', &
       '    MATERIAL orthotropic E1= E2= nu12= G12= [angle=0] [E3= nu13= nu23=]', &
       '    DENSITY rho=', &
-      '    FIX boundary [ux=] [uy=] [ramp=k0:k1]', &
-      '    TRACTION boundary tx= ty= [ramp=k0:k1]', &
-      '    PRESSURE boundary p= [ramp=k0:k1]', &
-      '    BODYFORCE fx= fy= [ramp=k0:k1]', &
-      '    THERMAL alpha= dT= [region=NAME]  (uniform temperature change; per physical surface)', &
+      '    FIX boundary [ux=] [uy=] [ramp=k0:k1|curve=NAME]', &
+      '    FIX boundary [un=] [ut=] [...]    (local axes: outward normal n, t = (-n_y, n_x))', &
+      '    TRACTION boundary tx= ty= [ramp=k0:k1|curve=NAME]', &
+      '    TRACTION boundary tn= tt= [...]   (along each edge''s outward normal n and t)', &
+      '    PRESSURE boundary p= [ramp=k0:k1|curve=NAME]', &
+      '    BODYFORCE fx= fy= [ramp=k0:k1|curve=NAME]', &
+      '    THERMAL alpha= dT= [region=NAME] [curve=NAME]  (uniform temperature change; per physical surface)', &
       '    OFFSET dx= dy=                    (rigid shift of the body''s geometry)', &
-      '  GRAVITY gx= gy= [ramp=k0:k1]', &
+      '  GRAVITY gx= gy= [ramp=k0:k1|curve=NAME]', &
       '  CONTACT slave=body:boundary master=body:boundary [gap=geometry|zero] [mu=C | tresca=S]', &
       '          [interference=allow|reject]  (a boundary may be a closed curve; an initial penetration', &
       '                                    deeper than a slave element is refused unless allowed)', &
@@ -974,7 +1287,9 @@ contains
       '         [condense=auto|solve|inverse]  (W per body: triangular solves or the block''s inverse)', &
       '         [cut=auto|off]  (auto: a body of more than 2e5 dofs and twice the others cut in two halves)', &
       '  STEPS n                           (load steps; ramp=k0:k1: load 0 at step k0 rising to 1 at k1)', &
+      '  CURVE name t0:v0 t1:v1 ...        (load factor v against the step t, piecewise linear: curve=name)', &
       '  OUTPUT [vtk=FILE] [contact=FILE.csv] [summary=FILE] [fields=displacement,contact_pressure,gap,stress,von_mises]', &
+      '         [steps=last|all]  (all: FILE_0001.vtk ... per step, FILE.pvd, FILE_steps.csv)', &
       '', &
       'exit status: 0 solved, 1 solver failure (diagnostic on stderr), 2 bad input.', &
       'See doc/deck.md for every statement, default and output.'

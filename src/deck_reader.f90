@@ -22,10 +22,12 @@
 !>     MATERIAL orthotropic E1= E2= nu12= G12= [angle=0] [E3=E2] [nu13=nu12] [nu23=nu12]
 !>     DENSITY rho=
 !>     FIX boundary [ux=] [uy=] [ramp=0:STEPS]     (neither ux nor uy: ux = uy = 0)
+!>     FIX boundary [un=] [ut=] [ramp=0:STEPS]     (local axes of the boundary; not with ux, uy)
 !>     TRACTION boundary [tx=0] [ty=0] [ramp=0:STEPS]   (at least one of tx, ty)
+!>     TRACTION boundary [tn=0] [tt=0] [ramp=0:STEPS]   (the edges' axes; not with tx, ty)
 !>     PRESSURE boundary p= [ramp=0:STEPS]
 !>     BODYFORCE [fx=0] [fy=0] [ramp=0:STEPS]      (at least one of fx, fy)
-!>     THERMAL alpha= dT= [region=NAME]
+!>     THERMAL alpha= dT= [region=NAME] [curve=NAME]
 !>     OFFSET [dx=0] [dy=0]              (at least one)
 !>   GRAVITY [gx=0] [gy=0] [ramp=0:STEPS]          (at least one of gx, gy)
 !>   CONTACT slave=body:boundary master=body:boundary [gap=geometry|zero]
@@ -33,7 +35,8 @@
 !>   SOLVER [lcp=auto|lemke|pgs|pdas] [tol=1e-10] [maxit=0] [omega=1] [ordering=auto|metis|amd]
 !>          [condense=auto|solve|inverse] [cut=auto|off]
 !>   STEPS n                             default 1; 1 <= n <= 100000
-!>   OUTPUT [vtk=NAME.vtk] [contact=NAME_contact.csv] [summary=NAME.summary]
+!>   CURVE name t0:v0 t1:v1 ...          load factor v against the step t (t increasing)
+!>   OUTPUT [vtk=NAME.vtk] [contact=NAME_contact.csv] [summary=NAME.summary] [steps=last|all]
 !>                                      (NAME: deck file name without folder and
 !>                                      extension; '.vtk' is appended to vtk= if missing)
 !> TITLE, PLANE, GRAVITY, SOLVER, STEPS, OUTPUT: at most once each, outside BODY blocks.
@@ -45,7 +48,11 @@
 !> values by the load factor 0 up to step k0, rising linearly to 1 at step k1, 1 after;
 !> absent, the ramp is 0:STEPS.  Every ramp is resolved on return (fix_t%ramp,
 !> load_t%ramp, body_deck_t%bodyforce_ramp, deck_t%gravity_ramp hold [k0, k1], also
-!> for absent statements; their initial value [0, 1] is the default for STEPS 1).  Friction: mu= (Coulomb, 0 <= mu <= 1000) or tresca= (a
+!> for absent statements; their initial value [0, 1] is the default for STEPS 1).
+!> curve=NAME instead of ramp= (on FIX, TRACTION, PRESSURE, BODYFORCE, GRAVITY,
+!> THERMAL; both on one statement: an error) follows a CURVE: the names are
+!> resolved after the whole deck into the statements' `curve` index (0: the
+!> ramp); curve_factor(c, k) is curve c's factor at step k.  Friction: mu= (Coulomb, 0 <= mu <= 1000) or tresca= (a
 !> slip bound, a shear stress >= 0) on CONTACT, not both; mu=0 and tresca=0 are the
 !> frictionless problem.
 !>
@@ -72,7 +79,7 @@ module deck_reader
   implicit none
   private
   public :: fix_t, load_t, mesh_spec_t, material_t, body_deck_t, contact_deck_t
-  public :: solver_deck_t, output_deck_t, deck_t, read_deck
+  public :: solver_deck_t, output_deck_t, deck_t, curve_t, read_deck, curve_factor
   public :: load_traction, load_pressure, path_too_long
 
   integer, parameter :: load_traction = 1   !< load_t%kind of TRACTION
@@ -83,7 +90,10 @@ module deck_reader
     character(len=:), allocatable :: boundary   !< boundary or point-set name
     logical :: has_ux = .false., has_uy = .false.
     real(dp) :: ux = 0, uy = 0                  !< prescribed displacements
+    logical :: local = .false.                  !< un=/ut=: has_ux, ux hold un (normal), has_uy, uy ut
     integer :: ramp(2) = [0, 1]                 !< load steps k0, k1 of the ramp; default [0, steps]
+    integer :: curve = 0                        !< curve=NAME: index into deck%curves (0: the ramp)
+    character(len=:), allocatable :: curve_name !< curve=NAME as written ('' when absent)
     integer :: line = 0                         !< deck line
   end type fix_t
 
@@ -92,7 +102,10 @@ module deck_reader
     integer :: kind = 0                         !< load_traction or load_pressure
     character(len=:), allocatable :: boundary
     real(dp) :: tx = 0, ty = 0, p = 0           !< force per unit length; pressure
+    logical :: local = .false.                  !< TRACTION tn= tt=: tx holds tn, ty holds tt (boundary axes)
     integer :: ramp(2) = [0, 1]                 !< load steps k0, k1 of the ramp; default [0, steps]
+    integer :: curve = 0                        !< curve=NAME: index into deck%curves (0: the ramp)
+    character(len=:), allocatable :: curve_name !< curve=NAME as written ('' when absent)
     integer :: line = 0
   end type load_t
 
@@ -127,6 +140,8 @@ module deck_reader
   type :: thermal_t
     real(dp) :: alpha = 0, dt = 0
     character(len=:), allocatable :: region     !< '' for the whole body
+    integer :: curve = 0                        !< curve=NAME: index into deck%curves (0: ramp 0:STEPS)
+    character(len=:), allocatable :: curve_name !< curve=NAME as written ('' when absent)
     integer :: line = 0
   end type thermal_t
 
@@ -142,6 +157,8 @@ module deck_reader
                                                 !< grow by doubling and are cut to these at the end
     logical :: has_bodyforce = .false.; real(dp) :: fx = 0, fy = 0; integer :: bodyforce_line = 0
     integer :: bodyforce_ramp(2) = [0, 1]       !< BODYFORCE ramp k0, k1; default [0, steps]
+    integer :: bodyforce_curve = 0              !< BODYFORCE curve=: index into deck%curves (0: the ramp)
+    character(len=:), allocatable :: bodyforce_curve_name
     type(thermal_t), allocatable :: thermals(:) !< (nthermal), always allocated
     logical :: has_offset = .false.; real(dp) :: dx = 0, dy = 0; integer :: offset_line = 0
   end type body_deck_t
@@ -175,8 +192,17 @@ module deck_reader
     character(len=:), allocatable :: vtk, contact, summary
     !> fields of the VTK file: displacement, contact_pressure, gap, stress, von_mises
     logical :: fields(5) = .true.
+    logical :: steps_all = .false.              !< steps=all: VTK per step, .pvd, NAME_steps.csv
     integer :: line = 0
   end type output_deck_t
+
+  !> CURVE name t0:v0 t1:v1 ...: a piecewise-linear load factor v(t) against
+  !> the step number t, constant before t0 and after the last point.
+  type :: curve_t
+    character(len=:), allocatable :: name
+    real(dp), allocatable :: t(:), v(:)         !< (npoint) t strictly increasing
+    integer :: line = 0
+  end type curve_t
 
   !> The whole deck.
   type :: deck_t
@@ -188,6 +214,9 @@ module deck_reader
     type(body_deck_t), allocatable :: bodies(:) !< (nbody), always allocated
     logical :: has_gravity = .false.; real(dp) :: gx = 0, gy = 0; integer :: gravity_line = 0
     integer :: gravity_ramp(2) = [0, 1]         !< GRAVITY ramp k0, k1; default [0, steps]
+    integer :: gravity_curve = 0                !< GRAVITY curve=: index into deck%curves (0: the ramp)
+    character(len=:), allocatable :: gravity_curve_name
+    type(curve_t), allocatable :: curves(:)     !< (ncurve) CURVE statements, always allocated
     integer :: steps = 1                        !< STEPS n: load steps, 1 <= n <= max_steps
     integer :: steps_line = 0                   !< line of the STEPS statement (0: none)
     type(contact_deck_t), allocatable :: contacts(:)   !< (ncontact), always allocated
@@ -266,7 +295,7 @@ contains
 
     deck%file = path
     call split_path(path, deck%dir, deck%name)
-    allocate(deck%bodies(0), deck%contacts(0))
+    allocate(deck%bodies(0), deck%contacts(0), deck%curves(0))
     allocate(s%errs(16), s%echo(64), s%slave_name(4), s%master_name(4))
 
     readable = .false.
@@ -408,7 +437,7 @@ contains
     kw = upper(st%keyword)
 
     select case (kw)
-    case ('TITLE', 'PLANE', 'GRAVITY', 'CONTACT', 'SOLVER', 'STEPS', 'OUTPUT')
+    case ('TITLE', 'PLANE', 'GRAVITY', 'CONTACT', 'SOLVER', 'STEPS', 'OUTPUT', 'CURVE')
       if (s%cur /= 0 .and. .not. s%end_hinted) then
         call report(s, st%line, 'statement ' // kw // ' inside BODY ' // quoted(deck%bodies(s%cur)%name) // &
                     ' opened at line ' // int_to_str(deck%bodies(s%cur)%line) // &
@@ -422,6 +451,7 @@ contains
       case ('CONTACT'); call do_contact(s, deck, st)
       case ('SOLVER');  call do_solver(s, deck, st)
       case ('STEPS');   call do_steps(s, deck, st)
+      case ('CURVE');   call do_curve(s, deck, st)
       case ('OUTPUT');  call do_output(s, deck, st)
       end select
     case ('BODY')
@@ -447,7 +477,7 @@ contains
       call report(s, st%line, 'unknown keyword ' // quoted(st%keyword) // ' (expected one of TITLE, PLANE, ' // &
                   'BODY, MESH, MATERIAL, DENSITY, FIX, TRACTION, PRESSURE, BODYFORCE, THERMAL, OFFSET, END, ' // &
                   'GRAVITY, ' // &
-                  'CONTACT, SOLVER, STEPS, OUTPUT)')
+                  'CONTACT, SOLVER, STEPS, CURVE, OUTPUT)')
     end select
   end subroutine process_line
 
@@ -868,6 +898,57 @@ contains
       ramp = [k0, k1]
     end if
   end subroutine get_ramp
+
+  !> A pair of components in x, y (keys 1, 2 of seen and val) or in the
+  !> boundary's axes n, t (keys 5, 6), not both.
+  !>   names (in)  the four keys, e.g. ux, uy, un, ut
+  !>   local (out) the n, t pair was given;  a, b (inout) its values (unchanged when absent)
+  subroutine get_component_pair(s, st, seen, val, names, local, a, b)
+    type(state_t), intent(inout) :: s
+    type(stmt_t), intent(in) :: st
+    logical, intent(in) :: seen(6)
+    type(text_t), intent(in) :: val(6)
+    character(len=2), intent(in) :: names(4)
+    logical, intent(out) :: local
+    real(dp), intent(inout) :: a, b
+    logical :: ok
+    local = .false.
+    if ((seen(1) .or. seen(2)) .and. (seen(5) .or. seen(6))) then
+      call report(s, st%line, names(1) // '=/' // names(2) // '= and ' // names(3) // '=/' // names(4) // &
+                  '= together (expected x, y components ' // names(1) // ', ' // names(2) // ' or boundary ' // &
+                  'components ' // names(3) // ', ' // names(4) // ', not both: two statements for the two)')
+    else if (seen(5) .or. seen(6)) then
+      local = .true.
+      call get_real(s, st, val(5), names(3), a, ok)
+      call get_real(s, st, val(6), names(4), b, ok)
+    else
+      call get_real(s, st, val(1), names(1), a, ok)
+      call get_real(s, st, val(2), names(2), b, ok)
+    end if
+  end subroutine get_component_pair
+
+  !> The value of curve=NAME (checked as a name; resolved against the CURVE
+  !> statements after the whole deck, resolve_curves).  ramp= and curve= on
+  !> one statement are an error: a statement has one load path.
+  !>   val       (in)  the value of curve=, unallocated when absent
+  !>   ramp_val  (in)  the value of ramp= on the same statement, unallocated when absent
+  !>   name      (out) the curve's name, '' when absent or bad
+  subroutine get_curve_name(s, st, val, ramp_val, name)
+    type(state_t), intent(inout) :: s
+    type(stmt_t), intent(in) :: st
+    type(text_t), intent(in) :: val, ramp_val
+    character(len=:), allocatable, intent(out) :: name
+    logical :: ok
+    name = ''
+    if (.not. allocated(val%s)) return
+    if (allocated(ramp_val%s)) then
+      call report(s, st%line, 'ramp= and curve= together (expected one load path per statement: ramp=k0:k1 ' // &
+                  'or curve=NAME)')
+      return
+    end if
+    call check_name(s, st, val%s, 'curve', ok)
+    if (ok) name = val%s
+  end subroutine get_curve_name
 
   ! ================================================================ statements
 
@@ -1312,11 +1393,12 @@ contains
     type(state_t), intent(inout) :: s
     type(body_deck_t), intent(inout) :: body
     type(stmt_t), intent(in) :: st
-    character(len=*), parameter :: usage = 'FIX boundary [ux=number] [uy=number] [ramp=k0:k1]'
+    character(len=*), parameter :: usage = 'FIX boundary [ux=number] [uy=number] | [un=number] [ut=number] ' // &
+                                           '[ramp=k0:k1|curve=NAME]'
     type(fix_t), allocatable :: grown(:)
     type(fix_t) :: fix
-    logical :: seen(3), ok
-    type(text_t) :: val(3)
+    logical :: seen(6), ok
+    type(text_t) :: val(6)
     integer :: i
 
     fix%line = st%line
@@ -1328,10 +1410,12 @@ contains
       if (ok) fix%boundary = st%word(1)%s
       call check_extra_words(s, st, 1, usage)
     end if
-    call match_keys(s, st, ['ux  ', 'uy  ', 'ramp'], ['number', 'number', 'k0:k1 '], 'FIX', seen, val)
-    call get_real(s, st, val(1), 'ux', fix%ux, ok)
-    call get_real(s, st, val(2), 'uy', fix%uy, ok)
+    call match_keys(s, st, ['ux   ', 'uy   ', 'ramp ', 'curve', 'un   ', 'ut   '], &
+                    ['number', 'number', 'k0:k1 ', 'NAME  ', 'number', 'number'], 'FIX', seen, val)
+    call get_component_pair(s, st, seen, val, ['ux', 'uy', 'un', 'ut'], fix%local, fix%ux, fix%uy)
+    if (fix%local) seen(1:2) = seen(5:6)             ! ux, uy hold un, ut
     call get_ramp(s, st, val(3), fix%ramp)
+    call get_curve_name(s, st, val(4), val(3), fix%curve_name)
     fix%has_ux = seen(1)
     fix%has_uy = seen(2)
     if (.not. (seen(1) .or. seen(2))) then          ! FIX boundary [ramp=]: clamp both
@@ -1357,15 +1441,15 @@ contains
     character(len=:), allocatable :: usage
     type(load_t), allocatable :: grown(:)
     type(load_t) :: load
-    logical :: seen(3), ok
-    type(text_t) :: val(3)
+    logical :: seen(6), ok
+    type(text_t) :: val(6)
     integer :: i, nerr0
 
     if (kw == 'TRACTION') then
-      usage = 'TRACTION boundary tx=number ty=number [ramp=k0:k1]'
+      usage = 'TRACTION boundary tx=number ty=number | tn=number tt=number [ramp=k0:k1|curve=NAME]'
       load%kind = load_traction
     else
-      usage = 'PRESSURE boundary p=number [ramp=k0:k1]'
+      usage = 'PRESSURE boundary p=number [ramp=k0:k1|curve=NAME]'
       load%kind = load_pressure
     end if
     load%line = st%line
@@ -1379,16 +1463,19 @@ contains
       call check_extra_words(s, st, 1, usage)
     end if
     if (kw == 'TRACTION') then
-      call match_keys(s, st, ['tx  ', 'ty  ', 'ramp'], ['number', 'number', 'k0:k1 '], 'TRACTION', seen, val)
-      if (.not. (seen(1) .or. seen(2))) call report(s, st%line, 'missing tx= and ty= (expected ' // usage // ')')
-      call get_real(s, st, val(1), 'tx', load%tx, ok)
-      call get_real(s, st, val(2), 'ty', load%ty, ok)
+      call match_keys(s, st, ['tx   ', 'ty   ', 'ramp ', 'curve', 'tn   ', 'tt   '], &
+                      ['number', 'number', 'k0:k1 ', 'NAME  ', 'number', 'number'], 'TRACTION', seen, val)
+      if (.not. any(seen([1, 2, 5, 6]))) call report(s, st%line, 'missing tx= and ty= (expected ' // usage // ')')
+      call get_component_pair(s, st, seen, val, ['tx', 'ty', 'tn', 'tt'], load%local, load%tx, load%ty)
       call get_ramp(s, st, val(3), load%ramp)
+      call get_curve_name(s, st, val(4), val(3), load%curve_name)
     else
-      call match_keys(s, st, ['p   ', 'ramp'], ['number', 'k0:k1 '], 'PRESSURE', seen(1:2), val(1:2))
+      call match_keys(s, st, ['p    ', 'ramp ', 'curve'], ['number', 'k0:k1 ', 'NAME  '], 'PRESSURE', seen(1:3), &
+                      val(1:3))
       call require_key(s, st, seen(1), 'p', 'PRESSURE', usage)
       call get_real(s, st, val(1), 'p', load%p, ok)
       call get_ramp(s, st, val(2), load%ramp)
+      call get_curve_name(s, st, val(3), val(2), load%curve_name)
     end if
     if (s%nerr /= nerr0) return
     if (body%nload == size(body%loads)) then        ! capacity doubles, as for FIX
@@ -1405,9 +1492,9 @@ contains
     type(state_t), intent(inout) :: s
     type(body_deck_t), intent(inout) :: body
     type(stmt_t), intent(in) :: st
-    character(len=*), parameter :: usage = 'BODYFORCE fx=number fy=number [ramp=k0:k1]'
-    logical :: seen(3), ok1, ok2
-    type(text_t) :: val(3)
+    character(len=*), parameter :: usage = 'BODYFORCE fx=number fy=number [ramp=k0:k1|curve=NAME]'
+    logical :: seen(4), ok1, ok2
+    type(text_t) :: val(4)
 
     if (body%bodyforce_line > 0) then
       call report(s, st%line, 'second BODYFORCE in BODY ' // quoted(body%name) // ' (first at line ' // &
@@ -1416,11 +1503,13 @@ contains
     end if
     body%bodyforce_line = st%line
     call check_extra_words(s, st, 0, usage)
-    call match_keys(s, st, ['fx  ', 'fy  ', 'ramp'], ['number', 'number', 'k0:k1 '], 'BODYFORCE', seen, val)
+    call match_keys(s, st, ['fx   ', 'fy   ', 'ramp ', 'curve'], ['number', 'number', 'k0:k1 ', 'NAME  '], &
+                    'BODYFORCE', seen, val)
     if (.not. (seen(1) .or. seen(2))) call report(s, st%line, 'missing fx= and fy= (expected ' // usage // ')')
     call get_real(s, st, val(1), 'fx', body%fx, ok1)
     call get_real(s, st, val(2), 'fy', body%fy, ok2)
     call get_ramp(s, st, val(3), body%bodyforce_ramp)
+    call get_curve_name(s, st, val(4), val(3), body%bodyforce_curve_name)
     body%has_bodyforce = (ok1 .or. .not. seen(1)) .and. (ok2 .or. .not. seen(2)) .and. (seen(1) .or. seen(2))
   end subroutine do_bodyforce
 
@@ -1429,15 +1518,17 @@ contains
     type(state_t), intent(inout) :: s
     type(body_deck_t), intent(inout) :: body
     type(stmt_t), intent(in) :: st
-    character(len=*), parameter :: usage = 'THERMAL alpha=number dT=number [region=NAME]'
+    character(len=*), parameter :: usage = 'THERMAL alpha=number dT=number [region=NAME] [curve=NAME]'
     type(thermal_t), allocatable :: grown(:)
     type(thermal_t) :: th
-    logical :: seen(3), ok1, ok2, okn
-    type(text_t) :: val(3)
+    logical :: seen(4), ok1, ok2, okn
+    type(text_t) :: val(4), no_ramp
     integer :: k
 
     call check_extra_words(s, st, 0, usage)
-    call match_keys(s, st, ['alpha ', 'dT    ', 'region'], ['number', 'number', 'NAME  '], 'THERMAL', seen, val)
+    call match_keys(s, st, ['alpha ', 'dT    ', 'region', 'curve '], ['number', 'number', 'NAME  ', 'NAME  '], &
+                    'THERMAL', seen, val)
+    call get_curve_name(s, st, val(4), no_ramp, th%curve_name)
     call require_key(s, st, seen(1), 'alpha', 'THERMAL', usage)
     call require_key(s, st, seen(2), 'dT', 'THERMAL', usage)
     call get_real(s, st, val(1), 'alpha', th%alpha, ok1)
@@ -1496,9 +1587,9 @@ contains
     type(state_t), intent(inout) :: s
     type(deck_t), intent(inout) :: deck
     type(stmt_t), intent(in) :: st
-    character(len=*), parameter :: usage = 'GRAVITY gx=number gy=number [ramp=k0:k1]'
-    logical :: seen(3), ok1, ok2
-    type(text_t) :: val(3)
+    character(len=*), parameter :: usage = 'GRAVITY gx=number gy=number [ramp=k0:k1|curve=NAME]'
+    logical :: seen(4), ok1, ok2
+    type(text_t) :: val(4)
 
     if (deck%gravity_line > 0) then
       call report(s, st%line, 'second GRAVITY (first at line ' // int_to_str(deck%gravity_line) // &
@@ -1507,11 +1598,13 @@ contains
     end if
     deck%gravity_line = st%line
     call check_extra_words(s, st, 0, usage)
-    call match_keys(s, st, ['gx  ', 'gy  ', 'ramp'], ['number', 'number', 'k0:k1 '], 'GRAVITY', seen, val)
+    call match_keys(s, st, ['gx   ', 'gy   ', 'ramp ', 'curve'], ['number', 'number', 'k0:k1 ', 'NAME  '], &
+                    'GRAVITY', seen, val)
     if (.not. (seen(1) .or. seen(2))) call report(s, st%line, 'missing gx= and gy= (expected ' // usage // ')')
     call get_real(s, st, val(1), 'gx', deck%gx, ok1)
     call get_real(s, st, val(2), 'gy', deck%gy, ok2)
     call get_ramp(s, st, val(3), deck%gravity_ramp)
+    call get_curve_name(s, st, val(4), val(3), deck%gravity_curve_name)
     deck%has_gravity = (ok1 .or. .not. seen(1)) .and. (ok2 .or. .not. seen(2)) .and. (seen(1) .or. seen(2))
   end subroutine do_gravity
 
@@ -1702,17 +1795,104 @@ contains
     s%steps_bad = s%nerr /= nerr0
   end subroutine do_steps
 
+  !> CURVE name t0:v0 t1:v1 ...: a piecewise-linear load factor against the
+  !> step number, at least one point, t strictly increasing (numbers, not
+  !> necessarily integers).
+  subroutine do_curve(s, deck, st)
+    type(state_t), intent(inout) :: s
+    type(deck_t), intent(inout) :: deck
+    type(stmt_t), intent(in) :: st
+    character(len=*), parameter :: usage = 'CURVE name t0:v0 t1:v1 ... with step numbers t0 < t1 < ... and ' // &
+                                           'load factors v'
+    type(curve_t) :: c
+    type(curve_t), allocatable :: grown(:)
+    integer :: k, colon, nerr0
+    logical :: ok, ok1, ok2
+    character(len=:), allocatable :: w
+
+    nerr0 = s%nerr
+    c%line = st%line
+    if (st%npair > 0) call report(s, st%line, 'unexpected ' // quoted(st%key(1)%s // '=' // st%value(1)%s) // &
+                                  ' (expected ' // usage // ')')
+    if (st%nword == 0) then
+      call report(s, st%line, 'missing curve name (expected ' // usage // ')')
+      return
+    end if
+    call check_name(s, st, st%word(1)%s, 'curve', ok)
+    if (.not. ok) return
+    c%name = st%word(1)%s
+    do k = 1, size(deck%curves)
+      if (deck%curves(k)%name == c%name .and. len(deck%curves(k)%name) == len(c%name)) then
+        call report(s, st%line, 'second CURVE ' // quoted(c%name) // ' (first at line ' // &
+                    int_to_str(deck%curves(k)%line) // '; expected unique curve names)')
+        return
+      end if
+    end do
+    if (st%nword == 1) then
+      call report(s, st%line, 'curve ' // quoted(c%name) // ' has no points (expected ' // usage // ')')
+      return
+    end if
+    allocate(c%t(st%nword - 1), c%v(st%nword - 1))
+    do k = 2, st%nword
+      w = st%word(k)%s
+      colon = index(w, ':')
+      ok1 = .false.
+      ok2 = .false.
+      if (colon > 1 .and. colon < len(w)) then
+        call parse_real(w(1:colon - 1), c%t(k - 1), ok1)
+        call parse_real(w(colon + 1:), c%v(k - 1), ok2)
+      end if
+      if (.not. (ok1 .and. ok2)) then
+        call report(s, st%line, 'bad curve point ' // quoted(cut(w)) // ' (expected t:v, two numbers: the step ' // &
+                    'and the load factor)')
+        return
+      end if
+      if (k > 2) then
+        if (.not. c%t(k - 1) > c%t(k - 2)) then
+          call report(s, st%line, 'curve ' // quoted(c%name) // ': step ' // quoted(w(1:colon - 1)) // &
+                      ' not after the previous point''s (expected increasing steps t0 < t1 < ...)')
+          return
+        end if
+      end if
+    end do
+    if (s%nerr /= nerr0) return
+    allocate(grown(size(deck%curves) + 1))
+    grown(1:size(deck%curves)) = deck%curves
+    grown(size(grown)) = c
+    call move_alloc(grown, deck%curves)
+  end subroutine do_curve
+
+  !> Load factor of curve c at step k: linear between its points, its first
+  !> value before the first point and its last value after the last one.
+  pure real(dp) function curve_factor(c, k) result(f)
+    type(curve_t), intent(in) :: c
+    real(dp), intent(in) :: k
+    integer :: i, n
+    n = size(c%t)
+    if (k <= c%t(1)) then
+      f = c%v(1)
+    else if (k >= c%t(n)) then
+      f = c%v(n)
+    else
+      do i = 2, n
+        if (k <= c%t(i)) exit
+      end do
+      f = c%v(i - 1) + (c%v(i) - c%v(i - 1)) * (k - c%t(i - 1)) / (c%t(i) - c%t(i - 1))
+    end if
+  end function curve_factor
+
   !> OUTPUT [vtk=] [contact=] [summary=]
   subroutine do_output(s, deck, st)
     type(state_t), intent(inout) :: s
     type(deck_t), intent(inout) :: deck
     type(stmt_t), intent(in) :: st
-    character(len=*), parameter :: usage = 'OUTPUT [vtk=NAME] [contact=NAME] [summary=NAME] [fields=LIST]'
-    character(len=7), parameter :: names(4) = [character(len=7) :: 'vtk', 'contact', 'summary', 'fields']
+    character(len=*), parameter :: usage = 'OUTPUT [vtk=NAME] [contact=NAME] [summary=NAME] [fields=LIST] ' // &
+                                           '[steps=last|all]'
+    character(len=7), parameter :: names(5) = [character(len=7) :: 'vtk', 'contact', 'summary', 'fields', 'steps']
     character(len=16), parameter :: field_names(5) = [character(len=16) :: 'displacement', 'contact_pressure', &
                                                       'gap', 'stress', 'von_mises']
-    logical :: seen(4)
-    type(text_t) :: val(4)
+    logical :: seen(5)
+    type(text_t) :: val(5)
     integer :: k, p, q, f
     character(len=:), allocatable :: item
 
@@ -1724,7 +1904,18 @@ contains
     s%output_line = st%line
     deck%output%line = st%line
     call check_extra_words(s, st, 0, usage)
-    call match_keys(s, st, names, ['NAME', 'NAME', 'NAME', 'LIST'], 'OUTPUT', seen, val)
+    call match_keys(s, st, names, ['NAME    ', 'NAME    ', 'NAME    ', 'LIST    ', 'last|all'], 'OUTPUT', seen, val)
+    if (allocated(val(5)%s)) then
+      select case (lower(val(5)%s))
+      case ('last')
+        deck%output%steps_all = .false.
+      case ('all')
+        deck%output%steps_all = .true.
+      case default
+        call report(s, st%line, 'bad value ' // quoted(cut(val(5)%s)) // ' for steps= (expected steps=last or ' // &
+                    'steps=all)')
+      end select
+    end if
     if (allocated(val(4)%s)) then
       ! fields=a,b,c (or all, or none): the arrays of the VTK file
       deck%output%fields = .false.
@@ -1822,6 +2013,7 @@ contains
     call resolve_contacts(s, deck, resolved)
     if (resolved .and. .not. s%contact_bad) call check_rigid_modes(s, deck)
     call check_ramps(s, deck)
+    call resolve_curves(s, deck)
     call check_friction_solver(s, deck)
     call check_output_names(s, deck)
   end subroutine finish_checks
@@ -1847,6 +2039,56 @@ contains
     end do
     if (deck%gravity_line > 0) call check_ramp_end(s, deck, deck%gravity_ramp, deck%gravity_line)
   end subroutine check_ramps
+
+  !> Every curve=NAME names a CURVE of the deck (index into deck%curves).
+  subroutine resolve_curves(s, deck)
+    type(state_t), intent(inout) :: s
+    type(deck_t), intent(inout) :: deck
+    integer :: b, i
+    do b = 1, s%nbody
+      associate (body => deck%bodies(b))
+        do i = 1, size(body%fixes)
+          call resolve(body%fixes(i)%curve_name, body%fixes(i)%line, body%fixes(i)%curve)
+        end do
+        do i = 1, size(body%loads)
+          call resolve(body%loads(i)%curve_name, body%loads(i)%line, body%loads(i)%curve)
+        end do
+        do i = 1, size(body%thermals)
+          call resolve(body%thermals(i)%curve_name, body%thermals(i)%line, body%thermals(i)%curve)
+        end do
+        call resolve(body%bodyforce_curve_name, body%bodyforce_line, body%bodyforce_curve)
+      end associate
+    end do
+    call resolve(deck%gravity_curve_name, deck%gravity_line, deck%gravity_curve)
+  contains
+    subroutine resolve(name, line, curve)
+      character(len=:), allocatable, intent(in) :: name
+      integer, intent(in) :: line
+      integer, intent(out) :: curve
+      character(len=:), allocatable :: known
+      integer :: c
+      curve = 0
+      if (.not. allocated(name)) return
+      if (len(name) == 0) return
+      do c = 1, size(deck%curves)
+        if (deck%curves(c)%name == name .and. len(deck%curves(c)%name) == len(name)) then
+          curve = c
+          return
+        end if
+      end do
+      known = ''
+      do c = 1, size(deck%curves)
+        if (c > 1) known = known // ', '
+        known = known // deck%curves(c)%name
+      end do
+      if (size(deck%curves) == 0) then
+        known = 'a CURVE statement of that name; the deck has none'
+      else
+        known = 'one of ' // known
+      end if
+      call report(s, line, 'unknown curve ' // quoted(name) // ' (expected ' // known // ')')
+    end subroutine resolve
+  end subroutine resolve_curves
 
   !> Report ramp(2) > STEPS at the line of the statement holding the ramp.
   subroutine check_ramp_end(s, deck, ramp, line)
@@ -2045,6 +2287,12 @@ contains
       call report(s, line, 'OUTPUT files must differ (vtk and summary are both ' // quoted(v) // ')')
     else if (c == m .and. len(c) == len(m)) then
       call report(s, line, 'OUTPUT files must differ (contact and summary are both ' // quoted(c) // ')')
+    else if (deck%output%steps_all) then
+      ! steps=all adds STEM.pvd and STEM_steps.csv (STEM: the vtk name without .vtk)
+      v = v(1:len(v) - 4)
+      if (c == v // '.pvd' .or. m == v // '.pvd' .or. c == v // '_steps.csv' .or. m == v // '_steps.csv') &
+        call report(s, line, 'OUTPUT files must differ (steps=all writes ' // quoted(v // '.pvd') // ' and ' // &
+                    quoted(v // '_steps.csv') // ', which contact= or summary= names too)')
     end if
     ! each is written as NAME.part first, then renamed: 5 bytes kept for that
     if (len(path_too_long(v, 5)) > 0) call report(s, line, 'OUTPUT vtk: ' // path_too_long(v, 5))

@@ -9,6 +9,8 @@
 !>   write_vtk(path, title, bodies, r, ok)
 !>   write_contact_csv(path, cs, r, ok)
 !>   write_summary(path, r, ok)
+!>   write_pvd(path, files, ok)            ParaView collection of the per-step VTK files
+!>   write_step_table(path, header, table, ok)   NAME_steps.csv: one row per load step
 module results_writer
   use kinds, only: dp, i8
   use body, only: body_t
@@ -20,7 +22,7 @@ module results_writer
   use omp_lib, only: omp_get_max_threads
   implicit none
   private
-  public :: results_t, write_vtk, write_contact_csv, write_summary
+  public :: results_t, write_vtk, write_contact_csv, write_summary, write_pvd, write_step_table
   public :: phase_names, nphase, peak_memory
 
   integer, parameter :: nphase = 8
@@ -52,6 +54,8 @@ module results_writer
     integer :: steps = 1                         !< load steps solved
     integer :: stick_nodes = 0, slip_nodes = 0   !< friction states at the end
     real(dp), allocatable :: reaction(:,:)       !< (2, nfix)
+    real(dp), allocatable :: contact_force(:,:)  !< (2, npair) resultant of the contact forces on each
+                                                 !< pair's slave body, -sum_i (mu_i n_i + tau_i t_i)
     character(len=:), allocatable :: fix_label(:) !< (nfix) BODY:BOUNDARY
     real(dp) :: energy = 0
     character(len=:), allocatable :: lcp_method
@@ -371,6 +375,11 @@ contains
     do k = 1, size(r%fix_label)
       write(u, '(a)') 'reaction ' // trim(r%fix_label(k)) // ' ' // num(r%reaction(1, k)) // ' ' // num(r%reaction(2, k))
     end do
+    if (allocated(r%contact_force)) then
+      do k = 1, size(r%contact_force, 2)
+        write(u, '(a,i0,a)') 'contact_force ', k, ' ' // num(r%contact_force(1, k)) // ' ' // num(r%contact_force(2, k))
+      end do
+    end if
     if (allocated(r%unheld_mode)) then
       do k = 1, size(r%unheld_mode)
         write(u, '(a)') 'unheld_mode ' // trim(r%unheld_mode(k))
@@ -389,6 +398,63 @@ contains
     close(u, iostat=ios)
     ok = ios == 0
   end subroutine write_summary
+
+  !> A ParaView collection (.pvd) of the per-step VTK files: the dataset of
+  !> step k is files(k), at timestep k.
+  !>   path  (in)  file to write;  files (in) (nstep) names relative to the .pvd's folder
+  !>   ok    (out) written completely
+  subroutine write_pvd(path, files, ok)
+    character(len=*), intent(in) :: path
+    character(len=*), intent(in) :: files(:)
+    logical, intent(out) :: ok
+    integer :: u, ios, k
+    open(newunit=u, file=path, status='replace', action='write', form='formatted', iostat=ios)
+    ok = ios == 0
+    if (.not. ok) return
+    write(u, '(a)', iostat=ios) '<?xml version="1.0"?>'
+    write(u, '(a)', iostat=ios) '<VTKFile type="Collection" version="0.1">'
+    write(u, '(a)', iostat=ios) '  <Collection>'
+    do k = 1, size(files)
+      write(u, '(a,i0,a)', iostat=ios) '    <DataSet timestep="', k, '" file="' // trim(files(k)) // '"/>'
+    end do
+    write(u, '(a)', iostat=ios) '  </Collection>'
+    write(u, '(a)', iostat=ios) '</VTKFile>'
+    ok = ios == 0
+    close(u, iostat=ios)
+    ok = ok .and. ios == 0
+  end subroutine write_pvd
+
+  !> The table of the load steps (CSV): the header line, then one row per
+  !> step; the first column (the step) and the last two (active nodes, LCP
+  !> iterations) are integers.
+  !>   header (in) the header line;  table (in) (ncol, nstep) the rows
+  subroutine write_step_table(path, header, table, ok)
+    character(len=*), intent(in) :: path, header
+    real(dp), intent(in) :: table(:,:)
+    logical, intent(out) :: ok
+    integer :: u, ios, k, c, nc
+    character(len=:), allocatable :: line
+    open(newunit=u, file=path, status='replace', action='write', form='formatted', iostat=ios)
+    ok = ios == 0
+    if (.not. ok) return
+    write(u, '(a)', iostat=ios) header
+    nc = size(table, 1)
+    do k = 1, size(table, 2)
+      line = int_to_str(nint(table(1, k)))
+      do c = 2, nc
+        if (c >= nc - 1) then
+          line = line // ',' // int_to_str(nint(table(c, k)))
+        else
+          line = line // ',' // num(table(c, k))
+        end if
+      end do
+      write(u, '(a)', iostat=ios) line
+      if (ios /= 0) exit
+    end do
+    ok = ios == 0
+    close(u, iostat=ios)
+    ok = ok .and. ios == 0
+  end subroutine write_step_table
 
   !> Peak resident set size of this process in bytes (VmHWM of
   !> /proc/self/status on Linux); 0 when it cannot be read.

@@ -111,6 +111,10 @@ contains
     do a_ = 1, n                                  ! tx, ty, rotation / size
       r3(2 * a_ - 1, :) = [1.0_dp, 0.0_dp, -(bd%mesh%x(2, a_) - xc(2)) / size_b]
       r3(2 * a_, :) = [0.0_dp, 1.0_dp, (bd%mesh%x(1, a_) - xc(1)) / size_b]
+      if (allocated(bd%axes)) then                ! a node in local axes: (r.n, r.t), the solver basis
+        if (any(bd%axes(:, a_) /= 0.0_dp)) r3(2 * a_ - 1:2 * a_, :) = matmul(reshape([bd%axes(1, a_), &
+          -bd%axes(2, a_), bd%axes(2, a_), bd%axes(1, a_)], [2, 2]), r3(2 * a_ - 1:2 * a_, :))
+      end if
     end do
     fdofs = pack([(i, i = 1, nd)], fixed(bd%dof0 + 1:bd%dof0 + nd))
     nfix = size(fdofs)

@@ -8,14 +8,22 @@
 !> The scene declares its effects: only what the deck asks for is simulated,
 !> and scene%effects lists it for the run log and the summary.
 !>
+!> Load paths.  The loads and prescribed values are kept per load group (one
+!> per distinct ramp k0:k1 or CURVE); step k's are the groups weighted by their
+!> factors (step_loads), fext and ubar those of the last step.  FIX un=/ut=
+!> puts nodes in local axes (body%axes; apply_fixes), and the groups' forces
+!> are turned to those axes.
+!>
 !> Programming interface
 !>   type(scene_t)                       bodies, dof data, loads, pair specs, effects
+!>   group_factor(sc, g, k), group_name(sc, g)   load factor of group g at step k; its name
+!>   step_loads(sc, k, fext, ubar)        the loads of step k (and the bodies' thermal strains)
 !>   build_scene(deck, gmsh, sc, diag)  gmsh: how .geo files are meshed (trust,
 !>        time limit); errors go to diag with deck lines
 module scene
   use kinds, only: dp
   use diagnostics, only: diag_t, add_error, has_errors, int_to_str, error_t
-  use deck_reader, only: deck_t, body_deck_t, LOAD_TRACTION, LOAD_PRESSURE
+  use deck_reader, only: deck_t, body_deck_t, curve_t, curve_factor, LOAD_TRACTION, LOAD_PRESSURE
   use mesh, only: mesh_t, finalize_mesh, find_boundary, boundary_nodes, find_region, order_for_locality, node_in_file, &
                   locality_min_nodes
   use mesh_rect, only: make_rect_mesh
@@ -25,17 +33,24 @@ module scene
   use safe_files, only: private_folder, real_path
   use material, only: make_isotropic, make_orthotropic
   use elements, only: element_body_load, edge_load
-  use body, only: body_t, node_elements, edge_outward_normal, element_dofs, thermal_loads
+  use body, only: body_t, node_elements, edge_outward_normal, element_dofs, thermal_loads, to_local_axes
   use contact_set, only: pair_spec_t
   implicit none
   private
-  public :: scene_t, fix_ref_t, build_scene, load_factor
+  public :: scene_t, fix_ref_t, build_scene, load_factor, group_factor, step_loads, group_name
 
   !> A FIX statement, for its reaction line in the summary.
   type :: fix_ref_t
     integer :: body = 0
     character(len=:), allocatable :: label   !< BODY:BOUNDARY
   end type fix_ref_t
+
+  !> The thermal strain of a body along its load path: at step k, adt of
+  !> each element is the factor of its group times adt1.
+  type :: thermal_path_t
+    real(dp), allocatable :: adt1(:)          !< (nelem) alpha dT at load factor 1
+    integer, allocatable :: group(:)          !< (nelem) load group of each element's THERMAL
+  end type thermal_path_t
 
   type :: scene_t
     type(body_t), allocatable :: bodies(:)
@@ -48,10 +63,14 @@ module scene
     real(dp), allocatable :: fext(:)          !< (ndof) external nodal forces
     type(pair_spec_t), allocatable :: specs(:)  !< CONTACT pairs
     character(len=:), allocatable :: effects  !< space-separated effects simulated
-    ! load history (STEPS n, ramp=k0:k1): the loads and prescribed values
-    ! split by ramp; fext and ubar are their sums (the final step)
+    ! load history (STEPS n, ramp=k0:k1, curve=NAME): the loads and prescribed
+    ! values split by load path; fext and ubar are their sums weighted by the
+    ! paths' factors at the final step n
     integer :: steps = 1                      !< load steps
-    integer, allocatable :: ramp(:,:)         !< (2, ngroup) distinct ramps k0:k1
+    integer, allocatable :: ramp(:,:)         !< (2, ngroup) distinct ramps k0:k1 ([0, 0] for a curve's group)
+    integer, allocatable :: group_curve(:)    !< (ngroup) the curve of each group, 0 for a ramp's
+    type(curve_t), allocatable :: curves(:)   !< the deck's CURVE statements
+    type(thermal_path_t), allocatable :: thermal(:)  !< (nbody) alpha dT at factor 1 and its group
     real(dp), allocatable :: fgroup(:,:)      !< (ndof, ngroup) external forces of each ramp
     real(dp), allocatable :: ugroup(:,:)      !< (ndof, ngroup) prescribed values of each ramp
   end type scene_t
@@ -104,8 +123,10 @@ contains
     allocate(sc%fixed(ndof), sc%ubar(ndof), sc%fix_owner(ndof), sc%fext(ndof))
     sc%fixed = .false.; sc%ubar = 0.0_dp; sc%fix_owner = 0; sc%fext = 0.0_dp
     sc%steps = deck%steps
-    call collect_ramps(deck, sc%ramp)
+    sc%curves = deck%curves
+    call collect_ramps(deck, sc%ramp, sc%group_curve)
     allocate(sc%fgroup(ndof, size(sc%ramp, 2)), sc%ugroup(ndof, size(sc%ramp, 2)))
+    allocate(sc%thermal(nb))
     sc%fgroup = 0.0_dp; sc%ugroup = 0.0_dp
 
     nfix = 0
@@ -121,20 +142,18 @@ contains
       call apply_fixes(deck, deck%bodies(b), sc, b, ifix, diag)
       call apply_loads(deck, deck%bodies(b), sc, b, diag, has_traction, has_pressure, has_bforce, has_gravity)
       if (size(deck%bodies(b)%thermals) > 0) then
-        call apply_thermal(deck, deck%bodies(b), sc%bodies(b), diag)
-        if (allocated(sc%bodies(b)%adt)) call thermal_loads(sc%bodies(b), &
-                                                             sc%fgroup(:, ramp_group(sc, [0, deck%steps])))
+        call apply_thermal(deck, deck%bodies(b), sc, b, diag)
         has_thermal = .true.
       end if
     end do
     has_offset = any(deck%bodies(:)%has_offset)
-    if (size(sc%ramp, 2) == 1) then                 ! one ramp: the sums are the group itself
-      sc%fext = sc%fgroup(:, 1)
-      sc%ubar = sc%ugroup(:, 1)
-    else
-      sc%fext = sum(sc%fgroup, dim=2)
-      sc%ubar = sum(sc%ugroup, dim=2)
+    ! the nodes in local axes (FIX un=/ut=) take their forces in those axes
+    if (any([(allocated(sc%bodies(b)%axes), b = 1, nb)])) then
+      do ip = 1, size(sc%ramp, 2)
+        call to_local_axes(sc%bodies, sc%fgroup(:, ip))
+      end do
     end if
+    call step_loads(sc, sc%steps, sc%fext, sc%ubar)
     has_dirichlet = any(sc%fixed .and. sc%ubar /= 0.0_dp)
 
     ! contact pairs
@@ -169,54 +188,112 @@ contains
       sc%effects = sc%effects // ' friction'
   end subroutine build_scene
 
-  !> The distinct ramps of the deck's loads and prescribed values, the default
-  !> [0, steps] first (thermal loads always follow it).
-  subroutine collect_ramps(deck, ramp)
+  !> The distinct load paths of the deck's loads and prescribed values: ramps
+  !> k0:k1 and curves, the default ramp [0, steps] first.
+  !>   ramp   (out) (2, ngroup) the ramp of each group, [0, 0] for a curve's
+  !>   curve  (out) (ngroup) the curve of each group, 0 for a ramp's
+  subroutine collect_ramps(deck, ramp, curve)
     type(deck_t), intent(in) :: deck
-    integer, allocatable, intent(out) :: ramp(:,:)
+    integer, allocatable, intent(out) :: ramp(:,:), curve(:)
     integer :: b, k, n
     integer, allocatable :: list(:,:)
     n = 1
-    allocate(list(2, 8))
-    list(:, 1) = [0, deck%steps]
-    if (deck%has_gravity) call add(deck%gravity_ramp)
+    allocate(list(3, 8))
+    list(:, 1) = [0, deck%steps, 0]
+    if (deck%has_gravity) call add(deck%gravity_ramp, deck%gravity_curve)
     do b = 1, size(deck%bodies)
       do k = 1, size(deck%bodies(b)%fixes)
-        call add(deck%bodies(b)%fixes(k)%ramp)
+        call add(deck%bodies(b)%fixes(k)%ramp, deck%bodies(b)%fixes(k)%curve)
       end do
       do k = 1, size(deck%bodies(b)%loads)
-        call add(deck%bodies(b)%loads(k)%ramp)
+        call add(deck%bodies(b)%loads(k)%ramp, deck%bodies(b)%loads(k)%curve)
       end do
-      if (deck%bodies(b)%has_bodyforce) call add(deck%bodies(b)%bodyforce_ramp)
+      do k = 1, size(deck%bodies(b)%thermals)
+        call add([0, deck%steps], deck%bodies(b)%thermals(k)%curve)
+      end do
+      if (deck%bodies(b)%has_bodyforce) call add(deck%bodies(b)%bodyforce_ramp, deck%bodies(b)%bodyforce_curve)
     end do
-    ramp = list(:, 1:n)
+    ramp = list(1:2, 1:n)
+    curve = list(3, 1:n)
   contains
-    subroutine add(r)
-      integer, intent(in) :: r(2)
-      integer :: i
+    subroutine add(r, c)
+      integer, intent(in) :: r(2), c
+      integer :: i, key(3)
       integer, allocatable :: grown(:,:)
+      key = [r, 0]
+      if (c > 0) key = [0, 0, c]
       do i = 1, n
-        if (list(1, i) == r(1) .and. list(2, i) == r(2)) return
+        if (all(list(:, i) == key)) return
       end do
       if (n == size(list, 2)) then
-        allocate(grown(2, 2 * n))
+        allocate(grown(3, 2 * n))
         grown(:, 1:n) = list
         call move_alloc(grown, list)
       end if
       n = n + 1
-      list(:, n) = r
+      list(:, n) = key
     end subroutine add
   end subroutine collect_ramps
 
-  !> Column of sc%fgroup / sc%ugroup holding ramp r.
-  pure integer function ramp_group(sc, r) result(g)
+  !> Column of sc%fgroup / sc%ugroup holding ramp r, or curve c when c > 0.
+  pure integer function ramp_group(sc, r, c) result(g)
     type(scene_t), intent(in) :: sc
-    integer, intent(in) :: r(2)
+    integer, intent(in) :: r(2), c
     do g = 1, size(sc%ramp, 2)
-      if (sc%ramp(1, g) == r(1) .and. sc%ramp(2, g) == r(2)) return
+      if (c > 0) then
+        if (sc%group_curve(g) == c) return
+      else if (sc%group_curve(g) == 0 .and. sc%ramp(1, g) == r(1) .and. sc%ramp(2, g) == r(2)) then
+        return
+      end if
     end do
     g = 1
   end function ramp_group
+
+  !> Load factor of group g at step k: its curve's value, or its ramp's.
+  pure real(dp) function group_factor(sc, g, k) result(f)
+    type(scene_t), intent(in) :: sc
+    integer, intent(in) :: g, k
+    if (sc%group_curve(g) > 0) then
+      f = curve_factor(sc%curves(sc%group_curve(g)), real(k, dp))
+    else
+      f = load_factor(sc%ramp(:, g), k)
+    end if
+  end function group_factor
+
+  !> Name of group g's load path for tables: the curve's name or ramp_K0_K1.
+  function group_name(sc, g) result(name)
+    type(scene_t), intent(in) :: sc
+    integer, intent(in) :: g
+    character(len=:), allocatable :: name
+    if (sc%group_curve(g) > 0) then
+      name = sc%curves(sc%group_curve(g))%name
+    else
+      name = 'ramp_' // int_to_str(sc%ramp(1, g)) // '_' // int_to_str(sc%ramp(2, g))
+    end if
+  end function group_name
+
+  !> The loads of step k: fext = sum_g f_g(k) fgroup_g, ubar likewise, and the
+  !> bodies' thermal strains alpha dT scaled by their groups' factors.
+  !>   sc    (inout) the scene (its bodies' adt are set for step k)
+  !>   k     (in)    the step, 1..steps
+  !>   fext  (out)   (ndof) external nodal forces of step k
+  !>   ubar  (out)   (ndof) prescribed values of step k
+  subroutine step_loads(sc, k, fext, ubar)
+    type(scene_t), intent(inout) :: sc
+    integer, intent(in) :: k
+    real(dp), intent(out) :: fext(:), ubar(:)
+    integer :: g, b
+    real(dp), allocatable :: f(:)
+    allocate(f(size(sc%ramp, 2)))
+    do g = 1, size(f)
+      f(g) = group_factor(sc, g, k)
+    end do
+    fext = matmul(sc%fgroup, f)
+    ubar = matmul(sc%ugroup, f)
+    do b = 1, size(sc%bodies)
+      if (allocated(sc%thermal(b)%adt1)) sc%bodies(b)%adt = sc%thermal(b)%adt1 * f(sc%thermal(b)%group)
+    end do
+  end subroutine step_loads
 
   !> Load factor of ramp k0:k1 at step k: 0 up to k0, linear to 1 at k1, then 1.
   pure real(dp) function load_factor(ramp, k) result(f)
@@ -347,7 +424,14 @@ contains
     if (len(s) == 0) s = 'none: the mesh names no boundary'
   end function boundary_list
 
-  !> Dirichlet dofs of the FIX statements of body b.
+  !> Dirichlet dofs of the FIX statements of body b.  A component of a FIX
+  !> fixes the displacement along a direction d: e_x, e_y (ux=, uy=), or the
+  !> boundary's nodal normal n and t = (-n_y, n_x) (un=, ut=; n the
+  !> normalized sum of the outward normals of the boundary's edges at the
+  !> node).  A node keeps one pair of axes: those of the first FIX in local
+  !> axes that reaches it while none of its dofs is fixed, else x, y; a later
+  !> FIX must hold it along one of those axes (up to sign: a rectangle's
+  !> corner), else an error.
   subroutine apply_fixes(deck, bdeck, sc, b, ifix, diag)
     type(deck_t), intent(in) :: deck
     type(body_deck_t), intent(in) :: bdeck
@@ -355,55 +439,158 @@ contains
     integer, intent(in) :: b
     integer, intent(inout) :: ifix
     type(diag_t), intent(inout) :: diag
-    integer :: k, ib, i, dof, c
+    real(dp), parameter :: same = 1.0e-9_dp       ! |cos| within this of 1: the same axis
+    integer :: k, ib, i, dof, c, a, slot
     integer, allocatable :: nodes(:)
-    logical :: has(2)
-    real(dp) :: val(2)
+    logical :: has(2), bad
+    real(dp) :: val(2), v, d(2), q(2, 2), p(2)
+    real(dp), allocatable :: nn(:,:)
     do k = 1, size(bdeck%fixes)
-      associate(fx => bdeck%fixes(k))
+      associate(fx => bdeck%fixes(k), bd => sc%bodies(b))
         ifix = ifix + 1
         sc%fixes(ifix)%body = b
         sc%fixes(ifix)%label = bdeck%name // ':' // fx%boundary
-        ib = boundary_index(deck, fx%line, sc%bodies(b), fx%boundary, 'FIX', diag)
+        if (fx%local) then
+          ib = curve_index(deck, fx%line, bd, fx%boundary, 'FIX un=/ut=', diag)
+        else
+          ib = boundary_index(deck, fx%line, bd, fx%boundary, 'FIX', diag)
+        end if
         if (ib == 0) cycle
-        call boundary_nodes(sc%bodies(b)%mesh%bnd(ib), nodes)
+        call boundary_nodes(bd%mesh%bnd(ib), nodes)
+        if (fx%local) then
+          call nodal_normals(bd, ib, nodes, nn, bad)
+          if (bad) then
+            call add_error(diag, deck%file, fx%line, 'FIX un=/ut= on "' // fx%boundary // '": an edge is not on the ' // &
+              'outer boundary of body "' // bd%name // '" or the edge normals at a node cancel (a boundary ' // &
+              'curve with an outward normal at every node expected)')
+            cycle
+          end if
+          if (.not. allocated(bd%axes)) allocate(bd%axes(2, bd%mesh%nnode), source=0.0_dp)
+        end if
         has = [fx%has_ux, fx%has_uy]
         val = [fx%ux, fx%uy]
-        do i = 1, size(nodes)
+        node_loop: do i = 1, size(nodes)
+          a = nodes(i)
+          dof = bd%dof0 + 2 * (a - 1)
+          if (fx%local .and. .not. any(sc%fixed(dof + 1:dof + 2))) then
+            if (all(bd%axes(:, a) == 0.0_dp)) bd%axes(:, a) = nn(:, i)     ! the node's axes: this FIX's
+          end if
+          q = reshape([1.0_dp, 0.0_dp, 0.0_dp, 1.0_dp], [2, 2])
+          if (allocated(bd%axes)) then
+            if (any(bd%axes(:, a) /= 0.0_dp)) q = reshape([bd%axes(:, a), -bd%axes(2, a), bd%axes(1, a)], [2, 2])
+          end if
           do c = 1, 2
             if (.not. has(c)) cycle
-            dof = sc%bodies(b)%dof0 + 2 * (nodes(i) - 1) + c
+            if (fx%local) then                          ! direction of component c
+              d = nn(:, i)
+              if (c == 2) d = [-nn(2, i), nn(1, i)]
+            else
+              d = 0.0_dp
+              d(c) = 1.0_dp
+            end if
+            p = matmul(transpose(q), d)                 ! d in the node's axes
+            if (abs(abs(p(1)) - 1.0_dp) <= same) then
+              slot = 1
+            else if (abs(abs(p(2)) - 1.0_dp) <= same) then
+              slot = 2
+            else
+              call add_error(diag, deck%file, fx%line, 'FIX ' // fx%boundary // ' holds node ' // &
+                int_to_str(node_in_file(bd%mesh, a)) // ' along ' // direction(d) // ', which is neither axis of ' // &
+                'the node set by an earlier FIX, ' // direction(q(:, 1)) // ' and ' // direction(q(:, 2)) // &
+                ' (expected FIX statements sharing a node to hold it along the same or perpendicular directions)')
+              exit node_loop
+            end if
+            v = sign(1.0_dp, p(slot)) * val(c)
+            dof = bd%dof0 + 2 * (a - 1) + slot
             if (sc%fixed(dof)) then
-              if (sum(sc%ugroup(dof, :)) /= val(c) .or. &
-                  (val(c) /= 0.0_dp .and. sc%ugroup(dof, ramp_group(sc, fx%ramp)) /= val(c))) then
+              if (sum(sc%ugroup(dof, :)) /= v .or. &
+                  (v /= 0.0_dp .and. sc%ugroup(dof, ramp_group(sc, fx%ramp, fx%curve)) /= v)) then
                 call add_error(diag, deck%file, fx%line, 'FIX ' // fx%boundary // ' gives node ' // &
-                  int_to_str(node_in_file(sc%bodies(b)%mesh, nodes(i))) // ' a value that conflicts with an earlier ' // &
+                  int_to_str(node_in_file(bd%mesh, a)) // ' a value that conflicts with an earlier ' // &
                   'FIX (equal values where FIX statements share nodes expected)')
-                exit
+                exit node_loop
               end if
             else
               sc%fixed(dof) = .true.
-              sc%ugroup(dof, ramp_group(sc, fx%ramp)) = val(c)
+              sc%ugroup(dof, ramp_group(sc, fx%ramp, fx%curve)) = v
               sc%fix_owner(dof) = ifix
             end if
           end do
-        end do
+        end do node_loop
       end associate
     end do
   end subroutine apply_fixes
 
+  !> '(dx, dy)' for messages.
+  function direction(d) result(t)
+    real(dp), intent(in) :: d(2)
+    character(len=:), allocatable :: t
+    character(len=16) :: bx, by
+    write(bx, '(f8.4)') d(1)
+    write(by, '(f8.4)') d(2)
+    t = '(' // trim(adjustl(bx)) // ', ' // trim(adjustl(by)) // ')'
+  end function direction
+
+  !> Unit normal at each node of boundary ib: the normalized sum of the outward
+  !> unit normals of the boundary's edges at the node.
+  !>   nodes (in) the boundary's nodes;  nn (out) (2, size(nodes))
+  !>   bad   (out) an edge not on the body's outer boundary, or a zero sum
+  subroutine nodal_normals(bd, ib, nodes, nn, bad)
+    type(body_t), intent(in) :: bd
+    integer, intent(in) :: ib, nodes(:)
+    real(dp), allocatable, intent(out) :: nn(:,:)
+    logical, intent(out) :: bad
+    integer, allocatable :: eptr(:), elist(:), slot(:)
+    integer :: s, na, nb, owner, i
+    real(dp) :: nrm(2)
+    call node_elements(bd%mesh, eptr, elist)
+    allocate(nn(2, size(nodes)), source=0.0_dp)
+    allocate(slot(bd%mesh%nnode), source=0)
+    do i = 1, size(nodes)
+      slot(nodes(i)) = i
+    end do
+    bad = .false.
+    do s = 1, bd%mesh%bnd(ib)%nseg
+      na = bd%mesh%bnd(ib)%seg(1, s)
+      nb = bd%mesh%bnd(ib)%seg(2, s)
+      call edge_outward_normal(bd%mesh, eptr, elist, na, nb, nrm, owner)
+      if (owner <= 0) then
+        bad = .true.
+        return
+      end if
+      nn(:, slot(na)) = nn(:, slot(na)) + nrm
+      nn(:, slot(nb)) = nn(:, slot(nb)) + nrm
+    end do
+    do i = 1, size(nodes)
+      if (norm2(nn(:, i)) < 1.0e-8_dp) then
+        bad = .true.
+        return
+      end if
+      nn(:, i) = nn(:, i) / norm2(nn(:, i))
+    end do
+  end subroutine nodal_normals
+
   !> alpha dT per element from the THERMAL statements of a body: the one
   !> without region= sets every element, those with region= set their region's
-  !> elements (a region statement overrides the whole-body one there).
-  subroutine apply_thermal(deck, bdeck, bd, diag)
+  !> elements (a region statement overrides the whole-body one there).  Each
+  !> statement follows its curve= (else the ramp 0:STEPS): its elements' nodal
+  !> forces go to that load group, and sc%thermal(b) keeps alpha dT and the
+  !> group per element for the steps' stresses.
+  subroutine apply_thermal(deck, bdeck, sc, b, diag)
     type(deck_t), intent(in) :: deck
     type(body_deck_t), intent(in) :: bdeck
-    type(body_t), intent(inout) :: bd
+    type(scene_t), intent(inout) :: sc
+    integer, intent(in) :: b
     type(diag_t), intent(inout) :: diag
-    integer :: k, ir
+    integer :: k, ir, g
+    associate(bd => sc%bodies(b), tp => sc%thermal(b))
     allocate(bd%adt(bd%mesh%nelem), source=0.0_dp)
+    allocate(tp%group(bd%mesh%nelem), source=1)
     do k = 1, size(bdeck%thermals)
-      if (len(bdeck%thermals(k)%region) == 0) bd%adt = bdeck%thermals(k)%alpha * bdeck%thermals(k)%dt
+      if (len(bdeck%thermals(k)%region) == 0) then
+        bd%adt = bdeck%thermals(k)%alpha * bdeck%thermals(k)%dt
+        tp%group = ramp_group(sc, [0, deck%steps], bdeck%thermals(k)%curve)
+      end if
     end do
     do k = 1, size(bdeck%thermals)
       associate(th => bdeck%thermals(k))
@@ -415,8 +602,19 @@ contains
           cycle
         end if
         bd%adt(bd%mesh%reg(ir)%elems) = th%alpha * th%dt
+        tp%group(bd%mesh%reg(ir)%elems) = ramp_group(sc, [0, deck%steps], th%curve)
       end associate
     end do
+    if (has_errors(diag)) return
+    ! the nodal forces of each group's elements (adt masked to them) go to its column
+    tp%adt1 = bd%adt
+    do g = 1, size(sc%ramp, 2)
+      if (.not. any(tp%group == g)) cycle
+      bd%adt = merge(tp%adt1, 0.0_dp, tp%group == g)
+      call thermal_loads(bd, sc%fgroup(:, g))
+    end do
+    bd%adt = tp%adt1
+    end associate
   end subroutine apply_thermal
 
   function region_list(m) result(s)
@@ -457,26 +655,31 @@ contains
             ib = curve_index(deck, ld%line, bd, ld%boundary, 'PRESSURE', diag)
           end if
           if (ib == 0) cycle
-          if (ld%kind == LOAD_PRESSURE .and. .not. have_topology) then
+          if ((ld%kind == LOAD_PRESSURE .or. ld%local) .and. .not. have_topology) then
             call node_elements(m, eptr, elist)
             have_topology = .true.
           end if
           do s = 1, m%bnd(ib)%nseg
             na = m%bnd(ib)%seg(1, s)
             nb = m%bnd(ib)%seg(2, s)
-            if (ld%kind == LOAD_TRACTION) then
+            if (ld%kind == LOAD_TRACTION .and. .not. ld%local) then
               t = [ld%tx, ld%ty]
             else
               call edge_outward_normal(m, eptr, elist, na, nb, nrm, owner)
               if (owner <= 0) then
-                call add_error(diag, deck%file, ld%line, 'PRESSURE on "' // ld%boundary // &
+                call add_error(diag, deck%file, ld%line, merge('PRESSURE', 'TRACTION', ld%kind == LOAD_PRESSURE) // &
+                  ' on "' // ld%boundary // &
                   '": an edge is not on the outer boundary of body "' // bd%name // '" (boundary edges expected)')
                 exit
               end if
-              t = -ld%p * nrm                   ! positive pressure pushes into the body
+              if (ld%kind == LOAD_TRACTION) then    ! tn n + tt t, t = (-n_y, n_x)
+                t = ld%tx * nrm + ld%ty * [-nrm(2), nrm(1)]
+              else
+                t = -ld%p * nrm                   ! positive pressure pushes into the body
+              end if
             end if
             call edge_load(m%x(:, na), m%x(:, nb), t, bd%thick, fe(1:4))
-            associate(f => sc%fgroup(:, ramp_group(sc, ld%ramp)))
+            associate(f => sc%fgroup(:, ramp_group(sc, ld%ramp, ld%curve)))
               f(bd%dof0 + 2 * (na - 1) + [1, 2]) = f(bd%dof0 + 2 * (na - 1) + [1, 2]) + fe(1:2)
               f(bd%dof0 + 2 * (nb - 1) + [1, 2]) = f(bd%dof0 + 2 * (nb - 1) + [1, 2]) + fe(3:4)
             end associate
@@ -490,20 +693,21 @@ contains
       if (bdeck%has_bodyforce) has_bforce = .true.
       if (deck%has_gravity .and. bdeck%has_density) has_gravity = .true.
       if (bdeck%has_bodyforce .and. deck%has_gravity .and. bdeck%has_density .and. &
-          all(bdeck%bodyforce_ramp == deck%gravity_ramp)) then
-        call add_body_load([bdeck%fx, bdeck%fy] + bdeck%rho * [deck%gx, deck%gy], deck%gravity_ramp)
+          all(bdeck%bodyforce_ramp == deck%gravity_ramp) .and. bdeck%bodyforce_curve == deck%gravity_curve) then
+        call add_body_load([bdeck%fx, bdeck%fy] + bdeck%rho * [deck%gx, deck%gy], deck%gravity_ramp, deck%gravity_curve)
       else
-        if (bdeck%has_bodyforce) call add_body_load([bdeck%fx, bdeck%fy], bdeck%bodyforce_ramp)
-        if (deck%has_gravity .and. bdeck%has_density) call add_body_load(bdeck%rho * [deck%gx, deck%gy], deck%gravity_ramp)
+        if (bdeck%has_bodyforce) call add_body_load([bdeck%fx, bdeck%fy], bdeck%bodyforce_ramp, bdeck%bodyforce_curve)
+        if (deck%has_gravity .and. bdeck%has_density) call add_body_load(bdeck%rho * [deck%gx, deck%gy], &
+                                                                         deck%gravity_ramp, deck%gravity_curve)
       end if
     end associate
   contains
-    !> Nodal forces of the body force density bf (per unit volume), ramp r.
-    subroutine add_body_load(bf, r)
+    !> Nodal forces of the body force density bf (per unit volume), ramp r or curve c.
+    subroutine add_body_load(bf, r, c)
       real(dp), intent(in) :: bf(2)
-      integer, intent(in) :: r(2)
+      integer, intent(in) :: r(2), c
       integer :: g
-      g = ramp_group(sc, r)
+      g = ramp_group(sc, r, c)
       associate(bd => sc%bodies(b), m => sc%bodies(b)%mesh)
         do e = 1, m%nelem
           nen = m%nen(e)

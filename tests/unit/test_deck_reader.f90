@@ -7,6 +7,9 @@
 !>   folder 'tests/bad/' removed, equals the line in the matching .expect file (what
 !>   `contact2d deck_x.deck` prints inside tests/bad).
 !> - numbers and integers accepted and refused, written into temporary decks.
+!> - CURVE and curve=: points as written, names resolved on every statement that
+!>   takes one, curve_factor before, between and after the points; FIX un=/ut= and
+!>   TRACTION tn=/tt= flagged local; OUTPUT steps=all.
 !> - STEPS, ramp= and CONTACT friction (mu=, tresca=): values as written, every ramp
 !>   resolved to [k0, k1] (default [0, STEPS]), the end-of-deck checks.
 !> - robustness: missing file, empty file, a 1 MB line, binary bytes, the error cap,
@@ -15,7 +18,7 @@
 program test_deck_reader
   use kinds, only: dp
   use diagnostics, only: diag_t
-  use deck_reader, only: deck_t, read_deck, load_traction, load_pressure
+  use deck_reader, only: deck_t, read_deck, load_traction, load_pressure, curve_factor
   use testing, only: check, check_close, finish_tests
   implicit none
 
@@ -25,6 +28,7 @@ program test_deck_reader
   call test_numbers()
   call test_integers()
   call test_steps_and_ramps()
+  call test_curves()
   call test_friction()
   call test_robustness()
   call finish_tests()
@@ -211,7 +215,7 @@ contains
 
   !> Each bad deck: at least one error; first message line as in its .expect file.
   subroutine test_bad_decks()
-    character(len=*), parameter :: names(82) = [character(len=32) :: &
+    character(len=*), parameter :: names(92) = [character(len=32) :: &
       'deck_bad_name', 'deck_bad_number', 'deck_binary', 'deck_blank_equals_missing', 'deck_body_in_body', &
       'deck_body_no_name', 'deck_boundary_case', 'deck_contact_alone', 'deck_contact_duplicate', &
       'deck_contact_same_boundary', 'deck_contact_syntax', 'deck_contact_unknown_body', 'deck_density_alone', &
@@ -229,7 +233,9 @@ contains
       'deck_traction_missing', 'deck_trailing_garbage', 'deck_unknown_gap', 'deck_unknown_key', &
       'deck_unknown_keyword', 'deck_steps_value', 'deck_steps_missing', 'deck_second_steps', 'deck_ramp_syntax', &
       'deck_ramp_order', 'deck_ramp_steps', 'deck_ramp_no_steps', 'deck_friction_both', 'deck_friction_mu_range', &
-      'deck_friction_tresca_negative', 'deck_friction_pdas']
+      'deck_friction_tresca_negative', 'deck_friction_pdas', 'deck_curve_unknown', 'deck_curve_order', &
+      'deck_curve_point', 'deck_curve_ramp', 'deck_curve_empty', 'deck_curve_duplicate', 'deck_output_steps', &
+      'deck_output_steps_clash', 'deck_traction_mixed', 'deck_fix_axes_mixed']
     type(deck_t) :: d
     type(diag_t) :: g
     character(len=:), allocatable :: expected, got
@@ -395,6 +401,46 @@ contains
                       'expected at most one)', 'steps: second STEPS')
     call expect_error(small_deck('GRAVITY ramp=0:1'), 6, 'missing gx= and gy=', 'ramp: not a value of GRAVITY')
   end subroutine test_steps_and_ramps
+
+  !> CURVE, curve= on every statement that takes it, local axes, OUTPUT steps=.
+  subroutine test_curves()
+    character(len=*), parameter :: nl = achar(10)
+    type(deck_t) :: d
+    type(diag_t) :: g
+    real(dp), parameter :: r = 1.0e-15_dp
+
+    call read_text_deck('STEPS 4' // nl // 'BODY b' // nl // ' MESH rect nx=2 ny=2' // nl // &
+                        ' MATERIAL isotropic E=1 nu=0' // nl // ' DENSITY rho=1' // nl // &
+                        ' FIX bottom un=0 curve=lu' // nl // ' FIX left ux=0.5 ramp=1:2' // nl // &
+                        ' TRACTION top tn=-1 tt=2 curve=up' // nl // ' PRESSURE right p=2 curve=lu' // nl // &
+                        ' BODYFORCE fy=-1 curve=up' // nl // ' THERMAL alpha=1 dT=2 curve=lu' // nl // 'END' // nl // &
+                        'GRAVITY gy=-1 curve=lu' // nl // 'CURVE lu 0:0 2:1 4:0.5' // nl // 'CURVE up 1.5:2' // nl // &
+                        'OUTPUT steps=ALL' // nl, d, g)
+    call check(g%count == 0, 'curve: deck with curves reads')
+    if (g%count > 0) print '(a)', g%items(1)%text
+    if (g%count > 0 .or. size(d%curves) /= 2) return
+    call check(d%curves(1)%name == 'lu' .and. size(d%curves(1)%t) == 3 .and. d%curves(1)%line == 14, &
+               'curve: CURVE lu, three points, its line')
+    call check(all(d%curves(1)%t == [0.0_dp, 2.0_dp, 4.0_dp]) .and. all(d%curves(1)%v == [0.0_dp, 1.0_dp, 0.5_dp]), &
+               'curve: points as written')
+    associate (b => d%bodies(1))
+      call check(b%fixes(1)%curve == 1 .and. b%fixes(1)%local .and. b%fixes(1)%has_ux .and. &
+                 .not. b%fixes(1)%has_uy, 'curve: FIX un=0 curve=lu: local, normal only, curve 1')
+      call check(b%fixes(2)%curve == 0 .and. all(b%fixes(2)%ramp == [1, 2]) .and. .not. b%fixes(2)%local, &
+                 'curve: FIX with ramp= keeps its ramp')
+      call check(b%loads(1)%curve == 2 .and. b%loads(1)%local .and. b%loads(1)%tx == -1 .and. b%loads(1)%ty == 2, &
+                 'curve: TRACTION tn tt curve=up')
+      call check(b%loads(2)%curve == 1, 'curve: PRESSURE curve=lu')
+      call check(b%bodyforce_curve == 2 .and. b%thermals(1)%curve == 1, 'curve: BODYFORCE and THERMAL curve=')
+    end associate
+    call check(d%gravity_curve == 1 .and. d%output%steps_all, 'curve: GRAVITY curve=, OUTPUT steps=all')
+    call check_close(curve_factor(d%curves(1), -1.0_dp), 0.0_dp, r, 'curve_factor: before the first point', 1.0_dp)
+    call check_close(curve_factor(d%curves(1), 1.0_dp), 0.5_dp, r, 'curve_factor: loading')
+    call check_close(curve_factor(d%curves(1), 3.0_dp), 0.75_dp, r, 'curve_factor: unloading')
+    call check_close(curve_factor(d%curves(1), 4.0_dp), 0.5_dp, r, 'curve_factor: at the last point')
+    call check_close(curve_factor(d%curves(1), 9.0_dp), 0.5_dp, r, 'curve_factor: after the last point')
+    call check_close(curve_factor(d%curves(2), 0.0_dp), 2.0_dp, r, 'curve_factor: one point: constant')
+  end subroutine test_curves
 
   !> CONTACT mu= and tresca=: values, the default frictionless contact, errors, and
   !> lcp=pdas refused with friction.
