@@ -1081,10 +1081,18 @@ contains
       '               files or reads outside the deck''s folder is refused (exit 2)', &
       '  --gmsh-timeout SECONDS', &
       '               time limit of gmsh on each .geo (default 600); gmsh is then stopped', &
+      '  -D name=value  replace the default of the deck''s PARAMETER name (repeatable; value a', &
+      '               number or an expression of numbers); an undeclared name is an error', &
+      '  --cases FILE.csv  a sweep: header row = parameter names, one row per case; runs every', &
+      '               case in turn, case N into DIR/case_N (exit status: the worst of the cases)', &
+      '  --case N     with --cases: row N only (without it, SLURM_ARRAY_TASK_ID when set)', &
       '  --version    print the version', &
       '  -h, --help   this help', &
       '', &
       'deck statements (keywords and keys case-insensitive; ! and # start comments):', &
+      '  PARAMETER name=value ...          (then ${name} or ${expression} anywhere in a later', &
+      '                                    line: numbers, parameters, + - * / ^ ( ), pi,', &
+      '                                    sqrt exp log sin cos tan abs min max)', &
       '  TITLE text', &
       '  PLANE strain | PLANE stress thickness=T', &
       '  BODY name ... END', &

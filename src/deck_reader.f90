@@ -12,6 +12,8 @@
 !> Names (bodies, boundaries, output files) are made of [A-Za-z0-9_.-].
 !>
 !> Statements (keys in brackets are optional, with their default):
+!>   PARAMETER name=expression ...     then ${expression} anywhere in a later line,
+!>                                      replaced before the line is split (deck_expressions)
 !>   TITLE free text                                     default ''
 !>   PLANE strain | PLANE stress [thickness=1]           default strain
 !>   BODY name ... END                                    at least one
