@@ -97,8 +97,8 @@ contains
       if (table%header_line == 0) then                   ! the header
         table%header_line = lineno
         table%ncol = nf
-        deallocate(table%name)
-        allocate(table%name(nf))
+        deallocate(table%name, table%value)
+        allocate(table%name(nf), table%value(nf, 0))
         do k = 1, nf
           if (.not. is_parameter_name(trim(fields(k)))) then
             call bad(lineno, 'bad parameter name "' // printable_field(fields(k)) // '" in the header (expected ' // &

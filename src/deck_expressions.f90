@@ -198,11 +198,7 @@ contains
     character :: op
     call parse_product(c, set, x, message)
     do while (.not. allocated(message))
-      call skip_blanks(c)
-      if (c%pos > len(c%text)) exit
-      op = c%text(c%pos:c%pos)
-      if (op /= '+' .and. op /= '-') exit
-      c%pos = c%pos + 1
+      if (.not. next_operator(c, '+-', op)) exit
       call parse_product(c, set, y, message)
       if (allocated(message)) exit
       if (op == '-') y = -y
@@ -216,6 +212,25 @@ contains
     end do
   end subroutine parse_sum
 
+  !> The next character, when it is one of ops (not the '*' of the power
+  !> operator '**'), taken as op; .false. (nothing taken) otherwise.
+  logical function next_operator(c, ops, op)
+    type(cursor_t), intent(inout) :: c
+    character(len=*), intent(in) :: ops
+    character, intent(out) :: op
+    call skip_blanks(c)
+    next_operator = .false.
+    op = ' '
+    if (c%pos > len(c%text)) return
+    op = c%text(c%pos:c%pos)
+    if (index(ops, op) == 0) return
+    if (op == '*' .and. c%pos < len(c%text)) then
+      if (c%text(c%pos + 1:c%pos + 1) == '*') return
+    end if
+    c%pos = c%pos + 1
+    next_operator = .true.
+  end function next_operator
+
   !> product := unary { (*|/) unary }
   recursive subroutine parse_product(c, set, x, message)
     type(cursor_t), intent(inout) :: c
@@ -226,14 +241,7 @@ contains
     character :: op
     call parse_unary(c, set, x, message)
     do while (.not. allocated(message))
-      call skip_blanks(c)
-      if (c%pos > len(c%text)) exit
-      op = c%text(c%pos:c%pos)
-      if (op /= '*' .and. op /= '/') exit
-      if (c%pos < len(c%text)) then
-        if (c%text(c%pos:c%pos + 1) == '**') exit     ! the power operator
-      end if
-      c%pos = c%pos + 1
+      if (.not. next_operator(c, '*/', op)) exit
       call parse_unary(c, set, y, message)
       if (allocated(message)) exit
       if (op == '/') then
@@ -584,7 +592,8 @@ contains
       s = trim(buf)
       return
     end if
-    do d = 1, 17
+    ! near huge(x) a shorter form can round up past it: 17 digits only there
+    do d = merge(17, 1, abs(x) >= 1.0e308_dp), 17
       write(fmt, '(a,i0,a,i0,a)') '(es', d + 10, '.', d - 1, 'e3)'
       write(buf, fmt) x
       read(buf, *, iostat=ios) y
