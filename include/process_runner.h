@@ -24,7 +24,7 @@ int c2d_find_program(const char *name, char *path, int len);
 /* Run args[0] (an absolute path) with the argument vector packed in args:
  * nargs NUL-terminated strings one after the other.  Its stdin is /dev/null,
  * stdout and stderr go to log_path (created, must not exist: O_EXCL, no
- * symbolic link followed).  It runs in a new process group with
+ * symbolic link followed), or stay this process's when log_path is "".  It runs in a new process group with
  * PR_SET_PDEATHSIG = SIGKILL, so it ends with this process even on SIGKILL.
  * timeout: seconds (> 0).  Returns 0; *how and *status as above. */
 int c2d_run_program(const char *args, int nargs, const char *log_path, double timeout, int *how, int *status);

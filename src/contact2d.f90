@@ -9,9 +9,12 @@
 !>   -> stresses, reactions, energy -> VTK, contact table, summary.
 program contact2d
   use kinds, only: dp, i8
-  use diagnostics, only: diag_t, add_error, stop_input_errors, fail_numerical, exit_program, error_t, int_to_str, &
-                         real_to_str
+  use diagnostics, only: diag_t, add_error, has_errors, stop_input_errors, fail_numerical, exit_program, error_t, &
+                         int_to_str, real_to_str
   use deck_reader, only: deck_t, read_deck, path_too_long
+  use deck_expressions, only: parameter_set_t, add_parameter, find_parameter, evaluate, format_number, &
+                              is_parameter_name
+  use deck_cases, only: case_table_t, read_case_table, case_parameters, run_every_case
   use scene, only: scene_t, build_scene, group_factor, step_loads, group_name
   use mesh, only: node_in_file
   use material, only: tensor_condition
@@ -51,6 +54,9 @@ program contact2d
   character(len=5) :: ordering              !< 'metis' or 'amd' (SOLVER ordering=, auto resolved)
   logical :: check_only, quiet
   type(gmsh_options_t) :: gmsh              !< --trust-geo, --gmsh-timeout
+  type(parameter_set_t) :: overrides        !< -D name=value and the --cases row
+  character(len=:), allocatable :: cases_path   !< --cases FILE.csv ('' when none)
+  integer :: case_number                    !< --case N (0: none given)
   type(diag_t) :: diag
   type(deck_t) :: deck
   type(scene_t) :: sc
@@ -82,12 +88,14 @@ program contact2d
   ! OpenBLAS's workers would spin on the second core through the phases
   ! before the factorization, which use OpenMP and no BLAS
   call c2d_blas_park()
-  call parse_command_line(deck_path, outdir, check_only, quiet, gmsh)
+  call parse_command_line(deck_path, outdir, check_only, quiet, gmsh, overrides, cases_path, case_number)
+  if (len(cases_path) > 0) call select_case()
   call system_clock(t_start)
   t_phase = t_start
 
   ! --- deck and scene ---------------------------------------------------
-  call read_deck(deck_path, deck, diag)
+  call read_deck(deck_path, deck, diag, overrides)
+  call check_overrides()
   call stop_input_errors(diag)
   if (.not. check_only) call make_folder(outdir, diag)
   call stop_input_errors(diag)
@@ -866,6 +874,7 @@ contains
     character(len=160) :: line
     call say('contact2d ' // version // ': ' // deck%file)
     if (len(deck%title) > 0) call say('title    ' // deck%title)
+    call report_parameters()
     call say('effects  ' // sc%effects)
     if (deck%plane_stress) then
       call say('model    plane stress, P1/Q1 elasticity, small deformation')
@@ -1168,16 +1177,21 @@ contains
     if (.not. ok) call add_error(d, path, 0, 'cannot create the output folder (a writable path expected)')
   end subroutine make_folder
 
-  subroutine parse_command_line(deck_path, outdir, check_only, quiet, gmsh)
+  subroutine parse_command_line(deck_path, outdir, check_only, quiet, gmsh, overrides, cases_path, case_number)
     character(len=:), allocatable, intent(out) :: deck_path, outdir
     logical, intent(out) :: check_only, quiet
     type(gmsh_options_t), intent(out) :: gmsh
+    type(parameter_set_t), intent(out) :: overrides
+    character(len=:), allocatable, intent(out) :: cases_path
+    integer, intent(out) :: case_number
     integer :: n, j, length, ios
     character(len=:), allocatable :: arg
     check_only = .false.
     quiet = .false.
     outdir = '.'
     deck_path = ''
+    cases_path = ''
+    case_number = 0
     n = command_argument_count()
     j = 0
     do while (j < n)
@@ -1210,6 +1224,19 @@ contains
         if (ios /= 0 .or. .not. (gmsh%timeout > 0.0_dp .and. gmsh%timeout <= 1.0e6_dp)) &
           call usage_error('bad value "' // arg // '" for --gmsh-timeout (seconds, a number > 0 and <= 1e6, ' // &
                            'expected)')
+      case ('-D')
+        if (j == n) call usage_error('option -D needs a parameter value (-D name=value)')
+        j = j + 1
+        call add_override(next_argument(j), overrides)
+      case ('--cases')
+        if (j == n) call usage_error('option --cases needs a case table (--cases FILE.csv)')
+        j = j + 1
+        cases_path = next_argument(j)
+        if (len(cases_path) == 0) call usage_error('option --cases needs a case table (--cases FILE.csv)')
+      case ('--case')
+        if (j == n) call usage_error('option --case needs a case number (--case N)')
+        j = j + 1
+        case_number = case_index(next_argument(j), '--case')
       case ('-o')
         if (j == n) call usage_error('option -o needs a folder (-o DIR)')
         j = j + 1
@@ -1219,8 +1246,16 @@ contains
         call get_command_argument(j, outdir)
         if (length == 0) call usage_error('option -o needs a folder (-o DIR)')
       case default
+        if (len(arg) > 2) then
+          if (arg(1:2) == '-D') then                 ! -Dname=value
+            call add_override(arg(3:), overrides)
+            deallocate(arg)
+            cycle
+          end if
+        end if
         if (len(arg) > 0) then
           if (arg(1:1) == '-') call usage_error('unknown option "' // arg // '" (expected -o DIR, --check, -q, ' // &
+                                                '-D name=value, --cases FILE.csv, --case N, ' // &
                                                 '--trust-geo, --gmsh-timeout SECONDS, --version, -h)')
         end if
         if (len(deck_path) > 0) call usage_error('more than one deck given ("' // deck_path // '" and "' // arg // &
@@ -1230,7 +1265,138 @@ contains
       deallocate(arg)
     end do
     if (len(deck_path) == 0) call usage_error('no deck given (usage: contact2d [options] DECK)')
+    if (case_number > 0 .and. len(cases_path) == 0) &
+      call usage_error('option --case N needs --cases FILE.csv (the table the case is a row of)')
   end subroutine parse_command_line
+
+  !> Command argument j.
+  function next_argument(j) result(arg)
+    integer, intent(in) :: j
+    character(len=:), allocatable :: arg
+    integer :: length
+    call get_command_argument(j, length=length)
+    allocate(character(len=length) :: arg)
+    call get_command_argument(j, arg)
+  end function next_argument
+
+  !> -D name=value: value is a number or an expression of numbers (no parameters).
+  subroutine add_override(text, set)
+    character(len=*), intent(in) :: text
+    type(parameter_set_t), intent(inout) :: set
+    type(parameter_set_t) :: none
+    character(len=:), allocatable :: message
+    integer :: eq
+    real(dp) :: x
+    eq = index(text, '=')
+    if (eq < 2) call usage_error('bad -D "' // text // '" (expected -D name=value)')
+    if (.not. is_parameter_name(text(1:eq - 1))) &
+      call usage_error('bad parameter name in -D "' // text // '" (expected a letter or _ then letters, digits, _)')
+    if (find_parameter(set, text(1:eq - 1)) > 0) &
+      call usage_error('-D ' // text(1:eq - 1) // ' given twice (expected each parameter once)')
+    call evaluate(text(eq + 1:), none, x, message)
+    if (allocated(message)) call usage_error('-D ' // text // ': ' // message)
+    call add_parameter(set, text(1:eq - 1), x, '-D')
+  end subroutine add_override
+
+  !> A case number (1, 2, ...) from option or variable `what`.
+  integer function case_index(text, what) result(k)
+    character(len=*), intent(in) :: text, what
+    integer :: ios
+    k = 0
+    ios = 1
+    if (len(text) > 0 .and. len(text) <= 9 .and. verify(text, '0123456789') == 0) read(text, *, iostat=ios) k
+    if (ios /= 0 .or. k < 1) call usage_error('bad case number "' // text // '" in ' // what // &
+                                             ' (expected an integer >= 1: a row of the case table)')
+  end function case_index
+
+  !> --cases FILE.csv: the case of --case N, else of SLURM_ARRAY_TASK_ID, else
+  !> every case in turn (this program again per case; exit with the worst status).
+  !> The chosen row's values join the overrides; the outputs go to DIR/case_N.
+  subroutine select_case()
+    type(case_table_t) :: table
+    character(len=32) :: task
+    integer :: length, status, k
+    call read_case_table(cases_path, table, diag)
+    call stop_input_errors(diag)
+    if (case_number == 0) then
+      call get_environment_variable('SLURM_ARRAY_TASK_ID', task, length, status)
+      if (status == 0 .and. length > 0) case_number = case_index(trim(task), 'SLURM_ARRAY_TASK_ID')
+    end if
+    if (case_number == 0) then
+      call check_header(table)
+      call run_every_case(table%ncase, quiet, status)
+      call exit_program(status)
+    end if
+    if (case_number > table%ncase) then
+      call add_error(diag, cases_path, table%header_line, 'case ' // int_to_str(case_number) // ' out of range ' // &
+                     '(the table has ' // int_to_str(table%ncase) // ' cases; expected 1 to ' // &
+                     int_to_str(table%ncase) // ')')
+      call stop_input_errors(diag)
+    end if
+    do k = 1, table%ncol
+      if (find_parameter(overrides, trim(table%name(k))) > 0) call add_error(diag, cases_path, table%header_line, &
+        'parameter "' // trim(table%name(k)) // '" both in the case table and in -D (expected one of them)')
+    end do
+    call stop_input_errors(diag)
+    call case_parameters(table, case_number, overrides)
+    outdir = outdir // '/case_' // int_to_str(case_number)
+  end subroutine select_case
+
+  !> Before every case runs: the table's names must be PARAMETERs of the deck
+  !> (checked here once when the deck reads without errors; else each case
+  !> reports the deck's errors).
+  subroutine check_header(table)
+    type(case_table_t), intent(in) :: table
+    type(diag_t) :: probe_diag
+    type(parameter_set_t) :: probe
+    probe = overrides
+    call case_parameters(table, 1, probe)
+    call read_deck(deck_path, deck, probe_diag, probe)
+    if (has_errors(probe_diag)) return
+    overrides = probe
+    call check_overrides()
+    call stop_input_errors(diag)
+  end subroutine check_header
+
+  !> Every -D and case-table name must be a PARAMETER of the deck.
+  subroutine check_overrides()
+    integer :: k
+    character(len=:), allocatable :: known
+    known = ''
+    do k = 1, deck%params%n
+      known = known // merge(', ', '  ', k > 1) // trim(deck%params%name(k))
+    end do
+    known = adjustl(known)
+    if (deck%params%n == 0) known = 'none declared'
+    do k = 1, overrides%n
+      if (find_parameter(deck%params, trim(overrides%name(k))) > 0) cycle
+      if (overrides%origin(k) == '-D') then
+        call add_error(diag, '-D ' // trim(overrides%name(k)), 0, 'the deck ' // deck%file // &
+                       ' declares no PARAMETER of this name (expected one of: ' // trim(known) // ')')
+      else
+        call add_error(diag, cases_path, 1, 'unknown parameter "' // trim(overrides%name(k)) // &
+                       '" in the header: the deck ' // deck%file // ' declares no PARAMETER of this name ' // &
+                       '(expected one of: ' // trim(known) // ')')
+      end if
+    end do
+  end subroutine check_overrides
+
+  !> The run log's `param    name = value (origin)` lines; the summary's
+  !> `parameter NAME VALUE` lines.
+  subroutine report_parameters()
+    integer :: k, width
+    character(len=:), allocatable :: value
+    width = 1
+    do k = 1, deck%params%n
+      width = max(width, len_trim(deck%params%name(k)) + 1 + len(format_number(deck%params%value(k))))
+    end do
+    allocate(character(len=width) :: res%parameter(deck%params%n))
+    do k = 1, deck%params%n
+      value = format_number(deck%params%value(k))
+      res%parameter(k) = trim(deck%params%name(k)) // ' ' // value
+      call say('param    ' // trim(deck%params%name(k)) // ' = ' // value // ' (' // trim(deck%params%origin(k)) // ')')
+    end do
+  end subroutine report_parameters
 
   subroutine usage_error(text)
     character(len=*), intent(in) :: text
@@ -1256,10 +1422,18 @@ contains
       '               files or reads outside the deck''s folder is refused (exit 2)', &
       '  --gmsh-timeout SECONDS', &
       '               time limit of gmsh on each .geo (default 600); gmsh is then stopped', &
+      '  -D name=value  replace the default of the deck''s PARAMETER name (repeatable; value a', &
+      '               number or an expression of numbers); an undeclared name is an error', &
+      '  --cases FILE.csv  a sweep: header row = parameter names, one row per case; runs every', &
+      '               case in turn, case N into DIR/case_N (exit status: the worst of the cases)', &
+      '  --case N     with --cases: row N only (without it, SLURM_ARRAY_TASK_ID when set)', &
       '  --version    print the version', &
       '  -h, --help   this help', &
       '', &
       'deck statements (keywords and keys case-insensitive; ! and # start comments):', &
+      '  PARAMETER name=value ...          (then ${name} or ${expression} anywhere in a later', &
+      '                                    line: numbers, parameters, + - * / ^ ( ), pi,', &
+      '                                    sqrt exp log sin cos tan abs min max)', &
       '  TITLE text', &
       '  PLANE strain | PLANE stress thickness=T', &
       '  BODY name ... END', &

@@ -12,6 +12,8 @@
 !> Names (bodies, boundaries, output files) are made of [A-Za-z0-9_.-].
 !>
 !> Statements (keys in brackets are optional, with their default):
+!>   PARAMETER name=expression ...     then ${expression} anywhere in a later line,
+!>                                      replaced before the line is split (deck_expressions)
 !>   TITLE free text                                     default ''
 !>   PLANE strain | PLANE stress [thickness=1]           default strain
 !>   BODY name ... END                                    at least one
@@ -75,6 +77,8 @@ module deck_reader
   use kinds, only: dp
   use diagnostics, only: diag_t, add_error, int_to_str
   use safe_files, only: open_input, file_kind, kind_name, folder_of, c2d_regular, c2d_missing, c2d_unreadable
+  use deck_expressions, only: parameter_set_t, add_parameter, find_parameter, evaluate, substitute, parse_real, &
+                              is_parameter_name
   use, intrinsic :: iso_fortran_env, only: iostat_eor, iostat_end, int64
   implicit none
   private
@@ -222,6 +226,7 @@ module deck_reader
     type(contact_deck_t), allocatable :: contacts(:)   !< (ncontact), always allocated
     type(solver_deck_t) :: solver
     type(output_deck_t) :: output
+    type(parameter_set_t) :: params             !< PARAMETER: names, final values, origins
   end type deck_t
 
   ! ---------------------------------------------------------------- internal types
@@ -271,6 +276,7 @@ module deck_reader
     logical :: contact_bad = .false.          ! some CONTACT statement had an error
     logical :: steps_bad = .false.            ! the STEPS statement had an error
     type(text_t), allocatable :: slave_name(:), master_name(:)   ! (ncontact) body names
+    type(parameter_set_t) :: overrides        ! -D and --cases values of declared parameters
   end type state_t
 
 contains
@@ -283,10 +289,14 @@ contains
   !>                 return, also when errors were found (then the values are partial)
   !>   diag  (inout) receives every error, sorted by line; file-level errors
   !>                 (cannot open, no BODY) have line 0
-  subroutine read_deck(path, deck, diag)
+  !>   overrides (in, optional) values replacing the defaults of PARAMETERs of
+  !>                 these names, with their origins ('-D', 'case N'); names the
+  !>                 deck does not declare are the caller's to report
+  subroutine read_deck(path, deck, diag, overrides)
     character(len=*), intent(in) :: path
     type(deck_t), intent(out) :: deck
     type(diag_t), intent(inout) :: diag
+    type(parameter_set_t), intent(in), optional :: overrides
     type(state_t) :: s
     character(len=:), allocatable :: line
     integer :: u, ios, kind
@@ -297,6 +307,7 @@ contains
     call split_path(path, deck%dir, deck%name)
     allocate(deck%bodies(0), deck%contacts(0), deck%curves(0))
     allocate(s%errs(16), s%echo(64), s%slave_name(4), s%master_name(4))
+    if (present(overrides)) s%overrides = overrides
 
     readable = .false.
     ! a FIFO or a device would block or never end: refused before it is read
@@ -422,6 +433,9 @@ contains
     end if
     i = scan(text, '!#')
     if (i > 0) text = text(1:i - 1)
+    if (index(text, '${') > 0) then                ! ${expression}: the line as the parameters make it
+      if (.not. substituted(s, deck, text)) return
+    end if
     do i = 1, len(text)
       if (is_blank(text(i:i))) text(i:i) = ' '
     end do
@@ -454,6 +468,8 @@ contains
       case ('CURVE');   call do_curve(s, deck, st)
       case ('OUTPUT');  call do_output(s, deck, st)
       end select
+    case ('PARAMETER')
+      call do_parameter(s, deck, st)
     case ('BODY')
       call do_body(s, deck, st)
     case ('END')
@@ -477,9 +493,67 @@ contains
       call report(s, st%line, 'unknown keyword ' // quoted(st%keyword) // ' (expected one of TITLE, PLANE, ' // &
                   'BODY, MESH, MATERIAL, DENSITY, FIX, TRACTION, PRESSURE, BODYFORCE, THERMAL, OFFSET, END, ' // &
                   'GRAVITY, ' // &
-                  'CONTACT, SOLVER, STEPS, CURVE, OUTPUT)')
+                  'CONTACT, SOLVER, STEPS, CURVE, OUTPUT, PARAMETER)')
     end select
   end subroutine process_line
+
+  !> Replace each ${expression} of text by its value; .false. (the error
+  !> reported) when an expression is bad.
+  logical function substituted(s, deck, text)
+    type(state_t), intent(inout) :: s
+    type(deck_t), intent(in) :: deck
+    character(len=:), allocatable, intent(inout) :: text
+    character(len=:), allocatable :: out, message
+    call substitute(text, deck%params, out, message)
+    substituted = .not. allocated(message)
+    if (substituted) then
+      call move_alloc(out, text)
+    else
+      call report(s, s%nline, message)
+    end if
+  end function substituted
+
+  !> PARAMETER name=value ...: each value an expression of the parameters
+  !> declared before it; a -D or --cases value replaces it.
+  subroutine do_parameter(s, deck, st)
+    type(state_t), intent(inout) :: s
+    type(deck_t), intent(inout) :: deck
+    type(stmt_t), intent(in) :: st
+    character(len=:), allocatable :: message
+    real(dp) :: x
+    integer :: i, k
+    if (st%npair == 0) call report(s, st%line, 'PARAMETER declares nothing (expected PARAMETER name=value ...)')
+    do i = 1, st%nword
+      call report(s, st%line, 'word ' // quoted(st%word(i)%s) // ' in PARAMETER (expected name=value, ' // &
+                  'without blanks inside the value, or ${...} around it)')
+    end do
+    do i = 1, st%npair
+      associate (name => st%key(i)%s)
+        if (.not. is_parameter_name(name)) then
+          call report(s, st%line, 'bad parameter name ' // quoted(name) // ' (expected a letter or _ then ' // &
+                      'letters, digits, _; at most 64; not pi or a function name)')
+          cycle
+        end if
+        k = find_parameter(deck%params, name)
+        if (k > 0) then
+          call report(s, st%line, 'parameter ' // quoted(name) // ' declared twice (first at line ' // &
+                      int_to_str(deck%params%line(k)) // '; expected each name once)')
+          cycle
+        end if
+        call evaluate(st%value(i)%s, deck%params, x, message)
+        if (allocated(message)) then
+          call report(s, st%line, 'parameter ' // quoted(name) // ': ' // message)
+          cycle
+        end if
+        k = find_parameter(s%overrides, name)
+        if (k > 0) then
+          call add_parameter(deck%params, name, s%overrides%value(k), s%overrides%origin(k), st%line)
+        else
+          call add_parameter(deck%params, name, x, 'default', st%line)
+        end if
+      end associate
+    end do
+  end subroutine do_parameter
 
   !> Keep a printable, cut copy of the current line for echoing under messages.
   subroutine store_echo(s, raw)
@@ -2409,86 +2483,6 @@ contains
   end subroutine fill_defaults
 
   ! ================================================================ numbers and text
-
-  !> Read a Fortran or C real: [sign] digits [. [digits]] | [sign] . digits, then an
-  !> optional exponent [eEdD] [sign] digits, nothing else.  Values with |x| >= 1e308
-  !> are refused before conversion (conversion would overflow); underflow gives 0.
-  !>   str (in)  the text
-  !>   x   (out) the value when ok
-  !>   ok  (out) str is such a number
-  subroutine parse_real(str, x, ok)
-    character(len=*), intent(in) :: str
-    real(dp), intent(out) :: x
-    logical, intent(out) :: ok
-    integer :: i, n, nint, nfrac, first_int, first_frac, power, expo, ios
-    logical :: neg_exp
-    character(len=:), allocatable :: buf
-
-    x = 0
-    ok = .false.
-    n = len(str)
-    if (n == 0 .or. n > 400) return
-    i = 1
-    if (str(1:1) == '+' .or. str(1:1) == '-') i = 2
-    nint = 0                                      ! integer digits
-    first_int = 0                                 ! position of the first non-zero one
-    do while (i <= n)
-      if (.not. is_digit(str(i:i))) exit
-      nint = nint + 1
-      if (str(i:i) /= '0' .and. first_int == 0) first_int = nint
-      i = i + 1
-    end do
-    nfrac = 0                                     ! fraction digits
-    first_frac = 0
-    if (i <= n) then
-      if (str(i:i) == '.') then
-        i = i + 1
-        do while (i <= n)
-          if (.not. is_digit(str(i:i))) exit
-          nfrac = nfrac + 1
-          if (str(i:i) /= '0' .and. first_frac == 0) first_frac = nfrac
-          i = i + 1
-        end do
-      end if
-    end if
-    if (nint + nfrac == 0) return
-    expo = 0
-    if (i <= n) then
-      if (index('eEdD', str(i:i)) == 0) return
-      i = i + 1
-      neg_exp = .false.
-      if (i <= n) then
-        if (str(i:i) == '+' .or. str(i:i) == '-') then
-          neg_exp = str(i:i) == '-'
-          i = i + 1
-        end if
-      end if
-      if (i > n) return
-      do while (i <= n)
-        if (.not. is_digit(str(i:i))) return
-        if (expo < 100000) expo = 10 * expo + (iachar(str(i:i)) - iachar('0'))
-        i = i + 1
-      end do
-      if (neg_exp) expo = -expo
-    end if
-    ! |x| lies in [10^power, 10^(power+1)) with power that of the first non-zero digit
-    if (first_int > 0) then
-      power = nint - first_int + expo
-    else if (first_frac > 0) then
-      power = -first_frac + expo
-    else
-      power = -huge(1)                            ! x = 0
-    end if
-    if (power >= 308) return
-    buf = str
-    do i = 1, n
-      if (buf(i:i) == 'd' .or. buf(i:i) == 'D') buf(i:i) = 'e'
-    end do
-    read(buf, *, iostat=ios) x
-    ok = ios == 0
-    if (ok) ok = x == x .and. abs(x) <= huge(x)
-    if (.not. ok) x = 0
-  end subroutine parse_real
 
   !> Read an integer: [sign] digits, at most 9 significant digits.
   subroutine parse_integer(str, k, ok)

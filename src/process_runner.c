@@ -61,7 +61,8 @@ int c2d_find_program(const char *name, char *path, int len)
 }
 
 /* The child: own group, dies with its parent, stdin /dev/null, stdout and
- * stderr to log; reports exec's errno on the close-on-exec pipe. */
+ * stderr to log (kept as they are when log < 0); reports exec's errno on the
+ * close-on-exec pipe. */
 static void start_child(char **argv, int log, int report, pid_t parent)
 {
     int null = open("/dev/null", O_RDONLY | O_CLOEXEC);
@@ -69,7 +70,7 @@ static void start_child(char **argv, int log, int report, pid_t parent)
     setpgid(0, 0);
     prctl(PR_SET_PDEATHSIG, SIGKILL);
     if (getppid() != parent) _exit(127);            /* the parent died before prctl */
-    if (null < 0 || dup2(null, 0) < 0 || dup2(log, 1) < 0 || dup2(log, 2) < 0) {
+    if (null < 0 || dup2(null, 0) < 0 || (log >= 0 && (dup2(log, 1) < 0 || dup2(log, 2) < 0))) {
         e = errno;
     } else {
         execv(argv[0], argv);
@@ -127,22 +128,22 @@ int c2d_run_program(const char *args, int nargs, const char *log_path, double ti
         argv[i] = (char *)p;
         p += strlen(p) + 1;
     }
-    log = open(log_path, O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
-    if (log < 0) {
+    log = log_path[0] == '\0' ? -1 : open(log_path, O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
+    if (log < 0 && log_path[0] != '\0') {
         *status = errno;
         free(argv);
         return 0;
     }
     if (pipe2(pipefd, O_CLOEXEC) != 0) {
         *status = errno;
-        close(log);
+        if (log >= 0) close(log);
         free(argv);
         return 0;
     }
     pid = fork();
     if (pid == 0) start_child(argv, log, pipefd[1], parent);
     close(pipefd[1]);
-    close(log);
+    if (log >= 0) close(log);
     free(argv);
     if (pid < 0) {
         *status = errno;

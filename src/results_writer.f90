@@ -31,6 +31,7 @@ module results_writer
 
   type :: results_t
     character(len=:), allocatable :: effects     !< effects simulated
+    character(len=:), allocatable :: parameter(:) !< (nparam) 'NAME VALUE' of each deck PARAMETER
     integer :: nfree = 0                         !< free equations
     real(dp), allocatable :: u(:)                !< (ndof) displacements
     real(dp), allocatable :: stress(:,:)         !< (3, nelem) sxx syy sxy per element
@@ -355,6 +356,11 @@ contains
     ok = ios == 0
     if (.not. ok) return
     write(u, '(a)') 'effects ' // r%effects
+    if (allocated(r%parameter)) then
+      do k = 1, size(r%parameter)
+        write(u, '(a)') 'parameter ' // trim(r%parameter(k))
+      end do
+    end if
     write(u, '(a,i0)') 'dofs ', size(r%u)
     write(u, '(a,i0)') 'free_dofs ', r%nfree
     write(u, '(a,i0)') 'contact_nodes ', r%contact_nodes

@@ -1,0 +1,750 @@
+!> deck_expressions: deck parameters, ${...} substitution and the small
+!> arithmetic evaluator behind them (doc/deck.md, "Parameters").
+!>
+!> A deck declares parameters with `PARAMETER name=value ...`; a later line
+!> may hold `${expression}` anywhere, replaced by the expression's value before
+!> the line is split into a statement.  Expressions:
+!>   numbers in Fortran or C notation (2, 2.5, .5, 2e5, 2.0d5, -1.5E-3),
+!>   declared parameters, pi, + - * / ^ (also **; right-associative, above
+!>   unary minus: -2^2 = -4), parentheses, sqrt exp log sin cos tan abs, and
+!>   min max with two or more arguments separated by commas.
+!> Every result must be finite: division by zero, log or sqrt outside their
+!> domain, overflow, a negative base to a non-integer power are errors, each
+!> returned as a message `what is wrong (what was expected)` for the caller's
+!> FILE:LINE.  Values are printed back in the shortest decimal form that reads
+!> back to the same double (format_number), so a substituted line means
+!> exactly the value computed.
+!>
+!> Programming interface
+!>   type(parameter_set_t)   named values, each with its origin ('default', '-D', 'case N')
+!>   add_parameter(set, name, value, origin)     append (caller checks the name is new)
+!>   find_parameter(set, name)                   index, 0 when absent
+!>   evaluate(text, set, x, message)             the value of an expression; message
+!>                                               allocated on error
+!>   substitute(text, set, out, message)         every ${...} of text replaced
+!>   format_number(x)                            shortest round-trip decimal
+!>   parse_real(str, x, ok)                      one number, nothing else
+!>   is_parameter_name(name)                     [A-Za-z_][A-Za-z0-9_]*, not reserved
+module deck_expressions
+  use kinds, only: dp
+  implicit none
+  private
+  public :: parameter_set_t, add_parameter, find_parameter, evaluate, substitute, format_number
+  public :: parse_real, is_parameter_name
+
+  integer, parameter :: name_len = 64          !< longest parameter name
+
+  !> Declared parameters in declaration order (also a list of overrides).
+  type :: parameter_set_t
+    integer :: n = 0
+    character(len=name_len), allocatable :: name(:)   !< (capacity) names, case as written
+    real(dp), allocatable :: value(:)                 !< (capacity) values
+    character(len=16), allocatable :: origin(:)       !< (capacity) 'default', '-D', 'case N'
+    integer, allocatable :: line(:)                   !< (capacity) deck line of the declaration
+  end type parameter_set_t
+
+  character(len=*), parameter :: function_list = 'sqrt, exp, log, sin, cos, tan, abs, min, max'
+  real(dp), parameter :: pi = 3.14159265358979323846264338327950288_dp
+  real(dp), parameter :: log_huge = 709.0_dp   !< exp(x) and products stay below huge above this
+
+  !> Parser state: the expression and the position of the next character.
+  type :: cursor_t
+    character(len=:), allocatable :: text
+    integer :: pos = 1
+  end type cursor_t
+
+contains
+
+  ! ================================================================ parameter sets
+
+  !> Append name = value (origin) to set.
+  subroutine add_parameter(set, name, value, origin, line)
+    type(parameter_set_t), intent(inout) :: set
+    character(len=*), intent(in) :: name, origin
+    real(dp), intent(in) :: value
+    integer, intent(in), optional :: line
+    type(parameter_set_t) :: grown
+    integer :: cap
+    if (.not. allocated(set%name)) allocate(set%name(8), set%value(8), set%origin(8), set%line(8))
+    if (set%n == size(set%name)) then
+      cap = 2 * size(set%name)
+      allocate(grown%name(cap), grown%value(cap), grown%origin(cap), grown%line(cap))
+      grown%name(1:set%n) = set%name(1:set%n)
+      grown%value(1:set%n) = set%value(1:set%n)
+      grown%origin(1:set%n) = set%origin(1:set%n)
+      grown%line(1:set%n) = set%line(1:set%n)
+      call move_alloc(grown%name, set%name)
+      call move_alloc(grown%value, set%value)
+      call move_alloc(grown%origin, set%origin)
+      call move_alloc(grown%line, set%line)
+    end if
+    set%n = set%n + 1
+    set%name(set%n) = name
+    set%value(set%n) = value
+    set%origin(set%n) = origin
+    set%line(set%n) = 0
+    if (present(line)) set%line(set%n) = line
+  end subroutine add_parameter
+
+  !> Index of name in set (case-sensitive), 0 when absent.
+  pure integer function find_parameter(set, name) result(k)
+    type(parameter_set_t), intent(in) :: set
+    character(len=*), intent(in) :: name
+    do k = 1, set%n
+      if (len(name) <= name_len) then
+        if (set%name(k) == name .and. len_trim(set%name(k)) == len(name)) return
+      end if
+    end do
+    k = 0
+  end function find_parameter
+
+  !> A parameter name: an identifier of at most 64 characters that is neither
+  !> pi nor a function name.
+  pure logical function is_parameter_name(name)
+    character(len=*), intent(in) :: name
+    integer :: i
+    is_parameter_name = len(name) > 0 .and. len(name) <= name_len
+    if (.not. is_parameter_name) return
+    is_parameter_name = is_letter(name(1:1)) .or. name(1:1) == '_'
+    do i = 2, len(name)
+      if (.not. (is_letter(name(i:i)) .or. is_digit(name(i:i)) .or. name(i:i) == '_')) is_parameter_name = .false.
+    end do
+    if (is_parameter_name) is_parameter_name = .not. is_reserved(name)
+  end function is_parameter_name
+
+  pure logical function is_reserved(name)
+    character(len=*), intent(in) :: name
+    select case (lower(name))
+    case ('pi', 'sqrt', 'exp', 'log', 'sin', 'cos', 'tan', 'abs', 'min', 'max')
+      is_reserved = .true.
+    case default
+      is_reserved = .false.
+    end select
+  end function is_reserved
+
+  ! ================================================================ substitution
+
+  !> Replace every ${expression} of text by its value (format_number).
+  !>   text    (in)  one deck line (comments already removed)
+  !>   set     (in)  the parameters declared so far
+  !>   out     (out) the line with each ${...} replaced
+  !>   message (out) allocated on the first error: what is wrong (what was expected)
+  subroutine substitute(text, set, out, message)
+    character(len=*), intent(in) :: text
+    type(parameter_set_t), intent(in) :: set
+    character(len=:), allocatable, intent(out) :: out
+    character(len=:), allocatable, intent(out) :: message
+    integer :: i, open_at, close_at
+    real(dp) :: x
+
+    out = ''
+    i = 1
+    do
+      open_at = index(text(i:), '${')
+      if (open_at == 0) exit
+      open_at = i + open_at - 1
+      close_at = index(text(open_at + 2:), '}')
+      if (close_at == 0) then
+        message = 'unclosed "${" (expected ${name} or ${expression})'
+        return
+      end if
+      close_at = open_at + 1 + close_at
+      call evaluate(text(open_at + 2:close_at - 1), set, x, message)
+      if (allocated(message)) return
+      out = out // text(i:open_at - 1) // format_number(x)
+      i = close_at + 1
+    end do
+    out = out // text(i:)
+  end subroutine substitute
+
+  ! ================================================================ evaluation
+
+  !> The value of an arithmetic expression.
+  !>   text    (in)  the expression
+  !>   set     (in)  the parameters it may name
+  !>   x       (out) its value (finite) when message is not allocated
+  !>   message (out) allocated on error: what is wrong (what was expected)
+  subroutine evaluate(text, set, x, message)
+    character(len=*), intent(in) :: text
+    type(parameter_set_t), intent(in) :: set
+    real(dp), intent(out) :: x
+    character(len=:), allocatable, intent(out) :: message
+    type(cursor_t) :: c
+
+    x = 0
+    c%text = text
+    c%pos = 1
+    if (len_trim(text) == 0) then
+      message = 'empty expression (expected a number, a parameter or an expression)'
+      return
+    end if
+    call parse_sum(c, set, x, message)
+    if (allocated(message)) return
+    call skip_blanks(c)
+    if (c%pos <= len(c%text)) then
+      message = 'syntax error in expression "' // clip(text) // '" at "' // clip(c%text(c%pos:)) // &
+                '" (expected an operator + - * / ^ or the end)'
+      x = 0
+    end if
+  end subroutine evaluate
+
+  !> sum := product { (+|-) product }
+  recursive subroutine parse_sum(c, set, x, message)
+    type(cursor_t), intent(inout) :: c
+    type(parameter_set_t), intent(in) :: set
+    real(dp), intent(out) :: x
+    character(len=:), allocatable, intent(inout) :: message
+    real(dp) :: y
+    character :: op
+    call parse_product(c, set, x, message)
+    do while (.not. allocated(message))
+      if (.not. next_operator(c, '+-', op)) exit
+      call parse_product(c, set, y, message)
+      if (allocated(message)) exit
+      if (op == '-') y = -y
+      if (abs(x) > 0.5_dp * huge(x) .and. abs(y) > 0.5_dp * huge(x)) then
+        if (sign(1.0_dp, x) == sign(1.0_dp, y)) then
+          message = overflow(c)
+          exit
+        end if
+      end if
+      x = x + y
+    end do
+  end subroutine parse_sum
+
+  !> The next character, when it is one of ops (not the '*' of the power
+  !> operator '**'), taken as op; .false. (nothing taken) otherwise.
+  logical function next_operator(c, ops, op)
+    type(cursor_t), intent(inout) :: c
+    character(len=*), intent(in) :: ops
+    character, intent(out) :: op
+    call skip_blanks(c)
+    next_operator = .false.
+    op = ' '
+    if (c%pos > len(c%text)) return
+    op = c%text(c%pos:c%pos)
+    if (index(ops, op) == 0) return
+    if (op == '*' .and. c%pos < len(c%text)) then
+      if (c%text(c%pos + 1:c%pos + 1) == '*') return
+    end if
+    c%pos = c%pos + 1
+    next_operator = .true.
+  end function next_operator
+
+  !> product := unary { (*|/) unary }
+  recursive subroutine parse_product(c, set, x, message)
+    type(cursor_t), intent(inout) :: c
+    type(parameter_set_t), intent(in) :: set
+    real(dp), intent(out) :: x
+    character(len=:), allocatable, intent(inout) :: message
+    real(dp) :: y
+    character :: op
+    call parse_unary(c, set, x, message)
+    do while (.not. allocated(message))
+      if (.not. next_operator(c, '*/', op)) exit
+      call parse_unary(c, set, y, message)
+      if (allocated(message)) exit
+      if (op == '/') then
+        if (y == 0.0_dp) then
+          message = 'division by zero in "' // clip(c%text) // '" (expected a non-zero divisor)'
+          exit
+        end if
+        if (x /= 0.0_dp .and. log(abs(x)) - log(abs(y)) > log_huge) then
+          message = overflow(c)
+          exit
+        end if
+        x = x / y
+      else
+        if (x /= 0.0_dp .and. y /= 0.0_dp .and. log(abs(x)) + log(abs(y)) > log_huge) then
+          message = overflow(c)
+          exit
+        end if
+        x = x * y
+      end if
+    end do
+  end subroutine parse_product
+
+  !> unary := (+|-) unary | power
+  recursive subroutine parse_unary(c, set, x, message)
+    type(cursor_t), intent(inout) :: c
+    type(parameter_set_t), intent(in) :: set
+    real(dp), intent(out) :: x
+    character(len=:), allocatable, intent(inout) :: message
+    logical :: negative
+    x = 0
+    call skip_blanks(c)
+    if (c%pos <= len(c%text)) then
+      if (c%text(c%pos:c%pos) == '-' .or. c%text(c%pos:c%pos) == '+') then
+        negative = c%text(c%pos:c%pos) == '-'
+        c%pos = c%pos + 1
+        call parse_unary(c, set, x, message)
+        if (negative) x = -x
+        return
+      end if
+    end if
+    call parse_power(c, set, x, message)
+  end subroutine parse_unary
+
+  !> power := primary [ (^|**) unary ]   (right-associative: 2^3^2 = 2^9)
+  recursive subroutine parse_power(c, set, x, message)
+    type(cursor_t), intent(inout) :: c
+    type(parameter_set_t), intent(in) :: set
+    real(dp), intent(out) :: x
+    character(len=:), allocatable, intent(inout) :: message
+    real(dp) :: y
+    call parse_primary(c, set, x, message)
+    if (allocated(message)) return
+    call skip_blanks(c)
+    if (c%pos > len(c%text)) return
+    if (c%text(c%pos:c%pos) == '^') then
+      c%pos = c%pos + 1
+    else if (c%pos < len(c%text) .and. c%text(c%pos:min(c%pos + 1, len(c%text))) == '**') then
+      c%pos = c%pos + 2
+    else
+      return
+    end if
+    call parse_unary(c, set, y, message)
+    if (allocated(message)) return
+    call power(x, y, c, message)
+  end subroutine parse_power
+
+  !> x = x^y, finite or an error.
+  subroutine power(x, y, c, message)
+    real(dp), intent(inout) :: x
+    real(dp), intent(in) :: y
+    type(cursor_t), intent(in) :: c
+    character(len=:), allocatable, intent(inout) :: message
+    if (x == 0.0_dp) then
+      if (y < 0.0_dp) then
+        message = 'division by zero in "' // clip(c%text) // '" (0 to a negative power; expected a non-zero base)'
+      else if (y == 0.0_dp) then
+        x = 1.0_dp
+      end if
+      return
+    end if
+    if (x < 0.0_dp .and. y /= aint(y)) then
+      message = 'negative base to a non-integer power in "' // clip(c%text) // &
+                '" (expected a base >= 0 or an integer exponent)'
+      return
+    end if
+    if (y * log(abs(x)) > log_huge) then
+      message = overflow(c)
+      return
+    end if
+    if (y == aint(y) .and. abs(y) < 1.0e9_dp) then
+      x = x**nint(y)
+    else
+      x = x**y
+    end if
+  end subroutine power
+
+  !> primary := number | pi | name | function ( sum {, sum} ) | ( sum )
+  recursive subroutine parse_primary(c, set, x, message)
+    type(cursor_t), intent(inout) :: c
+    type(parameter_set_t), intent(in) :: set
+    real(dp), intent(out) :: x
+    character(len=:), allocatable, intent(inout) :: message
+    integer :: start, k
+    character(len=:), allocatable :: word
+    logical :: ok
+
+    x = 0
+    call skip_blanks(c)
+    if (c%pos > len(c%text)) then
+      message = 'expression "' // clip(c%text) // '" ends too early (expected a number, a parameter or "(")'
+      return
+    end if
+    start = c%pos
+    if (c%text(start:start) == '(') then
+      c%pos = c%pos + 1
+      call parse_sum(c, set, x, message)
+      if (allocated(message)) return
+      call expect_char(c, ')', message)
+      return
+    end if
+    if (is_digit(c%text(start:start)) .or. c%text(start:start) == '.') then
+      c%pos = number_end(c%text, start)
+      call parse_real(c%text(start:c%pos - 1), x, ok)
+      if (.not. ok) message = 'bad number "' // clip(c%text(start:c%pos - 1)) // '" in "' // clip(c%text) // &
+                              '" (expected a number such as 2, 2.5, 2e5 or 2.0d5, |x| < 1e308)'
+      return
+    end if
+    if (is_letter(c%text(start:start)) .or. c%text(start:start) == '_') then
+      do while (c%pos <= len(c%text))
+        if (.not. (is_letter(c%text(c%pos:c%pos)) .or. is_digit(c%text(c%pos:c%pos)) .or. &
+                   c%text(c%pos:c%pos) == '_')) exit
+        c%pos = c%pos + 1
+      end do
+      word = c%text(start:c%pos - 1)
+      call skip_blanks(c)
+      if (c%pos <= len(c%text)) then
+        if (c%text(c%pos:c%pos) == '(') then
+          call parse_call(c, set, word, x, message)
+          return
+        end if
+      end if
+      if (lower(word) == 'pi') then
+        x = pi
+        return
+      end if
+      k = find_parameter(set, word)
+      if (k == 0) then
+        if (is_reserved(word)) then
+          message = 'function ' // word // ' without arguments in "' // clip(c%text) // '" (expected ' // &
+                    word // '(...))'
+        else
+          message = 'undeclared parameter "' // clip(word) // '" (expected a name declared by PARAMETER on an ' // &
+                    'earlier line' // known_names(set) // ')'
+        end if
+        return
+      end if
+      x = set%value(k)
+      return
+    end if
+    message = 'syntax error in expression "' // clip(c%text) // '" at "' // clip(c%text(start:)) // &
+              '" (expected a number, a parameter, a function or "(")'
+  end subroutine parse_primary
+
+  !> name ( sum {, sum} ): one of the functions, its domain checked.
+  recursive subroutine parse_call(c, set, name, x, message)
+    type(cursor_t), intent(inout) :: c
+    type(parameter_set_t), intent(in) :: set
+    character(len=*), intent(in) :: name
+    real(dp), intent(out) :: x
+    character(len=:), allocatable, intent(inout) :: message
+    real(dp) :: args(64)
+    integer :: nargs
+    character(len=:), allocatable :: fn
+
+    x = 0
+    fn = lower(name)
+    if (.not. is_reserved(fn) .or. fn == 'pi') then
+      message = 'unknown function "' // clip(name) // '" (expected one of ' // function_list // ')'
+      return
+    end if
+    c%pos = c%pos + 1                                ! the '('
+    nargs = 0
+    do
+      if (nargs == size(args)) then
+        message = 'more than 64 arguments to ' // fn // ' (expected fewer)'
+        return
+      end if
+      nargs = nargs + 1
+      call parse_sum(c, set, args(nargs), message)
+      if (allocated(message)) return
+      call skip_blanks(c)
+      if (c%pos > len(c%text)) exit
+      if (c%text(c%pos:c%pos) /= ',') exit
+      c%pos = c%pos + 1
+    end do
+    call expect_char(c, ')', message)
+    if (allocated(message)) return
+    if (fn == 'min' .or. fn == 'max') then
+      if (nargs < 2) then
+        message = fn // ' with one argument in "' // clip(c%text) // '" (expected two or more, separated by commas)'
+      else if (fn == 'min') then
+        x = minval(args(1:nargs))
+      else
+        x = maxval(args(1:nargs))
+      end if
+      return
+    end if
+    if (nargs /= 1) then
+      message = fn // ' with ' // trim(int_text(nargs)) // ' arguments in "' // clip(c%text) // &
+                '" (expected one argument)'
+      return
+    end if
+    x = args(1)
+    select case (fn)
+    case ('sqrt')
+      if (x < 0.0_dp) then
+        message = 'sqrt of a negative number in "' // clip(c%text) // '" (expected an argument >= 0)'
+        return
+      end if
+      x = sqrt(x)
+    case ('exp')
+      if (x > log_huge) then
+        message = overflow(c)
+        return
+      end if
+      x = exp(x)
+    case ('log')
+      if (x <= 0.0_dp) then
+        message = 'log of a non-positive number in "' // clip(c%text) // '" (expected an argument > 0)'
+        return
+      end if
+      x = log(x)
+    case ('sin')
+      x = sin(x)
+    case ('cos')
+      x = cos(x)
+    case ('tan')
+      x = tan(x)
+    case ('abs')
+      x = abs(x)
+    end select
+  end subroutine parse_call
+
+  subroutine expect_char(c, ch, message)
+    type(cursor_t), intent(inout) :: c
+    character, intent(in) :: ch
+    character(len=:), allocatable, intent(inout) :: message
+    call skip_blanks(c)
+    if (c%pos <= len(c%text)) then
+      if (c%text(c%pos:c%pos) == ch) then
+        c%pos = c%pos + 1
+        return
+      end if
+      message = 'syntax error in expression "' // clip(c%text) // '" at "' // clip(c%text(c%pos:)) // &
+                '" (expected "' // ch // '")'
+    else
+      message = 'syntax error in expression "' // clip(c%text) // '": missing "' // ch // '" (expected "' // ch // &
+                '" before the end)'
+    end if
+  end subroutine expect_char
+
+  function overflow(c) result(message)
+    type(cursor_t), intent(in) :: c
+    character(len=:), allocatable :: message
+    message = 'the value of "' // clip(c%text) // '" is not finite (overflow; expected |value| < 1e308)'
+  end function overflow
+
+  subroutine skip_blanks(c)
+    type(cursor_t), intent(inout) :: c
+    do while (c%pos <= len(c%text))
+      if (c%text(c%pos:c%pos) /= ' ' .and. c%text(c%pos:c%pos) /= achar(9)) exit
+      c%pos = c%pos + 1
+    end do
+  end subroutine skip_blanks
+
+  !> One past the end of the number that starts at text(start:): digits [. digits]
+  !> [ (e|E|d|D) [sign] digits ]; the exponent only when digits follow it.
+  pure integer function number_end(text, start) result(i)
+    character(len=*), intent(in) :: text
+    integer, intent(in) :: start
+    integer :: j
+    i = start
+    do while (i <= len(text))
+      if (.not. is_digit(text(i:i))) exit
+      i = i + 1
+    end do
+    if (i <= len(text)) then
+      if (text(i:i) == '.') then
+        i = i + 1
+        do while (i <= len(text))
+          if (.not. is_digit(text(i:i))) exit
+          i = i + 1
+        end do
+      end if
+    end if
+    if (i > len(text)) return
+    if (index('eEdD', text(i:i)) == 0) return
+    j = i + 1
+    if (j <= len(text)) then
+      if (text(j:j) == '+' .or. text(j:j) == '-') j = j + 1
+    end if
+    if (j > len(text)) return
+    if (.not. is_digit(text(j:j))) return
+    i = j
+    do while (i <= len(text))
+      if (.not. is_digit(text(i:i))) exit
+      i = i + 1
+    end do
+  end function number_end
+
+  !> ', one of a, b, c' for a message ('' when no parameter is declared).
+  function known_names(set) result(t)
+    type(parameter_set_t), intent(in) :: set
+    character(len=:), allocatable :: t
+    integer :: k
+    t = ''
+    if (set%n == 0) then
+      t = '; none declared'
+      return
+    end if
+    do k = 1, min(set%n, 8)
+      if (k > 1) t = t // ', '
+      t = t // trim(set%name(k))
+    end do
+    if (set%n > 8) t = t // ', ...'
+    t = '; declared: ' // t
+  end function known_names
+
+  ! ================================================================ numbers
+
+  !> The shortest decimal that reads back to x exactly: integers as integers
+  !> (up to 1e15), else up to 17 significant digits, with an exponent outside
+  !> 1e-4 <= |x| < 1e15 ('0.25', '1e-07' style: '1e-7', '2.5e+20' as '2.5e20').
+  function format_number(x) result(s)
+    real(dp), intent(in) :: x
+    character(len=:), allocatable :: s
+    character(len=40) :: buf, fmt
+    character(len=:), allocatable :: digits
+    integer :: d, e, epos, ios, point
+    real(dp) :: y
+
+    if (x == 0.0_dp) then
+      s = '0'
+      return
+    end if
+    if (x == aint(x) .and. abs(x) < 1.0e15_dp) then
+      write(buf, '(i0)') nint(x, kind=selected_int_kind(18))
+      s = trim(buf)
+      return
+    end if
+    ! near huge(x) a shorter form can round up past it: 17 digits only there
+    do d = merge(17, 1, abs(x) >= 1.0e308_dp), 17
+      write(fmt, '(a,i0,a,i0,a)') '(es', d + 10, '.', d - 1, 'e3)'
+      write(buf, fmt) x
+      read(buf, *, iostat=ios) y
+      if (ios == 0 .and. y == x) exit
+    end do
+    buf = adjustl(buf)
+    epos = index(buf, 'E')
+    read(buf(epos + 1:), *) e                       ! x = m.mmm * 10^e
+    digits = ''
+    do point = 1, epos - 1
+      if (is_digit(buf(point:point))) digits = digits // buf(point:point)
+    end do
+    do while (len(digits) > 1 .and. digits(len(digits):len(digits)) == '0')
+      digits = digits(1:len(digits) - 1)
+    end do
+    s = ''
+    if (x < 0.0_dp) s = '-'
+    if (e >= -4 .and. e < 15) then
+      if (e < 0) then
+        s = s // '0.' // repeat('0', -e - 1) // digits
+      else if (len(digits) > e + 1) then
+        s = s // digits(1:e + 1) // '.' // digits(e + 2:)
+      else
+        s = s // digits // repeat('0', e + 1 - len(digits))
+      end if
+    else
+      s = s // digits(1:1)
+      if (len(digits) > 1) s = s // '.' // digits(2:)
+      write(buf, '(i0)') e
+      s = s // 'e' // trim(buf)
+    end if
+  end function format_number
+
+  !> Read a Fortran or C real: [sign] digits [. [digits]] | [sign] . digits, then an
+  !> optional exponent [eEdD] [sign] digits, nothing else.  Values with |x| >= 1e308
+  !> are refused before conversion (conversion would overflow); underflow gives 0.
+  !>   str (in)  the text
+  !>   x   (out) the value when ok
+  !>   ok  (out) str is such a number
+  subroutine parse_real(str, x, ok)
+    character(len=*), intent(in) :: str
+    real(dp), intent(out) :: x
+    logical, intent(out) :: ok
+    integer :: i, n, nint, nfrac, first_int, first_frac, power, expo, ios
+    logical :: neg_exp
+    character(len=:), allocatable :: buf
+
+    x = 0
+    ok = .false.
+    n = len(str)
+    if (n == 0 .or. n > 400) return
+    i = 1
+    if (str(1:1) == '+' .or. str(1:1) == '-') i = 2
+    nint = 0                                      ! integer digits
+    first_int = 0                                 ! position of the first non-zero one
+    do while (i <= n)
+      if (.not. is_digit(str(i:i))) exit
+      nint = nint + 1
+      if (str(i:i) /= '0' .and. first_int == 0) first_int = nint
+      i = i + 1
+    end do
+    nfrac = 0                                     ! fraction digits
+    first_frac = 0
+    if (i <= n) then
+      if (str(i:i) == '.') then
+        i = i + 1
+        do while (i <= n)
+          if (.not. is_digit(str(i:i))) exit
+          nfrac = nfrac + 1
+          if (str(i:i) /= '0' .and. first_frac == 0) first_frac = nfrac
+          i = i + 1
+        end do
+      end if
+    end if
+    if (nint + nfrac == 0) return
+    expo = 0
+    if (i <= n) then
+      if (index('eEdD', str(i:i)) == 0) return
+      i = i + 1
+      neg_exp = .false.
+      if (i <= n) then
+        if (str(i:i) == '+' .or. str(i:i) == '-') then
+          neg_exp = str(i:i) == '-'
+          i = i + 1
+        end if
+      end if
+      if (i > n) return
+      do while (i <= n)
+        if (.not. is_digit(str(i:i))) return
+        if (expo < 100000) expo = 10 * expo + (iachar(str(i:i)) - iachar('0'))
+        i = i + 1
+      end do
+      if (neg_exp) expo = -expo
+    end if
+    ! |x| lies in [10^power, 10^(power+1)) with power that of the first non-zero digit
+    if (first_int > 0) then
+      power = nint - first_int + expo
+    else if (first_frac > 0) then
+      power = -first_frac + expo
+    else
+      power = -huge(1)                            ! x = 0
+    end if
+    if (power >= 308) return
+    buf = str
+    do i = 1, n
+      if (buf(i:i) == 'd' .or. buf(i:i) == 'D') buf(i:i) = 'e'
+    end do
+    read(buf, *, iostat=ios) x
+    ok = ios == 0
+    if (ok) ok = x == x .and. abs(x) <= huge(x)
+    if (.not. ok) x = 0
+  end subroutine parse_real
+
+  ! ================================================================ text
+
+  pure logical function is_digit(c)
+    character, intent(in) :: c
+    is_digit = c >= '0' .and. c <= '9'
+  end function is_digit
+
+  pure logical function is_letter(c)
+    character, intent(in) :: c
+    is_letter = (c >= 'a' .and. c <= 'z') .or. (c >= 'A' .and. c <= 'Z')
+  end function is_letter
+
+  pure function lower(s) result(t)
+    character(len=*), intent(in) :: s
+    character(len=len(s)) :: t
+    integer :: i
+    t = s
+    do i = 1, len(t)
+      if (t(i:i) >= 'A' .and. t(i:i) <= 'Z') t(i:i) = achar(iachar(t(i:i)) + 32)
+    end do
+  end function lower
+
+  !> User text for a message: trimmed, control and non-ASCII bytes as '?', cut after 40.
+  pure function clip(s) result(t)
+    character(len=*), intent(in) :: s
+    character(len=:), allocatable :: t
+    integer :: i
+    t = trim(adjustl(s))
+    if (len(t) > 40) t = t(1:40) // '...'
+    do i = 1, len(t)
+      if (iachar(t(i:i)) < 32 .or. iachar(t(i:i)) > 126) t(i:i) = '?'
+    end do
+  end function clip
+
+  pure function int_text(k) result(t)
+    integer, intent(in) :: k
+    character(len=12) :: t
+    write(t, '(i0)') k
+  end function int_text
+
+end module deck_expressions
