@@ -36,7 +36,8 @@ module body
   use omp_lib, only: omp_get_max_threads
   use mesh, only: mesh_t
   use material, only: elasticity_t, von_mises
-  use elements, only: element_stiffness, element_force, element_strain, quadrature_rule, shape_at, strain_operator
+  use elements, only: element_stiffness, element_force, element_strain, quadrature_rule, shape_at, strain_operator, &
+                      max_nen
   use sparse_matrix, only: csc_t
   implicit none
   private
@@ -260,8 +261,8 @@ contains
     type(csc_t), intent(inout) :: k
     real(dp), intent(inout) :: rhs(:)
     integer :: b, e, nen, p, q, ep, eq_q, pos
-    integer :: dofs(8)
-    real(dp) :: ke(8, 8), xe(2, 4)
+    integer :: dofs(2 * max_nen)
+    real(dp) :: ke(2 * max_nen, 2 * max_nen), xe(2, max_nen)
     do b = 1, size(bodies)
       associate(m => bodies(b)%mesh)
         do e = 1, m%nelem
@@ -306,7 +307,7 @@ contains
   pure subroutine rotate_element_matrix(bd, e, ke)
     type(body_t), intent(in) :: bd
     integer, intent(in) :: e
-    real(dp), intent(inout) :: ke(8, 8)
+    real(dp), intent(inout) :: ke(:,:)
     integer :: a, i, n
     real(dp) :: q(2, 2)
     logical :: local
@@ -421,8 +422,8 @@ contains
     real(dp), intent(in) :: u(:)
     real(dp), intent(out) :: fint(:)
     integer :: b, e, nen
-    integer :: dofs(8)
-    real(dp) :: fe(8), xe(2, 4), ue(8)
+    integer :: dofs(2 * max_nen)
+    real(dp) :: fe(2 * max_nen), xe(2, max_nen), ue(2 * max_nen)
     fint = 0.0_dp
     do b = 1, size(bodies)
       associate(m => bodies(b)%mesh)
@@ -473,9 +474,9 @@ contains
     type(body_t), intent(in) :: bd
     real(dp), intent(inout) :: f(:)
     real(dp), allocatable :: xi(:,:), w(:)
-    real(dp) :: shp(4), dndx(2, 4), detj, b(3, 8), s0(3)
+    real(dp) :: shp(max_nen), dndx(2, max_nen), detj, b(3, 2 * max_nen), s0(3)
     integer :: e, nen, q
-    integer :: dofs(8)
+    integer :: dofs(2 * max_nen)
     associate(m => bd%mesh)
       do e = 1, m%nelem
         if (bd%adt(e) == 0.0_dp) cycle
@@ -502,13 +503,13 @@ contains
     real(dp), intent(out) :: fint(:)
     real(dp), intent(out), optional :: stress(:,:), vm(:)    !< skipped when absent
     integer :: b, e, nen, ge
-    integer :: dofs(8)
-    real(dp) :: eps(3), xe(2, 4), ue(8)
+    integer :: dofs(2 * max_nen)
+    real(dp) :: eps(3), xe(2, max_nen), ue(2 * max_nen)
     real(dp), allocatable :: fe(:,:)
     fint = 0.0_dp
     do b = 1, size(bodies)
       associate(m => bodies(b)%mesh, bd => bodies(b))
-        allocate(fe(8, m%nelem))
+        allocate(fe(2 * maxval(m%nen), m%nelem))
         !$omp parallel do private(e, nen, ge, dofs, eps, xe, ue) schedule(static)
         do e = 1, m%nelem
           nen = m%nen(e)

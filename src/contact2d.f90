@@ -16,7 +16,7 @@ program contact2d
                               is_parameter_name
   use deck_cases, only: case_table_t, read_case_table, case_parameters, run_every_case
   use scene, only: scene_t, build_scene, group_factor, step_loads, group_name
-  use mesh, only: node_in_file
+  use mesh, only: node_in_file, is_quadratic
   use material, only: tensor_condition
   use body, only: number_equations, build_pattern, assemble_stiffness, element_response, internal_forces, &
                   to_global_axes
@@ -870,21 +870,25 @@ contains
 
   subroutine report_scene()
     integer :: b, ip
-    character(len=:), allocatable :: how
+    character(len=:), allocatable :: how, family
     character(len=160) :: line
     call say('contact2d ' // version // ': ' // deck%file)
     if (len(deck%title) > 0) call say('title    ' // deck%title)
     call report_parameters()
     call say('effects  ' // sc%effects)
+    family = 'P1/Q1'                                 ! the element families of the bodies
+    if (any([(is_quadratic(sc%bodies(b)%mesh), b = 1, size(sc%bodies))])) family = 'quadratic (P2/Q8/Q9)'
+    if (any([(is_quadratic(sc%bodies(b)%mesh), b = 1, size(sc%bodies))]) .and. &
+        .not. all([(is_quadratic(sc%bodies(b)%mesh), b = 1, size(sc%bodies))])) family = 'P1/Q1 and quadratic'
     if (deck%plane_stress) then
-      call say('model    plane stress, P1/Q1 elasticity, small deformation')
+      call say('model    plane stress, ' // family // ' elasticity, small deformation')
     else
-      call say('model    plane strain, P1/Q1 elasticity, small deformation')
+      call say('model    plane strain, ' // family // ' elasticity, small deformation')
     end if
     do b = 1, size(sc%bodies)
       ! the body name is as long as the deck made it: not part of the buffer
       write(line, '(i0,a,i0,a,i0,a)') sc%bodies(b)%mesh%nnode, ' nodes, ', sc%bodies(b)%mesh%nelem, &
-        ' elements (', count(sc%bodies(b)%mesh%nen == 4), ' quadrilaterals)'
+        ' elements (', count(sc%bodies(b)%mesh%nen == 4 .or. sc%bodies(b)%mesh%nen >= 8), ' quadrilaterals)'
       call say('body     ' // sc%bodies(b)%name // ': ' // trim(line))
     end do
     do ip = 1, cs%npair
@@ -1437,9 +1441,12 @@ contains
       '  TITLE text', &
       '  PLANE strain | PLANE stress thickness=T', &
       '  BODY name ... END', &
-      '    MESH rect x0= y0= x1= y1= nx= ny= [elem=tri3|quad4] [diag=right|left|alt]', &
-      '    MESH gmsh file=F.msh              (MSH 2.2 or 4.1 ASCII; physical groups name boundaries)', &
-      '    MESH gmsh file=F.geo [name=value ...]   (meshed by gmsh -2 -setnumber name value)', &
+      '    MESH rect x0= y0= x1= y1= nx= ny= [elem=tri3|quad4|tri6|quad8|quad9] [diag=right|left|alt]', &
+      '                                      (tri6, quad8 serendipity, quad9 Lagrange: quadratic elements)', &
+      '    MESH gmsh file=F.msh              (MSH 2.2 or 4.1 ASCII; physical groups name boundaries;', &
+      '                                      first or second order: 6-node triangles, 8-/9-node quads)', &
+      '    MESH gmsh file=F.geo [order=1|2] [name=value ...]   (meshed by gmsh -2 -order N', &
+      '                                      -setnumber name value; order=2: curved edges kept)', &
       '    MATERIAL isotropic E= nu=', &
       '    MATERIAL orthotropic E1= E2= nu12= G12= [angle=0] [E3= nu13= nu23=]', &
       '    DENSITY rho=', &
@@ -1456,6 +1463,7 @@ contains
       '          [interference=allow|reject]  (a boundary may be a closed curve; an initial penetration', &
       '                                    deeper than a slave element is refused unless allowed)', &
       '                                    (frictionless unless mu= (Coulomb) or tresca= (slip bound))', &
+      '                                    (P1/Q1 bodies only: contact on quadratic elements is refused)', &
       '  SOLVER lcp=auto|lemke|pgs|pdas [tol=1e-10] [maxit=N] [omega=1.0]   (pdas: frictionless only)', &
       '         [ordering=auto|metis|amd]  (fill-reducing ordering; auto: AMD up to 5e5 free dofs, METIS above)', &
       '         [condense=auto|solve|inverse]  (W per body: triangular solves or the block''s inverse)', &

@@ -17,8 +17,8 @@
 !>   TITLE free text                                     default ''
 !>   PLANE strain | PLANE stress [thickness=1]           default strain
 !>   BODY name ... END                                    at least one
-!>     MESH rect [x0=0] [y0=0] [x1=1] [y1=1] nx= ny= [elem=tri3|quad4] [diag=right|left|alt]
-!>                                      (diag only with tri3; boundaries left, right, bottom, top)
+!>     MESH rect [x0=0] [y0=0] [x1=1] [y1=1] nx= ny= [elem=tri3|quad4|tri6|quad8|quad9]
+!>          [diag=right|left|alt]      (diag only with triangles; boundaries left, right, bottom, top)
 !>     MESH gmsh file=NAME.msh | file=NAME.geo [name=number ...]
 !>     MATERIAL isotropic E= nu=
 !>     MATERIAL orthotropic E1= E2= nu12= G12= [angle=0] [E3=E2] [nu13=nu12] [nu23=nu12]
@@ -118,11 +118,12 @@ module deck_reader
     character(len=:), allocatable :: kind       !< 'rect' or 'gmsh' ('' when the statement was bad)
     real(dp) :: x0 = 0, y0 = 0, x1 = 1, y1 = 1  !< rect: corners
     integer :: nx = 0, ny = 0                   !< rect: cells along x and y
-    character(len=:), allocatable :: elem       !< rect: 'tri3' (default) or 'quad4'; gmsh: ''
+    character(len=:), allocatable :: elem       !< rect: 'tri3' (default), 'quad4', 'tri6', 'quad8', 'quad9'; gmsh: ''
     character(len=:), allocatable :: diag       !< rect: 'right' (default), 'left' or 'alt'; gmsh: ''
     character(len=:), allocatable :: file       !< gmsh: path as written in the deck; rect: ''
     character(len=:), allocatable :: path       !< gmsh: path resolved against the deck's folder
     logical :: is_geo = .false.                 !< gmsh: file ends in .geo (mesh with gmsh -2)
+    integer :: order = 1                        !< gmsh .geo: element order, gmsh -order 1 or 2 (order=)
     character(len=64), allocatable :: set_names(:)  !< (nset) .geo parameters, case as written
     real(dp), allocatable :: set_values(:)      !< (nset) their values
     integer :: line = 0                         !< line of the MESH statement (0: none)
@@ -1181,10 +1182,10 @@ contains
     type(mesh_spec_t), intent(inout) :: m
     type(stmt_t), intent(in) :: st
     character(len=*), parameter :: usage = 'MESH rect x0=number y0=number x1=number y1=number nx=integer ' // &
-                                           'ny=integer [elem=tri3|quad4] [diag=right|left|alt]'
+                                           'ny=integer [elem=tri3|quad4|tri6|quad8|quad9] [diag=right|left|alt]'
     character(len=4), parameter :: names(8) = [character(len=4) :: 'x0', 'y0', 'x1', 'y1', 'nx', 'ny', 'elem', 'diag']
-    character(len=14), parameter :: forms(8) = [character(len=14) :: 'number', 'number', 'number', 'number', &
-                                                'integer', 'integer', 'tri3|quad4', 'right|left|alt']
+    character(len=27), parameter :: forms(8) = [character(len=27) :: 'number', 'number', 'number', 'number', &
+                                                'integer', 'integer', 'tri3|quad4|tri6|quad8|quad9', 'right|left|alt']
     logical :: seen(8), okx0, oky0, okx1, oky1, ok
     type(text_t) :: val(8)
 
@@ -1214,10 +1215,11 @@ contains
     end if
     m%elem = 'tri3'
     m%diag = 'right'
-    if (allocated(val(7)%s)) m%elem = get_choice(s, st, val(7), 'elem', ['tri3 ', 'quad4'])
+    if (allocated(val(7)%s)) m%elem = get_choice(s, st, val(7), 'elem', ['tri3 ', 'quad4', 'tri6 ', 'quad8', 'quad9'])
     if (allocated(val(8)%s)) then
       m%diag = get_choice(s, st, val(8), 'diag', ['right', 'left ', 'alt  '])
-      if (m%elem == 'quad4') call report(s, st%line, 'diag= applies only to elem=tri3 (got elem=quad4)')
+      if (m%elem(1:1) == 'q') call report(s, st%line, 'diag= applies only to elem=tri3 or tri6 (got elem=' // &
+                                          m%elem // ')')
     end if
   end subroutine do_mesh_rect
 
@@ -1239,13 +1241,14 @@ contains
     character(len=*), intent(in) :: dir
     type(mesh_spec_t), intent(inout) :: m
     type(stmt_t), intent(in) :: st
-    character(len=*), parameter :: usage = 'MESH gmsh file=NAME.msh or file=NAME.geo [name=number ...]'
+    character(len=*), parameter :: usage = 'MESH gmsh file=NAME.msh or file=NAME.geo [order=1|2] [name=number ...]'
     integer :: i, j, nset, ifile, kind
-    logical :: ok, is_msh
+    logical :: ok, is_msh, seen_order
     real(dp) :: x
 
     m%elem = ''
     m%diag = ''
+    seen_order = .false.
     call check_extra_words(s, st, 1, usage)
     ifile = 0
     do i = 1, st%npair
@@ -1297,6 +1300,17 @@ contains
       if (is_msh) then
         call report(s, st%line, 'unknown key ' // quoted(st%key(i)%s) // ' for MESH gmsh with a .msh file ' // &
                     '(expected file= only; name=number pairs are for .geo files)')
+        cycle
+      end if
+      if (lower(st%key(i)%s) == 'order') then        ! gmsh -order 1 or 2, not a .geo variable
+        if (seen_order) then
+          call report(s, st%line, 'duplicate key "order" (expected each key at most once)')
+        else if (st%value(i)%s == '1' .or. st%value(i)%s == '2') then
+          m%order = merge(2, 1, st%value(i)%s == '2')
+        else
+          call report(s, st%line, 'bad value order=' // cut(st%value(i)%s) // ' (expected order=1|2)')
+        end if
+        seen_order = .true.
         cycle
       end if
       if (.not. is_identifier(st%key(i)%s)) then

@@ -1,68 +1,101 @@
 !> elements: pure element kernels of plane elasticity for the P1 triangle (the
-!> paper's element, eq. (7)) and the Q1 quadrilateral.
+!> paper's element, eq. (7)), the Q1 quadrilateral and the isoparametric
+!> quadratic elements: the 6-node triangle (P2, nen = 6), the 8-node serendipity
+!> quadrilateral (nen = 8) and the 9-node Lagrange quadrilateral (Q2, nen = 9).
 !>
-!> Element nodes xe(2, nen), counter-clockwise; element dofs ordered
-!> (u1x, u1y, u2x, u2y, ...).  Strain eps = B u in Voigt form (exx, eyy, gxy).
+!> Element nodes xe(2, nen), corners first, counter-clockwise, then the
+!> mid-side nodes (node nc + k on the edge from corner k to corner k + 1), then
+!> the centre (Q2): gmsh's and VTK's order.  A quadratic element is mapped from
+!> the reference element by its own shape functions, so an edge whose mid-side
+!> node is off the chord is curved.  Element dofs ordered (u1x, u1y, u2x, u2y,
+!> ...).  Strain eps = B u in Voigt form (exx, eyy, gxy).
+!>
+!> Stiffness rules, exact on straight-sided (affine) elements: P1 1 point, Q1
+!> 2x2 Gauss, P2 the 3-point degree-2 rule, Q8 and Q9 3x3 Gauss.
 !>
 !> Programming interface
 !>   quadrature_rule(nen, order, xi, w)    points xi(2, nq) and weights w(nq) on the
-!>        reference element: order 1 (P1: 1 point; Q1: 2x2 Gauss) or 2 (P1:
-!>        3-point degree-2 rule; Q1: 3x3 Gauss), for loads and error integrals
+!>        reference element: order 1, the stiffness rule, or 2, a richer rule
+!>        for loads and error integrals (P1: 3 points, degree 2; Q1: 3x3 Gauss;
+!>        P2: Dunavant's 6 points, degree 4; Q8, Q9: 4x4 Gauss)
+!>   corner_count(nen)                     3 (triangles) or 4 (quadrilaterals)
 !>   shape_at(nen, xe, xi, n, dndx, detj)  shape functions, their x-y gradients
 !>        and the Jacobian determinant at a reference point
 !>   element_stiffness(nen, xe, d, thick, ke)    ke = int B' D B t dA
 !>   element_force(nen, xe, d, thick, ue, fe)    fe = ke ue, without ke
 !>   element_body_load(nen, xe, b, thick, fe)    fe = int N' b t dA (constant b)
 !>   element_strain(nen, xe, ue, eps)            strain at the element centre
+!>        (reference centroid (1/3, 1/3) or (0, 0)): the element's stress for output
 !>   edge_load(xa, xb, t, thick, fe)             fe(4) = int N' t t_h ds, constant
 !>        traction t on the straight edge xa-xb
+!>   edge_load_quadratic(xe, t, pr, thick, fe)   fe(6) = int N' (t + pr n_r) t_h ds
+!>        on the 3-node edge xe(2, 3) (ends, then middle; curved when the middle
+!>        is off the chord), 3-point Gauss; n_r the unit normal to the right of
+!>        the direction end 1 -> end 2 (a pressure follows the curve)
 module elements
   use kinds, only: dp
   implicit none
   private
   public :: quadrature_rule, shape_at, element_stiffness, element_force, element_body_load, element_strain
-  public :: edge_load, strain_operator
+  public :: edge_load, edge_load_quadratic, strain_operator, corner_count, max_nen
 
-  !> The most nodes of an element (Q1).  The kernels run once per element:
+  !> The most nodes of an element (Q9).  The kernels run once per element:
   !> their work arrays have this fixed size, not nen, because gfortran puts
   !> arrays of run-time size on the heap (a malloc and free per call, and
   !> a lock shared with every thread that allocates meanwhile).
-  integer, parameter :: max_nen = 4
+  integer, parameter :: max_nen = 9
 
 contains
 
   !> Quadrature on the reference triangle (0,0),(1,0),(0,1) or square [-1,1]^2.
-  !>   nen   (in)  3 or 4
-  !>   order (in)  1: exact for the stiffness; 2: one degree more, for loads/errors
+  !>   nen   (in)  3, 4, 6, 8 or 9
+  !>   order (in)  1: the stiffness rule (stiffness_rule); 2: the richer rule
+  !>               for loads and error integrals (module header)
   !>   xi    (out) (2, nq) points
   !>   w     (out) (nq) weights (sum: 1/2 for the triangle, 4 for the square)
   pure subroutine quadrature_rule(nen, order, xi, w)
     integer, intent(in) :: nen, order
     real(dp), allocatable, intent(out) :: xi(:,:), w(:)
     real(dp), parameter :: g2 = 1.0_dp / sqrt(3.0_dp), g3 = sqrt(0.6_dp)
-    real(dp) :: p(3), pw(3)
+    real(dp), parameter :: g4(4) = [-0.8611363115940526_dp, -0.3399810435848563_dp, &
+                                    0.3399810435848563_dp, 0.8611363115940526_dp]
+    real(dp), parameter :: w4(4) = [0.3478548451374538_dp, 0.6521451548625461_dp, &
+                                    0.6521451548625461_dp, 0.3478548451374538_dp]
+    ! Dunavant's degree-4 rule: two orbits (a, a, 1 - 2a) of three points
+    real(dp), parameter :: ta = 0.445948490915965_dp, tb = 0.091576213509771_dp
+    real(dp), parameter :: wa = 0.223381589678011_dp / 2, wb = 0.109951743655322_dp / 2
+    real(dp) :: p(4), pw(4)
     integer :: i, j, k, m
-    if (nen == 3) then
-      if (order <= 1) then
+    if (corner_count(nen) == 3) then
+      if (order <= 1 .and. nen == 3) then
         allocate(xi(2, 1), w(1))
         xi(:, 1) = [1.0_dp, 1.0_dp] / 3.0_dp
         w = 0.5_dp
-      else
+      else if (order <= 1 .or. nen == 3) then
         allocate(xi(2, 3), w(3))
         xi(:, 1) = [1.0_dp / 6.0_dp, 1.0_dp / 6.0_dp]
         xi(:, 2) = [2.0_dp / 3.0_dp, 1.0_dp / 6.0_dp]
         xi(:, 3) = [1.0_dp / 6.0_dp, 2.0_dp / 3.0_dp]
         w = 1.0_dp / 6.0_dp
+      else
+        allocate(xi(2, 6), w(6))
+        xi = reshape([ta, ta, 1 - 2 * ta, ta, ta, 1 - 2 * ta, &
+                      tb, tb, 1 - 2 * tb, tb, tb, 1 - 2 * tb], [2, 6])
+        w = [wa, wa, wa, wb, wb, wb]
       end if
     else
-      if (order <= 1) then
+      if (order <= 1 .and. nen == 4) then
         m = 2
         p(1:2) = [-g2, g2]
         pw(1:2) = 1.0_dp
-      else
+      else if (order <= 1 .or. nen == 4) then
         m = 3
-        p = [-g3, 0.0_dp, g3]
-        pw = [5.0_dp, 8.0_dp, 5.0_dp] / 9.0_dp
+        p(1:3) = [-g3, 0.0_dp, g3]
+        pw(1:3) = [5.0_dp, 8.0_dp, 5.0_dp] / 9.0_dp
+      else
+        m = 4
+        p = g4
+        pw = w4
       end if
       allocate(xi(2, m * m), w(m * m))
       k = 0
@@ -76,8 +109,14 @@ contains
     end if
   end subroutine quadrature_rule
 
+  !> Corners of an element of nen nodes: 3 (P1, P2) or 4 (Q1, Q8, Q9).
+  pure integer function corner_count(nen) result(nc)
+    integer, intent(in) :: nen
+    nc = merge(3, 4, nen == 3 .or. nen == 6)
+  end function corner_count
+
   !> Shape functions and x-y derivatives at reference point xi.
-  !>   nen  (in)  3 or 4
+  !>   nen  (in)  3, 4, 6, 8 or 9
   !>   xe   (in)  (2, nen) node coordinates
   !>   xi   (in)  (2) reference point
   !>   n    (out) (nen) shape function values
@@ -89,19 +128,7 @@ contains
     real(dp), intent(out) :: n(nen), dndx(2, nen), detj
     real(dp) :: dndxi(2, max_nen), jac(2, 2), jinv(2, 2)
     integer :: a
-    if (nen == 3) then
-      n = [1.0_dp - xi(1) - xi(2), xi(1), xi(2)]
-      dndxi(:, 1) = [-1.0_dp, -1.0_dp]
-      dndxi(:, 2) = [1.0_dp, 0.0_dp]
-      dndxi(:, 3) = [0.0_dp, 1.0_dp]
-    else
-      n = 0.25_dp * [(1 - xi(1)) * (1 - xi(2)), (1 + xi(1)) * (1 - xi(2)), &
-                     (1 + xi(1)) * (1 + xi(2)), (1 - xi(1)) * (1 + xi(2))]
-      dndxi(:, 1) = 0.25_dp * [-(1 - xi(2)), -(1 - xi(1))]
-      dndxi(:, 2) = 0.25_dp * [(1 - xi(2)), -(1 + xi(1))]
-      dndxi(:, 3) = 0.25_dp * [(1 + xi(2)), (1 + xi(1))]
-      dndxi(:, 4) = 0.25_dp * [-(1 + xi(2)), (1 - xi(1))]
-    end if
+    call reference_shape(nen, xi, n, dndxi)
     ! jac(i,j) = d x_i / d xi_j, and dN/dx = J^-T dN/dxi, written out: no
     ! array temporary of run-time size (see max_nen)
     jac = 0.0_dp
@@ -120,6 +147,70 @@ contains
     end do
   end subroutine shape_at
 
+  !> Shape functions n(1:nen) and their reference gradients dndxi(2, 1:nen).
+  pure subroutine reference_shape(nen, xi, n, dndxi)
+    integer, intent(in) :: nen
+    real(dp), intent(in) :: xi(2)
+    real(dp), intent(out) :: n(nen), dndxi(:,:)
+    ! reference position (-1, 0, 1) of the quadrilaterals' nodes: corners, mid-sides, centre
+    real(dp), parameter :: qs(9) = [-1, 1, 1, -1, 0, 1, 0, -1, 0], qt(9) = [-1, -1, 1, 1, -1, 0, 1, 0, 0]
+    real(dp) :: l(3), dl(2, 3), s, t, ls(3), lt(3), dls(3), dlt(3)
+    integer :: a, i, j, k
+    select case (nen)
+    case (3)
+      n = [1.0_dp - xi(1) - xi(2), xi(1), xi(2)]
+      dndxi(:, 1) = [-1.0_dp, -1.0_dp]
+      dndxi(:, 2) = [1.0_dp, 0.0_dp]
+      dndxi(:, 3) = [0.0_dp, 1.0_dp]
+    case (6)
+      ! area coordinates L_i: corners L_i (2 L_i - 1), mid-sides 4 L_i L_j
+      l = [1.0_dp - xi(1) - xi(2), xi(1), xi(2)]
+      dl = reshape([-1.0_dp, -1.0_dp, 1.0_dp, 0.0_dp, 0.0_dp, 1.0_dp], [2, 3])
+      do i = 1, 3
+        j = mod(i, 3) + 1
+        n(i) = l(i) * (2 * l(i) - 1)
+        dndxi(:, i) = (4 * l(i) - 1) * dl(:, i)
+        n(3 + i) = 4 * l(i) * l(j)
+        dndxi(:, 3 + i) = 4 * (l(j) * dl(:, i) + l(i) * dl(:, j))
+      end do
+    case (4)
+      n = 0.25_dp * [(1 - xi(1)) * (1 - xi(2)), (1 + xi(1)) * (1 - xi(2)), &
+                     (1 + xi(1)) * (1 + xi(2)), (1 - xi(1)) * (1 + xi(2))]
+      dndxi(:, 1) = 0.25_dp * [-(1 - xi(2)), -(1 - xi(1))]
+      dndxi(:, 2) = 0.25_dp * [(1 - xi(2)), -(1 + xi(1))]
+      dndxi(:, 3) = 0.25_dp * [(1 + xi(2)), (1 + xi(1))]
+      dndxi(:, 4) = 0.25_dp * [-(1 + xi(2)), (1 - xi(1))]
+    case (8)
+      s = xi(1); t = xi(2)
+      do a = 1, 4                ! corners: (1 + s sa)(1 + t ta)(s sa + t ta - 1) / 4
+        n(a) = 0.25_dp * (1 + s * qs(a)) * (1 + t * qt(a)) * (s * qs(a) + t * qt(a) - 1)
+        dndxi(1, a) = 0.25_dp * qs(a) * (1 + t * qt(a)) * (2 * s * qs(a) + t * qt(a))
+        dndxi(2, a) = 0.25_dp * qt(a) * (1 + s * qs(a)) * (s * qs(a) + 2 * t * qt(a))
+      end do
+      do a = 5, 8                ! mid-sides: (1 - s^2)(1 + t ta) / 2 or (1 + s sa)(1 - t^2) / 2
+        if (qs(a) == 0) then
+          n(a) = 0.5_dp * (1 - s * s) * (1 + t * qt(a))
+          dndxi(:, a) = [-s * (1 + t * qt(a)), 0.5_dp * (1 - s * s) * qt(a)]
+        else
+          n(a) = 0.5_dp * (1 + s * qs(a)) * (1 - t * t)
+          dndxi(:, a) = [0.5_dp * qs(a) * (1 - t * t), -t * (1 + s * qs(a))]
+        end if
+      end do
+    case default                 ! 9: products of the 1D quadratics at -1, 0, 1
+      s = xi(1); t = xi(2)
+      ls = [0.5_dp * s * (s - 1), 1 - s * s, 0.5_dp * s * (s + 1)]
+      dls = [s - 0.5_dp, -2 * s, s + 0.5_dp]
+      lt = [0.5_dp * t * (t - 1), 1 - t * t, 0.5_dp * t * (t + 1)]
+      dlt = [t - 0.5_dp, -2 * t, t + 0.5_dp]
+      do a = 1, 9
+        i = nint(qs(a)) + 2
+        k = nint(qt(a)) + 2
+        n(a) = ls(i) * lt(k)
+        dndxi(:, a) = [dls(i) * lt(k), ls(i) * dlt(k)]
+      end do
+    end select
+  end subroutine reference_shape
+
   !> Strain operator B(3, 2 nen) from shape gradients: eps = B u.
   pure subroutine strain_operator(nen, dndx, b)
     integer, intent(in) :: nen
@@ -137,31 +228,46 @@ contains
 
   !> The stiffness rule (quadrature_rule order 1) in fixed-size arrays, for
   !> the kernels called once per element: no allocation there.
-  !>   nq (out) 1 (P1) or 4 (Q1); xi(:, 1:nq), w(1:nq) as quadrature_rule
+  !>   nq (out) 1 (P1), 4 (Q1), 3 (P2) or 9 (Q8, Q9); xi(:, 1:nq), w(1:nq) as quadrature_rule
   pure subroutine stiffness_rule(nen, nq, xi, w)
     integer, intent(in) :: nen
     integer, intent(out) :: nq
-    real(dp), intent(out) :: xi(2, 4), w(4)
-    real(dp), parameter :: g = 1.0_dp / sqrt(3.0_dp)
-    if (nen == 3) then
+    real(dp), intent(out) :: xi(2, 9), w(9)
+    real(dp), parameter :: g = 1.0_dp / sqrt(3.0_dp), g3(3) = [-sqrt(0.6_dp), 0.0_dp, sqrt(0.6_dp)]
+    real(dp), parameter :: w3(3) = [5.0_dp, 8.0_dp, 5.0_dp] / 9.0_dp
+    integer :: i, j
+    select case (nen)
+    case (3)
       nq = 1
       xi(:, 1) = [1.0_dp, 1.0_dp] / 3.0_dp
       w(1) = 0.5_dp
-    else
+    case (4)
       nq = 4
-      xi = reshape([-g, -g, g, -g, -g, g, g, g], [2, 4])
-      w = 1.0_dp
-    end if
+      xi(:, 1:4) = reshape([-g, -g, g, -g, -g, g, g, g], [2, 4])
+      w(1:4) = 1.0_dp
+    case (6)                                  ! degree 2: B' D B of an affine P2
+      nq = 3
+      xi(:, 1:3) = reshape([1.0_dp, 1.0_dp, 4.0_dp, 1.0_dp, 1.0_dp, 4.0_dp], [2, 3]) / 6.0_dp
+      w(1:3) = 1.0_dp / 6.0_dp
+    case default                              ! 3x3 Gauss: degree 4 in each variable (Q9 on a parallelogram)
+      nq = 9
+      do j = 1, 3
+        do i = 1, 3
+          xi(:, 3 * (j - 1) + i) = [g3(i), g3(j)]
+          w(3 * (j - 1) + i) = w3(i) * w3(j)
+        end do
+      end do
+    end select
   end subroutine stiffness_rule
 
-  !> Element stiffness ke = sum_q w_q detJ_q t B_q' D B_q (exact: 1 point for P1,
-  !> 2x2 Gauss for Q1), in ke(1:2 nen, 1:2 nen) (ke may be larger: 8 x 8 for
-  !> either element).
+  !> Element stiffness ke = sum_q w_q detJ_q t B_q' D B_q (stiffness_rule: exact
+  !> on straight-sided elements), in ke(1:2 nen, 1:2 nen) (ke may be larger:
+  !> 2 max_nen x 2 max_nen for any element).
   pure subroutine element_stiffness(nen, xe, d, thick, ke)
     integer, intent(in) :: nen
     real(dp), intent(in) :: xe(2, nen), d(3, 3), thick
     real(dp), intent(inout) :: ke(:,:)
-    real(dp) :: xi(2, 4), w(4), n(max_nen), dndx(2, max_nen), detj, b(3, 2 * max_nen), db(3, 2 * max_nen), c
+    real(dp) :: xi(2, 9), w(9), n(max_nen), dndx(2, max_nen), detj, b(3, 2 * max_nen), db(3, 2 * max_nen), c
     integer :: q, nq, m, i, j
     m = 2 * nen
     call stiffness_rule(nen, nq, xi, w)
@@ -185,7 +291,7 @@ contains
     integer, intent(in) :: nen
     real(dp), intent(in) :: xe(2, nen), d(3, 3), thick, ue(2 * nen)
     real(dp), intent(out) :: fe(2 * nen)
-    real(dp) :: xi(2, 4), w(4), n(max_nen), dndx(2, max_nen), detj, b(3, 2 * max_nen), eps(3), sig(3), c
+    real(dp) :: xi(2, 9), w(9), n(max_nen), dndx(2, max_nen), detj, b(3, 2 * max_nen), eps(3), sig(3), c
     integer :: q, nq, j
     call stiffness_rule(nen, nq, xi, w)
     fe = 0.0_dp
@@ -222,14 +328,15 @@ contains
     end do
   end subroutine element_body_load
 
-  !> Strain at the element centre (exact for P1; the centre value for Q1).
+  !> Strain at the element centre, the reference centroid (exact for P1; the
+  !> centre value for the others: the element's stress in the output).
   pure subroutine element_strain(nen, xe, ue, eps)
     integer, intent(in) :: nen
     real(dp), intent(in) :: xe(2, nen), ue(2 * nen)
     real(dp), intent(out) :: eps(3)
     real(dp) :: n(max_nen), dndx(2, max_nen), detj, b(3, 2 * max_nen), xc(2)
     integer :: j
-    if (nen == 3) then
+    if (corner_count(nen) == 3) then
       xc = [1.0_dp, 1.0_dp] / 3.0_dp
     else
       xc = 0.0_dp
@@ -252,5 +359,36 @@ contains
     fe(1:2) = 0.5_dp * l * thick * t
     fe(3:4) = fe(1:2)
   end subroutine edge_load
+
+  !> Nodal forces of a traction on the 3-node edge xe(:, 1:3) (ends 1, 2, then
+  !> the middle 3): the force per unit length t + pr n_r, with n_r(s) the
+  !> unit normal to the right of the edge's direction (1 -> 2) at each point
+  !> of a curved edge, integrated with 3-point Gauss (exact for a constant t
+  !> on a straight edge: degree 2).
+  !>   xe    (in)  (2, 3) node coordinates
+  !>   t     (in)  (2) constant traction, global axes
+  !>   pr    (in)  normal traction along n_r (a pressure p pushing into the
+  !>               body whose outward normal is n_r: pr = -p)
+  !>   thick (in)  thickness
+  !>   fe    (out) (6) forces on end 1, end 2, middle (x, y each)
+  pure subroutine edge_load_quadratic(xe, t, pr, thick, fe)
+    real(dp), intent(in) :: xe(2, 3), t(2), pr, thick
+    real(dp), intent(out) :: fe(6)
+    real(dp), parameter :: g3(3) = [-sqrt(0.6_dp), 0.0_dp, sqrt(0.6_dp)]
+    real(dp), parameter :: w3(3) = [5.0_dp, 8.0_dp, 5.0_dp] / 9.0_dp
+    real(dp) :: s, n(3), dn(3), tang(2), f(2)
+    integer :: q, a
+    fe = 0.0_dp
+    do q = 1, 3
+      s = g3(q)
+      n = [0.5_dp * s * (s - 1), 0.5_dp * s * (s + 1), 1 - s * s]
+      dn = [s - 0.5_dp, s + 0.5_dp, -2 * s]
+      tang = xe(:, 1) * dn(1) + xe(:, 2) * dn(2) + xe(:, 3) * dn(3)      ! dx/ds
+      f = t * norm2(tang) + pr * [tang(2), -tang(1)]                     ! (t + pr n_r) |dx/ds|
+      do a = 1, 3
+        fe(2 * a - 1:2 * a) = fe(2 * a - 1:2 * a) + (w3(q) * thick * n(a)) * f
+      end do
+    end do
+  end subroutine edge_load_quadratic
 
 end module elements

@@ -5,12 +5,15 @@
 !>   - nodes: tags may be sparse and in any order; node k of the mesh is the k-th
 !>     node of the file, x(1:2, k) its coordinates; every z must vanish up to
 !>     1e-10 of the mesh extent max(xmax - xmin, ymax - ymin);
-!>   - 2D elements: 3-node triangles (type 2) and 4-node quadrangles (type 3), all
+!>   - 2D elements: 3-node triangles (type 2) and 4-node quadrangles (type 3), or
+!>     second order: 6-node triangles (9), 8-node (16) and 9-node (10)
+!>     quadrangles, with the mid-side nodes where gmsh put them (curved edges), all
 !>     of them, in the file's node order; MSH 2.2 repeats an element once per
 !>     physical group holding it, so elements with the same node set are merged
 !>     (hash table of the sorted node sets, O(n));
 !>   - physical groups: a physical curve gives a boundary_t whose edges are its
-!>     2-node lines (type 1); a physical point gives a boundary_t whose points are
+!>     2-node lines (type 1) or 3-node lines (type 8: ends, then the middle, kept
+!>     as the edge's mid-side node); a physical point gives a boundary_t whose points are
 !>     its point elements (type 15); a physical surface gives a region_t of element
 !>     indices.  A group is named from $PhysicalNames, else by its number ("3");
 !>     groups of the same name (e.g. a physical point and a physical curve) make
@@ -68,7 +71,7 @@ module gmsh_reader
   integer, parameter :: max_number_length = 200    !< longest accepted number item
   integer, parameter :: echo_length = 100          !< characters of a line echoed
   integer, parameter :: quote_length = 40          !< characters of an item quoted
-  integer, parameter :: raw_width = 6              !< nen, 4 nodes, line: an element read
+  integer, parameter :: raw_width = 11             !< nen, 9 nodes, line: an element read
   integer, parameter :: max_fast_items = 8         !< items of a line on the fast path
   integer, parameter :: fast_parallel_min = 4096   !< lines parsed on two threads from
   integer(i8), parameter :: fast_parallel_bytes = 262144  !< files split into lines on two threads from
@@ -76,7 +79,7 @@ module gmsh_reader
   real(dp) :: no_reals(0, 0)                       !< rv of scan_data_lines for no reals
   integer(i8) :: no_lower_bounds(0)                !< lo of scan_data_lines for no integers
   character(len=*), parameter :: order_hint = &
-    'P1 triangles/Q1 quads and 2-node lines expected; mesh with gmsh -order 1'
+    'triangles of 3 or 6 nodes, quads of 4, 8 or 9 nodes and 2- or 3-node lines expected; mesh with gmsh -order 1 or 2'
 
   !> A character string of any length.
   type :: string_t
@@ -128,10 +131,10 @@ module gmsh_reader
     integer, allocatable :: ent_count(:)      !< (nent) number of physical tags
     integer, allocatable :: ent_perm(:)       !< (nent) ent_key sorted
     type(record_list_t) :: ent_phys           !< (1, *) physical tags of the entities
-    type(record_list_t) :: raw                !< (raw_width, *) nen, 4 nodes, line of each 2D
+    type(record_list_t) :: raw                !< (raw_width, *) nen, 9 nodes, line of each 2D
                                               !< element read
     type(record_list_t) :: region_pairs       !< (2, *) physical tag, raw element
-    type(record_list_t) :: edges              !< (3, *) physical tag, node, node
+    type(record_list_t) :: edges              !< (5, *) physical tag, node, node, line, middle node (0: none)
     type(record_list_t) :: points             !< (2, *) physical tag, node
   end type msh_data_t
 
@@ -978,7 +981,7 @@ contains
       'no 2D elements (triangles or quadrilaterals expected: mesh with gmsh -2)')
   end subroutine check_some_2d
 
-  !> Element type from item k: a supported type (1, 2, 3, 15) of dimension dim
+  !> Element type from item k: a supported type (1, 2, 3, 8, 9, 10, 15, 16) of dimension dim
   !> (any when dim < 0); nn its number of nodes.
   subroutine get_element_type(t, diag, k, dim, etype, nn, ok)
     type(msh_text_t), intent(in) :: t
@@ -1008,6 +1011,14 @@ contains
       nn = 4
     case (15)
       nn = 1
+    case (8)
+      nn = 3
+    case (9)
+      nn = 6
+    case (16)
+      nn = 8
+    case (10)
+      nn = 9
     case default
       kind_text = element_description(etype)
       if (len(kind_text) == 0) then
@@ -1038,7 +1049,7 @@ contains
     integer, intent(in) :: etype, kfirst
     integer(i8), intent(in) :: phys(:)
     logical, intent(out) :: ok
-    integer(i8) :: tag, node(4)
+    integer(i8) :: tag, node(9)
     integer :: k, nn, idx, p
 
     nn = t%ntok - kfirst + 1
@@ -1060,11 +1071,11 @@ contains
       do p = 1, size(phys)
         call push_record(d%points, [phys(p), node(1)])
       end do
-    case (1)
+    case (1, 8)                       ! node(3): the middle of a 3-node line, 0 for a 2-node line
       do p = 1, size(phys)
-        call push_record(d%edges, [phys(p), node(1), node(2), int(t%ln, i8)])
+        call push_record(d%edges, [phys(p), node(1), node(2), int(t%ln, i8), node(3)])
       end do
-    case (2, 3)
+    case (2, 3, 9, 16, 10)
       call push_record(d%raw, [int(nn, i8), node, int(t%ln, i8)])
       do p = 1, size(phys)
         call push_record(d%region_pairs, [phys(p), int(d%raw%n, i8)])
@@ -1103,7 +1114,7 @@ contains
     type(msh_data_t), intent(in) :: d
     type(mesh_t), intent(out) :: mesh
     integer, allocatable :: rep(:), elem_of_raw(:)
-    integer :: nraw, r, nelem
+    integer :: nraw, r, nelem, width
 
     ! Elements with the same node set are one element, represented by the first
     ! of them in the file.
@@ -1123,12 +1134,16 @@ contains
     mesh%nnode = d%nnode
     mesh%x = d%x
     mesh%nelem = nelem
-    allocate(mesh%nen(nelem), mesh%conn(4, nelem), mesh%elem_line(nelem))
+    width = 4                                 ! conn(4, *), or conn(9, *) with quadratic elements
+    if (nraw > 0) then
+      if (any(d%raw%v(1, 1:nraw) > 4)) width = 9
+    end if
+    allocate(mesh%nen(nelem), mesh%conn(width, nelem), mesh%elem_line(nelem))
     do r = 1, nraw
       if (rep(r) /= r) cycle
       mesh%nen(elem_of_raw(r)) = int(d%raw%v(1, r))
-      mesh%conn(:, elem_of_raw(r)) = int(d%raw%v(2:5, r))
-      mesh%elem_line(elem_of_raw(r)) = int(d%raw%v(6, r))
+      mesh%conn(:, elem_of_raw(r)) = int(d%raw%v(2:1 + width, r))
+      mesh%elem_line(elem_of_raw(r)) = int(d%raw%v(raw_width, r))
     end do
     call build_boundaries(d, mesh)
     call build_regions(d, elem_of_raw, mesh)
@@ -1230,15 +1245,16 @@ contains
     end do
   end subroutine find_repeated_elements
 
-  !> A raw element record (nen, 4 nodes, line) as its lowest node lo and the
-  !> rest of its key: nen and its other nodes ascending, 0 for none.
+  !> A raw element record (nen, 9 nodes, line) as its lowest node lo and the
+  !> rest of its key: nen and its next three nodes ascending, 0 for none (two
+  !> distinct elements of a conforming mesh share at most an edge's 3 nodes).
   pure subroutine split_key(rec, lo, key)
     integer(i8), intent(in) :: rec(:)
     integer, intent(out) :: lo, key(4)
-    integer(i8) :: a(4)
+    integer(i8) :: a(9)
     integer :: nen
     nen = int(rec(1))
-    a = rec(2:5)
+    a = rec(2:10)
     call sort_small(a(1:nen))
     lo = int(a(1))
     key = [nen, int(a(2:4))]
@@ -1253,9 +1269,12 @@ contains
     logical, allocatable :: dup(:)
     type(string_t), allocatable :: set_name(:)
     integer :: ne, np, i, b, nset, r
+    logical :: quadratic_edges
 
     ne = d%edges%n
     np = d%points%n
+    quadratic_edges = .false.                 ! 3-node lines: every edge gets its middle (0: none)
+    if (ne > 0) quadratic_edges = any(d%edges%v(5, 1:ne) /= 0)
     allocate(gkeys(2, ne + np))
     do i = 1, ne
       gkeys(:, i) = [1_i8, d%edges%v(1, i)]
@@ -1289,6 +1308,7 @@ contains
     do b = 1, nset
       mesh%bnd(b)%name = set_name(b)%s
       allocate(mesh%bnd(b)%seg(2, nseg(b)), mesh%bnd(b)%points(npt(b)), mesh%bnd(b)%seg_line(nseg(b)))
+      if (quadratic_edges) allocate(mesh%bnd(b)%mid(nseg(b)))
     end do
     do i = 1, ne
       if (dup(i)) cycle
@@ -1297,6 +1317,7 @@ contains
       mesh%bnd(b)%nseg = r
       mesh%bnd(b)%seg(:, r) = int(d%edges%v(2:3, i))
       mesh%bnd(b)%seg_line(r) = int(d%edges%v(4, i))
+      if (quadratic_edges) mesh%bnd(b)%mid(r) = int(d%edges%v(5, i))
     end do
     do i = 1, np
       if (dup(ne + i)) cycle
@@ -1525,7 +1546,7 @@ contains
     do j = 1, m
       d%raw%v(:, r0 + j) = 0
       d%raw%v(1, r0 + j) = nn
-      d%raw%v(6, r0 + j) = l0 + j
+      d%raw%v(raw_width, r0 + j) = l0 + j
       do q = 1, nn
         node = node_of_tag(d, ev(1 + q, j))
         if (node == 0) ok = .false.
@@ -2094,7 +2115,7 @@ contains
     select case (etype)
     case (15)
       element_dimension = 0
-    case (1)
+    case (1, 8)
       element_dimension = 1
     case default
       element_dimension = 2

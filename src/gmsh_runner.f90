@@ -13,8 +13,8 @@
 !>
 !> Programming interface
 !>   type(gmsh_options_t)    trust_geo, timeout (seconds)
-!>   mesh_geo_file(geo_path, names, values, opts, read_folder, msh_path, log_path, ok, message)
-!>        gmsh -2 -order 1 -format msh41 -v 2 [-setnumber NAME VALUE]... GEO -o MSH,
+!>   mesh_geo_file(geo_path, order, names, values, opts, read_folder, msh_path, log_path, ok, message)
+!>        gmsh -2 -order ORDER -format msh41 -v 2 [-setnumber NAME VALUE]... GEO -o MSH,
 !>        its output to LOG (which must not exist); ok when gmsh exits 0 and wrote
 !>        MSH, else message says why (gmsh's first error lines, the time limit)
 module gmsh_runner
@@ -46,8 +46,10 @@ module gmsh_runner
 
 contains
 
-  !> Mesh a .geo file with gmsh (2D, first order, MSH 4.1 ASCII).
+  !> Mesh a .geo file with gmsh (2D, MSH 4.1 ASCII).
   !>   geo_path    (in)  the .geo file
+  !>   order       (in)  element order, 1 or 2 (gmsh -order: second-order
+  !>                     elements with the mid-side nodes on the curves)
   !>   names       (in)  (n) names given to -setnumber (n may be 0)
   !>   values      (in)  (n) their values
   !>   opts        (in)  trust and time limit
@@ -57,8 +59,9 @@ contains
   !>   log_path    (in)  where gmsh's output goes (made here: must not exist)
   !>   ok          (out) .true. when gmsh exited with status 0 and wrote msh_path
   !>   message     (out) '' when ok; else what went wrong
-  subroutine mesh_geo_file(geo_path, names, values, opts, read_folder, msh_path, log_path, ok, message)
+  subroutine mesh_geo_file(geo_path, order, names, values, opts, read_folder, msh_path, log_path, ok, message)
     character(len=*), intent(in) :: geo_path, read_folder, msh_path, log_path
+    integer, intent(in) :: order
     character(len=*), intent(in) :: names(:)
     real(dp), intent(in) :: values(:)
     type(gmsh_options_t), intent(in) :: opts
@@ -113,7 +116,7 @@ contains
     call push(argv, gmsh)
     call push(argv, '-2')
     call push(argv, '-order')
-    call push(argv, '1')
+    call push(argv, int_to_str(order))
     call push(argv, '-format')
     call push(argv, 'msh41')
     call push(argv, '-v')

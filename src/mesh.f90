@@ -1,9 +1,13 @@
-!> mesh: the 2D mesh of one body, P1 triangles and Q1 quadrilaterals, with named
+!> mesh: the 2D mesh of one body, P1 triangles and Q1 quadrilaterals, or their
+!> quadratic kin (6-node triangles, 8- and 9-node quadrilaterals), with named
 !> boundaries (chains of edges), named point sets and named element regions.
 !>
-!> Node-last layouts: x(2, nnode), conn(4, nelem).  Element e has nen(e) = 3 or 4
-!> nodes conn(1:nen(e), e), counter-clockwise after finalize_mesh; conn(4, e) = 0
-!> for a triangle.
+!> Node-last layouts: x(2, nnode), conn(w, nelem) with w = 4 for a linear mesh
+!> and 9 when it has quadratic elements.  Element e has nen(e) = 3, 4, 6, 8 or 9
+!> nodes conn(1:nen(e), e): corners counter-clockwise after finalize_mesh, then
+!> the mid-side nodes (edge k from corner k to k + 1), then the centre (module
+!> elements); conn(nen(e) + 1:, e) = 0.  On a quadratic mesh every boundary edge
+!> has its mid-side node in mid(:).
 !>
 !> Programming interface
 !>   type(mesh_t), type(boundary_t), type(region_t)
@@ -16,6 +20,8 @@
 !>        called name, 0 when there is none
 !>   find_region(mesh, name)    index into mesh%reg, 0 when there is none
 !>   boundary_nodes(b, nodes)   sorted distinct nodes of a boundary or point set
+!>        (the mid-side nodes of its edges too)
+!>   is_quadratic(mesh)         whether the mesh has 6-, 8- or 9-node elements
 !>   element_area(mesh, e)      signed area of element e
 !>   order_for_locality(mesh)   renumber nodes along a Hilbert curve and elements
 !>        by their lowest node, so that neighbours in the mesh are neighbours in
@@ -29,10 +35,11 @@ module mesh
   use kinds, only: dp, i8
   use diagnostics, only: diag_t, add_error, int_to_str
   use omp_lib, only: omp_get_max_threads
+  use elements, only: corner_count, quadrature_rule, shape_at, max_nen
   implicit none
   private
   public :: mesh_t, boundary_t, region_t, finalize_mesh, find_boundary, find_region
-  public :: boundary_nodes, element_area, mesh_size
+  public :: boundary_nodes, element_area, mesh_size, is_quadratic
   public :: order_for_locality, file_node, file_elem, node_in_file, hilbert_index, locality_min_nodes
 
   !> Meshes of more nodes than this are renumbered for locality.  Below it the
@@ -46,6 +53,8 @@ module mesh
     integer :: nseg = 0                     !< number of edges
     integer, allocatable :: seg(:,:)        !< (2, nseg) node ids of each edge
     integer, allocatable :: seg_line(:)     !< (nseg) line of each edge in its mesh file (when read)
+    integer, allocatable :: mid(:)          !< (nseg) mid-side node of each edge (3-node edges of a
+                                            !< quadratic mesh); not allocated on a linear mesh
     integer :: npoint = 0                   !< number of points (physical points)
     integer, allocatable :: points(:)       !< (npoint) node ids
   end type boundary_t
@@ -68,8 +77,8 @@ module mesh
     integer :: nnode = 0                    !< number of nodes
     integer :: nelem = 0                    !< number of elements
     real(dp), allocatable :: x(:,:)         !< (2, nnode) coordinates
-    integer, allocatable :: nen(:)          !< (nelem) nodes per element, 3 or 4
-    integer, allocatable :: conn(:,:)       !< (4, nelem) connectivity
+    integer, allocatable :: nen(:)          !< (nelem) nodes per element, 3, 4, 6, 8 or 9
+    integer, allocatable :: conn(:,:)       !< (4 or 9, nelem) connectivity
     integer, allocatable :: elem_line(:)    !< (nelem) line of each element in its mesh file (when read)
     type(boundary_t), allocatable :: bnd(:) !< named boundaries and point sets
     type(region_t), allocatable :: reg(:)   !< named element regions
@@ -104,6 +113,39 @@ contains
         end if
       end do
     end do
+
+    ! Quadratic meshes: all elements quadratic (a linear neighbour would not
+    ! conform), every boundary edge with its mid-side node; linear meshes none.
+    if (is_quadratic(mesh)) then
+      if (any(mesh%nen <= 4)) then
+        call add_error(diag, file, 0, 'mesh mixes linear and quadratic elements (all of one order expected)')
+        return
+      end if
+    end if
+    if (allocated(mesh%bnd)) then
+      do b = 1, size(mesh%bnd)
+        if (mesh%bnd(b)%nseg == 0) cycle
+        if (is_quadratic(mesh) .and. .not. allocated(mesh%bnd(b)%mid)) then
+          n = 0
+        else if (is_quadratic(mesh)) then
+          n = count(mesh%bnd(b)%mid(1:mesh%bnd(b)%nseg) == 0)
+        else
+          n = 0
+          if (allocated(mesh%bnd(b)%mid)) n = count(mesh%bnd(b)%mid(1:mesh%bnd(b)%nseg) /= 0)
+          if (n > 0) then
+            call add_error(diag, file, 0, 'boundary "' // mesh%bnd(b)%name // &
+              '" has 3-node edges on a mesh of linear elements (2-node lines expected)')
+            return
+          end if
+          cycle
+        end if
+        if (n > 0 .or. .not. allocated(mesh%bnd(b)%mid)) then
+          call add_error(diag, file, 0, 'boundary "' // mesh%bnd(b)%name // &
+            '" has 2-node edges on a mesh of quadratic elements (3-node lines expected: mesh with gmsh -order 2)')
+          return
+        end if
+      end do
+    end if
 
     ! New numbering: the used nodes, in their old order.
     allocate(newid(mesh%nnode), source=0)
@@ -189,13 +231,19 @@ contains
     if (nneg > 0) then
       do e = 1, mesh%nelem
         k = mesh%nen(e)
-        mesh%conn(1:k, e) = mesh%conn(k:1:-1, e)
+        if (k <= 4) then
+          mesh%conn(1:k, e) = mesh%conn(k:1:-1, e)
+        else                            ! corners 1, nc, ..., 2; mid-sides in reverse
+          n = corner_count(k)
+          mesh%conn(2:n, e) = mesh%conn(n:2:-1, e)
+          mesh%conn(n + 1:2 * n, e) = mesh%conn(2 * n:n + 1:-1, e)
+        end if
       end do
     end if
     ! Quadrilaterals must be strictly convex (positive Jacobian at each corner).
     nbad = 0
     do e = 1, mesh%nelem
-      if (mesh%nen(e) /= 4) cycle
+      if (corner_count(mesh%nen(e)) /= 4) cycle
       a = min_corner_cross(mesh, e)
       if (.not. (a > 1.0e-12_dp * longest_edge2(mesh, e))) then
         nbad = nbad + 1
@@ -203,7 +251,55 @@ contains
           ' is not convex (a convex quadrilateral with positive corner angles below 180 degrees expected)')
       end if
     end do
+    if (nbad > 0) return
+    ! Quadratic elements: a mid-side node far from its edge's middle folds the
+    ! element (Jacobian <= 0 somewhere); checked at the stiffness points and nodes.
+    do e = 1, mesh%nelem
+      if (mesh%nen(e) <= 4) cycle
+      if (.not. (min_jacobian(mesh, e) > 1.0e-12_dp * longest_edge2(mesh, e))) then
+        nbad = nbad + 1
+        if (nbad <= 5) call add_error(diag, file, source_line(mesh, e), 'element ' // int_to_str(e) // &
+          ' is folded (Jacobian <= 0 inside: a mid-side node far from its edge''s middle; ' // &
+          'mid-side nodes near the middle of their edges expected)')
+      end if
+    end do
   end subroutine finalize_mesh
+
+  !> Smallest Jacobian determinant of element e at its stiffness points and nodes.
+  real(dp) function min_jacobian(mesh, e) result(jmin)
+    type(mesh_t), intent(in) :: mesh
+    integer, intent(in) :: e
+    real(dp), allocatable :: xi(:,:), w(:)
+    real(dp), parameter :: tri_nodes(2, 6) = reshape([0.0_dp, 0.0_dp, 1.0_dp, 0.0_dp, 0.0_dp, 1.0_dp, &
+      0.5_dp, 0.0_dp, 0.5_dp, 0.5_dp, 0.0_dp, 0.5_dp], [2, 6])
+    real(dp), parameter :: quad_nodes(2, 9) = reshape([-1.0_dp, -1.0_dp, 1.0_dp, -1.0_dp, 1.0_dp, 1.0_dp, &
+      -1.0_dp, 1.0_dp, 0.0_dp, -1.0_dp, 1.0_dp, 0.0_dp, 0.0_dp, 1.0_dp, -1.0_dp, 0.0_dp, 0.0_dp, 0.0_dp], [2, 9])
+    real(dp) :: xe(2, max_nen), n(max_nen), dndx(2, max_nen), detj
+    integer :: q, nen
+    nen = mesh%nen(e)
+    xe(:, 1:nen) = mesh%x(:, mesh%conn(1:nen, e))
+    call quadrature_rule(nen, 1, xi, w)
+    jmin = huge(1.0_dp)
+    do q = 1, size(w)
+      call shape_at(nen, xe(:, 1:nen), xi(:, q), n(1:nen), dndx(:, 1:nen), detj)
+      jmin = min(jmin, detj)
+    end do
+    do q = 1, nen
+      if (corner_count(nen) == 3) then
+        call shape_at(nen, xe(:, 1:nen), tri_nodes(:, q), n(1:nen), dndx(:, 1:nen), detj)
+      else
+        call shape_at(nen, xe(:, 1:nen), quad_nodes(:, q), n(1:nen), dndx(:, 1:nen), detj)
+      end if
+      jmin = min(jmin, detj)
+    end do
+  end function min_jacobian
+
+  !> Whether the mesh has quadratic elements (6, 8 or 9 nodes).
+  pure logical function is_quadratic(mesh)
+    type(mesh_t), intent(in) :: mesh
+    is_quadratic = .false.
+    if (allocated(mesh%nen)) is_quadratic = any(mesh%nen > 4)
+  end function is_quadratic
 
   subroutine renumber_boundary(b, newid, nold, file, diag)
     type(boundary_t), intent(inout) :: b
@@ -213,17 +309,11 @@ contains
     integer :: k, j
     do k = 1, b%nseg
       do j = 1, 2
-        if (b%seg(j, k) < 1 .or. b%seg(j, k) > nold) then
-          call add_error(diag, file, 0, 'boundary "' // b%name // '" refers to a node that does not exist')
-          return
-        end if
-        if (newid(b%seg(j, k)) == 0) then
-          call add_error(diag, file, 0, 'boundary "' // b%name // &
-            '" has an edge whose nodes belong to no element (edges on the body''s boundary expected)')
-          return
-        end if
-        b%seg(j, k) = newid(b%seg(j, k))
+        if (.not. renumbered(b%seg(j, k))) return
       end do
+      if (allocated(b%mid)) then          ! the middle of a 3-node edge
+        if (.not. renumbered(b%mid(k))) return
+      end if
     end do
     do k = 1, b%npoint
       if (b%points(k) < 1 .or. b%points(k) > nold) then
@@ -237,6 +327,24 @@ contains
       end if
       b%points(k) = newid(b%points(k))
     end do
+  contains
+    !> node = newid(node) for a node of an edge; .false. (and a message) when it
+    !> does not exist or belongs to no element
+    logical function renumbered(node) result(ok)
+      integer, intent(inout) :: node
+      ok = .false.
+      if (node < 1 .or. node > nold) then
+        call add_error(diag, file, 0, 'boundary "' // b%name // '" refers to a node that does not exist')
+        return
+      end if
+      if (newid(node) == 0) then
+        call add_error(diag, file, 0, 'boundary "' // b%name // &
+          '" has an edge whose nodes belong to no element (edges on the body''s boundary expected)')
+        return
+      end if
+      node = newid(node)
+      ok = .true.
+    end function renumbered
   end subroutine renumber_boundary
 
   !> Renumber the nodes of a finalized mesh in the order of a Hilbert curve
@@ -310,6 +418,7 @@ contains
         do k = 1, mesh%bnd(b)%npoint
           mesh%bnd(b)%points(k) = inv(mesh%bnd(b)%points(k))
         end do
+        if (allocated(mesh%bnd(b)%mid)) mesh%bnd(b)%mid = inv(mesh%bnd(b)%mid)
       end do
     end if
     ! elements: by their lowest node
@@ -324,7 +433,7 @@ contains
     end do
     !$omp end parallel do
     call bucket_sort(key(1:mesh%nelem), n, perm(1:mesh%nelem))
-    allocate(cnew(4, mesh%nelem), nnew(mesh%nelem))
+    allocate(cnew(size(mesh%conn, 1), mesh%nelem), nnew(mesh%nelem))
     !$omp parallel do num_threads(min(2, omp_get_max_threads())) if(n > 65536)
     do e = 1, mesh%nelem
       inv(perm(e)) = e
@@ -440,12 +549,13 @@ contains
     if (allocated(mesh%elem_line)) line = mesh%elem_line(e)
   end function source_line
 
-  !> Signed area of element e (shoelace formula; positive when counter-clockwise).
+  !> Signed area of element e (shoelace formula over the corners, the straight
+  !> element's; positive when counter-clockwise).
   pure real(dp) function element_area(mesh, e) result(a)
     type(mesh_t), intent(in) :: mesh
     integer, intent(in) :: e
     integer :: k, n, i, j
-    n = mesh%nen(e)
+    n = corner_count(mesh%nen(e))
     a = 0.0_dp
     do k = 1, n
       i = mesh%conn(k, e)
@@ -460,7 +570,7 @@ contains
     integer, intent(in) :: e
     integer :: k, n
     real(dp) :: d(2)
-    n = mesh%nen(e)
+    n = corner_count(mesh%nen(e))
     h2 = 0.0_dp
     do k = 1, n
       d = mesh%x(:, mesh%conn(mod(k, n) + 1, e)) - mesh%x(:, mesh%conn(k, e))
@@ -520,9 +630,11 @@ contains
     integer, allocatable :: all(:)
     integer :: n, k, i
     n = 2 * b%nseg + b%npoint
+    if (allocated(b%mid)) n = n + b%nseg
     allocate(all(n))
     if (b%nseg > 0) all(1:2 * b%nseg) = reshape(b%seg(:, 1:b%nseg), [2 * b%nseg])
-    if (b%npoint > 0) all(2 * b%nseg + 1:n) = b%points(1:b%npoint)
+    if (b%npoint > 0) all(2 * b%nseg + 1:2 * b%nseg + b%npoint) = b%points(1:b%npoint)
+    if (allocated(b%mid)) all(2 * b%nseg + b%npoint + 1:n) = b%mid(1:b%nseg)
     call sort_int(all)
     k = 0
     do i = 1, n

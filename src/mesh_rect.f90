@@ -1,14 +1,20 @@
 !> mesh_rect: the built-in structured mesh of `MESH rect` (DECK.md).
 !>
-!> nx by ny cells on [x0,x1] x [y0,y1]; node (i, j), i = 0..nx, j = 0..ny, has
-!> number j (nx+1) + i + 1.  Cells are quadrilaterals (elem=quad4) or split into
-!> two triangles (elem=tri3) along the diagonal: `right` from the lower-left to
-!> the upper-right corner, `left` from the lower-right to the upper-left, `alt`
-!> alternating like a chess board.  Boundaries: left, right, bottom, top (edges,
-!> ordered along the boundary in the direction of increasing x or y).
+!> nx by ny cells on [x0,x1] x [y0,y1].  Linear elements (tri3, quad4): node
+!> (i, j), i = 0..nx, j = 0..ny, has number j (nx+1) + i + 1.  Quadratic ones
+!> (tri6, quad8, quad9): the grid is twice as fine, (i, j), i = 0..2nx,
+!> j = 0..2ny, number j (2nx+1) + i + 1, the odd rows and columns the mid-side
+!> and centre nodes (straight edges, mid-side nodes at the middle; quad8 leaves
+!> the centres out, finalize_mesh drops them).  Cells are quadrilaterals
+!> (quad4, quad8, quad9) or split into two triangles (tri3, tri6) along the
+!> diagonal: `right` from the lower-left to the upper-right corner, `left` from
+!> the lower-right to the upper-left, `alt` alternating like a chess board.
+!> Boundaries: left, right, bottom, top (edges, ordered along the boundary in
+!> the direction of increasing x or y; quadratic meshes give each edge its
+!> mid-side node).
 !>
 !> Programming interface
-!>   make_rect_mesh(x0, y0, x1, y1, nx, ny, quads, diag, mesh, err)
+!>   make_rect_mesh(x0, y0, x1, y1, nx, ny, elem, diag, mesh, err)
 !>
 !> The arrays scale with nx*ny (1e8 cells are accepted): an allocation that
 !> fails is an out-of-memory error with the mesh's size, not a runtime abort.
@@ -24,67 +30,91 @@ contains
 
   !>   x0, y0, x1, y1 (in) corners, x1 > x0, y1 > y0
   !>   nx, ny  (in) cells per direction, >= 1
-  !>   quads   (in) .true. quad4 cells, .false. tri3
-  !>   diag    (in) 'right', 'left' or 'alt' (tri3 only)
+  !>   elem    (in) 'tri3', 'quad4', 'tri6', 'quad8' or 'quad9'
+  !>   diag    (in) 'right', 'left' or 'alt' (triangles only)
   !>   mesh    (out) the mesh, counter-clockwise elements
   !>   err     (out) allocated when the memory ran out (status 1)
-  subroutine make_rect_mesh(x0, y0, x1, y1, nx, ny, quads, diag, mesh, err)
+  subroutine make_rect_mesh(x0, y0, x1, y1, nx, ny, elem, diag, mesh, err)
     real(dp), intent(in) :: x0, y0, x1, y1
     integer, intent(in) :: nx, ny
-    logical, intent(in) :: quads
+    character(len=*), intent(in) :: elem
     character(len=*), intent(in) :: diag
     type(mesh_t), intent(out) :: mesh
     type(error_t), allocatable, intent(out) :: err
-    integer :: i, j, e, n1, n2, n3, n4, stat
-    logical :: rising
+    integer :: i, j, e, n1, n2, n3, n4, m1, m2, m3, m4, mc, stat, g, gx, gy, width, b
+    logical :: rising, quads, quadratic
     integer(i8) :: bytes
 
-    mesh%nnode = (nx + 1) * (ny + 1)
+    quads = elem(1:1) == 'q'
+    quadratic = elem == 'tri6' .or. elem == 'quad8' .or. elem == 'quad9'
+    g = merge(2, 1, quadratic)                 ! grid steps per cell
+    width = merge(9, 4, quadratic)
+    gx = g * nx; gy = g * ny
+    mesh%nnode = (gx + 1) * (gy + 1)
     mesh%nelem = merge(nx * ny, 2 * nx * ny, quads)
-    ! x(2, nnode) reals, nen and conn(4, nelem) integers, the boundary segments
-    bytes = 16_i8 * mesh%nnode + 20_i8 * mesh%nelem + 16_i8 * (nx + ny)
+    ! x(2, nnode) reals, nen and conn(width, nelem) integers, the boundary segments
+    bytes = 16_i8 * mesh%nnode + 4_i8 * (width + 1) * mesh%nelem + 24_i8 * (nx + ny)
     allocate(mesh%x(2, mesh%nnode), stat=stat)
-    if (stat == 0) allocate(mesh%nen(mesh%nelem), mesh%conn(4, mesh%nelem), stat=stat)
+    if (stat == 0) allocate(mesh%nen(mesh%nelem), mesh%conn(width, mesh%nelem), stat=stat)
     if (stat /= 0) then
       call set_out_of_memory(err, 'meshing a rectangle of ' // trim(cells()) // ' cells', bytes)
       return
     end if
-    do j = 0, ny
-      do i = 0, nx
-        mesh%x(:, node(i, j)) = [x0 + (x1 - x0) * real(i, dp) / nx, y0 + (y1 - y0) * real(j, dp) / ny]
+    do j = 0, gy
+      do i = 0, gx
+        mesh%x(:, node(i, j)) = [x0 + (x1 - x0) * real(i, dp) / gx, y0 + (y1 - y0) * real(j, dp) / gy]
         ! exact end coordinates, free of round-off
-        if (i == nx) mesh%x(1, node(i, j)) = x1
-        if (j == ny) mesh%x(2, node(i, j)) = y1
+        if (i == gx) mesh%x(1, node(i, j)) = x1
+        if (j == gy) mesh%x(2, node(i, j)) = y1
       end do
     end do
 
     mesh%conn = 0
     e = 0
-    do j = 0, ny - 1
-      do i = 0, nx - 1
-        n1 = node(i, j); n2 = node(i + 1, j); n3 = node(i + 1, j + 1); n4 = node(i, j + 1)
+    do j = 0, gy - g, g
+      do i = 0, gx - g, g
+        n1 = node(i, j); n2 = node(i + g, j); n3 = node(i + g, j + g); n4 = node(i, j + g)
+        m1 = node(i + 1, j); m2 = node(i + g, j + 1); m3 = node(i + 1, j + g); m4 = node(i, j + 1)
+        mc = node(i + 1, j + 1)                   ! (the m's and mc: quadratic elements only)
         if (quads) then
           e = e + 1
-          mesh%nen(e) = 4
-          mesh%conn(:, e) = [n1, n2, n3, n4]
+          select case (elem)
+          case ('quad8')
+            mesh%nen(e) = 8
+            mesh%conn(1:8, e) = [n1, n2, n3, n4, m1, m2, m3, m4]
+          case ('quad9')
+            mesh%nen(e) = 9
+            mesh%conn(1:9, e) = [n1, n2, n3, n4, m1, m2, m3, m4, mc]
+          case default
+            mesh%nen(e) = 4
+            mesh%conn(1:4, e) = [n1, n2, n3, n4]
+          end select
           cycle
         end if
         select case (diag)
         case ('left')
           rising = .false.
         case ('alt')
-          rising = mod(i + j, 2) == 0
+          rising = mod(i / g + j / g, 2) == 0
         case default
           rising = .true.
         end select
         if (rising) then            ! diagonal n1-n3
           mesh%conn(1:3, e + 1) = [n1, n2, n3]
           mesh%conn(1:3, e + 2) = [n1, n3, n4]
+          if (quadratic) then
+            mesh%conn(4:6, e + 1) = [m1, m2, mc]
+            mesh%conn(4:6, e + 2) = [mc, m3, m4]
+          end if
         else                        ! diagonal n2-n4
           mesh%conn(1:3, e + 1) = [n1, n2, n4]
           mesh%conn(1:3, e + 2) = [n2, n3, n4]
+          if (quadratic) then
+            mesh%conn(4:6, e + 1) = [m1, mc, m4]
+            mesh%conn(4:6, e + 2) = [m2, m3, mc]
+          end if
         end if
-        mesh%nen(e + 1:e + 2) = 3
+        mesh%nen(e + 1:e + 2) = merge(6, 3, quadratic)
         e = e + 2
       end do
     end do
@@ -98,13 +128,26 @@ contains
     mesh%bnd(3)%nseg = nx; mesh%bnd(4)%nseg = nx
     allocate(mesh%bnd(1)%seg(2, ny), mesh%bnd(2)%seg(2, ny), mesh%bnd(3)%seg(2, nx), mesh%bnd(4)%seg(2, nx))
     allocate(mesh%bnd(1)%points(0), mesh%bnd(2)%points(0), mesh%bnd(3)%points(0), mesh%bnd(4)%points(0))
+    if (quadratic) then
+      do b = 1, 4
+        allocate(mesh%bnd(b)%mid(mesh%bnd(b)%nseg))
+      end do
+    end if
     do j = 0, ny - 1
-      mesh%bnd(1)%seg(:, j + 1) = [node(0, j), node(0, j + 1)]
-      mesh%bnd(2)%seg(:, j + 1) = [node(nx, j), node(nx, j + 1)]
+      mesh%bnd(1)%seg(:, j + 1) = [node(0, g * j), node(0, g * j + g)]
+      mesh%bnd(2)%seg(:, j + 1) = [node(gx, g * j), node(gx, g * j + g)]
+      if (quadratic) then
+        mesh%bnd(1)%mid(j + 1) = node(0, g * j + 1)
+        mesh%bnd(2)%mid(j + 1) = node(gx, g * j + 1)
+      end if
     end do
     do i = 0, nx - 1
-      mesh%bnd(3)%seg(:, i + 1) = [node(i, 0), node(i + 1, 0)]
-      mesh%bnd(4)%seg(:, i + 1) = [node(i, ny), node(i + 1, ny)]
+      mesh%bnd(3)%seg(:, i + 1) = [node(g * i, 0), node(g * i + g, 0)]
+      mesh%bnd(4)%seg(:, i + 1) = [node(g * i, gy), node(g * i + g, gy)]
+      if (quadratic) then
+        mesh%bnd(3)%mid(i + 1) = node(g * i + 1, 0)
+        mesh%bnd(4)%mid(i + 1) = node(g * i + 1, gy)
+      end if
     end do
     allocate(mesh%reg(0))
 
@@ -114,9 +157,12 @@ contains
       write(t, '(i0,a,i0)') nx, ' x ', ny
     end function cells
 
+    !> Node (ii, jj) of the grid; 0 off the grid (the mid-side names of a
+    !> linear cell, never stored)
     pure integer function node(ii, jj)
       integer, intent(in) :: ii, jj
-      node = jj * (nx + 1) + ii + 1
+      node = 0
+      if (ii <= gx .and. jj <= gy) node = jj * (gx + 1) + ii + 1
     end function node
   end subroutine make_rect_mesh
 

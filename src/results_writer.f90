@@ -85,7 +85,7 @@ module results_writer
     integer, allocatable :: node_index(:)   !< (nnode) the solver's global node of each point row
     integer, allocatable :: elem_index(:)   !< (nelem) the solver's global element of each cell row
     integer, allocatable :: elem_body(:)    !< (nelem) the body of each cell row
-    integer, allocatable :: cells(:,:)      !< (0:4, nelem) node count and 0-based points of each cell row
+    integer, allocatable :: cells(:,:)      !< (0:4 or 0:9, nelem) node count and 0-based points of each cell row
     real(dp), allocatable :: vals(:,:)      !< (ncomp, rows) the values of the section being written
   end type vtk_rows_t
 
@@ -159,6 +159,31 @@ contains
     call close_text(tb, ok)
   end subroutine write_vtk
 
+  !> VTK cell type of an element of nen nodes: 5 triangle, 9 quad, 22 quadratic
+  !> triangle, 23 quadratic (8-node) quad, 28 biquadratic (9-node) quad; the
+  !> node orders of gmsh and VTK agree for these.
+  pure function vtk_cell_type(nen) result(t)
+    integer, intent(in) :: nen
+    character(len=3) :: t
+    select case (nen)
+    case (3); t = ' 5'
+    case (6); t = ' 22'
+    case (8); t = ' 23'
+    case (9); t = ' 28'
+    case default; t = ' 9'
+    end select
+  end function vtk_cell_type
+
+  !> The most nodes of an element over all bodies (4 or 9: the width of the cell rows).
+  pure integer function max_cell_nodes(bodies) result(w)
+    type(body_t), intent(in) :: bodies(:)
+    integer :: b
+    w = 4
+    do b = 1, size(bodies)
+      if (bodies(b)%mesh%nelem > 0) w = max(w, maxval(bodies(b)%mesh%nen))
+    end do
+  end function max_cell_nodes
+
   !> The rows of the VTK file: which of the solver's nodes and elements each
   !> point and cell row shows, and each cell's points in the files' numbering.
   subroutine vtk_rows(bodies, nnode, nelem, v)
@@ -166,7 +191,7 @@ contains
     integer, intent(in) :: nnode, nelem       !< over all bodies
     type(vtk_rows_t), intent(out) :: v
     integer :: b, p, e, k, n0, e0
-    allocate(v%node_index(nnode), v%elem_index(nelem), v%elem_body(nelem), v%cells(0:4, nelem))
+    allocate(v%node_index(nnode), v%elem_index(nelem), v%elem_body(nelem), v%cells(0:max_cell_nodes(bodies), nelem))
     n0 = 0; e0 = 0
     do b = 1, size(bodies)
       associate(m => bodies(b)%mesh)
@@ -262,7 +287,7 @@ contains
       end do
       call put_newline(tb)
     case (row_cell_type)
-      call put_line(tb, merge(' 5', ' 9', v%cells(0, i) == 3))
+      call put_line(tb, trim(vtk_cell_type(v%cells(0, i))))
     case (row_values)                            ! SCALARS rows: the section's components
       do k = 1, size(v%vals, 1)
         call put_real(tb, v%vals(k, i))

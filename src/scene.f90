@@ -24,15 +24,15 @@ module scene
   use kinds, only: dp
   use diagnostics, only: diag_t, add_error, has_errors, int_to_str, error_t
   use deck_reader, only: deck_t, body_deck_t, curve_t, curve_factor, LOAD_TRACTION, LOAD_PRESSURE
-  use mesh, only: mesh_t, finalize_mesh, find_boundary, boundary_nodes, find_region, order_for_locality, node_in_file, &
-                  locality_min_nodes
+  use mesh, only: mesh_t, is_quadratic, finalize_mesh, find_boundary, boundary_nodes, find_region, order_for_locality, &
+                  node_in_file, locality_min_nodes
   use mesh_rect, only: make_rect_mesh
   use gmsh_reader, only: read_gmsh_file
   use gmsh_runner, only: gmsh_options_t, mesh_geo_file
   use geo_screen, only: screen_geo
   use safe_files, only: private_folder, real_path
   use material, only: make_isotropic, make_orthotropic
-  use elements, only: element_body_load, edge_load
+  use elements, only: element_body_load, edge_load, edge_load_quadratic, max_nen
   use body, only: body_t, node_elements, edge_outward_normal, element_dofs, thermal_loads, to_local_axes
   use contact_set, only: pair_spec_t
   implicit none
@@ -169,6 +169,10 @@ contains
         sc%specs(ip)%slave_bnd = curve_index(deck, c%line, sc%bodies(c%slave_body), c%slave_boundary, 'CONTACT slave', diag)
         sc%specs(ip)%master_bnd = curve_index(deck, c%line, sc%bodies(c%master_body), c%master_boundary, &
                                               'CONTACT master', diag)
+        ! the mortar operator is built on 2-node traces (P1/Q1 boundaries)
+        if (is_quadratic(sc%bodies(c%slave_body)%mesh) .or. is_quadratic(sc%bodies(c%master_body)%mesh)) &
+          call add_error(diag, deck%file, c%line, 'contact on quadratic elements is not available yet ' // &
+                         '(P1/Q1 boundaries expected)')
         if (c%slave_body == c%master_body .and. c%slave_boundary == c%master_boundary) then
           call add_error(diag, deck%file, c%line, 'slave and master are the same boundary (two different boundaries expected)')
         end if
@@ -315,7 +319,7 @@ contains
     associate(ms => deck%bodies(ib)%mesh, bdeck => deck%bodies(ib))
       select case (ms%kind)
       case ('rect')
-        call make_rect_mesh(ms%x0, ms%y0, ms%x1, ms%y1, ms%nx, ms%ny, ms%elem == 'quad4', ms%diag, bd%mesh, err)
+        call make_rect_mesh(ms%x0, ms%y0, ms%x1, ms%y1, ms%nx, ms%ny, ms%elem, ms%diag, bd%mesh, err)
         if (allocated(err)) return
         call finalize_mesh(bd%mesh, deck%file, diag)
       case default
@@ -372,7 +376,7 @@ contains
       end if
       msh = work // '/body' // int_to_str(ib) // '.msh'
       log = work // '/body' // int_to_str(ib) // '.log'
-      call mesh_geo_file(ms%path, ms%set_names, ms%set_values, gmsh, deck_folder, msh, log, ok, message)
+      call mesh_geo_file(ms%path, ms%order, ms%set_names, ms%set_values, gmsh, deck_folder, msh, log, ok, message)
       if (.not. ok) then
         call add_error(diag, deck%file, ms%line, 'gmsh could not mesh "' // ms%file // '": ' // message)
       else
@@ -639,10 +643,10 @@ contains
     integer, intent(in) :: b
     type(diag_t), intent(inout) :: diag
     logical, intent(inout) :: has_traction, has_pressure, has_bforce, has_gravity
-    integer :: k, ib, s, na, nb, owner, e, nen
-    integer :: dofs(8)
+    integer :: k, ib, s, na, nb, nm, owner, e, nen
+    integer :: dofs(2 * max_nen)
     integer, allocatable :: eptr(:), elist(:)
-    real(dp) :: t(2), nrm(2), fe(8)
+    real(dp) :: t(2), nrm(2), fe(2 * max_nen), chord(2), pr
     logical :: have_topology
 
     have_topology = .false.
@@ -662,6 +666,7 @@ contains
           do s = 1, m%bnd(ib)%nseg
             na = m%bnd(ib)%seg(1, s)
             nb = m%bnd(ib)%seg(2, s)
+            pr = 0.0_dp
             if (ld%kind == LOAD_TRACTION .and. .not. ld%local) then
               t = [ld%tx, ld%ty]
             else
@@ -676,12 +681,26 @@ contains
                 t = ld%tx * nrm + ld%ty * [-nrm(2), nrm(1)]
               else
                 t = -ld%p * nrm                   ! positive pressure pushes into the body
+                if (allocated(m%bnd(ib)%mid)) then
+                  ! a curved edge: the pressure follows the edge's normal, outward on the
+                  ! right of na -> nb when the chord's right normal points outward
+                  chord = m%x(:, nb) - m%x(:, na)
+                  pr = -ld%p * sign(1.0_dp, dot_product(nrm, [chord(2), -chord(1)]))
+                  t = 0.0_dp
+                end if
               end if
             end if
-            call edge_load(m%x(:, na), m%x(:, nb), t, bd%thick, fe(1:4))
+            if (allocated(m%bnd(ib)%mid)) then            ! 3-node edge, 3-point Gauss
+              nm = m%bnd(ib)%mid(s)
+              call edge_load_quadratic(reshape([m%x(:, na), m%x(:, nb), m%x(:, nm)], [2, 3]), t, pr, bd%thick, fe(1:6))
+            else
+              call edge_load(m%x(:, na), m%x(:, nb), t, bd%thick, fe(1:4))
+            end if
             associate(f => sc%fgroup(:, ramp_group(sc, ld%ramp, ld%curve)))
               f(bd%dof0 + 2 * (na - 1) + [1, 2]) = f(bd%dof0 + 2 * (na - 1) + [1, 2]) + fe(1:2)
               f(bd%dof0 + 2 * (nb - 1) + [1, 2]) = f(bd%dof0 + 2 * (nb - 1) + [1, 2]) + fe(3:4)
+              if (allocated(m%bnd(ib)%mid)) &
+                f(bd%dof0 + 2 * (nm - 1) + [1, 2]) = f(bd%dof0 + 2 * (nm - 1) + [1, 2]) + fe(5:6)
             end associate
           end do
           if (ld%kind == LOAD_TRACTION) has_traction = .true.

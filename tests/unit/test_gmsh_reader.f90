@@ -15,7 +15,8 @@
 !> Data provenance: tests/unit/data/README.md.  Run from the repository root.
 program test_gmsh_reader
   use kinds, only: dp, i8
-  use diagnostics, only: diag_t
+  use diagnostics, only: diag_t, int_to_str
+  use elements, only: quadrature_rule, shape_at
   use mesh, only: mesh_t, finalize_mesh, find_boundary, find_region, element_area, boundary_nodes
   use gmsh_reader, only: read_gmsh_file
   use gmsh_runner, only: gmsh_options_t, mesh_geo_file
@@ -29,6 +30,9 @@ program test_gmsh_reader
   call test_square()
   call test_mixed()
   call test_disk()
+  call test_second_order('annulus_tri6_22.msh', 6, 9)
+  call test_second_order('annulus_quad9_22.msh', 9, 10)
+  call test_second_order('annulus_quad8_41.msh', 8, 16)
   call test_sparse_tags()
   call test_number_notations()
   call test_far_tags()
@@ -40,6 +44,47 @@ program test_gmsh_reader
   call finish_tests()
 
 contains
+
+  !> A second-order mesh of the quarter annulus 1 <= r <= 2 (data/README.md):
+  !> elements of nen nodes (gmsh type etype), 3-node boundary edges whose
+  !> nodes on the inner arc, middle included, lie on the unit circle, and an
+  !> area (the quadrature of det J over the curved elements) of 3 pi / 4.
+  subroutine test_second_order(file, nen, etype)
+    character(len=*), intent(in) :: file
+    integer, intent(in) :: nen, etype
+    type(mesh_t) :: m
+    type(diag_t) :: d
+    real(dp), allocatable :: xi(:,:), w(:)
+    real(dp) :: shp(9), dndx(2, 9), detj, area, rdev
+    integer :: ib, e, q, k
+    character(len=:), allocatable :: what
+    what = file // ' (type ' // int_to_str(etype) // ')'
+    call read_gmsh_file(data_dir // file, m, d)
+    if (d%count == 0) call finalize_mesh(m, file, d)
+    call check(d%count == 0, what // ': read and finalized without error')
+    if (d%count > 0) return
+    call check(all(m%nen == nen) .and. size(m%conn, 1) == 9, what // ': every element has ' // int_to_str(nen) // ' nodes')
+    ib = find_boundary(m, 'inner')
+    call check(ib > 0, what // ': boundary "inner" found')
+    if (ib == 0) return
+    call check(allocated(m%bnd(ib)%mid) .and. m%bnd(ib)%nseg == 3, what // ': 3 three-node edges on "inner"')
+    if (.not. allocated(m%bnd(ib)%mid)) return
+    rdev = 0
+    do k = 1, m%bnd(ib)%nseg
+      rdev = max(rdev, abs(norm2(m%x(:, m%bnd(ib)%mid(k))) - 1), abs(norm2(m%x(:, m%bnd(ib)%seg(1, k))) - 1))
+    end do
+    call check_small(rdev, 1.0e-12_dp, what // ': ends and middles of the inner edges on the unit circle')
+    area = 0
+    do e = 1, m%nelem
+      call quadrature_rule(nen, 2, xi, w)
+      do q = 1, size(w)
+        call shape_at(nen, m%x(:, m%conn(1:nen, e)), xi(:, q), shp(1:nen), dndx(:, 1:nen), detj)
+        area = area + w(q) * detj
+      end do
+    end do
+    print '(a,es10.2)', '# ' // what // ': area - 3 pi / 4 = ', area - 0.75_dp * acos(-1.0_dp)
+    call check_small(abs(area - 0.75_dp * acos(-1.0_dp)), 2.0e-3_dp, what // ': area of the curved elements near 3 pi / 4')
+  end subroutine test_second_order
 
   !> Unit square, n = 4 nodes per side, 2.2 and 4.1.
   subroutine test_square()
@@ -374,7 +419,7 @@ contains
 
     msh = tmp // 'square.msh'
     log = tmp // 'square.log'
-    call mesh_geo_file(data_dir // 'square.geo', ['n'], [6.0_dp], opts, data_dir, msh, log, ok, message)
+    call mesh_geo_file(data_dir // 'square.geo', 1, ['n'], [6.0_dp], opts, data_dir, msh, log, ok, message)
     call check(ok, 'geo: gmsh meshes square.geo with -setnumber n 6' // failure(message))
     if (ok) then
       call read_gmsh_file(msh, m, d)
@@ -383,7 +428,7 @@ contains
       if (ib > 0) call check(m%bnd(ib)%nseg == 5, 'geo: bottom has n-1 = 5 edges')
     end if
     call delete_file(log)
-    call mesh_geo_file(data_dir // 'square.geo', no_names, no_values, opts, data_dir, msh, log, ok, message)
+    call mesh_geo_file(data_dir // 'square.geo', 1, no_names, no_values, opts, data_dir, msh, log, ok, message)
     call check(ok, 'geo: gmsh meshes square.geo with no parameter' // failure(message))
     if (ok) then
       call read_gmsh_file(msh, m, d)
@@ -398,7 +443,7 @@ contains
       'Curve Loop(1) = {1,2,3,4}; Plane Surface(1) = {1};' // achar(10) // &
       'Transfinite Curve{1,2,3,4} = n; Transfinite Surface{1}; Recombine Surface{1};' // achar(10))
     call delete_file(log)
-    call mesh_geo_file(geo, ['n'], [3.0_dp], opts, tmp, msh, log, ok, message)
+    call mesh_geo_file(geo, 1, ['n'], [3.0_dp], opts, tmp, msh, log, ok, message)
     call check(ok, 'geo: gmsh meshes a path with a blank and a quote' // failure(message))
     if (ok) then
       call read_gmsh_file(msh, m, d)
@@ -409,7 +454,7 @@ contains
     call delete_file(geo)
 
     call delete_file(log)
-    call mesh_geo_file(tmp // 'no such file.geo', ['n'], [3.0_dp], opts, tmp, msh, log, ok, message)
+    call mesh_geo_file(tmp // 'no such file.geo', 1, ['n'], [3.0_dp], opts, tmp, msh, log, ok, message)
     call check(.not. ok, 'geo: a missing .geo file fails')
     call check(index(message, 'cannot find') == 1, 'geo: message says the .geo is missing: ' // message)
     call delete_file(msh)
@@ -418,11 +463,11 @@ contains
 
   !> Each tests/bad/mesh_NAME.msh gives exactly the line of mesh_NAME.expect.
   subroutine test_bad_meshes()
-    character(len=24), parameter :: names(27) = [character(len=24) :: &
+    character(len=24), parameter :: names(26) = [character(len=24) :: &
       '3d', '41_block_count', '41_parametric', '41_undefined_entity', 'bad_format_line', 'binary_format', &
       'binary_garbage', 'duplicate_node', 'duplicate_section', 'empty', 'format_eof', 'huge_count', 'inf', &
       'missing_endelements', 'missing_nodes', 'nan', 'negative_count', 'no_2d', 'not_msh', 'overflow', &
-      'second_order', 'text_number', 'truncated', 'undefined_node', 'version30', 'wrong_items', 'z_nonzero']
+      'text_number', 'truncated', 'undefined_node', 'version30', 'wrong_items', 'z_nonzero']
     type(mesh_t) :: m
     type(diag_t) :: d
     character(len=:), allocatable :: base, got, want
