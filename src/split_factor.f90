@@ -191,7 +191,7 @@ contains
       type(half_t), intent(inout) :: h
       integer, intent(in) :: s
       integer, allocatable :: loc(:)
-      integer :: jj, d, m, a, t
+      integer :: jj, d, m, a, t, q           ! (all local: the two halves are built at once)
       h%nh = count(side == s)
       h%n = h%nh + sum(inhalf(:, s + 1))
       allocate(h%dof(h%n), h%tpos(h%n - h%nh), loc(n))
