@@ -23,7 +23,6 @@
 !>        the edge, -1 when two do (an interior edge)
 module body
   use kinds, only: dp
-  use omp_lib, only: omp_get_max_threads
   use mesh, only: mesh_t
   use material, only: elasticity_t, von_mises
   use elements, only: element_stiffness, element_force, element_strain, quadrature_rule, shape_at, strain_operator
@@ -146,7 +145,7 @@ contains
     end do
   end subroutine build_pattern
 
-  !> One pass of build_pattern over the nodes of one body, on two threads
+  !> One pass of build_pattern over the nodes of one body, on the run's threads
   !> (a node writes only its own two columns): pass 1 counts the entries of
   !> each column into k%colptr(col + 1), pass 2 writes their rows (and zero
   !> values) from k%colptr(col) on.
@@ -160,7 +159,7 @@ contains
 
     associate(m => bd%mesh, d0 => bd%dof0, eptr => around%ptr, elist => around%list)
       !$omp parallel private(mark, nbr, nb, ie, e, j, c, col, p, cb, row) &
-      !$omp num_threads(min(2, omp_get_max_threads())) if(m%nnode > 20000)
+      !$omp if(m%nnode > 20000)
       allocate(mark(m%nnode), nbr(64))
       mark = 0
       !$omp do schedule(static)

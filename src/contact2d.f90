@@ -31,8 +31,9 @@ program contact2d
   use gmsh_runner, only: gmsh_options_t
   use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
-  use omp_lib, only: omp_get_max_threads, omp_get_thread_num, omp_get_num_threads
-  use cholmod_binding, only: c2d_malloc_arenas, c2d_malloc_trim, c2d_blas_park
+  use omp_lib, only: omp_get_thread_num, omp_get_num_threads
+  use cholmod_binding, only: c2d_malloc_trim, c2d_blas_park
+  use threads, only: start_threads, run_threads
   implicit none
 
   character(len=*), parameter :: version = '1.0.0'
@@ -59,6 +60,7 @@ program contact2d
   integer, allocatable :: eq(:), last(:), group(:)
   logical, allocatable :: held(:)
   integer :: nfree, i, nlabel
+  integer :: jobs                         !< -j N: threads of the run (0: OpenMP's default)
   integer(i8) :: t_start, t_phase, t_solve, t_now, t_rate, t_asm0, t_asm1
   real(dp), allocatable :: rhs(:,:), x(:,:), u0(:), w(:,:), q(:), fint(:), fc(:)
   real(dp), allocatable :: y(:)           ! forward half of u0's solve
@@ -66,13 +68,8 @@ program contact2d
   logical :: with_contact
   real(dp), allocatable :: cu0(:,:)      ! (nrow + ntan, ramps) C u0 of each ramp's loads (friction)
 
-  ! At most two malloc arenas: the bodies' factors are computed side by side
-  ! on the threads, and every further glibc arena keeps its freed pages
-  call c2d_malloc_arenas()
-  ! OpenBLAS's workers would spin on the second core through the phases
-  ! before the factorization, which use OpenMP and no BLAS
-  call c2d_blas_park()
-  call parse_command_line(deck_path, outdir, check_only, quiet, gmsh)
+  call parse_command_line(deck_path, outdir, check_only, quiet, gmsh, jobs)
+  call start_threads(jobs)                ! threads, BLAS threads, malloc arenas: src/threads.f90
   call system_clock(t_start)
   t_phase = t_start
 
@@ -128,7 +125,7 @@ program contact2d
   ! side on a nested team (sparse_cholesky's parts).  The assembly, which
   ! allocates nothing per element (elements' fixed-size work arrays), runs
   ! beside it.
-  !$omp parallel num_threads(min(2, omp_get_max_threads()))
+  !$omp parallel
   if (omp_get_thread_num() == 0) call order_pattern()
   if (omp_get_thread_num() == 1 .or. omp_get_num_threads() == 1) call assemble_values()
   !$omp end parallel
@@ -711,7 +708,7 @@ contains
       write(line, '(a,f12.4)') phase_names(p), res%time(p)
       call say(trim(line))
     end do
-    if (omp_get_max_threads() > 1) then
+    if (run_threads() > 1) then
       write(line, '(a,f8.3,a,f8.3,a)') ' ordering (', res%time_ordering, &
         ' s, in factor) and the assembly of K (', res%time_assemble_values, ' s) ran side by side on two threads'
       call say('overlap  the ' // res%ordering // trim(line))
@@ -827,14 +824,16 @@ contains
     if (.not. ok) call add_error(d, path, 0, 'cannot create the output folder (a writable path expected)')
   end subroutine make_folder
 
-  subroutine parse_command_line(deck_path, outdir, check_only, quiet, gmsh)
+  subroutine parse_command_line(deck_path, outdir, check_only, quiet, gmsh, jobs)
     character(len=:), allocatable, intent(out) :: deck_path, outdir
     logical, intent(out) :: check_only, quiet
     type(gmsh_options_t), intent(out) :: gmsh
+    integer, intent(out) :: jobs            !< -j N; 0 when not given
     integer :: n, j, length, ios
     character(len=:), allocatable :: arg
     check_only = .false.
     quiet = .false.
+    jobs = 0
     outdir = '.'
     deck_path = ''
     n = command_argument_count()
@@ -869,6 +868,17 @@ contains
         if (ios /= 0 .or. .not. (gmsh%timeout > 0.0_dp .and. gmsh%timeout <= 1.0e6_dp)) &
           call usage_error('bad value "' // arg // '" for --gmsh-timeout (seconds, a number > 0 and <= 1e6, ' // &
                            'expected)')
+      case ('-j')
+        if (j == n) call usage_error('option -j needs a number of threads (-j N)')
+        j = j + 1
+        deallocate(arg)
+        call get_command_argument(j, length=length)
+        allocate(character(len=length) :: arg)
+        call get_command_argument(j, arg)
+        ios = 1
+        if (verify(arg, '0123456789') == 0 .and. len(arg) > 0 .and. len(arg) <= 4) read(arg, *, iostat=ios) jobs
+        if (ios /= 0 .or. jobs < 1) call usage_error('bad value "' // arg // '" for -j (a number of threads, ' // &
+                                                     '1 to 9999, expected)')
       case ('-o')
         if (j == n) call usage_error('option -o needs a folder (-o DIR)')
         j = j + 1
@@ -879,7 +889,7 @@ contains
         if (length == 0) call usage_error('option -o needs a folder (-o DIR)')
       case default
         if (len(arg) > 0) then
-          if (arg(1:1) == '-') call usage_error('unknown option "' // arg // '" (expected -o DIR, --check, -q, ' // &
+          if (arg(1:1) == '-') call usage_error('unknown option "' // arg // '" (expected -o DIR, -j N, --check, -q, ' // &
                                                 '--trust-geo, --gmsh-timeout SECONDS, --version, -h)')
         end if
         if (len(deck_path) > 0) call usage_error('more than one deck given ("' // deck_path // '" and "' // arg // &
@@ -908,6 +918,8 @@ contains
       '', &
       'options:', &
       '  -o DIR       write all outputs into DIR (created if missing; default .)', &
+      '  -j N         run on N threads (OpenMP and OpenBLAS; default: OMP_NUM_THREADS,', &
+      '               else one per core)', &
       '  --check      read and validate the deck and meshes, print the scene, solve nothing', &
       '  -q           quiet: only errors on stderr (the summary file is still written)', &
       '  --trust-geo  let gmsh run a .geo as it is: no screen, no sandbox (it may then run', &

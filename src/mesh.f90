@@ -28,7 +28,6 @@
 module mesh
   use kinds, only: dp, i8
   use diagnostics, only: diag_t, add_error, int_to_str
-  use omp_lib, only: omp_get_max_threads
   implicit none
   private
   public :: mesh_t, boundary_t, region_t, finalize_mesh, find_boundary, find_region
@@ -271,7 +270,7 @@ contains
     top = 2**bits - 1
     scale = real(2**bits, dp) / span
     allocate(h(n), key(max(n, mesh%nelem)))
-    !$omp parallel do num_threads(min(2, omp_get_max_threads())) if(n > 65536)
+    !$omp parallel do if(n > 65536)
     do a = 1, n
       h(a) = hilbert_index(bits, min(top, int((mesh%x(1, a) - lo(1)) * scale)), &
                            min(top, int((mesh%x(2, a) - lo(2)) * scale)))
@@ -286,7 +285,7 @@ contains
     call bucket_sort(key(1:n), 65536, perm(1:n))
     key(1:n) = int(shiftr(h, 16))
     call bucket_sort(key(1:n), 65536, perm(1:n))
-    !$omp parallel num_threads(min(2, omp_get_max_threads())) if(n > 65536)
+    !$omp parallel if(n > 65536)
     !$omp do
     do a = 1, n
       inv(perm(a)) = a                               ! perm(new) = old, inv(old) = new
@@ -316,7 +315,7 @@ contains
       end do
     end if
     ! elements: by their lowest node
-    !$omp parallel do private(k) num_threads(min(2, omp_get_max_threads())) if(n > 65536)
+    !$omp parallel do private(k) if(n > 65536)
     do e = 1, mesh%nelem
       perm(e) = e
       key(e) = mesh%conn(1, e)
@@ -328,7 +327,7 @@ contains
     !$omp end parallel do
     call bucket_sort(key(1:mesh%nelem), n, perm(1:mesh%nelem))
     allocate(cnew(4, mesh%nelem), nnew(mesh%nelem))
-    !$omp parallel do num_threads(min(2, omp_get_max_threads())) if(n > 65536)
+    !$omp parallel do if(n > 65536)
     do e = 1, mesh%nelem
       inv(perm(e)) = e
       cnew(:, e) = mesh%conn(:, perm(e))

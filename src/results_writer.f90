@@ -17,7 +17,6 @@ module results_writer
   use diagnostics, only: int_to_str
   use text_buffer, only: text_buffer_t, open_text, open_memory, put_text, put_line, put_real, put_int, put_newline, &
                          close_text
-  use omp_lib, only: omp_get_max_threads
   implicit none
   private
   public :: results_t, write_vtk, write_contact_csv, write_summary
@@ -118,7 +117,7 @@ contains
     nnode = 0
     do b = 1, size(bodies)
       associate(m => bodies(b)%mesh)
-        !$omp parallel do num_threads(min(2, omp_get_max_threads())) if(m%nnode > 4096)
+        !$omp parallel do if(m%nnode > 4096)
         do i = 1, m%nnode
           v%vals(:, nnode + i) = m%x(:, v%node_index(nnode + i) - nnode)
         end do
@@ -168,7 +167,7 @@ contains
         do p = 1, m%nnode
           v%node_index(n0 + p) = n0 + file_node(m, p)
         end do
-        !$omp parallel do private(e, k) num_threads(min(2, omp_get_max_threads())) if(m%nelem > 4096)
+        !$omp parallel do private(e, k) if(m%nelem > 4096)
         do p = 1, m%nelem
           e = file_elem(m, p)
           v%elem_index(e0 + p) = e0 + e
@@ -196,7 +195,7 @@ contains
     integer :: i
     if (allocated(v%vals)) deallocate(v%vals)
     allocate(v%vals(ncomp, size(index)))
-    !$omp parallel do num_threads(min(2, omp_get_max_threads())) if(size(index) > 4096)
+    !$omp parallel do if(size(index) > 4096)
     do i = 1, size(index)
       v%vals(:, i) = src(:, index(i))
     end do
@@ -217,8 +216,8 @@ contains
   end subroutine put_scalars
 
   !> Rows 1..n of one section of the VTK file (kind: row_*), formatted in
-  !> chunks on two threads and written in order: the text is the same as
-  !> one thread's, the formatting (most of the output time) is halved.
+  !> chunks on the run's threads and written in order: the text is the same as
+  !> one thread's, the formatting (most of the output time) is shared.
   subroutine put_rows(tb, kind, n, v)
     type(text_buffer_t), intent(inout) :: tb
     integer, intent(in) :: kind, n
@@ -226,7 +225,7 @@ contains
     integer, parameter :: chunk = 4096
     type(text_buffer_t) :: part
     integer :: c, i
-    !$omp parallel do ordered schedule(static, 1) private(part, i) num_threads(min(2, omp_get_max_threads())) &
+    !$omp parallel do ordered schedule(static, 1) private(part, i) &
     !$omp if(n > chunk)
     do c = 0, (n - 1) / chunk
       call open_memory(part)

@@ -400,7 +400,7 @@ contains
       integer(c_int) :: sth(2)
       real(dp), allocatable :: rt(:,:)
       integer :: i
-      !$omp parallel do num_threads(2) schedule(static, 1)
+      !$omp parallel do schedule(static, 1)
       do i = 1, 2
         sth(i) = half_forward(i, bb, yy, zt(i)%a)
       end do
@@ -456,7 +456,7 @@ contains
       xt = yy(sp%n - sp%nt + 1:, :)
       if (sp%nt > 0) call dtrsm('L', 'L', 'T', 'N', sp%nt, m, 1.0_dp, sp%ls, sp%nt, xt, sp%nt)
       xx(sp%tdof, :) = xt
-      !$omp parallel do num_threads(2) schedule(static, 1)
+      !$omp parallel do schedule(static, 1)
       do i = 1, 2
         sth(i) = half_backward(i, yy, xt, xx)
       end do
