@@ -136,6 +136,7 @@ program contact2d
   if (allocated(err)) call fail_numerical(err%message // equation_location(err%message))
   res%factor_nnz = factor_nnz(factor)
   res%ordering = factor_ordering(factor)
+  res%factor_cut = factor%ncut
   res%factor_memory = real(factor_memory(factor), dp)
   deallocate(k%colptr, k%rowind, k%val)      ! K lives on in its factor only
   call lap(ph_factor)

@@ -60,6 +60,7 @@ module results_writer
     integer :: contact_nodes = 0, active_nodes = 0, redundant = 0
     integer(i8) :: factor_nnz = 0
     character(len=:), allocatable :: ordering    !< fill-reducing ordering used, e.g. amd(nodes)+last
+    integer :: factor_cut = 0                    !< parts of the factor cut in two at their top separator
     real(dp) :: time(nphase) = 0                 !< seconds per phase_names
     real(dp) :: memory_peak = 0                  !< peak resident memory, bytes (0 when unknown)
     real(dp) :: factor_memory = 0                !< CHOLMOD's peak memory for the factor, bytes
@@ -377,6 +378,7 @@ contains
     end if
     write(u, '(a,i0)') 'factor_nnz ', r%factor_nnz
     if (allocated(r%ordering)) write(u, '(a)') 'factor_ordering ' // r%ordering
+    write(u, '(a,i0)') 'factor_cut ', r%factor_cut
     write(u, '(a,a)') 'memory_peak_mb ', num(r%memory_peak / 1048576.0_dp)
     write(u, '(a,a)') 'factor_memory_mb ', num(r%factor_memory / 1048576.0_dp)
     do k = 1, nphase
