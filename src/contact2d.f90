@@ -858,24 +858,14 @@ contains
       case ('--trust-geo')
         gmsh%trust_geo = .true.
       case ('--gmsh-timeout')
-        if (j == n) call usage_error('option --gmsh-timeout needs a number of seconds (--gmsh-timeout SECONDS)')
-        j = j + 1
-        deallocate(arg)
-        call get_command_argument(j, length=length)
-        allocate(character(len=length) :: arg)
-        call get_command_argument(j, arg)
+        call option_value(j, n, arg, 'option --gmsh-timeout needs a number of seconds (--gmsh-timeout SECONDS)')
         ios = 1
         if (verify(arg, '0123456789.eE+') == 0 .and. len(arg) > 0) read(arg, *, iostat=ios) gmsh%timeout
         if (ios /= 0 .or. .not. (gmsh%timeout > 0.0_dp .and. gmsh%timeout <= 1.0e6_dp)) &
           call usage_error('bad value "' // arg // '" for --gmsh-timeout (seconds, a number > 0 and <= 1e6, ' // &
                            'expected)')
       case ('-j')
-        if (j == n) call usage_error('option -j needs a number of threads (-j N)')
-        j = j + 1
-        deallocate(arg)
-        call get_command_argument(j, length=length)
-        allocate(character(len=length) :: arg)
-        call get_command_argument(j, arg)
+        call option_value(j, n, arg, 'option -j needs a number of threads (-j N)')
         ios = 1
         if (verify(arg, '0123456789') == 0 .and. len(arg) > 0 .and. len(arg) <= 4) read(arg, *, iostat=ios) jobs
         if (ios /= 0 .or. jobs < 1) call usage_error('bad value "' // arg // '" for -j (a number of threads, ' // &
@@ -901,6 +891,22 @@ contains
     end do
     if (len(deck_path) == 0) call usage_error('no deck given (usage: contact2d [options] DECK)')
   end subroutine parse_command_line
+
+  !> The value of the option at argument j of n: j moves to the next
+  !> argument, arg becomes it; missing is the error when there is none.
+  subroutine option_value(j, n, arg, missing)
+    integer, intent(inout) :: j
+    integer, intent(in) :: n
+    character(len=:), allocatable, intent(inout) :: arg
+    character(len=*), intent(in) :: missing
+    integer :: length
+    if (j == n) call usage_error(missing)
+    j = j + 1
+    call get_command_argument(j, length=length)
+    deallocate(arg)
+    allocate(character(len=length) :: arg)
+    call get_command_argument(j, arg)
+  end subroutine option_value
 
   subroutine usage_error(text)
     character(len=*), intent(in) :: text

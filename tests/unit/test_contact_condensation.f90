@@ -22,7 +22,7 @@ program test_contact_condensation
   use contact_set, only: contact_set_t
   use contact_condensation, only: contact_equations, condense, recover, condensed_t
   use lapack_interfaces, only: dpotrf, dpotrs
-  use testing, only: check, check_small, finish_tests
+  use testing, only: check, check_small, finish_tests, dense_symmetric
   implicit none
   real(dp), parameter :: threshold = 30.0_dp
   character(len=*), parameter :: ways(3) = ['solve  ', 'inverse', 'auto   ']
@@ -128,14 +128,8 @@ contains
     if (allocated(err)) return
 
     ! the dense reference: K from its upper triangle, C' on the free dofs
-    allocate(kd(nfree, nfree), bd_t(nfree, nc), fd(nfree, 1))
-    kd = 0.0_dp
-    do j = 1, nfree
-      do p = k%colptr(j), k%colptr(j + 1) - 1
-        kd(k%rowind(p), j) = k%val(p)
-        kd(j, k%rowind(p)) = k%val(p)
-      end do
-    end do
+    call dense_symmetric(k%colptr, k%rowind, k%val, kd)
+    allocate(bd_t(nfree, nc), fd(nfree, 1))
     bd_t = 0.0_dp
     do r = 1, nc
       do p = cs%bptr(r), cs%bptr(r + 1) - 1

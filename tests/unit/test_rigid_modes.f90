@@ -23,7 +23,7 @@ program test_rigid_modes
   use sparse_cholesky, only: factor_t, factorize, solve
   use rigid_modes, only: floating_t, find_floating_modes
   use lapack_interfaces, only: dgesvd
-  use testing, only: check, check_small, finish_tests
+  use testing, only: check, check_small, finish_tests, dense_symmetric
   implicit none
   real(dp), parameter :: threshold = 30.0_dp
   character(len=*), parameter :: holds(5) = ['none    ', 'point   ', 'point ux', 'edge    ', 'edge ux ']
@@ -51,7 +51,7 @@ contains
     logical, allocatable :: fixed(:), held(:)
     integer, allocatable :: eq(:), eqp(:)
     real(dp), allocatable :: kd(:,:), kr(:,:), zero(:), v(:), b(:), x(:,:), rhs(:,:), u(:), rp(:,:)
-    integer :: n, nfree, i, j, p, kk
+    integer :: n, nfree, i, kk
     real(dp) :: eps, ratio, sv(3), vt(1, 1), uu(1, 1), work(64)
     integer :: info
     character(len=:), allocatable :: name
@@ -96,14 +96,7 @@ contains
     allocate(rhs(nfree, 1))
     rhs = 0.0_dp
     call assemble_stiffness(bd, eq, zero, k, rhs(:, 1))
-    allocate(kd(n, n))
-    kd = 0.0_dp
-    do j = 1, n
-      do p = k%colptr(j), k%colptr(j + 1) - 1
-        kd(k%rowind(p), j) = k%val(p)
-        kd(j, k%rowind(p)) = k%val(p)
-      end do
-    end do
+    call dense_symmetric(k%colptr, k%rowind, k%val, kd)
     kr = matmul(kd, fl%r)
     ratio = maxval(abs(kr)) / (maxval(sum(abs(kd), dim=2)) * maxval(abs(fl%r)) * n * eps)
     call check_small(ratio, threshold, name // ': ||K R||_inf / (||K||_inf ||R||_inf n eps)')
