@@ -19,7 +19,7 @@ program contact2d
                              factor_ordering
   use contact_set, only: contact_set_t, pair_spec_t, build_contact_set, row_of_node, node_rows, node_traction, has_friction
   use contact_condensation, only: contact_equations, condense, contact_forces, recover, constraint_values, &
-                                  condensed_t, condensed_report
+                                  condensed_t, condensed_report, condensed_blocks
   use lcp_solvers, only: lcp_options_t, lcp_report_t
   use friction_lcp, only: solve_friction_lcp, friction_state
   use contact_lcp, only: contact_solution_t, solve_contact
@@ -171,6 +171,7 @@ program contact2d
     ! recovery otherwise: a scene without contact spends nothing on it
     call condense(cs, eq, factor, y, u0, w, q, cd, err, deck%solver%condense)
     if (allocated(err)) call fail_numerical(err%message)
+    res%condense_block = condensed_blocks(cd)
     if (cs%ntan > 0) then
       call friction_load_paths()
       call lap(ph_condense)

@@ -61,6 +61,8 @@ module results_writer
     integer(i8) :: factor_nnz = 0
     character(len=:), allocatable :: ordering    !< fill-reducing ordering used, e.g. amd(nodes)+last
     integer :: factor_cut = 0                    !< parts of the factor cut in two at their top separator
+    integer, allocatable :: condense_block(:,:)  !< (3, blocks of L_cc reached by rows): dofs, rows,
+                                                 !< 1 by its inverse / 0 by triangular solves
     real(dp) :: time(nphase) = 0                 !< seconds per phase_names
     real(dp) :: memory_peak = 0                  !< peak resident memory, bytes (0 when unknown)
     real(dp) :: factor_memory = 0                !< CHOLMOD's peak memory for the factor, bytes
@@ -379,6 +381,12 @@ contains
     write(u, '(a,i0)') 'factor_nnz ', r%factor_nnz
     if (allocated(r%ordering)) write(u, '(a)') 'factor_ordering ' // r%ordering
     write(u, '(a,i0)') 'factor_cut ', r%factor_cut
+    if (allocated(r%condense_block)) then
+      do k = 1, size(r%condense_block, 2)
+        write(u, '(a,i0,a,i0,a)') 'condense_block ', r%condense_block(1, k), ' ', r%condense_block(2, k), ' ' // &
+          trim(merge('inverse', 'solve  ', r%condense_block(3, k) == 1))
+      end do
+    end if
     write(u, '(a,a)') 'memory_peak_mb ', num(r%memory_peak / 1048576.0_dp)
     write(u, '(a,a)') 'factor_memory_mb ', num(r%factor_memory / 1048576.0_dp)
     do k = 1, nphase
