@@ -3,7 +3,14 @@ include make.inc
 
 BUILD   := build/$(MODE)
 BIN     := bin
+# The program's name is fixed here, before any rule names it: make expands the
+# prerequisites of a rule when it reads it, so `all` and `test` must see the
+# MODE's program, never the release one.
+ifeq ($(MODE),release)
 PROGRAM := $(BIN)/contact2d
+else
+PROGRAM := $(BIN)/contact2d-$(MODE)
+endif
 
 FSRC    := $(sort $(wildcard src/*.f90))
 CSRC    := $(sort $(wildcard src/*.c))
@@ -20,15 +27,8 @@ all: deps $(PROGRAM)
 deps:
 	@scripts/install-deps
 
-ifeq ($(MODE),release)
 $(PROGRAM): $(BUILD)/contact2d.o $(LIBOBJ) | $(BIN)
 	$(FC) $(FFLAGS) -o $@ $^ $(LIBS)
-else
-PROGRAM := $(BIN)/contact2d-$(MODE)
-all: $(PROGRAM)
-$(PROGRAM): $(BUILD)/contact2d.o $(LIBOBJ) | $(BIN)
-	$(FC) $(FFLAGS) -o $@ $^ $(LIBS)
-endif
 
 $(BUILD)/%.o: src/%.f90 | $(BUILD)
 	$(FC) $(FFLAGS) -J$(BUILD) -c $< -o $@

@@ -33,7 +33,6 @@
 module body
   use kinds, only: dp, i8
   use diagnostics, only: error_t, set_out_of_memory, int_to_str
-  use omp_lib, only: omp_get_max_threads
   use mesh, only: mesh_t
   use material, only: elasticity_t, von_mises
   use elements, only: element_stiffness, element_force, element_strain, quadrature_rule, shape_at, strain_operator, &
@@ -168,7 +167,7 @@ contains
     end do
   end subroutine build_pattern
 
-  !> One pass of build_pattern over the nodes of one body, on two threads
+  !> One pass of build_pattern over the nodes of one body, on the run's threads
   !> (a node writes only its own two columns): pass 1 counts the entries of
   !> each column into k%colptr(col + 1), pass 2 writes their rows (and zero
   !> values) from k%colptr(col) on.
@@ -182,7 +181,7 @@ contains
 
     associate(m => bd%mesh, d0 => bd%dof0, eptr => around%ptr, elist => around%list)
       !$omp parallel private(mark, nbr, nb, ie, e, j, c, col, p, cb, row) &
-      !$omp num_threads(min(2, omp_get_max_threads())) if(m%nnode > 20000)
+      !$omp if(m%nnode > 20000)
       allocate(mark(m%nnode), nbr(64))
       mark = 0
       !$omp do schedule(static)

@@ -25,7 +25,7 @@ program contact2d
                              factor_ordering
   use contact_set, only: contact_set_t, pair_spec_t, build_contact_set, row_of_node, node_rows, node_traction, has_friction
   use contact_condensation, only: contact_equations, condense, contact_forces, recover, constraint_values, &
-                                  condensed_t, condensed_report
+                                  condensed_t, condensed_report, condensed_blocks
   use lcp_solvers, only: lcp_options_t, lcp_report_t
   use friction_lcp, only: solve_friction_lcp, friction_state
   use contact_lcp, only: contact_solution_t, solve_contact
@@ -39,8 +39,9 @@ program contact2d
   use local_axes, only: rotate_constraint_rows
   use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
-  use omp_lib, only: omp_get_max_threads, omp_get_thread_num, omp_get_num_threads
-  use cholmod_binding, only: c2d_malloc_arenas, c2d_malloc_trim, c2d_blas_park
+  use omp_lib, only: omp_get_thread_num, omp_get_num_threads
+  use cholmod_binding, only: c2d_malloc_trim, c2d_blas_park
+  use threads, only: start_threads, run_threads
   implicit none
 
   character(len=*), parameter :: version = '1.0.0'
@@ -70,6 +71,7 @@ program contact2d
   integer, allocatable :: eq(:), last(:), group(:)
   logical, allocatable :: held(:)
   integer :: nfree, i, nlabel
+  integer :: jobs                         !< -j N: threads of the run (0: OpenMP's default)
   integer(i8) :: t_start, t_phase, t_solve, t_now, t_rate, t_asm0, t_asm1
   real(dp), allocatable :: rhs(:,:), x(:,:), u0(:), w(:,:), q(:), fint(:), fc(:)
   real(dp), allocatable :: y(:)           ! forward half of u0's solve
@@ -82,13 +84,8 @@ program contact2d
   integer :: step_iterations = 0                  ! LCP iterations of the step being recorded
   character(len=:), allocatable :: step_note      ! 'load step k of n: ' in messages while steps are solved
 
-  ! At most two malloc arenas: the bodies' factors are computed side by side
-  ! on the threads, and every further glibc arena keeps its freed pages
-  call c2d_malloc_arenas()
-  ! OpenBLAS's workers would spin on the second core through the phases
-  ! before the factorization, which use OpenMP and no BLAS
-  call c2d_blas_park()
-  call parse_command_line(deck_path, outdir, check_only, quiet, gmsh, overrides, cases_path, case_number)
+  call parse_command_line(deck_path, outdir, check_only, quiet, gmsh, overrides, cases_path, case_number, jobs)
+  call start_threads(jobs)                ! threads, BLAS threads, malloc arenas: src/threads.f90
   if (len(cases_path) > 0) call select_case()
   call system_clock(t_start)
   t_phase = t_start
@@ -149,7 +146,7 @@ program contact2d
   ! side on a nested team (sparse_cholesky's parts).  The assembly, which
   ! allocates nothing per element (elements' fixed-size work arrays), runs
   ! beside it.
-  !$omp parallel num_threads(min(2, omp_get_max_threads()))
+  !$omp parallel
   if (omp_get_thread_num() == 0) call order_pattern()
   if (omp_get_thread_num() == 1 .or. omp_get_num_threads() == 1) call assemble_values()
   !$omp end parallel
@@ -160,6 +157,7 @@ program contact2d
   if (allocated(err)) call fail_numerical(factor_failure(err%message))
   res%factor_nnz = factor_nnz(factor)
   res%ordering = factor_ordering(factor)
+  res%factor_cut = factor%ncut
   res%factor_memory = real(factor_memory(factor), dp)
   deallocate(k%colptr, k%rowind, k%val)      ! K lives on in its factor only
   call lap(ph_factor)
@@ -194,6 +192,7 @@ program contact2d
     ! recovery otherwise: a scene without contact spends nothing on it
     call condense(cs, eq, factor, y, u0, w, q, cd, err, deck%solver%condense)
     if (allocated(err)) call fail_numerical(err%message)
+    res%condense_block = condensed_blocks(cd)
     if (cs%ntan > 0) then
       call friction_load_paths()
       call lap(ph_condense)
@@ -1030,7 +1029,7 @@ contains
       write(line, '(a,f12.4)') phase_names(p), res%time(p)
       call say(trim(line))
     end do
-    if (omp_get_max_threads() > 1) then
+    if (run_threads() > 1) then
       write(line, '(a,f8.3,a,f8.3,a)') ' ordering (', res%time_ordering, &
         ' s, in factor) and the assembly of K (', res%time_assemble_values, ' s) ran side by side on two threads'
       call say('overlap  the ' // res%ordering // trim(line))
@@ -1181,17 +1180,19 @@ contains
     if (.not. ok) call add_error(d, path, 0, 'cannot create the output folder (a writable path expected)')
   end subroutine make_folder
 
-  subroutine parse_command_line(deck_path, outdir, check_only, quiet, gmsh, overrides, cases_path, case_number)
+  subroutine parse_command_line(deck_path, outdir, check_only, quiet, gmsh, overrides, cases_path, case_number, jobs)
     character(len=:), allocatable, intent(out) :: deck_path, outdir
     logical, intent(out) :: check_only, quiet
     type(gmsh_options_t), intent(out) :: gmsh
     type(parameter_set_t), intent(out) :: overrides
     character(len=:), allocatable, intent(out) :: cases_path
     integer, intent(out) :: case_number
+    integer, intent(out) :: jobs            !< -j N; 0 when not given
     integer :: n, j, length, ios
     character(len=:), allocatable :: arg
     check_only = .false.
     quiet = .false.
+    jobs = 0
     outdir = '.'
     deck_path = ''
     cases_path = ''
@@ -1217,30 +1218,28 @@ contains
       case ('--trust-geo')
         gmsh%trust_geo = .true.
       case ('--gmsh-timeout')
-        if (j == n) call usage_error('option --gmsh-timeout needs a number of seconds (--gmsh-timeout SECONDS)')
-        j = j + 1
-        deallocate(arg)
-        call get_command_argument(j, length=length)
-        allocate(character(len=length) :: arg)
-        call get_command_argument(j, arg)
+        call option_value(j, n, arg, 'option --gmsh-timeout needs a number of seconds (--gmsh-timeout SECONDS)')
         ios = 1
         if (verify(arg, '0123456789.eE+') == 0 .and. len(arg) > 0) read(arg, *, iostat=ios) gmsh%timeout
         if (ios /= 0 .or. .not. (gmsh%timeout > 0.0_dp .and. gmsh%timeout <= 1.0e6_dp)) &
           call usage_error('bad value "' // arg // '" for --gmsh-timeout (seconds, a number > 0 and <= 1e6, ' // &
                            'expected)')
       case ('-D')
-        if (j == n) call usage_error('option -D needs a parameter value (-D name=value)')
-        j = j + 1
-        call add_override(next_argument(j), overrides)
+        call option_value(j, n, arg, 'option -D needs a parameter value (-D name=value)')
+        call add_override(arg, overrides)
       case ('--cases')
-        if (j == n) call usage_error('option --cases needs a case table (--cases FILE.csv)')
-        j = j + 1
-        cases_path = next_argument(j)
+        call option_value(j, n, arg, 'option --cases needs a case table (--cases FILE.csv)')
+        cases_path = arg
         if (len(cases_path) == 0) call usage_error('option --cases needs a case table (--cases FILE.csv)')
       case ('--case')
-        if (j == n) call usage_error('option --case needs a case number (--case N)')
-        j = j + 1
-        case_number = case_index(next_argument(j), '--case')
+        call option_value(j, n, arg, 'option --case needs a case number (--case N)')
+        case_number = case_index(arg, '--case')
+      case ('-j')
+        call option_value(j, n, arg, 'option -j needs a number of threads (-j N)')
+        ios = 1
+        if (verify(arg, '0123456789') == 0 .and. len(arg) > 0 .and. len(arg) <= 4) read(arg, *, iostat=ios) jobs
+        if (ios /= 0 .or. jobs < 1) call usage_error('bad value "' // arg // '" for -j (a number of threads, ' // &
+                                                     '1 to 9999, expected)')
       case ('-o')
         if (j == n) call usage_error('option -o needs a folder (-o DIR)')
         j = j + 1
@@ -1258,7 +1257,7 @@ contains
           end if
         end if
         if (len(arg) > 0) then
-          if (arg(1:1) == '-') call usage_error('unknown option "' // arg // '" (expected -o DIR, --check, -q, ' // &
+          if (arg(1:1) == '-') call usage_error('unknown option "' // arg // '" (expected -o DIR, -j N, --check, -q, ' // &
                                                 '-D name=value, --cases FILE.csv, --case N, ' // &
                                                 '--trust-geo, --gmsh-timeout SECONDS, --version, -h)')
         end if
@@ -1272,16 +1271,6 @@ contains
     if (case_number > 0 .and. len(cases_path) == 0) &
       call usage_error('option --case N needs --cases FILE.csv (the table the case is a row of)')
   end subroutine parse_command_line
-
-  !> Command argument j.
-  function next_argument(j) result(arg)
-    integer, intent(in) :: j
-    character(len=:), allocatable :: arg
-    integer :: length
-    call get_command_argument(j, length=length)
-    allocate(character(len=length) :: arg)
-    call get_command_argument(j, arg)
-  end function next_argument
 
   !> -D name=value: value is a number or an expression of numbers (no parameters).
   subroutine add_override(text, set)
@@ -1401,6 +1390,21 @@ contains
       call say('param    ' // trim(deck%params%name(k)) // ' = ' // value // ' (' // trim(deck%params%origin(k)) // ')')
     end do
   end subroutine report_parameters
+  !> The value of the option at argument j of n: j moves to the next
+  !> argument, arg becomes it; missing is the error when there is none.
+  subroutine option_value(j, n, arg, missing)
+    integer, intent(inout) :: j
+    integer, intent(in) :: n
+    character(len=:), allocatable, intent(inout) :: arg
+    character(len=*), intent(in) :: missing
+    integer :: length
+    if (j == n) call usage_error(missing)
+    j = j + 1
+    call get_command_argument(j, length=length)
+    deallocate(arg)
+    allocate(character(len=length) :: arg)
+    call get_command_argument(j, arg)
+  end subroutine option_value
 
   subroutine usage_error(text)
     character(len=*), intent(in) :: text
@@ -1419,6 +1423,8 @@ contains
       '', &
       'options:', &
       '  -o DIR       write all outputs into DIR (created if missing; default .)', &
+      '  -j N         run on N threads (OpenMP and OpenBLAS; default: OMP_NUM_THREADS,', &
+      '               else one per core)', &
       '  --check      read and validate the deck and meshes, print the scene, solve nothing', &
       '  -q           quiet: only errors on stderr (the summary file is still written)', &
       '  --trust-geo  let gmsh run a .geo as it is: no screen, no sandbox (it may then run', &

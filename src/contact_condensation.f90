@@ -46,6 +46,8 @@
 !>   recover(eq, factor, y, cd, u0, mu, u)  u = K^-1 (f - C' mu) by one backward
 !>                                          solve (y overwritten, cd's arrays released)
 !>   condensed_report(cd)                   how each block was condensed, one line
+!>   condensed_blocks(cd)                   the same as numbers: (3, blocks) dofs, rows,
+!>                                          1 by its inverse / 0 by triangular solves
 module contact_condensation
   use kinds, only: dp
   use lapack_interfaces, only: dgemv, dpotri, dsyrk, dtrsm, dtrsv
@@ -54,7 +56,8 @@ module contact_condensation
   use sparse_cholesky, only: factor_t, trailing_factor_block, trailing_block_end, solve_backward
   implicit none
   private
-  public :: contact_equations, condense, contact_forces, recover, constraint_values, condensed_report
+  public :: contact_equations, condense, contact_forces, recover, constraint_values, condensed_report, &
+            condensed_blocks
 
   !> What condense keeps of one diagonal block of L_cc (the contact dofs of
   !> one body) for the recovery.
@@ -393,21 +396,40 @@ contains
   function condensed_report(cd) result(line)
     type(condensed_t), intent(in) :: cd
     character(len=:), allocatable :: line
+    integer, allocatable :: blk(:,:)
     integer :: b
     line = ''
+    blk = condensed_blocks(cd)
+    do b = 1, size(blk, 2)
+      if (len(line) > 0) line = line // ', '
+      line = line // int_to_str(blk(1, b)) // ' dofs x ' // int_to_str(blk(2, b)) // ' rows '
+      if (blk(3, b) == 1) then
+        line = line // 'by its inverse (dpotri)'
+      else
+        line = line // 'by triangular solves (dtrsm)'
+      end if
+    end do
+  end function condensed_report
+
+  !> The blocks of L_cc that constraint rows reach, in order: blk(:, b) =
+  !> [dofs, rows, 1 when its share of W came from its inverse, else 0].
+  function condensed_blocks(cd) result(blk)
+    type(condensed_t), intent(in) :: cd
+    integer, allocatable :: blk(:,:)
+    integer :: b, m
+    m = 0
+    if (allocated(cd%block)) m = count(cd%block%c1 <= cd%block%c2)
+    allocate(blk(3, m))
+    m = 0
+    if (.not. allocated(cd%block)) return
     do b = 1, size(cd%block)
       associate(bk => cd%block(b))
         if (bk%c1 > bk%c2) cycle
-        if (len(line) > 0) line = line // ', '
-        line = line // int_to_str(bk%e - bk%s + 1) // ' dofs x ' // int_to_str(bk%c2 - bk%c1 + 1) // ' rows '
-        if (bk%inverse) then
-          line = line // 'by its inverse (dpotri)'
-        else
-          line = line // 'by triangular solves (dtrsm)'
-        end if
+        m = m + 1
+        blk(:, m) = [bk%e - bk%s + 1, bk%c2 - bk%c1 + 1, merge(1, 0, bk%inverse)]
       end associate
     end do
-  end function condensed_report
+  end function condensed_blocks
 
   !> v = C u: the values of every constraint row (B u, then T u) at u.
   !>   cs (in) rows; u (in) (ndof); v (out) (nrow + ntan)

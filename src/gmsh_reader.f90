@@ -47,7 +47,7 @@
 !>   tags are looked up in a table tag -> node when they are dense (else by a
 !>   binary search of the sorted tags), and repeated elements are found by a
 !>   counting sort on their lowest node: reading costs O(file size).  The file
-!>   is split into lines on two threads, and so are the data lines of a block
+!>   is split into lines on the threads, and so are the data lines of a block
 !>   (nodes, and 2D elements of MSH 4.1): a fast path that accepts exactly
 !>   what the line-by-line reading accepts and, on any defect, leaves the
 !>   block to it, so that messages are built on one thread only.
@@ -57,7 +57,6 @@
 !>        read the MSH file path into mesh; errors go to diag
 module gmsh_reader
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
-  use omp_lib, only: omp_get_max_threads
   use kinds, only: dp, i8
   use diagnostics, only: diag_t, add_error, int_to_str, i8_to_str, real_to_str, printable
   use safe_files, only: read_file
@@ -73,8 +72,8 @@ module gmsh_reader
   integer, parameter :: quote_length = 40          !< characters of an item quoted
   integer, parameter :: raw_width = 11             !< nen, 9 nodes, line: an element read
   integer, parameter :: max_fast_items = 8         !< items of a line on the fast path
-  integer, parameter :: fast_parallel_min = 4096   !< lines parsed on two threads from
-  integer(i8), parameter :: fast_parallel_bytes = 262144  !< files split into lines on two threads from
+  integer, parameter :: fast_parallel_min = 4096   !< lines parsed on the threads from
+  integer(i8), parameter :: fast_parallel_bytes = 262144  !< files split into lines on the threads from
   integer(i8) :: no_integers(0, 0)                 !< iv of scan_data_lines for no integers
   real(dp) :: no_reals(0, 0)                       !< rv of scan_data_lines for no reals
   integer(i8) :: no_lower_bounds(0)                !< lo of scan_data_lines for no integers
@@ -201,7 +200,7 @@ contains
     ! scanned in two halves side by side, LF counts first, then the lines.
     chunk_end = [nbytes / 2, nbytes]
     chunk_lf = 0
-    !$omp parallel do num_threads(min(2, omp_get_max_threads())) if(nbytes > fast_parallel_bytes) private(p, q)
+    !$omp parallel do if(nbytes > fast_parallel_bytes) private(p, q)
     do c = 1, 2
       q = 0                                          ! a register, not the shared array
       do p = merge(1_i8, chunk_end(1) + 1, c == 1), chunk_end(c)
@@ -221,7 +220,7 @@ contains
     ! file), less a CR before the LF.
     allocate(t%lbeg(n), t%lend(n))
     t%lbeg(1) = 1
-    !$omp parallel do num_threads(min(2, omp_get_max_threads())) if(nbytes > fast_parallel_bytes) private(p, k)
+    !$omp parallel do if(nbytes > fast_parallel_bytes) private(p, k)
     do c = 1, 2
       k = int(merge(0_i8, chunk_lf(1), c == 1))      ! the LFs before the chunk
       do p = merge(1_i8, chunk_end(1) + 1, c == 1), chunk_end(c)
@@ -1480,7 +1479,7 @@ contains
   !> The fast path of a block of nl data lines after the current one: each
   !> line must hold exactly size(lo) integers, item k at least lo(k), then nr
   !> reals, all as the line-by-line reading accepts them.  The lines are
-  !> parsed on up to two threads (no string is built there: see scene.f90).
+  !> parsed on the threads (no string is built there: see scene.f90).
   !>   iv (out) (size(lo), nl) the integers of each line
   !>   rv (out) (*, nl) the first size(rv, 1) reals of each line
   !>   ok (out) .false., t unchanged, when a line does not qualify: the caller
@@ -1501,7 +1500,7 @@ contains
     ok = ni + nr <= max_fast_items .and. int(t%ln, i8) + nl <= t%nline
     if (.not. ok) return
     l0 = t%ln
-    !$omp parallel do num_threads(min(2, omp_get_max_threads())) if(nl > fast_parallel_min) &
+    !$omp parallel do if(nl > fast_parallel_min) &
     !$omp private(b, e, n, k, r) reduction(.and.: ok)
     do j = 1, nl
       if (.not. ok) cycle
@@ -1541,7 +1540,7 @@ contains
     if (.not. ok) return
     r0 = d%raw%n
     call ensure_room(d%raw, raw_width, m)
-    !$omp parallel do num_threads(min(2, omp_get_max_threads())) if(m > fast_parallel_min) &
+    !$omp parallel do if(m > fast_parallel_min) &
     !$omp private(q, node) reduction(.and.: ok)
     do j = 1, m
       d%raw%v(:, r0 + j) = 0

@@ -56,13 +56,20 @@ contains
     real(dp), intent(in) :: e1, e2, e3, nu12, nu13, nu23, g12, angle_deg
     logical, intent(in) :: plane_stress
     type(elasticity_t), intent(out) :: mat
-    real(dp) :: s(3, 3), sr(2, 2), dm(3, 3), t(3, 3), det, c, sn
+    real(dp) :: s(3, 3), sr(2, 2), dm(3, 3), t(3, 3), det, c, sn, emax, r1, r2, r3
     real(dp), parameter :: pi = acos(-1.0_dp)
 
-    ! 3D normal compliance in material axes
-    s = reshape([1.0_dp / e1, -nu12 / e1, -nu13 / e1, &
-                 -nu12 / e1, 1.0_dp / e2, -nu23 / e2, &
-                 -nu13 / e1, -nu23 / e2, 1.0_dp / e3], [3, 3])
+    ! 3D normal compliance in material axes, times emax: s = emax S is of
+    ! order one whatever the moduli' scale (S itself, of order 1/E, and its
+    ! products would underflow for E near the top of the range, its inverse
+    ! then overflow); D = emax s^-1
+    emax = max(e1, e2, e3)
+    r1 = emax / e1
+    r2 = emax / e2
+    r3 = emax / e3
+    s = reshape([r1, -nu12 * r1, -nu13 * r1, &
+                 -nu12 * r1, r2, -nu23 * r2, &
+                 -nu13 * r1, -nu23 * r2, r3], [3, 3])
     if (plane_stress) then
       sr = s(1:2, 1:2)
       mat%czz = 0.0_dp
@@ -76,9 +83,9 @@ contains
     end if
     det = sr(1, 1) * sr(2, 2) - sr(1, 2) * sr(2, 1)
     dm = 0.0_dp
-    dm(1, 1) = sr(2, 2) / det
-    dm(2, 2) = sr(1, 1) / det
-    dm(1, 2) = -sr(1, 2) / det
+    dm(1, 1) = emax * (sr(2, 2) / det)
+    dm(2, 2) = emax * (sr(1, 1) / det)
+    dm(1, 2) = emax * (-sr(1, 2) / det)
     dm(2, 1) = dm(1, 2)
     dm(3, 3) = g12
     ! D = T' D' T with eps' = T eps (engineering shear)
@@ -91,7 +98,7 @@ contains
     mat%d = matmul(transpose(t), matmul(dm, t))
     mat%d = 0.5_dp * (mat%d + transpose(mat%d))
     mat%plane_stress = plane_stress
-    mat%emax = max(e1, e2, e3)
+    mat%emax = emax
     ! thermal strain per unit alpha dT, material axes -> global (tensor rotation)
     block
       real(dp) :: a1, a2
@@ -101,7 +108,7 @@ contains
       else
         a1 = 1.0_dp - s(1, 3) / s(3, 3)
         a2 = 1.0_dp - s(2, 3) / s(3, 3)
-        mat%szz_th = -1.0_dp / s(3, 3)
+        mat%szz_th = -emax / s(3, 3)
       end if
       mat%eth = [a1 * c**2 + a2 * sn**2, a1 * sn**2 + a2 * c**2, 2.0_dp * (a1 - a2) * c * sn]
     end block
@@ -130,10 +137,17 @@ contains
     type(elasticity_t), intent(in) :: mat
     real(dp), intent(in) :: sig(3)
     real(dp), intent(in), optional :: adt
-    real(dp) :: szz
+    real(dp) :: szz, t(4), big
     szz = out_of_plane_stress(mat, sig, adt)
-    vm = sqrt(max(0.0_dp, sig(1)**2 + sig(2)**2 + szz**2 - sig(1) * sig(2) - sig(2) * szz &
-                          - szz * sig(1) + 3.0_dp * sig(3)**2))
+    ! the squares of t = sigma / max|sigma|: no overflow for stresses near huge
+    big = max(abs(sig(1)), abs(sig(2)), abs(sig(3)), abs(szz))
+    if (big == 0.0_dp) then
+      vm = 0.0_dp
+      return
+    end if
+    t = [sig(1), sig(2), sig(3), szz] / big
+    vm = big * sqrt(max(0.0_dp, t(1)**2 + t(2)**2 + t(4)**2 - t(1) * t(2) - t(2) * t(4) &
+                                - t(4) * t(1) + 3.0_dp * t(3)**2))
   end function von_mises
 
   !> Condition number of D in the Frobenius norm, ||D||_F ||D^-1||_F (within a

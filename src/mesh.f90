@@ -34,7 +34,6 @@
 module mesh
   use kinds, only: dp, i8
   use diagnostics, only: diag_t, add_error, int_to_str
-  use omp_lib, only: omp_get_max_threads
   use elements, only: corner_count, quadrature_rule, shape_at, max_nen
   implicit none
   private
@@ -376,7 +375,7 @@ contains
     top = 2**bits - 1
     scale = real(2**bits, dp) / span
     allocate(h(n), key(max(n, mesh%nelem)))
-    !$omp parallel do num_threads(min(2, omp_get_max_threads())) if(n > 65536)
+    !$omp parallel do if(n > 65536)
     do a = 1, n
       h(a) = hilbert_index(bits, min(top, int((mesh%x(1, a) - lo(1)) * scale)), &
                            min(top, int((mesh%x(2, a) - lo(2)) * scale)))
@@ -391,7 +390,7 @@ contains
     call bucket_sort(key(1:n), 65536, perm(1:n))
     key(1:n) = int(shiftr(h, 16))
     call bucket_sort(key(1:n), 65536, perm(1:n))
-    !$omp parallel num_threads(min(2, omp_get_max_threads())) if(n > 65536)
+    !$omp parallel if(n > 65536)
     !$omp do
     do a = 1, n
       inv(perm(a)) = a                               ! perm(new) = old, inv(old) = new
@@ -422,7 +421,7 @@ contains
       end do
     end if
     ! elements: by their lowest node
-    !$omp parallel do private(k) num_threads(min(2, omp_get_max_threads())) if(n > 65536)
+    !$omp parallel do private(k) if(n > 65536)
     do e = 1, mesh%nelem
       perm(e) = e
       key(e) = mesh%conn(1, e)
@@ -434,7 +433,7 @@ contains
     !$omp end parallel do
     call bucket_sort(key(1:mesh%nelem), n, perm(1:mesh%nelem))
     allocate(cnew(size(mesh%conn, 1), mesh%nelem), nnew(mesh%nelem))
-    !$omp parallel do num_threads(min(2, omp_get_max_threads())) if(n > 65536)
+    !$omp parallel do if(n > 65536)
     do e = 1, mesh%nelem
       inv(perm(e)) = e
       cnew(:, e) = mesh%conn(:, perm(e))

@@ -19,7 +19,6 @@ module results_writer
   use diagnostics, only: int_to_str
   use text_buffer, only: text_buffer_t, open_text, open_memory, put_text, put_line, put_real, put_int, put_newline, &
                          close_text
-  use omp_lib, only: omp_get_max_threads
   implicit none
   private
   public :: results_t, write_vtk, write_contact_csv, write_summary, write_pvd, write_step_table
@@ -66,6 +65,9 @@ module results_writer
     integer :: contact_nodes = 0, active_nodes = 0, redundant = 0
     integer(i8) :: factor_nnz = 0
     character(len=:), allocatable :: ordering    !< fill-reducing ordering used, e.g. amd(nodes)+last
+    integer :: factor_cut = 0                    !< parts of the factor cut in two at their top separator
+    integer, allocatable :: condense_block(:,:)  !< (3, blocks of L_cc reached by rows): dofs, rows,
+                                                 !< 1 by its inverse / 0 by triangular solves
     real(dp) :: time(nphase) = 0                 !< seconds per phase_names
     real(dp) :: memory_peak = 0                  !< peak resident memory, bytes (0 when unknown)
     real(dp) :: factor_memory = 0                !< CHOLMOD's peak memory for the factor, bytes
@@ -123,7 +125,7 @@ contains
     nnode = 0
     do b = 1, size(bodies)
       associate(m => bodies(b)%mesh)
-        !$omp parallel do num_threads(min(2, omp_get_max_threads())) if(m%nnode > 4096)
+        !$omp parallel do if(m%nnode > 4096)
         do i = 1, m%nnode
           v%vals(:, nnode + i) = m%x(:, v%node_index(nnode + i) - nnode)
         end do
@@ -198,7 +200,7 @@ contains
         do p = 1, m%nnode
           v%node_index(n0 + p) = n0 + file_node(m, p)
         end do
-        !$omp parallel do private(e, k) num_threads(min(2, omp_get_max_threads())) if(m%nelem > 4096)
+        !$omp parallel do private(e, k) if(m%nelem > 4096)
         do p = 1, m%nelem
           e = file_elem(m, p)
           v%elem_index(e0 + p) = e0 + e
@@ -226,7 +228,7 @@ contains
     integer :: i
     if (allocated(v%vals)) deallocate(v%vals)
     allocate(v%vals(ncomp, size(index)))
-    !$omp parallel do num_threads(min(2, omp_get_max_threads())) if(size(index) > 4096)
+    !$omp parallel do if(size(index) > 4096)
     do i = 1, size(index)
       v%vals(:, i) = src(:, index(i))
     end do
@@ -247,8 +249,8 @@ contains
   end subroutine put_scalars
 
   !> Rows 1..n of one section of the VTK file (kind: row_*), formatted in
-  !> chunks on two threads and written in order: the text is the same as
-  !> one thread's, the formatting (most of the output time) is halved.
+  !> chunks on the run's threads and written in order: the text is the same as
+  !> one thread's, the formatting (most of the output time) is shared.
   subroutine put_rows(tb, kind, n, v)
     type(text_buffer_t), intent(inout) :: tb
     integer, intent(in) :: kind, n
@@ -256,7 +258,7 @@ contains
     integer, parameter :: chunk = 4096
     type(text_buffer_t) :: part
     integer :: c, i
-    !$omp parallel do ordered schedule(static, 1) private(part, i) num_threads(min(2, omp_get_max_threads())) &
+    !$omp parallel do ordered schedule(static, 1) private(part, i) &
     !$omp if(n > chunk)
     do c = 0, (n - 1) / chunk
       call open_memory(part)
@@ -418,6 +420,13 @@ contains
     end if
     write(u, '(a,i0)') 'factor_nnz ', r%factor_nnz
     if (allocated(r%ordering)) write(u, '(a)') 'factor_ordering ' // r%ordering
+    write(u, '(a,i0)') 'factor_cut ', r%factor_cut
+    if (allocated(r%condense_block)) then
+      do k = 1, size(r%condense_block, 2)
+        write(u, '(a,i0,a,i0,a)') 'condense_block ', r%condense_block(1, k), ' ', r%condense_block(2, k), ' ' // &
+          trim(merge('inverse', 'solve  ', r%condense_block(3, k) == 1))
+      end do
+    end if
     write(u, '(a,a)') 'memory_peak_mb ', num(r%memory_peak / 1048576.0_dp)
     write(u, '(a,a)') 'factor_memory_mb ', num(r%factor_memory / 1048576.0_dp)
     do k = 1, nphase

@@ -191,7 +191,7 @@ contains
       type(half_t), intent(inout) :: h
       integer, intent(in) :: s
       integer, allocatable :: loc(:)
-      integer :: jj, d, m, a, t
+      integer :: jj, d, m, a, t, q           ! (all local: the two halves are built at once)
       h%nh = count(side == s)
       h%n = h%nh + sum(inhalf(:, s + 1))
       allocate(h%dof(h%n), h%tpos(h%n - h%nh), loc(n))
@@ -410,7 +410,7 @@ contains
       integer(c_int) :: sth(2)
       real(dp), allocatable :: rt(:,:)
       integer :: i
-      !$omp parallel do num_threads(2) schedule(static, 1)
+      !$omp parallel do schedule(static, 1)
       do i = 1, 2
         sth(i) = half_forward(i, bb, yy, zt(i)%a)
       end do
@@ -466,7 +466,7 @@ contains
       xt = yy(sp%n - sp%nt + 1:, :)
       if (sp%nt > 0) call dtrsm('L', 'L', 'T', 'N', sp%nt, m, 1.0_dp, sp%ls, sp%nt, xt, sp%nt)
       xx(sp%tdof, :) = xt
-      !$omp parallel do num_threads(2) schedule(static, 1)
+      !$omp parallel do schedule(static, 1)
       do i = 1, 2
         sth(i) = half_backward(i, yy, xt, xx)
       end do

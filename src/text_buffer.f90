@@ -36,7 +36,9 @@ module text_buffer
     '54', '55', '56', '57', '58', '59', '60', '61', '62', '63', '64', '65', '66', '67', '68', '69', '70', '71', &
     '72', '73', '74', '75', '76', '77', '78', '79', '80', '81', '82', '83', '84', '85', '86', '87', '88', '89', &
     '90', '91', '92', '93', '94', '95', '96', '97', '98', '99']
-  real(dp), save :: pow10(-350:350)               !< 10.0_dp**s, see fill_pow10
+  !> The largest decade a real(dp) holds: 10^308 < huge(1.0_dp) < 10^309.
+  integer, parameter :: top_decade = 308
+  real(dp), save :: pow10(-350:top_decade)        !< 10.0_dp**s, see fill_pow10
   logical, save :: pow10_ready = .false.
 
   type :: text_buffer_t
@@ -147,7 +149,9 @@ contains
     end if
     if (.not. pow10_ready) call fill_pow10()
     e = shifta((exponent(a) - 1) * 78913, 18)
-    if (a >= pow10(e + 1)) e = e + 1
+    if (e < top_decade) then               ! (a < 10^309 always)
+      if (a >= pow10(e + 1)) e = e + 1
+    end if
     n = scaled_digits(a, e)
     if (n >= 10000000000_i8) then          ! rounding went up a decade
       e = e + 1
@@ -203,14 +207,21 @@ contains
   !> pow10(s) = 10.0_dp**s as the run-time integer power computes it (not
   !> the compiler's correctly rounded constants: the digits written stay
   !> those of the direct computation).  Filled once, by the first caller.
+  !> The power of a negative exponent is the reciprocal of the positive one,
+  !> so 10.0_dp**s is computed only for |s| <= 308: 10^309 overflows (a trap
+  !> in the debug build).  The table stops at 10^308, which put_real never
+  !> passes; below 10^-308 it holds 10^(s+308) 10^-308, subnormal, then zero.
   subroutine fill_pow10()
     integer :: s
     real(dp) :: ten
     !$omp critical (text_buffer_pow10)
     if (.not. pow10_ready) then
       ten = 10.0_dp
-      do s = lbound(pow10, 1), ubound(pow10, 1)
+      do s = -top_decade, top_decade
         pow10(s) = ten**s
+      end do
+      do s = lbound(pow10, 1), -top_decade - 1
+        pow10(s) = pow10(s + top_decade) * pow10(-top_decade)
       end do
       pow10_ready = .true.
     end if

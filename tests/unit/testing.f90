@@ -7,7 +7,7 @@ module testing
   implicit none
   private
   public :: check, check_close, check_small, finish_tests
-  public :: urand, random_spd, random_pair
+  public :: urand, random_spd, random_pair, dense_symmetric
 
   integer, save :: nfail = 0
 contains
@@ -59,6 +59,23 @@ contains
     flush(output_unit)
     if (nfail > 0) error stop 1
   end subroutine finish_tests
+  !> The dense symmetric matrix a (n, n) of the upper triangle stored by
+  !> compressed columns (colptr (n+1), rowind, val: a csc_t's arrays).
+  subroutine dense_symmetric(colptr, rowind, val, a)
+    integer, intent(in) :: colptr(:), rowind(:)
+    real(dp), intent(in) :: val(:)
+    real(dp), allocatable, intent(out) :: a(:,:)
+    integer :: n, j, p
+    n = size(colptr) - 1
+    allocate(a(n, n), source=0.0_dp)
+    do j = 1, n
+      do p = colptr(j), colptr(j + 1) - 1
+        a(rowind(p), j) = val(p)
+        a(j, rowind(p)) = val(p)
+      end do
+    end do
+  end subroutine dense_symmetric
+
   !> Park-Miller minimal standard generator, uniform in (0, 1).
   real(dp) function urand(state)
     integer(i8), intent(inout) :: state
