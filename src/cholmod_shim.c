@@ -1253,9 +1253,9 @@ extern void openblas_set_num_threads(int) __attribute__((weak));
 
 /* At most two malloc arenas (glibc's default is 8 per core): the parts of a
  * factor are ordered and factorized on the OpenMP threads, and each further
- * arena keeps freed pages resident.  One arena costs more: on two threads
- * the numeric factorization of signorini_1e5 (bench/contact.sh) took 0.33 s
- * with one arena against 0.25-0.26 s with two. */
+ * arena keeps freed pages resident, while a single arena serializes the two
+ * threads' allocations (doc/performance.md, "Bodies factorized side by
+ * side").  Two was measured on two cores; more threads may want more. */
 void c2d_malloc_arenas(void)
 {
     (void) mallopt(M_ARENA_MAX, 2);
@@ -1270,8 +1270,8 @@ void c2d_malloc_trim(void)
 /* OpenBLAS's pthreads build starts its worker threads when it is loaded,
  * and a worker spins (sched_yield) for about 2^28 cycles after each piece
  * of work before it sleeps.  Spinning, it takes a core from the OpenMP
- * threads of the phases that use no BLAS: on hertz_1e5 (bench/contact.sh)
- * it slowed reading the meshes from 0.073 s to 0.153 s (medians of 10).
+ * threads of the phases that use no BLAS (reading the meshes took twice as
+ * long: doc/performance.md, "OpenBLAS's idle workers").
  * blas_thread_shutdown_ ends the workers, as OpenBLAS does before a fork;
  * the next BLAS call that wants threads starts them again. */
 extern int blas_thread_shutdown_(void) __attribute__((weak));

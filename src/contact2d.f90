@@ -1031,7 +1031,7 @@ contains
     end do
     if (run_threads() > 1) then
       write(line, '(a,f8.3,a,f8.3,a)') ' ordering (', res%time_ordering, &
-        ' s, in factor) and the assembly of K (', res%time_assemble_values, ' s) ran side by side on two threads'
+        ' s, in factor) and the assembly of K (', res%time_assemble_values, ' s) ran side by side'
       call say('overlap  the ' // res%ordering // trim(line))
     end if
     if (cs%npair > 0) then

@@ -30,7 +30,7 @@ module deck_expressions
   implicit none
   private
   public :: parameter_set_t, add_parameter, find_parameter, evaluate, substitute, format_number
-  public :: parse_real, is_parameter_name
+  public :: parse_real, is_parameter_name, lower
 
   integer, parameter :: name_len = 64          !< longest parameter name
 

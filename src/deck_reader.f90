@@ -77,7 +77,7 @@ module deck_reader
   use kinds, only: dp
   use diagnostics, only: diag_t, add_error, int_to_str
   use safe_files, only: open_input, file_kind, kind_name, folder_of, c2d_regular, c2d_missing, c2d_unreadable
-  use deck_expressions, only: parameter_set_t, add_parameter, find_parameter, evaluate, substitute, parse_real, &
+  use deck_expressions, only: parameter_set_t, add_parameter, find_parameter, evaluate, substitute, parse_real, lower, &
                               is_parameter_name
   use, intrinsic :: iso_fortran_env, only: iostat_eor, iostat_end, int64
   implicit none
@@ -2587,16 +2587,6 @@ contains
       if (t(i:i) >= 'a' .and. t(i:i) <= 'z') t(i:i) = achar(iachar(t(i:i)) - 32)
     end do
   end function upper
-
-  pure function lower(s) result(t)
-    character(len=*), intent(in) :: s
-    character(len=len(s)) :: t
-    integer :: i
-    t = s
-    do i = 1, len(t)
-      if (t(i:i) >= 'A' .and. t(i:i) <= 'Z') t(i:i) = achar(iachar(t(i:i)) + 32)
-    end do
-  end function lower
 
   !> User text for a message: control and non-ASCII bytes as '?', cut after quote_len.
   pure function cut(s) result(t)
