@@ -623,6 +623,7 @@ contains
     res%lcp_residual = sol%rep%residual
     if (sol%rep%info /= 0) then
       if (allocated(sol%rep%message)) then
+        if (index(sol%rep%message, 'out of memory') == 1) call fail_numerical(sol%rep%message)
         call fail_numerical(step_prefix() // 'contact problem not solved: ' // sol%rep%message)
       else
         call fail_numerical(step_prefix() // 'contact problem not solved by ' // method // ' (info ' // &
@@ -754,6 +755,7 @@ contains
       qt = sprev - cu(n + 1:)                      ! minus the slip of the step without contact forces
       call solve_friction_lcp(w, qn, qt, cs%tan_row, cs%tan_mu, cs%tan_bound, method, opts, z, rep)
       iterations = iterations + rep%iterations
+      if (rep%info /= 0 .and. index(rep%message, 'out of memory') == 1) call fail_numerical(rep%message)
       if (rep%info /= 0) call fail_numerical('friction, load step ' // int_to_str(kstep) // ' of ' // &
         int_to_str(sc%steps) // ': contact problem not solved: ' // rep%message)
       if (.not. all(ieee_is_finite(z))) call fail_numerical('friction, load step ' // int_to_str(kstep) // &

@@ -49,9 +49,9 @@
 !>   condensed_blocks(cd)                   the same as numbers: (3, blocks) dofs, rows,
 !>                                          1 by its inverse / 0 by triangular solves
 module contact_condensation
-  use kinds, only: dp
+  use kinds, only: dp, i8
   use lapack_interfaces, only: dgemv, dpotri, dsyrk, dtrsm, dtrsv
-  use diagnostics, only: error_t, int_to_str
+  use diagnostics, only: error_t, int_to_str, set_out_of_memory
   use contact_set, only: contact_set_t
   use sparse_cholesky, only: factor_t, trailing_factor_block, trailing_block_end, solve_backward
   implicit none
@@ -120,7 +120,7 @@ contains
     type(condensed_t), intent(out) :: cd
     type(error_t), allocatable, intent(out) :: err
     character(len=*), intent(in), optional :: method
-    integer :: nc, nfc, r, k, i, j, s, e, nblock, b, nb
+    integer :: nc, nfc, r, k, i, j, s, e, nblock, b, nb, st
     integer, allocatable :: fcol(:), bend(:)
     real(dp), allocatable :: lcc(:,:), uc(:)
     character(len=:), allocatable :: how
@@ -140,7 +140,12 @@ contains
       end if
     end do
     cd%nfc = nfc
-    allocate(w(nc, nc), source=0.0_dp)
+    allocate(w(nc, nc), source=0.0_dp, stat=st)
+    if (st /= 0) then
+      call set_out_of_memory(err, 'condensing the contact problem (W of ' // int_to_str(nc) // ' x ' // &
+                             int_to_str(nc) // ')', 8_i8 * int(nc, i8) * int(nc, i8))
+      return
+    end if
     if (nfc == 0 .or. nc == 0) then
       allocate(cd%block(0))
       call gap_offsets()
@@ -154,7 +159,8 @@ contains
     do while (s <= nfc)
       call trailing_block_end(factor, nfc, s, e, err)
       if (allocated(err)) then
-        err%message = 'cannot extract the contact block of the Cholesky factor: ' // err%message
+        if (index(err%message, 'out of memory') /= 1) &
+          err%message = 'cannot extract the contact block of the Cholesky factor: ' // err%message
         return
       end if
       nblock = nblock + 1
@@ -172,7 +178,8 @@ contains
       nb = e - s + 1
       call trailing_factor_block(factor, nfc, lcc, err, first=s, count=nb)
       if (allocated(err)) then
-        err%message = 'cannot extract the contact block of the Cholesky factor: ' // err%message
+        if (index(err%message, 'out of memory') /= 1) &
+          err%message = 'cannot extract the contact block of the Cholesky factor: ' // err%message
         return
       end if
       ! the end of the backward half of u0 = K^-1 f: u0_C = L_cc'^-1 y_c
@@ -309,7 +316,12 @@ contains
     integer :: nb, mb, info
     nb = bk%e - bk%s + 1
     mb = bk%c2 - bk%c1 + 1
-    allocate(z, source=lcc)
+    allocate(z, source=lcc, stat=info)
+    if (info /= 0) then
+      call set_out_of_memory(err, 'condensing the contact problem (the inverse of a contact block of ' // &
+                             int_to_str(nb) // ' x ' // int_to_str(nb) // ')', 8_i8 * int(nb, i8) * int(nb, i8))
+      return
+    end if
     call dpotri('L', nb, z, nb, info)
     if (info /= 0) then
       allocate(err)
@@ -320,7 +332,12 @@ contains
     end if
     call fill_upper(z)
     ! T = Z C_b' (nb, mb), then W += C_b T, both by the columns of C_b'
-    allocate(t(nb, mb))
+    allocate(t(nb, mb), stat=info)
+    if (info /= 0) then
+      call set_out_of_memory(err, 'condensing the contact problem (a block of ' // int_to_str(nb) // ' x ' // &
+                             int_to_str(mb) // ')', 8_i8 * int(nb, i8) * int(mb, i8))
+      return
+    end if
     call sparse_product(nb, mb, size(bk%crow), bk%cptr, bk%crow, bk%cval, z, t)
     deallocate(z)
     call sparse_share(nb, mb, size(bk%crow), bk%cptr, bk%crow, bk%cval, t, ldw, w(bk%c1, bk%c1))

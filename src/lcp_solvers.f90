@@ -64,9 +64,9 @@
 !> the convergence of PGS and the meaning of ray termination assume W PSD.
 !> No routine prints anything; every outcome is in the report.
 module lcp_solvers
-  use kinds, only: dp
+  use kinds, only: dp, i8
   use lapack_interfaces, only: daxpy, dgemv, dger
-  use diagnostics, only: int_to_str, real_to_str
+  use diagnostics, only: int_to_str, real_to_str, error_t, set_out_of_memory
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
   private
@@ -331,7 +331,7 @@ contains
     type(lcp_report_t), intent(out) :: rep
     type(scaled_lcp_t) :: p
     real(dp), allocatable :: zs(:)
-    integer :: n, i, j, maxit
+    integer :: n, i, j, maxit, st
 
     z = 0.0_dp
     rep%info = 0
@@ -368,7 +368,12 @@ contains
     ! Every row kept: the scaled problem is the whole of D M D.
     p%n = n
     p%m = n
-    allocate(p%d(n), p%rows(n), p%ws(n, n), p%qs(n), zs(n))
+    allocate(p%d(n), p%rows(n), p%ws(n, n), p%qs(n), zs(n), stat=st)
+    if (st /= 0) then
+      call set_report(rep, 3, out_of_memory('scaling the LCP (' // int_to_str(n) // ' rows)', &
+                                            8.0_dp * real(n, dp) * real(n, dp)))
+      return
+    end if
     p%d = d
     p%rows = [(i, i = 1, n)]
     do j = 1, n
@@ -485,7 +490,7 @@ contains
     type(lcp_report_t), intent(inout) :: rep
     real(dp), allocatable :: qs_all(:)
     real(dp) :: dmax
-    integer :: n, i, j, nbad, first_bad
+    integer :: n, i, j, nbad, first_bad, st
 
     rep%info = 0
     n = size(q)
@@ -560,7 +565,12 @@ contains
       return
     end if
 
-    allocate(p%rows(p%m), p%ws(p%m, p%m), p%qs(p%m))
+    allocate(p%rows(p%m), p%ws(p%m, p%m), p%qs(p%m), stat=st)
+    if (st /= 0) then
+      call set_report(rep, 3, out_of_memory('scaling the LCP (' // int_to_str(p%m) // ' rows)', &
+                                            8.0_dp * real(p%m, dp) * real(p%m, dp)))
+      return
+    end if
     p%m = 0
     do i = 1, n
       if (.not. is_zero_row(W(i, i), dmax)) then
@@ -575,6 +585,17 @@ contains
   end subroutine prepare_lcp
 
   !> rep%info = info, rep%message = message.
+  !> `out of memory while PHASE (about N MB needed)`, the program's wording
+  !> for an allocation that failed (diagnostics: set_out_of_memory).
+  function out_of_memory(phase, bytes) result(message)
+    character(len=*), intent(in) :: phase
+    real(dp), intent(in) :: bytes
+    character(len=:), allocatable :: message
+    type(error_t), allocatable :: err
+    call set_out_of_memory(err, phase, int(min(bytes, 9.0e18_dp), i8))
+    message = err%message
+  end function out_of_memory
+
   subroutine set_report(rep, info, message)
     type(lcp_report_t), intent(inout) :: rep
     integer, intent(in) :: info
@@ -632,7 +653,7 @@ contains
     type(lcp_report_t), intent(inout) :: rep
     real(dp), allocatable :: t(:, :), xb(:)
     integer, allocatable :: basis(:)
-    integer :: m, jz0, jrhs, i, r, entering, leaving, npiv
+    integer :: m, jz0, jrhs, i, r, entering, leaving, npiv, st
     real(dp) :: qmin
 
     m = p%m
@@ -644,7 +665,13 @@ contains
     ! Tableau [I, -Ws, -e | qs]: columns 1..m w, m+1..2m z, jz0 z0, jrhs the rhs.
     jz0 = 2 * m + 1
     jrhs = 2 * m + 2
-    allocate(t(m, jrhs), basis(m))
+    allocate(t(m, jrhs), basis(m), stat=st)
+    if (st /= 0) then
+      rep%info = 3
+      rep%message = out_of_memory('solving the LCP by Lemke (a tableau of ' // int_to_str(m) // ' rows)', &
+                                  8.0_dp * real(m, dp) * real(jrhs, dp))
+      return
+    end if
     t = 0.0_dp
     do i = 1, m
       t(i, i) = 1.0_dp

@@ -997,7 +997,8 @@ contains
     character(len=:), allocatable :: msg
     real(dp), allocatable :: block(:,:)
     integer(c_int) :: status
-    integer :: k1, m, p, lo, hi
+    integer :: k1, m, p, lo, hi, st
+    type(error_t), allocatable :: oom
 
     k1 = 1
     m = nlast
@@ -1007,7 +1008,13 @@ contains
     if (len(msg) == 0 .and. (k1 < 1 .or. m < 1 .or. k1 - 1 + m > nlast)) &
       msg = trailing_status_message(c2d_chol_bad_argument)
     if (len(msg) == 0) then
-      allocate(Lcc(m, m), source=0.0_dp)
+      allocate(Lcc(m, m), source=0.0_dp, stat=st)
+      if (st /= 0) then
+        call set_out_of_memory(oom, 'condensing the contact problem (the factor''s contact block L_cc of ' // &
+                               int_to_str(m) // ' x ' // int_to_str(m) // ')', 8_i8 * int(m, i8) * int(m, i8))
+        call report(oom%message, err)
+        return
+      end if
       status = cholmod_ok
       ! L_cc is block diagonal by part: each part's piece of the range from its own factor
       do p = 1, f%nparts
