@@ -110,7 +110,7 @@ module friction_lcp
   use diagnostics, only: int_to_str, real_to_str
   use lcp_solvers, only: lcp_options_t, lcp_report_t, solve_lcp_lemke, solve_lcp_pgs, pgs_outcome, &
     solve_lcp_lemke_scaled, scale_lcp, set_report, pgs_monitor_t, pgs_watch_start, pgs_watch_iterate, &
-    pgs_watch_progress, pgs_refresh_sweeps, negative_diagonal
+    pgs_watch_progress, pgs_refresh_sweeps, negative_diagonal, out_of_memory
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
   private
@@ -508,7 +508,13 @@ contains
     jp = n                                             ! beta+ = z(jp+1 : jp+nt)
     jm = n + nt                                        ! beta- = z(jm+1 : jm+nt)
     js = n + 2 * nt                                    ! sigma = z(js+1 : js+nt)
-    allocate(m(nz, nz), q(nz), d(nz), z(nz))
+    allocate(m(nz, nz), q(nz), d(nz), z(nz), stat=i)
+    if (i /= 0) then
+      call set_report(rep, 3, out_of_memory('solving the friction LCP by Lemke (' // int_to_str(nz) // ' unknowns)', &
+                                            8.0_dp * real(nz, dp) * real(nz, dp)))
+      lam = 0.0_dp
+      return
+    end if
     m = 0.0_dp
     ! Normal rows:  w = qn + Gnn lambda + Gnt (beta+ - beta-).
     m(1:n, 1:n) = g(1:n, 1:n)

@@ -72,7 +72,7 @@ module lcp_solvers
   private
   public :: lcp_options_t, lcp_report_t
   public :: solve_lcp_lemke, solve_lcp_pgs, lcp_natural_residual, scale_lcp, measure_solution
-  public :: solve_lcp_lemke_scaled, pgs_outcome, set_report
+  public :: solve_lcp_lemke_scaled, pgs_outcome, set_report, out_of_memory
   public :: pgs_monitor_t, pgs_watch_start, pgs_watch_iterate, pgs_watch_progress, pgs_refresh_sweeps
   public :: max_diagonal, negative_diagonal
 
