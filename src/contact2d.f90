@@ -905,6 +905,12 @@ contains
             line = trim(line) // ', a zone end inside a slave segment (the master''s end)'
           end if
           if (pr%spec%interference) line = trim(line) // ', interference=allow'
+          if (has_friction(pr%spec)) then
+            ! the assumption the frictional rows rest on (doc/theory.md, "Friction on curved surfaces")
+            call say(trim(line))
+            write(line, '(a,f5.3,a)') 'contact  pair ' // int_to_str(ip) // ': rows along the common normal ' // &
+              'w n_slave - (1 - w) n_master, w = ', pr%slave_weight, ' (from the two sides'' curvatures)'
+          end if
         else
           line = 'contact  pair ' // int_to_str(ip) // ': the master faces no slave segment (no contact possible)'
         end if
