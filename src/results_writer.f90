@@ -330,11 +330,8 @@ contains
     do ip = 1, cs%npair
       associate(pr => cs%pair(ip), mo => cs%pair(ip)%mortar)
         do i = 1, size(pr%snode)
-          if (pr%closed) then                  ! a closed curve lists its first node once
-            if (i == size(pr%snode) .neqv. pr%row(size(pr%snode))) then
-              if (i == size(pr%snode) .or. i == 1) cycle
-            end if
-          end if
+          ! a closed curve lists its first node once: at the end when the row is there, else at the start
+          if (pr%closed .and. i == merge(1, size(pr%snode), pr%row(size(pr%snode)))) cycle
           write(sx(1), '(es24.16e3)') mo%arc(i)
           write(sx(2), '(es24.16e3)') pr%xs(1, i)
           write(sx(3), '(es24.16e3)') pr%xs(2, i)
