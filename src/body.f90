@@ -17,6 +17,10 @@
 !> eliminated like ux.  to_global_axes turns a solver-basis vector (a
 !> displacement, a nodal force) into x, y components, to_local_axes back.
 !>
+!> Axisymmetric bodies (body%axisymmetric): the same routines on the kernels
+!> of module axisymmetric_elements (x = r, y = z, the law's D4, integrals
+!> over the full circle); the caller holds u_r = 0 on the axis.
+!>
 !> Programming interface
 !>   type(body_t)                      one body: name, mesh, law, thickness, dof0
 !>   number_equations(fixed, eq, nfree)
@@ -37,6 +41,8 @@ module body
   use material, only: elasticity_t, von_mises
   use elements, only: element_stiffness, element_force, element_strain, quadrature_rule, shape_at, strain_operator, &
                       max_nen
+  use axisymmetric_elements, only: axi_element_stiffness, axi_element_force, axi_element_strain, axi_thermal_load
+  use material, only: von_mises_4
   use sparse_matrix, only: csc_t
   implicit none
   private
@@ -49,6 +55,7 @@ module body
     type(mesh_t) :: mesh                   !< its mesh
     type(elasticity_t) :: law              !< elasticity tensor
     real(dp) :: thick = 1.0_dp             !< thickness (1 in plane strain)
+    logical :: axisymmetric = .false.      !< x = r, y = z, solid of revolution (PLANE axisymmetric)
     integer :: dof0 = 0                    !< global dof offset
     integer :: elem0 = 0                   !< global element offset (output order)
     real(dp), allocatable :: adt(:)        !< (nelem) alpha dT per element; allocated only
@@ -58,6 +65,10 @@ module body
                                            !< FIX un=/ut= holds some node of the body
   end type body_t
 
+
+  !> Axisymmetric thermal strain per unit alpha dT, (err, ezz, grz, ett): an
+  !> isotropic expansion, the same in any axes of the r-z plane.
+  real(dp), parameter :: axi_thermal_strain(4) = [1.0_dp, 1.0_dp, 0.0_dp, 1.0_dp]
 
   !> The elements around each node of a mesh (node_elements).
   type :: node_elements_t
@@ -267,7 +278,11 @@ contains
         do e = 1, m%nelem
           nen = m%nen(e)
           call element_coordinates(m, e, xe)
-          call element_stiffness(nen, xe(:, 1:nen), bodies(b)%law%d, bodies(b)%thick, ke)
+          if (bodies(b)%axisymmetric) then
+            call axi_element_stiffness(nen, xe(:, 1:nen), bodies(b)%law%d4, ke)
+          else
+            call element_stiffness(nen, xe(:, 1:nen), bodies(b)%law%d, bodies(b)%thick, ke)
+          end if
           if (allocated(bodies(b)%axes)) call rotate_element_matrix(bodies(b), e, ke)   ! Q' K Q
           call element_dofs(bodies(b), e, dofs)
           do q = 1, 2 * nen
@@ -432,7 +447,11 @@ contains
           call element_coordinates(m, e, xe)
           ue(1:2 * nen) = u(dofs(1:2 * nen))
           if (allocated(bodies(b)%axes)) call rotate_element_vector(bodies(b), e, ue, .true.)    ! Q u
-          call element_force(nen, xe(:, 1:nen), bodies(b)%law%d, bodies(b)%thick, ue(1:2 * nen), fe(1:2 * nen))
+          if (bodies(b)%axisymmetric) then
+            call axi_element_force(nen, xe(:, 1:nen), bodies(b)%law%d4, ue(1:2 * nen), fe(1:2 * nen))
+          else
+            call element_force(nen, xe(:, 1:nen), bodies(b)%law%d, bodies(b)%thick, ue(1:2 * nen), fe(1:2 * nen))
+          end if
           if (allocated(bodies(b)%axes)) call rotate_element_vector(bodies(b), e, fe, .false.)   ! Q' f
           fint(dofs(1:2 * nen)) = fint(dofs(1:2 * nen)) + fe(1:2 * nen)
         end do
@@ -468,18 +487,26 @@ contains
   end subroutine edge_outward_normal
 
   !> Nodal forces of the thermal strains, f = int B' D eps0 t dA, added to f
-  !> (eps0 = alpha dT eth per element; the body must have adt allocated).
+  !> (eps0 = alpha dT eth per element; the body must have adt allocated);
+  !> axisymmetric: eps0 = alpha dT (1, 1, 0, 1), the hoop strain included.
   subroutine thermal_loads(bd, f)
     type(body_t), intent(in) :: bd
     real(dp), intent(inout) :: f(:)
     real(dp), allocatable :: xi(:,:), w(:)
-    real(dp) :: shp(max_nen), dndx(2, max_nen), detj, b(3, 2 * max_nen), s0(3)
+    real(dp) :: shp(max_nen), dndx(2, max_nen), detj, b(3, 2 * max_nen), s0(3), fe(2 * max_nen)
     integer :: e, nen, q
     integer :: dofs(2 * max_nen)
     associate(m => bd%mesh)
       do e = 1, m%nelem
         if (bd%adt(e) == 0.0_dp) cycle
         nen = m%nen(e)
+        if (bd%axisymmetric) then                         ! int B4' D4 eps0 2 pi r dA
+          call element_dofs(bd, e, dofs)
+          call axi_thermal_load(nen, m%x(:, m%conn(1:nen, e)), matmul(bd%law%d4, axi_thermal_strain) * bd%adt(e), &
+                                fe(1:2 * nen))
+          f(dofs(1:2 * nen)) = f(dofs(1:2 * nen)) + fe(1:2 * nen)
+          cycle
+        end if
         s0 = matmul(bd%law%d, bd%law%eth) * bd%adt(e)     ! D eps0
         call quadrature_rule(nen, 1, xi, w)
         call element_dofs(bd, e, dofs)
@@ -493,6 +520,8 @@ contains
   end subroutine thermal_loads
 
   !> Stresses, von Mises and internal forces fint = K u in one element loop,
+  !> stress(3, nelem) sxx syy sxy, or stress(4, nelem) srr szz srz stt for
+  !> axisymmetric bodies,
   !> threaded with OpenMP.  The element forces are kept per element and added
   !> into fint afterwards in element order, so the result does not depend on
   !> the threads' timing (bit-for-bit reproducible runs).
@@ -503,13 +532,13 @@ contains
     real(dp), intent(out), optional :: stress(:,:), vm(:)    !< skipped when absent
     integer :: b, e, nen, ge
     integer :: dofs(2 * max_nen)
-    real(dp) :: eps(3), xe(2, max_nen), ue(2 * max_nen)
+    real(dp) :: eps(3), eps4(4), xe(2, max_nen), ue(2 * max_nen)
     real(dp), allocatable :: fe(:,:)
     fint = 0.0_dp
     do b = 1, size(bodies)
       associate(m => bodies(b)%mesh, bd => bodies(b))
         allocate(fe(2 * maxval(m%nen), m%nelem))
-        !$omp parallel do private(e, nen, ge, dofs, eps, xe, ue) schedule(static)
+        !$omp parallel do private(e, nen, ge, dofs, eps, eps4, xe, ue) schedule(static)
         do e = 1, m%nelem
           nen = m%nen(e)
           ge = bd%elem0 + e
@@ -517,9 +546,20 @@ contains
           call element_coordinates(m, e, xe)
           ue(1:2 * nen) = u(dofs(1:2 * nen))
           if (allocated(bd%axes)) call rotate_element_vector(bd, e, ue, .true.)            ! Q u
-          call element_force(nen, xe(:, 1:nen), bd%law%d, bd%thick, ue(1:2 * nen), fe(1:2 * nen, e))
+          if (bd%axisymmetric) then
+            call axi_element_force(nen, xe(:, 1:nen), bd%law%d4, ue(1:2 * nen), fe(1:2 * nen, e))
+          else
+            call element_force(nen, xe(:, 1:nen), bd%law%d, bd%thick, ue(1:2 * nen), fe(1:2 * nen, e))
+          end if
           if (allocated(bd%axes)) call rotate_element_vector(bd, e, fe(:, e), .false.)     ! Q' f
           if (.not. present(stress)) cycle
+          if (bd%axisymmetric) then                     ! (srr, szz, srz, stt) = D4 (eps - alpha dT eth4)
+            call axi_element_strain(nen, xe(:, 1:nen), ue(1:2 * nen), eps4)
+            if (allocated(bd%adt)) eps4 = eps4 - bd%adt(e) * axi_thermal_strain
+            stress(1:4, ge) = matmul(bd%law%d4, eps4)
+            vm(ge) = von_mises_4(stress(1:4, ge))
+            cycle
+          end if
           call element_strain(nen, xe(:, 1:nen), ue(1:2 * nen), eps)
           if (allocated(bd%adt)) then                   ! sigma = D (eps - alpha dT eth)
             stress(:, ge) = matmul(bd%law%d, eps - bd%adt(e) * bd%law%eth)

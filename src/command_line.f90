@@ -199,7 +199,7 @@ contains
       '                                    line: numbers, parameters, + - * / ^ ( ), pi,', &
       '                                    sqrt exp log sin cos tan abs min max)', &
       '  TITLE text', &
-      '  PLANE strain | PLANE stress thickness=T', &
+      '  PLANE strain | PLANE stress thickness=T | PLANE axisymmetric   (x = r >= 0, y = z; full-circle forces)', &
       '  BODY name ... END', &
       '    MESH rect x0= y0= x1= y1= nx= ny= [elem=tri3|quad4|tri6|quad8|quad9] [diag=right|left|alt]', &
       '                                      (tri6, quad8 serendipity, quad9 Lagrange: quadratic elements)', &

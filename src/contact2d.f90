@@ -115,6 +115,7 @@ program contact2d
   if (fl%k > 0) held(fl%pin) = .true.
   call number_equations(held, eq, nfree)
   res%effects = sc%effects
+  res%axisymmetric = deck%axisymmetric
   res%nfree = nfree
   call report_scene()
   if (check_only) then
@@ -269,7 +270,7 @@ contains
     if (allocated(res%stress)) deallocate(res%stress, res%vm)
     if (allocated(res%reaction)) deallocate(res%reaction)
     if (allocated(res%fix_label)) deallocate(res%fix_label)
-    allocate(res%stress(3, sc%nelem), res%vm(sc%nelem), fint(sc%ndof))
+    allocate(res%stress(merge(4, 3, deck%axisymmetric), sc%nelem), res%vm(sc%nelem), fint(sc%ndof))
     if (deck%output%fields(4) .or. deck%output%fields(5)) then
       call element_response(sc%bodies, res%u, fint, res%stress, res%vm)
     else
@@ -880,7 +881,10 @@ contains
     if (any([(is_quadratic(sc%bodies(b)%mesh), b = 1, size(sc%bodies))])) family = 'quadratic (P2/Q8/Q9)'
     if (any([(is_quadratic(sc%bodies(b)%mesh), b = 1, size(sc%bodies))]) .and. &
         .not. all([(is_quadratic(sc%bodies(b)%mesh), b = 1, size(sc%bodies))])) family = 'P1/Q1 and quadratic'
-    if (deck%plane_stress) then
+    if (deck%axisymmetric) then
+      call say('model    axisymmetric (x = r, y = z), ' // family // ' elasticity, small deformation; ' // &
+               'loads per unit area and volume, u_r = 0 on the axis; every force is for the full circle (2 pi r)')
+    else if (deck%plane_stress) then
       call say('model    plane stress, ' // family // ' elasticity, small deformation')
     else
       call say('model    plane strain, ' // family // ' elasticity, small deformation')

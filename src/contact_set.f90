@@ -27,7 +27,7 @@ module contact_set
   use diagnostics, only: error_t, set_error, int_to_str
   use mesh, only: mesh_t
   use body, only: body_t, node_elements, edge_outward_normal
-  use mortar_operator, only: mortar_t, build_mortar, zone_node_terms, zone_point
+  use mortar_operator, only: mortar_t, build_mortar, zone_node_terms, zone_point, segment_rule
   use mortar_geometry, only: intersection_t, intersect_segments, common_normals
   implicit none
   private
@@ -260,9 +260,11 @@ contains
           ! friction: the pair's rows along the common normal, which pairs the
           ! points that meet and leaves the normal approach out of the slip
           call common_normals(pr%xs, nsl, xm, nms, pairing, pr%slave_weight)
-          call build_mortar(pr%xs, nsl, xm, nms, sp%gap_zero, pr%mortar, merr, pairing)
+          call build_mortar(pr%xs, nsl, xm, nms, sp%gap_zero, pr%mortar, merr, pairing, &
+                            axisymmetric=bodies(sp%slave_body)%axisymmetric)
         else
-          call build_mortar(pr%xs, nsl, xm, nms, sp%gap_zero, pr%mortar, merr)
+          call build_mortar(pr%xs, nsl, xm, nms, sp%gap_zero, pr%mortar, merr, &
+                            axisymmetric=bodies(sp%slave_body)%axisymmetric)
         end if
         if (allocated(merr)) then
           call set_error(err, 'CONTACT ' // int_to_str(ip) // ': ' // merr%message, merr%status)
@@ -286,7 +288,7 @@ contains
           pr%mortar%P(:, 1) = pr%mortar%P(:, 1) + pr%mortar%P(:, size(mnodes))
           pr%mortar%P(:, size(mnodes)) = 0.0_dp
         end if
-        call covered_master_integrals(pr%mortar, pr%mcov)
+        call covered_master_integrals(pr%mortar, pr%xs, pr%mcov)
         if (mnodes(1) == mnodes(size(mnodes))) then
           pr%mcov(1) = pr%mcov(1) + pr%mcov(size(mnodes))
           pr%mcov(size(mnodes)) = 0.0_dp
@@ -620,21 +622,26 @@ contains
   end subroutine projection_rows
 
   !> mcov(j) = integral of master hat j over the covered part of the slave
-  !> zone (sub-segments: chi is linear in the slave coordinate on each).
-  subroutine covered_master_integrals(mo, mcov)
+  !> zone (sub-segments: chi is linear in the slave coordinate on each; the
+  !> rule of segment_rule, exact with the radial weight too).
+  !>   xs (in) (2, ns) the slave polyline
+  subroutine covered_master_integrals(mo, xs, mcov)
     type(mortar_t), intent(in) :: mo
+    real(dp), intent(in) :: xs(:,:)
     real(dp), allocatable, intent(out) :: mcov(:)
-    integer :: k, f
-    real(dp) :: l, rm
+    integer :: k, f, e, q, nq
+    real(dp) :: rm, sq(4), wq(4), xi(4)
     allocate(mcov(mo%nm), source=0.0_dp)
     if (mo%first == 0) return
     do k = 1, mo%inter%nsub
       f = mo%inter%master_seg(k)
-      l = (mo%inter%s(2, k) - mo%inter%s(1, k)) * &
-          (mo%arc(mo%inter%slave_seg(k) + 1) - mo%arc(mo%inter%slave_seg(k)))
-      rm = 0.5_dp * (mo%inter%r(1, k) + mo%inter%r(2, k))     ! chi_{f+1} at the midpoint
-      mcov(f) = mcov(f) + l * (1.0_dp - rm)
-      mcov(f + 1) = mcov(f + 1) + l * rm
+      e = mo%inter%slave_seg(k)
+      call segment_rule(xs(:, e), xs(:, e + 1), mo%inter%s(1, k), mo%inter%s(2, k), 1, mo%axisymmetric, sq, wq, nq, xi)
+      do q = 1, nq                                              ! chi_{f+1} at the point
+        rm = 0.5_dp * (mo%inter%r(1, k) + mo%inter%r(2, k)) + (0.5_dp * xi(q)) * (mo%inter%r(2, k) - mo%inter%r(1, k))
+        mcov(f) = mcov(f) + wq(q) * (1.0_dp - rm)
+        mcov(f + 1) = mcov(f + 1) + wq(q) * rm
+      end do
     end do
   end subroutine covered_master_integrals
 

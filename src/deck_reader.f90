@@ -15,7 +15,7 @@
 !>   PARAMETER name=expression ...     then ${expression} anywhere in a later line,
 !>                                      replaced before the line is split (deck_expressions)
 !>   TITLE free text                                     default ''
-!>   PLANE strain | PLANE stress [thickness=1]           default strain
+!>   PLANE strain | PLANE stress [thickness=1] | PLANE axisymmetric   default strain
 !>   BODY name ... END                                    at least one
 !>     MESH rect [x0=0] [y0=0] [x1=1] [y1=1] nx= ny= [elem=tri3|quad4|tri6|quad8|quad9]
 !>          [diag=right|left|alt]      (diag only with triangles; boundaries left, right, bottom, top)
@@ -78,7 +78,7 @@ module deck_reader
   use diagnostics, only: diag_t, add_error, int_to_str
   use safe_files, only: open_input, file_kind, kind_name, folder_of, c2d_regular, c2d_missing, c2d_unreadable
   use deck_expressions, only: parameter_set_t, add_parameter, find_parameter, evaluate, substitute, parse_real, lower, &
-                              is_parameter_name
+                              is_parameter_name, format_number
   use, intrinsic :: iso_fortran_env, only: iostat_eor, iostat_end, int64
   implicit none
   private
@@ -216,6 +216,8 @@ module deck_reader
     character(len=:), allocatable :: name       !< file name without folder and extension
     character(len=:), allocatable :: title      !< '' when none
     logical :: plane_stress = .false.; real(dp) :: thickness = 1.0_dp
+    logical :: axisymmetric = .false.           !< PLANE axisymmetric: x = r >= 0, y = z
+    integer :: plane_line = 0                   !< line of the PLANE statement (0: none)
     type(body_deck_t), allocatable :: bodies(:) !< (nbody), always allocated
     logical :: has_gravity = .false.; real(dp) :: gx = 0, gy = 0; integer :: gravity_line = 0
     integer :: gravity_ramp(2) = [0, 1]         !< GRAVITY ramp k0, k1; default [0, steps]
@@ -1049,7 +1051,7 @@ contains
     type(state_t), intent(inout) :: s
     type(deck_t), intent(inout) :: deck
     type(stmt_t), intent(in) :: st
-    character(len=*), parameter :: usage = 'PLANE strain or PLANE stress [thickness=number]'
+    character(len=*), parameter :: usage = 'PLANE strain, PLANE stress [thickness=number] or PLANE axisymmetric'
     logical :: seen(1), ok
     type(text_t) :: val(1)
     character(len=:), allocatable :: kind
@@ -1059,12 +1061,13 @@ contains
       return
     end if
     s%plane_line = st%line
+    deck%plane_line = st%line
     if (st%nword == 0) then
       call report(s, st%line, 'missing plane kind (expected ' // usage // ')')
       return
     end if
     kind = lower(st%word(1)%s)
-    if (kind /= 'strain' .and. kind /= 'stress') then
+    if (kind /= 'strain' .and. kind /= 'stress' .and. kind /= 'axisymmetric') then
       call report(s, st%line, 'unknown plane kind ' // quoted(st%word(1)%s) // ' (expected ' // usage // ')')
       return
     end if
@@ -1073,6 +1076,10 @@ contains
     if (kind == 'strain') then
       deck%plane_stress = .false.
       if (seen(1)) call report(s, st%line, 'thickness= only with PLANE stress (PLANE strain is per unit thickness)')
+    else if (kind == 'axisymmetric') then
+      deck%axisymmetric = .true.
+      if (seen(1)) call report(s, st%line, 'thickness= only with PLANE stress (PLANE axisymmetric is the ' // &
+                               'full solid of revolution)')
     else
       deck%plane_stress = .true.
       call get_positive(s, st, val(1), 'thickness', deck%thickness, ok)
@@ -2104,7 +2111,20 @@ contains
     call resolve_curves(s, deck)
     call check_friction_solver(s, deck)
     call check_output_names(s, deck)
+    if (deck%axisymmetric) call check_axisymmetric(s, deck)
   end subroutine finish_checks
+
+  !> What PLANE axisymmetric cannot take: gravity off the axis (a load that
+  !> depends on the angle theta, not a solid of revolution's).  The bodies'
+  !> r >= 0 is checked with their meshes (scene).
+  subroutine check_axisymmetric(s, deck)
+    type(state_t), intent(inout) :: s
+    type(deck_t), intent(in) :: deck
+    if (deck%gravity_line > 0 .and. deck%gx /= 0.0_dp) &
+      call report(s, deck%gravity_line, 'GRAVITY gx= ' // trim(format_number(deck%gx)) // ' across the axis in ' // &
+                  'PLANE axisymmetric (line ' // int_to_str(deck%plane_line) // ') (gravity along the axis z ' // &
+                  'expected: gx=0, gy=...)')
+  end subroutine check_axisymmetric
 
   !> Every ramp=k0:k1 given ends at step STEPS at the latest (k0 < k1 and k0 >= 0
   !> were checked with the statement).  Nothing is said when STEPS itself was bad.

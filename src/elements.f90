@@ -19,6 +19,7 @@
 !>        for loads and error integrals (P1: 3 points, degree 2; Q1: 3x3 Gauss;
 !>        P2: Dunavant's 6 points, degree 4; Q8, Q9: 4x4 Gauss)
 !>   corner_count(nen)                     3 (triangles) or 4 (quadrilaterals)
+!>   stiffness_rule(nen, nq, xi, w)        the order-1 rule in fixed-size arrays
 !>   shape_at(nen, xe, xi, n, dndx, detj)  shape functions, their x-y gradients
 !>        and the Jacobian determinant at a reference point
 !>   element_stiffness(nen, xe, d, thick, ke)    ke = int B' D B t dA
@@ -37,7 +38,7 @@ module elements
   implicit none
   private
   public :: quadrature_rule, shape_at, element_stiffness, element_force, element_body_load, element_strain
-  public :: edge_load, edge_load_quadratic, strain_operator, corner_count, max_nen
+  public :: edge_load, edge_load_quadratic, strain_operator, corner_count, max_nen, stiffness_rule
 
   !> The most nodes of an element (Q9).  The kernels run once per element:
   !> their work arrays have this fixed size, not nen, because gfortran puts

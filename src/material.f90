@@ -13,7 +13,14 @@
 !>   make_orthotropic(E1, E2, E3, nu12, nu13, nu23, G12, angle_deg, plane_stress, mat)
 !>   out_of_plane_stress(mat, sigma)  sigma_zz for an in-plane stress (sxx, syy, sxy)
 !>   von_mises(mat, sigma [, adt])    equivalent stress, sigma_zz included
+!>   von_mises_4(sigma4)              equivalent stress of (sxx, syy, sxy, szz), the four
+!>                                    components of an axisymmetric stress (szz the hoop)
 !>   tensor_condition(mat)            ||D||_F ||D^-1||_F (large: nearly incompressible)
+!>
+!> Axisymmetric law (PLANE axisymmetric): the material axis 3 is the hoop
+!> direction, and sigma = D4 eps with eps = (err, ezz, grz, ett), D4 the
+!> inverse of the 3D compliance of (11, 22, 12, 33) turned by `angle` in the
+!> r-z plane; the thermal strain is alpha dT (1, 1, 0, 1).
 !>
 !> Thermal strain: alpha dT (1, 1, 1) in 3D.  Plane stress: eps0 = alpha dT
 !> (1, 1, 0).  Plane strain (eps_zz = 0): the in-plane part becomes
@@ -21,9 +28,10 @@
 !> isotropic law) and sigma_zz gains -alpha dT / S_33.
 module material
   use kinds, only: dp
+  use lapack_interfaces, only: dpotrf, dpotri
   implicit none
   private
-  public :: elasticity_t, make_isotropic, make_orthotropic, out_of_plane_stress, von_mises, tensor_condition
+  public :: elasticity_t, make_isotropic, make_orthotropic, out_of_plane_stress, von_mises, von_mises_4, tensor_condition
 
   type :: elasticity_t
     real(dp) :: d(3, 3) = 0.0_dp     !< sigma = D eps, global axes, Voigt (xx, yy, xy) with gamma_xy
@@ -33,6 +41,7 @@ module material
     real(dp) :: emax = 0.0_dp        !< largest Young's modulus, a stiffness scale
     real(dp) :: eth(3) = 0.0_dp      !< in-plane thermal strain per unit alpha dT, global Voigt
     real(dp) :: szz_th = 0.0_dp      !< plane strain: sigma_zz gains szz_th alpha dT
+    real(dp) :: d4(4, 4) = 0.0_dp    !< axisymmetric: sigma = D4 eps, (rr, zz, rz, tt) with gamma_rz
   end type elasticity_t
 
 contains
@@ -112,7 +121,39 @@ contains
       end if
       mat%eth = [a1 * c**2 + a2 * sn**2, a1 * sn**2 + a2 * c**2, 2.0_dp * (a1 - a2) * c * sn]
     end block
+    call axisymmetric_tensor(s, emax, g12, t, mat%d4)
   end subroutine make_orthotropic
+
+  !> The axisymmetric tensor D4 (rr, zz, rz, tt): the inverse of the scaled
+  !> 3D normal compliance s = emax S (material axes 1, 2, 3 = hoop) by LAPACK
+  !> (dpotrf, dpotri: s is symmetric positive definite for a law the deck
+  !> reader accepted), the shear G12 beside it, turned to r, z by t (the
+  !> in-plane rotation of eps; the hoop strain is unchanged by it).
+  subroutine axisymmetric_tensor(s, emax, g12, t, d4)
+    real(dp), intent(in) :: s(3, 3), emax, g12, t(3, 3)
+    real(dp), intent(out) :: d4(4, 4)
+    real(dp) :: sinv(3, 3), dm(4, 4), t4(4, 4)
+    integer :: info, i, j
+    integer, parameter :: slot(3) = [1, 2, 4]        ! 11, 22, 33 -> rows of (rr, zz, rz, tt)
+    sinv = s
+    call dpotrf('U', 3, sinv, 3, info)
+    if (info == 0) call dpotri('U', 3, sinv, 3, info)
+    d4 = 0.0_dp
+    if (info /= 0) return                            ! not an admissible 3D law: no axisymmetric tensor
+    dm = 0.0_dp
+    do j = 1, 3
+      do i = 1, j
+        dm(slot(i), slot(j)) = emax * sinv(i, j)
+        dm(slot(j), slot(i)) = emax * sinv(i, j)
+      end do
+    end do
+    dm(3, 3) = g12
+    t4 = 0.0_dp
+    t4(1:3, 1:3) = t
+    t4(4, 4) = 1.0_dp
+    d4 = matmul(transpose(t4), matmul(dm, t4))        ! D4 = T4' D4' T4
+    d4 = 0.5_dp * (d4 + transpose(d4))
+  end subroutine axisymmetric_tensor
 
   !> sigma_zz of plane strain for the in-plane stress sig = (sxx, syy, sxy).
   pure real(dp) function out_of_plane_stress(mat, sig, adt) result(szz)
@@ -137,18 +178,26 @@ contains
     type(elasticity_t), intent(in) :: mat
     real(dp), intent(in) :: sig(3)
     real(dp), intent(in), optional :: adt
-    real(dp) :: szz, t(4), big
+    real(dp) :: szz
     szz = out_of_plane_stress(mat, sig, adt)
+    vm = von_mises_4([sig, szz])
+  end function von_mises
+
+  !> von Mises equivalent stress of the four components (sxx, syy, sxy, szz)
+  !> (axisymmetric: (srr, szz, srz, stt)).
+  pure real(dp) function von_mises_4(sig4) result(vm)
+    real(dp), intent(in) :: sig4(4)
+    real(dp) :: t(4), big
     ! the squares of t = sigma / max|sigma|: no overflow for stresses near huge
-    big = max(abs(sig(1)), abs(sig(2)), abs(sig(3)), abs(szz))
+    big = maxval(abs(sig4))
     if (big == 0.0_dp) then
       vm = 0.0_dp
       return
     end if
-    t = [sig(1), sig(2), sig(3), szz] / big
+    t = sig4 / big
     vm = big * sqrt(max(0.0_dp, t(1)**2 + t(2)**2 + t(4)**2 - t(1) * t(2) - t(2) * t(4) &
                                 - t(4) * t(1) + 3.0_dp * t(3)**2))
-  end function von_mises
+  end function von_mises_4
 
   !> Condition number of D in the Frobenius norm, ||D||_F ||D^-1||_F (within a
   !> factor 3 of the 2-norm's).  For an isotropic law in plane strain it is

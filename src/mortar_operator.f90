@@ -56,12 +56,28 @@
 !> 7. A frictional pair passes its common normals (mortar_geometry: common_normals) as
 !>    `pairing`: the projection onto the slave segments and the rows go along them.
 !>
+!> 8. Axisymmetric pairs (axisymmetric=.true., x = r): every integral above is
+!>    over the surface of revolution, ds -> 2 pi r ds, r the slave point's
+!>    radius, which is linear in the slave coordinate s.  D, M, E and the
+!>    weights then integrate polynomials of one degree more (3 on P1 traces):
+!>    segment_rule picks the Gauss-Legendre rule exact for it, so pi 1 = 1 and
+!>    P' zone_weight = master weights hold to round-off (the patch test).
+!>    A zone end on the axis (r = 0) is a point inside the contact surface,
+!>    not its edge: there the multiplier space keeps the end node's own hat
+!>    (psi_0 = phi_0, no end condition (pi phi)(a1) = phi(a1)), pi phi's value
+!>    there is one more unknown of D v = M c - E_n c(a2), and the node's
+!>    normal is the axis direction (axis_end).
+!>
 !> Programming interface
 !>   type(mortar_t)        the operator of one pair (fields commented below)
-!>   build_mortar(xs, ns_out, xm, nm_out, gap_zero, mortar, err [, pairing])
+!>   build_mortar(xs, ns_out, xm, nm_out, gap_zero, mortar, err [, pairing] [, axisymmetric])
 !>                         check the polylines, intersect, build pi_h^1, gaps, weights;
 !>                         err (status 2) for geometric input problems, (status 1) when
 !>                         the LAPACK solve fails
+!>   segment_rule(xa, xb, s1, s2, degree, axisymmetric, s, w, nq)
+!>                         Gauss-Legendre points and weights on the part [s1, s2] of the
+!>                         straight segment xa-xb, exact for polynomials of the given
+!>                         degree in s times the radial weight 2 pi r(s) when axisymmetric
 !>   zone_node_terms(mo, i, node, coef, nt), zone_point(mo, xs, i)
 !>                         the slave nodes (and weights) and the point of zone node i
 module mortar_operator
@@ -70,9 +86,10 @@ module mortar_operator
   use diagnostics, only: error_t, set_error, int_to_str
   use mortar_geometry, only: intersection_t, intersect_segments, check_polyline, ray_hit, real_to_str, &
                              tol_overlap
+  use axisymmetric_elements, only: radial_weight
   implicit none
   private
-  public :: mortar_t, build_mortar, zone_node_terms, zone_point
+  public :: mortar_t, build_mortar, zone_node_terms, zone_point, segment_rule
 
   !> The mortar operator of one contact pair.
   type :: mortar_t
@@ -91,6 +108,8 @@ module mortar_operator
                                               !< a slave segment (the master stops there)
     real(dp), allocatable :: arc(:)           !< (ns) arc length along the slave polyline from node 1
     logical, allocatable :: constrained(:)    !< (ns) true for first..last
+    logical :: axisymmetric = .false.         !< integrals weighted by 2 pi r (module header, 8.)
+    logical :: axis_end(2) = .false.          !< the zone's first / last node is on the axis (8.)
     type(intersection_t) :: inter             !< the sub-segments used for the integrals
   end type mortar_t
 
@@ -110,12 +129,16 @@ contains
   !>   err      (out) allocated on failure: status 2 for bad geometry (sizes, zero-length
   !>                  segments, normals, holes or folds in the master cover), 1 when the
   !>                  tridiagonal solve fails
-  subroutine build_mortar(xs, ns_out, xm, nm_out, gap_zero, mortar, err, pairing)
+  !>   pairing  (in, optional) (2, ns) the common normals of a frictional pair (7.)
+  !>   axisymmetric (in, optional) x is the radius: integrals over the surface of
+  !>                  revolution (8.); default .false.
+  subroutine build_mortar(xs, ns_out, xm, nm_out, gap_zero, mortar, err, pairing, axisymmetric)
     real(dp), intent(in) :: xs(:,:), ns_out(:,:), xm(:,:), nm_out(:,:)
     logical, intent(in) :: gap_zero
     type(mortar_t), intent(out) :: mortar
     type(error_t), allocatable, intent(out) :: err
     real(dp), intent(in), optional :: pairing(:,:)
+    logical, intent(in), optional :: axisymmetric
     integer :: ns, nm, i, e, k, first, last, f, jlo, jhi, info
     integer, allocatable :: ncover(:)
     logical :: ext(2)
@@ -129,6 +152,7 @@ contains
 
     ns = size(xs, 2)
     nm = size(xm, 2)
+    if (present(axisymmetric)) mortar%axisymmetric = axisymmetric
     mortar%ns = ns
     mortar%nm = nm
     allocate(mortar%normal(2, ns), mortar%P(ns, nm), mortar%gap0(ns), mortar%weight(ns))
@@ -234,11 +258,18 @@ contains
       if (mortar%cut(1) > 0.0_dp) mortar%normal(:, first) = ns_out(:, first)
       if (mortar%cut(2) < 1.0_dp) mortar%normal(:, last) = ns_out(:, last - 1)
     end if
+    ! a zone end on the axis is no end of the surface of revolution (8.): its
+    ! normal is the axis', and its value of pi phi an unknown like the others
+    if (mortar%axisymmetric .and. last - first >= 2) then
+      mortar%axis_end = [xs(1, first) == 0.0_dp .and. mortar%cut(1) == 0.0_dp, &
+                         xs(1, last) == 0.0_dp .and. mortar%cut(2) == 1.0_dp]
+      if (mortar%axis_end(1)) mortar%normal(:, first) = [0.0_dp, sign(1.0_dp, mortar%normal(2, first))]
+      if (mortar%axis_end(2)) mortar%normal(:, last) = [0.0_dp, sign(1.0_dp, mortar%normal(2, last))]
+    end if
 
     ! Lumped weights over the full zone segments.
     do e = first, last - 1
-      mortar%weight(e) = mortar%weight(e) + 0.5_dp * seglen(e)
-      mortar%weight(e + 1) = mortar%weight(e + 1) + 0.5_dp * seglen(e)
+      call add_hat_integrals(mortar, xs, seglen, e, e + 1)
     end do
 
     ! End rows: the master trace at the zone's ends, eq. (8) first line.  A cut
@@ -249,8 +280,10 @@ contains
     else
       call end_row(xs(:, first), mortar%normal(:, first), xm, nm_out, mortar%inter, first, .true., f, r)
     end if
-    mortar%P(first, f) = 1.0_dp - r
-    mortar%P(first, f + 1) = r
+    if (.not. mortar%axis_end(1)) then
+      mortar%P(first, f) = 1.0_dp - r
+      mortar%P(first, f + 1) = r
+    end if
     jlo = f
     jhi = f + 1
     if (mortar%cut(2) < 1.0_dp .or. ext(2)) then
@@ -260,13 +293,15 @@ contains
     else
       call end_row(xs(:, last), mortar%normal(:, last), xm, nm_out, mortar%inter, last - 1, .false., f, r)
     end if
-    mortar%P(last, f) = mortar%P(last, f) + (1.0_dp - r)
-    mortar%P(last, f + 1) = mortar%P(last, f + 1) + r
+    if (.not. mortar%axis_end(2)) then
+      mortar%P(last, f) = mortar%P(last, f) + (1.0_dp - r)
+      mortar%P(last, f + 1) = mortar%P(last, f + 1) + r
+    end if
     jlo = min(jlo, f, minval(mortar%inter%master_seg(1:mortar%inter%nsub)))
     jhi = max(jhi, f + 1, maxval(mortar%inter%master_seg(1:mortar%inter%nsub)) + 1)
 
     ! Interior rows: D v = M c - E_0 c(a1) - E_n c(a2), eq. (8) second line.
-    call project_interior(mortar, seglen, jlo, jhi, info)
+    call project_interior(mortar, xs, jlo, jhi, info)
     if (info /= 0) then
       call set_error(err, 'mortar matrix D of the contact zone is singular (LAPACK dgtsv info ' // &
         int_to_str(info) // ')', 1)
@@ -283,42 +318,49 @@ contains
     end if
   end subroutine build_mortar
 
-  !> Assemble D, M, E_0, E_n on the sub-segments (2-point Gauss, exact) with the
+  !> Assemble D, M, E_0, E_n on the sub-segments (segment_rule, exact) with the
   !> zone's hats (a cut end segment rescaled to the zone's part of it) and solve
   !> for the interior rows of P; also accumulate covered_weight and zone_weight.
   !>   mortar (inout) in: first, last, end rows of P, inter; out: interior rows of P
-  !>   seglen (in)    (ns-1) slave segment lengths
+  !>   xs     (in)    (2, ns) slave polyline (its radii in the axisymmetric case)
   !>   jlo, jhi (in)  range of master columns that can be nonzero
   !>   info   (out)   0, or the dgtsv info when D is singular
-  subroutine project_interior(mortar, seglen, jlo, jhi, info)
+  subroutine project_interior(mortar, xs, jlo, jhi, info)
     type(mortar_t), intent(inout) :: mortar
-    real(dp), intent(in) :: seglen(:)
+    real(dp), intent(in) :: xs(:,:)
     integer, intent(in) :: jlo, jhi
     integer, intent(out) :: info
     integer, parameter :: chunk = 128
     real(dp), allocatable :: dl(:), dd(:), du(:), e0(:), en(:), cl(:), cd(:), cu(:)
     integer :: ci
-    real(dp) :: sq, rq, wq, wa, v, lo, hi, phi(0:1), chi(0:1)
-    integer :: n, first, last, k, m, f, q, ia, ib, a, b, kp, ns
+    real(dp) :: sq, rq, wq, wa, v, lo, hi, phi(0:1), chi(0:1), sp(4), rp(4), wp(4)
+    integer :: n, first, last, k, m, f, q, ia, ib, a, b, kp, ns, nq, klo, khi, nu
 
     info = 0
     first = mortar%first
     last = mortar%last
     ns = mortar%ns
     n = last - first
-    allocate(dl(max(n - 2, 1)), dd(max(n - 1, 1)), du(max(n - 2, 1)), e0(max(n - 1, 1)), en(max(n - 1, 1)))
+    ! the unknown nodal values klo..khi of pi phi: the interior nodes, and a
+    ! zone end on the axis (8.), whose hat is then a multiplier of its own
+    klo = merge(0, 1, mortar%axis_end(1))
+    khi = merge(n, n - 1, mortar%axis_end(2))
+    nu = khi - klo + 1
+    allocate(dl(max(nu - 1, 1)), dd(max(nu, 1)), du(max(nu - 1, 1)), e0(max(nu, 1)), en(max(nu, 1)))
     dl = 0.0_dp; dd = 0.0_dp; du = 0.0_dp; e0 = 0.0_dp; en = 0.0_dp
 
     do k = 1, mortar%inter%nsub
       m = mortar%inter%slave_seg(k) - first + 1          ! zone segment m: local nodes m-1, m
       f = mortar%inter%master_seg(k)
-      wq = 0.5_dp * (mortar%inter%s(2, k) - mortar%inter%s(1, k)) * seglen(mortar%inter%slave_seg(k))
       lo = 0.0_dp                                        ! the zone's part [lo, hi] of the segment
       hi = 1.0_dp
       if (m == 1) lo = mortar%cut(1)
       if (m == n) hi = mortar%cut(2)
-      do q = -1, 1, 2
-        call gauss_point(mortar%inter, k, q, sq, rq)
+      call subsegment_points(mortar, xs, k, sp, rp, wp, nq)
+      do q = 1, nq
+        sq = sp(q)
+        rq = rp(q)
+        wq = wp(q)
         chi = [1.0_dp - rq, rq]
         phi = [1.0_dp - sq, sq]
         mortar%covered_weight(first + m - 1:first + m) = mortar%covered_weight(first + m - 1:first + m) + wq * phi
@@ -329,20 +371,20 @@ contains
           wa = wq * phi(ia)
           mortar%zone_weight(first + a) = mortar%zone_weight(first + a) + wa
           if (n < 2) cycle
-          kp = max(1, min(n - 1, a))                       ! phi_a is part of psi_kp
+          kp = max(klo, min(khi, a))                       ! phi_a is part of psi_kp
           do ib = 0, 1
             b = m - 1 + ib
             v = wa * phi(ib)
-            if (b == 0) then
-              e0(kp) = e0(kp) + v                          ! E_0 = int psi_k phi_0
-            else if (b == n) then
-              en(kp) = en(kp) + v                          ! E_n = int psi_k phi_n
+            if (b < klo) then
+              e0(kp - klo + 1) = e0(kp - klo + 1) + v      ! E_0 = int psi_k phi_0
+            else if (b > khi) then
+              en(kp - klo + 1) = en(kp - klo + 1) + v      ! E_n = int psi_k phi_n
             else if (b == kp) then
-              dd(kp) = dd(kp) + v                          ! D_kk
+              dd(kp - klo + 1) = dd(kp - klo + 1) + v      ! D_kk
             else if (b == kp + 1) then
-              du(kp) = du(kp) + v                          ! D_k,k+1
+              du(kp - klo + 1) = du(kp - klo + 1) + v      ! D_k,k+1
             else
-              dl(b) = dl(b) + v                            ! D_k,k-1 (b = k-1)
+              dl(b - klo + 1) = dl(b - klo + 1) + v        ! D_k,k-1 (b = k-1)
             end if
           end do
           ! M_kj = int psi_k chi_j, accumulated in row first+kp of P
@@ -355,8 +397,8 @@ contains
 
     ! Right-hand sides M - E_0 P(first,:) - E_n P(last,:), then v = D^-1 (...).
     do f = jlo, jhi
-      mortar%P(first + 1:last - 1, f) = mortar%P(first + 1:last - 1, f) - e0(1:n - 1) * mortar%P(first, f) &
-                                        - en(1:n - 1) * mortar%P(last, f)
+      if (klo == 1) mortar%P(first + 1:first + khi, f) = mortar%P(first + 1:first + khi, f) - e0(1:nu) * mortar%P(first, f)
+      if (khi == n - 1) mortar%P(first + klo:last - 1, f) = mortar%P(first + klo:last - 1, f) - en(1:nu) * mortar%P(last, f)
     end do
     ! dgtsv's elimination runs along the rows across all its right-hand
     ! sides: in chunks of 128 master columns a row's pieces stay in cache,
@@ -367,7 +409,7 @@ contains
       cl = dl
       cd = dd
       cu = du
-      call dgtsv(n - 1, min(chunk, jhi - f + 1), cl, cd, cu, mortar%P(first + 1, f), ns, ci)
+      call dgtsv(nu, min(chunk, jhi - f + 1), cl, cd, cu, mortar%P(first + klo, f), ns, ci)
       info = max(info, ci)
     end do
     !$omp end parallel do
@@ -388,8 +430,8 @@ contains
     logical, intent(in) :: gap_zero
     type(error_t), allocatable, intent(out) :: err
     real(dp), allocatable :: dd(:), du(:), dl(:), rhs(:,:), b(:), py(:,:)
-    real(dp) :: sq, rq, wq, phi(0:1), chi(0:1), piv
-    integer :: n, k, e, f, q, ia, ib, node(0:1), jlo, jhi, nc, info, i
+    real(dp) :: sq, rq, wq, phi(0:1), chi(0:1), piv, sp(4), rp(4), wp(4)
+    integer :: n, k, e, f, q, ia, ib, node(0:1), jlo, jhi, nc, info, i, nq
 
     n = mortar%ns - 1
     if (n < 3) then
@@ -401,18 +443,19 @@ contains
     mortar%last = mortar%ns
     mortar%constrained = .true.
     do e = 1, n
-      mortar%weight(e) = mortar%weight(e) + 0.5_dp * seglen(e)
-      mortar%weight(e + 1) = mortar%weight(e + 1) + 0.5_dp * seglen(e)
+      call add_hat_integrals(mortar, xs, seglen, e, e + 1)
     end do
     mortar%weight(1) = mortar%weight(1) + mortar%weight(mortar%ns)
     allocate(dd(n), du(n), source=0.0_dp)
-    do k = 1, mortar%inter%nsub                          ! D, M on the sub-segments, 2-point Gauss (exact)
+    do k = 1, mortar%inter%nsub                          ! D, M on the sub-segments (segment_rule, exact)
       e = mortar%inter%slave_seg(k)
       f = mortar%inter%master_seg(k)
       node = [e, modulo(e, n) + 1]
-      wq = 0.5_dp * (mortar%inter%s(2, k) - mortar%inter%s(1, k)) * seglen(e)
-      do q = -1, 1, 2
-        call gauss_point(mortar%inter, k, q, sq, rq)
+      call subsegment_points(mortar, xs, k, sp, rp, wp, nq)
+      do q = 1, nq
+        sq = sp(q)
+        rq = rp(q)
+        wq = wp(q)
         phi = [1.0_dp - sq, sq]
         chi = [1.0_dp - rq, rq]
         do ia = 0, 1
@@ -461,17 +504,84 @@ contains
     end if
   end subroutine build_periodic
 
-  !> Gauss point q (-1 or +1) of the 2-point rule on sub-segment k: its slave
-  !> coordinate s and master coordinate r (each of the two weighs half the
-  !> sub-segment's length).
-  pure subroutine gauss_point(inter, k, q, s, r)
-    type(intersection_t), intent(in) :: inter
-    integer, intent(in) :: k, q
-    real(dp), intent(out) :: s, r
-    real(dp), parameter :: gauss = 0.57735026918962576451_dp   ! 1/sqrt(3)
-    s = 0.5_dp * (inter%s(1, k) + inter%s(2, k)) + real(q, dp) * gauss * 0.5_dp * (inter%s(2, k) - inter%s(1, k))
-    r = 0.5_dp * (inter%r(1, k) + inter%r(2, k)) + real(q, dp) * gauss * 0.5_dp * (inter%r(2, k) - inter%r(1, k))
-  end subroutine gauss_point
+  !> The quadrature points of sub-segment k of mortar%inter for the products
+  !> of two P1 hats (degree 2 in s; 3 with the radial weight): slave
+  !> coordinates s, master coordinates r (linear in s on a sub-segment) and
+  !> weights w, nq of them.
+  pure subroutine subsegment_points(mortar, xs, k, s, r, w, nq)
+    type(mortar_t), intent(in) :: mortar
+    real(dp), intent(in) :: xs(:,:)
+    integer, intent(in) :: k
+    real(dp), intent(out) :: s(4), r(4), w(4)
+    integer, intent(out) :: nq
+    integer :: e
+    real(dp) :: xi(4)
+    associate(inter => mortar%inter)
+      e = inter%slave_seg(k)
+      call segment_rule(xs(:, e), xs(:, e + 1), inter%s(1, k), inter%s(2, k), 2, mortar%axisymmetric, s, w, nq, xi)
+      r(1:nq) = 0.5_dp * (inter%r(1, k) + inter%r(2, k)) + (0.5_dp * xi(1:nq)) * (inter%r(2, k) - inter%r(1, k))
+    end associate
+  end subroutine subsegment_points
+
+  !> Gauss-Legendre rule on the part [s1, s2] of the straight segment xa-xb
+  !> (x(s) = (1 - s) xa + s xb), exact for every polynomial of the given
+  !> degree in s, times the radial weight 2 pi r(s) (r = x(1), linear in s:
+  !> one degree more) when axisymmetric: int f ds ~ sum_q w_q f(s_q), ds the
+  !> arc length.  The P1 mortar integrals are degree 2; the quadratic ones 4.
+  !>   xa, xb (in) (2) the segment's ends;  s1, s2 (in) 0 <= s1 < s2 <= 1
+  !>   degree (in) 0..7 (minus one when axisymmetric)
+  !>   axisymmetric (in) weight 2 pi r(s)
+  !>   s, w   (out) (4) points in [s1, s2] and weights, the first nq of them
+  !>   nq     (out) 1..4 points: degree + 1 (+ 1) <= 2 nq
+  !>   xi     (out, optional) (4) the points on the reference interval [-1, 1]
+  !>                (a coordinate linear in s is c = (c1 + c2)/2 + xi (c2 - c1)/2)
+  pure subroutine segment_rule(xa, xb, s1, s2, degree, axisymmetric, s, w, nq, xi)
+    real(dp), intent(in) :: xa(2), xb(2), s1, s2
+    integer, intent(in) :: degree
+    logical, intent(in) :: axisymmetric
+    real(dp), intent(out) :: s(4), w(4)
+    integer, intent(out) :: nq
+    real(dp), intent(out), optional :: xi(4)
+    ! Gauss-Legendre on [-1, 1]: points g(k, n) and weights gw(k, n) of the n-point rule
+    real(dp), parameter :: g(4, 4) = reshape([0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, &
+      -0.57735026918962576451_dp, 0.57735026918962576451_dp, 0.0_dp, 0.0_dp, &
+      -0.77459666924148337704_dp, 0.0_dp, 0.77459666924148337704_dp, 0.0_dp, &
+      -0.86113631159405257522_dp, -0.33998104358485626480_dp, 0.33998104358485626480_dp, &
+      0.86113631159405257522_dp], [4, 4])
+    real(dp), parameter :: gw(4, 4) = reshape([2.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, &
+      1.0_dp, 1.0_dp, 0.0_dp, 0.0_dp, &
+      0.55555555555555555556_dp, 0.88888888888888888889_dp, 0.55555555555555555556_dp, 0.0_dp, &
+      0.34785484513745385737_dp, 0.65214515486254614263_dp, 0.65214515486254614263_dp, &
+      0.34785484513745385737_dp], [4, 4])
+    real(dp) :: half
+    integer :: q
+    nq = min(4, (degree + merge(1, 0, axisymmetric)) / 2 + 1)
+    half = 0.5_dp * (s2 - s1)
+    s = 0.0_dp
+    w = 0.0_dp
+    if (present(xi)) xi = g(:, nq)
+    do q = 1, nq
+      s(q) = 0.5_dp * (s1 + s2) + half * g(q, nq)
+      w(q) = gw(q, nq) * half * norm2(xb - xa)
+      if (axisymmetric) w(q) = w(q) * radial_weight((1.0_dp - s(q)) * xa(1) + s(q) * xb(1))
+    end do
+  end subroutine segment_rule
+
+  !> Lumped weights of slave nodes a, b (the ends of segment e): int phi ds
+  !> over the whole segment, 2 pi r ds when axisymmetric
+  !> (L (2 r_a + r_b) / 6 per unit angle).
+  subroutine add_hat_integrals(mortar, xs, seglen, a, b)
+    type(mortar_t), intent(inout) :: mortar
+    real(dp), intent(in) :: xs(:,:), seglen(:)
+    integer, intent(in) :: a, b
+    if (mortar%axisymmetric) then
+      mortar%weight(a) = mortar%weight(a) + radial_weight(seglen(a) * (2.0_dp * xs(1, a) + xs(1, b)) / 6.0_dp)
+      mortar%weight(b) = mortar%weight(b) + radial_weight(seglen(a) * (xs(1, a) + 2.0_dp * xs(1, b)) / 6.0_dp)
+    else
+      mortar%weight(a) = mortar%weight(a) + 0.5_dp * seglen(a)
+      mortar%weight(b) = mortar%weight(b) + 0.5_dp * seglen(a)
+    end if
+  end subroutine add_hat_integrals
 
   !> The point of zone node i (first..last): the slave node, or for a cut end
   !> the point of its segment where the zone ends.

@@ -30,10 +30,12 @@ module results_writer
 
   type :: results_t
     character(len=:), allocatable :: effects     !< effects simulated
+    logical :: axisymmetric = .false.            !< forces for the full circle (summary force_basis)
     character(len=:), allocatable :: parameter(:) !< (nparam) 'NAME VALUE' of each deck PARAMETER
     integer :: nfree = 0                         !< free equations
     real(dp), allocatable :: u(:)                !< (ndof) displacements
-    real(dp), allocatable :: stress(:,:)         !< (3, nelem) sxx syy sxy per element
+    real(dp), allocatable :: stress(:,:)         !< (3, nelem) sxx syy sxy per element, or
+                                                 !< (4, nelem) srr szz srz stt (axisymmetric)
     real(dp), allocatable :: vm(:)               !< (nelem) von Mises
     real(dp), allocatable :: node_pressure(:)    !< (ndof/2) contact pressure at nodes (0 elsewhere)
     real(dp), allocatable :: node_gap(:)         !< (ndof/2) final gap at slave nodes (0 elsewhere)
@@ -152,9 +154,9 @@ contains
     call put_line(tb, 'LOOKUP_TABLE default')
     call put_rows(tb, row_body, nelem, v)
     if (fields(4)) then
-      call put_line(tb, 'SCALARS stress double 3')
+      call put_line(tb, 'SCALARS stress double ' // int_to_str(size(r%stress, 1)))
       call put_line(tb, 'LOOKUP_TABLE default')
-      call gather(r%stress, 3, v%elem_index, v)
+      call gather(r%stress, size(r%stress, 1), v%elem_index, v)
       call put_rows(tb, row_values, nelem, v)
     end if
     if (fields(5)) call put_scalars(tb, 'von_mises', r%vm, v%elem_index, v)
@@ -380,6 +382,7 @@ contains
     ok = ios == 0
     if (.not. ok) return
     write(u, '(a)') 'effects ' // r%effects
+    write(u, '(a)') 'force_basis ' // trim(merge('full_circle       ', 'per_unit_thickness', r%axisymmetric))
     if (allocated(r%parameter)) then
       do k = 1, size(r%parameter)
         write(u, '(a)') 'parameter ' // trim(r%parameter(k))

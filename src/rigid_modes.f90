@@ -118,14 +118,20 @@ contains
     end do
     fdofs = pack([(i, i = 1, nd)], fixed(bd%dof0 + 1:bd%dof0 + nd))
     nfix = size(fdofs)
-    ! null space of C = r3(fixed dofs, :)
-    if (nfix == 0) then
+    ! null space of C = r3(fixed dofs, :); a solid of revolution (x = r) has
+    ! one rigid motion, the translation along the axis: its C also holds the
+    ! r translation and the rotation (rows e_1', e_3'), which strain the hoop
+    if (nfix == 0 .and. .not. bd%axisymmetric) then
       vt = reshape([1.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 1.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 1.0_dp], [3, 3])
       s = 0.0_dp
       kb = 3
     else
       m = nfix
       cmat = r3(fdofs, :)
+      if (bd%axisymmetric) then
+        m = nfix + 2
+        cmat = reshape([cmat(:, 1), 1.0_dp, 0.0_dp, cmat(:, 2), 0.0_dp, 0.0_dp, cmat(:, 3), 0.0_dp, 1.0_dp], [m, 3])
+      end if
       call dgesvd('N', 'A', m, 3, cmat, m, s, u, 1, vt, 3, wq, -1, info)
       lwork = int(wq(1))
       allocate(work(lwork))

@@ -14,6 +14,9 @@
 !> puts nodes in local axes (body%axes; apply_fixes), and the groups' forces
 !> are turned to those axes.
 !>
+!> PLANE axisymmetric: the bodies' kernels on the full circle (body), every
+!> node at r >= 0 (check_radius), u_r = 0 on the axis (apply_axis).
+!>
 !> Programming interface
 !>   type(scene_t)                       bodies, dof data, loads, pair specs, effects
 !>   group_factor(sc, g, k), group_name(sc, g)   load factor of group g at step k; its name
@@ -33,6 +36,7 @@ module scene
   use safe_files, only: private_folder, real_path
   use material, only: make_isotropic, make_orthotropic
   use elements, only: element_body_load, edge_load, edge_load_quadratic, max_nen
+  use axisymmetric_elements, only: axi_element_body_load, axi_edge_load, axi_edge_load_quadratic
   use body, only: body_t, node_elements, edge_outward_normal, element_dofs, thermal_loads, to_local_axes
   use contact_set, only: pair_spec_t
   implicit none
@@ -89,8 +93,8 @@ contains
     type(scene_t), intent(out) :: sc
     type(diag_t), intent(inout) :: diag
     type(error_t), allocatable, intent(out) :: err
-    integer :: b, nb, nfix, ifix, ndof, ip
-    logical :: has_traction, has_pressure, has_bforce, has_gravity, has_dirichlet, has_thermal, has_offset
+    integer :: b, nb, nfix, ifix, ndof, ip, naxis
+    logical :: has_traction, has_pressure, has_bforce, has_gravity, has_dirichlet, has_thermal, has_offset, has_axis
 
     ! The bodies are read one after the other: gfortran 12 keeps the length of
     ! a deferred-length character function result (int_to_str, the reader's
@@ -138,8 +142,13 @@ contains
     has_dirichlet = .false.
     has_traction = .false.; has_pressure = .false.; has_bforce = .false.; has_gravity = .false.
     has_thermal = .false.
+    has_axis = .false.
     do b = 1, nb
       call apply_fixes(deck, deck%bodies(b), sc, b, ifix, diag)
+      if (deck%axisymmetric) then
+        call apply_axis(deck, sc, b, naxis, diag)
+        has_axis = has_axis .or. naxis > 0
+      end if
       call apply_loads(deck, deck%bodies(b), sc, b, diag, has_traction, has_pressure, has_bforce, has_gravity)
       if (size(deck%bodies(b)%thermals) > 0) then
         call apply_thermal(deck, deck%bodies(b), sc, b, diag)
@@ -180,6 +189,8 @@ contains
     end do
 
     sc%effects = 'elasticity'
+    if (deck%axisymmetric) sc%effects = 'axisymmetric elasticity'
+    if (has_axis) sc%effects = sc%effects // ' axis_condition'
     if (has_dirichlet) sc%effects = sc%effects // ' prescribed_displacement'
     if (has_traction) sc%effects = sc%effects // ' traction'
     if (has_pressure) sc%effects = sc%effects // ' pressure'
@@ -349,7 +360,91 @@ contains
     end associate
     bd%thick = 1.0_dp
     if (deck%plane_stress) bd%thick = deck%thickness
+    bd%axisymmetric = deck%axisymmetric
+    if (bd%axisymmetric .and. bd%mesh%nnode > 0) call check_radius(deck, deck%bodies(ib), bd, diag)
   end subroutine make_body
+
+  !> PLANE axisymmetric: every node at r = x >= 0.  A node within 1e-10 of
+  !> the body's size from the axis is put on it (r = 0 exactly: it gets
+  !> u_r = 0, apply_axis); one further left is an error at the MESH line (at
+  !> the OFFSET line when an OFFSET moved the body).
+  subroutine check_radius(deck, bdeck, bd, diag)
+    type(deck_t), intent(in) :: deck
+    type(body_deck_t), intent(in) :: bdeck
+    type(body_t), intent(inout) :: bd
+    type(diag_t), intent(inout) :: diag
+    real(dp) :: tol
+    integer :: a
+    associate(x => bd%mesh%x)
+      tol = 1.0e-10_dp * max(maxval(abs(x(1, :))), maxval(x(2, :)) - minval(x(2, :)))
+      where (abs(x(1, :)) <= tol) x(1, :) = 0.0_dp
+      a = minloc(x(1, :), dim=1)
+      if (x(1, a) < 0.0_dp) call add_error(diag, deck%file, merge(bdeck%offset_line, bdeck%mesh%line, bdeck%has_offset), &
+        'body "' // bd%name // '" has node ' // int_to_str(node_in_file(bd%mesh, a)) // ' at x = ' // &
+        real_text(x(1, a)) // ', left of the axis of PLANE axisymmetric (line ' // int_to_str(deck%plane_line) // &
+        ') (every node at x = r >= 0 expected)')
+    end associate
+  end subroutine check_radius
+
+  !> Short decimal text of a real, for messages.
+  function real_text(v) result(t)
+    real(dp), intent(in) :: v
+    character(len=:), allocatable :: t
+    character(len=24) :: buf
+    write(buf, '(g0.6)') v
+    t = trim(adjustl(buf))
+  end function real_text
+
+  !> PLANE axisymmetric: u_r = 0 at every node on the axis (r = 0) of body
+  !> b, a Dirichlet dof owned by no FIX (it has no reaction line).  A node
+  !> that a FIX un=/ut= put in local axes is held along the axis of its two
+  !> that is r; a FIX that gives such a node u_r /= 0, or local axes along
+  !> neither r nor z, is an error at the PLANE line.
+  subroutine apply_axis(deck, sc, b, naxis, diag)
+    type(deck_t), intent(in) :: deck
+    type(scene_t), intent(inout) :: sc
+    integer, intent(in) :: b
+    integer, intent(out) :: naxis
+    type(diag_t), intent(inout) :: diag
+    real(dp), parameter :: same = 1.0e-9_dp
+    integer :: a, slot, dof, j, k
+    real(dp) :: p(2)
+    naxis = 0
+    associate(bd => sc%bodies(b))
+      do a = 1, bd%mesh%nnode
+        if (bd%mesh%x(1, a) /= 0.0_dp) cycle
+        naxis = naxis + 1
+        slot = 1
+        if (allocated(bd%axes)) then
+          if (any(bd%axes(:, a) /= 0.0_dp)) then
+            p = [bd%axes(1, a), -bd%axes(2, a)]             ! e_r in the node's axes (n, t)
+            slot = 0
+            if (abs(abs(p(1)) - 1.0_dp) <= same) slot = 1
+            if (abs(abs(p(2)) - 1.0_dp) <= same) slot = 2
+          end if
+        end if
+        if (slot == 0) then
+          call add_error(diag, deck%file, deck%plane_line, 'node ' // int_to_str(node_in_file(bd%mesh, a)) // &
+            ' of body "' // bd%name // '" is on the axis and a FIX un=/ut= put it in local axes along neither ' // &
+            'r nor z (u_r = 0 on the axis: local axes along r and z there expected)')
+          return
+        end if
+        dof = bd%dof0 + 2 * (a - 1) + slot
+        if (sc%fixed(dof)) then
+          if (any(sc%ugroup(dof, :) /= 0.0_dp)) then
+            k = sc%fix_owner(dof) - sum([(size(deck%bodies(j)%fixes), j = 1, b - 1)])   ! the FIX in body b's list
+            call add_error(diag, deck%file, deck%bodies(b)%fixes(k)%line, 'FIX ' // deck%bodies(b)%fixes(k)%boundary // &
+              ' gives node ' // int_to_str(node_in_file(bd%mesh, a)) // ' of body "' // bd%name // &
+              '", on the axis, a radial displacement (u_r = 0 on the axis of PLANE axisymmetric, line ' // &
+              int_to_str(deck%plane_line) // ', expected)')
+            return
+          end if
+        else
+          sc%fixed(dof) = .true.
+        end if
+      end do
+    end associate
+  end subroutine apply_axis
 
   !> Body ib's .geo meshed by gmsh into the run's private folder, after the
   !> screen of what the .geo may do (unless trusted), and read.
@@ -690,9 +785,14 @@ contains
                 end if
               end if
             end if
-            if (allocated(m%bnd(ib)%mid)) then            ! 3-node edge, 3-point Gauss
+            if (allocated(m%bnd(ib)%mid) .and. bd%axisymmetric) then
+              nm = m%bnd(ib)%mid(s)
+              call axi_edge_load_quadratic(reshape([m%x(:, na), m%x(:, nb), m%x(:, nm)], [2, 3]), t, pr, fe(1:6))
+            else if (allocated(m%bnd(ib)%mid)) then       ! 3-node edge, 3-point Gauss
               nm = m%bnd(ib)%mid(s)
               call edge_load_quadratic(reshape([m%x(:, na), m%x(:, nb), m%x(:, nm)], [2, 3]), t, pr, bd%thick, fe(1:6))
+            else if (bd%axisymmetric) then                ! per unit area, on the circle 2 pi r
+              call axi_edge_load(m%x(:, na), m%x(:, nb), t, fe(1:4))
             else
               call edge_load(m%x(:, na), m%x(:, nb), t, bd%thick, fe(1:4))
             end if
@@ -730,7 +830,11 @@ contains
       associate(bd => sc%bodies(b), m => sc%bodies(b)%mesh)
         do e = 1, m%nelem
           nen = m%nen(e)
-          call element_body_load(nen, m%x(:, m%conn(1:nen, e)), bf, bd%thick, fe(1:2 * nen))
+          if (bd%axisymmetric) then
+            call axi_element_body_load(nen, m%x(:, m%conn(1:nen, e)), bf, fe(1:2 * nen))
+          else
+            call element_body_load(nen, m%x(:, m%conn(1:nen, e)), bf, bd%thick, fe(1:2 * nen))
+          end if
           call element_dofs(bd, e, dofs)
           sc%fgroup(dofs(1:2 * nen), g) = sc%fgroup(dofs(1:2 * nen), g) + fe(1:2 * nen)
         end do

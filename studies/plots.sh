@@ -137,6 +137,34 @@ plot ${plot%,}
 GP
 gnuplot "$p/h_hertz.gp"
 
+# ---------------------------------------------------------------- axisymmetric Hertz (input/hertz_axi.deck)
+if [ -s "$t/axi_hertz_profile.dat" ]; then
+  awk -F, 'NR > 1 { print $1, ($5 < 0 ? -$5 : $5), ($7 < 0 ? -$7 : $7), ($8 < 0 ? -$8 : $8), ($9 < 0 ? -$9 : $9) }' \
+    "$t/axi_hertz.csv" > "$p/axi_hertz_err.dat"
+  cat > "$p/axi_hertz.gp" <<GP
+$term2
+set output "$img/axi_hertz.png"
+set multiplot layout 1,2 title "PLANE axisymmetric: sphere R = 1 on a flat block (input/hertz_axi.deck), P1, E = 200000, nu = 0.3" noenhanced
+set grid
+set key top right box opaque
+set xlabel "r"
+set ylabel "contact pressure (per unit area)"
+set title "$(head -n 1 "$t/axi_hertz_profile.dat" | sed 's/^# r pressure hertz *//')"
+plot "$t/axi_hertz_profile.dat" u 1:3 w l lw 2 lc rgb "gray50" t "Hertz with the computed P", \
+     "" u 1:2 w p pt 7 ps 0.6 lc 1 t "contact2d (nodal pressure)"
+set logscale xy
+set format x "10^{%L}"; set format y "10^{%L}"
+set xlabel "near-contact mesh size h_c"
+set ylabel "|relative error|"
+set title "against Hertz with the computed P"
+set key bottom right
+plot "$p/axi_hertz_err.dat" u 1:2 w lp pt 5 t "a (second moment)", "" u 1:3 w lp pt 7 t "peak pressure", \
+     "" u 1:4 w lp pt 9 t "pressure at the axis node", "" u 1:5 w lp pt 11 t "int p dA against P"
+unset multiplot
+GP
+  gnuplot "$p/axi_hertz.gp"
+fi
+
 # ---------------------------------------------------------------- manufactured solution
 awk -F, 'NR > 1 && $1 == "tri3" { print $3, $4, $5 }' "$t/mms.csv" > "$p/mms_tri3.dat"
 awk -F, 'NR > 1 && $1 == "quad4" { print $3, $4, $5 }' "$t/mms.csv" > "$p/mms_quad4.dat"
