@@ -29,7 +29,7 @@
 !>   axi_edge_load_quadratic(xe, t, pr, fe)    as elements' edge_load_quadratic, 2 pi r ds
 module axisymmetric_elements
   use kinds, only: dp
-  use elements, only: shape_at, stiffness_rule, quadrature_rule, corner_count, max_nen
+  use elements, only: shape_at, stiffness_rule, quadrature_rule, corner_count, max_nen, strain_operator
   implicit none
   private
   public :: radial_weight, axi_element_stiffness, axi_element_force, axi_element_body_load, axi_thermal_load
@@ -46,19 +46,19 @@ contains
     w = two_pi * r
   end function radial_weight
 
-  !> B4(4, 2 nen) at one point: the plane strain rows and the hoop row N_a / r.
+  !> B4(4, 2 nen) at one point: elements' plane strain operator B and the hoop
+  !> row N_a / r on the u_r dofs.
   !>   n (in) (nen) shape functions;  dndx (in) (2, nen) gradients;  r (in) > 0 the radius
   pure subroutine axi_strain_operator(nen, n, dndx, r, b)
     integer, intent(in) :: nen
     real(dp), intent(in) :: n(nen), dndx(2, nen), r
     real(dp), intent(out) :: b(4, 2 * nen)
+    real(dp) :: b3(3, 2 * max_nen)
     integer :: a
-    b = 0.0_dp
+    call strain_operator(nen, dndx, b3(:, 1:2 * nen))
+    b(1:3, :) = b3(:, 1:2 * nen)
+    b(4, :) = 0.0_dp
     do a = 1, nen
-      b(1, 2 * a - 1) = dndx(1, a)
-      b(2, 2 * a) = dndx(2, a)
-      b(3, 2 * a - 1) = dndx(2, a)
-      b(3, 2 * a) = dndx(1, a)
       b(4, 2 * a - 1) = n(a) / r
     end do
   end subroutine axi_strain_operator
@@ -94,6 +94,15 @@ contains
     integer, intent(in) :: nen
     real(dp), intent(in) :: xe(2, nen), d4(4, 4), ue(2 * nen)
     real(dp), intent(out) :: fe(2 * nen)
+    call stress_forces(nen, xe, d4, ue, [0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp], fe)
+  end subroutine axi_element_force
+
+  !> fe = sum_q w_q detJ_q 2 pi r_q B4' (D4 B4 ue + s0): the nodal forces of the
+  !> stress of ue plus a constant stress s0, on the stiffness rule.
+  pure subroutine stress_forces(nen, xe, d4, ue, s0, fe)
+    integer, intent(in) :: nen
+    real(dp), intent(in) :: xe(2, nen), d4(4, 4), ue(2 * nen), s0(4)
+    real(dp), intent(out) :: fe(2 * nen)
     real(dp) :: xi(2, 9), w(9), n(max_nen), dndx(2, max_nen), detj, b(4, 2 * max_nen), sig(4), r
     integer :: q, nq, m
     m = 2 * nen
@@ -103,10 +112,10 @@ contains
       call shape_at(nen, xe, xi(:, q), n(1:nen), dndx(:, 1:nen), detj)
       r = dot_product(n(1:nen), xe(1, :))
       call axi_strain_operator(nen, n(1:nen), dndx(:, 1:nen), r, b(:, 1:m))
-      sig = matmul(d4, matmul(b(:, 1:m), ue))
+      sig = matmul(d4, matmul(b(:, 1:m), ue)) + s0
       fe = fe + (w(q) * detj * radial_weight(r)) * matmul(sig, b(:, 1:m))
     end do
-  end subroutine axi_element_force
+  end subroutine stress_forces
 
   !> Nodal forces of a constant body force b (per unit volume), int N' b 2 pi r dA.
   pure subroutine axi_element_body_load(nen, xe, bf, fe)
@@ -133,17 +142,10 @@ contains
     integer, intent(in) :: nen
     real(dp), intent(in) :: xe(2, nen), s0(4)
     real(dp), intent(out) :: fe(2 * nen)
-    real(dp) :: xi(2, 9), w(9), n(max_nen), dndx(2, max_nen), detj, b(4, 2 * max_nen), r
-    integer :: q, nq, m
-    m = 2 * nen
-    call stiffness_rule(nen, nq, xi, w)
-    fe = 0.0_dp
-    do q = 1, nq
-      call shape_at(nen, xe, xi(:, q), n(1:nen), dndx(:, 1:nen), detj)
-      r = dot_product(n(1:nen), xe(1, :))
-      call axi_strain_operator(nen, n(1:nen), dndx(:, 1:nen), r, b(:, 1:m))
-      fe = fe + (w(q) * detj * radial_weight(r)) * matmul(s0, b(:, 1:m))
-    end do
+    real(dp) :: ue(2 * max_nen), d0(4, 4)
+    ue = 0.0_dp                                      ! no displacement: the stress is s0
+    d0 = 0.0_dp
+    call stress_forces(nen, xe, d0, ue(1:2 * nen), s0, fe)
   end subroutine axi_thermal_load
 
   !> Strain (err, ezz, grz, ett) at the element centre (reference centroid),

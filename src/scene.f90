@@ -25,7 +25,7 @@
 !>        time limit); errors go to diag with deck lines
 module scene
   use kinds, only: dp
-  use diagnostics, only: diag_t, add_error, has_errors, int_to_str, error_t
+  use diagnostics, only: diag_t, add_error, has_errors, int_to_str, error_t, real_to_str
   use deck_reader, only: deck_t, body_deck_t, curve_t, curve_factor, LOAD_TRACTION, LOAD_PRESSURE
   use mesh, only: mesh_t, is_quadratic, finalize_mesh, find_boundary, boundary_nodes, find_region, order_for_locality, &
                   node_in_file, locality_min_nodes
@@ -381,19 +381,10 @@ contains
       a = minloc(x(1, :), dim=1)
       if (x(1, a) < 0.0_dp) call add_error(diag, deck%file, merge(bdeck%offset_line, bdeck%mesh%line, bdeck%has_offset), &
         'body "' // bd%name // '" has node ' // int_to_str(node_in_file(bd%mesh, a)) // ' at x = ' // &
-        real_text(x(1, a)) // ', left of the axis of PLANE axisymmetric (line ' // int_to_str(deck%plane_line) // &
+        real_to_str(x(1, a)) // ', left of the axis of PLANE axisymmetric (line ' // int_to_str(deck%plane_line) // &
         ') (every node at x = r >= 0 expected)')
     end associate
   end subroutine check_radius
-
-  !> Short decimal text of a real, for messages.
-  function real_text(v) result(t)
-    real(dp), intent(in) :: v
-    character(len=:), allocatable :: t
-    character(len=24) :: buf
-    write(buf, '(g0.6)') v
-    t = trim(adjustl(buf))
-  end function real_text
 
   !> PLANE axisymmetric: u_r = 0 at every node on the axis (r = 0) of body
   !> b, a Dirichlet dof owned by no FIX (it has no reaction line).  A node
