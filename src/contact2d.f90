@@ -686,6 +686,18 @@ contains
     end if
     res%min_gap = min(0.0_dp, minval(res%gap))
     res%min_pressure = minval(res%pressure)
+    do ip = 1, cs%npair                 ! quadratic: a closed row whose master value is extended
+      do r = 1, 2
+        if (.not. cs%pair(ip)%extended(r)) cycle
+        node = merge(cs%pair(ip)%mortar%first, cs%pair(ip)%mortar%last, r == 1)
+        nr = row_of_node(cs, ip, node)
+        if (nr == 0) cycle
+        if (res%status(nr) == 1) write(error_unit, '(a)') 'contact2d: warning: ' // deck%file // ':' // &
+          int_to_str(deck%contacts(ip)%line) // ': the contact reaches the slave node ' // int_to_str(node) // &
+          ' where the master ends inside a quadratic slave element: its row uses the master''s end value ' // &
+          '(refine the slave there or swap slave and master)'
+      end do
+    end do
   end subroutine contact_measures
 
   !> C u0_g for each ramp g of the load history (one solve per ramp, none when
@@ -905,6 +917,17 @@ contains
             line = trim(line) // ', a zone end inside a slave segment (the master''s end)'
           end if
           if (pr%spec%interference) line = trim(line) // ', interference=allow'
+          if (pr%quadratic) then
+            ! the quadratic operator's choices (doc/theory.md, "Quadratic traces")
+            call say(trim(line))
+            write(line, '(a,i0,a,i0,a)') 'contact  pair ' // int_to_str(ip) // ': quadratic mortar, slave degree ', &
+              pr%degree(1), ', master degree ', pr%degree(2), ': non-penetration at every trace node'
+            if (any(pr%extended)) then
+              call say(trim(line))
+              line = 'contact  pair ' // int_to_str(ip) // ': the master ends inside a zone-end slave element: ' // &
+                     'its end value extended over the rest'
+            end if
+          end if
           if (has_friction(pr%spec)) then
             ! the assumption the frictional rows rest on (doc/theory.md, "Friction on curved surfaces")
             call say(trim(line))
