@@ -53,6 +53,7 @@ static const char *const phases[][2] = {
     {"local_axes.f90", "building the scene"},
     {"body.f90", "assembling K"},
     {"elements.f90", "assembling K"},
+    {"axisymmetric_elements.f90", "assembling K"},
     {"sparse_matrix.f90", "assembling K"},
     {"sparse_cholesky.f90", "factorizing K"},
     {"split_factor.f90", "factorizing K"},
