@@ -19,7 +19,9 @@
 !> forms M_i M_i' (as much again), and S is factorized (|T|^3/3); the gain is
 !> the two halves side by side (doc/performance.md, "A body cut in two").
 !>
-!> All indices are the part's own (1..n); 1-based.
+!> All indices are the part's own (1..n); 1-based.  A part of
+!> sparse_cholesky's implementation (with sparse_cholesky_parts): only these
+!> factor modules use cholmod_binding.
 module split_factor
   use, intrinsic :: iso_c_binding, only: c_ptr, c_null_ptr, c_associated, c_int, c_double, c_int64_t
   use kinds, only: dp, i8

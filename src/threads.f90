@@ -8,9 +8,10 @@
 !> part of their own (the bodies' factorizations) ask run_threads how many
 !> there are.  The count lives in the OpenMP run time, not here.
 !>
-!> It also bounds glibc's malloc arenas (the parts of a factor allocate on
-!> the threads; each further arena keeps freed pages resident) and ends
-!> OpenBLAS's spinning workers until the first BLAS call that wants them.
+!> It also makes the process-wide settings of the run once, through
+!> runtime_binding (src/runtime_tuning.c): at most two glibc malloc arenas
+!> (the parts of a factor allocate on the threads; each further arena keeps
+!> freed pages resident) and OpenBLAS's thread count.
 !>
 !> Programming interface
 !>   start_threads(jobs)   jobs > 0: use jobs threads; 0: the OpenMP default
@@ -18,7 +19,7 @@
 module threads
   use, intrinsic :: iso_c_binding, only: c_int
   use omp_lib, only: omp_set_num_threads, omp_get_max_threads
-  use cholmod_binding, only: c2d_blas_threads, c2d_blas_park, c2d_malloc_arenas
+  use runtime_binding, only: c2d_runtime_start
   implicit none
   private
   public :: start_threads, run_threads
@@ -30,16 +31,10 @@ contains
   !>         (OMP_NUM_THREADS, else one per core)
   subroutine start_threads(jobs)
     integer, intent(in) :: jobs
-    integer :: old
-    call c2d_malloc_arenas()
     if (jobs > 0) call omp_set_num_threads(jobs)
     ! OpenBLAS reads OPENBLAS_NUM_THREADS or OMP_NUM_THREADS when it loads,
-    ! not -j: give it the run's count (0 when the BLAS is not OpenBLAS)
-    old = int(c2d_blas_threads(int(run_threads(), c_int)))
-    ! its workers would spin on a core through the phases before the
-    ! factorization, which use OpenMP and no BLAS; the first threaded BLAS
-    ! call starts them again
-    call c2d_blas_park()
+    ! not -j: give it the run's count
+    call c2d_runtime_start(int(run_threads(), c_int))
   end subroutine start_threads
 
   !> The number of threads the run uses (OpenMP's, outside any parallel region).
