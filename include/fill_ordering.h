@@ -10,8 +10,7 @@
  * call runs under C2D_METIS_CALL (include/metis_guard.h).
  *
  * Index convention: 0-based on the CHOLMOD objects, 1-based for `last` and
- * `group` as the Fortran side gives them; c2d_chol_separator is called from
- * Fortran and is 1-based throughout. */
+ * `group` as the Fortran side gives them. */
 #ifndef CONTACT2D_FILL_ORDERING_H
 #define CONTACT2D_FILL_ORDERING_H
 
@@ -41,12 +40,4 @@ int c2d_order_block_last(const cholmod_sparse *A, int nlast, const int *last, co
 /* cholmod_analyze with CHOLMOD's own METIS ordering, under C2D_METIS_CALL. */
 cholmod_factor *c2d_analyze_metis(cholmod_sparse *A, cholmod_common *c);
 
-/* The top vertex separator of the node graph of the pattern (the arguments
- * of c2d_chol_analyze, include/cholmod_factor.h, groups required) without
- * its nlast < n dofs `last`: side[k] = 0 or 1 (the two halves), 2 (the
- * separator) or 3 (a dof of `last`), k < n.  Returns CHOLMOD_OK,
- * C2D_CHOL_BAD_ARGUMENT (also when the graph has fewer than 3 nodes) or an
- * error status. */
-int c2d_chol_separator(void *h, int n, const int *colptr, const int *rowind, int offset,
-                       int nlast, const int *last, const int *group, int *side);
 #endif /* CONTACT2D_FILL_ORDERING_H */

@@ -1,7 +1,6 @@
 !> cholmod_binding: raw bind(c) interfaces to the C layer over CHOLMOD, and
 !> the status codes it returns: the handle and its factor (src/cholmod_factor.c,
-!> include/cholmod_factor.h), the top separator of the ordering
-!> (src/fill_ordering.c, include/fill_ordering.h) and the reading of the
+!> include/cholmod_factor.h) and the reading of the
 !> factor (src/factor_inspection.c, include/factor_inspection.h).  The
 !> process-wide settings are runtime_binding's.
 !>
@@ -19,7 +18,6 @@
 !>   c2d_chol_factorize(handle, n, colptr, rowind, val, nlast, last) -> status
 !>   c2d_chol_set_ordering(handle, method) -> status   method: c2d_order_metis, c2d_order_amd
 !>   c2d_chol_analyze(handle, n, colptr, rowind, offset, nlast, last, ngroup, group) -> status
-!>   c2d_chol_separator(handle, n, colptr, rowind, offset, nlast, last, group, side) -> status
 !>   c2d_chol_factorize_values(handle, n, colptr, rowind, offset, val) -> status
 !>   c2d_chol_minor(handle, column, equation)
 !>   c2d_chol_stats(handle, lnz, flops, memory_peak, time_analyze, time_factorize)
@@ -36,7 +34,7 @@ module cholmod_binding
   implicit none
   private
   public :: c2d_chol_create, c2d_chol_destroy, c2d_chol_factorize, c2d_chol_minor
-  public :: c2d_chol_analyze, c2d_chol_separator, c2d_chol_factorize_values, c2d_chol_set_ordering
+  public :: c2d_chol_analyze, c2d_chol_factorize_values, c2d_chol_set_ordering
   public :: c2d_order_metis, c2d_order_amd
   public :: c2d_chol_stats, c2d_chol_min_pivot_ratio, c2d_chol_ordering_name
   public :: c2d_chol_status_name, c2d_chol_solve
@@ -119,23 +117,6 @@ module cholmod_binding
       integer(c_int), intent(in) :: group(*)
       integer(c_int) :: status
     end function c2d_chol_analyze
-
-    !> The top vertex separator of the node graph without `last`: side(k) = 0, 1
-    !> (the halves), 2 (the separator) or 3 (`last`); returns the status.
-    function c2d_chol_separator(handle, n, colptr, rowind, offset, nlast, last, group, side) &
-        bind(c, name='c2d_chol_separator') result(status)
-      import :: c_ptr, c_int
-      type(c_ptr), value :: handle
-      integer(c_int), value :: n
-      integer(c_int), intent(in) :: colptr(*)
-      integer(c_int), intent(in) :: rowind(*)
-      integer(c_int), value :: offset
-      integer(c_int), value :: nlast
-      integer(c_int), intent(in) :: last(*)
-      integer(c_int), intent(in) :: group(*)
-      integer(c_int), intent(out) :: side(*)
-      integer(c_int) :: status
-    end function c2d_chol_separator
 
     !> Numeric factorization of the analyzed pattern's values; returns the status.
     function c2d_chol_factorize_values(handle, n, colptr, rowind, offset, val) &

@@ -158,7 +158,6 @@ program contact2d
   if (allocated(err)) call fail_numerical(factor_failure(err))
   res%factor_nnz = factor_nnz(factor)
   res%ordering = factor_ordering(factor)
-  res%factor_cut = factor%ncut
   res%factor_memory = real(factor_memory(factor), dp)
   deallocate(k%colptr, k%rowind, k%val)      ! K lives on in its factor only
   call lap(ph_factor)
@@ -546,11 +545,9 @@ contains
   !> contact dofs last).
   subroutine order_pattern()
     if (size(last) > 0) then
-      call analyze_pattern(factor, k%n, k%colptr, k%rowind, err_order, last=last, group=group, method=trim(ordering), &
-                           cut=deck%solver%cut == 'auto')
+      call analyze_pattern(factor, k%n, k%colptr, k%rowind, err_order, last=last, group=group, method=trim(ordering))
     else
-      call analyze_pattern(factor, k%n, k%colptr, k%rowind, err_order, group=group, method=trim(ordering), &
-                           cut=deck%solver%cut == 'auto')
+      call analyze_pattern(factor, k%n, k%colptr, k%rowind, err_order, group=group, method=trim(ordering))
     end if
   end subroutine order_pattern
 
@@ -1024,13 +1021,6 @@ contains
       else
         line = trim(line) // ' ordered and factorized one after the other'
       end if
-      call say(trim(line))
-    end if
-    if (factor%ncut > 0) then
-      write(line, '(a,i0,a,i0,a)') 'factor   ', factor%ncut, trim(merge(' part cut ', ' parts cut', factor%ncut == 1)) &
-        // ' at the top separator (', factor%separator, &
-        ' dofs): the halves factorized side by side, the separator' // &
-        trim(merge(' and the contact dofs', '                     ', factor%nlast > 0)) // ' as a dense block'
       call say(trim(line))
     end if
     if (allocated(cd%block)) then

@@ -17,7 +17,6 @@
 #include "amd.h"
 #include "camd.h"
 #include "cholmod_factor.h"
-#include "cholmod_handle.h"
 #include "fill_ordering.h"
 #include "metis_guard.h"
 
@@ -556,89 +555,5 @@ int c2d_order_block_last(const cholmod_sparse *A, int nlast, const int *last, co
     if (work == NULL) return (c->status < 0) ? c->status : CHOLMOD_OUT_OF_MEMORY;
     status = order_block_last(A, nlast, last, group, method, perm, work, work + n, work + 2 * n, c);
     cholmod_free(3 * n, sizeof(int), work, c);
-    return status;
-}
-
-/* The top vertex separator of the node graph of the pattern without its
- * `last` dofs (METIS_ComputeVertexSeparator, as the first level of a nested
- * dissection): side[k] (k < n) = 0 or 1 for the two halves, 2 for the
- * separator, 3 for a dof of `last`.  Arguments as c2d_chol_analyze's, the
- * groups required. */
-int c2d_chol_separator(void *handle, int n, const int *colptr, const int *rowind, int offset,
-                       int nlast, const int *last, const int *group, int *side)
-{
-    struct c2d_chol *h = handle;
-    cholmod_common *c;
-    cholmod_sparse *A, *S = NULL;
-    int *map = NULL, *rem = NULL, *seen = NULL, *gS = NULL, *work = NULL, *adj = NULL, *where = NULL;
-    int i, k, nr, ng = 0, status;
-    size_t nnz = 0;
-
-    if (h == NULL) return C2D_CHOL_NO_HANDLE;
-    c = &h->common;
-    if (n < 1 || nlast < 0 || nlast >= n || (nlast > 0 && last == NULL) || group == NULL || side == NULL)
-    {
-        return C2D_CHOL_BAD_ARGUMENT;
-    }
-    A = c2d_copy_pattern(n, colptr, rowind, offset, c, &status);
-    if (A == NULL) return status;
-    nr = n - nlast;
-    map = cholmod_malloc((size_t) n, sizeof(int), c);
-    rem = cholmod_malloc((size_t) n, sizeof(int), c);
-    seen = cholmod_malloc((size_t) n, sizeof(int), c);
-    gS = cholmod_malloc((size_t) n, sizeof(int), c);
-    status = CHOLMOD_OUT_OF_MEMORY;
-    if (map == NULL || rem == NULL || seen == NULL || gS == NULL) goto done;
-    status = C2D_CHOL_BAD_ARGUMENT;
-    for (i = 0; i < n; i++) map[i] = 0;
-    for (k = 0; k < nlast; k++)
-    {
-        i = last[k] - 1;
-        if (i < 0 || i >= n || map[i] != 0) goto done;
-        map[i] = -1;
-        side[i] = 3;
-    }
-    for (i = 0, k = 0; i < n; i++)
-    {
-        if (map[i] == 0) { rem[k] = i; map[i] = k++; }
-    }
-    status = CHOLMOD_OUT_OF_MEMORY;
-    S = remaining_pattern(A, map, nr, c);
-    if (S == NULL) goto done;
-    rest_groups(n, nr, group, rem, seen, gS);
-    nnz = (size_t) ((int *) S->p)[nr];
-    work = cholmod_malloc(10 * (size_t) nr + 2, sizeof(int), c);
-    adj = cholmod_malloc(2 * nnz + 1, sizeof(int), c);
-    where = cholmod_malloc((size_t) nr, sizeof(int), c);
-    if (work == NULL || adj == NULL || where == NULL) goto done;
-    status = group_graph(S, gS, work, adj, &ng);
-    if (status != CHOLMOD_OK) goto done;
-    if (ng < 3)
-    {
-        status = C2D_CHOL_BAD_ARGUMENT;
-    }
-    else
-    {
-        idx_t nv = ng, sepsize = 0;
-        int ok;
-        ok = guarded_separator(&nv, GG_XADJ(work, nr), adj, GG_VW(work, nr), &sepsize, where);
-        status = (ok == METIS_OK) ? CHOLMOD_OK : (ok == METIS_ERROR_MEMORY) ? CHOLMOD_OUT_OF_MEMORY : CHOLMOD_INVALID;
-        if (status == CHOLMOD_OK)
-        {
-            for (k = 0; k < nr; k++) side[rem[k]] = where[GG_GID(work, nr)[k]];
-        }
-    }
-
-done:
-    if (status != CHOLMOD_OK && c->status < 0 && status == CHOLMOD_OUT_OF_MEMORY) status = c->status;
-    cholmod_free_sparse(&S, c);
-    cholmod_free_sparse(&A, c);
-    cholmod_free((size_t) n, sizeof(int), map, c);
-    cholmod_free((size_t) n, sizeof(int), rem, c);
-    cholmod_free((size_t) n, sizeof(int), seen, c);
-    cholmod_free((size_t) n, sizeof(int), gS, c);
-    cholmod_free(10 * (size_t) nr + 2, sizeof(int), work, c);
-    cholmod_free(2 * nnz + 1, sizeof(int), adj, c);
-    cholmod_free((size_t) nr, sizeof(int), where, c);
     return status;
 }

@@ -42,18 +42,10 @@
 !> in the order of `last`; `last` must then visit the parts in order (the
 !> dofs of a contact interface, ascending, do), else A is kept whole.
 !>
-!> Cut parts.  A part of cut_min dofs or more (200,000 unless given) that is larger than twice the
-!> other parts together (a body alone, or one much larger than the others:
-!> one thread would factorize it while the other waits) is cut at a vertex
-!> separator of its node graph (METIS_ComputeVertexSeparator: the top level
-!> of a nested dissection, whatever the ordering) into two halves, each a
-!> CHOLMOD factor of its own, ordered by the part's method (METIS, or AMD
-!> with CAMD's constraint) with the separator's and the `last` dofs coupled
-!> to it ordered last; the separator and `last` are then condensed
-!> into one dense factor (split_factor).  The halves are work items of the
-!> loop over the parts like any part.  The part's pivots are [half 1, half 2,
-!> separator, its `last`], so the trailing block is still L_cc.  The rule is
-!> on sizes only: the factor is the same on any number of threads.
+!> No part is cut further: a body cut at its top separator into two halves
+!> factorized side by side, with a dense Schur complement on the separator,
+!> gained wall time on two free cores and cost CPU time and 4-15 % peak
+!> memory (doc/performance.md, "A body cut in two: removed").
 !>
 !> Errors are data: every routine returns an error_t (err) and none stops
 !> the process; a singular or indefinite K gives err%equation, the dof of A
@@ -61,7 +53,7 @@
 !>
 !> Files.  This module (the factor, its analysis and numeric factorization),
 !> sparse_cholesky_solve (a submodule: the solves and L_cc), and
-!> sparse_cholesky_parts and split_factor (the parts and the cut halves);
+!> sparse_cholesky_parts (the parts, their loops, checks and messages);
 !> only these use cholmod_binding.
 !>
 !> Ownership.  A factor_t owns its CHOLMOD handles (common and factor, in C);
@@ -70,11 +62,11 @@
 !> readable after free_factor.
 !>
 !> Programming interface
-!>   type(factor_t)   opaque handles (private); ready, n, nlast, nparts, ncut, separator, side_by_side, nnz_l,
+!>   type(factor_t)   opaque handles (private); ready, n, nlast, nparts, side_by_side, nnz_l,
 !>                    flops, time_analyze, time_factorize, ordering,
 !>                    memory_peak, min_pivot_ratio
 !>   factorize(f, A, err [, last])          P A P' = L L' (the two halves below)
-!>   analyze_pattern(f, n, colptr, rowind, err [, last] [, group] [, method] [, cut] [, cut_min])
+!>   analyze_pattern(f, n, colptr, rowind, err [, last] [, group] [, method])
 !>                                          ordering (METIS or AMD) and symbolic analysis
 !>   factorize_values(f, A, err)            numeric factorization of the analyzed pattern
 !>   solve(f, b, x [, err])                 x = A^-1 b, b(n) or b(n, nrhs)
@@ -96,17 +88,17 @@ module sparse_cholesky
   use omp_lib, only: omp_get_wtime
   use diagnostics, only: error_t, set_error, set_out_of_memory, int_to_str, i8_to_str
   use sparse_matrix, only: csc_t, csc_nnz, csc_check
-  use split_factor, only: split_analyze, split_factorize_half, split_finish, split_stats, split_free
   use cholmod_binding, only: c2d_chol_create, c2d_chol_destroy, c2d_chol_analyze, c2d_chol_factorize_values, &
                              c2d_chol_set_ordering, c2d_order_amd, c2d_order_metis, &
-                             c2d_chol_stats, c2d_chol_ordering_name, c2d_solve_whole, c2d_solve_forward, &
+                             c2d_chol_stats, c2d_chol_ordering_name, c2d_chol_minor, c2d_chol_min_pivot_ratio, &
+                             c2d_solve_whole, c2d_solve_forward, &
                              c2d_solve_backward, cholmod_ok, cholmod_not_posdef, c2d_chol_block_moved, &
                              c2d_chol_bad_argument, cholmod_out_of_memory
   use runtime_binding, only: c2d_memory_available, c2d_malloc_trim
   use sparse_cholesky_parts, only: part_t, max_parts, find_parts, local_groups, part_solve, part_trailing_range, &
-                                   part_block_end, part_minor, part_min_ratio, global_equation, global_pivot, &
+                                   part_block_end, global_equation, global_pivot, &
                                    check_pattern, singular_pivot_tolerance, singular_message, ordering_bytes, &
-                                   largest, parts_begin, parts_end, work_items, &
+                                   largest, parts_begin, parts_end, &
                                    status_name, trailing_status_message, c_string
   implicit none
   private
@@ -114,13 +106,6 @@ module sparse_cholesky
   public :: trailing_factor_block, trailing_block_end, solve_forward, solve_backward
   public :: free_factor, factor_nnz, factor_flops, factor_memory, factor_ordering
 
-  !> A part of this many dofs or more, larger than twice the other parts
-  !> together (a body alone, or one much larger than the others), is cut at
-  !> its top separator into two halves factorized side by side (split_factor):
-  !> else one core would wait while it is factorized.  A rule on sizes, not
-  !> on threads: the factor is the same on any number of threads.
-  !> analyze_pattern's cut_min changes it (the unit tests cut small matrices).
-  integer, parameter :: cut_min_default = 200000
 
 
   !> A Cholesky factor P A P' = L L' and its statistics.
@@ -130,8 +115,6 @@ module sparse_cholesky
     integer :: n = 0                      !< order of A
     integer :: nlast = 0                  !< size of the block ordered last (0: none)
     integer :: nparts = 0                 !< number of parts, each factorized on its own
-    integer :: ncut = 0                   !< parts cut in two halves (split_factor)
-    integer :: separator = 0              !< dofs of their separators
     integer :: side_by_side = 1           !< threads the parts run on (1: one after the other)
     integer(i8) :: nnz_l = 0_i8           !< nnz(L), without zeros of supernodal amalgamation
     real(dp) :: flops = 0.0_dp            !< flop count of the numeric factorization
@@ -236,11 +219,7 @@ contains
   !>   method (in, optional) 'metis' (default: nested dissection) or 'amd'
   !>          (approximate minimum degree: cheaper to compute, more fill on
   !>          large meshes)
-  !>   cut    (in, optional) .false.: no part is cut in two halves (default
-  !>          .true.: a large part that dwarfs the others is, see "Cut parts")
-  !>   cut_min (in, optional) the least dofs of a part that is cut, >= 1
-  !>          (default cut_min_default)
-  subroutine analyze_pattern(f, n, colptr, rowind, err, last, group, method, cut, cut_min)
+  subroutine analyze_pattern(f, n, colptr, rowind, err, last, group, method)
     type(factor_t), intent(inout) :: f
     integer, intent(in) :: n
     integer, intent(in) :: colptr(:), rowind(:)
@@ -248,8 +227,6 @@ contains
     integer, intent(in), optional :: last(:)
     integer, intent(in), optional :: group(:)
     character(len=*), intent(in), optional :: method
-    logical, intent(in), optional :: cut
-    integer, intent(in), optional :: cut_min
     integer(c_int), allocatable :: last_c(:), group_c(:)
     integer(c_int) :: ordering
     logical :: grouped
@@ -319,14 +296,6 @@ contains
       f%part(p)%status = c2d_chol_set_ordering(f%part(p)%handle, ordering)
     end do
 
-    do p = 1, f%nparts
-      associate (pt => f%part(p))
-        pt%cut = grouped .and. pt%n >= cut_min_default .and. pt%n > 2 * (n - pt%n)
-        if (present(cut_min)) pt%cut = grouped .and. pt%n >= cut_min .and. pt%n > 2 * (n - pt%n)
-        if (present(cut)) pt%cut = pt%cut .and. cut
-      end associate
-    end do
-
     t0 = omp_get_wtime()
     call parts_begin(f%part, nthreads, levels, blas)
     f%side_by_side = nthreads
@@ -375,19 +344,6 @@ contains
 
     subroutine analyze_part(pt)
       type(part_t), intent(inout) :: pt
-      if (pt%cut .and. pt%status == cholmod_ok) then
-        allocate(pt%split)
-        pt%status = split_analyze(pt%split, pt%handle, ordering, pt%n, colptr(pt%first:pt%first + pt%n), &
-                                  rowind(colptr(pt%first):), pt%first - 1, last_c(pt%last0 + 1:pt%last0 + pt%nlast), &
-                                  group_c(pt%first:pt%first + pt%n - 1))
-        if (pt%status == cholmod_ok) return
-        ! no two halves to cut it into (a degenerate graph) or a half's analysis
-        ! failed: the part is analyzed whole, which reports a failure of its own
-        call split_free(pt%split)
-        deallocate(pt%split)
-        pt%cut = .false.
-        pt%status = cholmod_ok
-      end if
       if (pt%status == cholmod_ok) &
         pt%status = c2d_chol_analyze(pt%handle, int(pt%n, c_int), colptr(pt%first:pt%first + pt%n), &
                                      rowind(colptr(pt%first):), int(pt%first - 1, c_int), &
@@ -413,8 +369,7 @@ contains
     type(error_t), allocatable, intent(out) :: err
     integer(c_int) :: column, equation
     real(c_double) :: ratio
-    integer :: i, j, p, nthreads, levels, blas, worst, lo, hi
-    integer, allocatable :: item(:,:)
+    integer :: i, j, p, nthreads, levels, blas, worst
     real(dp) :: t0, worst_ratio
     logical :: analyzed
 
@@ -444,28 +399,17 @@ contains
     ! what the orderings freed goes back before the factors take their memory
     call c2d_malloc_trim()
     t0 = omp_get_wtime()
-    call work_items(f%part, item)
     call parts_begin(f%part, nthreads, levels, blas)
     !$omp parallel do num_threads(nthreads) schedule(dynamic, 1) if (nthreads > 1)
-    do i = 1, size(item, 2)
-      associate (pt => f%part(item(1, i)))
-        if (item(2, i) == 0) then
-          pt%status = c2d_chol_factorize_values(pt%handle, int(pt%n, c_int), A%colptr(pt%first:pt%first + pt%n), &
-                                                A%rowind(A%colptr(pt%first):), int(pt%first - 1, c_int), &
-                                                A%val(A%colptr(pt%first):))
-        else
-          call split_factorize_half(pt%split, item(2, i), A%val(A%colptr(pt%first):A%colptr(pt%first + pt%n) - 1))
-        end if
+    do i = 1, f%nparts
+      associate (pt => f%part(largest(f%part, i)))
+        pt%status = c2d_chol_factorize_values(pt%handle, int(pt%n, c_int), A%colptr(pt%first:pt%first + pt%n), &
+                                              A%rowind(A%colptr(pt%first):), int(pt%first - 1, c_int), &
+                                              A%val(A%colptr(pt%first):))
       end associate
     end do
     !$omp end parallel do
     call parts_end(levels, blas)
-    ! the dense block of each cut part, on every BLAS thread
-    do p = 1, f%nparts
-      associate (pt => f%part(p))
-        if (pt%cut) pt%status = split_finish(pt%split, A%val(A%colptr(pt%first):A%colptr(pt%first + pt%n) - 1))
-      end associate
-    end do
     call read_statistics(f)
     f%time_factorize = omp_get_wtime() - t0
 
@@ -474,7 +418,7 @@ contains
       case (cholmod_ok)
         continue
       case (cholmod_not_posdef)
-        call part_minor(f%part(p), column, equation)
+        call c2d_chol_minor(f%part(p)%handle, column, equation)
         call set_singular(err, f, f%part(p), column, equation)
         return
       case (cholmod_out_of_memory)
@@ -492,9 +436,7 @@ contains
     worst = 1
     worst_ratio = huge(1.0_dp)
     do p = 1, f%nparts
-      lo = A%colptr(f%part(p)%first)
-      hi = A%colptr(f%part(p)%first + f%part(p)%n) - 1
-      call part_min_ratio(f%part(p), A%val(lo:hi), ratio, column, equation)
+      call c2d_chol_min_pivot_ratio(f%part(p)%handle, ratio, column, equation)
       if (ieee_is_nan(ratio)) then
         call set_error(err, 'sparse Cholesky: non-finite pivot at equation ' // &
                        int_to_str(global_equation(f%part(p), equation)) // ' (column ' // &
@@ -511,9 +453,7 @@ contains
     end do
     f%min_pivot_ratio = worst_ratio
     if (worst_ratio < singular_pivot_tolerance(A%n)) then
-      lo = A%colptr(f%part(worst)%first)
-      hi = A%colptr(f%part(worst)%first + f%part(worst)%n) - 1
-      call part_min_ratio(f%part(worst), A%val(lo:hi), ratio, column, equation)
+      call c2d_chol_min_pivot_ratio(f%part(worst)%handle, ratio, column, equation)
       call set_singular(err, f, f%part(worst), column, equation)
       return
     end if
@@ -535,8 +475,6 @@ contains
     err%equation = global_equation(pt, equation)
   end subroutine set_singular
 
-
-
   !> Statistics of the parts' handles into f: nnz(L), flops and CHOLMOD's
   !> peak memory summed (the parts are factorized side by side), the ordering
   !> of a part with dofs last (all parts use the same).
@@ -545,41 +483,20 @@ contains
     integer(c_int64_t) :: lnz, memory_peak
     real(c_double) :: flops, time_analyze, time_factorize
     character(kind=c_char) :: buf(32)
-    integer :: p, named, k
-    integer(i8) :: cut_lnz, cut_memory
-    real(dp) :: cut_flops
+    integer :: p, named
     f%nnz_l = 0_i8
     f%flops = 0.0_dp
     f%memory_peak = 0_i8
     named = 1
-    f%ncut = 0
-    f%separator = 0
     do p = 1, f%nparts
-      if (f%part(p)%cut) then
-        call split_stats(f%part(p)%split, cut_lnz, cut_flops, cut_memory)
-        f%nnz_l = f%nnz_l + cut_lnz
-        f%flops = f%flops + cut_flops
-        f%memory_peak = f%memory_peak + cut_memory
-        f%ncut = f%ncut + 1
-        f%separator = f%separator + f%part(p)%split%nsep
-      else
-        call c2d_chol_stats(f%part(p)%handle, lnz, flops, memory_peak, time_analyze, time_factorize)
-        f%nnz_l = f%nnz_l + int(lnz, i8)
-        f%flops = f%flops + real(flops, dp)
-        f%memory_peak = f%memory_peak + int(memory_peak, i8)
-      end if
+      call c2d_chol_stats(f%part(p)%handle, lnz, flops, memory_peak, time_analyze, time_factorize)
+      f%nnz_l = f%nnz_l + int(lnz, i8)
+      f%flops = f%flops + real(flops, dp)
+      f%memory_peak = f%memory_peak + int(memory_peak, i8)
       if (f%part(p)%nlast > 0 .and. f%part(named)%nlast == 0) named = p
     end do
-    if (f%part(named)%cut) then
-      call c2d_chol_ordering_name(f%part(named)%split%half(1)%handle, buf, int(size(buf), c_int))
-    else
-      call c2d_chol_ordering_name(f%part(named)%handle, buf, int(size(buf), c_int))
-    end if
+    call c2d_chol_ordering_name(f%part(named)%handle, buf, int(size(buf), c_int))
     f%ordering = c_string(buf)
-    ! a cut part's halves order their share of the separator last: "+last"
-    ! names the caller's `last` only
-    k = index(f%ordering, '+last')
-    if (f%nlast == 0 .and. k > 0) f%ordering = f%ordering(1:k - 1)
   end subroutine read_statistics
 
 
@@ -598,7 +515,6 @@ contains
     if (allocated(f%part)) then
       do p = 1, size(f%part)
         if (c_associated(f%part(p)%handle)) call c2d_chol_destroy(f%part(p)%handle)
-        if (allocated(f%part(p)%split)) call split_free(f%part(p)%split)
       end do
       deallocate(f%part)
     end if

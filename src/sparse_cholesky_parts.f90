@@ -1,7 +1,7 @@
 !> sparse_cholesky_parts: the parts of a sparse Cholesky factor
 !> (sparse_cholesky): the diagonal blocks of A that no entry couples (the
-!> bodies of a scene), each with its own CHOLMOD handle or cut in two halves
-!> (split_factor), and the checks and messages of the factor.
+!> bodies of a scene), each with its own CHOLMOD handle, and the checks and
+!> messages of the factor.
 !>
 !> A part of sparse_cholesky's implementation, not a public API: only
 !> sparse_cholesky uses it (with cholmod_binding, which only these factor
@@ -16,14 +16,11 @@
 !>   part_solve(pt, half, m, b, x)                the solve or a half of it, m columns
 !>   part_trailing_range(pt, first, count, block) rows and columns of its L_cc
 !>   part_block_end(pt, first, last_row)          end of a diagonal block of its L_cc
-!>   part_minor(pt, column, equation)             where its factorization failed
-!>   part_min_ratio(pt, val, ratio, column, equation)  its least pivot ratio
 !>   global_equation(pt, equation), global_pivot(n, nlast, pt, column)
 !>                                                a part's dof and pivot in A's numbering
 !>   check_pattern(n, colptr, rowind, err [, last])    a pattern checked before CHOLMOD sees it
 !>   singular_pivot_tolerance(n), singular_message(equation, column)
 !>   ordering_bytes(n, nnz), status_name(status), trailing_status_message(status), c_string(buf)
-!>   work_items(part, item)                       the halves and whole parts, largest first
 !>   largest(part, i)                             the index of the i-th largest part
 !>   parts_begin(part, nthreads, levels, blas), parts_end(levels, blas)
 !>                                                a loop over the parts: its threads, CHOLMOD's
@@ -35,17 +32,16 @@ module sparse_cholesky_parts
                      omp_get_max_threads
   use runtime_binding, only: c2d_blas_threads
   use diagnostics, only: error_t, set_error, int_to_str
-  use split_factor, only: split_t, split_solve, split_trailing_range, split_block_end, split_failure, split_min_ratio
   use cholmod_binding, only: c2d_chol_solve_half, c2d_chol_trailing_range, c2d_chol_trailing_block_end, &
-                             c2d_chol_minor, c2d_chol_min_pivot_ratio, c2d_chol_status_name, &
+                             c2d_chol_status_name, &
                              c2d_chol_not_super_ll, c2d_chol_block_moved
   implicit none
   private
   public :: part_t, max_parts, find_parts, local_groups, part_solve, part_trailing_range, part_block_end
-  public :: part_minor, part_min_ratio, global_equation, global_pivot
+  public :: global_equation, global_pivot
   public :: check_pattern, singular_pivot_tolerance, singular_message, ordering_bytes
   public :: status_name, trailing_status_message, c_string
-  public :: largest, parts_begin, parts_end, work_items, side_by_side_min
+  public :: largest, parts_begin, parts_end, side_by_side_min
 
   !> Floor of the order in the singularity tolerance (see singular_pivot_tolerance).
   integer, parameter :: tolerance_order_floor = 1000
@@ -69,8 +65,6 @@ module sparse_cholesky_parts
     integer :: last0 = 0
     integer :: rest0 = 0                  !< its other dofs: pivots rest0+1..rest0+n-nlast
     integer(c_int) :: status = 0          !< status of its last CHOLMOD call
-    logical :: cut = .false.              !< cut in two halves (split_factor)
-    type(split_t), allocatable :: split   !< the halves, when cut
   end type part_t
 
 contains
@@ -247,11 +241,7 @@ contains
     real(dp), intent(in) :: b(pt%n, m)
     real(dp), intent(inout) :: x(pt%n, m)
     integer(c_int) :: status
-    if (pt%cut) then
-      status = split_solve(pt%split, half, m, b, x)
-    else
-      status = c2d_chol_solve_half(pt%handle, half, int(pt%n, c_int), int(m, c_int), b, x)
-    end if
+    status = c2d_chol_solve_half(pt%handle, half, int(pt%n, c_int), int(m, c_int), b, x)
   end function part_solve
 
   !> Rows and columns first..first+count-1 of a part's trailing block.
@@ -260,11 +250,7 @@ contains
     integer, intent(in) :: first, count
     real(dp), intent(out) :: block(count, count)
     integer(c_int) :: status
-    if (pt%cut) then
-      status = split_trailing_range(pt%split, pt%nlast, first, count, block)
-    else
-      status = c2d_chol_trailing_range(pt%handle, int(pt%nlast, c_int), int(first, c_int), int(count, c_int), block)
-    end if
+    status = c2d_chol_trailing_range(pt%handle, int(pt%nlast, c_int), int(first, c_int), int(count, c_int), block)
   end function part_trailing_range
 
   function trailing_status_message(status) result(msg)
@@ -309,46 +295,6 @@ contains
     end do
   end function c_string
 
-  !> The failing pivot and dof of a part after a factorization that was not
-  !> positive definite (the part's own numbering).
-  !>   pt       (in)  the part
-  !>   column   (out) its pivot, 1-based; 0 when none failed
-  !>   equation (out) its dof at that pivot, 1-based; 0 when none failed
-  subroutine part_minor(pt, column, equation)
-    type(part_t), intent(in) :: pt
-    integer(c_int), intent(out) :: column, equation
-    integer :: c, e
-    if (pt%cut) then
-      call split_failure(pt%split, c, e)
-      column = int(c, c_int)
-      equation = int(e, c_int)
-    else
-      call c2d_chol_minor(pt%handle, column, equation)
-    end if
-  end subroutine part_minor
-
-  !> The least pivot ratio L(k,k)^2 / A(p_k,p_k) of a part, its pivot and dof.
-  !>   pt       (in)  the part, factorized
-  !>   val      (in)  the values of the part's columns of A (a cut part reads its diagonal)
-  !>   ratio    (out) the least ratio; NaN at a non-finite pivot
-  !>   column, equation (out) the pivot and dof where it occurs (the part's numbering)
-  subroutine part_min_ratio(pt, val, ratio, column, equation)
-    type(part_t), intent(in) :: pt
-    real(dp), intent(in) :: val(:)
-    real(c_double), intent(out) :: ratio
-    integer(c_int), intent(out) :: column, equation
-    real(dp) :: r
-    integer :: c, e
-    if (pt%cut) then
-      call split_min_ratio(pt%split, val, r, c, e)
-      ratio = real(r, c_double)
-      column = int(c, c_int)
-      equation = int(e, c_int)
-    else
-      call c2d_chol_min_pivot_ratio(pt%handle, ratio, column, equation)
-    end if
-  end subroutine part_min_ratio
-
   !> The end of the diagonal block of a part's trailing block that starts at
   !> `first` (1-based within the part's `last` dofs).
   !>   pt       (in)  the part, factorized with its `last` dofs
@@ -360,11 +306,7 @@ contains
     integer, intent(in) :: first
     integer(c_int), intent(out) :: last_row
     integer(c_int) :: status
-    if (pt%cut) then
-      status = split_block_end(pt%split, pt%nlast, first, last_row)
-    else
-      status = c2d_chol_trailing_block_end(pt%handle, int(pt%nlast, c_int), int(first, c_int), last_row)
-    end if
+    status = c2d_chol_trailing_block_end(pt%handle, int(pt%nlast, c_int), int(first, c_int), last_row)
   end function part_block_end
 
   !> The index of the i-th largest part (loops start with the largest).
@@ -395,11 +337,9 @@ contains
   subroutine parts_begin(part, nthreads, levels, blas)
     type(part_t), intent(in) :: part(:)
     integer, intent(out) :: nthreads, levels, blas
-    integer, allocatable :: item(:,:)
-    call work_items(part, item)
-    nthreads = min(size(item, 2), omp_get_max_threads())
-    if (size(item, 2) > 1) then
-      if (item(3, 2) < side_by_side_min) nthreads = 1
+    nthreads = min(size(part), omp_get_max_threads())
+    if (size(part) > 1) then
+      if (part(largest(part, 2))%n < side_by_side_min) nthreads = 1
     end if
     levels = omp_get_max_active_levels()
     blas = 0
@@ -411,42 +351,6 @@ contains
       call omp_set_max_active_levels(omp_get_active_level())
     end if
   end subroutine parts_begin
-
-  !> The work of a loop over the parts: item(:, k) = [part, half (0: the
-  !> whole part), dofs], a cut part giving its two halves, largest first.
-  subroutine work_items(part, item)
-    type(part_t), intent(in) :: part(:)
-    integer, allocatable, intent(out) :: item(:,:)
-    integer :: p, k, h, j
-    integer :: tmp(3)
-    allocate(item(3, size(part) + count(part%cut)))
-    k = 0
-    do p = 1, size(part)
-      if (part(p)%cut) then
-        do h = 1, 2
-          k = k + 1
-          if (allocated(part(p)%split)) then
-            item(:, k) = [p, h, part(p)%split%half(h)%n]
-          else                            ! before the analysis cuts it
-            item(:, k) = [p, h, part(p)%n / 2]
-          end if
-        end do
-      else
-        k = k + 1
-        item(:, k) = [p, 0, part(p)%n]
-      end if
-    end do
-    do k = 2, size(item, 2)               ! stable insertion sort, largest first
-      tmp = item(:, k)
-      j = k - 1
-      do while (j >= 1)
-        if (item(3, j) >= tmp(3)) exit
-        item(:, j + 1) = item(:, j)
-        j = j - 1
-      end do
-      item(:, j + 1) = tmp
-    end do
-  end subroutine work_items
 
   subroutine parts_end(levels, blas)
     integer, intent(in) :: levels, blas

@@ -13,7 +13,7 @@
 !>     precision is reported (overflow = the body) instead of overflowing.
 program test_body
   use kinds, only: dp
-  use diagnostics, only: diag_t, error_t
+  use diagnostics, only: diag_t, error_t, int_to_str
   use mesh, only: finalize_mesh
   use mesh_rect, only: make_rect_mesh
   use material, only: make_isotropic
@@ -176,14 +176,14 @@ contains
         if (owner <= 0) worst = ib
         err_n = max(err_n, maxval(abs(nrm - expect(:, ib))))
       end do
-      call check(bd(1)%mesh%bnd(ib)%name == trim(side(ib)), 'rect mesh: boundary ' // itoa(ib) // ' is ' // trim(side(ib)))
+      call check(bd(1)%mesh%bnd(ib)%name == trim(side(ib)), 'rect mesh: boundary ' // int_to_str(ib) // ' is ' // trim(side(ib)))
     end do
     call check(worst == 0, 'edge_outward_normal: every boundary edge has one element')
     call check_small(err_n / epsilon(1.0_dp), threshold, 'edge_outward_normal: the outward unit normals of the sides')
     ! the first element's first two nodes: an edge shared by two elements
     ! unless it lies on the boundary (the bottom-left triangle's diagonal is inside)
     call edge_outward_normal(bd(1)%mesh, eptr, elist, bd(1)%mesh%conn(2, 1), bd(1)%mesh%conn(3, 1), nrm, owner)
-    call check(owner == -1 .or. owner == 1, 'edge_outward_normal: an edge of element 1 found (owner ' // itoa(owner) // ')')
+    call check(owner == -1 .or. owner == 1, 'edge_outward_normal: an edge of element 1 found (owner ' // int_to_str(owner) // ')')
   end subroutine test_normals
 
   !> E = 1e300 with a prescribed value of 1e10: K_fd ubar_d leaves double precision.
@@ -214,13 +214,5 @@ contains
     call check(overflow == 1, 'assemble_stiffness: E = 1e300 times 1e10 reported as an overflow of body 1')
     call check(all(abs(rhs) <= huge(1.0_dp)), 'assemble_stiffness: the right-hand side stays finite')
   end subroutine test_overflow
-
-  function itoa(i) result(s)
-    integer, intent(in) :: i
-    character(len=:), allocatable :: s
-    character(len=16) :: buf
-    write(buf, '(i0)') i
-    s = trim(buf)
-  end function itoa
 
 end program test_body

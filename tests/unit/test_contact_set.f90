@@ -16,12 +16,13 @@
 !> Checks compare with tolerances scaled by the unit roundoff (n eps).
 program test_contact_set
   use kinds, only: dp
-  use diagnostics, only: diag_t, error_t
+  use diagnostics, only: diag_t, error_t, int_to_str
   use mesh, only: finalize_mesh
   use mesh_rect, only: make_rect_mesh
   use material, only: make_isotropic
   use body, only: body_t
   use contact_set, only: contact_set_t, pair_spec_t, build_contact_set
+  use contact_condensation, only: constraint_values
   use testing, only: check, check_small, finish_tests
   implicit none
   real(dp), parameter :: threshold = 30.0_dp
@@ -77,8 +78,8 @@ contains
     end if
 
     nslave = count(abs(bd(1)%mesh%x(2, :) - 1.0_dp) < 1e-12_dp)
-    call check(cs%nrow == nslave, name // ': one row per slave node (' // itoa(cs%nrow) // ' of ' // &
-               itoa(nslave) // ')')
+    call check(cs%nrow == nslave, name // ': one row per slave node (' // int_to_str(cs%nrow) // ' of ' // &
+               int_to_str(nslave) // ')')
     call check(cs%ntan == merge(cs%nrow, 0, friction), name // ': tangential rows with friction only')
     call check(all(cs%cdof(2:) > cs%cdof(:cs%ncdof - 1)) .and. cs%cdof(1) >= 1 .and. cs%cdof(cs%ncdof) <= n, &
                name // ': contact dofs ascending, distinct, in range')
@@ -87,7 +88,7 @@ contains
     allocate(u(n), bu(cs%nrow + cs%ntan))
     u(1::2) = 0.37_dp
     u(2::2) = -0.81_dp
-    call apply_rows(cs, u, bu)
+    call constraint_values(cs, u, bu)
     call check_small(maxval(abs(bu)) / (0.81_dp * n * eps), threshold, &
                      name // ': |B u| / (|u| n eps) for a common translation')
 
@@ -95,7 +96,7 @@ contains
     d = 0.01_dp
     u = 0.0_dp
     u(bd(2)%dof0 + 2::2) = -d
-    call apply_rows(cs, u, bu)
+    call constraint_values(cs, u, bu)
     call check_small(maxval(abs(bu(:cs%nrow) - d)) / (d * n * eps), threshold, &
                      name // ': |B u - d| / (d n eps) for the upper body moved by (0, -d)')
 
@@ -122,27 +123,13 @@ contains
     if (friction) then
       u = 0.0_dp
       u(bd(2)%dof0 + 1::2) = 0.02_dp
-      call apply_rows(cs, u, bu)
+      call constraint_values(cs, u, bu)
       call check_small(maxval(abs(bu(cs%nrow + 1:) - 0.02_dp)) / (0.02_dp * n * eps), threshold, &
                        name // ': |T u - s| / (s n eps) for the upper body sliding by (s, 0)')
       call check_small(maxval(abs(bu(:cs%nrow))) / (0.02_dp * n * eps), threshold, &
                        name // ': sliding leaves B u = 0')
     end if
   end subroutine run_case
-
-  !> v = [B; T] u over the global dofs (u of size ndof).
-  subroutine apply_rows(cs, u, v)
-    type(contact_set_t), intent(in) :: cs
-    real(dp), intent(in) :: u(:)
-    real(dp), intent(out) :: v(:)
-    integer :: r, k
-    do r = 1, cs%nrow + cs%ntan
-      v(r) = 0.0_dp
-      do k = cs%bptr(r), cs%bptr(r + 1) - 1
-        v(r) = v(r) + cs%bval(k) * u(cs%cdof(cs%bcol(k)))
-      end do
-    end do
-  end subroutine apply_rows
 
   !> The index of the boundary named name in a body's mesh (0: none).
   integer function boundary_index(bd, name)
@@ -154,13 +141,5 @@ contains
       if (bd%mesh%bnd(i)%name == name) boundary_index = i
     end do
   end function boundary_index
-
-  function itoa(i) result(s)
-    integer, intent(in) :: i
-    character(len=:), allocatable :: s
-    character(len=16) :: buf
-    write(buf, '(i0)') i
-    s = trim(buf)
-  end function itoa
 
 end program test_contact_set
