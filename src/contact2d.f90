@@ -27,6 +27,7 @@ program contact2d
                                   condensed_t, condensed_report, condensed_blocks
   use lcp_solvers, only: lcp_options_t, lcp_report_t
   use friction_lcp, only: solve_friction_lcp, friction_state
+  use friction_modes, only: solve_friction_floating, no_equilibrium
   use contact_lcp, only: contact_solution_t, solve_contact
   use rigid_modes, only: floating_t, find_floating_modes, mode_name, motion_name, describe_motion, remove_motions
   use mode_support, only: mode_split_t, split_free_modes
@@ -71,6 +72,7 @@ program contact2d
   logical, allocatable :: held(:)
   integer :: nfree, i, nlabel
   integer :: jobs                         !< -j N: threads of the run (0: OpenMP's default)
+  character(len=:), allocatable :: thread_note   !< what a memory limit changed in the thread count ('' none)
   integer(i8) :: t_start, t_phase, t_solve, t_now, t_rate, t_asm0, t_asm1
   real(dp), allocatable :: rhs(:,:), x(:,:), u0(:), w(:,:), q(:), fint(:), fc(:)
   real(dp), allocatable :: y(:)           ! forward half of u0's solve
@@ -84,7 +86,8 @@ program contact2d
   character(len=:), allocatable :: step_note      ! 'load step k of n: ' in messages while steps are solved
 
   call parse_command_line(deck_path, outdir, check_only, quiet, gmsh, overrides, cases_path, case_number, jobs)
-  call start_threads(jobs)                ! threads, BLAS threads, malloc arenas: src/threads.f90
+  call start_threads(jobs, thread_note, err)   ! threads, BLAS threads, malloc arenas: src/threads.f90
+  if (allocated(err)) call fail_numerical(err%message)
   if (len(cases_path) > 0) call select_case()
   call system_clock(t_start)
   t_phase = t_start
@@ -109,8 +112,8 @@ program contact2d
   ! free rigid modes (bodies held only by contact): pin k dofs to factorize K^#
   call find_floating_modes(sc%bodies, sc%fixed, fl)
   call check_floating_bodies()
-  call check_friction_support()
   call split_free_modes(cs, sc%bodies, fl, sc%fext, split)
+  call check_floating_friction_solver()
   held = sc%fixed
   if (fl%k > 0) held(fl%pin) = .true.
   call number_equations(held, eq, nfree)
@@ -688,6 +691,18 @@ contains
     end if
     res%min_gap = min(0.0_dp, minval(res%gap))
     res%min_pressure = minval(res%pressure)
+    do ip = 1, cs%npair                 ! quadratic: a closed row whose master value is extended
+      do r = 1, 2
+        if (.not. cs%pair(ip)%extended(r)) cycle
+        node = merge(cs%pair(ip)%mortar%first, cs%pair(ip)%mortar%last, r == 1)
+        nr = row_of_node(cs, ip, node)
+        if (nr == 0) cycle
+        if (res%status(nr) == 1) write(error_unit, '(a)') 'contact2d: warning: ' // deck%file // ':' // &
+          int_to_str(deck%contacts(ip)%line) // ': the contact reaches the slave node ' // int_to_str(node) // &
+          ' where the master ends inside a quadratic slave element: its row uses the master''s end value ' // &
+          '(refine the slave there or swap slave and master)'
+      end do
+    end do
   end subroutine contact_measures
 
   !> C u0_g for each ramp g of the load history (one solve per ramp, none when
@@ -726,7 +741,10 @@ contains
     type(lcp_report_t) :: rep
     character(len=:), allocatable :: method
     real(dp), allocatable :: z(:), cu(:), qn(:), qt(:), sprev(:), fk(:), ubk(:)
+    real(dp), allocatable :: hh(:,:), eg(:,:), eh(:), alpha(:), unbalanced(:)
+    character(len=:), allocatable :: cause
     integer :: n, nt, kstep, g, r, iterations
+    logical :: floating
     type(results_t) :: saved
     character(len=200) :: line
 
@@ -740,6 +758,20 @@ contains
     ! tableau is small, the block Gauss-Seidel above
     if (method == 'auto') method = merge('lemke', 'pgs  ', n + 3 * nt <= 400)
     method = trim(method)
+    ! bodies held only by contact: the amplitudes of the held combinations of
+    ! their modes are unknowns of the friction LCP (friction_modes), against
+    ! H = C R V and the load e = V'R'f of each ramp
+    allocate(res%alpha(fl%k), source=0.0_dp)
+    floating = size(split%held, 2) > 0
+    if (floating) then
+      method = 'lemke'
+      call say('friction ' // int_to_str(size(split%held, 2)) // ' rigid-mode amplitudes of the bodies held only by ' // &
+        'contact are unknowns of each step''s friction LCP, solved by Lemke (' // int_to_str(n + 3 * nt + &
+        2 * size(split%held, 2)) // ' unknowns)')
+      hh = matmul(split%h, split%held)
+      eg = matmul(transpose(split%held), matmul(transpose(fl%r), sc%fgroup))
+      allocate(eh(size(hh, 2)), alpha(size(hh, 2)))
+    end if
     allocate(z(n + nt), cu(n + nt), qn(n), qt(nt), sprev(nt), res%fstate(nt))
     if (deck%output%steps_all) then
       saved = res
@@ -755,7 +787,25 @@ contains
       end do
       qn = cs%g - cu(1:n)                          ! gaps without contact forces
       qt = sprev - cu(n + 1:)                      ! minus the slip of the step without contact forces
-      call solve_friction_lcp(w, qn, qt, cs%tan_row, cs%tan_mu, cs%tan_bound, method, opts, z, rep)
+      if (floating) then
+        eh = 0.0_dp
+        do g = 1, size(sc%ramp, 2)
+          eh = eh + group_factor(sc, g, kstep) * eg(:, g)
+        end do
+        call solve_friction_floating(w, qn, qt, cs%tan_row, cs%tan_mu, cs%tan_bound, hh, eh, opts, z, alpha, rep, &
+                                     unbalanced, cause)
+        if (rep%info == no_equilibrium) call fail_numerical('friction, load step ' // int_to_str(kstep) // ' of ' // &
+          int_to_str(sc%steps) // ': ' // friction_no_equilibrium(matmul(split%held, unbalanced), cause))
+        if (rep%info /= 0 .and. index(rep%message, 'out of memory') /= 1) call fail_numerical('friction, load step ' &
+          // int_to_str(kstep) // ' of ' // int_to_str(sc%steps) // ': no equilibrium found for the bodies held ' // &
+          'only by contact (' // floating_names() // '): ' // rep%message)
+        cu = cu + matmul(hh, alpha)                ! C u0 + C R alpha: the step's rigid motion
+        qn = cs%g - cu(1:n)
+        qt = qt - matmul(hh(n + 1:, :), alpha)
+        res%alpha = matmul(split%held, alpha)
+      else
+        call solve_friction_lcp(w, qn, qt, cs%tan_row, cs%tan_mu, cs%tan_bound, method, opts, z, rep)
+      end if
       iterations = iterations + rep%iterations
       if (rep%info /= 0 .and. index(rep%message, 'out of memory') == 1) call fail_numerical(rep%message)
       if (rep%info /= 0) call fail_numerical('friction, load step ' // int_to_str(kstep) // ' of ' // &
@@ -763,7 +813,8 @@ contains
       if (.not. all(ieee_is_finite(z))) call fail_numerical('friction, load step ' // int_to_str(kstep) // &
         ': the contact multipliers are not finite')
       sprev = cu(n + 1:) - matmul(w(n + 1:, :), z)  ! T u_k = T u0_k - T K^-1 C' z
-      call friction_state(w, qn, qt, cs%tan_row, cs%tan_mu, cs%tan_bound, z, res%fstate)
+      call friction_state(w, qn, qt, cs%tan_row, cs%tan_mu, cs%tan_bound, z, res%fstate, err)
+      if (allocated(err)) call fail_numerical(err%message)
       write(line, '(a,i0,a,i0,a,i0,a,i0,a,i0,a,es9.2)') 'step     ', kstep, '/', sc%steps, ': ' // method // ' ', &
         rep%iterations, ' iterations, ', count(z(1:n) > 0.0_dp), ' active, ', count(res%fstate == 2), &
         ' slipping, residual ', rep%residual
@@ -779,8 +830,10 @@ contains
         call record_step(kstep, fk, ubk, z)
         call step_loads(sc, sc%steps, fk, ubk)
         call move_alloc(res%fstate, saved%fstate)
+        call move_alloc(res%alpha, saved%alpha)
         res = saved
         call move_alloc(saved%fstate, res%fstate)
+        call move_alloc(saved%alpha, res%alpha)
       end if
     end do
     res%lcp_method = method
@@ -908,6 +961,17 @@ contains
             line = trim(line) // ', a zone end inside a slave segment (the master''s end)'
           end if
           if (pr%spec%interference) line = trim(line) // ', interference=allow'
+          if (pr%quadratic) then
+            ! the quadratic operator's choices (doc/theory.md, "Quadratic traces")
+            call say(trim(line))
+            write(line, '(a,i0,a,i0,a)') 'contact  pair ' // int_to_str(ip) // ': quadratic mortar, slave degree ', &
+              pr%degree(1), ', master degree ', pr%degree(2), ': non-penetration at every trace node'
+            if (any(pr%extended)) then
+              call say(trim(line))
+              line = 'contact  pair ' // int_to_str(ip) // ': the master ends inside a zone-end slave element: ' // &
+                     'its end value extended over the rest'
+            end if
+          end if
           if (has_friction(pr%spec)) then
             ! the assumption the frictional rows rest on (doc/theory.md, "Friction on curved surfaces")
             call say(trim(line))
@@ -948,6 +1012,7 @@ contains
     end do
     write(line, '(a,i0,a,i0,a,i0,a)') 'sizes    ', sc%ndof, ' dofs, ', nfree, ' free, ', cs%nrow, ' contact constraints'
     call say(trim(line))
+    if (len(thread_note) > 0) call say('threads  ' // thread_note)
   end subroutine report_scene
 
   !> x in es10.3
@@ -1073,21 +1138,51 @@ contains
     end select
   end function friction_law
 
-  !> Friction needs every body held by FIX in its rigid modes: the friction
-  !> LCP has no equality constraints for the free modes (exit 2 at the CONTACT
-  !> line of the first friction pair).
-  subroutine check_friction_support()
-    integer :: ip
-    if (cs%ntan == 0 .or. fl%k == 0) return
-    do ip = 1, cs%npair
-      if (has_friction(cs%pair(ip)%spec)) then
-        call add_error(diag, deck%file, deck%contacts(ip)%line, 'friction with a body held only by contact (body ' // &
-          sc%bodies(fl%mode_body(1))%name // ': ' // mode_name(fl, 1) // ' not held by FIX) is not supported ' // &
-          '(expected FIX on every body that a friction pair touches, or a frictionless pair)')
-        call stop_input_errors(diag)
-      end if
+  !> A body held only by contact in a scene with friction: the friction LCP
+  !> with its mode amplitudes is solved by Lemke (friction_modes); lcp=pgs
+  !> is refused at the SOLVER line (exit 2).
+  subroutine check_floating_friction_solver()
+    if (cs%ntan == 0 .or. size(split%held, 2) == 0 .or. deck%solver%lcp /= 'pgs') return
+    call add_error(diag, deck%file, deck%solver%line, 'lcp=pgs with friction on a body held only by contact (body "' // &
+      sc%bodies(fl%mode_body(1))%name // '": ' // mode_name(fl, 1) // ' not held by FIX) is not supported ' // &
+      '(expected lcp=lemke or lcp=auto, which solve it by Lemke''s method)')
+    call stop_input_errors(diag)
+  end subroutine check_floating_friction_solver
+
+  !> The names of the bodies with free rigid modes, quoted, comma-separated.
+  function floating_names() result(t)
+    character(len=:), allocatable :: t
+    integer :: b
+    t = ''
+    do b = 1, size(sc%bodies)
+      if (.not. any(fl%mode_body == b)) cycle
+      if (len(t) > 0) t = t // ', '
+      t = t // '"' // sc%bodies(b)%name // '"'
     end do
-  end subroutine check_friction_support
+  end function floating_names
+
+  !> The diagnosis of a step without static equilibrium: the body and the
+  !> motion the unbalanced load c (k, along the modes) drives.
+  !>   c     (in) (k) e - H'z at the closest balance, in the modes' amplitudes
+  !>   cause (in) 'friction' (the cone is too small) or 'contact'
+  function friction_no_equilibrium(c, cause) result(t)
+    real(dp), intent(in) :: c(:)
+    character(len=*), intent(in) :: cause
+    character(len=:), allocatable :: t
+    real(dp), allocatable :: cb(:)
+    integer :: b
+    b = fl%mode_body(maxloc(abs(c), dim=1))
+    cb = merge(c, 0.0_dp, fl%mode_body == b)          ! the motion of that body alone
+    if (cause == 'friction') then
+      t = 'no equilibrium: the loads on body "' // sc%bodies(b)%name // '" exceed what friction can hold: ' // &
+        'it would move by ' // motion_name(fl, cb) // ' (the contact forces within the friction cone ' // &
+        'cannot balance the loads)'
+    else
+      t = 'no equilibrium: the loads pull body "' // sc%bodies(b)%name // '" away from its contacts: ' // &
+        'it would move by ' // motion_name(fl, cb) // ' (no contact force balances the loads, ' // &
+        'whatever the friction)'
+    end if
+  end function friction_no_equilibrium
 
   !> Every number about to be written must be finite: loads near the top of
   !> the accepted range can overflow in the post-processing (energy, stresses)

@@ -169,10 +169,11 @@ contains
         sc%specs(ip)%slave_bnd = curve_index(deck, c%line, sc%bodies(c%slave_body), c%slave_boundary, 'CONTACT slave', diag)
         sc%specs(ip)%master_bnd = curve_index(deck, c%line, sc%bodies(c%master_body), c%master_boundary, &
                                               'CONTACT master', diag)
-        ! the mortar operator is built on 2-node traces (P1/Q1 boundaries)
-        if (is_quadratic(sc%bodies(c%slave_body)%mesh) .or. is_quadratic(sc%bodies(c%master_body)%mesh)) &
-          call add_error(diag, deck%file, c%line, 'contact on quadratic elements is not available yet ' // &
-                         '(P1/Q1 boundaries expected)')
+        ! quadratic traces (mortar_quadratic): frictionless only, the common normal is not carried over
+        if ((is_quadratic(sc%bodies(c%slave_body)%mesh) .or. is_quadratic(sc%bodies(c%master_body)%mesh)) &
+            .and. (sc%specs(ip)%mu > 0.0_dp .or. sc%specs(ip)%tresca > 0.0_dp)) &
+          call add_error(diag, deck%file, c%line, 'friction on quadratic elements is not available ' // &
+                         '(a frictionless CONTACT, or P1/Q1 boundaries, expected)')
         if (c%slave_body == c%master_body .and. c%slave_boundary == c%master_boundary) then
           call add_error(diag, deck%file, c%line, 'slave and master are the same boundary (two different boundaries expected)')
         end if
@@ -325,9 +326,10 @@ contains
       case default
         n0 = diag%count
         if (ms%is_geo) then
-          call mesh_geo_body(deck, ib, gmsh, bd, diag)
+          call mesh_geo_body(deck, ib, gmsh, bd, diag, err)
         else
-          call read_gmsh_file(ms%path, bd%mesh, diag)
+          call read_gmsh_file(ms%path, bd%mesh, diag, err)
+          if (allocated(err)) return
           if (diag%count == n0) call finalize_mesh(bd%mesh, ms%path, diag)
         end if
       end select
@@ -353,12 +355,13 @@ contains
 
   !> Body ib's .geo meshed by gmsh into the run's private folder, after the
   !> screen of what the .geo may do (unless trusted), and read.
-  subroutine mesh_geo_body(deck, ib, gmsh, bd, diag)
+  subroutine mesh_geo_body(deck, ib, gmsh, bd, diag, err)
     type(deck_t), intent(in) :: deck
     integer, intent(in) :: ib
     type(gmsh_options_t), intent(in) :: gmsh
     type(body_t), intent(inout) :: bd
     type(diag_t), intent(inout) :: diag
+    type(error_t), allocatable, intent(out) :: err
     character(len=:), allocatable :: work, deck_folder, msh, log, message
     logical :: ok
     integer :: n0
@@ -380,7 +383,8 @@ contains
       if (.not. ok) then
         call add_error(diag, deck%file, ms%line, 'gmsh could not mesh "' // ms%file // '": ' // message)
       else
-        call read_gmsh_file(msh, bd%mesh, diag)
+        call read_gmsh_file(msh, bd%mesh, diag, err)
+        if (allocated(err)) return
         if (diag%count == n0) call finalize_mesh(bd%mesh, ms%path, diag)
       end if
     end associate

@@ -314,6 +314,11 @@ H1 $(rt "manufactured quad4" h1_err).
 
 $(sh "$st/verdict.sh" "$t")
 EOF
+# the quadratic elements' series: made by studies/quadratic-series (minutes of
+# runs of their own, not part of run-all), its section kept in the repository
+if [ -f "$st/quadratic-series.md" ]; then
+  { echo; cat "$st/quadratic-series.md"; } >> "$doc/convergence.md"
+fi
 
 # ============================================================================ accuracy-cost.md
 cross_lcp=$(awk -F, '$1 == "lcp" { print $2 }' "$t/crossover_n.csv")
@@ -325,6 +330,8 @@ nmax=$(lastrow contact_nodes %d)
 lmax=$(lastrow time_lcp_lemke %.3g)
 pmax=$(lastrow time_lcp_pgs %.3g)
 rmax=$(lastrow lcp_ratio %.0f)
+# the section on peers is bench/peers.sh's (its numbers come from that script): kept as it is
+peers=$(sed -n '/^## Against peers/,$p' "$doc/accuracy-cost.md" 2>/dev/null || true)
 cat > "$doc/accuracy-cost.md" <<EOF
 # What accuracy costs
 
@@ -457,3 +464,4 @@ convergence.md for the discussion of the last level and of the pressure measures
 * \`studies/out/runs/NAME/\`: each run's VTK, contact CSV, summary and metrics;
   \`studies/out/decks/\`: the decks; \`studies/out/plots/\`: gnuplot scripts and data.
 EOF
+[ -z "$peers" ] || printf '\n%s\n' "$peers" >> "$doc/accuracy-cost.md"
