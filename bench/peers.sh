@@ -17,7 +17,8 @@
 # Outputs go to bench/out/peers/ (PEERS_OUT); PEERS_HC overrides the sweep,
 # PEERS_SERIES the series (code:kind,...), PEERS_REF_HC the reference's size,
 # PEERS_GRADE the grading ratio, PEERS_THREADS the threads per process (1),
-# PEERS_TIMEOUT the wall-time limit of one run (s, default 900).
+# PEERS_TIMEOUT the wall-time limit of one run (s, default 900), PEERS_REF_HC_P1
+# the P1 reference's finest size, PEERS_A the zone's half-width (default: located).
 # PEERS_DOC=doc/accuracy-cost.md puts the tables (printed in markdown) into
 # that page between its "bench/peers.sh" markers.
 set -eu
@@ -50,6 +51,8 @@ set -- --prog "$prog" --out "$out" --series "$keep" --reps "$reps" --threads "${
   --c2dh1 "$out/bin/c2dh1"
 [ -z "${PEERS_HC:-}" ] || set -- "$@" --hc "$PEERS_HC"
 [ -z "${PEERS_REF_HC:-}" ] || set -- "$@" --ref-hc "$PEERS_REF_HC"
+[ -z "${PEERS_REF_HC_P1:-}" ] || set -- "$@" --ref-hc-p1 "$PEERS_REF_HC_P1"
+[ -z "${PEERS_A:-}" ] || set -- "$@" --a "$PEERS_A"
 [ -z "${PEERS_GRADE:-}" ] || set -- "$@" --grade "$PEERS_GRADE"
 [ -z "${PEERS_TIMEOUT:-}" ] || set -- "$@" --timeout "$PEERS_TIMEOUT"
 [ -z "${PEERS_DOC:-}" ] || set -- "$@" --doc "$(cd "$(dirname "$PEERS_DOC")" && pwd)/$(basename "$PEERS_DOC")"

@@ -4,18 +4,22 @@ and CalculiX (their linear and quadratic elements), the error measured against
 a reference solution of the same finite problem.
 
     driver.py --prog CONTACT2D --out DIR [--series code:kind,...] [--hc 0.04,...]
-              [--reps 3] [--grade 8] [--ref-hc 0.00125] [--timeout 900]
+              [--reps 3] [--grade 8] [--ref-hc 0.0025] [--ref-hc-p1 0.00125] [--timeout 900]
 
 kind: p1 / p2 = linear / quadratic elements on the even meshes of
-input/hertz_*.geo (size hc around the zone, hf = 0.5 far away); p1g / p2g =
+input/hertz_*.geo (size hc around the zone, hf = min(0.5, 12.5 hc) far away); p1g / p2g =
 the same graded toward the zone's ends (geo/hertz_*_graded.geo: size hc / GRADE
 at (+-a, 0), growing at rate 0.2 with the distance, capped by the even size).
+contact2d's slave is the block's "contact" curve (|x| <= 0.3 of its top),
+which the disk's arc covers whole (quadratic traces need it).
 
 1. Locate: one contact2d P1 run at hc = 0.005 gives the half-width a of the
-   finite problem (the middle between the last node in contact and the next).
+   finite problem (zone_end: p^2 extrapolated to 0 from the nodes before the
+   end).
 2. Reference: contact2d on graded meshes at 4, 2 and 1 x ref-hc, quadratic
-   when this contact2d takes contact on quadratic elements (else P1).  The
-   three levels show the reference's own convergence: the distances of
+   when this contact2d takes contact on quadratic elements (else P1 at 4, 2
+   and 1 x ref-hc-p1).  The three levels show the reference's own
+   convergence: the distances of
    consecutive levels give the observed rate and the finest level's error
    estimate; a target below three times that estimate is flagged as not
    resolved.  The H1 (energy) error is measured against the finest P1 graded
@@ -76,7 +80,7 @@ BODY disk
   MATERIAL isotropic E=200000 nu=0.3
   FIX top ux=0 uy=-0.01
 END
-CONTACT slave=block:top master=disk:arc gap=geometry
+CONTACT slave=block:contact master=disk:arc gap=geometry
 SOLVER lcp=auto tol=1e-10
 """
 
@@ -120,20 +124,30 @@ class Point:
         return self.status == "ok" and self.perr is not None
 
 
+def far_size(hc):
+    """The far-field size hf = min(0.5, 12.5 hc) (as in studies/): with hf fixed, the far field's
+    discretization error (the load P, hence the pressure's scale) would stay the same at every hc,
+    and every series would level off at it."""
+    return min(0.5, 12.5 * hc)
+
+
 def mesh(args, body, hc, kind):
     """The gmsh mesh (MSH 2.2) of body for size hc and kind (p1/p2 even, p1g/p2g graded toward the
     zone's ends, size hc / grade there; p2s: P1 geometry for a P2 field); made once, not timed."""
     graded = kind.endswith("g")
     order = 2 if kind.startswith("p2") and not kind.startswith("p2s") else 1
     hz = hc / args.grade
-    tag = f"{body}_hc{hc:g}{'_g' + format(hz, 'g') if graded else ''}_o{order}"
+    tag = f"{body}_hc{hc:g}{'_g' + format(hz, 'g') + '_a' + format(args.a, '.6g') if graded else ''}_o{order}"
     path = os.path.join(args.out, "mesh", tag + ".msh")
     if not os.path.exists(path):
         os.makedirs(os.path.dirname(path), exist_ok=True)
-        geo = os.path.join(HERE, "geo", f"hertz_{body}_graded.geo") if graded else \
+        # the block always from geo/ (its "contact" curve), the disk from input/ unless graded
+        geo = os.path.join(HERE, "geo", f"hertz_{body}_graded.geo") if graded or body == "block" else \
             os.path.join(args.top, "input", f"hertz_{body}.geo")
         cmd = ["gmsh", "-2", "-order", str(order), "-format", "msh22", "-v", "0",
-               "-setnumber", "hc", repr(hc), "-setnumber", "hf", "0.5"]
+               "-setnumber", "hc", repr(hc), "-setnumber", "hf", repr(far_size(hc))]
+        if body == "block":
+            cmd += ["-setnumber", "graded", str(int(graded))]
         if graded:
             cmd += ["-setnumber", "a", repr(args.a), "-setnumber", "hz", repr(hz)]
         subprocess.run(cmd + [geo, "-o", path + ".tmp"], check=True, stdout=subprocess.DEVNULL)
@@ -217,12 +231,27 @@ def locate_a(args, env):
     if pt.status != "ok":
         sys.exit(f"peers: the locating run failed: {pt.note}")
     _, xs, ps = read_profile(pt.prof)
+    return zone_end(xs, ps), pt
+
+
+def zone_end(xs, ps):
+    """Half-width a of a pressure profile, both sides averaged.  Near the end p ~ c sqrt(a - |x|), so p^2
+    is linear in |x|: the line through p^2 at the three nodes before the last one in contact (the last
+    one carries the end's error) is extrapolated to 0, and kept between the last node in contact and the
+    next (the middle of the two had an error up to half a mesh size)."""
     ends = []
     for side in (1.0, -1.0):
         pts = sorted((side * x, p) for x, p in zip(xs, ps) if side * x >= 0.0)
         k = max(i for i, (_, p) in enumerate(pts) if p > 0.0)
-        ends.append(0.5 * (pts[k][0] + pts[min(k + 1, len(pts) - 1)][0]))
-    return 0.5 * (ends[0] + ends[1]), pt
+        lo, hi = pts[k][0], pts[min(k + 1, len(pts) - 1)][0]
+        fit = [(x, p * p) for x, p in pts[max(0, k - 3):k]]
+        n = len(fit)
+        mx, my = sum(x for x, _ in fit) / n, sum(y for _, y in fit) / n
+        sxx = sum((x - mx) ** 2 for x, _ in fit)
+        slope = sum((x - mx) * (y - my) for x, y in fit) / sxx if n >= 2 and sxx > 0.0 else 0.0
+        root = mx - my / slope if slope < 0.0 else 0.5 * (lo + hi)
+        ends.append(min(max(root, lo), hi))
+    return 0.5 * (ends[0] + ends[1])
 
 
 def h1_errors(c2dh1, ref_vtk, pts):
@@ -343,12 +372,13 @@ def report(args, series, hcs, pts, refs, conv, pref, href, codes, ver, load0, lo
     for c in codes:
         W(f"* {ver[c]}")
     W("")
-    W(f"Zone half-width of the finite problem: a = {args.a:.5f} (contact2d P1, hc = 0.005, the middle between "
-      f"the last node in contact and the next); graded meshes: size hc/{args.grade:g} at (+-a, 0), growing "
+    W(f"Zone half-width of the finite problem: a = {args.a:.5f} "
+      f"({'contact2d P1, hc = 0.005, p^2 extrapolated to 0 at the end' if args.located else 'given'}); graded meshes: size hc/{args.grade:g} at (+-a, 0), growing "
       "at 0.2 times the distance, capped by the even mesh's size.")
     W("")
-    W(f"**The reference**: contact2d on graded meshes, three levels hc = 4, 2, 1 x {args.ref_hc:g}, quadratic "
-      "when this contact2d takes contact on quadratic elements; 'vs Hertz' is the L2 distance of the pressure "
+    W(f"**The reference**: contact2d on graded meshes, three levels hc = 4, 2, 1 x {args.ref_hc:g} (quadratic) "
+      f"and 4, 2, 1 x {args.ref_hc_p1:g} (P1); the quadratic one, when this contact2d takes contact on "
+      "quadratic elements, is the pressure reference; 'vs Hertz' is the L2 distance of the pressure "
       "to Hertz's half-space pressure for the level's own load (the model's difference, not an error):")
     W("")
     W("| kind | level | hc | dofs | CPU (s) | vs Hertz | status |")
@@ -454,12 +484,15 @@ def main():
     ap.add_argument("--reps", type=int, default=3)
     ap.add_argument("--point-budget", type=float, default=60.0)
     ap.add_argument("--grade", type=float, default=8.0)
-    ap.add_argument("--ref-hc", type=float, default=0.00125)
+    ap.add_argument("--ref-hc", type=float, default=0.0025)
+    ap.add_argument("--ref-hc-p1", type=float, default=0.00125)
+    ap.add_argument("--a", type=float, default=None, help="the zone's half-width (default: located)")
     ap.add_argument("--timeout", type=float, default=900.0)
     ap.add_argument("--threads", default="1")
     ap.add_argument("--c2dh1", required=True)
     ap.add_argument("--doc", default="")
     args = ap.parse_args()
+    args.located = args.a is None
     series = [tuple(s.split(":")) for s in args.series.split(",") if s]
     codes = sorted({c for c, _ in series}, key=list(NAMES).index)
     hcs = sorted((float(h) for h in args.hc.split(",")), reverse=True)
@@ -476,15 +509,17 @@ def main():
     log = lambda *m: print(*m, file=sys.stderr, flush=True)   # noqa: E731
 
     # 1. the zone's half-width of the finite problem (the graded meshes' target)
-    args.a, _ = locate_a(args, env)
-    log(f"  located a = {args.a:.5f}")
+    if args.a is None:
+        args.a, _ = locate_a(args, env)
+    log(f"  zone half-width a = {args.a:.5f}{'' if args.located else ' (given)'}")
 
     # 2. the references: contact2d on graded meshes, three levels (hc = 4, 2, 1 x ref-hc), quadratic
     #    when it takes contact on quadratic elements
     refs = {}
     for kind in ("p2g", "p1g"):
         for lev, f in (("L0", 4.0), ("L1", 2.0), ("L2", 1.0)):
-            pt = Point("contact2d", kind, f * args.ref_hc, os.path.join(args.out, "ref", f"{kind}_{lev}"))
+            hc = f * (args.ref_hc if kind == "p2g" else args.ref_hc_p1)
+            pt = Point("contact2d", kind, hc, os.path.join(args.out, "ref", f"{kind}_{lev}"))
             prepare(pt, args)
             run_once(pt, args, env)
             log(f"  reference {kind} {lev} hc={pt.hc:g}: {pt.status} {pt.note} "

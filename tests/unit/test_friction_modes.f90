@@ -47,17 +47,27 @@ program test_friction_modes
 
 contains
 
+  !> The step with q = 0 and the load e (tol 1e-10).
+  subroutine solve_case(cmu, bound, e, lam, alpha, rep, unbalanced, cause)
+    real(dp), intent(in) :: cmu(2), bound(2), e(3)
+    real(dp), intent(out) :: lam(4), alpha(3)
+    type(lcp_report_t), intent(out) :: rep
+    real(dp), allocatable, intent(out) :: unbalanced(:)
+    character(len=:), allocatable, intent(out) :: cause
+    type(lcp_options_t) :: opts
+    opts%tol = 1.0e-10_dp
+    call solve_friction_floating(g, [0.0_dp, 0.0_dp], [0.0_dp, 0.0_dp], [1, 2], cmu, bound, h, e, opts, &
+                                 lam, alpha, rep, unbalanced, cause)
+  end subroutine solve_case
+
   subroutine solved(name, cmu, bound, e, lam_exact, alpha_exact)
     character(len=*), intent(in) :: name
     real(dp), intent(in) :: cmu(2), bound(2), e(3), lam_exact(4), alpha_exact(3)
-    type(lcp_options_t) :: opts
     type(lcp_report_t) :: rep
     real(dp) :: lam(4), alpha(3)
     real(dp), allocatable :: unbalanced(:)
     character(len=:), allocatable :: cause
-    opts%tol = 1.0e-10_dp
-    call solve_friction_floating(g, [0.0_dp, 0.0_dp], [0.0_dp, 0.0_dp], [1, 2], cmu, bound, h, e, opts, &
-                                 lam, alpha, rep, unbalanced, cause)
+    call solve_case(cmu, bound, e, lam, alpha, rep, unbalanced, cause)
     call check(rep%info == 0, name // ': solved (info 0)')
     call check_small(maxval(abs(lam - lam_exact)) / maxval(abs(lam_exact)), tol, name // ': forces, closed form')
     call check_small(maxval(abs(alpha - alpha_exact)) / maxval(abs(alpha_exact)), tol, &
@@ -70,14 +80,11 @@ contains
   subroutine refused(name, cmu, bound, e, cause_exact)
     character(len=*), intent(in) :: name, cause_exact
     real(dp), intent(in) :: cmu(2), bound(2), e(3)
-    type(lcp_options_t) :: opts
     type(lcp_report_t) :: rep
     real(dp) :: lam(4), alpha(3)
     real(dp), allocatable :: unbalanced(:)
     character(len=:), allocatable :: cause
-    opts%tol = 1.0e-10_dp
-    call solve_friction_floating(g, [0.0_dp, 0.0_dp], [0.0_dp, 0.0_dp], [1, 2], cmu, bound, h, e, opts, &
-                                 lam, alpha, rep, unbalanced, cause)
+    call solve_case(cmu, bound, e, lam, alpha, rep, unbalanced, cause)
     call check(rep%info == no_equilibrium, name // ': no equilibrium (info 5)')
     call check(cause == cause_exact, name // ': cause ' // cause_exact)
     if (cause_exact == 'friction') then
