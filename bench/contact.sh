@@ -9,10 +9,6 @@
 #   whole    = total(contact) / (factor + solve)(baseline)      target <= 1.3
 #   base     = total(baseline) / (factor + solve)(baseline)     (for reference:
 #              what reading, assembling and writing add to a run without contact)
-#   whole_uncut = total(contact) / (factor + solve)(baseline with SOLVER
-#              cut=off): the same against K factorized whole by CHOLMOD, as
-#              the issue's reference figures were (no body cut in two halves);
-#              equal to `whole` where nothing is cut
 #   memory   = peak resident / CHOLMOD factor memory             target <= 1.5
 set -eu
 top=$(cd "$(dirname "$0")/.." && pwd)
@@ -28,16 +24,14 @@ hertz_deck "$work/hertz_1e6.deck" hertz_1e6 0.001 0.0095
 signorini_deck "$work/signorini_1e5.deck" 500 50 400 60
 signorini_deck "$work/signorini_1e6.deck" 800 400 600 300
 
-printf '%-14s %8s %5s %6s %7s %8s %8s %7s %7s %8s %8s %7s | %8s %9s %8s %6s %11s\n' case dofs nodes active assemble factor \
-  condense lcp recover total memMB fmemMB overhead whole memory base whole_uncut
+printf '%-14s %8s %5s %6s %7s %8s %8s %7s %7s %8s %8s %7s | %8s %9s %8s %6s\n' case dofs nodes active assemble factor \
+  condense lcp recover total memMB fmemMB overhead whole memory base
 for c in hertz_1e5 signorini_1e5 hertz_1e6 signorini_1e6; do
   grep -v '^CONTACT' "$work/$c.deck" > "$work/${c}_base.deck"
-  { cat "$work/${c}_base.deck"; echo "SOLVER cut=off"; } > "$work/${c}_whole.deck"
   i=0
   while [ $i -lt "$reps" ]; do
     "$prog" -q -o "$work/run$i" "$work/$c.deck"
     "$prog" -q -o "$work/run$i" "$work/${c}_base.deck"
-    "$prog" -q -o "$work/run$i" "$work/${c}_whole.deck"
     i=$((i + 1))
   done
   get() { for s in "$work"/run*/"$1.summary"; do awk -v k="$2" '$1 == k {print $2}' "$s"; done | median; }
@@ -47,10 +41,8 @@ for c in hertz_1e5 signorini_1e5 hertz_1e6 signorini_1e6; do
       -v m="$(get "$c" memory_peak_mb)" -v fm="$(get "$c" factor_memory_mb)" \
       -v bf="$(get "${c}_base" time_factor)" -v bs="$(get "${c}_base" time_solve)" \
       -v bt="$(get "${c}_base" time_total)" \
-      -v wf="$(get "${c}_whole" time_factor)" -v ws="$(get "${c}_whole" time_solve)" \
-      'BEGIN {printf "%-14s %8d %5d %6d %7.3f %8.3f %8.3f %7.3f %7.3f %8.3f %8.0f %7.0f | %8.3f %9.3f %8.3f %6.3f %11.3f\n",
-              c, d, n, act, a, f, co, l, r, t, m, fm, (co + l + r) / f, t / (bf + bs), m / fm, bt / (bf + bs),
-              t / (wf + ws)}'
+      'BEGIN {printf "%-14s %8d %5d %6d %7.3f %8.3f %8.3f %7.3f %7.3f %8.3f %8.0f %7.0f | %8.3f %9.3f %8.3f %6.3f\n",
+              c, d, n, act, a, f, co, l, r, t, m, fm, (co + l + r) / f, t / (bf + bs), m / fm, bt / (bf + bs)}'
   rm -rf "$work"/run*
 done
 echo "(medians of $reps runs, seconds; baseline = the same bodies without CONTACT)"

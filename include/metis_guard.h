@@ -16,6 +16,7 @@
 #ifndef CONTACT2D_METIS_GUARD_H
 #define CONTACT2D_METIS_GUARD_H
 #include <setjmp.h>
+#include "metis_random.h"
 
 /* env: the landing point of this thread's METIS call; NULL when it ended. */
 void c2d_metis_guard(sigjmp_buf *env);

@@ -36,7 +36,8 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
-#include "cholmod_shim.h"
+#include "blas_start.h"
+#include "memory_limit.h"
 
 extern void openblas_set_num_threads(int) __attribute__((weak));
 extern int openblas_get_num_threads(void) __attribute__((weak));

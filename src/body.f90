@@ -25,7 +25,7 @@
 !>   type(body_t)                      one body: name, mesh, law, thickness, dof0
 !>   number_equations(fixed, eq, nfree)
 !>   build_pattern(bodies, eq, nfree, k)            pattern of K_ff, values 0
-!>   assemble_stiffness(bodies, eq, ubar, k, rhs)   add K_ff to k, subtract K_fd ubar from rhs
+!>   assemble_stiffness(bodies, eq, ubar, k, rhs [, overflow])   add K_ff to k, subtract K_fd ubar from rhs
 !>   internal_forces(bodies, u, fint)               fint = K u (all dofs, element by element)
 !>   element_response(bodies, u, fint [, stress, vm])  both in one element loop (OpenMP, reproducible)
 !>   thermal_loads(bd, f)                           f += int B' D eps0 t dA (THERMAL), x, y axes
@@ -250,15 +250,22 @@ contains
   !>   bodies (in) ; eq (in) (ndof) ; ubar (in) (ndof) prescribed values (fixed dofs)
   !>   k      (inout) values accumulated
   !>   rhs    (inout) (nfree) right-hand side
-  subroutine assemble_stiffness(bodies, eq, ubar, k, rhs)
+  !>   overflow (out, optional) the first body whose K_fd ubar_d would leave
+  !>          the range of double precision (its terms then left out), 0 when
+  !>          none.  Tested before each product and sum, so that no overflow
+  !>          happens: a debug build traps on one
+  subroutine assemble_stiffness(bodies, eq, ubar, k, rhs, overflow)
     type(body_t), intent(in) :: bodies(:)
     integer, intent(in) :: eq(:)
     real(dp), intent(in) :: ubar(:)
     type(csc_t), intent(inout) :: k
     real(dp), intent(inout) :: rhs(:)
+    integer, intent(out), optional :: overflow
     integer :: b, e, nen, p, q, ep, eq_q, pos
     integer :: dofs(2 * max_nen)
-    real(dp) :: ke(2 * max_nen, 2 * max_nen), xe(2, max_nen)
+    real(dp) :: ke(2 * max_nen, 2 * max_nen), xe(2, max_nen), term
+    logical :: ok
+    if (present(overflow)) overflow = 0
     do b = 1, size(bodies)
       associate(m => bodies(b)%mesh)
         do e = 1, m%nelem
@@ -277,7 +284,12 @@ contains
               ep = eq(dofs(p))
               if (ep == 0) cycle
               if (eq_q == 0) then
-                rhs(ep) = rhs(ep) - ke(p, q) * ubar(dofs(q))      ! f_f -= K_fd ubar_d
+                call in_range(ke(p, q), ubar(dofs(q)), rhs(ep), term, ok)
+                if (ok) then
+                  rhs(ep) = rhs(ep) - term                          ! f_f -= K_fd ubar_d
+                else if (present(overflow)) then
+                  if (overflow == 0) overflow = b
+                end if
               else if (ep <= eq_q) then
                 pos = find_row(k, ep, eq_q)
                 k%val(pos) = k%val(pos) + ke(p, q)
@@ -288,6 +300,20 @@ contains
       end associate
     end do
   end subroutine assemble_stiffness
+
+  !> ok = .true. with term = a * x when both a * x and s - a * x are finite,
+  !> tested without computing an overflowing value.
+  pure subroutine in_range(a, x, s, term, ok)
+    real(dp), intent(in) :: a, x, s
+    real(dp), intent(out) :: term
+    logical, intent(out) :: ok
+    term = 0.0_dp
+    ok = abs(x) <= 1.0_dp                       ! (no short-circuit .or.: |x| > 1 before dividing)
+    if (.not. ok) ok = abs(a) <= huge(1.0_dp) / abs(x)
+    if (.not. ok) return
+    term = a * x
+    ok = abs(s) <= huge(1.0_dp) - abs(term)
+  end subroutine in_range
 
   !> The node coordinates of element e of m into xe(:, 1:nen), gathered node
   !> by node (an array section with a vector subscript would make an array

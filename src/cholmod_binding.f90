@@ -1,7 +1,10 @@
-!> cholmod_binding: raw bind(c) interfaces to the C shim over CHOLMOD
-!> (src/cholmod_shim.c, include/cholmod_shim.h), and the status codes it returns.
+!> cholmod_binding: raw bind(c) interfaces to the C layer over CHOLMOD, and
+!> the status codes it returns: the handle and its factor (src/cholmod_factor.c,
+!> include/cholmod_factor.h) and the reading of the
+!> factor (src/factor_inspection.c, include/factor_inspection.h).  The
+!> process-wide settings are runtime_binding's.
 !>
-!> This is the lowest of three layers: C shim, these interfaces, and the
+!> This is the lowest of three layers: the C layer, these interfaces, and the
 !> Fortran API in sparse_cholesky.  Use sparse_cholesky; only it should call
 !> these routines.  Every index passed here is 1-based; arrays are passed by
 !> address, scalars by value; character results come back as NUL-terminated
@@ -10,12 +13,11 @@
 !> Ownership: c2d_chol_create returns a handle that owns a cholmod_common and
 !> the factor; exactly one c2d_chol_destroy must release it.
 !>
-!> Programming interface (see include/cholmod_shim.h for the details)
+!> Programming interface (see the headers above for the details)
 !>   c2d_chol_create() -> handle          c2d_chol_destroy(handle)
 !>   c2d_chol_factorize(handle, n, colptr, rowind, val, nlast, last) -> status
 !>   c2d_chol_set_ordering(handle, method) -> status   method: c2d_order_metis, c2d_order_amd
 !>   c2d_chol_analyze(handle, n, colptr, rowind, offset, nlast, last, ngroup, group) -> status
-!>   c2d_chol_separator(handle, n, colptr, rowind, offset, nlast, last, group, side) -> status
 !>   c2d_chol_factorize_values(handle, n, colptr, rowind, offset, val) -> status
 !>   c2d_chol_minor(handle, column, equation)
 !>   c2d_chol_stats(handle, lnz, flops, memory_peak, time_analyze, time_factorize)
@@ -25,19 +27,14 @@
 !>   c2d_chol_solve_half(handle, half, n, nrhs, b, x) -> status   (c2d_solve_whole / _forward / _backward)
 !>   c2d_chol_trailing_range(handle, nlast, first, count, lcc) -> status
 !>   c2d_chol_trailing_block_end(handle, nlast, first, last_row) -> status
-!>   c2d_blas_threads(n) -> the thread count OpenBLAS had (0: not OpenBLAS)
-!>   c2d_blas_park()   end OpenBLAS's spinning worker threads (restarted by the next threaded call)
-!>   c2d_malloc_arenas()   c2d_malloc_trim()   at most two glibc malloc arenas; free pages back
 !>   c2d_metis_per_thread() -> 1 when METIS draws its random numbers per thread
-!>   c2d_memory_available() -> bytes the process can still allocate (-1 unknown)
-!>   c2d_blas_start(n, left, per_thread, first) -> BLAS threads that fit an address-space limit
-!>   status codes: cholmod_ok, cholmod_not_posdef, c2d_chol_* (shim codes)
+!>   status codes: cholmod_ok, cholmod_not_posdef, c2d_chol_* (the C layer's codes)
 module cholmod_binding
   use, intrinsic :: iso_c_binding, only: c_ptr, c_int, c_double, c_int64_t, c_char
   implicit none
   private
   public :: c2d_chol_create, c2d_chol_destroy, c2d_chol_factorize, c2d_chol_minor
-  public :: c2d_chol_analyze, c2d_chol_separator, c2d_chol_factorize_values, c2d_chol_set_ordering
+  public :: c2d_chol_analyze, c2d_chol_factorize_values, c2d_chol_set_ordering
   public :: c2d_order_metis, c2d_order_amd
   public :: c2d_chol_stats, c2d_chol_min_pivot_ratio, c2d_chol_ordering_name
   public :: c2d_chol_status_name, c2d_chol_solve
@@ -45,14 +42,14 @@ module cholmod_binding
   public :: c2d_chol_solve_half, c2d_solve_whole, c2d_solve_forward, c2d_solve_backward
   public :: cholmod_ok, cholmod_not_posdef, cholmod_out_of_memory, cholmod_too_large
   public :: c2d_chol_no_handle, c2d_chol_no_factor, c2d_chol_not_super_ll
-  public :: c2d_chol_block_moved, c2d_chol_bad_argument, c2d_blas_threads, c2d_blas_park, c2d_malloc_arenas, c2d_malloc_trim
-  public :: c2d_metis_per_thread, c2d_memory_available, c2d_blas_start
+  public :: c2d_chol_block_moved, c2d_chol_bad_argument
+  public :: c2d_metis_per_thread
 
-  ! fill-reducing orderings (cholmod_shim.h)
+  ! fill-reducing orderings (cholmod_factor.h)
   integer(c_int), parameter :: c2d_order_metis = 0     !< METIS nested dissection
   integer(c_int), parameter :: c2d_order_amd = 1       !< approximate minimum degree
 
-  ! the halves of a solve (cholmod_shim.h)
+  ! the halves of a solve (cholmod_factor.h)
   integer(c_int), parameter :: c2d_solve_whole = 0     !< x = A^-1 b
   integer(c_int), parameter :: c2d_solve_forward = 1   !< y = L^-1 P b
   integer(c_int), parameter :: c2d_solve_backward = 2  !< x = P' L'^-1 y
@@ -62,7 +59,7 @@ module cholmod_binding
   integer(c_int), parameter :: cholmod_not_posdef = 1     !< warning: matrix not positive definite
   integer(c_int), parameter :: cholmod_out_of_memory = -2 !< failure: out of memory
   integer(c_int), parameter :: cholmod_too_large = -3     !< failure: integer overflow
-  ! shim codes (cholmod_shim.h)
+  ! the C layer's codes (cholmod_factor.h)
   integer(c_int), parameter :: c2d_chol_no_handle = -100     !< handle not created
   integer(c_int), parameter :: c2d_chol_no_factor = -101     !< no valid numeric factor
   integer(c_int), parameter :: c2d_chol_not_super_ll = -102  !< L not supernodal LL'
@@ -120,23 +117,6 @@ module cholmod_binding
       integer(c_int), intent(in) :: group(*)
       integer(c_int) :: status
     end function c2d_chol_analyze
-
-    !> The top vertex separator of the node graph without `last`: side(k) = 0, 1
-    !> (the halves), 2 (the separator) or 3 (`last`); returns the status.
-    function c2d_chol_separator(handle, n, colptr, rowind, offset, nlast, last, group, side) &
-        bind(c, name='c2d_chol_separator') result(status)
-      import :: c_ptr, c_int
-      type(c_ptr), value :: handle
-      integer(c_int), value :: n
-      integer(c_int), intent(in) :: colptr(*)
-      integer(c_int), intent(in) :: rowind(*)
-      integer(c_int), value :: offset
-      integer(c_int), value :: nlast
-      integer(c_int), intent(in) :: last(*)
-      integer(c_int), intent(in) :: group(*)
-      integer(c_int), intent(out) :: side(*)
-      integer(c_int) :: status
-    end function c2d_chol_separator
 
     !> Numeric factorization of the analyzed pattern's values; returns the status.
     function c2d_chol_factorize_values(handle, n, colptr, rowind, offset, val) &
@@ -234,27 +214,6 @@ module cholmod_binding
       integer(c_int) :: status
     end function c2d_chol_trailing_block_end
 
-    !> Set OpenBLAS's thread count (n <= 0: leave it); returns the count it had, 0 when not OpenBLAS.
-    function c2d_blas_threads(n) bind(c, name='c2d_blas_threads') result(old)
-      import :: c_int
-      integer(c_int), value :: n
-      integer(c_int) :: old
-    end function c2d_blas_threads
-
-    !> End OpenBLAS's worker threads, which spin for a while after each
-    !> call and take a core from the OpenMP threads; the next threaded BLAS
-    !> call starts them again.  Nothing when the BLAS is not OpenBLAS.
-    subroutine c2d_blas_park() bind(c, name='c2d_blas_park')
-    end subroutine c2d_blas_park
-
-    !> At most two glibc malloc arenas for all threads.
-    subroutine c2d_malloc_arenas() bind(c, name='c2d_malloc_arenas')
-    end subroutine c2d_malloc_arenas
-
-    !> The free pages of every malloc arena back to the system.
-    subroutine c2d_malloc_trim() bind(c, name='c2d_malloc_trim')
-    end subroutine c2d_malloc_trim
-
     !> 1 when METIS orderings draw from a random sequence per thread (they
     !> may run side by side and give what each gives alone), 0 when METIS
     !> calls run one at a time instead.
@@ -262,25 +221,6 @@ module cholmod_binding
       import :: c_int
       integer(c_int) :: yes
     end function c2d_metis_per_thread
-
-    !> Bytes the process can still allocate: the smaller of the address space
-    !> left under RLIMIT_AS and MemAvailable + SwapFree; -1 when unknown.
-    function c2d_memory_available() bind(c, name='c2d_memory_available') result(bytes)
-      import :: c_int64_t
-      integer(c_int64_t) :: bytes
-    end function c2d_memory_available
-
-    !> OpenBLAS under an address-space limit (src/blas_start.c): the thread
-    !> count to use (<= n) with its work buffers mapped; n without a limit;
-    !> 0 when not even one buffer fits.  left: the address space left (-1:
-    !> no limit), per_thread: bytes of a further thread, first: of the first
-    !> buffer.
-    function c2d_blas_start(n, left, per_thread, first) bind(c, name='c2d_blas_start') result(used)
-      import :: c_int, c_int64_t
-      integer(c_int), value :: n
-      integer(c_int64_t), intent(out) :: left, per_thread, first
-      integer(c_int) :: used
-    end function c2d_blas_start
 
   end interface
 

@@ -227,7 +227,7 @@ contains
       '  SOLVER lcp=auto|lemke|pgs|pdas [tol=1e-10] [maxit=N] [omega=1.0]   (pdas: frictionless only)', &
       '         [ordering=auto|metis|amd]  (fill-reducing ordering; auto: AMD up to 5e5 free dofs, METIS above)', &
       '         [condense=auto|solve|inverse]  (W per body: triangular solves or the block''s inverse)', &
-      '         [cut=auto|off]  (auto: a body of more than 2e5 dofs and twice the others cut in two halves)', &
+      '         [cut=auto|off]  (accepted and ignored: no body is cut)', &
       '  STEPS n                           (load steps; ramp=k0:k1: load 0 at step k0 rising to 1 at k1)', &
       '  CURVE name t0:v0 t1:v1 ...        (load factor v against the step t, piecewise linear: curve=name)', &
       '  OUTPUT [vtk=FILE] [contact=FILE.csv] [summary=FILE] [fields=displacement,contact_pressure,gap,stress,von_mises]', &

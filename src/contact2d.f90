@@ -40,7 +40,6 @@ program contact2d
   use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use omp_lib, only: omp_get_thread_num, omp_get_num_threads
-  use cholmod_binding, only: c2d_malloc_trim, c2d_blas_park
   use threads, only: start_threads, run_threads
   use command_line, only: version, parse_command_line, case_index, usage_error
   implicit none
@@ -66,6 +65,7 @@ program contact2d
   type(factor_t) :: factor
   type(results_t) :: res
   type(error_t), allocatable :: err, err_order
+  integer :: overflow_body = 0              !< a body whose K_fd ubar_d leaves double precision (0: none)
   type(floating_t) :: fl
   type(mode_split_t) :: split            ! the free modes that contact holds, and those it does not
   integer, allocatable :: eq(:), last(:), group(:)
@@ -155,12 +155,13 @@ program contact2d
   !$omp end parallel
   call split_overlap()
   if (allocated(err_order)) call fail_numerical(err_order%message)
-  call c2d_malloc_trim()     ! what the orderings freed, before the factors take their memory
+  if (overflow_body > 0) call fail_numerical('body "' // sc%bodies(overflow_body)%name // '": its prescribed ' // &
+    'displacements times its stiffness leave the range of double precision (expected moduli and prescribed ' // &
+    'values whose product stays below about 1e308)')
   call factorize_values(factor, k, err)
-  if (allocated(err)) call fail_numerical(factor_failure(err%message))
+  if (allocated(err)) call fail_numerical(factor_failure(err))
   res%factor_nnz = factor_nnz(factor)
   res%ordering = factor_ordering(factor)
-  res%factor_cut = factor%ncut
   res%factor_memory = real(factor_memory(factor), dp)
   deallocate(k%colptr, k%rowind, k%val)      ! K lives on in its factor only
   call lap(ph_factor)
@@ -174,10 +175,12 @@ program contact2d
   call system_clock(t_solve)
   if (with_contact) then
     allocate(y(nfree))
-    call solve_forward(factor, rhs(:, 1), y)
+    call solve_forward(factor, rhs(:, 1), y, err)
+    if (allocated(err)) call fail_numerical(err%message)
   else
     allocate(x(nfree, 1))
-    call solve(factor, rhs, x)
+    call solve(factor, rhs, x, err)
+    if (allocated(err)) call fail_numerical(err%message)
     do i = 1, sc%ndof
       if (eq(i) > 0) u0(i) = x(eq(i), 1)
     end do
@@ -217,12 +220,13 @@ program contact2d
     allocate(res%u(sc%ndof))
     call system_clock(t_solve)
     if (cs%ntan > 0) then
-      call recover(eq, factor, y, cd, u0, [res%mu, res%tau], res%u)
+      call recover(eq, factor, y, cd, u0, [res%mu, res%tau], res%u, err)
       call contact_forces(cs, [res%mu, res%tau], fc)
     else
-      call recover(eq, factor, y, cd, u0, res%mu, res%u)
+      call recover(eq, factor, y, cd, u0, res%mu, res%u, err)
       call contact_forces(cs, res%mu, fc)
     end if
+    if (allocated(err)) call fail_numerical(err%message)
     call system_clock(t_now, t_rate)
     res%time_solve = res%time_solve + real(t_now - t_solve, dp) / real(t_rate, dp)
     if (fl%k > 0) res%u = res%u + matmul(fl%r, res%alpha)    ! + R alpha: the free rigid modes
@@ -233,7 +237,6 @@ program contact2d
   end if
   if (.not. all(ieee_is_finite(res%u))) call fail_numerical('the displacement is not finite (overflow in the solve)')
   call lap(ph_recover)
-  call c2d_blas_park()            ! no BLAS after this: the stresses and the files get both cores
 
   ! --- stresses, reactions, energy -----------------------------------------
   if (with_contact) then
@@ -413,7 +416,8 @@ contains
     do j = 1, sc%ndof
       if (eq(j) > 0) b(eq(j), 1) = fk(j) - kub(j) + fz(j)
     end do
-    call solve(factor, b, xb)
+    call solve(factor, b, xb, err)
+    if (allocated(err)) call fail_numerical(err%message)
     u = ubk
     do j = 1, sc%ndof
       if (eq(j) > 0) u(j) = xb(eq(j), 1)
@@ -545,18 +549,16 @@ contains
   !> contact dofs last).
   subroutine order_pattern()
     if (size(last) > 0) then
-      call analyze_pattern(factor, k%n, k%colptr, k%rowind, err_order, last=last, group=group, method=trim(ordering), &
-                           cut=deck%solver%cut == 'auto')
+      call analyze_pattern(factor, k%n, k%colptr, k%rowind, err_order, last=last, group=group, method=trim(ordering))
     else
-      call analyze_pattern(factor, k%n, k%colptr, k%rowind, err_order, group=group, method=trim(ordering), &
-                           cut=deck%solver%cut == 'auto')
+      call analyze_pattern(factor, k%n, k%colptr, k%rowind, err_order, group=group, method=trim(ordering))
     end if
   end subroutine order_pattern
 
   !> The values of K and the right-hand side, timed (time_assemble_values).
   subroutine assemble_values()
     call system_clock(t_asm0)
-    call assemble_stiffness(sc%bodies, eq, sc%ubar, k, rhs(:, 1))
+    call assemble_stiffness(sc%bodies, eq, sc%ubar, k, rhs(:, 1), overflow_body)
     call system_clock(t_asm1)
   end subroutine assemble_values
 
@@ -720,7 +722,8 @@ contains
       do j = 1, sc%ndof
         if (eq(j) > 0) rhsg(eq(j), 1) = sc%fgroup(j, g) - fk(j)
       end do
-      call solve(factor, rhsg, xg)
+      call solve(factor, rhsg, xg, err)
+      if (allocated(err)) call fail_numerical(err%message)
       ug = sc%ugroup(:, g)
       do j = 1, sc%ndof
         if (eq(j) > 0) ug(j) = xg(eq(j), 1)
@@ -1089,13 +1092,6 @@ contains
       end if
       call say(trim(line))
     end if
-    if (factor%ncut > 0) then
-      write(line, '(a,i0,a,i0,a)') 'factor   ', factor%ncut, trim(merge(' part cut ', ' parts cut', factor%ncut == 1)) &
-        // ' at the top separator (', factor%separator, &
-        ' dofs): the halves factorized side by side, the separator' // &
-        trim(merge(' and the contact dofs', '                     ', factor%nlast > 0)) // ' as a dense block'
-      call say(trim(line))
-    end if
     if (allocated(cd%block)) then
       how = condensed_report(cd)
       if (len(how) > 0) call say('condense W from L_cc by body: ' // how)
@@ -1228,12 +1224,12 @@ contains
   !> A singular K from a body whose law is nearly incompressible (nu close to
   !> 0.5 in plane strain) is said so instead: the dependent column is then
   !> round-off, not a rigid-body mode.
-  function factor_failure(message) result(text)
-    character(len=*), intent(in) :: message
+  function factor_failure(e) result(text)
+    type(error_t), intent(in) :: e
     character(len=:), allocatable :: text
     integer :: b
-    text = message // equation_location(message)
-    if (index(message, 'stiffness matrix is singular') /= 1) return
+    text = e%message // equation_location(e%equation)
+    if (index(e%message, 'stiffness matrix is singular') /= 1) return
     do b = 1, size(sc%bodies)
       ! beyond 1e12, K keeps fewer than 4 digits of u = 1.1e-16
       if (tensor_condition(sc%bodies(b)%law) > 1.0e12_dp) then
@@ -1246,18 +1242,15 @@ contains
     end do
   end function factor_failure
 
-  !> ': body NAME node N at (x, y), component u_x' for a message naming a free
-  !> equation ('at equation K'); '' when it names none.
-  function equation_location(message) result(where)
-    character(len=*), intent(in) :: message
+  !> '; that is body NAME, node N at (x, y), component u_x' for free
+  !> equation eqn (an error's equation field); '' for 0 (none).
+  function equation_location(eqn) result(where)
+    integer, intent(in) :: eqn
     character(len=:), allocatable :: where
-    integer :: p, ios, eqn, d, b, node
+    integer :: d, b, node
     character(len=64) :: buf
     where = ''
-    p = index(message, 'at equation ')
-    if (p == 0) return
-    read(message(p + 12:), *, iostat=ios) eqn
-    if (ios /= 0) return
+    if (eqn <= 0) return
     do d = 1, size(eq)
       if (eq(d) /= eqn) cycle
       do b = size(sc%bodies), 1, -1

@@ -43,7 +43,7 @@
 !>   constraint_values(cs, u, v)            v = C u, C = [B; T] (the tangential
 !>                                          rows T of friction pairs after B)
 !>   contact_forces(cs, mu, fc)             fc = -B' mu on every dof (fc sized ndof)
-!>   recover(eq, factor, y, cd, u0, mu, u)  u = K^-1 (f - C' mu) by one backward
+!>   recover(eq, factor, y, cd, u0, mu, u, err)  u = K^-1 (f - C' mu) by one backward
 !>                                          solve (y overwritten, cd's arrays released)
 !>   condensed_report(cd)                   how each block was condensed, one line
 !>   condensed_blocks(cd)                   the same as numbers: (3, blocks) dofs, rows,
@@ -486,13 +486,15 @@ contains
   !>   y  (inout) (nfree) overwritten;  cd (inout) from condense, its arrays
   !>   released before the solve
   !>   u0 (in) (ndof), only its fixed dofs read;  mu (in) (nc);  u (out) (ndof)
-  subroutine recover(eq, factor, y, cd, u0, mu, u)
+  !>   err (out) allocated when the solve fails (no valid factor, CHOLMOD's error)
+  subroutine recover(eq, factor, y, cd, u0, mu, u, err)
     integer, intent(in) :: eq(:)
     type(factor_t), intent(inout) :: factor
     real(dp), intent(inout), contiguous :: y(:)
     type(condensed_t), intent(inout) :: cd
     real(dp), intent(in) :: u0(:), mu(:)
     real(dp), intent(out) :: u(:)
+    type(error_t), allocatable, intent(out) :: err
     real(dp), allocatable :: du(:), t(:)
     integer :: i, nfree, b, nb, mb, o, j, k
     nfree = size(y)
@@ -520,8 +522,9 @@ contains
       end associate
     end do
     allocate(du(nfree))
-    call solve_backward(factor, y, du)
+    call solve_backward(factor, y, du, err)
     u = u0
+    if (allocated(err)) return
     do i = 1, size(eq)
       if (eq(i) > 0) u(i) = du(eq(i))
     end do

@@ -22,7 +22,7 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
-#include "cholmod_shim.h"
+#include "memory_limit.h"
 
 /* bytes of the `key: N kB` line of /proc/meminfo, -1 when absent */
 static int64_t meminfo_bytes(FILE *f, const char *key)

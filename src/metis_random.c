@@ -30,7 +30,7 @@
 #include <string.h>
 
 #include "metis.h"
-#include "cholmod_shim.h"
+#include "metis_random.h"
 
 void gk_randinit(uint64_t seed);
 uint32_t gk_randint32(void);

@@ -67,7 +67,6 @@ module results_writer
     integer :: contact_nodes = 0, active_nodes = 0, redundant = 0
     integer(i8) :: factor_nnz = 0
     character(len=:), allocatable :: ordering    !< fill-reducing ordering used, e.g. amd(nodes)+last
-    integer :: factor_cut = 0                    !< parts of the factor cut in two at their top separator
     integer, allocatable :: condense_block(:,:)  !< (3, blocks of L_cc reached by rows): dofs, rows,
                                                  !< 1 by its inverse / 0 by triangular solves
     real(dp) :: time(nphase) = 0                 !< seconds per phase_names
@@ -420,7 +419,6 @@ contains
     end if
     write(u, '(a,i0)') 'factor_nnz ', r%factor_nnz
     if (allocated(r%ordering)) write(u, '(a)') 'factor_ordering ' // r%ordering
-    write(u, '(a,i0)') 'factor_cut ', r%factor_cut
     if (allocated(r%condense_block)) then
       do k = 1, size(r%condense_block, 2)
         write(u, '(a,i0,a,i0,a)') 'condense_block ', r%condense_block(1, k), ' ', r%condense_block(2, k), ' ' // &

@@ -16,8 +16,8 @@
 !> and trailing_factor_block returns L_cc: the Schur complement on the
 !> interface, and the interface block of K^-1, come without any solve.  The
 !> price is fill: the other dofs are ordered without the freedom to put the
-!> block elsewhere (nnz(L) about 14 % above plain METIS for a 100 x 100 grid
-!> with one edge last).
+!> block elsewhere (doc/performance.md, "The Delassus matrix from the trailing
+!> block of the factor").
 !>
 !> Failure checks.  CHOLMOD reports "not positive definite" as a warning: the
 !> call returns TRUE with Common->status = CHOLMOD_NOT_POSDEF and L->minor < n;
@@ -42,18 +42,19 @@
 !> in the order of `last`; `last` must then visit the parts in order (the
 !> dofs of a contact interface, ascending, do), else A is kept whole.
 !>
-!> Cut parts.  A part of split_min dofs or more that is larger than twice the
-!> other parts together (a body alone, or one much larger than the others:
-!> one thread would factorize it while the other waits) is cut at a vertex
-!> separator of its node graph (METIS_ComputeVertexSeparator: the top level
-!> of a nested dissection, whatever the ordering) into two halves, each a
-!> CHOLMOD factor of its own, ordered by the part's method (METIS, or AMD
-!> with CAMD's constraint) with the separator's and the `last` dofs coupled
-!> to it ordered last; the separator and `last` are then condensed
-!> into one dense factor (split_factor).  The halves are work items of the
-!> loop over the parts like any part.  The part's pivots are [half 1, half 2,
-!> separator, its `last`], so the trailing block is still L_cc.  The rule is
-!> on sizes only: the factor is the same on any number of threads.
+!> No part is cut further: a body cut at its top separator into two halves
+!> factorized side by side, with a dense Schur complement on the separator,
+!> gained wall time on two free cores and cost CPU time and 4-15 % peak
+!> memory (doc/performance.md, "A body cut in two: removed").
+!>
+!> Errors are data: every routine returns an error_t (err) and none stops
+!> the process; a singular or indefinite K gives err%equation, the dof of A
+!> at the failing pivot, for the caller to locate in its mesh.
+!>
+!> Files.  This module (the factor, its analysis and numeric factorization),
+!> sparse_cholesky_solve (a submodule: the solves and L_cc), and
+!> sparse_cholesky_parts (the parts, their loops, checks and messages);
+!> only these use cholmod_binding.
 !>
 !> Ownership.  A factor_t owns its CHOLMOD handles (common and factor, in C);
 !> free_factor or the final procedure releases them.  Do not copy a factor_t by
@@ -61,11 +62,11 @@
 !> readable after free_factor.
 !>
 !> Programming interface
-!>   type(factor_t)   opaque handles (private); ready, n, nlast, nparts, ncut, separator, side_by_side, nnz_l,
+!>   type(factor_t)   opaque handles (private); ready, n, nlast, nparts, side_by_side, nnz_l,
 !>                    flops, time_analyze, time_factorize, ordering,
 !>                    memory_peak, min_pivot_ratio
 !>   factorize(f, A, err [, last])          P A P' = L L' (the two halves below)
-!>   analyze_pattern(f, n, colptr, rowind, err [, last] [, group] [, method] [, cut])
+!>   analyze_pattern(f, n, colptr, rowind, err [, last] [, group] [, method])
 !>                                          ordering (METIS or AMD) and symbolic analysis
 !>   factorize_values(f, A, err)            numeric factorization of the analyzed pattern
 !>   solve(f, b, x [, err])                 x = A^-1 b, b(n) or b(n, nrhs)
@@ -78,68 +79,34 @@
 !>                                          its diagonal sub-block first..first+count-1
 !>   trailing_block_end(f, nlast, first, e [, err])  end of L_cc's diagonal block at first
 !>   free_factor(f)                         release the handles
-!>   set_split_min(n)                       cut parts from n dofs on (default 200,000)
 !>   factor_nnz(f), factor_flops(f), factor_memory(f), factor_ordering(f)
 module sparse_cholesky
   use, intrinsic :: iso_c_binding, only: c_ptr, c_null_ptr, c_associated, c_int, c_double, &
                                          c_int64_t, c_char, c_null_char
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
   use kinds, only: dp, i8
-  use omp_lib, only: omp_get_max_active_levels, omp_set_max_active_levels, omp_get_active_level, &
-                     omp_get_max_threads, omp_get_wtime
-  use diagnostics, only: error_t, set_error, set_out_of_memory, int_to_str, i8_to_str, fail_numerical
+  use omp_lib, only: omp_get_wtime
+  use diagnostics, only: error_t, set_error, set_out_of_memory, int_to_str, i8_to_str
   use sparse_matrix, only: csc_t, csc_nnz, csc_check
-  use split_factor, only: split_t, split_analyze, split_factorize_half, split_finish, split_solve, &
-                          split_trailing_range, split_block_end, split_stats, split_failure, split_min_ratio, split_free
   use cholmod_binding, only: c2d_chol_create, c2d_chol_destroy, c2d_chol_analyze, c2d_chol_factorize_values, &
-                             c2d_chol_minor, c2d_chol_set_ordering, c2d_order_amd, c2d_order_metis, &
-                             c2d_chol_stats, c2d_chol_min_pivot_ratio, c2d_chol_ordering_name, &
-                             c2d_chol_status_name, c2d_chol_solve, &
-                             c2d_chol_trailing_range, c2d_chol_trailing_block_end, &
-                             c2d_chol_solve_half, c2d_solve_whole, c2d_solve_forward, c2d_solve_backward, &
-                             cholmod_ok, cholmod_not_posdef, c2d_chol_block_moved, &
-                             c2d_chol_not_super_ll, c2d_chol_bad_argument, &
-                             c2d_blas_threads, cholmod_out_of_memory, c2d_memory_available
+                             c2d_chol_set_ordering, c2d_order_amd, c2d_order_metis, &
+                             c2d_chol_stats, c2d_chol_ordering_name, c2d_chol_minor, c2d_chol_min_pivot_ratio, &
+                             c2d_solve_whole, c2d_solve_forward, &
+                             c2d_solve_backward, cholmod_ok, cholmod_not_posdef, c2d_chol_block_moved, &
+                             c2d_chol_bad_argument, cholmod_out_of_memory
+  use runtime_binding, only: c2d_memory_available, c2d_malloc_trim
+  use sparse_cholesky_parts, only: part_t, max_parts, find_parts, local_groups, part_solve, part_trailing_range, &
+                                   part_block_end, global_equation, global_pivot, &
+                                   check_pattern, singular_pivot_tolerance, singular_message, ordering_bytes, &
+                                   largest, parts_begin, parts_end, &
+                                   status_name, trailing_status_message, c_string
   implicit none
   private
   public :: factor_t, factorize, analyze_pattern, factorize_values, solve, solve_vector, solve_block
   public :: trailing_factor_block, trailing_block_end, solve_forward, solve_backward
-  public :: free_factor, factor_nnz, factor_flops, factor_memory, factor_ordering, set_split_min
+  public :: free_factor, factor_nnz, factor_flops, factor_memory, factor_ordering
 
-  !> Floor of the order in the singularity tolerance (see singular_pivot_tolerance).
-  integer, parameter :: tolerance_order_floor = 1000
 
-  !> At most this many parts; smaller independent blocks are merged.
-  integer, parameter :: max_parts = 16
-
-  !> Parts run side by side only when the second largest has this many dofs:
-  !> below it, starting the threads and setting the BLAS to one thread (a few
-  !> ms, and idle threads spinning against the working ones) cost more than
-  !> the part saves: input/patch.deck's factorization took 0.6 ms one part
-  !> after the other and 1-30 ms side by side.
-  integer, parameter :: side_by_side_min = 10000
-
-  !> A part of this many dofs or more, larger than twice the other parts
-  !> together (a body alone, or one much larger than the others), is cut at
-  !> its top separator into two halves factorized side by side (split_factor):
-  !> else one core would wait while it is factorized.  A rule on sizes, not
-  !> on threads: the factor is the same on any number of threads.
-  !> set_split_min changes it (the unit tests cut small matrices).
-  integer, protected :: split_min = 200000
-
-  !> One part of A: the diagonal block A(first:first+n-1, first:first+n-1),
-  !> which no entry couples to the rest, with its own CHOLMOD handle.
-  type :: part_t
-    type(c_ptr) :: handle = c_null_ptr    !< owned CHOLMOD handle (common + L)
-    integer :: first = 1                  !< its dofs: first..first+n-1
-    integer :: n = 0                      !< their number
-    integer :: nlast = 0                  !< its dofs in `last`: last(last0+1:last0+nlast)
-    integer :: last0 = 0
-    integer :: rest0 = 0                  !< its other dofs: pivots rest0+1..rest0+n-nlast
-    integer(c_int) :: status = 0          !< status of its last CHOLMOD call
-    logical :: cut = .false.              !< cut in two halves (split_factor)
-    type(split_t), allocatable :: split   !< the halves, when cut
-  end type part_t
 
   !> A Cholesky factor P A P' = L L' and its statistics.
   type :: factor_t
@@ -148,8 +115,6 @@ module sparse_cholesky
     integer :: n = 0                      !< order of A
     integer :: nlast = 0                  !< size of the block ordered last (0: none)
     integer :: nparts = 0                 !< number of parts, each factorized on its own
-    integer :: ncut = 0                   !< parts cut in two halves (split_factor)
-    integer :: separator = 0              !< dofs of their separators
     integer :: side_by_side = 1           !< threads the parts run on (1: one after the other)
     integer(i8) :: nnz_l = 0_i8           !< nnz(L), without zeros of supernodal amalgamation
     real(dp) :: flops = 0.0_dp            !< flop count of the numeric factorization
@@ -166,6 +131,53 @@ module sparse_cholesky
   interface solve
     module procedure solve_vector, solve_block
   end interface solve
+
+  !> The solves and the trailing block, in submodule sparse_cholesky_solve
+  !> (src/sparse_cholesky_solve.f90); documented there.
+  interface
+    module subroutine solve_vector(f, b, x, err)
+      type(factor_t), intent(in) :: f
+      real(dp), intent(in) :: b(:)
+      real(dp), intent(out) :: x(:)
+      type(error_t), allocatable, intent(out) :: err
+    end subroutine solve_vector
+
+    module subroutine solve_block(f, b, x, err)
+      type(factor_t), intent(in) :: f
+      real(dp), intent(in) :: b(:,:)
+      real(dp), intent(out) :: x(:,:)
+      type(error_t), allocatable, intent(out) :: err
+    end subroutine solve_block
+
+    module subroutine solve_forward(f, b, y, err)
+      type(factor_t), intent(in) :: f
+      real(dp), intent(in) :: b(:)
+      real(dp), intent(out) :: y(:)
+      type(error_t), allocatable, intent(out) :: err
+    end subroutine solve_forward
+
+    module subroutine solve_backward(f, y, x, err)
+      type(factor_t), intent(in) :: f
+      real(dp), intent(in) :: y(:)
+      real(dp), intent(out) :: x(:)
+      type(error_t), allocatable, intent(out) :: err
+    end subroutine solve_backward
+
+    module subroutine trailing_factor_block(f, nlast, Lcc, err, first, count)
+      type(factor_t), intent(in) :: f
+      integer, intent(in) :: nlast
+      real(dp), allocatable, intent(out) :: Lcc(:,:)
+      type(error_t), allocatable, intent(out) :: err
+      integer, intent(in), optional :: first, count
+    end subroutine trailing_factor_block
+
+    module subroutine trailing_block_end(f, nlast, first, e, err)
+      type(factor_t), intent(in) :: f
+      integer, intent(in) :: nlast, first
+      integer, intent(out) :: e
+      type(error_t), allocatable, intent(out) :: err
+    end subroutine trailing_block_end
+  end interface
 
 contains
 
@@ -207,9 +219,7 @@ contains
   !>   method (in, optional) 'metis' (default: nested dissection) or 'amd'
   !>          (approximate minimum degree: cheaper to compute, more fill on
   !>          large meshes)
-  !>   cut    (in, optional) .false.: no part is cut in two halves (default
-  !>          .true.: a large part that dwarfs the others is, see "Cut parts")
-  subroutine analyze_pattern(f, n, colptr, rowind, err, last, group, method, cut)
+  subroutine analyze_pattern(f, n, colptr, rowind, err, last, group, method)
     type(factor_t), intent(inout) :: f
     integer, intent(in) :: n
     integer, intent(in) :: colptr(:), rowind(:)
@@ -217,7 +227,6 @@ contains
     integer, intent(in), optional :: last(:)
     integer, intent(in), optional :: group(:)
     character(len=*), intent(in), optional :: method
-    logical, intent(in), optional :: cut
     integer(c_int), allocatable :: last_c(:), group_c(:)
     integer(c_int) :: ordering
     logical :: grouped
@@ -287,15 +296,8 @@ contains
       f%part(p)%status = c2d_chol_set_ordering(f%part(p)%handle, ordering)
     end do
 
-    do p = 1, f%nparts
-      associate (pt => f%part(p))
-        pt%cut = grouped .and. pt%n >= split_min .and. pt%n > 2 * (n - pt%n)
-        if (present(cut)) pt%cut = pt%cut .and. cut
-      end associate
-    end do
-
     t0 = omp_get_wtime()
-    call parts_begin(f, nthreads, levels, blas)
+    call parts_begin(f%part, nthreads, levels, blas)
     f%side_by_side = nthreads
     ! A METIS ordering splits its first level into two OpenMP tasks, which the
     ! other threads of the team take when they are free: the parts' team, or,
@@ -303,12 +305,12 @@ contains
     if (nthreads > 1) then
       !$omp parallel do num_threads(nthreads) schedule(dynamic, 1)
       do i = 1, f%nparts
-        call analyze_part(f%part(largest(f, i)))
+        call analyze_part(f%part(largest(f%part, i)))
       end do
       !$omp end parallel do
     else
       do i = 1, f%nparts
-        call analyze_part(f%part(largest(f, i)))
+        call analyze_part(f%part(largest(f%part, i)))
       end do
     end if
     call parts_end(levels, blas)
@@ -342,19 +344,6 @@ contains
 
     subroutine analyze_part(pt)
       type(part_t), intent(inout) :: pt
-      if (pt%cut .and. pt%status == cholmod_ok) then
-        allocate(pt%split)
-        pt%status = split_analyze(pt%split, pt%handle, ordering, pt%n, colptr(pt%first:pt%first + pt%n), &
-                                  rowind(colptr(pt%first):), pt%first - 1, last_c(pt%last0 + 1:pt%last0 + pt%nlast), &
-                                  group_c(pt%first:pt%first + pt%n - 1))
-        if (pt%status == cholmod_ok) return
-        ! no two halves to cut it into (a degenerate graph) or a half's analysis
-        ! failed: the part is analyzed whole, which reports a failure of its own
-        call split_free(pt%split)
-        deallocate(pt%split)
-        pt%cut = .false.
-        pt%status = cholmod_ok
-      end if
       if (pt%status == cholmod_ok) &
         pt%status = c2d_chol_analyze(pt%handle, int(pt%n, c_int), colptr(pt%first:pt%first + pt%n), &
                                      rowind(colptr(pt%first):), int(pt%first - 1, c_int), &
@@ -363,176 +352,11 @@ contains
     end subroutine analyze_part
   end subroutine analyze_pattern
 
-  !> The parts of a pattern: the finest cut into diagonal blocks that no entry
-  !> couples, blocks of fewer than n / max_parts dofs merged with the next.
-  !> A single part when `last` does not visit the parts in order.
-  !>   n, colptr, rowind (in) the pattern (checked)
-  !>   last  (in)  (nlast) dofs ordered last
-  !>   parts (out) first, n, nlast, last0 and rest0 of each part
-  subroutine find_parts(n, colptr, rowind, last, parts)
-    integer, intent(in) :: n, colptr(:), rowind(:)
-    integer(c_int), intent(in) :: last(:)
-    type(part_t), allocatable, intent(out) :: parts(:)
-    integer, allocatable :: span(:), part_of(:)
-    integer :: j, q, i, np, start, open, target
 
-    ! span(s) = the number of entries (i, j) with min(i, j) <= s < max(i, j)
-    allocate(span(n + 1))
-    span = 0
-    do j = 1, n
-      do q = colptr(j), colptr(j + 1) - 1
-        i = rowind(q)
-        span(min(i, j)) = span(min(i, j)) + 1
-        span(max(i, j)) = span(max(i, j)) - 1
-      end do
-    end do
-    target = max(1, n / max_parts)
-    allocate(part_of(n))
-    np = 0
-    start = 1
-    open = 0
-    do j = 1, n
-      open = open + span(j)
-      if (j == n .or. (open == 0 .and. j - start + 1 >= target)) then
-        np = np + 1
-        part_of(start:j) = np
-        start = j + 1
-      end if
-    end do
-    ! `last` must visit the parts in order
-    do q = 2, size(last)
-      if (part_of(last(q)) < part_of(last(q - 1))) then
-        np = 1
-        part_of = 1
-        exit
-      end if
-    end do
 
-    allocate(parts(np))
-    start = 1
-    do q = 1, np
-      parts(q)%first = start
-      do while (start <= n)
-        if (part_of(start) /= q) exit
-        start = start + 1
-      end do
-      parts(q)%n = start - parts(q)%first
-    end do
-    do q = 1, size(last)
-      parts(part_of(last(q)))%nlast = parts(part_of(last(q)))%nlast + 1
-    end do
-    do q = 2, np
-      parts(q)%last0 = parts(q - 1)%last0 + parts(q - 1)%nlast
-      parts(q)%rest0 = parts(q - 1)%rest0 + parts(q - 1)%n - parts(q - 1)%nlast
-    end do
-  end subroutine find_parts
 
-  !> A part's groups renumbered 1, 2, ... in order of first appearance.
-  subroutine local_groups(group, local)
-    integer, intent(in) :: group(:)
-    integer(c_int), intent(out) :: local(:)
-    integer, allocatable :: number(:)
-    integer :: i, ng
-    allocate(number(minval(group):maxval(group)))
-    number = 0
-    ng = 0
-    do i = 1, size(group)
-      if (number(group(i)) == 0) then
-        ng = ng + 1
-        number(group(i)) = ng
-      end if
-      local(i) = int(number(group(i)), c_int)
-    end do
-  end subroutine local_groups
 
-  !> The index of the i-th largest part (loops start with the largest).
-  pure integer function largest(f, i)
-    type(factor_t), intent(in) :: f
-    integer, intent(in) :: i
-    integer :: p, rank
-    do p = 1, size(f%part)
-      rank = count(f%part%n > f%part(p)%n) + count(f%part(1:p - 1)%n == f%part(p)%n) + 1
-      if (rank == i) then
-        largest = p
-        return
-      end if
-    end do
-    largest = i
-  end function largest
 
-  !> Begin a loop over the parts of f: nthreads to run it on (one thread per
-  !> part, at most the OpenMP threads), CHOLMOD's own OpenMP loops kept on
-  !> the thread that calls it, and, on several threads, a BLAS of one thread
-  !> each.  CHOLMOD's loops ask for 4 threads (CHOLMOD_OMP_NUM_THREADS, set
-  !> when the library was built), whatever OMP_NUM_THREADS says; on 2 cores
-  !> those teams cost 13-20 % of the numeric factorization (hertz_1e5 and
-  !> hertz_1e6 of bench/contact.sh, the same factor to the bit).  A second
-  !> BLAS thread inside one factor gains nothing at 1e5-1e6 dofs
-  !> (doc/performance.md).  Give levels and blas back to parts_end.  (The
-  !> parts' allocations on other threads take malloc arenas of their own: a
-  !> program should call c2d_malloc_arenas first.)
-  subroutine parts_begin(f, nthreads, levels, blas)
-    type(factor_t), intent(in) :: f
-    integer, intent(out) :: nthreads, levels, blas
-    integer, allocatable :: item(:,:)
-    call work_items(f, item)
-    nthreads = min(size(item, 2), omp_get_max_threads())
-    if (size(item, 2) > 1) then
-      if (item(3, 2) < side_by_side_min) nthreads = 1
-    end if
-    levels = omp_get_max_active_levels()
-    blas = 0
-    if (nthreads > 1) then
-      call omp_set_max_active_levels(omp_get_active_level() + 1)   ! this loop's team, none inside it
-      blas = int(c2d_blas_threads(1_c_int))
-    else
-      nthreads = 1
-      call omp_set_max_active_levels(omp_get_active_level())
-    end if
-  end subroutine parts_begin
-
-  !> The work of a loop over the parts: item(:, k) = [part, half (0: the
-  !> whole part), dofs], a cut part giving its two halves, largest first.
-  subroutine work_items(f, item)
-    type(factor_t), intent(in) :: f
-    integer, allocatable, intent(out) :: item(:,:)
-    integer :: p, k, h, j
-    integer :: tmp(3)
-    allocate(item(3, size(f%part) + count(f%part%cut)))
-    k = 0
-    do p = 1, size(f%part)
-      if (f%part(p)%cut) then
-        do h = 1, 2
-          k = k + 1
-          if (allocated(f%part(p)%split)) then
-            item(:, k) = [p, h, f%part(p)%split%half(h)%n]
-          else                            ! before the analysis cuts it
-            item(:, k) = [p, h, f%part(p)%n / 2]
-          end if
-        end do
-      else
-        k = k + 1
-        item(:, k) = [p, 0, f%part(p)%n]
-      end if
-    end do
-    do k = 2, size(item, 2)               ! stable insertion sort, largest first
-      tmp = item(:, k)
-      j = k - 1
-      do while (j >= 1)
-        if (item(3, j) >= tmp(3)) exit
-        item(:, j + 1) = item(:, j)
-        j = j - 1
-      end do
-      item(:, j + 1) = tmp
-    end do
-  end subroutine work_items
-
-  subroutine parts_end(levels, blas)
-    integer, intent(in) :: levels, blas
-    integer(c_int) :: old
-    call omp_set_max_active_levels(levels)
-    if (blas > 0) old = c2d_blas_threads(int(blas, c_int))
-  end subroutine parts_end
 
   !> The numeric factorization of A, whose pattern analyze_pattern analyzed:
   !> the second half of factorize.
@@ -546,7 +370,6 @@ contains
     integer(c_int) :: column, equation
     real(c_double) :: ratio
     integer :: i, j, p, nthreads, levels, blas, worst
-    integer, allocatable :: item(:,:)
     real(dp) :: t0, worst_ratio
     logical :: analyzed
 
@@ -573,29 +396,20 @@ contains
                              ' MB available)', factor_bytes(f))
       return
     end if
+    ! what the orderings freed goes back before the factors take their memory
+    call c2d_malloc_trim()
     t0 = omp_get_wtime()
-    call work_items(f, item)
-    call parts_begin(f, nthreads, levels, blas)
+    call parts_begin(f%part, nthreads, levels, blas)
     !$omp parallel do num_threads(nthreads) schedule(dynamic, 1) if (nthreads > 1)
-    do i = 1, size(item, 2)
-      associate (pt => f%part(item(1, i)))
-        if (item(2, i) == 0) then
-          pt%status = c2d_chol_factorize_values(pt%handle, int(pt%n, c_int), A%colptr(pt%first:pt%first + pt%n), &
-                                                A%rowind(A%colptr(pt%first):), int(pt%first - 1, c_int), &
-                                                A%val(A%colptr(pt%first):))
-        else
-          call split_factorize_half(pt%split, item(2, i), A%val(A%colptr(pt%first):A%colptr(pt%first + pt%n) - 1))
-        end if
+    do i = 1, f%nparts
+      associate (pt => f%part(largest(f%part, i)))
+        pt%status = c2d_chol_factorize_values(pt%handle, int(pt%n, c_int), A%colptr(pt%first:pt%first + pt%n), &
+                                              A%rowind(A%colptr(pt%first):), int(pt%first - 1, c_int), &
+                                              A%val(A%colptr(pt%first):))
       end associate
     end do
     !$omp end parallel do
     call parts_end(levels, blas)
-    ! the dense block of each cut part, on every BLAS thread
-    do p = 1, f%nparts
-      associate (pt => f%part(p))
-        if (pt%cut) pt%status = split_finish(pt%split, A%val(A%colptr(pt%first):A%colptr(pt%first + pt%n) - 1))
-      end associate
-    end do
     call read_statistics(f)
     f%time_factorize = omp_get_wtime() - t0
 
@@ -604,9 +418,8 @@ contains
       case (cholmod_ok)
         continue
       case (cholmod_not_posdef)
-        call part_minor(f%part(p), column, equation)
-        call set_error(err, singular_message(global_equation(f%part(p), equation), &
-                                             global_pivot(f, f%part(p), column)), 1)
+        call c2d_chol_minor(f%part(p)%handle, column, equation)
+        call set_singular(err, f, f%part(p), column, equation)
         return
       case (cholmod_out_of_memory)
         call set_out_of_memory(err, 'factorizing K (nnz(L) = ' // i8_to_str(f%nnz_l) // ')', factor_bytes(f))
@@ -623,12 +436,13 @@ contains
     worst = 1
     worst_ratio = huge(1.0_dp)
     do p = 1, f%nparts
-      call part_min_ratio(f%part(p), ratio, column, equation)
+      call c2d_chol_min_pivot_ratio(f%part(p)%handle, ratio, column, equation)
       if (ieee_is_nan(ratio)) then
         call set_error(err, 'sparse Cholesky: non-finite pivot at equation ' // &
                        int_to_str(global_equation(f%part(p), equation)) // ' (column ' // &
-                       int_to_str(global_pivot(f, f%part(p), column)) // &
+                       int_to_str(global_pivot(f%n, f%nlast, f%part(p), column)) // &
                        ' of the permuted matrix): overflow in the factor', 1)
+        err%equation = global_equation(f%part(p), equation)
         f%min_pivot_ratio = real(ratio, dp)
         return
       end if
@@ -639,65 +453,27 @@ contains
     end do
     f%min_pivot_ratio = worst_ratio
     if (worst_ratio < singular_pivot_tolerance(A%n)) then
-      call part_min_ratio(f%part(worst), ratio, column, equation)
-      call set_error(err, singular_message(global_equation(f%part(worst), equation), &
-                                           global_pivot(f, f%part(worst), column)), 1)
+      call c2d_chol_min_pivot_ratio(f%part(worst)%handle, ratio, column, equation)
+      call set_singular(err, f, f%part(worst), column, equation)
       return
     end if
     f%ready = .true.
-
-  contains
-
-    !> The failing pivot and dof of a part (its own numbering).
-    subroutine part_minor(pt, column, equation)
-      type(part_t), intent(in) :: pt
-      integer(c_int), intent(out) :: column, equation
-      integer :: c, e
-      if (pt%cut) then
-        call split_failure(pt%split, c, e)
-        column = int(c, c_int)
-        equation = int(e, c_int)
-      else
-        call c2d_chol_minor(pt%handle, column, equation)
-      end if
-    end subroutine part_minor
-
-    !> The least pivot ratio of a part, its pivot and dof.
-    subroutine part_min_ratio(pt, ratio, column, equation)
-      type(part_t), intent(in) :: pt
-      real(c_double), intent(out) :: ratio
-      integer(c_int), intent(out) :: column, equation
-      real(dp) :: r
-      integer :: c, e
-      if (pt%cut) then
-        call split_min_ratio(pt%split, A%val(A%colptr(pt%first):A%colptr(pt%first + pt%n) - 1), r, c, e)
-        ratio = real(r, c_double)
-        column = int(c, c_int)
-        equation = int(e, c_int)
-      else
-        call c2d_chol_min_pivot_ratio(pt%handle, ratio, column, equation)
-      end if
-    end subroutine part_min_ratio
   end subroutine factorize_values
 
-  !> The dof of A of a part's equation (1-based within the part).
-  pure integer function global_equation(pt, equation)
-    type(part_t), intent(in) :: pt
-    integer(c_int), intent(in) :: equation
-    global_equation = pt%first - 1 + int(equation)
-  end function global_equation
-
-  !> The pivot of P A P' of a part's pivot (1-based within the part).
-  pure integer function global_pivot(f, pt, column)
+  !> err = the diagnosis of a matrix singular or not positive definite at a
+  !> part's pivot, with the equation (the dof of A) as a field.
+  !>   err      (out) status 1, err%equation the dof of A
+  !>   f        (in)  the factor
+  !>   pt       (in)  the part where it failed
+  !>   column, equation (in) the pivot and dof in the part's own numbering
+  subroutine set_singular(err, f, pt, column, equation)
+    type(error_t), allocatable, intent(out) :: err
     type(factor_t), intent(in) :: f
     type(part_t), intent(in) :: pt
-    integer(c_int), intent(in) :: column
-    if (column <= pt%n - pt%nlast) then
-      global_pivot = pt%rest0 + int(column)
-    else
-      global_pivot = f%n - f%nlast + pt%last0 + int(column) - (pt%n - pt%nlast)
-    end if
-  end function global_pivot
+    integer(c_int), intent(in) :: column, equation
+    call set_error(err, singular_message(global_equation(pt, equation), global_pivot(f%n, f%nlast, pt, column)), 1)
+    err%equation = global_equation(pt, equation)
+  end subroutine set_singular
 
   !> Statistics of the parts' handles into f: nnz(L), flops and CHOLMOD's
   !> peak memory summed (the parts are factorized side by side), the ordering
@@ -707,416 +483,27 @@ contains
     integer(c_int64_t) :: lnz, memory_peak
     real(c_double) :: flops, time_analyze, time_factorize
     character(kind=c_char) :: buf(32)
-    integer :: p, named, k
-    integer(i8) :: cut_lnz, cut_memory
-    real(dp) :: cut_flops
+    integer :: p, named
     f%nnz_l = 0_i8
     f%flops = 0.0_dp
     f%memory_peak = 0_i8
     named = 1
-    f%ncut = 0
-    f%separator = 0
     do p = 1, f%nparts
-      if (f%part(p)%cut) then
-        call split_stats(f%part(p)%split, cut_lnz, cut_flops, cut_memory)
-        f%nnz_l = f%nnz_l + cut_lnz
-        f%flops = f%flops + cut_flops
-        f%memory_peak = f%memory_peak + cut_memory
-        f%ncut = f%ncut + 1
-        f%separator = f%separator + f%part(p)%split%nsep
-      else
-        call c2d_chol_stats(f%part(p)%handle, lnz, flops, memory_peak, time_analyze, time_factorize)
-        f%nnz_l = f%nnz_l + int(lnz, i8)
-        f%flops = f%flops + real(flops, dp)
-        f%memory_peak = f%memory_peak + int(memory_peak, i8)
-      end if
+      call c2d_chol_stats(f%part(p)%handle, lnz, flops, memory_peak, time_analyze, time_factorize)
+      f%nnz_l = f%nnz_l + int(lnz, i8)
+      f%flops = f%flops + real(flops, dp)
+      f%memory_peak = f%memory_peak + int(memory_peak, i8)
       if (f%part(p)%nlast > 0 .and. f%part(named)%nlast == 0) named = p
     end do
-    if (f%part(named)%cut) then
-      call c2d_chol_ordering_name(f%part(named)%split%half(1)%handle, buf, int(size(buf), c_int))
-    else
-      call c2d_chol_ordering_name(f%part(named)%handle, buf, int(size(buf), c_int))
-    end if
+    call c2d_chol_ordering_name(f%part(named)%handle, buf, int(size(buf), c_int))
     f%ordering = c_string(buf)
-    ! a cut part's halves order their share of the separator last: "+last"
-    ! names the caller's `last` only
-    k = index(f%ordering, '+last')
-    if (f%nlast == 0 .and. k > 0) f%ordering = f%ordering(1:k - 1)
   end subroutine read_statistics
 
 
-  !> Checks of a pattern and `last` before CHOLMOD sees them.
-  subroutine check_pattern(n, colptr, rowind, err, last)
-    integer, intent(in) :: n
-    integer, intent(in) :: colptr(:), rowind(:)
-    type(error_t), allocatable, intent(out) :: err
-    integer, intent(in), optional :: last(:)
-    logical, allocatable :: seen(:)
-    integer :: j, k
 
-    if (n < 1) then
-      call set_error(err, 'sparse Cholesky: empty matrix (order 0)', 1)
-      return
-    end if
-    if (size(colptr) /= n + 1) then
-      call set_error(err, 'sparse Cholesky: ' // int_to_str(size(colptr)) // ' column pointers for order ' // &
-                     int_to_str(n), 1)
-      return
-    end if
-    do j = 1, n
-      if (colptr(j) < 1 .or. colptr(j + 1) < colptr(j) .or. colptr(j + 1) - 1 > size(rowind)) then
-        call set_error(err, 'sparse Cholesky: bad column pointers at column ' // int_to_str(j), 1)
-        return
-      end if
-    end do
-    if (.not. present(last)) return
-    allocate(seen(n))
-    seen = .false.
-    do k = 1, size(last)
-      if (last(k) < 1 .or. last(k) > n) then
-        call set_error(err, 'sparse Cholesky: dof ' // int_to_str(last(k)) // ' in `last` is out of range 1..' &
-                       // int_to_str(n), 1)
-        return
-      end if
-      if (seen(last(k))) then
-        call set_error(err, 'sparse Cholesky: dof ' // int_to_str(last(k)) // ' appears twice in `last`', 1)
-        return
-      end if
-      seen(last(k)) = .true.
-    end do
-  end subroutine check_pattern
 
-  !> Tolerance on the pivot ratio L(k,k)^2 / A(p_k,p_k) below which A is
-  !> singular to working precision: max(n, 1000) u, u the unit roundoff (the
-  !> n u of LAPACK's DPSTRF, relative here to each dof's own diagonal).  For an
-  !> SPD matrix the ratio is >= 1 / cond(A); for a dependent column it is the
-  !> rounding left of a zero pivot, a few 1e-14 to 1e-13 on meshes of 1e4 to
-  !> 1e5 dofs.
-  !>   n (in) order of A
-  pure real(dp) function singular_pivot_tolerance(n)
-    integer, intent(in) :: n
-    singular_pivot_tolerance = real(max(n, tolerance_order_floor), dp) * epsilon(1.0_dp)
-  end function singular_pivot_tolerance
 
-  !> The diagnostic for a singular or indefinite matrix.
-  pure function singular_message(equation, column) result(msg)
-    integer, intent(in) :: equation, column
-    character(len=:), allocatable :: msg
-    msg = 'stiffness matrix is singular or not positive definite at equation ' // int_to_str(equation) &
-          // ' (column ' // int_to_str(column) // ' of the permuted matrix is dependent: a rigid-body mode' &
-          // ' not held by FIX or contact)'
-  end function singular_message
 
-  !> x = A^-1 b for one right-hand side.
-  !>   f   (in)  a factor with f%ready
-  !>   b   (in)  (n) right-hand side
-  !>   x   (out) (n) solution
-  !>   err (out, optional) allocated on failure; when absent a failure stops
-  !>       the program through fail_numerical (exit status 1)
-  subroutine solve_vector(f, b, x, err)
-    type(factor_t), intent(in) :: f
-    real(dp), intent(in) :: b(:)
-    real(dp), intent(out) :: x(:)
-    type(error_t), allocatable, intent(out), optional :: err
-    call solve_half(f, c2d_solve_whole, b, x, err)
-  end subroutine solve_vector
-
-  !> X = A^-1 B for a block of right-hand sides, one CHOLMOD solve per part.
-  !>   f   (in)  a factor with f%ready
-  !>   b   (in)  (n, nrhs) right-hand sides, nrhs >= 0
-  !>   x   (out) (n, nrhs) solutions
-  !>   err (out, optional) as for solve_vector
-  subroutine solve_block(f, b, x, err)
-    type(factor_t), intent(in) :: f
-    real(dp), intent(in) :: b(:,:)
-    real(dp), intent(out) :: x(:,:)
-    type(error_t), allocatable, intent(out), optional :: err
-    character(len=:), allocatable :: msg
-    integer(c_int), allocatable :: status(:)
-
-    if (.not. f%ready) then
-      msg = 'sparse Cholesky solve: no valid factor (factorize failed or was not called)'
-    else if (size(b, 1) /= f%n .or. size(x, 1) /= f%n .or. size(x, 2) /= size(b, 2)) then
-      msg = 'sparse Cholesky solve: blocks of ' // int_to_str(size(b, 1)) // ' and ' // int_to_str(size(x, 1)) &
-            // ' rows (' // int_to_str(size(b, 2)) // ' and ' // int_to_str(size(x, 2)) &
-            // ' columns) for a factor of order ' // int_to_str(f%n)
-    else
-      if (size(b, 2) == 0) return
-      call solve_parts(f, c2d_solve_whole, size(b, 2), b, x, status)
-      msg = solve_status(f, status)
-      if (len(msg) == 0) return
-    end if
-    call report(msg, err)
-  end subroutine solve_block
-
-  !> y = L^-1 P b, the forward half of a solve.  With `last`, y(n-nlast+1:)
-  !> belongs to the trailing block: L^-1 P maps a vector that is zero off the
-  !> `last` dofs to [0; L_cc^-1 v], and the backward half ends with
-  !> x(last) = L_cc'^-1 y(n-nlast+1:).
-  !>   f (in) a factor with f%ready; b (in) (n); y (out) (n); err as for solve_vector
-  subroutine solve_forward(f, b, y, err)
-    type(factor_t), intent(in) :: f
-    real(dp), intent(in) :: b(:)
-    real(dp), intent(out) :: y(:)
-    type(error_t), allocatable, intent(out), optional :: err
-    call solve_half(f, c2d_solve_forward, b, y, err)
-  end subroutine solve_forward
-
-  !> x = P' L'^-1 y, the backward half: solve_backward(solve_forward(b)) = A^-1 b.
-  !>   f (in) a factor with f%ready; y (in) (n); x (out) (n); err as for solve_vector
-  subroutine solve_backward(f, y, x, err)
-    type(factor_t), intent(in) :: f
-    real(dp), intent(in) :: y(:)
-    real(dp), intent(out) :: x(:)
-    type(error_t), allocatable, intent(out), optional :: err
-    call solve_half(f, c2d_solve_backward, y, x, err)
-  end subroutine solve_backward
-
-  !> x = the solve or one of its halves (half: c2d_solve_*) for one vector.
-  subroutine solve_half(f, half, b, x, err)
-    type(factor_t), intent(in) :: f
-    integer(c_int), intent(in) :: half
-    real(dp), intent(in) :: b(:)
-    real(dp), intent(out) :: x(:)
-    type(error_t), allocatable, intent(out), optional :: err
-    character(len=:), allocatable :: msg
-    integer(c_int), allocatable :: status(:)
-
-    if (.not. f%ready) then
-      msg = 'sparse Cholesky solve: no valid factor (factorize failed or was not called)'
-    else if (size(b) /= f%n .or. size(x) /= f%n) then
-      msg = 'sparse Cholesky solve: vectors of size ' // int_to_str(size(b)) // ' and ' // int_to_str(size(x)) &
-            // ' for a factor of order ' // int_to_str(f%n)
-    else
-      call solve_parts(f, half, 1, b, x, status)
-      msg = solve_status(f, status)
-      if (len(msg) == 0) return
-    end if
-    call report(msg, err)
-  end subroutine solve_half
-
-  !> x = the solve or one of its halves for the columns of b, part by part
-  !> (side by side on the OpenMP threads when A has several parts), with
-  !> each part's status in status(:).  In the pivot order of y
-  !> (forward output, backward input) the part's other dofs are
-  !> rest0+1..rest0+n-nlast and its `last` dofs n-nlast+last0+1.., as its
-  !> own y has them one after the other.
-  subroutine solve_parts(f, half, m, b, x, status)
-    type(factor_t), intent(in) :: f
-    integer(c_int), intent(in) :: half
-    integer, intent(in) :: m
-    real(dp), intent(in) :: b(f%n, m)
-    real(dp), intent(inout) :: x(f%n, m)
-    integer(c_int), allocatable, intent(out) :: status(:)
-    real(dp), allocatable :: bp(:,:), xp(:,:)
-    integer :: i, p, nthreads, levels, blas, r0, l0, nr
-
-    allocate(status(f%nparts))
-    call parts_begin(f, nthreads, levels, blas)
-    if (f%nparts == 1) then                 ! the part's own order is A's: no copy
-      status(1) = part_solve(f%part(1), half, m, b, x)
-      call parts_end(levels, blas)
-      return
-    end if
-    !$omp parallel do num_threads(nthreads) schedule(dynamic, 1) if (nthreads > 1) private(bp, xp, r0, l0, nr, p)
-    do i = 1, f%nparts
-      p = largest(f, i)
-      associate (pt => f%part(p))
-        nr = pt%n - pt%nlast
-        r0 = pt%rest0
-        l0 = f%n - f%nlast + pt%last0
-        allocate(bp(pt%n, m), xp(pt%n, m))
-        if (half == c2d_solve_backward) then          ! y in pivot order
-          bp(1:nr, :) = b(r0 + 1:r0 + nr, :)
-          bp(nr + 1:, :) = b(l0 + 1:l0 + pt%nlast, :)
-        else                                          ! b in the order of A
-          bp = b(pt%first:pt%first + pt%n - 1, :)
-        end if
-        status(p) = part_solve(pt, half, m, bp, xp)
-        if (half == c2d_solve_forward) then
-          x(r0 + 1:r0 + nr, :) = xp(1:nr, :)
-          x(l0 + 1:l0 + pt%nlast, :) = xp(nr + 1:, :)
-        else
-          x(pt%first:pt%first + pt%n - 1, :) = xp
-        end if
-        deallocate(bp, xp)
-      end associate
-    end do
-    !$omp end parallel do
-    call parts_end(levels, blas)
-  end subroutine solve_parts
-
-  !> A part's solve or one of its halves, for m columns.
-  function part_solve(pt, half, m, b, x) result(status)
-    type(part_t), intent(in) :: pt
-    integer(c_int), intent(in) :: half
-    integer, intent(in) :: m
-    real(dp), intent(in) :: b(pt%n, m)
-    real(dp), intent(inout) :: x(pt%n, m)
-    integer(c_int) :: status
-    if (pt%cut) then
-      status = split_solve(pt%split, half, m, b, x)
-    else
-      status = c2d_chol_solve_half(pt%handle, half, int(pt%n, c_int), int(m, c_int), b, x)
-    end if
-  end function part_solve
-
-  !> '' when every part's solve succeeded, else the message of the first failure.
-  function solve_status(f, status) result(msg)
-    type(factor_t), intent(in) :: f
-    integer(c_int), intent(in) :: status(:)
-    character(len=:), allocatable :: msg
-    integer :: p
-    msg = ''
-    do p = 1, f%nparts
-      if (status(p) /= cholmod_ok) then
-        msg = 'sparse Cholesky solve failed: ' // status_name(status(p)) // ' (status ' // &
-              int_to_str(int(status(p))) // ')'
-        return
-      end if
-    end do
-  end function solve_status
-
-  !> The trailing block L_cc of L, for a factor computed with `last`: rows and
-  !> columns of the last nlast pivots, in the order of `last`, so that
-  !>     (A^-1)(last, last) = (L_cc L_cc')^-1,  L_cc L_cc' = Schur complement on last.
-  !>   f     (in)  a factor from factorize(f, A, err, last) with f%ready
-  !>   nlast (in)  size(last) given to factorize
-  !>   Lcc   (out) (nlast, nlast) lower triangular, zero above the diagonal
-  !>   err   (out, optional) allocated when f has no such block (no `last`,
-  !>         another nlast, factor not supernodal LL', block not at the end);
-  !>         when absent a failure stops the program through fail_numerical
-  !>   first, count (in, optional) only the diagonal sub-block on rows and
-  !>         columns first..first+count-1 of L_cc
-  subroutine trailing_factor_block(f, nlast, Lcc, err, first, count)
-    type(factor_t), intent(in) :: f
-    integer, intent(in) :: nlast
-    real(dp), allocatable, intent(out) :: Lcc(:,:)
-    type(error_t), allocatable, intent(out), optional :: err
-    integer, intent(in), optional :: first, count
-    character(len=:), allocatable :: msg
-    real(dp), allocatable :: block(:,:)
-    integer(c_int) :: status
-    integer :: k1, m, p, lo, hi, st
-    type(error_t), allocatable :: oom
-
-    k1 = 1
-    m = nlast
-    if (present(first)) k1 = first
-    if (present(count)) m = count
-    msg = trailing_check(f, nlast)
-    if (len(msg) == 0 .and. (k1 < 1 .or. m < 1 .or. k1 - 1 + m > nlast)) &
-      msg = trailing_status_message(c2d_chol_bad_argument)
-    if (len(msg) == 0) then
-      allocate(Lcc(m, m), source=0.0_dp, stat=st)
-      if (st /= 0) then
-        call set_out_of_memory(oom, 'condensing the contact problem (the factor''s contact block L_cc of ' // &
-                               int_to_str(m) // ' x ' // int_to_str(m) // ')', 8_i8 * int(m, i8) * int(m, i8))
-        call report(oom%message, err)
-        return
-      end if
-      status = cholmod_ok
-      ! L_cc is block diagonal by part: each part's piece of the range from its own factor
-      do p = 1, f%nparts
-        associate (pt => f%part(p))
-          lo = max(k1, pt%last0 + 1)
-          hi = min(k1 + m - 1, pt%last0 + pt%nlast)
-          if (lo > hi) cycle
-          if (lo == k1 .and. hi == k1 + m - 1) then
-            status = part_trailing_range(pt, lo - pt%last0, m, Lcc)
-          else
-            allocate(block(hi - lo + 1, hi - lo + 1))
-            status = part_trailing_range(pt, lo - pt%last0, hi - lo + 1, block)
-            Lcc(lo - k1 + 1:hi - k1 + 1, lo - k1 + 1:hi - k1 + 1) = block
-            deallocate(block)
-          end if
-        end associate
-        if (status /= cholmod_ok) exit
-      end do
-      if (status == cholmod_ok) return
-      deallocate(Lcc)
-      msg = trailing_status_message(status)
-    end if
-    call report(msg, err)
-  end subroutine trailing_factor_block
-
-  !> The last row e of the diagonal block of L_cc that starts at row and
-  !> column `first`: L_cc(e+1:, first:e) = 0 (K couples no two bodies: one
-  !> block per body).  f, nlast and err as for trailing_factor_block.
-  subroutine trailing_block_end(f, nlast, first, e, err)
-    type(factor_t), intent(in) :: f
-    integer, intent(in) :: nlast, first
-    integer, intent(out) :: e
-    type(error_t), allocatable, intent(out), optional :: err
-    character(len=:), allocatable :: msg
-    integer(c_int) :: status, last_row
-    integer :: p
-
-    e = first
-    status = c2d_chol_bad_argument
-    msg = trailing_check(f, nlast)
-    if (len(msg) == 0 .and. (first < 1 .or. first > nlast)) msg = trailing_status_message(status)
-    if (len(msg) == 0) then
-      do p = 1, f%nparts
-        associate (pt => f%part(p))
-          if (first > pt%last0 .and. first <= pt%last0 + pt%nlast) then
-            if (pt%cut) then
-              status = split_block_end(pt%split, pt%nlast, first - pt%last0, last_row)
-            else
-              status = c2d_chol_trailing_block_end(pt%handle, int(pt%nlast, c_int), int(first - pt%last0, c_int), &
-                                                   last_row)
-            end if
-            e = pt%last0 + int(last_row)
-            exit
-          end if
-        end associate
-      end do
-      if (status == cholmod_ok) return
-      msg = trailing_status_message(status)
-    end if
-    call report(msg, err)
-  end subroutine trailing_block_end
-
-  !> Rows and columns first..first+count-1 of a part's trailing block.
-  function part_trailing_range(pt, first, count, block) result(status)
-    type(part_t), intent(in) :: pt
-    integer, intent(in) :: first, count
-    real(dp), intent(out) :: block(count, count)
-    integer(c_int) :: status
-    if (pt%cut) then
-      status = split_trailing_range(pt%split, pt%nlast, first, count, block)
-    else
-      status = c2d_chol_trailing_range(pt%handle, int(pt%nlast, c_int), int(first, c_int), int(count, c_int), block)
-    end if
-  end function part_trailing_range
-
-  !> '' when f can have a trailing block of nlast dofs, else why not.
-  function trailing_check(f, nlast) result(msg)
-    type(factor_t), intent(in) :: f
-    integer, intent(in) :: nlast
-    character(len=:), allocatable :: msg
-    msg = ''
-    if (.not. f%ready) then
-      msg = 'trailing factor block: no valid factor (factorize failed or was not called)'
-    else if (f%nlast == 0) then
-      msg = 'trailing factor block: the factor was computed without `last`'
-    else if (nlast /= f%nlast) then
-      msg = 'trailing factor block: ' // int_to_str(nlast) // ' dofs asked, the factor has ' &
-            // int_to_str(f%nlast) // ' ordered last'
-    end if
-  end function trailing_check
-
-  function trailing_status_message(status) result(msg)
-    integer(c_int), intent(in) :: status
-    character(len=:), allocatable :: msg
-    if (status == c2d_chol_not_super_ll) then
-      msg = 'trailing factor block: the factor is not stored as supernodal LL'' (LDL'' or simplicial)'
-    else if (status == c2d_chol_block_moved) then
-      msg = 'trailing factor block: the `last` dofs are not the last pivots of the factor'
-    else
-      msg = 'trailing factor block: ' // status_name(status) // ' (status ' // int_to_str(int(status)) // ')'
-    end if
-  end function trailing_status_message
 
 
   !> Release the CHOLMOD handles of f (no-op when it holds none); the
@@ -1128,7 +515,6 @@ contains
     if (allocated(f%part)) then
       do p = 1, size(f%part)
         if (c_associated(f%part(p)%handle)) call c2d_chol_destroy(f%part(p)%handle)
-        if (allocated(f%part(p)%split)) call split_free(f%part(p)%split)
       end do
       deallocate(f%part)
     end if
@@ -1140,13 +526,6 @@ contains
     type(factor_t), intent(inout) :: f
     call free_factor(f)
   end subroutine finalize_factor
-
-  !> Cut parts of split_min_dofs dofs or more (split_min); the unit tests
-  !> lower it to cut small matrices.
-  subroutine set_split_min(n)
-    integer, intent(in) :: n
-    split_min = n
-  end subroutine set_split_min
 
   !> nnz(L) of the last factorization (without amalgamation zeros).
   pure integer(i8) function factor_nnz(f)
@@ -1167,14 +546,6 @@ contains
     factor_bytes = 12_i8 * f%nnz_l
   end function factor_bytes
 
-  !> Bytes an ordering of an n-by-n pattern with nnz stored entries takes,
-  !> about: the symmetric graph (both triangles) and its coarser copies in
-  !> METIS, CHOLMOD's symbolic workspace; 4-byte integers.
-  pure integer(i8) function ordering_bytes(n, nnz)
-    integer, intent(in) :: n
-    integer(i8), intent(in) :: nnz
-    ordering_bytes = 4_i8 * (4_i8 * nnz + 20_i8 * n)
-  end function ordering_bytes
 
   !> Peak memory used by CHOLMOD for this factor, bytes.
   pure integer(i8) function factor_memory(f)
@@ -1191,36 +562,7 @@ contains
     name = trim(f%ordering)
   end function factor_ordering
 
-  !> Hand msg to err when present, else stop with exit status 1.
-  subroutine report(msg, err)
-    character(len=*), intent(in) :: msg
-    type(error_t), allocatable, intent(out), optional :: err
-    if (present(err)) then
-      call set_error(err, msg, 1)
-    else
-      call fail_numerical(msg)
-    end if
-  end subroutine report
 
-  !> Name of a CHOLMOD or shim status code.
-  function status_name(status) result(name)
-    integer(c_int), intent(in) :: status
-    character(len=:), allocatable :: name
-    character(kind=c_char) :: buf(32)
-    call c2d_chol_status_name(status, buf, int(size(buf), c_int))
-    name = c_string(buf)
-  end function status_name
 
-  !> Fortran string of a NUL-terminated c_char array.
-  pure function c_string(buf) result(s)
-    character(kind=c_char), intent(in) :: buf(:)
-    character(len=:), allocatable :: s
-    integer :: k
-    s = ''
-    do k = 1, size(buf)
-      if (buf(k) == c_null_char) exit
-      s = s // buf(k)
-    end do
-  end function c_string
 
 end module sparse_cholesky

@@ -8,9 +8,10 @@
 !> part of their own (the bodies' factorizations) ask run_threads how many
 !> there are.  The count lives in the OpenMP run time, not here.
 !>
-!> It also bounds glibc's malloc arenas (the parts of a factor allocate on
-!> the threads; each further arena keeps freed pages resident) and ends
-!> OpenBLAS's spinning workers until the first BLAS call that wants them.
+!> It also makes the process-wide settings of the run once, through
+!> runtime_binding (src/runtime_tuning.c): at most two glibc malloc arenas
+!> (the parts of a factor allocate on the threads; each further arena keeps
+!> freed pages resident) and OpenBLAS's thread count.
 !>
 !> Under an address-space limit (ulimit -v) the threads cost memory: each
 !> further one a BLAS work buffer and two stacks.  The count is then lowered
@@ -28,7 +29,7 @@
 module threads
   use, intrinsic :: iso_c_binding, only: c_int, c_int64_t
   use omp_lib, only: omp_set_num_threads, omp_get_max_threads
-  use cholmod_binding, only: c2d_blas_threads, c2d_blas_park, c2d_malloc_arenas, c2d_blas_start
+  use runtime_binding, only: c2d_runtime_start, c2d_blas_start
   use diagnostics, only: error_t, set_out_of_memory, int_to_str, i8_to_str
   use kinds, only: i8
   implicit none
@@ -48,10 +49,9 @@ contains
     integer, intent(in) :: jobs
     character(len=:), allocatable, intent(out) :: note
     type(error_t), allocatable, intent(out) :: err
-    integer :: old, asked, used
+    integer :: asked, used
     integer(c_int64_t) :: left, per_thread, first
     note = ''
-    call c2d_malloc_arenas()
     if (jobs > 0) call omp_set_num_threads(jobs)
     asked = run_threads()
     used = int(c2d_blas_start(int(asked, c_int), left, per_thread, first))
@@ -67,12 +67,9 @@ contains
         i8_to_str(int(per_thread, i8) / 1048576_i8) // ' MB (a BLAS work buffer, two stacks)'
     end if
     ! OpenBLAS reads OPENBLAS_NUM_THREADS or OMP_NUM_THREADS when it loads,
-    ! not -j: give it the run's count (0 when the BLAS is not OpenBLAS)
-    old = int(c2d_blas_threads(int(run_threads(), c_int)))
-    ! its workers would spin on a core through the phases before the
-    ! factorization, which use OpenMP and no BLAS; the first threaded BLAS
-    ! call starts them again
-    call c2d_blas_park()
+    ! not -j: give it the run's count, and bound the malloc arenas (after
+    ! c2d_blas_start, which under a limit sets the count to what fits)
+    call c2d_runtime_start(int(run_threads(), c_int))
   end subroutine start_threads
 
   !> The number of threads the run uses (OpenMP's, outside any parallel region).

@@ -121,7 +121,7 @@ contains
     call check(.not. allocated(err), name // ': factorized, contact dofs last')
     if (allocated(err)) return
     allocate(y(nfree), u0(n))
-    call solve_forward(f, rhs, y)
+    call solve_forward(f, rhs, y, err)
     u0 = ubar
     call condense(cs, eq, f, y, u0, w, q, cd, err, way)
     call check(.not. allocated(err), name // ': condensed')
@@ -167,7 +167,7 @@ contains
     ! the recovery: u = K^-1 (f - C' mu) for some multipliers
     allocate(mu(nc), u(n))
     mu = [(0.5_dp + 0.1_dp * r, r = 1, nc)]
-    call recover(eq, f, y, cd, u0, mu, u)
+    call recover(eq, f, y, cd, u0, mu, u, err)
     fd(:, 1) = rhs - matmul(bd_t, mu)
     call dpotrs('L', nfree, 1, kd, nfree, fd, nfree, info)
     ud = ubar

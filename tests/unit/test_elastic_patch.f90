@@ -176,7 +176,7 @@ contains
     call factorize(f, k, err)
     call check(.not. allocated(err), name // ': factorized')
     if (allocated(err)) return
-    call solve(f, rhs, x)
+    call solve(f, rhs, x, err)
     u = ubar
     do i = 1, n
       if (eq(i) > 0) u(i) = x(eq(i), 1)

@@ -129,7 +129,7 @@ contains
       el2 = huge(1.0_dp); eh1 = huge(1.0_dp)
       return
     end if
-    call solve(f, rhs, x)
+    call solve(f, rhs, x, err)
     u = ubar
     do i = 1, nd
       if (eq(i) > 0) u(i) = x(eq(i), 1)

@@ -133,7 +133,7 @@ contains
     do i = 1, n
       if (eqp(i) > 0) rhs(eqp(i), 1) = b(i)
     end do
-    call solve(f, rhs, x)
+    call solve(f, rhs, x, err)
     u = 0.0_dp
     do i = 1, n
       if (eqp(i) > 0) u(i) = x(eqp(i), 1)
