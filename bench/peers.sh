@@ -1,41 +1,56 @@
 #!/bin/sh
-# bench/peers.sh [REPEATS]: accuracy per second on the Hertz problem H against
-# peers, side by side: contact2d, GetFEM 5.4 (Debian python3-getfem, run with
-# /usr/bin/python3, nodal contact brick) and CalculiX 2.20 (Debian calculix-ccx,
-# surface-to-surface penalty contact).  A sweep over the contact-zone mesh size
-# hc, the same gmsh meshes for every code (meshed beforehand: meshing is not
-# timed); error = relative L2 pressure error over |x| < a against Hertz with a,
-# p0 from each code's own load P; time = whole-process wall time of the solver,
-# median of up to REPEATS runs (default 5; runs longer than 30 s get fewer, see
-# bench/peers/README.md); the user+sys CPU time is reported too (less disturbed
-# than the wall time when the machine is shared).  Prints the sweep and the
-# times at matched error (1%, 0.5%) with the speedup of contact2d over the
-# faster peer.
-# Goal (issue): contact2d at least 10x faster than the faster peer.
-# A peer that is not installed is skipped with a message.  Outputs and inputs
-# go to bench/out/peers/ (PEERS_OUT to change); PEERS_HC overrides the sweep
-# (comma-separated hc values), PEERS_THREADS the threads per process (1).
+# bench/peers.sh [REPEATS]: accuracy per second on the Hertz problem H,
+# contact2d (P1, and quadratic when it takes contact on quadratic elements)
+# against GetFEM 5.4 (Debian python3-getfem, nodal contact brick, P1 and P2)
+# and CalculiX 2.20 (Debian calculix-ccx, surface-to-surface penalty, CPE3
+# and CPE6), on even meshes and on meshes graded toward the zone's ends.
+# Error = pressure L2 error along the contact line and energy (H1) error near
+# the zone, both against a reference of the same finite problem (a much finer
+# contact2d solve on graded meshes, its own convergence printed); time =
+# median user+sys CPU time of the solver process over up to REPEATS runs
+# (default 3).  Prints the sweep, the reference's convergence and the CPU
+# time at matched pressure error (1 %, 0.3 %, 0.1 %) and matched H1 error,
+# with the speedup of contact2d over the faster peer, measured in this run.
+# Goal (issue 25): quadratic contact2d at 0.1 % pressure error in under 1 s
+# on one core, at least 10x faster than the faster peer at every accuracy
+# both reach.  A peer that is not installed is skipped with a message.
+# Outputs go to bench/out/peers/ (PEERS_OUT); PEERS_HC overrides the sweep,
+# PEERS_SERIES the series (code:kind,...), PEERS_REF_HC the reference's size,
+# PEERS_GRADE the grading ratio, PEERS_THREADS the threads per process (1),
+# PEERS_TIMEOUT the wall-time limit of one run (s, default 900).
+# PEERS_DOC=doc/accuracy-cost.md puts the tables (printed in markdown) into
+# that page between its "bench/peers.sh" markers.
 set -eu
 export PYTHONDONTWRITEBYTECODE=1
 top=$(cd "$(dirname "$0")/.." && pwd)
 prog=${CONTACT2D:-$top/bin/contact2d}
-reps=${1:-5}
+reps=${1:-3}
 out=${PEERS_OUT:-$top/bench/out/peers}
 py=/usr/bin/python3
 [ -x "$prog" ] || make -C "$top" >/dev/null
 [ -x "$py" ] || { echo "peers: $py not found" >&2; exit 1; }
 command -v gmsh >/dev/null || { echo "peers: gmsh not found" >&2; exit 1; }
-codes=contact2d
-if "$py" -c 'import getfem' >/dev/null 2>&1; then
-  codes=$codes,getfem
-else
-  echo "peers: GetFEM skipped: python3-getfem is not installed (apt-get install python3-getfem)"
+series=${PEERS_SERIES:-contact2d:p1,contact2d:p1g,contact2d:p2,contact2d:p2g,getfem:p1,getfem:p1g,getfem:p2,getfem:p2g,ccx:p1,ccx:p1g,ccx:p2,ccx:p2g}
+keep=
+for s in $(echo "$series" | tr , ' '); do
+  case $s in
+    getfem:*) "$py" -c 'import getfem' >/dev/null 2>&1 || {
+        echo "peers: $s skipped: python3-getfem is not installed (apt-get install python3-getfem)"; continue; } ;;
+    ccx:*) command -v ccx >/dev/null 2>&1 || {
+        echo "peers: $s skipped: ccx is not installed (apt-get install calculix-ccx)"; continue; } ;;
+  esac
+  keep=${keep:+$keep,}$s
+done
+# the energy-norm error tool of the studies, built once per output folder
+mkdir -p "$out/bin"
+if [ ! -x "$out/bin/c2dh1" ] || [ "$top/studies/c2dh1.f90" -nt "$out/bin/c2dh1" ]; then
+  gfortran -std=f2008 -O2 -J "$out/bin" -o "$out/bin/c2dh1" "$top/studies/c2dh1.f90"
 fi
-if command -v ccx >/dev/null 2>&1; then
-  codes=$codes,ccx
-else
-  echo "peers: CalculiX skipped: ccx is not installed (apt-get install calculix-ccx)"
-fi
-set -- --prog "$prog" --out "$out" --codes "$codes" --reps "$reps" --threads "${PEERS_THREADS:-1}"
+set -- --prog "$prog" --out "$out" --series "$keep" --reps "$reps" --threads "${PEERS_THREADS:-1}" \
+  --c2dh1 "$out/bin/c2dh1"
 [ -z "${PEERS_HC:-}" ] || set -- "$@" --hc "$PEERS_HC"
+[ -z "${PEERS_REF_HC:-}" ] || set -- "$@" --ref-hc "$PEERS_REF_HC"
+[ -z "${PEERS_GRADE:-}" ] || set -- "$@" --grade "$PEERS_GRADE"
+[ -z "${PEERS_TIMEOUT:-}" ] || set -- "$@" --timeout "$PEERS_TIMEOUT"
+[ -z "${PEERS_DOC:-}" ] || set -- "$@" --doc "$(cd "$(dirname "$PEERS_DOC")" && pwd)/$(basename "$PEERS_DOC")"
 exec "$py" "$top/bench/peers/driver.py" "$@"

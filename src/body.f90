@@ -34,6 +34,7 @@ module body
   use kinds, only: dp, i8
   use diagnostics, only: error_t, set_out_of_memory, int_to_str
   use mesh, only: mesh_t
+  use sorting, only: sort_small
   use material, only: elasticity_t, von_mises
   use elements, only: element_stiffness, element_force, element_strain, quadrature_rule, shape_at, strain_operator, &
                       max_nen
@@ -232,21 +233,6 @@ contains
     t(1:size(a)) = a
     call move_alloc(t, a)
   end subroutine grow
-
-  pure subroutine sort_small(a)
-    integer, intent(inout) :: a(:)
-    integer :: i, j, t
-    do i = 2, size(a)
-      t = a(i)
-      j = i - 1
-      do while (j >= 1)
-        if (a(j) <= t) exit
-        a(j + 1) = a(j)
-        j = j - 1
-      end do
-      a(j + 1) = t
-    end do
-  end subroutine sort_small
 
   !> Add the element stiffnesses into k (pattern from build_pattern) and move
   !> the prescribed values to the right-hand side: rhs_f -= K_fd ubar_d.

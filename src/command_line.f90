@@ -231,8 +231,7 @@ contains
       '    REF x= y=                         (default: the circle''s centre, the first point)', &
       '    FIX [ux=] [uy=] [rz=] [ramp=k0:k1|curve=NAME]   (prescribed; FIX alone: all 0)', &
       '    FORCE [fx=] [fy=] [m=] [ramp=k0:k1|curve=NAME]  (on the directions FIX leaves free)', &
-      '                                    (no FIX and no FORCE: held fixed; friction needs every', &
-      '                                    direction FIXed for now)', &
+      '                                    (no FIX and no FORCE: held fixed)', &
       '  SOLVER lcp=auto|lemke|pgs|pdas [tol=1e-10] [maxit=N] [omega=1.0]   (pdas: frictionless only)', &
       '         [ordering=auto|metis|amd]  (fill-reducing ordering; auto: AMD up to 5e5 free dofs, METIS above)', &
       '         [condense=auto|solve|inverse]  (W per body: triangular solves or the block''s inverse)', &

@@ -27,6 +27,7 @@ program contact2d
                                   condensed_t, condensed_report, condensed_blocks
   use lcp_solvers, only: lcp_options_t, lcp_report_t
   use friction_lcp, only: solve_friction_lcp, friction_state
+  use friction_modes, only: solve_friction_floating, no_equilibrium
   use contact_lcp, only: contact_solution_t, solve_contact
   use rigid_modes, only: floating_t, find_floating_modes, mode_name, motion_name, describe_motion, remove_motions
   use mode_support, only: mode_split_t, split_free_modes
@@ -112,10 +113,9 @@ program contact2d
   ! free rigid modes (bodies held only by contact): pin k dofs to factorize K^#
   call find_floating_modes(sc%bodies, sc%fixed, fl)
   call check_floating_bodies()
-  call check_friction_support()
   call split_free_modes(cs, sc%bodies, fl, sc%fext, split)
   call split_rigid_modes(cs, sc%rigids, sc%fixed, sc%fext, rsplit)
-  call check_rigid_friction()
+  call check_floating_friction_solver()
   held = sc%fixed
   if (fl%k > 0) held(fl%pin) = .true.
   held(rsplit%dof) = .true.                 ! a RIGID has no stiffness: its free dofs are modes, not equations
@@ -640,7 +640,8 @@ contains
     ! combinations that the rows hold: mode_support (split)
     if (rsplit%k > 0) then
       ! the RIGIDs' free directions join the bodies' free modes (rigid_support)
-      call solve_contact(w, q, reshape([split%h, rsplit%h], [cs%nrow, fl%k + rsplit%k]), [split%e, rsplit%e], &
+      call solve_contact(w, q, reshape([split%h, rsplit%h(1:cs%nrow, :)], [cs%nrow, fl%k + rsplit%k]), &
+                         [split%e, rsplit%e], &
                          block_diagonal(split%held, rsplit%held), method, opts, sol)
     else
       call solve_contact(w, q, split%h, split%e, split%held, method, opts, sol)
@@ -753,7 +754,10 @@ contains
     type(lcp_report_t) :: rep
     character(len=:), allocatable :: method
     real(dp), allocatable :: z(:), cu(:), qn(:), qt(:), sprev(:), fk(:), ubk(:)
+    real(dp), allocatable :: hh(:,:), eg(:,:), eh(:), alpha(:), unbalanced(:)
+    character(len=:), allocatable :: cause
     integer :: n, nt, kstep, g, r, iterations
+    logical :: floating
     type(results_t) :: saved
     character(len=200) :: line
 
@@ -767,6 +771,25 @@ contains
     ! tableau is small, the block Gauss-Seidel above
     if (method == 'auto') method = merge('lemke', 'pgs  ', n + 3 * nt <= 400)
     method = trim(method)
+    ! bodies held only by contact: the amplitudes of the held combinations of
+    ! their modes are unknowns of the friction LCP (friction_modes), against
+    ! H = C R V and the load e = V'R'f of each ramp
+    allocate(res%alpha(fl%k), source=0.0_dp)
+    floating = size(split%held, 2) + size(rsplit%held, 2) > 0
+    if (floating) then
+      method = 'lemke'
+      call say('friction ' // int_to_str(size(split%held, 2) + size(rsplit%held, 2)) // ' rigid-mode amplitudes ' // &
+        'of the bodies and RIGIDs held only by contact are unknowns of each step''s friction LCP, solved by ' // &
+        'Lemke (' // int_to_str(n + 3 * nt + 2 * (size(split%held, 2) + size(rsplit%held, 2))) // ' unknowns)')
+      ! the bodies' held modes, then the RIGIDs' held free directions (their FORCE per ramp)
+      hh = reshape([matmul(split%h, split%held), matmul(rsplit%h, rsplit%held)], &
+                   [n + nt, size(split%held, 2) + size(rsplit%held, 2)])
+      eg = reshape([transpose(matmul(transpose(split%held), matmul(transpose(fl%r), sc%fgroup))), &
+                    transpose(matmul(transpose(rsplit%held), sc%fgroup(rsplit%dof, :)))], &
+                   [size(sc%ramp, 2), size(hh, 2)])
+      eg = transpose(eg)
+      allocate(eh(size(hh, 2)), alpha(size(hh, 2)))
+    end if
     allocate(z(n + nt), cu(n + nt), qn(n), qt(nt), sprev(nt), res%fstate(nt))
     if (deck%output%steps_all) then
       saved = res
@@ -782,7 +805,26 @@ contains
       end do
       qn = cs%g - cu(1:n)                          ! gaps without contact forces
       qt = sprev - cu(n + 1:)                      ! minus the slip of the step without contact forces
-      call solve_friction_lcp(w, qn, qt, cs%tan_row, cs%tan_mu, cs%tan_bound, method, opts, z, rep)
+      if (floating) then
+        eh = 0.0_dp
+        do g = 1, size(sc%ramp, 2)
+          eh = eh + group_factor(sc, g, kstep) * eg(:, g)
+        end do
+        call solve_friction_floating(w, qn, qt, cs%tan_row, cs%tan_mu, cs%tan_bound, hh, eh, opts, z, alpha, rep, &
+                                     unbalanced, cause)
+        if (rep%info == no_equilibrium) call fail_numerical('friction, load step ' // int_to_str(kstep) // ' of ' // &
+          int_to_str(sc%steps) // ': ' // floating_no_equilibrium(unbalanced, cause))
+        if (rep%info /= 0 .and. index(rep%message, 'out of memory') /= 1) call fail_numerical('friction, load step ' &
+          // int_to_str(kstep) // ' of ' // int_to_str(sc%steps) // ': no equilibrium found for the bodies held ' // &
+          'only by contact (' // floating_names() // '): ' // rep%message)
+        cu = cu + matmul(hh, alpha)                ! C u0 + C R alpha: the step's rigid motion
+        qn = cs%g - cu(1:n)
+        qt = qt - matmul(hh(n + 1:, :), alpha)
+        res%alpha = matmul(split%held, alpha(1:size(split%held, 2)))
+        rigid_alpha = matmul(rsplit%held, alpha(size(split%held, 2) + 1:))
+      else
+        call solve_friction_lcp(w, qn, qt, cs%tan_row, cs%tan_mu, cs%tan_bound, method, opts, z, rep)
+      end if
       iterations = iterations + rep%iterations
       if (rep%info /= 0 .and. index(rep%message, 'out of memory') == 1) call fail_numerical(rep%message)
       if (rep%info /= 0) call fail_numerical('friction, load step ' // int_to_str(kstep) // ' of ' // &
@@ -806,8 +848,10 @@ contains
         call record_step(kstep, fk, ubk, z)
         call step_loads(sc, sc%steps, fk, ubk)
         call move_alloc(res%fstate, saved%fstate)
+        call move_alloc(res%alpha, saved%alpha)
         res = saved
         call move_alloc(saved%fstate, res%fstate)
+        call move_alloc(saved%alpha, res%alpha)
       end if
     end do
     res%lcp_method = method
@@ -1206,21 +1250,6 @@ contains
       'on the slave boundary)')
   end subroutine diagnose_pulled_rigid
 
-  !> Friction against a RIGID with a free direction (force control) needs the
-  !> friction LCP with equality constraints for floating modes: refused (exit 2
-  !> at the CONTACT line); friction against a prescribed RIGID is solved.
-  subroutine check_rigid_friction()
-    integer :: ip, r
-    do ip = 1, cs%npair
-      r = cs%pair(ip)%spec%rigid
-      if (r == 0 .or. .not. has_friction(cs%pair(ip)%spec)) cycle
-      if (.not. any(rsplit%owner == r)) cycle
-      call add_error(diag, deck%file, deck%contacts(ip)%line, 'friction against RIGID "' // sc%rigids(r)%name // &
-        '" with a direction under FORCE is not supported yet: the friction LCP (src/friction_lcp.f90) has no ' // &
-        'equality constraints for floating modes (expected FIX ux= uy= rz= on that RIGID, or a frictionless pair)')
-    end do
-    call stop_input_errors(diag)
-  end subroutine check_rigid_friction
 
   !> How a pair's tangential behaviour is described in the log.
   function friction_law(kind, spec) result(t)
@@ -1242,21 +1271,88 @@ contains
     end select
   end function friction_law
 
-  !> Friction needs every body held by FIX in its rigid modes: the friction
-  !> LCP has no equality constraints for the free modes (exit 2 at the CONTACT
-  !> line of the first friction pair).
-  subroutine check_friction_support()
-    integer :: ip
-    if (cs%ntan == 0 .or. fl%k == 0) return
-    do ip = 1, cs%npair
-      if (has_friction(cs%pair(ip)%spec)) then
-        call add_error(diag, deck%file, deck%contacts(ip)%line, 'friction with a body held only by contact (body ' // &
-          sc%bodies(fl%mode_body(1))%name // ': ' // mode_name(fl, 1) // ' not held by FIX) is not supported ' // &
-          '(expected FIX on every body that a friction pair touches, or a frictionless pair)')
-        call stop_input_errors(diag)
+  !> A body held only by contact in a scene with friction: the friction LCP
+  !> with its mode amplitudes is solved by Lemke (friction_modes); lcp=pgs
+  !> is refused at the SOLVER line (exit 2).
+  subroutine check_floating_friction_solver()
+    if (cs%ntan == 0 .or. deck%solver%lcp /= 'pgs') return
+    if (size(split%held, 2) == 0 .and. size(rsplit%held, 2) > 0) then
+      call add_error(diag, deck%file, deck%solver%line, 'lcp=pgs with friction on a RIGID under FORCE is not ' // &
+        'supported (expected lcp=lemke or lcp=auto, which solve it by Lemke''s method)')
+      call stop_input_errors(diag)
+    end if
+    if (size(split%held, 2) == 0) return
+    call add_error(diag, deck%file, deck%solver%line, 'lcp=pgs with friction on a body held only by contact (body "' // &
+      sc%bodies(fl%mode_body(1))%name // '": ' // mode_name(fl, 1) // ' not held by FIX) is not supported ' // &
+      '(expected lcp=lemke or lcp=auto, which solve it by Lemke''s method)')
+    call stop_input_errors(diag)
+  end subroutine check_floating_friction_solver
+
+  !> The diagnosis of a frictional step without equilibrium from the unbalanced
+  !> load along the held combinations (the bodies' modes, then the RIGIDs'
+  !> free directions): the body or the RIGID that carries most of it.
+  function floating_no_equilibrium(unbalanced, cause) result(t)
+    real(dp), intent(in) :: unbalanced(:)
+    character(len=*), intent(in) :: cause
+    character(len=:), allocatable :: t
+    real(dp), allocatable :: cr(:)
+    integer :: kb, r
+    kb = size(split%held, 2)
+    if (kb > 0) then
+      if (maxval(abs(unbalanced(1:kb))) >= maxval(abs(unbalanced(kb + 1:)), mask=.true.) .or. &
+          size(unbalanced) == kb) then
+        t = friction_no_equilibrium(matmul(split%held, unbalanced(1:kb)), cause)
+        return
       end if
+    end if
+    cr = matmul(rsplit%held, unbalanced(kb + 1:))
+    r = rsplit%owner(maxloc(abs(cr), dim=1))
+    cr = merge(cr, 0.0_dp, rsplit%owner == r)
+    if (cause == 'friction') then
+      t = 'no equilibrium: the FORCE on RIGID "' // sc%rigids(r)%name // '" exceeds what friction can hold: it ' // &
+        'would move by ' // rigid_direction(rsplit, cr) // ' (the contact forces within the friction cone ' // &
+        'cannot balance its load)'
+    else
+      t = 'no equilibrium: the FORCE on RIGID "' // sc%rigids(r)%name // '" pulls it away from its contacts: it ' // &
+        'would move by ' // rigid_direction(rsplit, cr) // ' (no contact force balances its load, whatever ' // &
+        'the friction)'
+    end if
+  end function floating_no_equilibrium
+
+  !> The names of the bodies with free rigid modes, quoted, comma-separated.
+  function floating_names() result(t)
+    character(len=:), allocatable :: t
+    integer :: b
+    t = ''
+    do b = 1, size(sc%bodies)
+      if (.not. any(fl%mode_body == b)) cycle
+      if (len(t) > 0) t = t // ', '
+      t = t // '"' // sc%bodies(b)%name // '"'
     end do
-  end subroutine check_friction_support
+  end function floating_names
+
+  !> The diagnosis of a step without static equilibrium: the body and the
+  !> motion the unbalanced load c (k, along the modes) drives.
+  !>   c     (in) (k) e - H'z at the closest balance, in the modes' amplitudes
+  !>   cause (in) 'friction' (the cone is too small) or 'contact'
+  function friction_no_equilibrium(c, cause) result(t)
+    real(dp), intent(in) :: c(:)
+    character(len=*), intent(in) :: cause
+    character(len=:), allocatable :: t
+    real(dp), allocatable :: cb(:)
+    integer :: b
+    b = fl%mode_body(maxloc(abs(c), dim=1))
+    cb = merge(c, 0.0_dp, fl%mode_body == b)          ! the motion of that body alone
+    if (cause == 'friction') then
+      t = 'no equilibrium: the loads on body "' // sc%bodies(b)%name // '" exceed what friction can hold: ' // &
+        'it would move by ' // motion_name(fl, cb) // ' (the contact forces within the friction cone ' // &
+        'cannot balance the loads)'
+    else
+      t = 'no equilibrium: the loads pull body "' // sc%bodies(b)%name // '" away from its contacts: ' // &
+        'it would move by ' // motion_name(fl, cb) // ' (no contact force balances the loads, ' // &
+        'whatever the friction)'
+    end if
+  end function friction_no_equilibrium
 
   !> Every number about to be written must be finite: loads near the top of
   !> the accepted range can overflow in the post-processing (energy, stresses)

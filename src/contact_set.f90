@@ -25,11 +25,12 @@
 module contact_set
   use kinds, only: dp
   use diagnostics, only: error_t, set_error, int_to_str
-  use mesh, only: mesh_t
+  use mesh, only: mesh_t, is_quadratic
   use body, only: body_t, node_elements, edge_outward_normal
   use mortar_operator, only: mortar_t, build_mortar, zone_node_terms, zone_point
   use mortar_geometry, only: intersection_t, intersect_segments, common_normals
   use rigid_obstacle, only: rigid_shape_t, build_rigid_mortar, orient_shape, rigid_terms
+  use mortar_quadratic, only: build_mortar_quadratic
   implicit none
   private
   public :: contact_set_t, pair_spec_t, contact_pair_t, chain_boundary, boundary_polyline
@@ -59,6 +60,8 @@ module contact_set
                                            !< effective zone and with master opposite
     logical :: single = .false.            !< the zone is one slave segment: one mean-value row
     logical :: closed = .false.            !< the slave polyline is a closed curve (snode(ns) = snode(1))
+    logical :: quadratic = .false.         !< either trace is quadratic (mortar_quadratic): snode and mnode
+                                           !< list the mid-side nodes too, between their corners
     real(dp) :: slave_weight = 1.0_dp      !< friction: the slave normal's weight in the common normal
     logical :: fold(2) = .false.           !< the row of a cut zone start (1) / end (2) is reported on
                                            !< the node next to it: the end node has no master opposite
@@ -221,6 +224,44 @@ contains
     end do
   end subroutine boundary_polyline
 
+  !> The trace of boundary ib as a chain of nodes with the mid-side nodes of
+  !> its 3-node edges between their corners (degree 2), or the corners alone on
+  !> a linear mesh (degree 1); nodes on entry is the chain of corners.
+  !>   nodes (inout) the chain;  p (out) its degree
+  subroutine trace_chain(mesh, ib, nodes, p)
+    type(mesh_t), intent(in) :: mesh
+    integer, intent(in) :: ib
+    integer, allocatable, intent(inout) :: nodes(:)
+    integer, intent(out) :: p
+    integer, allocatable :: edge_of(:,:), chain(:)
+    integer :: s, a, b, k, n, slot
+    p = 1
+    if (.not. allocated(mesh%bnd(ib)%mid)) return
+    p = 2
+    allocate(edge_of(2, mesh%nnode), source=0)   ! the (at most two) edges at each node
+    do s = 1, mesh%bnd(ib)%nseg
+      do k = 1, 2
+        a = mesh%bnd(ib)%seg(k, s)
+        slot = merge(1, 2, edge_of(1, a) == 0)
+        edge_of(slot, a) = s
+      end do
+    end do
+    n = size(nodes)
+    allocate(chain(2 * n - 1))
+    do k = 1, n - 1
+      a = nodes(k)
+      b = nodes(k + 1)
+      chain(2 * k - 1) = a
+      do slot = 1, 2
+        s = edge_of(slot, a)
+        if (s == 0) cycle
+        if (any(mesh%bnd(ib)%seg(:, s) == b)) chain(2 * k) = mesh%bnd(ib)%mid(s)
+      end do
+    end do
+    chain(2 * n - 1) = nodes(n)
+    call move_alloc(chain, nodes)
+  end subroutine trace_chain
+
   !> Build the constraint rows of every pair.
   !>   bodies (in)  the bodies, dof0 set
   !>   specs  (in)  (npair) the CONTACT statements, resolved
@@ -231,7 +272,8 @@ contains
     type(pair_spec_t), intent(in) :: specs(:)
     type(contact_set_t), intent(out) :: cs
     type(error_t), allocatable, intent(out) :: err
-    integer :: ip, i, j, r, nm, nnz, k, c, q, d0s, d0m, maxdof
+    integer :: ip, i, j, r, nm, nnz, k, c, q, d0s, d0m, maxdof, ps, pm
+    real(dp), allocatable :: mcov_q(:)
     integer, allocatable :: mnodes(:), colmap(:)
     real(dp), allocatable :: xm(:,:), nsl(:,:), nms(:,:), pairing(:,:)
     character(len=:), allocatable :: why
@@ -259,18 +301,8 @@ contains
             return
           end if
           allocate(pr%mnode(0), pr%mcov(0))
-          if (.not. sp%interference) then
-            call check_penetration(pr, err)
-            if (allocated(err)) then
-              err%message = 'CONTACT ' // int_to_str(ip) // ': ' // err%message
-              return
-            end if
-          end if
-          pr%row0 = cs%nrow
-          call constrained_nodes(pr%mortar, pr%row)
-          pr%closed = pr%snode(1) == pr%snode(size(pr%snode))
-          if (pr%closed .and. size(pr%snode) > 3) pr%row(size(pr%snode)) = .false.   ! the last node is the first
-          pr%nrow = count(pr%row)
+          call finish_rows()
+          if (allocated(err)) return
           cs%nrow = cs%nrow + pr%nrow
           cycle
         end if
@@ -283,7 +315,16 @@ contains
         ! a closed slave curve that the master does not cover all round is
         ! opened where it is not covered (its zone has two ends)
         if (pr%snode(1) == pr%snode(size(pr%snode))) call open_at_gap(pr%snode, pr%xs, nsl, xm, nms)
-        if (has_friction(sp)) then
+        pr%quadratic = is_quadratic(bodies(sp%slave_body)%mesh) .or. is_quadratic(bodies(sp%master_body)%mesh)
+        if (pr%quadratic) then
+          ! quadratic traces (mortar_quadratic): the chains with their mid-side nodes
+          call trace_chain(bodies(sp%slave_body)%mesh, sp%slave_bnd, pr%snode, ps)
+          call trace_chain(bodies(sp%master_body)%mesh, sp%master_bnd, mnodes, pm)
+          pr%xs = bodies(sp%slave_body)%mesh%x(:, pr%snode)
+          xm = bodies(sp%master_body)%mesh%x(:, mnodes)
+          pr%mnode = mnodes
+          call build_mortar_quadratic(pr%xs, ps, nsl, xm, pm, nms, sp%gap_zero, pr%mortar, mcov_q, merr)
+        else if (has_friction(sp)) then
           ! friction: the pair's rows along the common normal, which pairs the
           ! points that meet and leaves the normal approach out of the slip
           call common_normals(pr%xs, nsl, xm, nms, pairing, pr%slave_weight)
@@ -295,32 +336,25 @@ contains
           call set_error(err, 'CONTACT ' // int_to_str(ip) // ': ' // merr%message, merr%status)
           return
         end if
-        if (.not. sp%interference) then
-          call check_penetration(pr, err)
-          if (allocated(err)) then
-            err%message = 'CONTACT ' // int_to_str(ip) // ': ' // err%message
-            return
-          end if
-        end if
-        pr%row0 = cs%nrow
-        call constrained_nodes(pr%mortar, pr%row)
-        pr%closed = pr%snode(1) == pr%snode(size(pr%snode))
-        if (pr%closed .and. pr%mortar%first == 1 .and. pr%mortar%last == size(pr%snode)) &
-          pr%row(size(pr%snode)) = .false.                 ! periodic: the last node is the first
-        pr%nrow = count(pr%row)
+        call finish_rows()
+        if (allocated(err)) return
         if (mnodes(1) == mnodes(size(mnodes)) .and. allocated(pr%mortar%P)) then
           ! a closed master curve: its last hat is its first
           pr%mortar%P(:, 1) = pr%mortar%P(:, 1) + pr%mortar%P(:, size(mnodes))
           pr%mortar%P(:, size(mnodes)) = 0.0_dp
         end if
-        call covered_master_integrals(pr%mortar, pr%mcov)
+        if (pr%quadratic) then
+          call move_alloc(mcov_q, pr%mcov)
+        else
+          call covered_master_integrals(pr%mortar, pr%mcov)
+        end if
         if (mnodes(1) == mnodes(size(mnodes))) then
           pr%mcov(1) = pr%mcov(1) + pr%mcov(size(mnodes))
           pr%mcov(size(mnodes)) = 0.0_dp
         end if
         ! one slave segment: the multiplier space is the constants (both end
         ! segments at once), so one mean-value row replaces the two nodal ones
-        pr%single = pr%mortar%first > 0 .and. pr%mortar%last == pr%mortar%first + 1
+        pr%single = pr%mortar%first > 0 .and. pr%mortar%last == pr%mortar%first + 1 .and. .not. pr%quadratic
         if (pr%single) pr%nrow = 1
         pr%fold = [pr%mortar%cut(1) > 0.0_dp, pr%mortar%cut(2) < 1.0_dp] .and. .not. pr%single
         ! the projection lives on in the rows of B and T: the dense (ns, nm)
@@ -385,6 +419,28 @@ contains
       call fill_pair_rows(.true.)
     end do
   contains
+
+    !> The checks and rows of pair ip once its mortar operator is built: the
+    !> initial penetration (unless allowed), its first row, the constrained
+    !> slave nodes (a periodic zone's last node is its first), nrow.  err is
+    !> set (with the pair's number) on a penetration.
+    subroutine finish_rows()
+      associate(pr => cs%pair(ip))
+        if (.not. pr%spec%interference) then
+          call check_penetration(pr, err)
+          if (allocated(err)) then
+            err%message = 'CONTACT ' // int_to_str(ip) // ': ' // err%message
+            return
+          end if
+        end if
+        pr%row0 = cs%nrow
+        call constrained_nodes(pr%mortar, pr%row)
+        pr%closed = pr%snode(1) == pr%snode(size(pr%snode))
+        if (pr%closed .and. pr%mortar%first == 1 .and. pr%mortar%last == size(pr%snode)) &
+          pr%row(size(pr%snode)) = .false.                 ! periodic: the last node is the first
+        pr%nrow = count(pr%row)
+      end associate
+    end subroutine finish_rows
 
     !> Direction of the rows of slave node i: the nodal normal n_i, or the
     !> tangent t_i = (-n_y, n_x) (n turned a quarter turn anticlockwise).

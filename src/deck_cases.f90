@@ -21,7 +21,8 @@
 module deck_cases
   use kinds, only: dp
   use diagnostics, only: diag_t, add_error, int_to_str
-  use deck_expressions, only: parameter_set_t, add_parameter, parse_real, is_parameter_name
+  use deck_expressions, only: parameter_set_t, add_parameter, is_parameter_name
+  use text_scan, only: parse_real
   use safe_files, only: read_file, real_path
   use system_binding, only: c2d_run_program, c2d_run_exited, c2d_run_signaled
   use, intrinsic :: iso_c_binding, only: c_int, c_double, c_null_char

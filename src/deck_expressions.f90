@@ -23,14 +23,14 @@
 !>                                               allocated on error
 !>   substitute(text, set, out, message)         every ${...} of text replaced
 !>   format_number(x)                            shortest round-trip decimal
-!>   parse_real(str, x, ok)                      one number, nothing else
 !>   is_parameter_name(name)                     [A-Za-z_][A-Za-z0-9_]*, not reserved
 module deck_expressions
   use kinds, only: dp
+  use text_scan, only: parse_real, is_digit, is_letter, lower
   implicit none
   private
   public :: parameter_set_t, add_parameter, find_parameter, evaluate, substitute, format_number
-  public :: parse_real, is_parameter_name, lower
+  public :: is_parameter_name
 
   integer, parameter :: name_len = 64          !< longest parameter name
 
@@ -626,108 +626,6 @@ contains
       s = s // 'e' // trim(buf)
     end if
   end function format_number
-
-  !> Read a Fortran or C real: [sign] digits [. [digits]] | [sign] . digits, then an
-  !> optional exponent [eEdD] [sign] digits, nothing else.  Values with |x| >= 1e308
-  !> are refused before conversion (conversion would overflow); underflow gives 0.
-  !>   str (in)  the text
-  !>   x   (out) the value when ok
-  !>   ok  (out) str is such a number
-  subroutine parse_real(str, x, ok)
-    character(len=*), intent(in) :: str
-    real(dp), intent(out) :: x
-    logical, intent(out) :: ok
-    integer :: i, n, nint, nfrac, first_int, first_frac, power, expo, ios
-    logical :: neg_exp
-    character(len=:), allocatable :: buf
-
-    x = 0
-    ok = .false.
-    n = len(str)
-    if (n == 0 .or. n > 400) return
-    i = 1
-    if (str(1:1) == '+' .or. str(1:1) == '-') i = 2
-    nint = 0                                      ! integer digits
-    first_int = 0                                 ! position of the first non-zero one
-    do while (i <= n)
-      if (.not. is_digit(str(i:i))) exit
-      nint = nint + 1
-      if (str(i:i) /= '0' .and. first_int == 0) first_int = nint
-      i = i + 1
-    end do
-    nfrac = 0                                     ! fraction digits
-    first_frac = 0
-    if (i <= n) then
-      if (str(i:i) == '.') then
-        i = i + 1
-        do while (i <= n)
-          if (.not. is_digit(str(i:i))) exit
-          nfrac = nfrac + 1
-          if (str(i:i) /= '0' .and. first_frac == 0) first_frac = nfrac
-          i = i + 1
-        end do
-      end if
-    end if
-    if (nint + nfrac == 0) return
-    expo = 0
-    if (i <= n) then
-      if (index('eEdD', str(i:i)) == 0) return
-      i = i + 1
-      neg_exp = .false.
-      if (i <= n) then
-        if (str(i:i) == '+' .or. str(i:i) == '-') then
-          neg_exp = str(i:i) == '-'
-          i = i + 1
-        end if
-      end if
-      if (i > n) return
-      do while (i <= n)
-        if (.not. is_digit(str(i:i))) return
-        if (expo < 100000) expo = 10 * expo + (iachar(str(i:i)) - iachar('0'))
-        i = i + 1
-      end do
-      if (neg_exp) expo = -expo
-    end if
-    ! |x| lies in [10^power, 10^(power+1)) with power that of the first non-zero digit
-    if (first_int > 0) then
-      power = nint - first_int + expo
-    else if (first_frac > 0) then
-      power = -first_frac + expo
-    else
-      power = -huge(1)                            ! x = 0
-    end if
-    if (power >= 308) return
-    buf = str
-    do i = 1, n
-      if (buf(i:i) == 'd' .or. buf(i:i) == 'D') buf(i:i) = 'e'
-    end do
-    read(buf, *, iostat=ios) x
-    ok = ios == 0
-    if (ok) ok = x == x .and. abs(x) <= huge(x)
-    if (.not. ok) x = 0
-  end subroutine parse_real
-
-  ! ================================================================ text
-
-  pure logical function is_digit(c)
-    character, intent(in) :: c
-    is_digit = c >= '0' .and. c <= '9'
-  end function is_digit
-
-  pure logical function is_letter(c)
-    character, intent(in) :: c
-    is_letter = (c >= 'a' .and. c <= 'z') .or. (c >= 'A' .and. c <= 'Z')
-  end function is_letter
-
-  pure function lower(s) result(t)
-    character(len=*), intent(in) :: s
-    character(len=len(s)) :: t
-    integer :: i
-    t = s
-    do i = 1, len(t)
-      if (t(i:i) >= 'A' .and. t(i:i) <= 'Z') t(i:i) = achar(iachar(t(i:i)) + 32)
-    end do
-  end function lower
 
   !> User text for a message: trimmed, control and non-ASCII bytes as '?', cut after 40.
   pure function clip(s) result(t)

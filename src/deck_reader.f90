@@ -77,8 +77,8 @@ module deck_reader
   use kinds, only: dp
   use diagnostics, only: diag_t, add_error, int_to_str
   use safe_files, only: open_input, file_kind, kind_name, folder_of, c2d_regular, c2d_missing, c2d_unreadable
-  use deck_expressions, only: parameter_set_t, add_parameter, find_parameter, evaluate, substitute, parse_real, lower, &
-                              is_parameter_name
+  use deck_expressions, only: parameter_set_t, add_parameter, find_parameter, evaluate, substitute, is_parameter_name
+  use text_scan, only: scan_integer, parse_real, is_blank, is_digit, is_letter, lower, upper
   use, intrinsic :: iso_fortran_env, only: iostat_eor, iostat_end, int64
   implicit none
   private
@@ -2904,33 +2904,12 @@ contains
     character(len=*), intent(in) :: str
     integer, intent(out) :: k
     logical, intent(out) :: ok
-    integer :: i, i0, nsig, ios
+    integer(int64) :: v
     k = 0
-    ok = .false.
-    if (len(str) == 0) return
-    i0 = 1
-    if (str(1:1) == '+' .or. str(1:1) == '-') i0 = 2
-    if (i0 > len(str)) return
-    nsig = 0
-    do i = i0, len(str)
-      if (.not. is_digit(str(i:i))) return
-      if (nsig > 0 .or. str(i:i) /= '0') nsig = nsig + 1
-    end do
-    if (nsig > 9) return
-    read(str, *, iostat=ios) k
-    ok = ios == 0
+    ok = scan_integer(str, v)
+    if (ok) ok = abs(v) < 1000000000_int64
+    if (ok) k = int(v)
   end subroutine parse_integer
-
-  pure logical function is_digit(c)
-    character, intent(in) :: c
-    is_digit = c >= '0' .and. c <= '9'
-  end function is_digit
-
-  pure logical function is_blank(c)
-    character, intent(in) :: c
-    is_blank = c == ' ' .or. c == achar(9) .or. c == achar(10) .or. c == achar(11) .or. c == achar(12) &
-               .or. c == achar(13)
-  end function is_blank
 
   !> Names: [A-Za-z0-9_.-]+
   pure logical function is_name(s)
@@ -2957,11 +2936,6 @@ contains
     end do
   end function is_identifier
 
-  pure logical function is_letter(c)
-    character, intent(in) :: c
-    is_letter = (c >= 'a' .and. c <= 'z') .or. (c >= 'A' .and. c <= 'Z')
-  end function is_letter
-
   !> No control characters (bytes >= 128 allowed).
   pure logical function is_printable(s)
     character(len=*), intent(in) :: s
@@ -2978,16 +2952,6 @@ contains
     if (len(s) < len(suffix)) return
     ends_with_ci = lower(s(len(s) - len(suffix) + 1:)) == lower(suffix)
   end function ends_with_ci
-
-  pure function upper(s) result(t)
-    character(len=*), intent(in) :: s
-    character(len=len(s)) :: t
-    integer :: i
-    t = s
-    do i = 1, len(t)
-      if (t(i:i) >= 'a' .and. t(i:i) <= 'z') t(i:i) = achar(iachar(t(i:i)) - 32)
-    end do
-  end function upper
 
   !> User text for a message: control and non-ASCII bytes as '?', cut after quote_len.
   pure function cut(s) result(t)

@@ -56,9 +56,10 @@
 !>   read_gmsh_file(path, mesh, diag)
 !>        read the MSH file path into mesh; errors go to diag
 module gmsh_reader
-  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp, i8
   use diagnostics, only: diag_t, add_error, int_to_str, i8_to_str, real_to_str, printable
+  use text_scan, only: scan_integer, scan_real, line_items, is_blank
+  use sorting, only: sort_columns, search_columns, mark_repeated, sort_small, text_key_words, pack_text
   use safe_files, only: read_file
   use mesh, only: mesh_t
   implicit none
@@ -377,7 +378,7 @@ contains
     call read_data_line(t, diag, 'MeshFormat', 3, 'version file-type data-size, e.g. 4.1 0 8', ok)
     if (.not. ok) return
     ok = .false.
-    if (parse_real(item(t, 1), version) /= 0) then
+    if (msh_real(item(t, 1), version) /= 0) then
       call fail(t, diag, 'bad MSH version ' // quoted_item(t, 1) // ' (2.2 or 4.1 expected)')
       return
     end if
@@ -390,7 +391,7 @@ contains
         ' (2.2 or 4.1 expected: gmsh -format msh22 or -format msh41)')
       return
     end if
-    if (.not. parse_integer(item(t, 2), filetype)) filetype = -1
+    if (.not. scan_integer(item(t, 2), filetype)) filetype = -1
     if (filetype == 1) then
       call fail(t, diag, 'binary MSH file (ASCII expected: gmsh -format msh22 or -format msh41 without -bin)')
       return
@@ -398,7 +399,7 @@ contains
       call fail(t, diag, 'bad file type ' // quoted_item(t, 2) // ' (0 for ASCII expected)')
       return
     end if
-    if (.not. parse_integer(item(t, 3), datasize)) datasize = -1
+    if (.not. scan_integer(item(t, 3), datasize)) datasize = -1
     if (datasize <= 0) then
       call fail(t, diag, 'bad data size ' // quoted_item(t, 3) // ' (a positive integer, usually 8, expected)')
       return
@@ -1393,9 +1394,9 @@ contains
     integer, allocatable, intent(out) :: set_of(:)
     type(string_t), allocatable, intent(out) :: set_name(:)
     integer, allocatable :: perm(:), run_of(:), group_of_run(:), nperm(:), leader(:), set_of_group(:)
-    integer(i8), allocatable :: gkey(:,:), run_key(:,:)
+    integer(i8), allocatable :: gkey(:,:), run_key(:,:), name_key(:,:)
     type(string_t), allocatable :: gname(:)
-    integer :: n, nrun, ng, i, g, nset
+    integer :: n, nrun, ng, i, g, nset, nw
 
     ! Runs of equal keys first (the records of a block share their group), so
     ! that only the runs are sorted.
@@ -1431,7 +1432,15 @@ contains
       gname(g)%s = physical_name(d, gkey(:, g))
     end do
     ! Stable sort of the names: the first group of each run of equal names leads it.
-    call sort_strings(gname, nperm)
+    nw = 1
+    do g = 1, ng
+      nw = max(nw, text_key_words(gname(g)%s))
+    end do
+    allocate(name_key(nw, ng))
+    do g = 1, ng
+      call pack_text(gname(g)%s, name_key(:, g))
+    end do
+    call sort_columns(name_key, nperm)
     allocate(leader(ng), set_of_group(ng))
     do i = 1, ng
       leader(nperm(i)) = nperm(i)
@@ -1507,12 +1516,12 @@ contains
       call line_items(t%buf, t%lbeg(l0 + j), t%lend(l0 + j), b, e, n)
       ok = n == ni + nr
       do k = 1, merge(ni, 0, ok)
-        ok = parse_integer(t%buf(b(k):e(k)), iv(k, j))
+        ok = scan_integer(t%buf(b(k):e(k)), iv(k, j))
         if (ok) ok = iv(k, j) >= lo(k)
         if (.not. ok) exit
       end do
       do k = 1, merge(nr, 0, ok)
-        ok = parse_real(t%buf(b(ni + k):e(ni + k)), r) == 0
+        ok = msh_real(t%buf(b(ni + k):e(ni + k)), r) == 0
         if (.not. ok) exit
         if (k <= size(rv, 1)) rv(k, j) = r
       end do
@@ -1568,34 +1577,6 @@ contains
     end do
   end subroutine scan_elements
 
-  !> The items of the text buf(first:last): n items, item k from byte b(k) to
-  !> e(k); n = size(b) + 1 when there are more than b holds.
-  pure subroutine line_items(buf, first, last, b, e, n)
-    character(len=*), intent(in) :: buf
-    integer(i8), intent(in) :: first, last
-    integer(i8), intent(out) :: b(:), e(:)
-    integer, intent(out) :: n
-    integer(i8) :: p
-    p = first
-    n = 0
-    do
-      do while (p <= last)
-        if (.not. is_blank(buf(p:p))) exit
-        p = p + 1
-      end do
-      if (p > last .or. n == size(b)) exit
-      n = n + 1
-      b(n) = p
-      do while (p <= last)
-        if (is_blank(buf(p:p))) exit
-        p = p + 1
-      end do
-      e(n) = p - 1
-    end do
-    if (p <= last) n = n + 1
-  end subroutine line_items
-
-  !> Move to the next line and split it into items; more = .false. at the end.
   subroutine advance_line(t, more)
     type(msh_text_t), intent(inout) :: t
     logical, intent(out) :: more
@@ -1616,15 +1597,6 @@ contains
     end do
     t%ntok = n
   end subroutine advance_line
-
-  !> c is a space, TAB, LF, VT, FF or CR (on the byte code: a comparison with the
-  !> blank ' ' would cost a call to len_trim).
-  pure logical function is_blank(c)
-    character, intent(in) :: c
-    integer :: code
-    code = iachar(c)
-    is_blank = code == 32 .or. (code >= 9 .and. code <= 13)
-  end function is_blank
 
   !> Lines after the current one.
   pure integer function remaining_lines(t) result(n)
@@ -1765,7 +1737,7 @@ contains
     logical, intent(out) :: ok
     character(len=:), allocatable :: expected
 
-    ok = parse_integer(t%buf(t%tbeg(k):t%tend(k)), v)
+    ok = scan_integer(t%buf(t%tbeg(k):t%tend(k)), v)
     if (ok) ok = v >= lo .and. v <= hi
     if (ok) return
     if (lo == 0 .and. hi == huge(1_i8)) then
@@ -1810,7 +1782,7 @@ contains
     character(len=*), intent(in) :: what
     real(dp), intent(out) :: v
     logical, intent(out) :: ok
-    select case (parse_real(t%buf(t%tbeg(k):t%tend(k)), v))
+    select case (msh_real(t%buf(t%tbeg(k):t%tend(k)), v))
     case (0)
       ok = .true.
       return
@@ -1826,283 +1798,17 @@ contains
     ok = .false.
   end subroutine get_real
 
-  !> Strict decimal integer: optional sign, then digits only; .false. when not
-  !> an integer or beyond 18 significant digits.
-  logical function parse_integer(s, v) result(ok)
-    character(len=*), intent(in) :: s
-    integer(i8), intent(out) :: v
-    integer :: p, ndig
-    logical :: negative
-    v = 0
-    ok = .false.
-    p = 1
-    negative = .false.
-    if (len(s) == 0) return
-    if (s(1:1) == '+' .or. s(1:1) == '-') then
-      negative = s(1:1) == '-'
-      p = 2
-    end if
-    if (p > len(s)) return
-    ndig = 0
-    do while (p <= len(s))
-      if (.not. is_digit(s(p:p))) return
-      if (ndig > 0 .or. s(p:p) /= '0') ndig = ndig + 1
-      if (ndig > 18) return
-      v = 10 * v + (iachar(s(p:p)) - iachar('0'))
-      p = p + 1
-    end do
-    if (negative) v = -v
-    ok = .true.
-  end function parse_integer
-
-  !> Real number in Fortran or C notation ([+-]digits[.digits][(e|d)[+-]digits]).
-  !> The text is checked and its decimal magnitude computed before any
-  !> conversion, so that the conversion cannot overflow.  The value is the double
-  !> nearest to the text (ties to even), as the internal read gives it: from the
-  !> first 18 significant digits w and the decimal exponent e, value = w 10**e,
-  !> by decimal_to_real when no nonzero digit was dropped and w 10**e can be
-  !> rounded exactly in 64-bit integer and double arithmetic (the common case),
-  !> else by the internal read.
+  !> A real of the file: text_scan's scan_real with magnitudes below 1e100 and
+  !> at most max_number_length characters.
   !>   returns 0 ok, 1 not a number, 2 NaN or Inf, 3 magnitude 1e100 or more
-  integer function parse_real(s, v) result(status)
+  integer function msh_real(s, v) result(status)
     character(len=*), intent(in) :: s
     real(dp), intent(out) :: v
-    integer, parameter :: max_significand_digits = 18   !< w < 10**18 < 2**63
-    integer :: p, n, nint, nfrac, first_nonzero, mag, ios, exponent, nexp_digits, digit, nsig, shift
-    integer(i8) :: w
-    logical :: nonzero, negative_exponent, exact, done
-    character :: c
-
     v = 0.0_dp
     status = 1
-    n = len(s)
-    if (n == 0 .or. n > max_number_length) return
-    p = 1
-    if (s(1:1) == '+' .or. s(1:1) == '-') p = 2
-    if (p <= n) then
-      if (.not. is_digit(s(p:p)) .and. s(p:p) /= '.') then
-        if (same_lower_text(s(p:), 'nan') .or. same_lower_text(s(p:), 'inf') .or. &
-            same_lower_text(s(p:), 'infinity') .or. same_lower_text(s(p:min(n, p + 3)), 'nan(')) status = 2
-        return
-      end if
-    end if
-    ! digits [. digits]; the digits read are w 10**shift (exactly, while exact)
-    nint = 0
-    nfrac = 0
-    nonzero = .false.
-    first_nonzero = 0
-    mag = 0
-    w = 0
-    nsig = 0
-    shift = 0
-    exact = .true.
-    do while (p <= n)
-      c = s(p:p)
-      if (.not. is_digit(c)) exit
-      digit = iachar(c) - iachar('0')
-      if (digit /= 0 .and. .not. nonzero) then
-        nonzero = .true.
-        first_nonzero = nint + 1
-      end if
-      nint = nint + 1
-      if (nonzero) then
-        if (nsig < max_significand_digits) then
-          w = 10 * w + digit
-          nsig = nsig + 1
-        else
-          shift = shift + 1
-          if (digit /= 0) exact = .false.
-        end if
-      end if
-      p = p + 1
-    end do
-    if (nonzero) mag = nint - first_nonzero
-    if (p <= n) then
-      if (s(p:p) == '.') then
-        p = p + 1
-        do while (p <= n)
-          c = s(p:p)
-          if (.not. is_digit(c)) exit
-          digit = iachar(c) - iachar('0')
-          nfrac = nfrac + 1
-          if (digit /= 0 .and. .not. nonzero) then
-            nonzero = .true.
-            mag = -nfrac
-          end if
-          if (.not. nonzero) then
-            shift = shift - 1
-          else if (nsig < max_significand_digits) then
-            w = 10 * w + digit
-            nsig = nsig + 1
-            shift = shift - 1
-          else if (digit /= 0) then
-            exact = .false.
-          end if
-          p = p + 1
-        end do
-      end if
-    end if
-    if (nint + nfrac == 0) return
-    ! [(e|d) [+-] digits]
-    exponent = 0
-    if (p <= n) then
-      c = s(p:p)
-      if (c /= 'e' .and. c /= 'E' .and. c /= 'd' .and. c /= 'D') return
-      p = p + 1
-      negative_exponent = .false.
-      if (p <= n) then
-        if (s(p:p) == '+' .or. s(p:p) == '-') then
-          negative_exponent = s(p:p) == '-'
-          p = p + 1
-        end if
-      end if
-      if (p > n) return
-      nexp_digits = 0
-      do while (p <= n)
-        if (.not. is_digit(s(p:p))) return
-        if (nexp_digits > 0 .or. s(p:p) /= '0') nexp_digits = nexp_digits + 1
-        if (nexp_digits <= 6) exponent = 10 * exponent + (iachar(s(p:p)) - iachar('0'))
-        p = p + 1
-      end do
-      if (nexp_digits > 6) exponent = 9999999
-      if (negative_exponent) exponent = -exponent
-    end if
-    if (.not. nonzero) then
-      status = 0
-      return
-    end if
-    if (mag + exponent > max_decimal_exponent) then
-      status = 3
-      return
-    end if
-    if (mag + exponent < -300) then
-      status = 0
-      return
-    end if
-    status = 0
-    if (exact) then
-      call decimal_to_real(w, shift + exponent, v, done)
-      if (done) then
-        if (s(1:1) == '-') v = -v
-        return
-      end if
-    end if
-    read(s, *, iostat=ios) v
-    if (ios /= 0) then
-      v = 0.0_dp
-      status = 1
-      return
-    end if
-    if (.not. ieee_is_finite(v)) then
-      v = 0.0_dp
-      status = 2
-    end if
-  end function parse_real
-
-  !> v = w 10**e rounded to the nearest double, ties to even, when one exact
-  !> rounding does it (Clinger's fast path and two integer variants of it):
-  !>   - w <= 2**53 and |e| <= 22: w and 10**|e| are doubles, so one IEEE
-  !>     product or quotient is the rounded value;
-  !>   - 0 <= e <= 27 and w 5**e < 2**63: w 10**e = (w 5**e) 2**e, rounded once
-  !>     in the conversion of the integer w 5**e;
-  !>   - -22 <= e < 0: w 10**e = (w / 5**(-e)) 2**e, the quotient rounded by
-  !>     rounded_quotient.
-  !> Scaling by a power of 2 is exact here (no overflow, no subnormal).
-  !>   w    (in)  the decimal significand, 1 <= w < 10**18
-  !>   e    (in)  the decimal exponent, |e| < 1000
-  !>   v    (out) w 10**e rounded, when done
-  !>   done (out) .false. when none of the cases applies (v is then 0)
-  pure subroutine decimal_to_real(w, e, v, done)
-    integer(i8), intent(in) :: w
-    integer, intent(in) :: e
-    real(dp), intent(out) :: v
-    logical, intent(out) :: done
-    integer :: k
-    integer(i8), parameter :: two_53 = 2_i8**53
-    real(dp), parameter :: power_of_ten(0:22) = [1.0e0_dp, 1.0e1_dp, 1.0e2_dp, 1.0e3_dp, 1.0e4_dp, 1.0e5_dp, &
-      1.0e6_dp, 1.0e7_dp, 1.0e8_dp, 1.0e9_dp, 1.0e10_dp, 1.0e11_dp, 1.0e12_dp, 1.0e13_dp, 1.0e14_dp, 1.0e15_dp, &
-      1.0e16_dp, 1.0e17_dp, 1.0e18_dp, 1.0e19_dp, 1.0e20_dp, 1.0e21_dp, 1.0e22_dp]
-    integer(i8), parameter :: power_of_five(0:27) = [(5_i8**k, k = 0, 27)]
-
-    v = 0.0_dp
-    done = .true.
-    if (w <= two_53 .and. abs(e) <= 22) then
-      if (e >= 0) then
-        v = real(w, dp) * power_of_ten(e)
-      else
-        v = real(w, dp) / power_of_ten(-e)
-      end if
-    else if (e >= 0 .and. e <= 27) then
-      done = w <= huge(w) / power_of_five(e)
-      if (done) v = scale(real(w * power_of_five(e), dp), e)
-    else if (e < 0 .and. e >= -22) then
-      v = scale(rounded_quotient(w, power_of_five(-e)), e)
-    else
-      done = .false.
-    end if
-  end subroutine decimal_to_real
-
-  !> The double nearest to w / q, ties to even, by long division: the quotient
-  !> is developed to 55 bits (53 of the significand, a round bit and one more)
-  !> and a sticky bit for the rest.
-  !>   w (in) 1 <= w < 2**62;  q (in) 1 <= q < 2**52
-  pure real(dp) function rounded_quotient(w, q) result(v)
-    integer(i8), intent(in) :: w, q
-    integer(i8) :: a, r, low_bits
-    integer :: nbit, m, e2
-    logical :: sticky, up
-
-    a = w / q                                     ! w / q = (a + r / q) 2**e2
-    r = w - a * q
-    e2 = 0
-    sticky = .false.
-    nbit = int(bit_size(a)) - leadz(a)
-    if (nbit > 55) then
-      m = nbit - 55
-      sticky = ibits(a, 0, m) /= 0
-      a = shiftr(a, m)
-      e2 = m
-      nbit = 55
-    end if
-    do while (nbit < 55)
-      m = min(55 - nbit, 10)                      ! r 2**m < 2**62
-      r = shiftl(r, m)
-      a = shiftl(a, m) + r / q
-      r = r - (r / q) * q
-      e2 = e2 - m
-      nbit = int(bit_size(a)) - leadz(a)
-    end do
-    sticky = sticky .or. r /= 0
-    low_bits = iand(a, 3_i8)
-    up = low_bits == 3 .or. (low_bits == 2 .and. (sticky .or. btest(a, 2)))
-    a = shiftr(a, 2)
-    if (up) a = a + 1
-    v = scale(real(a, dp), e2 + 2)
-  end function rounded_quotient
-
-  pure logical function is_digit(c)
-    character, intent(in) :: c
-    is_digit = c >= '0' .and. c <= '9'
-  end function is_digit
-
-  !> a == b as Fortran compares strings (the shorter padded with blanks), with
-  !> the letters A-Z of a taken in lower case; b is in lower case.
-  pure logical function same_lower_text(a, b) result(same)
-    character(len=*), intent(in) :: a, b
-    character :: x, y
-    integer :: i, c
-    same = .false.
-    do i = 1, max(len(a), len(b))
-      x = ' '
-      y = ' '
-      if (i <= len(a)) x = a(i:i)
-      if (i <= len(b)) y = b(i:i)
-      c = iachar(x)
-      if (c >= iachar('A') .and. c <= iachar('Z')) x = achar(c + 32)
-      if (x /= y) return
-    end do
-    same = .true.
-  end function same_lower_text
+    if (len(s) > max_number_length) return
+    status = scan_real(s, v, max_decimal_exponent)
+  end function msh_real
 
 
   ! ---------------------------------------------------------------------------
@@ -2202,166 +1908,6 @@ contains
     list%v(:, list%n) = rec
   end subroutine push_record
 
-  !> Lexicographic keys(:, i) < keys(:, j).
-  pure logical function column_less(keys, i, j) result(less)
-    integer(i8), intent(in) :: keys(:,:)
-    integer, intent(in) :: i, j
-    integer :: r
-    less = .false.
-    do r = 1, size(keys, 1)
-      if (keys(r, i) /= keys(r, j)) then
-        less = keys(r, i) < keys(r, j)
-        return
-      end if
-    end do
-  end function column_less
-
-  !> Lexicographic keys(:, i) < key.
-  pure logical function column_less_than_key(keys, i, key) result(less)
-    integer(i8), intent(in) :: keys(:,:)
-    integer, intent(in) :: i
-    integer(i8), intent(in) :: key(:)
-    integer :: r
-    less = .false.
-    do r = 1, size(keys, 1)
-      if (keys(r, i) /= key(r)) then
-        less = keys(r, i) < key(r)
-        return
-      end if
-    end do
-  end function column_less_than_key
-
-  !> Stable bottom-up merge sort of the columns of keys, lexicographically.
-  !> Two runs already in order are not merged, so that sorted input costs O(n).
-  !>   keys (in)  (m, n) one key per column
-  !>   perm (out) (n) keys(:, perm) is ascending; equal keys keep their order
-  subroutine sort_columns(keys, perm)
-    integer(i8), intent(in) :: keys(:,:)
-    integer, allocatable, intent(out) :: perm(:)
-    integer, allocatable :: tmp(:)
-    integer :: n, i
-    integer(i8) :: width, lo, mid, hi, a, b, k
-
-    n = size(keys, 2)
-    allocate(perm(n), tmp(n))
-    perm = [(i, i = 1, n)]
-    width = 1
-    do while (width < n)
-      lo = 1
-      do while (lo <= n)
-        mid = min(lo + width - 1, int(n, i8))
-        hi = min(lo + 2 * width - 1, int(n, i8))
-        if (mid < hi) then
-          if (.not. column_less(keys, perm(mid + 1), perm(mid))) then
-            lo = lo + 2 * width
-            cycle
-          end if
-          a = lo
-          b = mid + 1
-          k = lo
-          do while (a <= mid .and. b <= hi)
-            if (column_less(keys, perm(b), perm(a))) then
-              tmp(k) = perm(b)
-              b = b + 1
-            else
-              tmp(k) = perm(a)
-              a = a + 1
-            end if
-            k = k + 1
-          end do
-          do while (a <= mid)
-            tmp(k) = perm(a)
-            a = a + 1
-            k = k + 1
-          end do
-          do while (b <= hi)
-            tmp(k) = perm(b)
-            b = b + 1
-            k = k + 1
-          end do
-          perm(lo:hi) = tmp(lo:hi)
-        end if
-        lo = lo + 2 * width
-      end do
-      width = 2 * width
-    end do
-  end subroutine sort_columns
-
-  !> Stable merge sort of strings (Fortran collation, trailing blanks ignored).
-  subroutine sort_strings(s, perm)
-    type(string_t), intent(in) :: s(:)
-    integer, allocatable, intent(out) :: perm(:)
-    integer, allocatable :: tmp(:)
-    integer :: n, i
-    integer(i8) :: width, lo, mid, hi, a, b, k
-
-    n = size(s)
-    allocate(perm(n), tmp(n))
-    perm = [(i, i = 1, n)]
-    width = 1
-    do while (width < n)
-      lo = 1
-      do while (lo <= n)
-        mid = min(lo + width - 1, int(n, i8))
-        hi = min(lo + 2 * width - 1, int(n, i8))
-        if (mid < hi) then
-          a = lo
-          b = mid + 1
-          k = lo
-          do while (a <= mid .and. b <= hi)
-            if (s(perm(b))%s < s(perm(a))%s) then
-              tmp(k) = perm(b)
-              b = b + 1
-            else
-              tmp(k) = perm(a)
-              a = a + 1
-            end if
-            k = k + 1
-          end do
-          do while (a <= mid)
-            tmp(k) = perm(a)
-            a = a + 1
-            k = k + 1
-          end do
-          do while (b <= hi)
-            tmp(k) = perm(b)
-            b = b + 1
-            k = k + 1
-          end do
-          perm(lo:hi) = tmp(lo:hi)
-        end if
-        lo = lo + 2 * width
-      end do
-      width = 2 * width
-    end do
-  end subroutine sort_strings
-
-  !> Column of keys equal to key (the first in file order), 0 when none.
-  !>   keys (in) (m, n); perm (in) (n) from sort_columns(keys); key (in) (m)
-  integer function search_columns(keys, perm, key) result(found)
-    integer(i8), intent(in) :: keys(:,:)
-    integer, intent(in) :: perm(:)
-    integer(i8), intent(in) :: key(:)
-    integer :: lo, hi, mid, r
-    found = 0
-    lo = 1
-    hi = size(perm) + 1
-    do while (lo < hi)
-      mid = lo + (hi - lo) / 2
-      if (column_less_than_key(keys, perm(mid), key)) then
-        lo = mid + 1
-      else
-        hi = mid
-      end if
-    end do
-    if (lo <= size(perm)) then
-      do r = 1, size(key)
-        if (keys(r, perm(lo)) /= key(r)) return
-      end do
-      found = perm(lo)
-    end if
-  end function search_columns
-
   !> Node of a node tag, 0 when no node has it (tags are distinct here: the
   !> $Nodes section passed check_nodes).
   pure integer function node_of_tag(d, tag) result(node)
@@ -2388,35 +1934,5 @@ contains
       if (d%tag_sorted(lo) == tag) node = d%tag_perm(lo)
     end if
   end function node_of_tag
-
-  !> repeated(i) = .true. when an earlier column of keys equals column i.
-  subroutine mark_repeated(keys, repeated)
-    integer(i8), intent(in) :: keys(:,:)
-    logical, intent(out) :: repeated(:)
-    integer, allocatable :: perm(:)
-    integer :: i
-    call sort_columns(keys, perm)
-    repeated = .false.
-    do i = 2, size(perm)
-      if (all(keys(:, perm(i)) == keys(:, perm(i - 1)))) repeated(perm(i)) = .true.
-    end do
-  end subroutine mark_repeated
-
-  !> Insertion sort of a few integers, ascending.
-  pure subroutine sort_small(a)
-    integer(i8), intent(inout) :: a(:)
-    integer :: i, j
-    integer(i8) :: v
-    do i = 2, size(a)
-      v = a(i)
-      j = i - 1
-      do while (j >= 1)
-        if (a(j) <= v) exit
-        a(j + 1) = a(j)
-        j = j - 1
-      end do
-      a(j + 1) = v
-    end do
-  end subroutine sort_small
 
 end module gmsh_reader

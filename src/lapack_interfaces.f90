@@ -5,13 +5,13 @@
 !>
 !> Programming interface: the routines below, by their standard names.
 !>   BLAS    daxpy, drot, dgemv, dger, dtrsv, dtrsm, dtrmm, dsyrk
-!>   LAPACK  dgtsv, dpotrf, dlauum, dpotri, dpotrs, dpstrf, dsysv, dgesvd, dgeqp3
+!>   LAPACK  dgtsv, dgbsv, dgesv, dpotrf, dlauum, dpotri, dpotrs, dpstrf, dsysv, dgesvd, dgeqp3
 module lapack_interfaces
   use kinds, only: dp
   implicit none
   private
   public :: daxpy, drot, dgemv, dger, dtrsv, dtrsm, dtrmm, dsyrk, dgtsv, dpotrf, dlauum, dpotri, dpotrs, dpstrf, &
-            dsysv, dgesvd, dgeqp3
+            dsysv, dgesvd, dgeqp3, dgbsv, dgesv
 
   interface
     subroutine daxpy(n, alpha, x, incx, y, incy)
@@ -139,6 +139,18 @@ module lapack_interfaces
       real(dp), intent(out) :: tau(*), work(*)
       integer, intent(out) :: info
     end subroutine dgeqp3
+    subroutine dgbsv(n, kl, ku, nrhs, ab, ldab, ipiv, b, ldb, info)
+      import :: dp
+      integer, intent(in) :: n, kl, ku, nrhs, ldab, ldb
+      real(dp), intent(inout) :: ab(ldab, *), b(ldb, *)
+      integer, intent(out) :: ipiv(*), info
+    end subroutine dgbsv
+    subroutine dgesv(n, nrhs, a, lda, ipiv, b, ldb, info)
+      import :: dp
+      integer, intent(in) :: n, nrhs, lda, ldb
+      real(dp), intent(inout) :: a(lda, *), b(ldb, *)
+      integer, intent(out) :: ipiv(*), info
+    end subroutine dgesv
   end interface
 
 end module lapack_interfaces

@@ -6,9 +6,9 @@
 !> normal rows only, so a rigid motion that is tangential to the contact
 !> surface everywhere is not held by it: a translation along a flat contact,
 !> the rotation of a ring about the centre of a circular contact (every
-!> normal passes through the centre).  Friction rows could hold such a
-!> motion, but a body held only by contact is not accepted with friction
-!> (contact2d, check_friction_support): H is built from the normal rows only.
+!> normal passes through the centre).  A pair with friction adds its
+!> tangential rows T to H = C R, C = [B; T]: friction holds such a motion
+!> (within the cone; whether the load fits in it is friction_modes' test).
 !>
 !> The decision, made before anything is solved, from the SVD of H (dgesvd):
 !>  - columns in comparable units: mode j is scaled to a unit root-mean-square
@@ -57,7 +57,7 @@ module mode_support
   public :: mode_split_t, split_free_modes
 
   type :: mode_split_t
-    real(dp), allocatable :: h(:,:)          !< (nrow, k) H = B R, normal rows
+    real(dp), allocatable :: h(:,:)          !< (nrow + ntan, k) H = C R, normal then tangential rows
     real(dp), allocatable :: e(:)            !< (k) e = R' f_ext
     real(dp), allocatable :: held(:,:)       !< (k, kh) basis of the held combinations
     real(dp), allocatable :: unheld(:,:)     !< (k, nu) the combinations no contact row holds
@@ -72,8 +72,8 @@ module mode_support
 
 contains
 
-  !> H = B R, e = R' f and the held / unheld combinations of the free modes.
-  !>   cs     (in)  contact rows (normal rows 1..nrow are used)
+  !> H = C R, e = R' f and the held / unheld combinations of the free modes.
+  !>   cs     (in)  contact rows (normal and tangential: 1..nrow+ntan)
   !>   bodies (in)  the bodies (meshes, dof0)
   !>   fl     (in)  the free modes, fl%k >= 0
   !>   fext   (in)  (ndof) external nodal forces
@@ -91,14 +91,14 @@ contains
     logical, allocatable :: is_held(:)
 
     k = fl%k
-    nr = cs%nrow
+    nr = cs%nrow + cs%ntan
     nb = size(bodies)
     allocate(sp%h(nr, k), sp%e(k), cscale(k), ref(nb), s(k), vt(k, k))
     sp%h = 0.0_dp
     do j = 1, k
       do r = 1, nr
         do kk = cs%bptr(r), cs%bptr(r + 1) - 1
-          sp%h(r, j) = sp%h(r, j) + cs%bval(kk) * fl%r(cs%cdof(cs%bcol(kk)), j)     ! H = B R
+          sp%h(r, j) = sp%h(r, j) + cs%bval(kk) * fl%r(cs%cdof(cs%bcol(kk)), j)     ! H = C R
         end do
       end do
       sp%e(j) = dot_product(fl%r(:, j), fext)                                        ! e = R' f

@@ -11,6 +11,9 @@
 !> the last equation the obstacle's equilibrium: the contact forces on it,
 !> -H_r' mu, balance its load.  alpha_r is its motion; no spring anywhere.
 !>
+!> With friction the tangential rows T join B (H_r = C(:, free dofs), C = [B; T])
+!> and the step's friction LCP carries alpha_r (friction_modes), as it carries
+!> the free modes of the bodies.
 !> Which combinations of the free directions contact holds is decided from the
 !> SVD of each RIGID's columns of H_r (theta scaled by the shape's size, so
 !> that a singular value is the gap a motion of unit size opens): a right
@@ -42,7 +45,7 @@ module rigid_support
     integer, allocatable :: owner(:)          !< (k) the RIGID of each
     integer, allocatable :: comp(:)           !< (k) 1 u_x, 2 u_y, 3 theta
     real(dp), allocatable :: scale(:)         !< (k) 1, or the shape's size for theta
-    real(dp), allocatable :: h(:,:)           !< (nrow, k) B's columns on them
+    real(dp), allocatable :: h(:,:)           !< (nrow + ntan, k) C's columns on them (C = [B; T])
     real(dp), allocatable :: e(:)             !< (k) their loads (FORCE)
     real(dp), allocatable :: held(:,:)        !< (k, kh) the combinations contact holds (orthonormal)
     real(dp), allocatable :: unheld(:,:)      !< (k, ku) those it does not hold
@@ -64,7 +67,7 @@ contains
     logical, intent(in) :: fixed(:)
     real(dp), intent(in) :: fext(:)
     type(rigid_split_t), intent(out) :: rs
-    integer :: r, j, k, c, row, m, info, lwork, i
+    integer :: r, j, k, c, row, m, info, lwork, i, nr
     integer, allocatable :: cols(:)
     real(dp), allocatable :: a(:,:), s(:), vt(:,:), work(:), held(:,:), unheld(:,:)
     real(dp) :: u(1, 1), wq(1), ref, load, escale
@@ -76,7 +79,8 @@ contains
       k = k + count(.not. fixed(rigids(r)%dof0 + 1:rigids(r)%dof0 + 3))
     end do
     rs%k = k
-    allocate(rs%dof(k), rs%owner(k), rs%comp(k), rs%scale(k), rs%h(cs%nrow, k), rs%e(k))
+    nr = cs%nrow + cs%ntan
+    allocate(rs%dof(k), rs%owner(k), rs%comp(k), rs%scale(k), rs%h(nr, k), rs%e(k))
     rs%h = 0.0_dp
     k = 0
     do r = 1, size(rigids)
@@ -90,8 +94,8 @@ contains
         rs%e(k) = fext(rs%dof(k))
       end do
     end do
-    ! H_r: the entries of B's rows on these dofs
-    do row = 1, cs%nrow
+    ! H_r: the entries of C's rows on these dofs (friction rows hold tangential directions)
+    do row = 1, nr
       do i = cs%bptr(row), cs%bptr(row + 1) - 1
         c = cs%cdof(cs%bcol(i))
         do j = 1, rs%k
@@ -110,17 +114,17 @@ contains
       end do
       ref = maxval(norm2(a, dim=1))
       escale = norm2(rs%e(cols) / rs%scale(cols))
-      allocate(s(min(cs%nrow, m)), vt(m, m))
+      allocate(s(min(nr, m)), vt(m, m))
       s = 0.0_dp
       vt = 0.0_dp
       do j = 1, m
         vt(j, j) = 1.0_dp
       end do
-      if (cs%nrow > 0) then
-        call dgesvd('N', 'A', cs%nrow, m, a, cs%nrow, s, u, 1, vt, m, wq, -1, info)
+      if (nr > 0) then
+        call dgesvd('N', 'A', nr, m, a, nr, s, u, 1, vt, m, wq, -1, info)
         lwork = max(1, int(wq(1)))
         allocate(work(lwork))
-        call dgesvd('N', 'A', cs%nrow, m, a, cs%nrow, s, u, 1, vt, m, work, lwork, info)
+        call dgesvd('N', 'A', nr, m, a, nr, s, u, 1, vt, m, work, lwork, info)
         deallocate(work)
       end if
       do j = 1, m
@@ -202,7 +206,7 @@ contains
     do r = 1, maxval(rs%owner)
       cols = pack([(j, j = 1, rs%k)], rs%owner == r)
       if (size(cols) == 0) cycle
-      hj = rs%h(:, cols)
+      hj = rs%h(1:size(rs%h, 1), cols)
       allocate(mu(size(hj, 1)), source=0.0_dp)
       call solve_lcp_lemke(matmul(hj, transpose(hj)), -matmul(hj, rs%e(cols)), mu, opts, rep)
       rr = matmul(transpose(hj), mu) - rs%e(cols)

@@ -186,10 +186,11 @@ contains
         end if
         sc%specs(ip)%master_bnd = curve_index(deck, c%line, sc%bodies(c%master_body), c%master_boundary, &
                                               'CONTACT master', diag)
-        ! the mortar operator is built on 2-node traces (P1/Q1 boundaries)
-        if (is_quadratic(sc%bodies(c%slave_body)%mesh) .or. is_quadratic(sc%bodies(c%master_body)%mesh)) &
-          call add_error(diag, deck%file, c%line, 'contact on quadratic elements is not available yet ' // &
-                         '(P1/Q1 boundaries expected)')
+        ! quadratic traces (mortar_quadratic): frictionless only, the common normal is not carried over
+        if ((is_quadratic(sc%bodies(c%slave_body)%mesh) .or. is_quadratic(sc%bodies(c%master_body)%mesh)) &
+            .and. (sc%specs(ip)%mu > 0.0_dp .or. sc%specs(ip)%tresca > 0.0_dp)) &
+          call add_error(diag, deck%file, c%line, 'friction on quadratic elements is not available ' // &
+                         '(a frictionless CONTACT, or P1/Q1 boundaries, expected)')
         if (c%slave_body == c%master_body .and. c%slave_boundary == c%master_boundary) then
           call add_error(diag, deck%file, c%line, 'slave and master are the same boundary (two different boundaries expected)')
         end if

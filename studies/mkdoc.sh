@@ -325,6 +325,8 @@ nmax=$(lastrow contact_nodes %d)
 lmax=$(lastrow time_lcp_lemke %.3g)
 pmax=$(lastrow time_lcp_pgs %.3g)
 rmax=$(lastrow lcp_ratio %.0f)
+# the section on peers is bench/peers.sh's (its numbers come from that script): kept as it is
+peers=$(sed -n '/^## Against peers/,$p' "$doc/accuracy-cost.md" 2>/dev/null || true)
 cat > "$doc/accuracy-cost.md" <<EOF
 # What accuracy costs
 
@@ -457,3 +459,4 @@ convergence.md for the discussion of the last level and of the pressure measures
 * \`studies/out/runs/NAME/\`: each run's VTK, contact CSV, summary and metrics;
   \`studies/out/decks/\`: the decks; \`studies/out/plots/\`: gnuplot scripts and data.
 EOF
+[ -z "$peers" ] || printf '\n%s\n' "$peers" >> "$doc/accuracy-cost.md"

@@ -3,11 +3,14 @@
 
     ccx_inp.py BLOCK.msh DISK.msh OUT.inp [KFACTOR]
 
-Plane strain CPE3 (P1 triangles) of thickness 1, E = 200000, nu = 0.3.  Block
+Plane strain CPE3 (P1 triangles) or CPE6 (P2 triangles, from second-order
+gmsh meshes: the node order of gmsh's type 9 is CalculiX's) of thickness 1,
+E = 200000, nu = 0.3.  Block
 bottom clamped, disk top ux = 0, uy = -0.01.  Frictionless surface-to-surface
 penalty contact, slave = block top, master = disk arc, linear pressure-
 overclosure with slope K = KFACTOR * E (default 500).  Output: total reaction
-on the disk top (*NODE PRINT, TOTALS=ONLY) and contact stresses (*CONTACT FILE).
+on the disk top (*NODE PRINT, TOTALS=ONLY), contact stresses (*CONTACT FILE)
+and displacements (*NODE FILE).
 Block nodes/elements keep their gmsh ids; the disk's follow them (ccx sizes
 its arrays by the largest id, so the ids are kept compact).
 """
@@ -24,7 +27,7 @@ def faces(tris, edges, eoff):
     for k, t in enumerate(tris):
         for f, (i, j) in enumerate(((0, 1), (1, 2), (2, 0))):
             where[frozenset((t[i], t[j]))] = (k + 1 + eoff, f + 1)
-    return [where[frozenset(e)] for e in edges]
+    return [where[frozenset(e[:2])] for e in edges]
 
 
 def write_inp(bfile, dfile, out, kfac=500.0):
@@ -38,10 +41,11 @@ def write_inp(bfile, dfile, out, kfac=500.0):
     o.append("*NODE, NSET=NALL")
     o += [f"{i},{x:.13g},{y:.13g}" for i, (x, y) in bn.items()]   # ccx reads at most 20 characters
     o += [f"{i + noff},{x:.13g},{y:.13g}" for i, (x, y) in dn.items()]
-    o.append("*ELEMENT, TYPE=CPE3, ELSET=EBLOCK")
-    o += [f"{k + 1},{a},{b},{c}" for k, (a, b, c) in enumerate(bt)]
-    o.append("*ELEMENT, TYPE=CPE3, ELSET=EDISK")
-    o += [f"{k + 1 + eoff},{a + noff},{b + noff},{c + noff}" for k, (a, b, c) in enumerate(dt)]
+    etype = "CPE6" if len(bt[0]) == 6 else "CPE3"
+    o.append(f"*ELEMENT, TYPE={etype}, ELSET=EBLOCK")
+    o += [f"{k + 1}," + ",".join(str(n) for n in t) for k, t in enumerate(bt)]
+    o.append(f"*ELEMENT, TYPE={etype}, ELSET=EDISK")
+    o += [f"{k + 1 + eoff}," + ",".join(str(n + noff) for n in t) for k, t in enumerate(dt)]
 
     def nset(name, ids):
         ids = sorted(set(ids))
@@ -53,8 +57,8 @@ def write_inp(bfile, dfile, out, kfac=500.0):
     o.append("*SURFACE, NAME=SSLAVE, TYPE=ELEMENT")
     o += [f"{e},S{f}" for e, f in faces(bt, bl[bp["top"][1]], 0)]
     o.append("*SURFACE, NAME=SMASTER, TYPE=ELEMENT")
-    arc = [(a + noff, b + noff) for a, b in dl[dp["arc"][1]]]
-    dto = [(a + noff, b + noff, c + noff) for a, b, c in dt]
+    arc = [tuple(n + noff for n in e) for e in dl[dp["arc"][1]]]
+    dto = [tuple(n + noff for n in t) for t in dt]
     o += [f"{e},S{f}" for e, f in faces(dto, arc, eoff)]
     o.append("*MATERIAL, NAME=STEEL\n*ELASTIC\n%r,%r" % (E, NU))
     o.append("*SOLID SECTION, ELSET=EBLOCK, MATERIAL=STEEL\n1.")
@@ -65,6 +69,7 @@ def write_inp(bfile, dfile, out, kfac=500.0):
     o.append("*BOUNDARY\nNBOT,1,2,0.\nNTOP,1,1,0.\nNTOP,2,2,%r" % (-DELTA))
     o.append("*STEP\n*STATIC\n1.,1.")
     o.append("*NODE PRINT, NSET=NTOP, TOTALS=ONLY\nRF")
+    o.append("*NODE FILE\nU")
     o.append("*CONTACT FILE\nCSTR")
     o.append("*END STEP")
     with open(out, "w") as f:

@@ -1,9 +1,13 @@
-"""Minimal reader of gmsh MSH 2.2 ASCII 2D meshes (P1 triangles and boundary lines).
+"""Minimal reader of gmsh MSH 2.2 ASCII 2D meshes (triangles and boundary lines,
+first or second order).
 
 read_msh(path) -> (nodes, tris, lines)
     nodes: dict node id -> (x, y)
-    tris:  list of (n1, n2, n3) node ids (first-order triangles, type 2)
+    tris:  list of (n1, n2, n3) node ids (first-order triangles, type 2), or of
+           (n1, n2, n3, n12, n23, n31) (second-order, type 9: corners, then
+           the midside nodes in gmsh's order)
     lines: dict physical tag -> list of (n1, n2) (first-order lines, type 1)
+           or (n1, n2, n12) (second-order, type 8)
 physical_names(path) -> dict name -> (dim, tag)
 """
 
@@ -47,8 +51,8 @@ def read_msh(path):
         etype, ntag = w[1], w[2]
         phys = w[3] if ntag > 0 else 0
         conn = w[3 + ntag:]
-        if etype == 2:
+        if etype in (2, 9):
             tris.append(tuple(conn))
-        elif etype == 1:
+        elif etype in (1, 8):
             lines.setdefault(phys, []).append(tuple(conn))
     return nodes, tris, lines

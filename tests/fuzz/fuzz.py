@@ -162,14 +162,17 @@ def mesh_geo(geo, params, msh):
         return 0
 
 
-def repo_seed_decks(work, log):
-    """The repository's valid decks, their .geo meshes meshed once into .msh files."""
+def repo_seed_decks(work, log, only=None):
+    """The repository's valid decks (names containing one of `only` when
+    given), their .geo meshes meshed once into .msh files."""
     paths = sorted(ROOT.glob("input/*.deck")) + sorted(
         p for p in ROOT.glob("tests/**/*.deck") if "bad" not in p.relative_to(ROOT).parts)
     out = []
     for path in paths:
         rel = path.relative_to(ROOT)
         stem = str(rel.with_suffix("")).replace("/", "_")
+        if only and not any(x in stem for x in only):
+            continue
         lines = path.read_text(errors="replace").split("\n")
         files = {}
         ok = True
@@ -212,10 +215,13 @@ def repo_seed_decks(work, log):
     return out
 
 
-def build_seeds(work, program, log):
-    """Every seed, each checked to exit 0 with `program` (others are dropped)."""
+def build_seeds(work, program, log, only=None):
+    """Every seed (those whose name contains one of the strings `only` when
+    given), each checked to exit 0 with `program` (others are dropped)."""
     seeds = []
-    for name, deck, files in repo_seed_decks(work, log) + mesh_seed_decks():
+    for name, deck, files in repo_seed_decks(work, log, only) + mesh_seed_decks():
+        if only and not any(x in name for x in only):
+            continue
         all_files = dict(files)
         all_files["case.deck"] = deck.encode("latin-1", "replace")
         d = work / ("seed-" + name)
@@ -893,6 +899,8 @@ def main():
     ap.add_argument("--sanitize-fraction", type=float, default=0.25)
     ap.add_argument("--asan-options", default="detect_leaks=1:exitcode=86:abort_on_error=0",
                     help="ASAN_OPTIONS for the runs")
+    ap.add_argument("--seeds", default=None,
+                    help="comma-separated strings: only the seeds whose name contains one (e.g. force_control)")
     ap.add_argument("--cases", default=None, help="comma-separated case numbers to run instead of 0..n-1")
     ap.add_argument("--keep", default=None, help="copy every case (input, README) into this folder")
     ap.add_argument("--failures", default=None, help="copy failing cases here (default: a new /tmp folder)")
@@ -919,7 +927,7 @@ def main():
         args.failures = str(work) + "-failures"
     say = (lambda s: None) if args.quiet else (lambda s: print(s, flush=True))
     t0 = time.time()
-    seeds = build_seeds(work, prog, say)
+    seeds = build_seeds(work, prog, say, args.seeds.split(",") if args.seeds else None)
     if not seeds or not any(s.meshes for s in seeds):
         sys.exit("fuzz.py: no valid seed deck (or none with a gmsh mesh)")
     say(f"{len(seeds)} seeds: {' '.join(s.name for s in seeds)}")

@@ -1,0 +1,218 @@
+!> sorting: the index sorts and searches of the readers and of body, one of
+!> each: a stable merge sort of integer key columns (lexicographic), its
+!> binary search, duplicate marking, an insertion sort for a few integers, and
+!> text packed into key columns so that names sort by the same routine.
+!>
+!> A merge sort rather than LAPACK's dlasrt: the readers need a permutation
+!> (dlasrt sorts values in place) of multi-word keys, and a stable one (the
+!> first of equal keys in file order leads: repeated elements, names).
+!>
+!> Programming interface
+!>   sort_columns(keys, perm)         perm: keys(:, perm) ascending, stable
+!>   search_columns(keys, perm, key)  the first column equal to key, 0 when none
+!>   mark_repeated(keys, repeated)    repeated(i): an earlier column equals column i
+!>   sort_small(a)                    a few integers (default or i8) ascending, in place
+!>   text_key_words(text)             key words a text needs
+!>   pack_text(text, key)             the text as key words: sorted as Fortran
+!>                                    compares strings (blanks padded, byte order)
+module sorting
+  use kinds, only: i8
+  implicit none
+  private
+  public :: sort_columns, search_columns, mark_repeated, sort_small, text_key_words, pack_text
+
+  interface sort_small
+    module procedure sort_small_int, sort_small_i8
+  end interface sort_small
+
+  integer, parameter :: bytes_per_word = 7     !< 56 bits a key word: words stay >= 0
+
+contains
+
+  !> Lexicographic keys(:, i) < keys(:, j).
+  pure logical function column_less(keys, i, j) result(less)
+    integer(i8), intent(in) :: keys(:,:)
+    integer, intent(in) :: i, j
+    integer :: r
+    less = .false.
+    do r = 1, size(keys, 1)
+      if (keys(r, i) /= keys(r, j)) then
+        less = keys(r, i) < keys(r, j)
+        return
+      end if
+    end do
+  end function column_less
+
+  !> Lexicographic keys(:, i) < key.
+  pure logical function column_less_than_key(keys, i, key) result(less)
+    integer(i8), intent(in) :: keys(:,:)
+    integer, intent(in) :: i
+    integer(i8), intent(in) :: key(:)
+    integer :: r
+    less = .false.
+    do r = 1, size(keys, 1)
+      if (keys(r, i) /= key(r)) then
+        less = keys(r, i) < key(r)
+        return
+      end if
+    end do
+  end function column_less_than_key
+
+  !> Stable bottom-up merge sort of the columns of keys, lexicographically.
+  !> Two runs already in order are not merged, so that sorted input costs O(n).
+  !>   keys (in)  (m, n) one key per column
+  !>   perm (out) (n) keys(:, perm) is ascending; equal keys keep their order
+  subroutine sort_columns(keys, perm)
+    integer(i8), intent(in) :: keys(:,:)
+    integer, allocatable, intent(out) :: perm(:)
+    integer, allocatable :: tmp(:)
+    integer :: n, i
+    integer(i8) :: width, lo, mid, hi, a, b, k
+
+    n = size(keys, 2)
+    allocate(perm(n), tmp(n))
+    do i = 1, n
+      perm(i) = i
+    end do
+    width = 1
+    do while (width < n)
+      lo = 1
+      do while (lo <= n)
+        mid = min(lo + width - 1, int(n, i8))
+        hi = min(lo + 2 * width - 1, int(n, i8))
+        if (mid < hi) then
+          if (.not. column_less(keys, perm(mid + 1), perm(mid))) then
+            lo = lo + 2 * width
+            cycle
+          end if
+          a = lo
+          b = mid + 1
+          k = lo
+          do while (a <= mid .and. b <= hi)
+            if (column_less(keys, perm(b), perm(a))) then
+              tmp(k) = perm(b)
+              b = b + 1
+            else
+              tmp(k) = perm(a)
+              a = a + 1
+            end if
+            k = k + 1
+          end do
+          do while (a <= mid)
+            tmp(k) = perm(a)
+            a = a + 1
+            k = k + 1
+          end do
+          do while (b <= hi)
+            tmp(k) = perm(b)
+            b = b + 1
+            k = k + 1
+          end do
+          perm(lo:hi) = tmp(lo:hi)
+        end if
+        lo = lo + 2 * width
+      end do
+      width = 2 * width
+    end do
+  end subroutine sort_columns
+
+  !> Column of keys equal to key (the first in file order), 0 when none.
+  !>   keys (in) (m, n); perm (in) (n) from sort_columns(keys); key (in) (m)
+  integer function search_columns(keys, perm, key) result(found)
+    integer(i8), intent(in) :: keys(:,:)
+    integer, intent(in) :: perm(:)
+    integer(i8), intent(in) :: key(:)
+    integer :: lo, hi, mid, r
+    found = 0
+    lo = 1
+    hi = size(perm) + 1
+    do while (lo < hi)
+      mid = lo + (hi - lo) / 2
+      if (column_less_than_key(keys, perm(mid), key)) then
+        lo = mid + 1
+      else
+        hi = mid
+      end if
+    end do
+    if (lo <= size(perm)) then
+      do r = 1, size(key)
+        if (keys(r, perm(lo)) /= key(r)) return
+      end do
+      found = perm(lo)
+    end if
+  end function search_columns
+
+  !> repeated(i) = .true. when an earlier column of keys equals column i.
+  subroutine mark_repeated(keys, repeated)
+    integer(i8), intent(in) :: keys(:,:)
+    logical, intent(out) :: repeated(:)
+    integer, allocatable :: perm(:)
+    integer :: i
+    call sort_columns(keys, perm)
+    repeated = .false.
+    do i = 2, size(perm)
+      if (all(keys(:, perm(i)) == keys(:, perm(i - 1)))) repeated(perm(i)) = .true.
+    end do
+  end subroutine mark_repeated
+
+  !> Insertion sort of a few integers, ascending.
+  pure subroutine sort_small_i8(a)
+    integer(i8), intent(inout) :: a(:)
+    integer :: i, j
+    integer(i8) :: v
+    do i = 2, size(a)
+      v = a(i)
+      j = i - 1
+      do while (j >= 1)
+        if (a(j) <= v) exit
+        a(j + 1) = a(j)
+        j = j - 1
+      end do
+      a(j + 1) = v
+    end do
+  end subroutine sort_small_i8
+
+  !> Insertion sort of a few integers, ascending.
+  pure subroutine sort_small_int(a)
+    integer, intent(inout) :: a(:)
+    integer :: i, j
+    integer :: v
+    do i = 2, size(a)
+      v = a(i)
+      j = i - 1
+      do while (j >= 1)
+        if (a(j) <= v) exit
+        a(j + 1) = a(j)
+        j = j - 1
+      end do
+      a(j + 1) = v
+    end do
+  end subroutine sort_small_int
+
+  !> Key words of a text: ceiling(len / 7), at least 1.
+  pure integer function text_key_words(text) result(n)
+    character(len=*), intent(in) :: text
+    n = max(1, (len(text) + bytes_per_word - 1) / bytes_per_word)
+  end function text_key_words
+
+  !> The bytes of text, 7 a word, the first byte highest, padded with blanks to
+  !> size(key) words: comparing key columns lexicographically compares the
+  !> texts as Fortran does (the shorter padded with blanks, bytes unsigned).
+  !>   text (in)  at most 7 size(key) characters
+  !>   key  (out) (nword) the packed text, nword >= text_key_words(text)
+  pure subroutine pack_text(text, key)
+    character(len=*), intent(in) :: text
+    integer(i8), intent(out) :: key(:)
+    integer :: w, j, p, byte
+    do w = 1, size(key)
+      key(w) = 0
+      do j = 1, bytes_per_word
+        p = (w - 1) * bytes_per_word + j
+        byte = iachar(' ')
+        if (p <= len(text)) byte = iand(iachar(text(p:p)), 255)
+        key(w) = key(w) * 256 + byte
+      end do
+    end do
+  end subroutine pack_text
+
+end module sorting
