@@ -157,6 +157,14 @@ void c2d_malloc_trim(void);
  * space left under RLIMIT_AS and the machine's MemAvailable + SwapFree, the
  * smaller; -1 when neither is known. */
 int64_t c2d_memory_available(void);
+/* The address space left under RLIMIT_AS, -1 without a limit. */
+int64_t c2d_address_space_left(void);
+/* OpenBLAS under an address-space limit (src/blas_start.c): the thread count
+ * to use (<= n), its buffers mapped; n and nothing done without a limit or
+ * without OpenBLAS; 0 when not even one buffer fits.  *left: the address
+ * space left (-1: no limit), *per_thread: the cost of a further thread,
+ * *first: of the first buffer. */
+int c2d_blas_start(int n, int64_t *left, int64_t *per_thread, int64_t *first);
 
 int c2d_metis_per_thread(void);
 void c2d_metis_begin(void);

@@ -30,6 +30,7 @@
 !>   c2d_malloc_arenas()   c2d_malloc_trim()   at most two glibc malloc arenas; free pages back
 !>   c2d_metis_per_thread() -> 1 when METIS draws its random numbers per thread
 !>   c2d_memory_available() -> bytes the process can still allocate (-1 unknown)
+!>   c2d_blas_start(n, left, per_thread, first) -> BLAS threads that fit an address-space limit
 !>   status codes: cholmod_ok, cholmod_not_posdef, c2d_chol_* (shim codes)
 module cholmod_binding
   use, intrinsic :: iso_c_binding, only: c_ptr, c_int, c_double, c_int64_t, c_char
@@ -45,7 +46,7 @@ module cholmod_binding
   public :: cholmod_ok, cholmod_not_posdef, cholmod_out_of_memory, cholmod_too_large
   public :: c2d_chol_no_handle, c2d_chol_no_factor, c2d_chol_not_super_ll
   public :: c2d_chol_block_moved, c2d_chol_bad_argument, c2d_blas_threads, c2d_blas_park, c2d_malloc_arenas, c2d_malloc_trim
-  public :: c2d_metis_per_thread, c2d_memory_available
+  public :: c2d_metis_per_thread, c2d_memory_available, c2d_blas_start
 
   ! fill-reducing orderings (cholmod_shim.h)
   integer(c_int), parameter :: c2d_order_metis = 0     !< METIS nested dissection
@@ -268,6 +269,18 @@ module cholmod_binding
       import :: c_int64_t
       integer(c_int64_t) :: bytes
     end function c2d_memory_available
+
+    !> OpenBLAS under an address-space limit (src/blas_start.c): the thread
+    !> count to use (<= n) with its work buffers mapped; n without a limit;
+    !> 0 when not even one buffer fits.  left: the address space left (-1:
+    !> no limit), per_thread: bytes of a further thread, first: of the first
+    !> buffer.
+    function c2d_blas_start(n, left, per_thread, first) bind(c, name='c2d_blas_start') result(used)
+      import :: c_int, c_int64_t
+      integer(c_int), value :: n
+      integer(c_int64_t), intent(out) :: left, per_thread, first
+      integer(c_int) :: used
+    end function c2d_blas_start
 
   end interface
 

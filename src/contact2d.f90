@@ -75,6 +75,7 @@ program contact2d
   logical, allocatable :: held(:)
   integer :: nfree, i, nlabel
   integer :: jobs                         !< -j N: threads of the run (0: OpenMP's default)
+  character(len=:), allocatable :: thread_note   !< what a memory limit changed in the thread count ('' none)
   integer(i8) :: t_start, t_phase, t_solve, t_now, t_rate, t_asm0, t_asm1
   real(dp), allocatable :: rhs(:,:), x(:,:), u0(:), w(:,:), q(:), fint(:), fc(:)
   real(dp), allocatable :: y(:)           ! forward half of u0's solve
@@ -88,7 +89,8 @@ program contact2d
   character(len=:), allocatable :: step_note      ! 'load step k of n: ' in messages while steps are solved
 
   call parse_command_line(deck_path, outdir, check_only, quiet, gmsh, overrides, cases_path, case_number, jobs)
-  call start_threads(jobs)                ! threads, BLAS threads, malloc arenas: src/threads.f90
+  call start_threads(jobs, thread_note, err)   ! threads, BLAS threads, malloc arenas: src/threads.f90
+  if (allocated(err)) call fail_numerical(err%message)
   if (len(cases_path) > 0) call select_case()
   call system_clock(t_start)
   t_phase = t_start
@@ -717,6 +719,18 @@ contains
     end if
     res%min_gap = min(0.0_dp, minval(res%gap))
     res%min_pressure = minval(res%pressure)
+    do ip = 1, cs%npair                 ! quadratic: a closed row whose master value is extended
+      do r = 1, 2
+        if (.not. cs%pair(ip)%extended(r)) cycle
+        node = merge(cs%pair(ip)%mortar%first, cs%pair(ip)%mortar%last, r == 1)
+        nr = row_of_node(cs, ip, node)
+        if (nr == 0) cycle
+        if (res%status(nr) == 1) write(error_unit, '(a)') 'contact2d: warning: ' // deck%file // ':' // &
+          int_to_str(deck%contacts(ip)%line) // ': the contact reaches the slave node ' // int_to_str(node) // &
+          ' where the master ends inside a quadratic slave element: its row uses the master''s end value ' // &
+          '(refine the slave there or swap slave and master)'
+      end do
+    end do
   end subroutine contact_measures
 
   !> C u0_g for each ramp g of the load history (one solve per ramp, none when
@@ -832,7 +846,8 @@ contains
       if (.not. all(ieee_is_finite(z))) call fail_numerical('friction, load step ' // int_to_str(kstep) // &
         ': the contact multipliers are not finite')
       sprev = cu(n + 1:) - matmul(w(n + 1:, :), z)  ! T u_k = T u0_k - T K^-1 C' z
-      call friction_state(w, qn, qt, cs%tan_row, cs%tan_mu, cs%tan_bound, z, res%fstate)
+      call friction_state(w, qn, qt, cs%tan_row, cs%tan_mu, cs%tan_bound, z, res%fstate, err)
+      if (allocated(err)) call fail_numerical(err%message)
       write(line, '(a,i0,a,i0,a,i0,a,i0,a,i0,a,es9.2)') 'step     ', kstep, '/', sc%steps, ': ' // method // ' ', &
         rep%iterations, ' iterations, ', count(z(1:n) > 0.0_dp), ' active, ', count(res%fstate == 2), &
         ' slipping, residual ', rep%residual
@@ -983,6 +998,17 @@ contains
             line = trim(line) // ', a zone end inside a slave segment (the master''s end)'
           end if
           if (pr%spec%interference) line = trim(line) // ', interference=allow'
+          if (pr%quadratic) then
+            ! the quadratic operator's choices (doc/theory.md, "Quadratic traces")
+            call say(trim(line))
+            write(line, '(a,i0,a,i0,a)') 'contact  pair ' // int_to_str(ip) // ': quadratic mortar, slave degree ', &
+              pr%degree(1), ', master degree ', pr%degree(2), ': non-penetration at every trace node'
+            if (any(pr%extended)) then
+              call say(trim(line))
+              line = 'contact  pair ' // int_to_str(ip) // ': the master ends inside a zone-end slave element: ' // &
+                     'its end value extended over the rest'
+            end if
+          end if
           if (has_friction(pr%spec)) then
             ! the assumption the frictional rows rest on (doc/theory.md, "Friction on curved surfaces")
             call say(trim(line))
@@ -1023,6 +1049,7 @@ contains
     end do
     write(line, '(a,i0,a,i0,a,i0,a)') 'sizes    ', sc%ndof, ' dofs, ', nfree, ' free, ', cs%nrow, ' contact constraints'
     call say(trim(line))
+    if (len(thread_note) > 0) call say('threads  ' // thread_note)
   end subroutine report_scene
 
   !> The run log's lines of each RIGID: its shape, reference point, which

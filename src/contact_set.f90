@@ -62,6 +62,9 @@ module contact_set
     logical :: closed = .false.            !< the slave polyline is a closed curve (snode(ns) = snode(1))
     logical :: quadratic = .false.         !< either trace is quadratic (mortar_quadratic): snode and mnode
                                            !< list the mid-side nodes too, between their corners
+    integer :: degree(2) = 1               !< degree of the slave (1) and master (2) traces
+    logical :: extended(2) = .false.       !< quadratic: the master ends inside the zone's first (1) /
+                                           !< last (2) slave element; its end value is extended there
     real(dp) :: slave_weight = 1.0_dp      !< friction: the slave normal's weight in the common normal
     logical :: fold(2) = .false.           !< the row of a cut zone start (1) / end (2) is reported on
                                            !< the node next to it: the end node has no master opposite
@@ -323,7 +326,8 @@ contains
           pr%xs = bodies(sp%slave_body)%mesh%x(:, pr%snode)
           xm = bodies(sp%master_body)%mesh%x(:, mnodes)
           pr%mnode = mnodes
-          call build_mortar_quadratic(pr%xs, ps, nsl, xm, pm, nms, sp%gap_zero, pr%mortar, mcov_q, merr)
+          pr%degree = [ps, pm]
+          call build_mortar_quadratic(pr%xs, ps, nsl, xm, pm, nms, sp%gap_zero, pr%mortar, mcov_q, pr%extended, merr)
         else if (has_friction(sp)) then
           ! friction: the pair's rows along the common normal, which pairs the
           ! points that meet and leaves the normal approach out of the slip

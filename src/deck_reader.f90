@@ -46,6 +46,25 @@
 !> PRESSURE, THERMAL: any number.  Statements may come in any order (CONTACT before the
 !> BODY it names, STEPS after the ramps it bounds).
 !>
+!> Grammar.  Each statement is a row of a table (define_statements): its
+!> keyword, the block it stands in (the top level, BODY, or anywhere), the block
+!> it opens, whether it may come once, its keys with the forms of their values
+!> (number, integer, k0:k1, NAME, a|b|c), and its handler.  The dispatcher
+!> checks from the row where a statement stands (a top-level statement inside
+!> a block is read, with a "missing END?" hint; a block statement outside its
+!> block is refused), its repetition ("second X"), and hands the handler the
+!> row's keys, which match_keys checks (unknown, repeated, empty); the handler
+!> converts the values and checks their ranges and the rules between keys.
+!> A new statement is a row and a handler; a new block (RIGID ... END) is a row
+!> that opens it and rows whose block it is; END closes whatever block is open.
+!>
+!> Size.  About 2,700 lines, over the house's 800: the twenty handlers share
+!> the reader's state (state_t: errors, open block, the statement lists) and
+!> deck_t, and other branches are adding statements to this file now.  The
+!> split that follows the table: the deck types to a module of their own, the
+!> checks after the whole deck (finish_checks and what it calls, ~500 lines)
+!> to another, once those additions have landed.
+!>
 !> Load steps.  ramp=k0:k1 (integers, 0 <= k0 < k1 <= STEPS) scales the statement's
 !> values by the load factor 0 up to step k0, rising linearly to 1 at step k1, 1 after;
 !> absent, the ramp is 0:STEPS.  Every ramp is resolved on return (fix_t%ramp,
@@ -74,11 +93,11 @@
 !>   load_traction, load_pressure   values of load_t%kind
 !>   read_deck(path, deck, diag)    parse and check the deck file `path`
 module deck_reader
-  use kinds, only: dp
+  use kinds, only: dp, i8
   use diagnostics, only: diag_t, add_error, int_to_str
   use safe_files, only: open_input, file_kind, kind_name, folder_of, c2d_regular, c2d_missing, c2d_unreadable
   use deck_expressions, only: parameter_set_t, add_parameter, find_parameter, evaluate, substitute, is_parameter_name
-  use text_scan, only: scan_integer, parse_real, is_blank, is_digit, is_letter, lower, upper
+  use text_scan, only: scan_integer, parse_real, line_items, is_blank, is_digit, is_letter, lower, upper
   use, intrinsic :: iso_fortran_env, only: iostat_eor, iostat_end, int64
   implicit none
   private
@@ -290,6 +309,8 @@ module deck_reader
     type(text_t), allocatable :: word(:)
     integer :: npair = 0                       ! key=value pairs
     type(text_t), allocatable :: key(:), value(:)
+    character(len=12), allocatable :: names(:) ! the statement's keys (its row of the table)
+    character(len=28), allocatable :: forms(:) ! the form of each key's value, for messages
   end type stmt_t
 
   !> Reader state, local to one read_deck call.
@@ -301,14 +322,42 @@ module deck_reader
     type(text_t), allocatable :: echo(:)      ! (nline) cut lines for echoing
     integer :: nbody = 0, ncontact = 0
     integer :: cur = 0                        ! body whose block is open, 0 outside
-    integer :: cur_rigid = 0                  ! RIGID whose block is open, 0 outside
     logical :: end_hinted = .false.           ! a "missing END?" was said for cur
-    integer :: title_line = 0, plane_line = 0, solver_line = 0, output_line = 0
+    character(len=8) :: block = ''            ! the open block's keyword ('BODY'), '' at the top level
+    character(len=:), allocatable :: block_name   ! its name, for messages
+    integer :: block_line = 0                 ! its opening line
+    integer, allocatable :: first_line(:)     ! (nrow) line of each top-level statement seen (once rows)
+    integer, allocatable :: block_first(:)    ! (nrow) the same in the open block
     logical :: contact_bad = .false.          ! some CONTACT statement had an error
     logical :: steps_bad = .false.            ! the STEPS statement had an error
     type(text_t), allocatable :: slave_name(:), master_name(:)   ! (ncontact) body names
     type(parameter_set_t) :: overrides        ! -D and --cases values of declared parameters
   end type state_t
+
+  !> The routine that reads one statement into the deck (a row's handler).
+  abstract interface
+    subroutine statement_handler(s, deck, st)
+      import :: state_t, deck_t, stmt_t
+      type(state_t), intent(inout) :: s
+      type(deck_t), intent(inout) :: deck
+      type(stmt_t), intent(in) :: st
+    end subroutine statement_handler
+  end interface
+
+  !> One row of the deck's grammar (define_statements): a statement, where it
+  !> may stand, how often, its keys and the routine that reads it.  Where a
+  !> statement stands, its repetition, its keys (unknown, repeated, empty)
+  !> are checked from the row before the handler runs, which reads the values.
+  type :: statement_t
+    character(len=12) :: keyword = ''          !< upper case
+    character(len=8) :: block = ''             !< block it stands in: '' the top level, 'BODY', '*' anywhere
+    character(len=8) :: opens = ''             !< block it opens, '' none (END closes the open block)
+    logical :: once = .false.                  !< at most once: per deck, or per block inside a block
+    character(len=:), allocatable :: expected  !< what the "second ..." message expects
+    character(len=12), allocatable :: names(:) !< its keys (canonical spelling); none when they vary
+    character(len=28), allocatable :: forms(:) !< the form of each key's value, for messages
+    procedure(statement_handler), pointer, nopass :: run => null()   !< its handler; none for END
+  end type statement_t
 
 contains
 
@@ -329,6 +378,7 @@ contains
     type(diag_t), intent(inout) :: diag
     type(parameter_set_t), intent(in), optional :: overrides
     type(state_t) :: s
+    type(statement_t), allocatable :: table(:)
     character(len=:), allocatable :: line
     integer :: u, ios, kind
     integer(int64) :: fsize
@@ -339,6 +389,8 @@ contains
     allocate(deck%bodies(0), deck%contacts(0), deck%curves(0), deck%rigids(0))
     allocate(s%errs(16), s%echo(64), s%slave_name(4), s%master_name(4))
     if (present(overrides)) s%overrides = overrides
+    call define_statements(table)
+    allocate(s%first_line(size(table)), s%block_first(size(table)), source=0)
 
     readable = .false.
     ! a FIFO or a device would block or never end: refused before it is read
@@ -368,7 +420,7 @@ contains
             readable = .false.
             exit
           end if
-          call process_line(s, deck, line)
+          call process_line(s, deck, line, table)
           if (s%gave_up) exit
         end do
         close(u)
@@ -442,10 +494,11 @@ contains
   ! ================================================================ lines and words
 
   !> Split one line into a statement and dispatch it.
-  subroutine process_line(s, deck, raw)
+  subroutine process_line(s, deck, raw, table)
     type(state_t), intent(inout) :: s
     type(deck_t), intent(inout) :: deck
     character(len=*), intent(in) :: raw
+    type(statement_t), intent(in) :: table(:)
     character(len=:), allocatable :: text
     type(text_t), allocatable :: tok(:)
     type(stmt_t) :: st
@@ -480,60 +533,7 @@ contains
     call join_equals(tok, ntok)
     call classify_words(tok, ntok, st)
     kw = upper(st%keyword)
-
-    if (s%cur_rigid /= 0) then                     ! inside RIGID ... END (rigid_statement)
-      call rigid_statement(s, deck, st, kw)
-      return
-    end if
-    select case (kw)
-    case ('RIGID')
-      call do_rigid(s, deck, st)
-    case ('SHAPE', 'REF', 'FORCE')
-      call report(s, st%line, 'statement ' // kw // ' outside a RIGID block (expected inside RIGID ... END)')
-    case ('TITLE', 'PLANE', 'GRAVITY', 'CONTACT', 'SOLVER', 'STEPS', 'OUTPUT', 'CURVE')
-      if (s%cur /= 0 .and. .not. s%end_hinted) then
-        call report(s, st%line, 'statement ' // kw // ' inside BODY ' // quoted(deck%bodies(s%cur)%name) // &
-                    ' opened at line ' // int_to_str(deck%bodies(s%cur)%line) // &
-                    ' (expected after the END of the body block; missing END?)')
-        s%end_hinted = .true.
-      end if
-      select case (kw)
-      case ('TITLE');   call do_title(s, deck, st)
-      case ('PLANE');   call do_plane(s, deck, st)
-      case ('GRAVITY'); call do_gravity(s, deck, st)
-      case ('CONTACT'); call do_contact(s, deck, st)
-      case ('SOLVER');  call do_solver(s, deck, st)
-      case ('STEPS');   call do_steps(s, deck, st)
-      case ('CURVE');   call do_curve(s, deck, st)
-      case ('OUTPUT');  call do_output(s, deck, st)
-      end select
-    case ('PARAMETER')
-      call do_parameter(s, deck, st)
-    case ('BODY')
-      call do_body(s, deck, st)
-    case ('END')
-      call do_end(s, st)
-    case ('MESH', 'MATERIAL', 'DENSITY', 'FIX', 'TRACTION', 'PRESSURE', 'BODYFORCE', 'THERMAL', 'OFFSET')
-      if (s%cur == 0) then
-        call report(s, st%line, 'statement ' // kw // ' outside a BODY block (expected inside BODY ... END)')
-        return
-      end if
-      select case (kw)
-      case ('MESH');      call do_mesh(s, deck%dir, deck%bodies(s%cur), st)
-      case ('MATERIAL');  call do_material(s, deck%bodies(s%cur), st)
-      case ('DENSITY');   call do_density(s, deck%bodies(s%cur), st)
-      case ('FIX');       call do_fix(s, deck%bodies(s%cur), st)
-      case ('TRACTION', 'PRESSURE'); call do_load(s, deck%bodies(s%cur), st, kw)
-      case ('BODYFORCE'); call do_bodyforce(s, deck%bodies(s%cur), st)
-      case ('THERMAL');   call do_thermal(s, deck%bodies(s%cur), st)
-      case ('OFFSET');    call do_offset(s, deck%bodies(s%cur), st)
-      end select
-    case default
-      call report(s, st%line, 'unknown keyword ' // quoted(st%keyword) // ' (expected one of TITLE, PLANE, ' // &
-                  'BODY, MESH, MATERIAL, DENSITY, FIX, TRACTION, PRESSURE, BODYFORCE, THERMAL, OFFSET, END, ' // &
-                  'GRAVITY, ' // &
-                  'CONTACT, SOLVER, STEPS, CURVE, OUTPUT, PARAMETER, RIGID)')
-    end select
+    call dispatch(s, deck, st, kw, table)
   end subroutine process_line
 
   !> Replace each ${expression} of text by its value; .false. (the error
@@ -621,39 +621,19 @@ contains
     s%echo(s%nline)%s = e
   end subroutine store_echo
 
-  !> Blank-separated words of text (blanks only: other white space is already blank).
+  !> Blank-separated words of text (text_scan's items of a line).
   subroutine split_words(text, tok, ntok)
     character(len=*), intent(in) :: text
     type(text_t), allocatable, intent(out) :: tok(:)
     integer, intent(out) :: ntok
-    integer :: i, j, n
+    integer(i8), allocatable :: b(:), e(:)
+    integer :: k
 
-    n = 0
-    do i = 1, len(text)
-      if (text(i:i) /= ' ') then
-        if (i == 1) then
-          n = n + 1
-        else if (text(i - 1:i - 1) == ' ') then
-          n = n + 1
-        end if
-      end if
-    end do
-    allocate(tok(n))
-    ntok = 0
-    i = 1
-    do while (i <= len(text))
-      if (text(i:i) == ' ') then
-        i = i + 1
-        cycle
-      end if
-      j = i
-      do while (j < len(text))
-        if (text(j + 1:j + 1) == ' ') exit
-        j = j + 1
-      end do
-      ntok = ntok + 1
-      tok(ntok)%s = text(i:j)
-      i = j + 1
+    allocate(b(len(text) / 2 + 1), e(len(text) / 2 + 1))     ! a word and a blank at least each
+    call line_items(text, 1_i8, len(text, i8), b, e, ntok)
+    allocate(tok(ntok))
+    do k = 1, ntok
+      tok(k)%s = text(b(k):e(k))
     end do
   end subroutine split_words
 
@@ -793,6 +773,188 @@ contains
     end do
   end subroutine hand_over
 
+  ! ================================================================ the statements
+
+  !> The deck's grammar, one row a statement (statement_t), in the order the
+  !> unknown-keyword message lists them.  A new statement is a row here and
+  !> its handler; a new block (BODY ... END) is a row that opens it and rows
+  !> whose block it is.
+  subroutine define_statements(table)
+    type(statement_t), allocatable, intent(out) :: table(:)
+    character(len=*), parameter :: ramp = 'k0:k1', name = 'NAME', number = 'number'
+
+    allocate(table(0))
+    call add_row(table, 'TITLE', '', do_title, once=.true.)
+    call add_row(table, 'PLANE', '', do_plane, once=.true., &
+                 names=[character(len=12) :: 'thickness'], forms=[character(len=28) :: number])
+    call add_row(table, 'BODY', '', do_body, opens='BODY')
+    call add_row(table, 'MESH', 'BODY', do_mesh, once=.true., expected='one MESH per body')
+    call add_row(table, 'MATERIAL', 'BODY', do_material, once=.true., expected='one MATERIAL per body')
+    call add_row(table, 'DENSITY', 'BODY', do_density, once=.true., &
+                 names=[character(len=12) :: 'rho'], forms=[character(len=28) :: number])
+    call add_row(table, 'FIX', 'BODY', do_fix, &
+                 names=[character(len=12) :: 'ux', 'uy', 'ramp', 'curve', 'un', 'ut'], &
+                 forms=[character(len=28) :: number, number, ramp, name, number, number])
+    call add_row(table, 'TRACTION', 'BODY', do_load, &
+                 names=[character(len=12) :: 'tx', 'ty', 'ramp', 'curve', 'tn', 'tt'], &
+                 forms=[character(len=28) :: number, number, ramp, name, number, number])
+    call add_row(table, 'PRESSURE', 'BODY', do_load, &
+                 names=[character(len=12) :: 'p', 'ramp', 'curve'], forms=[character(len=28) :: number, ramp, name])
+    call add_row(table, 'BODYFORCE', 'BODY', do_bodyforce, once=.true., &
+                 names=[character(len=12) :: 'fx', 'fy', 'ramp', 'curve'], &
+                 forms=[character(len=28) :: number, number, ramp, name])
+    call add_row(table, 'THERMAL', 'BODY', do_thermal, &
+                 names=[character(len=12) :: 'alpha', 'dT', 'region', 'curve'], &
+                 forms=[character(len=28) :: number, number, name, name])
+    call add_row(table, 'OFFSET', 'BODY', do_offset, once=.true., &
+                 names=[character(len=12) :: 'dx', 'dy'], forms=[character(len=28) :: number, number])
+    call add_row(table, 'END', '*')
+    call add_row(table, 'GRAVITY', '', do_gravity, once=.true., &
+                 names=[character(len=12) :: 'gx', 'gy', 'ramp', 'curve'], &
+                 forms=[character(len=28) :: number, number, ramp, name])
+    call add_row(table, 'CONTACT', '', do_contact, &
+                 names=[character(len=12) :: 'slave', 'master', 'gap', 'mu', 'tresca', 'interference'], &
+                 forms=[character(len=28) :: 'body:boundary', 'body:boundary', 'geometry|zero', number, number, &
+                        'allow|reject'])
+    call add_row(table, 'SOLVER', '', do_solver, once=.true., &
+                 names=[character(len=12) :: 'lcp', 'tol', 'maxit', 'omega', 'ordering', 'condense', 'cut'], &
+                 forms=[character(len=28) :: 'auto|lemke|pgs|pdas', number, 'integer', number, 'auto|metis|amd', &
+                        'auto|solve|inverse', 'auto|off'])
+    call add_row(table, 'STEPS', '', do_steps, once=.true.)
+    call add_row(table, 'CURVE', '', do_curve)
+    call add_row(table, 'OUTPUT', '', do_output, once=.true., &
+                 names=[character(len=12) :: 'vtk', 'contact', 'summary', 'fields', 'steps'], &
+                 forms=[character(len=28) :: name, name, name, 'LIST', 'last|all'])
+    call add_row(table, 'PARAMETER', '*', do_parameter)
+    call add_row(table, 'RIGID', '', do_rigid, opens='RIGID')
+    call add_row(table, 'SHAPE', 'RIGID', rigid_shape_row, once=.true., expected='one SHAPE per RIGID')
+    call add_row(table, 'REF', 'RIGID', rigid_ref_row, once=.true., expected='one REF per RIGID')
+    call add_row(table, 'FIX', 'RIGID', rigid_fix_row)
+    call add_row(table, 'FORCE', 'RIGID', rigid_force_row)
+  end subroutine define_statements
+
+  !> Append a row to the table.
+  !>   keyword (in) upper case;  block (in) '' top level, 'BODY', '*' anywhere
+  !>   run (in, optional) the handler (END has none: the dispatcher closes the block)
+  !>   once, opens, expected, names, forms (in, optional): see statement_t
+  subroutine add_row(table, keyword, block, run, once, opens, expected, names, forms)
+    type(statement_t), allocatable, intent(inout) :: table(:)
+    character(len=*), intent(in) :: keyword, block
+    procedure(statement_handler), optional :: run
+    logical, intent(in), optional :: once
+    character(len=*), intent(in), optional :: opens, expected
+    character(len=12), intent(in), optional :: names(:)
+    character(len=28), intent(in), optional :: forms(:)
+    type(statement_t) :: row
+    type(statement_t), allocatable :: grown(:)
+
+    row%keyword = keyword
+    row%block = block
+    if (present(run)) row%run => run
+    if (present(once)) row%once = once
+    if (present(opens)) row%opens = opens
+    row%expected = 'at most one'
+    if (present(expected)) row%expected = expected
+    if (present(names)) then
+      row%names = names
+      row%forms = forms
+    else
+      allocate(row%names(0), row%forms(0))
+    end if
+    allocate(grown(size(table) + 1))
+    grown(1:size(table)) = table
+    grown(size(grown)) = row
+    call move_alloc(grown, table)
+  end subroutine add_row
+
+  !> Row of keyword kw standing in block (a row of block '*' stands anywhere);
+  !> with block = '?', the first row of kw wherever it stands; 0 when none.
+  pure integer function find_statement(table, kw, block) result(k)
+    type(statement_t), intent(in) :: table(:)
+    character(len=*), intent(in) :: kw, block
+    do k = 1, size(table)
+      if (table(k)%keyword /= kw) cycle
+      if (block == '?' .or. table(k)%block == block .or. table(k)%block == '*') return
+    end do
+    k = 0
+  end function find_statement
+
+  !> Check where statement st stands and how often, then run its row's handler.
+  !>   kw    (in) its keyword in upper case
+  !>   table (in) the grammar
+  subroutine dispatch(s, deck, st, kw, table)
+    type(state_t), intent(inout) :: s
+    type(deck_t), intent(inout) :: deck
+    type(stmt_t), intent(inout) :: st
+    character(len=*), intent(in) :: kw
+    type(statement_t), intent(in) :: table(:)
+    character(len=:), allocatable :: list
+    integer :: k, first
+
+    k = find_statement(table, kw, s%block)
+    if (k == 0) then
+      k = find_statement(table, kw, '?')
+      if (k == 0) then
+        list = ''
+        do k = 1, size(table)
+          if (find_statement(table, table(k)%keyword, '?') /= k) cycle
+          if (k > 1) list = list // ', '
+          list = list // trim(table(k)%keyword)
+        end do
+        call report(s, st%line, 'unknown keyword ' // quoted(st%keyword) // ' (expected one of ' // list // ')')
+        return
+      end if
+      if (table(k)%block /= '') then            ! a block statement outside its block
+        call report(s, st%line, 'statement ' // kw // ' outside a ' // trim(table(k)%block) // ' block (expected ' // &
+                    'inside ' // trim(table(k)%block) // ' ... END)')
+        return
+      end if
+      if (.not. s%end_hinted) then              ! a top-level statement inside a block: read as such
+        if (table(k)%opens /= '') then
+          call report(s, st%line, kw // ' inside ' // trim(s%block) // ' ' // quoted(s%block_name) // &
+                      ' opened at line ' // int_to_str(s%block_line) // ' (missing END?)')
+        else
+          call report(s, st%line, 'statement ' // kw // ' inside ' // trim(s%block) // ' ' // quoted(s%block_name) // &
+                      ' opened at line ' // int_to_str(s%block_line) // ' (expected after the END of the ' // &
+                      lower(trim(s%block)) // ' block; missing END?)')
+          s%end_hinted = .true.
+        end if
+      end if
+    end if
+    associate (row => table(k))
+      if (row%once) then
+        if (row%block == '') then
+          first = s%first_line(k)
+          s%first_line(k) = merge(first, st%line, first > 0)
+        else
+          first = s%block_first(k)
+          s%block_first(k) = merge(first, st%line, first > 0)
+        end if
+        if (first > 0 .and. row%block == '') then
+          call report(s, st%line, 'second ' // kw // ' (first at line ' // int_to_str(first) // '; expected ' // &
+                      row%expected // ')')
+          return
+        else if (first > 0) then
+          call report(s, st%line, 'second ' // kw // ' in ' // trim(s%block) // ' ' // quoted(s%block_name) // &
+                      ' (first at line ' // int_to_str(first) // '; expected ' // row%expected // ')')
+          return
+        end if
+      end if
+      if (row%opens /= '') then                 ! its handler names the block (block_name, block_line)
+        s%block = row%opens
+        s%block_first = 0
+        s%end_hinted = .false.
+      end if
+      if (.not. associated(row%run)) then       ! END
+        call close_block(s, st)
+        return
+      end if
+      st%names = row%names
+      st%forms = row%forms
+      call row%run(s, deck, st)
+    end associate
+  end subroutine dispatch
+
   ! ================================================================ helpers for statements
 
   !> Match the key=value pairs of st against the allowed keys names(:) (canonical
@@ -820,7 +982,7 @@ contains
       k = find_key(st%key(i)%s, names)
       if (k == 0) then
         call report(s, st%line, 'unknown key ' // quoted(st%key(i)%s) // ' for ' // what // ' (expected ' // &
-                    join_list(names) // ')')
+                    join_list(names, ', ') // ')')
         cycle
       end if
       if (seen(k)) then
@@ -846,14 +1008,14 @@ contains
     k = 0
   end function find_key
 
-  !> 'a, b, c' from a list of padded names.
-  pure function join_list(names) result(s)
-    character(len=*), intent(in) :: names(:)
+  !> 'a, b, c' (separator ', ') or 'a|b|c' (separator '|') from a list of padded names.
+  pure function join_list(names, separator) result(s)
+    character(len=*), intent(in) :: names(:), separator
     character(len=:), allocatable :: s
     integer :: k
     s = ''
     do k = 1, size(names)
-      if (k > 1) s = s // ', '
+      if (k > 1) s = s // separator
       s = s // trim(names(k))
     end do
   end function join_list
@@ -878,14 +1040,16 @@ contains
                                      ' (expected ' // usage // ')')
   end subroutine check_extra_words
 
-  !> Convert val to a real; report a bad number.  ok is false when absent or bad.
-  subroutine get_real(s, st, val, name, x, ok)
+  !> Convert val to a real; report a bad number, and with positive, x <= 0.
+  !> ok is false when absent or bad.
+  subroutine get_real(s, st, val, name, x, ok, positive)
     type(state_t), intent(inout) :: s
     type(stmt_t), intent(in) :: st
     type(text_t), intent(in) :: val
     character(len=*), intent(in) :: name
     real(dp), intent(inout) :: x
     logical, intent(out) :: ok
+    logical, intent(in), optional :: positive
     real(dp) :: y
     ok = .false.
     if (.not. allocated(val%s)) return
@@ -896,22 +1060,12 @@ contains
       call report(s, st%line, 'bad number ' // quoted(val%s) // ' for ' // quoted(name) // &
                   ' (expected a finite number)')
     end if
-  end subroutine get_real
-
-  !> As get_real, and also require x > 0.
-  subroutine get_positive(s, st, val, name, x, ok)
-    type(state_t), intent(inout) :: s
-    type(stmt_t), intent(in) :: st
-    type(text_t), intent(in) :: val
-    character(len=*), intent(in) :: name
-    real(dp), intent(inout) :: x
-    logical, intent(out) :: ok
-    call get_real(s, st, val, name, x, ok)
-    if (ok .and. .not. x > 0) then
+    if (.not. (ok .and. present(positive))) return
+    if (positive .and. .not. x > 0) then
       call report(s, st%line, 'bad value ' // name // '=' // cut(val%s) // ' (expected ' // name // ' > 0)')
       ok = .false.
     end if
-  end subroutine get_positive
+  end subroutine get_real
 
   !> Convert val to an integer >= lo; report otherwise.  ok false when absent or bad.
   subroutine get_integer(s, st, val, name, lo, k, ok)
@@ -952,20 +1106,9 @@ contains
       c = trim(choices(k))
     else
       call report(s, st%line, 'bad value ' // name // '=' // cut(val%s) // ' (expected ' // name // '=' // &
-                  join_bar(choices) // ')')
+                  join_list(choices, '|') // ')')
     end if
   end function get_choice
-
-  pure function join_bar(names) result(s)
-    character(len=*), intent(in) :: names(:)
-    character(len=:), allocatable :: s
-    integer :: k
-    s = ''
-    do k = 1, size(names)
-      if (k > 1) s = s // '|'
-      s = s // trim(names(k))
-    end do
-  end function join_bar
 
   !> Check a name (body, boundary) and report when bad; ok false when bad.
   subroutine check_name(s, st, name, what, ok)
@@ -1071,11 +1214,6 @@ contains
     type(deck_t), intent(inout) :: deck
     type(stmt_t), intent(in) :: st
     integer :: i
-    if (s%title_line > 0) then
-      call report(s, st%line, 'second TITLE (first at line ' // int_to_str(s%title_line) // '; expected at most one)')
-      return
-    end if
-    s%title_line = st%line
     deck%title = st%rest
     do i = 1, len(deck%title)
       if (iachar(deck%title(i:i)) < 32 .or. iachar(deck%title(i:i)) == 127) deck%title(i:i) = '?'
@@ -1092,11 +1230,6 @@ contains
     type(text_t) :: val(1)
     character(len=:), allocatable :: kind
 
-    if (s%plane_line > 0) then
-      call report(s, st%line, 'second PLANE (first at line ' // int_to_str(s%plane_line) // '; expected at most one)')
-      return
-    end if
-    s%plane_line = st%line
     if (st%nword == 0) then
       call report(s, st%line, 'missing plane kind (expected ' // usage // ')')
       return
@@ -1107,13 +1240,13 @@ contains
       return
     end if
     call check_extra_words(s, st, 1, usage)
-    call match_keys(s, st, ['thickness'], ['number'], 'PLANE ' // kind, seen, val)
+    call match_keys(s, st, st%names, st%forms, 'PLANE ' // kind, seen, val)
     if (kind == 'strain') then
       deck%plane_stress = .false.
       if (seen(1)) call report(s, st%line, 'thickness= only with PLANE stress (PLANE strain is per unit thickness)')
     else
       deck%plane_stress = .true.
-      call get_positive(s, st, val(1), 'thickness', deck%thickness, ok)
+      call get_real(s, st, val(1), 'thickness', deck%thickness, ok, positive=.true.)
     end if
   end subroutine do_plane
 
@@ -1127,10 +1260,6 @@ contains
     integer :: b
     logical :: ok
 
-    if (s%cur /= 0 .and. .not. s%end_hinted) then
-      call report(s, st%line, 'BODY inside BODY ' // quoted(deck%bodies(s%cur)%name) // ' opened at line ' // &
-                  int_to_str(deck%bodies(s%cur)%line) // ' (missing END?)')
-    end if
     allocate(grown(s%nbody + 1))
     do b = 1, s%nbody
       grown(b) = deck%bodies(b)
@@ -1161,14 +1290,16 @@ contains
       end if
       if (st%npair > 0) call report(s, st%line, 'unexpected ' // quoted(st%key(1)%s // '=' // st%value(1)%s) // &
                                     ' (expected ' // usage // ')')
+      s%block_name = body%name
+      s%block_line = body%line
     end associate
   end subroutine do_body
 
-  !> END
-  subroutine do_end(s, st)
+  !> END: closes the open block (BODY ... END).
+  subroutine close_block(s, st)
     type(state_t), intent(inout) :: s
     type(stmt_t), intent(in) :: st
-    if (s%cur == 0) then
+    if (s%block == '') then
       call report(s, st%line, 'END without an open BODY (expected END only to close a BODY block)')
       return
     end if
@@ -1179,39 +1310,36 @@ contains
                   ' after END (expected END alone)')
     end if
     s%cur = 0
+    s%block = ''
     s%end_hinted = .false.
-  end subroutine do_end
+  end subroutine close_block
 
   !> MESH rect ... | MESH gmsh file=...
-  subroutine do_mesh(s, dir, body, st)
+  subroutine do_mesh(s, deck, st)
     type(state_t), intent(inout) :: s
-    character(len=*), intent(in) :: dir
-    type(body_deck_t), intent(inout) :: body
+    type(deck_t), intent(inout) :: deck
     type(stmt_t), intent(in) :: st
     character(len=*), parameter :: usage = 'MESH rect x0= y0= x1= y1= nx= ny= or MESH gmsh file=NAME.msh|NAME.geo'
     character(len=:), allocatable :: kind
 
-    if (body%mesh%line > 0) then
-      call report(s, st%line, 'second MESH in BODY ' // quoted(body%name) // ' (first at line ' // &
-                  int_to_str(body%mesh%line) // '; expected one MESH per body)')
-      return
-    end if
-    body%mesh%line = st%line
-    if (st%nword == 0) then
-      call report(s, st%line, 'missing mesh kind (expected ' // usage // ')')
-      return
-    end if
-    kind = lower(st%word(1)%s)
-    select case (kind)
-    case ('rect')
-      body%mesh%kind = 'rect'
-      call do_mesh_rect(s, body%mesh, st)
-    case ('gmsh')
-      body%mesh%kind = 'gmsh'
-      call do_mesh_gmsh(s, dir, body%mesh, st)
-    case default
-      call report(s, st%line, 'unknown mesh kind ' // quoted(st%word(1)%s) // ' (expected rect or gmsh)')
-    end select
+    associate (body => deck%bodies(s%cur))
+      body%mesh%line = st%line
+      if (st%nword == 0) then
+        call report(s, st%line, 'missing mesh kind (expected ' // usage // ')')
+        return
+      end if
+      kind = lower(st%word(1)%s)
+      select case (kind)
+      case ('rect')
+        body%mesh%kind = 'rect'
+        call do_mesh_rect(s, body%mesh, st)
+      case ('gmsh')
+        body%mesh%kind = 'gmsh'
+        call do_mesh_gmsh(s, deck%dir, body%mesh, st)
+      case default
+        call report(s, st%line, 'unknown mesh kind ' // quoted(st%word(1)%s) // ' (expected rect or gmsh)')
+      end select
+    end associate
   end subroutine do_mesh
 
   !> MESH rect [x0=] [y0=] [x1=] [y1=] nx= ny= [elem=] [diag=]
@@ -1383,9 +1511,9 @@ contains
   end subroutine do_mesh_gmsh
 
   !> MATERIAL isotropic E= nu= | MATERIAL orthotropic E1= E2= nu12= G12= [angle=] [E3=] [nu13=] [nu23=]
-  subroutine do_material(s, body, st)
+  subroutine do_material(s, deck, st)
     type(state_t), intent(inout) :: s
-    type(body_deck_t), intent(inout) :: body
+    type(deck_t), intent(inout) :: deck
     type(stmt_t), intent(in) :: st
     character(len=*), parameter :: usage_iso = 'MATERIAL isotropic E=number nu=number'
     character(len=*), parameter :: usage_ortho = 'MATERIAL orthotropic E1=number E2=number nu12=number ' // &
@@ -1401,60 +1529,57 @@ contains
     character(len=:), allocatable :: kind
     type(material_t) :: mat
 
-    if (body%material%line > 0) then
-      call report(s, st%line, 'second MATERIAL in BODY ' // quoted(body%name) // ' (first at line ' // &
-                  int_to_str(body%material%line) // '; expected one MATERIAL per body)')
-      return
-    end if
-    body%material%line = st%line
-    body%material%kind = ''
-    if (st%nword == 0) then
-      call report(s, st%line, 'missing material kind (expected ' // usage_iso // ' or MATERIAL orthotropic ...)')
-      return
-    end if
-    kind = lower(st%word(1)%s)
-    nerr0 = s%nerr
-    mat%line = st%line
-    select case (kind)
-    case ('isotropic')
-      call check_extra_words(s, st, 1, usage_iso)
-      call match_keys(s, st, iso_names, forms(1:2), 'MATERIAL isotropic', seen(1:2), val(1:2))
-      call require_key(s, st, seen(1), 'E', 'MATERIAL isotropic', usage_iso)
-      call require_key(s, st, seen(2), 'nu', 'MATERIAL isotropic', usage_iso)
-      call get_positive(s, st, val(1), 'E', mat%e, ok(1))
-      call get_real(s, st, val(2), 'nu', mat%nu, ok(2))
-      if (ok(2) .and. .not. (mat%nu > -1.0_dp .and. mat%nu < 0.5_dp)) &
-        call report(s, st%line, 'bad value nu=' // cut(val(2)%s) // ' (expected -1 < nu < 0.5)')
-    case ('orthotropic')
-      call check_extra_words(s, st, 1, usage_ortho)
-      call match_keys(s, st, ortho_names, forms, 'MATERIAL orthotropic', seen, val)
-      call require_key(s, st, seen(1), 'E1', 'MATERIAL orthotropic', usage_ortho)
-      call require_key(s, st, seen(2), 'E2', 'MATERIAL orthotropic', usage_ortho)
-      call require_key(s, st, seen(3), 'nu12', 'MATERIAL orthotropic', usage_ortho)
-      call require_key(s, st, seen(4), 'G12', 'MATERIAL orthotropic', usage_ortho)
-      call get_positive(s, st, val(1), 'E1', mat%e1, ok(1))
-      call get_positive(s, st, val(2), 'E2', mat%e2, ok(2))
-      call get_real(s, st, val(3), 'nu12', mat%nu12, ok(3))
-      call get_positive(s, st, val(4), 'G12', mat%g12, ok(4))
-      call get_real(s, st, val(5), 'angle', mat%angle, ok(5))
-      mat%e3 = mat%e2
-      mat%nu13 = mat%nu12
-      mat%nu23 = mat%nu12
-      call get_positive(s, st, val(6), 'E3', mat%e3, ok(6))
-      call get_real(s, st, val(7), 'nu13', mat%nu13, ok(7))
-      call get_real(s, st, val(8), 'nu23', mat%nu23, ok(8))
-      if (all(ok(1:3))) then
-        if (.not. plane_compliance_ok(mat)) call report(s, st%line, 'orthotropic in-plane compliance not ' // &
-                                                        'positive definite (expected nu12^2 < E1/E2)')
+    associate (body => deck%bodies(s%cur))
+      body%material%line = st%line
+      body%material%kind = ''
+      if (st%nword == 0) then
+        call report(s, st%line, 'missing material kind (expected ' // usage_iso // ' or MATERIAL orthotropic ...)')
+        return
       end if
-    case default
-      call report(s, st%line, 'unknown material kind ' // quoted(st%word(1)%s) // ' (expected isotropic or orthotropic)')
-      return
-    end select
-    if (s%nerr == nerr0) then
-      mat%kind = kind
-      body%material = mat
-    end if
+      kind = lower(st%word(1)%s)
+      nerr0 = s%nerr
+      mat%line = st%line
+      select case (kind)
+      case ('isotropic')
+        call check_extra_words(s, st, 1, usage_iso)
+        call match_keys(s, st, iso_names, forms(1:2), 'MATERIAL isotropic', seen(1:2), val(1:2))
+        call require_key(s, st, seen(1), 'E', 'MATERIAL isotropic', usage_iso)
+        call require_key(s, st, seen(2), 'nu', 'MATERIAL isotropic', usage_iso)
+        call get_real(s, st, val(1), 'E', mat%e, ok(1), positive=.true.)
+        call get_real(s, st, val(2), 'nu', mat%nu, ok(2))
+        if (ok(2) .and. .not. (mat%nu > -1.0_dp .and. mat%nu < 0.5_dp)) &
+          call report(s, st%line, 'bad value nu=' // cut(val(2)%s) // ' (expected -1 < nu < 0.5)')
+      case ('orthotropic')
+        call check_extra_words(s, st, 1, usage_ortho)
+        call match_keys(s, st, ortho_names, forms, 'MATERIAL orthotropic', seen, val)
+        call require_key(s, st, seen(1), 'E1', 'MATERIAL orthotropic', usage_ortho)
+        call require_key(s, st, seen(2), 'E2', 'MATERIAL orthotropic', usage_ortho)
+        call require_key(s, st, seen(3), 'nu12', 'MATERIAL orthotropic', usage_ortho)
+        call require_key(s, st, seen(4), 'G12', 'MATERIAL orthotropic', usage_ortho)
+        call get_real(s, st, val(1), 'E1', mat%e1, ok(1), positive=.true.)
+        call get_real(s, st, val(2), 'E2', mat%e2, ok(2), positive=.true.)
+        call get_real(s, st, val(3), 'nu12', mat%nu12, ok(3))
+        call get_real(s, st, val(4), 'G12', mat%g12, ok(4), positive=.true.)
+        call get_real(s, st, val(5), 'angle', mat%angle, ok(5))
+        mat%e3 = mat%e2
+        mat%nu13 = mat%nu12
+        mat%nu23 = mat%nu12
+        call get_real(s, st, val(6), 'E3', mat%e3, ok(6), positive=.true.)
+        call get_real(s, st, val(7), 'nu13', mat%nu13, ok(7))
+        call get_real(s, st, val(8), 'nu23', mat%nu23, ok(8))
+        if (all(ok(1:3))) then
+          if (.not. plane_compliance_ok(mat)) call report(s, st%line, 'orthotropic in-plane compliance not ' // &
+                                                          'positive definite (expected nu12^2 < E1/E2)')
+        end if
+      case default
+        call report(s, st%line, 'unknown material kind ' // quoted(st%word(1)%s) // ' (expected isotropic or orthotropic)')
+        return
+      end select
+      if (s%nerr == nerr0) then
+        mat%kind = kind
+        body%material = mat
+      end if
+    end associate
   end subroutine do_material
 
   !> 1 - nu12^2 E2/E1 > 0, computed without overflow.
@@ -1493,31 +1618,28 @@ contains
   end function ratio_term
 
   !> DENSITY rho=
-  subroutine do_density(s, body, st)
+  subroutine do_density(s, deck, st)
     type(state_t), intent(inout) :: s
-    type(body_deck_t), intent(inout) :: body
+    type(deck_t), intent(inout) :: deck
     type(stmt_t), intent(in) :: st
     character(len=*), parameter :: usage = 'DENSITY rho=number'
     logical :: seen(1), ok
     type(text_t) :: val(1)
 
-    if (body%density_line > 0) then
-      call report(s, st%line, 'second DENSITY in BODY ' // quoted(body%name) // ' (first at line ' // &
-                  int_to_str(body%density_line) // '; expected at most one)')
-      return
-    end if
-    body%density_line = st%line
-    call check_extra_words(s, st, 0, usage)
-    call match_keys(s, st, ['rho'], ['number'], 'DENSITY', seen, val)
-    call require_key(s, st, seen(1), 'rho', 'DENSITY', usage)
-    call get_positive(s, st, val(1), 'rho', body%rho, ok)
-    body%has_density = ok
+    associate (body => deck%bodies(s%cur))
+      body%density_line = st%line
+      call check_extra_words(s, st, 0, usage)
+      call match_keys(s, st, st%names, st%forms, 'DENSITY', seen, val)
+      call require_key(s, st, seen(1), 'rho', 'DENSITY', usage)
+      call get_real(s, st, val(1), 'rho', body%rho, ok, positive=.true.)
+      body%has_density = ok
+    end associate
   end subroutine do_density
 
   !> FIX boundary [ux=] [uy=] [ramp=]
-  subroutine do_fix(s, body, st)
+  subroutine do_fix(s, deck, st)
     type(state_t), intent(inout) :: s
-    type(body_deck_t), intent(inout) :: body
+    type(deck_t), intent(inout) :: deck
     type(stmt_t), intent(in) :: st
     character(len=*), parameter :: usage = 'FIX boundary [ux=number] [uy=number] | [un=number] [ut=number] ' // &
                                            '[ramp=k0:k1|curve=NAME]'
@@ -1525,124 +1647,110 @@ contains
     type(fix_t) :: fix
     logical :: seen(6), ok
     type(text_t) :: val(6)
-    integer :: i
 
-    fix%line = st%line
-    fix%boundary = ''
-    if (st%nword == 0) then
-      call report(s, st%line, 'missing boundary name (expected ' // usage // ')')
-    else
-      call check_name(s, st, st%word(1)%s, 'boundary', ok)
-      if (ok) fix%boundary = st%word(1)%s
-      call check_extra_words(s, st, 1, usage)
-    end if
-    call match_keys(s, st, ['ux   ', 'uy   ', 'ramp ', 'curve', 'un   ', 'ut   '], &
-                    ['number', 'number', 'k0:k1 ', 'NAME  ', 'number', 'number'], 'FIX', seen, val)
-    call get_component_pair(s, st, seen, val, ['ux', 'uy', 'un', 'ut'], fix%local, fix%ux, fix%uy)
-    if (fix%local) seen(1:2) = seen(5:6)             ! ux, uy hold un, ut
-    call get_ramp(s, st, val(3), fix%ramp)
-    call get_curve_name(s, st, val(4), val(3), fix%curve_name)
-    fix%has_ux = seen(1)
-    fix%has_uy = seen(2)
-    if (.not. (seen(1) .or. seen(2))) then          ! FIX boundary [ramp=]: clamp both
-      fix%has_ux = .true.
-      fix%has_uy = .true.
-    end if
-    ! capacity doubles: 1e5 FIX statements cost 1e5 copies in all, not 5e9
-    if (body%nfix == size(body%fixes)) then
-      allocate(grown(max(8, 2 * size(body%fixes))))
-      grown(1:body%nfix) = body%fixes(1:body%nfix)
-      call move_alloc(grown, body%fixes)
-    end if
-    body%nfix = body%nfix + 1
-    body%fixes(body%nfix) = fix
+    associate (body => deck%bodies(s%cur))
+      fix%line = st%line
+      fix%boundary = ''
+      if (st%nword == 0) then
+        call report(s, st%line, 'missing boundary name (expected ' // usage // ')')
+      else
+        call check_name(s, st, st%word(1)%s, 'boundary', ok)
+        if (ok) fix%boundary = st%word(1)%s
+        call check_extra_words(s, st, 1, usage)
+      end if
+      call match_keys(s, st, st%names, st%forms, 'FIX', seen, val)
+      call get_component_pair(s, st, seen, val, ['ux', 'uy', 'un', 'ut'], fix%local, fix%ux, fix%uy)
+      if (fix%local) seen(1:2) = seen(5:6)             ! ux, uy hold un, ut
+      call get_ramp(s, st, val(3), fix%ramp)
+      call get_curve_name(s, st, val(4), val(3), fix%curve_name)
+      fix%has_ux = seen(1)
+      fix%has_uy = seen(2)
+      if (.not. (seen(1) .or. seen(2))) then          ! FIX boundary [ramp=]: clamp both
+        fix%has_ux = .true.
+        fix%has_uy = .true.
+      end if
+      ! capacity doubles: 1e5 FIX statements cost 1e5 copies in all, not 5e9
+      if (body%nfix == size(body%fixes)) then
+        allocate(grown(max(8, 2 * size(body%fixes))))
+        grown(1:body%nfix) = body%fixes(1:body%nfix)
+        call move_alloc(grown, body%fixes)
+      end if
+      body%nfix = body%nfix + 1
+      body%fixes(body%nfix) = fix
+    end associate
   end subroutine do_fix
 
   !> TRACTION boundary tx= ty= [ramp=] | PRESSURE boundary p= [ramp=]
-  subroutine do_load(s, body, st, kw)
+  subroutine do_load(s, deck, st)
     type(state_t), intent(inout) :: s
-    type(body_deck_t), intent(inout) :: body
+    type(deck_t), intent(inout) :: deck
     type(stmt_t), intent(in) :: st
-    character(len=*), intent(in) :: kw
-    character(len=:), allocatable :: usage
+    character(len=:), allocatable :: usage, kw
     type(load_t), allocatable :: grown(:)
     type(load_t) :: load
     logical :: seen(6), ok
     type(text_t) :: val(6)
-    integer :: i, nerr0
+    integer :: nerr0
 
-    if (kw == 'TRACTION') then
-      usage = 'TRACTION boundary tx=number ty=number | tn=number tt=number [ramp=k0:k1|curve=NAME]'
-      load%kind = load_traction
-    else
-      usage = 'PRESSURE boundary p=number [ramp=k0:k1|curve=NAME]'
-      load%kind = load_pressure
-    end if
-    load%line = st%line
-    load%boundary = ''
-    nerr0 = s%nerr
-    if (st%nword == 0) then
-      call report(s, st%line, 'missing boundary name (expected ' // usage // ')')
-    else
-      call check_name(s, st, st%word(1)%s, 'boundary', ok)
-      if (ok) load%boundary = st%word(1)%s
-      call check_extra_words(s, st, 1, usage)
-    end if
-    if (kw == 'TRACTION') then
-      call match_keys(s, st, ['tx   ', 'ty   ', 'ramp ', 'curve', 'tn   ', 'tt   '], &
-                      ['number', 'number', 'k0:k1 ', 'NAME  ', 'number', 'number'], 'TRACTION', seen, val)
-      if (.not. any(seen([1, 2, 5, 6]))) call report(s, st%line, 'missing tx= and ty= (expected ' // usage // ')')
-      call get_component_pair(s, st, seen, val, ['tx', 'ty', 'tn', 'tt'], load%local, load%tx, load%ty)
-      call get_ramp(s, st, val(3), load%ramp)
-      call get_curve_name(s, st, val(4), val(3), load%curve_name)
-    else
-      call match_keys(s, st, ['p    ', 'ramp ', 'curve'], ['number', 'k0:k1 ', 'NAME  '], 'PRESSURE', seen(1:3), &
-                      val(1:3))
-      call require_key(s, st, seen(1), 'p', 'PRESSURE', usage)
-      call get_real(s, st, val(1), 'p', load%p, ok)
-      call get_ramp(s, st, val(2), load%ramp)
-      call get_curve_name(s, st, val(3), val(2), load%curve_name)
-    end if
-    if (s%nerr /= nerr0) return
-    if (body%nload == size(body%loads)) then        ! capacity doubles, as for FIX
-      allocate(grown(max(8, 2 * size(body%loads))))
-      grown(1:body%nload) = body%loads(1:body%nload)
-      call move_alloc(grown, body%loads)
-    end if
-    body%nload = body%nload + 1
-    body%loads(body%nload) = load
+    kw = upper(st%keyword)
+    associate (body => deck%bodies(s%cur))
+      if (kw == 'TRACTION') then
+        usage = 'TRACTION boundary tx=number ty=number | tn=number tt=number [ramp=k0:k1|curve=NAME]'
+        load%kind = load_traction
+      else
+        usage = 'PRESSURE boundary p=number [ramp=k0:k1|curve=NAME]'
+        load%kind = load_pressure
+      end if
+      load%line = st%line
+      load%boundary = ''
+      nerr0 = s%nerr
+      if (st%nword == 0) then
+        call report(s, st%line, 'missing boundary name (expected ' // usage // ')')
+      else
+        call check_name(s, st, st%word(1)%s, 'boundary', ok)
+        if (ok) load%boundary = st%word(1)%s
+        call check_extra_words(s, st, 1, usage)
+      end if
+      if (kw == 'TRACTION') then
+        call match_keys(s, st, st%names, st%forms, 'TRACTION', seen, val)
+        if (.not. any(seen([1, 2, 5, 6]))) call report(s, st%line, 'missing tx= and ty= (expected ' // usage // ')')
+        call get_component_pair(s, st, seen, val, ['tx', 'ty', 'tn', 'tt'], load%local, load%tx, load%ty)
+        call get_ramp(s, st, val(3), load%ramp)
+        call get_curve_name(s, st, val(4), val(3), load%curve_name)
+      else
+        call match_keys(s, st, st%names, st%forms, 'PRESSURE', seen(1:3), val(1:3))
+        call require_key(s, st, seen(1), 'p', 'PRESSURE', usage)
+        call get_real(s, st, val(1), 'p', load%p, ok)
+        call get_ramp(s, st, val(2), load%ramp)
+        call get_curve_name(s, st, val(3), val(2), load%curve_name)
+      end if
+      if (s%nerr /= nerr0) return
+      if (body%nload == size(body%loads)) then        ! capacity doubles, as for FIX
+        allocate(grown(max(8, 2 * size(body%loads))))
+        grown(1:body%nload) = body%loads(1:body%nload)
+        call move_alloc(grown, body%loads)
+      end if
+      body%nload = body%nload + 1
+      body%loads(body%nload) = load
+    end associate
   end subroutine do_load
 
-  !> BODYFORCE fx= fy= [ramp=]
-  subroutine do_bodyforce(s, body, st)
+  !> BODYFORCE fx= fy= [ramp=|curve=]
+  subroutine do_bodyforce(s, deck, st)
     type(state_t), intent(inout) :: s
-    type(body_deck_t), intent(inout) :: body
+    type(deck_t), intent(inout) :: deck
     type(stmt_t), intent(in) :: st
-    character(len=*), parameter :: usage = 'BODYFORCE fx=number fy=number [ramp=k0:k1|curve=NAME]'
-    logical :: seen(4), ok1, ok2
-    type(text_t) :: val(4)
-
-    if (body%bodyforce_line > 0) then
-      call report(s, st%line, 'second BODYFORCE in BODY ' // quoted(body%name) // ' (first at line ' // &
-                  int_to_str(body%bodyforce_line) // '; expected at most one)')
-      return
-    end if
-    body%bodyforce_line = st%line
-    call check_extra_words(s, st, 0, usage)
-    call match_keys(s, st, ['fx   ', 'fy   ', 'ramp ', 'curve'], ['number', 'number', 'k0:k1 ', 'NAME  '], &
-                    'BODYFORCE', seen, val)
-    if (.not. (seen(1) .or. seen(2))) call report(s, st%line, 'missing fx= and fy= (expected ' // usage // ')')
-    call get_real(s, st, val(1), 'fx', body%fx, ok1)
-    call get_real(s, st, val(2), 'fy', body%fy, ok2)
-    call get_ramp(s, st, val(3), body%bodyforce_ramp)
-    call get_curve_name(s, st, val(4), val(3), body%bodyforce_curve_name)
-    body%has_bodyforce = (ok1 .or. .not. seen(1)) .and. (ok2 .or. .not. seen(2)) .and. (seen(1) .or. seen(2))
+    associate (body => deck%bodies(s%cur))
+      body%bodyforce_line = st%line
+      call read_vector_statement(s, st, 'BODYFORCE fx=number fy=number [ramp=k0:k1|curve=NAME]', body%fx, body%fy, &
+                                 body%has_bodyforce, body%bodyforce_ramp, body%bodyforce_curve_name)
+    end associate
   end subroutine do_bodyforce
 
   !> THERMAL alpha= dT= [region=NAME]
-  subroutine do_thermal(s, body, st)
+  subroutine do_thermal(s, deck, st)
     type(state_t), intent(inout) :: s
-    type(body_deck_t), intent(inout) :: body
+    type(deck_t), intent(inout) :: deck
     type(stmt_t), intent(in) :: st
     character(len=*), parameter :: usage = 'THERMAL alpha=number dT=number [region=NAME] [curve=NAME]'
     type(thermal_t), allocatable :: grown(:)
@@ -1651,88 +1759,92 @@ contains
     type(text_t) :: val(4), no_ramp
     integer :: k
 
-    call check_extra_words(s, st, 0, usage)
-    call match_keys(s, st, ['alpha ', 'dT    ', 'region', 'curve '], ['number', 'number', 'NAME  ', 'NAME  '], &
-                    'THERMAL', seen, val)
-    call get_curve_name(s, st, val(4), no_ramp, th%curve_name)
-    call require_key(s, st, seen(1), 'alpha', 'THERMAL', usage)
-    call require_key(s, st, seen(2), 'dT', 'THERMAL', usage)
-    call get_real(s, st, val(1), 'alpha', th%alpha, ok1)
-    call get_real(s, st, val(2), 'dT', th%dt, ok2)
-    th%region = ''
-    okn = .true.
-    if (allocated(val(3)%s)) then
-      call check_name(s, st, val(3)%s, 'region', okn)
-      if (okn) th%region = val(3)%s
-    end if
-    if (.not. (ok1 .and. ok2 .and. okn)) return
-    do k = 1, size(body%thermals)
-      if (body%thermals(k)%region == th%region) then
-        if (len(th%region) == 0) then
-          call report(s, st%line, 'second THERMAL for the whole of BODY ' // quoted(body%name) // ' (first at line ' // &
-                      int_to_str(body%thermals(k)%line) // '; expected one, or one per region=)')
-        else
-          call report(s, st%line, 'second THERMAL for region ' // quoted(th%region) // ' (first at line ' // &
-                      int_to_str(body%thermals(k)%line) // '; expected one per region)')
-        end if
-        return
+    associate (body => deck%bodies(s%cur))
+      call check_extra_words(s, st, 0, usage)
+      call match_keys(s, st, st%names, st%forms, 'THERMAL', seen, val)
+      call get_curve_name(s, st, val(4), no_ramp, th%curve_name)
+      call require_key(s, st, seen(1), 'alpha', 'THERMAL', usage)
+      call require_key(s, st, seen(2), 'dT', 'THERMAL', usage)
+      call get_real(s, st, val(1), 'alpha', th%alpha, ok1)
+      call get_real(s, st, val(2), 'dT', th%dt, ok2)
+      th%region = ''
+      okn = .true.
+      if (allocated(val(3)%s)) then
+        call check_name(s, st, val(3)%s, 'region', okn)
+        if (okn) th%region = val(3)%s
       end if
-    end do
-    th%line = st%line
-    allocate(grown(size(body%thermals) + 1))
-    grown(1:size(body%thermals)) = body%thermals
-    grown(size(grown)) = th
-    call move_alloc(grown, body%thermals)
+      if (.not. (ok1 .and. ok2 .and. okn)) return
+      do k = 1, size(body%thermals)
+        if (body%thermals(k)%region == th%region) then
+          if (len(th%region) == 0) then
+            call report(s, st%line, 'second THERMAL for the whole of BODY ' // quoted(body%name) // ' (first at line ' // &
+                        int_to_str(body%thermals(k)%line) // '; expected one, or one per region=)')
+          else
+            call report(s, st%line, 'second THERMAL for region ' // quoted(th%region) // ' (first at line ' // &
+                        int_to_str(body%thermals(k)%line) // '; expected one per region)')
+          end if
+          return
+        end if
+      end do
+      th%line = st%line
+      allocate(grown(size(body%thermals) + 1))
+      grown(1:size(body%thermals)) = body%thermals
+      grown(size(grown)) = th
+      call move_alloc(grown, body%thermals)
+    end associate
   end subroutine do_thermal
 
   !> OFFSET dx= dy=: a rigid shift of the body's geometry (mesh) before anything else
-  subroutine do_offset(s, body, st)
+  subroutine do_offset(s, deck, st)
     type(state_t), intent(inout) :: s
-    type(body_deck_t), intent(inout) :: body
+    type(deck_t), intent(inout) :: deck
     type(stmt_t), intent(in) :: st
-    character(len=*), parameter :: usage = 'OFFSET dx=number dy=number'
-    logical :: seen(2), ok1, ok2
-    type(text_t) :: val(2)
-
-    if (body%offset_line > 0) then
-      call report(s, st%line, 'second OFFSET in BODY ' // quoted(body%name) // ' (first at line ' // &
-                  int_to_str(body%offset_line) // '; expected at most one)')
-      return
-    end if
-    body%offset_line = st%line
-    call check_extra_words(s, st, 0, usage)
-    call match_keys(s, st, ['dx', 'dy'], ['number', 'number'], 'OFFSET', seen, val)
-    if (.not. (seen(1) .or. seen(2))) call report(s, st%line, 'missing dx= and dy= (expected ' // usage // ')')
-    call get_real(s, st, val(1), 'dx', body%dx, ok1)
-    call get_real(s, st, val(2), 'dy', body%dy, ok2)
-    body%has_offset = (ok1 .or. .not. seen(1)) .and. (ok2 .or. .not. seen(2)) .and. (seen(1) .or. seen(2))
+    associate (body => deck%bodies(s%cur))
+      body%offset_line = st%line
+      call read_vector_statement(s, st, 'OFFSET dx=number dy=number', body%dx, body%dy, body%has_offset)
+    end associate
   end subroutine do_offset
 
-  !> GRAVITY gx= gy= [ramp=]
+  !> GRAVITY gx= gy= [ramp=|curve=]
   subroutine do_gravity(s, deck, st)
     type(state_t), intent(inout) :: s
     type(deck_t), intent(inout) :: deck
     type(stmt_t), intent(in) :: st
-    character(len=*), parameter :: usage = 'GRAVITY gx=number gy=number [ramp=k0:k1|curve=NAME]'
+    deck%gravity_line = st%line
+    call read_vector_statement(s, st, 'GRAVITY gx=number gy=number [ramp=k0:k1|curve=NAME]', deck%gx, deck%gy, &
+                               deck%has_gravity, deck%gravity_ramp, deck%gravity_curve_name)
+  end subroutine do_gravity
+
+  !> A statement of a vector (GRAVITY, BODYFORCE, OFFSET): no words, the keys
+  !> of its row, its two components first (at least one given), then ramp= and
+  !> curve= when it takes a load path.
+  !>   usage       (in)    the statement's form, for messages
+  !>   a, b        (inout) the components as given (unchanged when absent)
+  !>   given       (out)   at least one component given, and every one given a number
+  !>   ramp, curve_name (out, optional) the load path (get_ramp, get_curve_name)
+  subroutine read_vector_statement(s, st, usage, a, b, given, ramp, curve_name)
+    type(state_t), intent(inout) :: s
+    type(stmt_t), intent(in) :: st
+    character(len=*), intent(in) :: usage
+    real(dp), intent(inout) :: a, b
+    logical, intent(out) :: given
+    integer, intent(out), optional :: ramp(2)
+    character(len=:), allocatable, intent(out), optional :: curve_name
     logical :: seen(4), ok1, ok2
     type(text_t) :: val(4)
+    integer :: nkey
 
-    if (deck%gravity_line > 0) then
-      call report(s, st%line, 'second GRAVITY (first at line ' // int_to_str(deck%gravity_line) // &
-                  '; expected at most one)')
-      return
-    end if
-    deck%gravity_line = st%line
+    nkey = size(st%names)
     call check_extra_words(s, st, 0, usage)
-    call match_keys(s, st, ['gx   ', 'gy   ', 'ramp ', 'curve'], ['number', 'number', 'k0:k1 ', 'NAME  '], &
-                    'GRAVITY', seen, val)
-    if (.not. (seen(1) .or. seen(2))) call report(s, st%line, 'missing gx= and gy= (expected ' // usage // ')')
-    call get_real(s, st, val(1), 'gx', deck%gx, ok1)
-    call get_real(s, st, val(2), 'gy', deck%gy, ok2)
-    call get_ramp(s, st, val(3), deck%gravity_ramp)
-    call get_curve_name(s, st, val(4), val(3), deck%gravity_curve_name)
-    deck%has_gravity = (ok1 .or. .not. seen(1)) .and. (ok2 .or. .not. seen(2)) .and. (seen(1) .or. seen(2))
-  end subroutine do_gravity
+    call match_keys(s, st, st%names, st%forms, upper(st%keyword), seen(1:nkey), val(1:nkey))
+    if (.not. (seen(1) .or. seen(2))) call report(s, st%line, 'missing ' // trim(st%names(1)) // '= and ' // &
+                                                  trim(st%names(2)) // '= (expected ' // usage // ')')
+    call get_real(s, st, val(1), trim(st%names(1)), a, ok1)
+    call get_real(s, st, val(2), trim(st%names(2)), b, ok2)
+    if (present(ramp)) call get_ramp(s, st, val(3), ramp)
+    if (present(curve_name)) call get_curve_name(s, st, val(4), val(3), curve_name)
+    given = (ok1 .or. .not. seen(1)) .and. (ok2 .or. .not. seen(2)) .and. (seen(1) .or. seen(2))
+  end subroutine read_vector_statement
 
   !> CONTACT slave=body:boundary master=body:boundary [gap=geometry|zero] [mu=number | tresca=number]
   !>         [interference=allow|reject]
@@ -1742,10 +1854,6 @@ contains
     type(stmt_t), intent(in) :: st
     character(len=*), parameter :: usage = 'CONTACT slave=body:boundary master=body:boundary [gap=geometry|zero] ' // &
                                            '[mu=number|tresca=number] [interference=allow|reject]'
-    character(len=12), parameter :: names(6) = [character(len=12) :: 'slave', 'master', 'gap', 'mu', 'tresca', &
-                                                'interference']
-    character(len=13), parameter :: forms(6) = [character(len=13) :: 'body:boundary', 'body:boundary', &
-                                                'geometry|zero', 'number', 'number', 'allow|reject']
     logical :: seen(6), ok_s, ok_m, ok
     type(text_t) :: val(6)
     type(contact_deck_t) :: c
@@ -1756,7 +1864,7 @@ contains
 
     nerr0 = s%nerr
     call check_extra_words(s, st, 0, usage)
-    call match_keys(s, st, names, forms, 'CONTACT', seen, val)
+    call match_keys(s, st, st%names, st%forms, 'CONTACT', seen, val)
     call require_key(s, st, seen(1), 'slave', 'CONTACT', usage)
     call require_key(s, st, seen(2), 'master', 'CONTACT', usage)
     call split_side(s, st, val(1), 'slave', sbody, c%slave_boundary, ok_s)
@@ -1854,23 +1962,13 @@ contains
     character(len=*), parameter :: usage = 'SOLVER [lcp=auto|lemke|pgs|pdas] [tol=number] [maxit=integer] ' // &
                                            '[omega=number] [ordering=auto|metis|amd] [condense=auto|solve|inverse] ' // &
                                            '[cut=auto|off]'
-    character(len=8), parameter :: names(7) = [character(len=8) :: 'lcp', 'tol', 'maxit', 'omega', 'ordering', &
-                                               'condense', 'cut']
-    character(len=19), parameter :: forms(7) = [character(len=19) :: 'auto|lemke|pgs|pdas', 'number', 'integer', &
-                                                'number', 'auto|metis|amd', 'auto|solve|inverse', 'auto|off']
     logical :: seen(7), ok
     type(text_t) :: val(7)
     character(len=:), allocatable :: lcp, ordering, condense, halves
 
-    if (s%solver_line > 0) then
-      call report(s, st%line, 'second SOLVER (first at line ' // int_to_str(s%solver_line) // &
-                  '; expected at most one)')
-      return
-    end if
-    s%solver_line = st%line
     deck%solver%line = st%line
     call check_extra_words(s, st, 0, usage)
-    call match_keys(s, st, names, forms, 'SOLVER', seen, val)
+    call match_keys(s, st, st%names, st%forms, 'SOLVER', seen, val)
     if (allocated(val(1)%s)) then
       lcp = get_choice(s, st, val(1), 'lcp', ['auto ', 'lemke', 'pgs  ', 'pdas '])
       if (len(lcp) > 0) deck%solver%lcp = lcp
@@ -1887,7 +1985,7 @@ contains
       halves = get_choice(s, st, val(7), 'cut', ['auto', 'off '])
       if (len(halves) > 0) deck%solver%cut = halves
     end if
-    call get_positive(s, st, val(2), 'tol', deck%solver%tol, ok)
+    call get_real(s, st, val(2), 'tol', deck%solver%tol, ok, positive=.true.)
     call get_integer(s, st, val(3), 'maxit', 0, deck%solver%maxit, ok)
     call get_real(s, st, val(4), 'omega', deck%solver%omega, ok)
     if (ok .and. .not. (deck%solver%omega > 0 .and. deck%solver%omega < 2)) &
@@ -1903,11 +2001,6 @@ contains
     integer :: n, nerr0
     logical :: ok
 
-    if (deck%steps_line > 0) then
-      call report(s, st%line, 'second STEPS (first at line ' // int_to_str(deck%steps_line) // &
-                  '; expected at most one)')
-      return
-    end if
     deck%steps_line = st%line
     nerr0 = s%nerr
     if (st%nword == 0) then
@@ -2020,7 +2113,6 @@ contains
     type(stmt_t), intent(in) :: st
     character(len=*), parameter :: usage = 'OUTPUT [vtk=NAME] [contact=NAME] [summary=NAME] [fields=LIST] ' // &
                                            '[steps=last|all]'
-    character(len=7), parameter :: names(5) = [character(len=7) :: 'vtk', 'contact', 'summary', 'fields', 'steps']
     character(len=16), parameter :: field_names(5) = [character(len=16) :: 'displacement', 'contact_pressure', &
                                                       'gap', 'stress', 'von_mises']
     logical :: seen(5)
@@ -2028,15 +2120,9 @@ contains
     integer :: k, p, q, f
     character(len=:), allocatable :: item
 
-    if (s%output_line > 0) then
-      call report(s, st%line, 'second OUTPUT (first at line ' // int_to_str(s%output_line) // &
-                  '; expected at most one)')
-      return
-    end if
-    s%output_line = st%line
     deck%output%line = st%line
     call check_extra_words(s, st, 0, usage)
-    call match_keys(s, st, names, ['NAME    ', 'NAME    ', 'NAME    ', 'LIST    ', 'last|all'], 'OUTPUT', seen, val)
+    call match_keys(s, st, st%names, st%forms, 'OUTPUT', seen, val)
     if (allocated(val(5)%s)) then
       select case (lower(val(5)%s))
       case ('last')
@@ -2067,7 +2153,7 @@ contains
           continue
         else if (f == 0) then
           call report(s, st%line, 'unknown field ' // quoted(cut(item)) // ' in fields= (expected a comma-separated ' // &
-                      'list of ' // join_list(field_names) // ', or all, or none)')
+                      'list of ' // join_list(field_names, ', ') // ', or all, or none)')
           exit
         else
           deck%output%fields(f) = .true.
@@ -2078,7 +2164,7 @@ contains
     do k = 1, 3
       if (.not. allocated(val(k)%s)) cycle
       if (.not. is_name(val(k)%s) .or. val(k)%s == '.' .or. val(k)%s == '..') then
-        call report(s, st%line, 'bad file name ' // trim(names(k)) // '=' // cut(val(k)%s) // ' (expected a ' // &
+        call report(s, st%line, 'bad file name ' // trim(st%names(k)) // '=' // cut(val(k)%s) // ' (expected a ' // &
                     'name in the output folder: letters, digits, _ . - only, no /)')
         cycle
       end if
@@ -2105,9 +2191,9 @@ contains
     integer :: b, i
     logical :: resolved
 
-    if (s%cur /= 0 .and. .not. s%end_hinted) &
-      call report(s, s%nline, 'missing END for BODY ' // quoted(deck%bodies(s%cur)%name) // &
-                  ' opened at line ' // int_to_str(deck%bodies(s%cur)%line) // &
+    if (s%block /= '' .and. .not. s%end_hinted) &
+      call report(s, s%nline, 'missing END for ' // trim(s%block) // ' ' // quoted(s%block_name) // &
+                  ' opened at line ' // int_to_str(s%block_line) // &
                   ' (expected END before the end of the file)', echo=.false.)
     if (s%nbody == 0) then
       call report(s, 0, 'deck has no BODY (at least one BODY ... END block expected)')
@@ -2142,8 +2228,6 @@ contains
       end associate
     end do
 
-    if (s%cur_rigid /= 0) call report(s, s%nline, 'missing END for RIGID ' // quoted(deck%rigids(s%cur_rigid)%name) // &
-                                      ' (expected END before the end of the file)', echo=.false.)
     call resolve_contacts(s, deck, resolved)
     if (resolved .and. .not. s%contact_bad) call check_rigid_modes(s, deck)
     call check_ramps(s, deck)
@@ -2600,18 +2684,15 @@ contains
     integer :: r, nr
     logical :: ok
 
-    if (s%cur /= 0 .and. .not. s%end_hinted) then
-      call report(s, st%line, 'RIGID inside BODY ' // quoted(deck%bodies(s%cur)%name) // ' opened at line ' // &
-                  int_to_str(deck%bodies(s%cur)%line) // ' (missing END?)')
-      s%end_hinted = .true.
-    end if
     nr = size(deck%rigids)
     allocate(grown(nr + 1))
     do r = 1, nr
       grown(r) = deck%rigids(r)
     end do
     call move_alloc(grown, deck%rigids)
-    s%cur_rigid = nr + 1
+    s%block_line = st%line
+    s%block_name = ''
+    if (st%nword > 0) s%block_name = st%word(1)%s
     associate (rg => deck%rigids(nr + 1))
       rg%line = st%line
       rg%name = ''
@@ -2634,27 +2715,34 @@ contains
     end associate
   end subroutine do_rigid
 
-  !> A statement inside RIGID ... END: SHAPE, REF, FIX, FORCE or END.
-  subroutine rigid_statement(s, deck, st, kw)
+  !> The statements of the open RIGID block (the last RIGID read).
+  subroutine rigid_shape_row(s, deck, st)
     type(state_t), intent(inout) :: s
     type(deck_t), intent(inout) :: deck
     type(stmt_t), intent(in) :: st
-    character(len=*), intent(in) :: kw
-    associate (rg => deck%rigids(s%cur_rigid))
-      select case (kw)
-      case ('SHAPE'); call do_rigid_shape(s, rg, st)
-      case ('REF');   call do_rigid_ref(s, rg, st)
-      case ('FIX');   call do_rigid_load(s, rg, st, .true.)
-      case ('FORCE'); call do_rigid_load(s, rg, st, .false.)
-      case ('END')
-        if (st%nword > 0 .or. st%npair > 0) call report(s, st%line, 'unexpected words after END (expected END alone)')
-        s%cur_rigid = 0
-      case default
-        call report(s, st%line, 'statement ' // kw // ' inside RIGID ' // quoted(rg%name) // ' opened at line ' // &
-                    int_to_str(rg%line) // ' (expected SHAPE, REF, FIX, FORCE or END; missing END?)')
-      end select
-    end associate
-  end subroutine rigid_statement
+    call do_rigid_shape(s, deck%rigids(size(deck%rigids)), st)
+  end subroutine rigid_shape_row
+
+  subroutine rigid_ref_row(s, deck, st)
+    type(state_t), intent(inout) :: s
+    type(deck_t), intent(inout) :: deck
+    type(stmt_t), intent(in) :: st
+    call do_rigid_ref(s, deck%rigids(size(deck%rigids)), st)
+  end subroutine rigid_ref_row
+
+  subroutine rigid_fix_row(s, deck, st)
+    type(state_t), intent(inout) :: s
+    type(deck_t), intent(inout) :: deck
+    type(stmt_t), intent(in) :: st
+    call do_rigid_load(s, deck%rigids(size(deck%rigids)), st, .true.)
+  end subroutine rigid_fix_row
+
+  subroutine rigid_force_row(s, deck, st)
+    type(state_t), intent(inout) :: s
+    type(deck_t), intent(inout) :: deck
+    type(stmt_t), intent(in) :: st
+    call do_rigid_load(s, deck%rigids(size(deck%rigids)), st, .false.)
+  end subroutine rigid_force_row
 
   !> SHAPE line x0= y0= x1= y1= | circle xc= yc= r= [solid=inside|outside] | polyline points=x1:y1,x2:y2,...
   subroutine do_rigid_shape(s, rg, st)
@@ -2706,7 +2794,7 @@ contains
       end do
       call get_real(s, st, val(5), 'xc', rg%centre(1), ok)
       call get_real(s, st, val(6), 'yc', rg%centre(2), ok)
-      call get_positive(s, st, val(7), 'r', rg%radius, ok)
+      call get_real(s, st, val(7), 'r', rg%radius, ok, positive=.true.)
       if (allocated(val(8)%s)) rg%outside = get_choice(s, st, val(8), 'solid', ['inside ', 'outside']) == 'outside'
     case ('polyline')
       allowed(9) = .true.

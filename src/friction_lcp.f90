@@ -105,9 +105,9 @@
 !>       state(nt): state_open (0), state_stick (1) or state_slip (2)
 !> No routine prints anything; every outcome is in the report.
 module friction_lcp
-  use kinds, only: dp
+  use kinds, only: dp, i8
   use lapack_interfaces, only: daxpy, dgemv
-  use diagnostics, only: int_to_str, real_to_str
+  use diagnostics, only: int_to_str, real_to_str, error_t, set_out_of_memory
   use lcp_solvers, only: lcp_options_t, lcp_report_t, solve_lcp_lemke, solve_lcp_pgs, pgs_outcome, &
     solve_lcp_lemke_scaled, scale_lcp, set_report, pgs_monitor_t, pgs_watch_start, pgs_watch_iterate, &
     pgs_watch_progress, pgs_refresh_sweeps, negative_diagonal, out_of_memory
@@ -179,6 +179,7 @@ contains
     real(dp), intent(inout) :: lam(:)
     type(lcp_report_t), intent(out) :: rep
     type(scaled_friction_t) :: p
+    integer :: info
 
     call check_arguments(g, qn, qt, trow, cmu, bound, method, opts, size(lam), rep)
     if (rep%info < 0) return
@@ -193,7 +194,13 @@ contains
       return
     end if
 
-    call scale_friction(g, qn, qt, trow, cmu, bound, p)
+    call scale_friction(g, qn, qt, trow, cmu, bound, p, info)
+    if (info /= 0) then
+      call set_report(rep, 3, out_of_memory('scaling the friction LCP (' // int_to_str(size(g, 1)) // ' rows)', &
+                                            scaled_bytes(size(g, 1))))
+      lam = 0.0_dp
+      return
+    end if
     if (method == 'lemke') then
       call friction_lemke(g, qn, qt, cmu, bound, p, opts, lam, rep)
     else
@@ -206,6 +213,7 @@ contains
   !>   g, qn, qt, trow, cmu, bound  (in) the problem, as in solve_friction_lcp
   !>   lam  (in)     (n+nt) candidate, finite
   !>   r    (result) the residual; huge(1.0_dp) when the sizes or trow are invalid
+  !>        or the scaled copy of g does not fit in memory
   function friction_residual(g, qn, qt, trow, cmu, bound, lam) result(r)
     real(dp), intent(in) :: g(:, :)
     real(dp), intent(in) :: qn(:)
@@ -217,10 +225,12 @@ contains
     real(dp) :: r
     type(scaled_friction_t) :: p
     real(dp), allocatable :: s(:), v(:)
+    integer :: info
 
     r = huge(1.0_dp)
     if (.not. valid_sizes(g, qn, qt, trow, cmu, bound, size(lam))) return
-    call scale_friction(g, qn, qt, trow, cmu, bound, p)
+    call scale_friction(g, qn, qt, trow, cmu, bound, p, info)
+    if (info /= 0) return
     s = lam / p%d                                      ! s = D^-1 lam
     allocate(v(size(s)))
     call scaled_gap(p, s, v)
@@ -233,7 +243,9 @@ contains
   !>   lam    (in)  (n+nt) the forces, finite
   !>   state  (out) (nt) state_open (0), state_stick (1) or state_slip (2);
   !>                -1 everywhere when the sizes or trow are invalid
-  subroutine friction_state(g, qn, qt, trow, cmu, bound, lam, state)
+  !>   err    (out) allocated when the scaled copy of g does not fit in memory
+  !>                (`out of memory while ...`, status 1; state is -1 then)
+  subroutine friction_state(g, qn, qt, trow, cmu, bound, lam, state, err)
     real(dp), intent(in) :: g(:, :)
     real(dp), intent(in) :: qn(:)
     real(dp), intent(in) :: qt(:)
@@ -242,15 +254,21 @@ contains
     real(dp), intent(in) :: bound(:)
     real(dp), intent(in) :: lam(:)
     integer, intent(out) :: state(:)
+    type(error_t), allocatable, intent(out) :: err
     type(scaled_friction_t) :: p
     real(dp), allocatable :: s(:), v(:)
     real(dp) :: bk, small
-    integer :: k, i, j, n
+    integer :: k, i, j, n, info
 
     state = -1
     if (.not. valid_sizes(g, qn, qt, trow, cmu, bound, size(lam))) return
     if (size(state) /= size(qt)) return
-    call scale_friction(g, qn, qt, trow, cmu, bound, p)
+    call scale_friction(g, qn, qt, trow, cmu, bound, p, info)
+    if (info /= 0) then
+      call set_out_of_memory(err, 'measuring the friction states (' // int_to_str(size(g, 1)) // ' rows)', &
+                             int(min(scaled_bytes(size(g, 1)), 9.0e18_dp), i8))
+      return
+    end if
     n = p%n
     s = lam / p%d
     allocate(v(size(s)))
@@ -358,7 +376,11 @@ contains
   end function valid_sizes
 
   !> Build the scaled problem (module header) from valid arguments.
-  subroutine scale_friction(g, qn, qt, trow, cmu, bound, p)
+  !>   g, qn, qt, trow, cmu, bound  (in) the problem, as in solve_friction_lcp
+  !>   p     (out) the scaled problem
+  !>   info  (out) 0; 1 when its arrays (about scaled_bytes(n + nt)) cannot
+  !>               be allocated, p then holds nothing
+  subroutine scale_friction(g, qn, qt, trow, cmu, bound, p, info)
     real(dp), intent(in) :: g(:, :)
     real(dp), intent(in) :: qn(:)
     real(dp), intent(in) :: qt(:)
@@ -366,15 +388,25 @@ contains
     real(dp), intent(in) :: cmu(:)
     real(dp), intent(in) :: bound(:)
     type(scaled_friction_t), intent(out) :: p
+    integer, intent(out) :: info
     integer :: n, nt, nrow, i, k
+    real(dp), allocatable :: q(:)
 
     n = size(qn)
     nt = size(qt)
     nrow = n + nt
+    ! the dense copy Gs is as large as g: a failed allocation is a diagnosis
+    allocate(p%d(nrow), p%gs(nrow, nrow), p%qs(nrow), p%step(nrow), p%zero(nrow), q(nrow), &
+             p%trow(nt), p%bs0(nt), p%mus(nt), p%tfirst(n + 1), p%tlist(nt), stat=info)
+    if (info /= 0) then
+      info = 1
+      return
+    end if
     p%n = n
     p%nt = nt
-    allocate(p%d(nrow), p%gs(nrow, nrow), p%qs(nrow), p%step(nrow), p%zero(nrow))
-    call scale_lcp(g, [qn, qt], p%d, p%gs, p%qs)       ! Gs = D G D, qs = D q
+    q(1:n) = qn
+    q(n + 1:) = qt
+    call scale_lcp(g, q, p%d, p%gs, p%qs)              ! Gs = D G D, qs = D q
     ! scale_lcp leaves Gs_ii = 1 (to round-off) on a row with a positive
     ! diagonal and Gs_ii <= 1e-30 on a zero row.
     do i = 1, nrow
@@ -384,7 +416,6 @@ contains
     end do
 
     p%trow = trow
-    allocate(p%bs0(nt), p%mus(nt))
     do k = 1, nt
       p%bs0(k) = bound(k) / p%d(n + k)                            ! bound / d_t
       p%mus(k) = cmu(k) * p%d(trow(k)) / p%d(n + k)               ! cmu d_n / d_t
@@ -395,7 +426,6 @@ contains
     if (.not. (p%qscale > 0.0_dp)) p%qscale = 1.0_dp
 
     ! Tangential rows of each normal row, in order (counting sort on trow).
-    allocate(p%tfirst(n + 1), p%tlist(nt))
     p%tfirst = 0
     do k = 1, nt
       p%tfirst(trow(k) + 1) = p%tfirst(trow(k) + 1) + 1
@@ -413,6 +443,12 @@ contains
       end do
     end block
   end subroutine scale_friction
+
+  !> Bytes of the scaled problem of nrow rows: Gs and five vectors.
+  pure real(dp) function scaled_bytes(nrow)
+    integer, intent(in) :: nrow
+    scaled_bytes = 8.0_dp * real(nrow, dp) * real(nrow + 5, dp)
+  end function scaled_bytes
 
   !> v = qs + Gs s.
   subroutine scaled_gap(p, s, v)
@@ -585,7 +621,12 @@ contains
       end if
     case default
       rep%info = lrep%info
-      rep%message = 'friction ' // lrep%message
+      ! out of memory keeps the program's wording (`out of memory while ...`)
+      if (index(lrep%message, 'out of memory') == 1) then
+        rep%message = lrep%message
+      else
+        rep%message = 'friction ' // lrep%message
+      end if
     end select
   end subroutine friction_lemke
 

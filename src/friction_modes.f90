@@ -250,7 +250,13 @@ contains
     z(n + 1:) = y(n + 1:n + nt) - y(n + nt + 1:n + 2 * nt)
   end subroutine closest_balance
 
-  !> Step 2 (module header): the friction LCP extended by the mode amplitudes.
+  !> Step 2 (module header): the friction LCP extended by the mode amplitudes,
+  !> solved by solve_lcp_lemke_scaled; lam and alpha read off its z.
+  !>   g, qn, qt, trow, cmu, bound, h, e  (in) as in solve_friction_floating
+  !>   opts  (in)  tol, maxit (0: 10 (n + 3 nt + 2 kh) + 100 pivots)
+  !>   lam   (out) (n+nt) [lambda; tau], tau polished onto [-b, b]
+  !>   alpha (out) (kh) a+ - a-
+  !>   rep   (out) Lemke's report (info 1: ray termination, with the message)
   subroutine extended_lemke(g, qn, qt, trow, cmu, bound, h, e, opts, lam, alpha, rep)
     real(dp), intent(in) :: g(:,:), qn(:), qt(:), cmu(:), bound(:), h(:,:), e(:)
     integer, intent(in) :: trow(:)

@@ -13,7 +13,9 @@
 !>       p = 2: N = ((1-s)(1-2s), 4s(1-s), s(2s-1))   (isoparametric: curved edges kept).
 !>    phi_i (slave) and chi_j (master) are these shape functions on the traces.
 !> 1. Intersection.  Master element f faces slave element e when their chords'
-!>    outward normals point against each other.  The master's end points are
+!>    outward normals point against each other, -n_f.n_e > 0.2 (within 78 degrees
+!>    of opposite): a curved slave element at a right angle to the master would
+!>    otherwise pair with all of it along its normal, a fold in the cover.  The master's end points are
 !>    projected onto the slave curve along the slave's normal field: s solves
 !>    (y - x(s)).x'(s) = 0 (Newton from the chord's value; linear on a straight e).
 !>    On the overlap [lo, hi] of [0, 1] with the projected interval, a slave point
@@ -23,9 +25,9 @@
 !>    the weight |x'(s)|.  On straight edges r(s) is affine, the integrands
 !>    phi_i phi_l and phi_i chi_j are polynomials of degree <= 4 and |x'| is
 !>    constant: the rule (exact to degree 7) is exact.  On a curved edge |x'(s)|
-!>    is the square root of a quadratic and r(s) is not polynomial: the error is
-!>    O(h^8 k^2)-small relative to the integral for curvature k (doc/theory.md;
-!>    measured in tests/unit/test_mortar_quadratic.f90).
+!>    is the square root of a quadratic and r(s) is not polynomial: the relative
+!>    error falls as h^6 (measured in tests/unit/test_mortar_quadratic.f90, the
+!>    figures in doc/theory.md, "Quadratic traces").
 !> 3. Zone and multipliers.  The zone is the slave elements with a covered part,
 !>    zone nodes z = 0..Z (Z = p times the element count).  The multiplier space
 !>    M_h is the continuous space of degree p on the zone, of degree p - 1 on its
@@ -37,7 +39,11 @@
 !> 4. Projection, eq. (8) of the linear case carried over: for a master trace phi,
 !>       (pi phi)(x_0) = phi(y_0),  (pi phi)(x_Z) = phi(y_Z),
 !>       int_cov (phi - pi phi) psi_k = 0,  k = 1..Z-1,
-!>    y_0 (y_Z) the master point paired with the start (end) of the zone's cover.
+!>    y_0 (y_Z) the master point paired with the start (end) of the zone's cover:
+!>    where the master ends inside a zone-end element, its end point, i.e. the
+!>    master trace extended by its end value over the uncovered part (the linear
+!>    operator's rule for slivers; its cut zone ends are not carried over, so
+!>    that end's row is exact only while it stays open).
 !>    D v = C H - E_0 c_0 - E_Z c_Z with D = C G (interior columns), G_ml = int phi_m
 !>    phi_l, H_mj = int phi_m chi_j, C the coefficients of psi on phi; D is banded
 !>    (p + 1 off-diagonals) and solved by LAPACK dgbsv for all master columns.
@@ -53,8 +59,9 @@
 !>
 !> Programming interface
 !>   build_mortar_quadratic(xs, ps, sn_out, xm, pm, mn_out, gap_zero, mortar, mcov, err)
-!>         the operator in a mortar_t (cut = [0, 1]: a zone never ends inside a
-!>         slave element; inter is left empty), and mcov(j) = int_cov chi_j
+!>         the operator in a mortar_t (cut = [0, 1]: the zone's ends are slave
+!>         nodes; inter is left empty), mcov(j) = int_cov chi_j, and which zone
+!>         end has the master's end value extended over part of an element
 !>   trace_point(x, p, e, s, y, dy)   point and derivative of element e at s
 module mortar_quadratic
   use kinds, only: dp
@@ -68,7 +75,8 @@ module mortar_quadratic
 
   real(dp), parameter :: tol_overlap = 1.0e-10_dp  ! shortest overlap, relative to the element
   real(dp), parameter :: tol_piece = 1.0e-3_dp     ! shortest covered piece of a zone-end element kept
-  real(dp), parameter :: tol_sliver = 2.0e-2_dp    ! longest uncovered piece of a zone-end element extended
+  real(dp), parameter :: min_facing = 0.2_dp       ! -n_master.n_slave of the chords above which they face
+  real(dp), parameter :: tol_sliver = 2.0e-2_dp    ! uncovered piece of a zone-end element reported as extended
 
   !> 4-point Gauss-Legendre on [0, 1]: points and weights.
   real(dp), parameter :: gauss4(2, 4) = reshape([ &
@@ -94,14 +102,17 @@ contains
   !>   gap_zero (in) .true.: gap0 = 0 (the boundaries coincide)
   !>   mortar (out) the operator (fields as mortar_operator's mortar_t)
   !>   mcov   (out) (nm) int over the covered zone of each master shape function
-  !>   err    (out) status 2 for a master that folds, leaves a hole, or ends inside
-  !>                a slave zone-end element; 1 when LAPACK finds D singular
-  subroutine build_mortar_quadratic(xs, ps, sn_out, xm, pm, mn_out, gap_zero, mortar, mcov, err)
+  !>   extended (out) (2) the master ends inside the zone's first (1) / last (2)
+  !>                element by more than a sliver: its end value is extended there
+  !>   err    (out) status 2 for a master that folds or leaves a hole; 1 when
+  !>                LAPACK finds D singular
+  subroutine build_mortar_quadratic(xs, ps, sn_out, xm, pm, mn_out, gap_zero, mortar, mcov, extended, err)
     real(dp), intent(in) :: xs(:,:), sn_out(:,:), xm(:,:), mn_out(:,:)
     integer, intent(in) :: ps, pm
     logical, intent(in) :: gap_zero
     type(mortar_t), intent(out) :: mortar
     real(dp), allocatable, intent(out) :: mcov(:)
+    logical, intent(out) :: extended(2)
     type(error_t), allocatable, intent(out) :: err
     type(overlap_t), allocatable :: ov(:)
     integer :: ns, nm, nes, e, k, nov, efirst, elast, i0, i
@@ -125,6 +136,7 @@ contains
     mortar%zone_weight = 0.0_dp
     mortar%constrained = .false.
     closed = all(xs(:, 1) == xs(:, ns))
+    extended = .false.
 
     ! Arc length, element lengths and nodal normals of the slave curve.
     allocate(selen(nes))
@@ -190,16 +202,10 @@ contains
         nov = size(ov)
         elast = elast - 1
       end if
-      ! the master may stop short of a zone end by a sliver (two meshes of one
-      ! curve): its end value is extended over it; more is not done here
-      if (ov(1)%lo > tol_sliver .or. ov(nov)%hi < 1.0_dp - tol_sliver) then
-        i0 = merge(ps * (efirst - 1) + 1, ps * elast + 1, ov(1)%lo > tol_sliver)
-        call set_error(err, 'the master boundary ends inside a quadratic slave element near (' // &
-          real_to_str(xs(1, i0)) // ', ' // real_to_str(xs(2, i0)) // &
-          '); a zone end inside a slave element is done for linear traces only (a master that covers ' // &
-          'the slave''s end elements, or the roles of slave and master swapped, expected)', 2)
-        return
-      end if
+      ! a master that stops inside a zone-end element: its end value is
+      ! extended over the uncovered part (module header, 4.); the row of that
+      ! end is exact while it stays open (the caller says so when it closes)
+      extended = [ov(1)%lo > tol_sliver, ov(nov)%hi < 1.0_dp - tol_sliver]
       call build_open_quadratic(mortar, xs, ps, xm, pm, ov(1:nov), efirst, elast, err)
       if (allocated(err)) return
     end if
@@ -482,7 +488,7 @@ contains
       end do
       n0 = nov
       do f = 1, nem
-        if (dot_product(mn_out(:, f), sn_out(:, e)) >= 0.0_dp) cycle
+        if (dot_product(mn_out(:, f), sn_out(:, e)) >= -min_facing) cycle
         sa = sv(f)
         sb = sv(f + 1)
         o%lo = max(0.0_dp, min(sa, sb))

@@ -407,9 +407,10 @@ contains
       case default
         n0 = diag%count
         if (ms%is_geo) then
-          call mesh_geo_body(deck, ib, gmsh, bd, diag)
+          call mesh_geo_body(deck, ib, gmsh, bd, diag, err)
         else
-          call read_gmsh_file(ms%path, bd%mesh, diag)
+          call read_gmsh_file(ms%path, bd%mesh, diag, err)
+          if (allocated(err)) return
           if (diag%count == n0) call finalize_mesh(bd%mesh, ms%path, diag)
         end if
       end select
@@ -435,12 +436,13 @@ contains
 
   !> Body ib's .geo meshed by gmsh into the run's private folder, after the
   !> screen of what the .geo may do (unless trusted), and read.
-  subroutine mesh_geo_body(deck, ib, gmsh, bd, diag)
+  subroutine mesh_geo_body(deck, ib, gmsh, bd, diag, err)
     type(deck_t), intent(in) :: deck
     integer, intent(in) :: ib
     type(gmsh_options_t), intent(in) :: gmsh
     type(body_t), intent(inout) :: bd
     type(diag_t), intent(inout) :: diag
+    type(error_t), allocatable, intent(out) :: err
     character(len=:), allocatable :: work, deck_folder, msh, log, message
     logical :: ok
     integer :: n0
@@ -462,7 +464,8 @@ contains
       if (.not. ok) then
         call add_error(diag, deck%file, ms%line, 'gmsh could not mesh "' // ms%file // '": ' // message)
       else
-        call read_gmsh_file(msh, bd%mesh, diag)
+        call read_gmsh_file(msh, bd%mesh, diag, err)
+        if (allocated(err)) return
         if (diag%count == n0) call finalize_mesh(bd%mesh, ms%path, diag)
       end if
     end associate

@@ -8,10 +8,10 @@
 !> first of equal keys in file order leads: repeated elements, names).
 !>
 !> Programming interface
-!>   sort_columns(keys, perm)         perm: keys(:, perm) ascending, stable
+!>   sort_columns(keys, perm, stat)   perm: keys(:, perm) ascending, stable
 !>   search_columns(keys, perm, key)  the first column equal to key, 0 when none
-!>   mark_repeated(keys, repeated)    repeated(i): an earlier column equals column i
-!>   sort_small(a)                    a few integers (default or i8) ascending, in place
+!>   mark_repeated(keys, repeated, stat)  repeated(i): an earlier column equals column i
+!>   sort_small(a)                    a few integers ascending, in place
 !>   text_key_words(text)             key words a text needs
 !>   pack_text(text, key)             the text as key words: sorted as Fortran
 !>                                    compares strings (blanks padded, byte order)
@@ -20,10 +20,6 @@ module sorting
   implicit none
   private
   public :: sort_columns, search_columns, mark_repeated, sort_small, text_key_words, pack_text
-
-  interface sort_small
-    module procedure sort_small_int, sort_small_i8
-  end interface sort_small
 
   integer, parameter :: bytes_per_word = 7     !< 56 bits a key word: words stay >= 0
 
@@ -62,15 +58,19 @@ contains
   !> Two runs already in order are not merged, so that sorted input costs O(n).
   !>   keys (in)  (m, n) one key per column
   !>   perm (out) (n) keys(:, perm) is ascending; equal keys keep their order
-  subroutine sort_columns(keys, perm)
+  !>   stat (out) 0, or the allocation's status when memory ran out (perm is
+  !>        then not allocated)
+  subroutine sort_columns(keys, perm, stat)
     integer(i8), intent(in) :: keys(:,:)
     integer, allocatable, intent(out) :: perm(:)
+    integer, intent(out) :: stat
     integer, allocatable :: tmp(:)
     integer :: n, i
     integer(i8) :: width, lo, mid, hi, a, b, k
 
     n = size(keys, 2)
-    allocate(perm(n), tmp(n))
+    allocate(perm(n), tmp(n), stat=stat)
+    if (stat /= 0) return
     do i = 1, n
       perm(i) = i
     end do
@@ -143,37 +143,23 @@ contains
   end function search_columns
 
   !> repeated(i) = .true. when an earlier column of keys equals column i.
-  subroutine mark_repeated(keys, repeated)
+  !>   stat (out) 0, or the allocation's status when memory ran out
+  subroutine mark_repeated(keys, repeated, stat)
     integer(i8), intent(in) :: keys(:,:)
     logical, intent(out) :: repeated(:)
+    integer, intent(out) :: stat
     integer, allocatable :: perm(:)
     integer :: i
-    call sort_columns(keys, perm)
     repeated = .false.
+    call sort_columns(keys, perm, stat)
+    if (stat /= 0) return
     do i = 2, size(perm)
       if (all(keys(:, perm(i)) == keys(:, perm(i - 1)))) repeated(perm(i)) = .true.
     end do
   end subroutine mark_repeated
 
   !> Insertion sort of a few integers, ascending.
-  pure subroutine sort_small_i8(a)
-    integer(i8), intent(inout) :: a(:)
-    integer :: i, j
-    integer(i8) :: v
-    do i = 2, size(a)
-      v = a(i)
-      j = i - 1
-      do while (j >= 1)
-        if (a(j) <= v) exit
-        a(j + 1) = a(j)
-        j = j - 1
-      end do
-      a(j + 1) = v
-    end do
-  end subroutine sort_small_i8
-
-  !> Insertion sort of a few integers, ascending.
-  pure subroutine sort_small_int(a)
+  pure subroutine sort_small(a)
     integer, intent(inout) :: a(:)
     integer :: i, j
     integer :: v
@@ -187,7 +173,7 @@ contains
       end do
       a(j + 1) = v
     end do
-  end subroutine sort_small_int
+  end subroutine sort_small
 
   !> Key words of a text: ceiling(len / 7), at least 1.
   pure integer function text_key_words(text) result(n)

@@ -324,25 +324,33 @@ contains
     is_letter = (c >= 'a' .and. c <= 'z') .or. (c >= 'A' .and. c <= 'Z')
   end function is_letter
 
+  !> s with A-Z in lower case.
   pure function lower(s) result(t)
     character(len=*), intent(in) :: s
     character(len=len(s)) :: t
-    integer :: i
-    t = s
-    do i = 1, len(t)
-      if (t(i:i) >= 'A' .and. t(i:i) <= 'Z') t(i:i) = achar(iachar(t(i:i)) + 32)
-    end do
+    t = shift_letters(s, 'A', 32)
   end function lower
 
+  !> s with a-z in upper case.
   pure function upper(s) result(t)
     character(len=*), intent(in) :: s
     character(len=len(s)) :: t
-    integer :: i
+    t = shift_letters(s, 'a', -32)
+  end function upper
+
+  !> s with the 26 letters from first moved by offset in the code table.
+  pure function shift_letters(s, first, offset) result(t)
+    character(len=*), intent(in) :: s
+    character, intent(in) :: first
+    integer, intent(in) :: offset
+    character(len=len(s)) :: t
+    integer :: i, c
     t = s
     do i = 1, len(t)
-      if (t(i:i) >= 'a' .and. t(i:i) <= 'z') t(i:i) = achar(iachar(t(i:i)) - 32)
+      c = iachar(t(i:i)) - iachar(first)
+      if (c >= 0 .and. c < 26) t(i:i) = achar(iachar(t(i:i)) + offset)
     end do
-  end function upper
+  end function shift_letters
 
   pure logical function is_digit(c)
     character, intent(in) :: c

@@ -12,13 +12,25 @@
 !> the threads; each further arena keeps freed pages resident) and ends
 !> OpenBLAS's spinning workers until the first BLAS call that wants them.
 !>
+!> Under an address-space limit (ulimit -v) the threads cost memory: each
+!> further one a BLAS work buffer and two stacks.  The count is then lowered
+!> to what fits and OpenBLAS's buffers are mapped at once (src/blas_start.c:
+!> OpenBLAS hangs or ends the process when it cannot map or start them
+!> later); a limit too tight for a single buffer ends the run with the
+!> out-of-memory diagnosis before anything is read.
+!>
 !> Programming interface
-!>   start_threads(jobs)   jobs > 0: use jobs threads; 0: the OpenMP default
+!>   start_threads(jobs, note, err)
+!>                         jobs > 0: use jobs threads; 0: the OpenMP default;
+!>                         note: what the memory limit changed ('' when
+!>                         nothing), for the run log; err: out of memory
 !>   run_threads()         the number of threads the run uses (>= 1)
 module threads
-  use, intrinsic :: iso_c_binding, only: c_int
+  use, intrinsic :: iso_c_binding, only: c_int, c_int64_t
   use omp_lib, only: omp_set_num_threads, omp_get_max_threads
-  use cholmod_binding, only: c2d_blas_threads, c2d_blas_park, c2d_malloc_arenas
+  use cholmod_binding, only: c2d_blas_threads, c2d_blas_park, c2d_malloc_arenas, c2d_blas_start
+  use diagnostics, only: error_t, set_out_of_memory, int_to_str, i8_to_str
+  use kinds, only: i8
   implicit none
   private
   public :: start_threads, run_threads
@@ -26,13 +38,34 @@ module threads
 contains
 
   !> Set the run's thread count, once, before any parallel region.
-  !>   jobs  (in) number of threads, >= 1; 0 keeps the OpenMP default
-  !>         (OMP_NUM_THREADS, else one per core)
-  subroutine start_threads(jobs)
+  !>   jobs  (in)  number of threads, >= 1; 0 keeps the OpenMP default
+  !>               (OMP_NUM_THREADS, else one per core)
+  !>   note  (out) '' or, when an address-space limit lowered the count,
+  !>               what it did and why (for the run log)
+  !>   err   (out) allocated when the limit leaves no room for the BLAS's
+  !>               first work buffer (`out of memory while starting ...`)
+  subroutine start_threads(jobs, note, err)
     integer, intent(in) :: jobs
-    integer :: old
+    character(len=:), allocatable, intent(out) :: note
+    type(error_t), allocatable, intent(out) :: err
+    integer :: old, asked, used
+    integer(c_int64_t) :: left, per_thread, first
+    note = ''
     call c2d_malloc_arenas()
     if (jobs > 0) call omp_set_num_threads(jobs)
+    asked = run_threads()
+    used = int(c2d_blas_start(int(asked, c_int), left, per_thread, first))
+    if (used == 0) then
+      call set_out_of_memory(err, 'starting the BLAS (its work buffer; the address-space limit leaves ' // &
+                             i8_to_str(int(left, i8) / 1048576_i8) // ' MB)', int(first, i8))
+      return
+    end if
+    if (used < asked) then
+      call omp_set_num_threads(used)
+      note = int_to_str(used) // ' of ' // int_to_str(asked) // ' asked: the address-space limit leaves ' // &
+        i8_to_str(int(left, i8) / 1048576_i8) // ' MB and each further thread reserves about ' // &
+        i8_to_str(int(per_thread, i8) / 1048576_i8) // ' MB (a BLAS work buffer, two stacks)'
+    end if
     ! OpenBLAS reads OPENBLAS_NUM_THREADS or OMP_NUM_THREADS when it loads,
     ! not -j: give it the run's count (0 when the BLAS is not OpenBLAS)
     old = int(c2d_blas_threads(int(run_threads(), c_int)))

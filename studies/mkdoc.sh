@@ -314,6 +314,11 @@ H1 $(rt "manufactured quad4" h1_err).
 
 $(sh "$st/verdict.sh" "$t")
 EOF
+# the quadratic elements' series: made by studies/quadratic-series (minutes of
+# runs of their own, not part of run-all), its section kept in the repository
+if [ -f "$st/quadratic-series.md" ]; then
+  { echo; cat "$st/quadratic-series.md"; } >> "$doc/convergence.md"
+fi
 
 # ============================================================================ accuracy-cost.md
 cross_lcp=$(awk -F, '$1 == "lcp" { print $2 }' "$t/crossover_n.csv")

@@ -1,0 +1,120 @@
+/* fortran_oom.c: an allocation that gfortran's code checks and that fails
+ * ends with the program's diagnosis, not with the runtime's abort.
+ *
+ * The code gfortran generates checks the result of an ALLOCATE without
+ * stat=, of the array temporaries of an expression and, under
+ * -fcheck=mem (make.inc), of automatic arrays; when malloc or realloc
+ * returns NULL it calls the runtime's
+ *     _gfortran_os_error_at("In file 'F.f90', around line L",
+ *                           "Error allocating %lu bytes", bytes)
+ * which prints "Operating system error", a backtrace and "Error
+ * termination".  The program defines that entry point itself (its object
+ * code calls it directly, so this definition is the one it runs; the
+ * runtime's own internal calls are not affected) and ends the run as a
+ * numerical failure does:
+ *     contact2d: error: out of memory while PHASE (at F.f90:L) (about N MB needed)
+ * exit status 1; exit() runs the cleanup (file_guard.c: the temporaries and
+ * the private folder), so nothing is written.  PHASE is named from the
+ * source file: which file allocates tells which phase of the run it is, so
+ * no state has to be kept for it.
+ *
+ * Allocations the generated code does not check (reallocation on assignment
+ * of an allocatable array, automatic arrays without -fcheck=mem) write
+ * through a null pointer instead; the large ones are allocated with stat=
+ * in the code (doc/robustness.md, "Memory limits"). */
+#define _DEFAULT_SOURCE
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+void _gfortran_os_error_at(const char *where, const char *message, ...) __attribute__((noreturn));
+
+/* The phase of a run that allocates in each source file. */
+static const char *const phases[][2] = {
+    {"mesh_rect.f90", "meshing"},
+    {"gmsh_reader.f90", "reading the meshes"},
+    {"mesh.f90", "reading the meshes"},
+    {"deck_reader.f90", "reading the deck"},
+    {"deck_expressions.f90", "reading the deck"},
+    {"deck_cases.f90", "reading the deck"},
+    {"text_scan.f90", "reading the input"},
+    {"command_line.f90", "reading the command line"},
+    {"scene.f90", "building the scene"},
+    {"material.f90", "building the scene"},
+    {"local_axes.f90", "building the scene"},
+    {"body.f90", "assembling K"},
+    {"elements.f90", "assembling K"},
+    {"sparse_matrix.f90", "assembling K"},
+    {"sparse_cholesky.f90", "factorizing K"},
+    {"split_factor.f90", "factorizing K"},
+    {"contact_set.f90", "building the mortar operator"},
+    {"mortar_geometry.f90", "building the mortar operator"},
+    {"mortar_operator.f90", "building the mortar operator"},
+    {"mortar_quadratic.f90", "building the mortar operator"},
+    {"mode_support.f90", "finding the rigid modes"},
+    {"rigid_modes.f90", "finding the rigid modes"},
+    {"contact_condensation.f90", "condensing the contact problem"},
+    {"lcp_solvers.f90", "solving the LCP"},
+    {"lcp_newton.f90", "solving the LCP"},
+    {"contact_lcp.f90", "solving the LCP"},
+    {"friction_lcp.f90", "solving the friction LCP"},
+    {"friction_modes.f90", "solving the friction LCP"},
+    {"results_writer.f90", "writing the outputs"},
+    {"text_buffer.f90", "writing the outputs"},
+    {"safe_files.f90", "writing the outputs"},
+};
+
+/* "In file 'F', around line L" -> file F and line L (0 when absent). */
+static void split_where(const char *where, char *file, size_t size, long *line)
+{
+    const char *a = where != NULL ? strchr(where, '\'') : NULL, *b = a != NULL ? strchr(a + 1, '\'') : NULL;
+    const char *l = where != NULL ? strstr(where, "line ") : NULL;
+    size_t n = 0;
+    if (a != NULL && b != NULL)
+    {
+        const char *base = a + 1, *s;
+        for (s = base; s < b; s++)
+            if (*s == '/') base = s + 1;     /* the file's name, without its folder */
+        n = (size_t) (b - base);
+        if (n >= size) n = size - 1;
+        memcpy(file, base, n);
+    }
+    file[n] = '\0';
+    *line = l != NULL ? strtol(l + 5, NULL, 10) : 0;
+}
+
+void _gfortran_os_error_at(const char *where, const char *message, ...)
+{
+    char file[128], text[512];
+    const char *phase = "computing";
+    unsigned long bytes = 0;
+    long line;
+    size_t i;
+    va_list ap;
+    int n;
+
+    split_where(where, file, sizeof file, &line);
+    for (i = 0; i < sizeof phases / sizeof phases[0]; i++)
+        if (strcmp(file, phases[i][0]) == 0) phase = phases[i][1];
+    if (message != NULL && strstr(message, "allocat") != NULL && strstr(message, "%lu") != NULL)
+    {
+        va_start(ap, message);
+        bytes = va_arg(ap, unsigned long);
+        va_end(ap);
+        n = snprintf(text, sizeof text,
+                     "contact2d: error: out of memory while %s (at %s:%ld) (about %lu MB needed)\n",
+                     phase, file, line, bytes / 1048576 + (bytes % 1048576 != 0));
+    }
+    else   /* another failure the runtime reports this way: its text, as a numerical failure */
+    {
+        char what[256];
+        va_start(ap, message);
+        (void) vsnprintf(what, sizeof what, message != NULL ? message : "", ap);
+        va_end(ap);
+        n = snprintf(text, sizeof text, "contact2d: error: %s (at %s:%ld)\n", what, file, line);
+    }
+    if (n > 0) (void) !write(STDERR_FILENO, text, (size_t) n < sizeof text ? (size_t) n : sizeof text - 1);
+    exit(1);
+}
