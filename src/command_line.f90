@@ -224,6 +224,14 @@ contains
       '                                    deeper than a slave element is refused unless allowed)', &
       '                                    (frictionless unless mu= (Coulomb) or tresca= (slip bound))', &
       '                                    (P1/Q1 bodies only: contact on quadratic elements is refused)', &
+      '  CONTACT slave=body:boundary master=RIGIDNAME [mu=C | tresca=S]   (against a RIGID''s exact shape)', &
+      '  RIGID name ... END                (a rigid obstacle: its dofs ux, uy, rz of the reference point)', &
+      '    SHAPE line x0= y0= x1= y1=  |  SHAPE circle xc= yc= r= [solid=inside|outside]', &
+      '    SHAPE polyline points=x1:y1,x2:y2,...   (solid on the side the slave faces)', &
+      '    REF x= y=                         (default: the circle''s centre, the first point)', &
+      '    FIX [ux=] [uy=] [rz=] [ramp=k0:k1|curve=NAME]   (prescribed; FIX alone: all 0)', &
+      '    FORCE [fx=] [fy=] [m=] [ramp=k0:k1|curve=NAME]  (on the directions FIX leaves free)', &
+      '                                    (no FIX and no FORCE: held fixed)', &
       '  SOLVER lcp=auto|lemke|pgs|pdas [tol=1e-10] [maxit=N] [omega=1.0]   (pdas: frictionless only)', &
       '         [ordering=auto|metis|amd]  (fill-reducing ordering; auto: AMD up to 5e5 free dofs, METIS above)', &
       '         [condense=auto|solve|inverse]  (W per body: triangular solves or the block''s inverse)', &

@@ -31,6 +31,7 @@ program contact2d
   use contact_lcp, only: contact_solution_t, solve_contact
   use rigid_modes, only: floating_t, find_floating_modes, mode_name, motion_name, describe_motion, remove_motions
   use mode_support, only: mode_split_t, split_free_modes
+  use rigid_support, only: rigid_split_t, split_rigid_modes, rigid_direction, pulled_rigid
   use results_writer, only: results_t, write_vtk, write_contact_csv, write_summary, write_pvd, write_step_table, &
                             phase_names, nphase, peak_memory
   use safe_files, only: make_folders, temporary_t, create_temporary, close_temporary, commit_temporaries, &
@@ -68,6 +69,8 @@ program contact2d
   integer :: overflow_body = 0              !< a body whose K_fd ubar_d leaves double precision (0: none)
   type(floating_t) :: fl
   type(mode_split_t) :: split            ! the free modes that contact holds, and those it does not
+  type(rigid_split_t) :: rsplit          ! the RIGIDs' free directions: floating modes loaded by FORCE
+  real(dp), allocatable :: rigid_alpha(:) ! (rsplit%k) their motion, from the contact problem
   integer, allocatable :: eq(:), last(:), group(:)
   logical, allocatable :: held(:)
   integer :: nfree, i, nlabel
@@ -113,9 +116,11 @@ program contact2d
   call find_floating_modes(sc%bodies, sc%fixed, fl)
   call check_floating_bodies()
   call split_free_modes(cs, sc%bodies, fl, sc%fext, split)
+  call split_rigid_modes(cs, sc%rigids, sc%fixed, sc%fext, rsplit)
   call check_floating_friction_solver()
   held = sc%fixed
   if (fl%k > 0) held(fl%pin) = .true.
+  held(rsplit%dof) = .true.                 ! a RIGID has no stiffness: its free dofs are modes, not equations
   call number_equations(held, eq, nfree)
   res%effects = sc%effects
   res%axisymmetric = deck%axisymmetric
@@ -126,6 +131,7 @@ program contact2d
     call exit_program(0)
   end if
   call check_unheld_loads()
+  call check_unheld_rigid_loads()
   call lap(ph_mesh)
 
   ! --- assembly and factorization (contact dofs last) ----------------------
@@ -171,7 +177,7 @@ program contact2d
   ! solve: one forward and one backward substitution in all, time_solve)
   allocate(u0(sc%ndof))
   u0 = sc%ubar
-  with_contact = cs%nrow > 0 .or. fl%k > 0
+  with_contact = cs%nrow > 0 .or. fl%k > 0 .or. rsplit%k > 0
   call system_clock(t_solve)
   if (with_contact) then
     allocate(y(nfree))
@@ -231,6 +237,7 @@ program contact2d
     res%time_solve = res%time_solve + real(t_now - t_solve, dp) / real(t_rate, dp)
     if (fl%k > 0) res%u = res%u + matmul(fl%r, res%alpha)    ! + R alpha: the free rigid modes
     call remove_motions(fl, split%unheld, res%u)              ! no component along the unheld ones
+    if (allocated(rigid_alpha)) res%u(rsplit%dof) = rigid_alpha   ! the RIGIDs' free motion
   else
     if (deck%output%steps_all) call solve_earlier_steps()
     res%u = u0
@@ -249,6 +256,7 @@ program contact2d
     call pair_resultants([real(dp) ::])
   end if
   call post_process(sc%fext)
+  call rigid_results()
   call nodal_contact_fields()
   call check_finite_results()
   if (deck%output%steps_all) call add_step_row(sc%steps)
@@ -373,6 +381,10 @@ contains
           call split_free_modes(cs, sc%bodies, fl, fk, split)
           call check_unheld_loads()
         end if
+        if (rsplit%k > 0) then
+          call split_rigid_modes(cs, sc%rigids, sc%fixed, fk, rsplit)
+          call check_unheld_rigid_loads()
+        end if
         call solve_contact_problem()
         call contact_measures()
         step_iterations = res%lcp_iterations
@@ -385,6 +397,7 @@ contains
     end do
     res = saved
     split = split_n
+    if (rsplit%k > 0) call split_rigid_modes(cs, sc%rigids, sc%fixed, sc%fext, rsplit)
     if (allocated(q_n)) q = q_n
     step_note = 'load step ' // int_to_str(sc%steps) // ' of ' // int_to_str(sc%steps) // ': '
     call step_loads(sc, sc%steps, fk, ubk)         ! the bodies' thermal strains of the final step
@@ -435,6 +448,7 @@ contains
     call solve_loads(fk, ubk, z, res%u)
     if (fl%k > 0) res%u = res%u + matmul(fl%r, res%alpha)
     call remove_motions(fl, split%unheld, res%u)
+    if (allocated(rigid_alpha)) res%u(rsplit%dof) = rigid_alpha
     if (.not. all(ieee_is_finite(res%u))) call fail_numerical('load step ' // int_to_str(kstep) // &
       ': the displacement is not finite (overflow in the solve)')
     call pair_resultants(z)
@@ -479,7 +493,8 @@ contains
     integer, intent(in) :: kstep
     integer :: ng, nc, g, c
     ng = size(sc%ramp, 2)
-    nc = 1 + ng + 2 * size(sc%fixes) + 2 * cs%npair + 2
+    nc = 1 + ng + 2 * size(sc%fixes) + 2 * cs%npair + 6 * size(sc%rigids) + 2
+    call rigid_results()
     if (.not. allocated(step_table)) allocate(step_table(nc, sc%steps), source=0.0_dp)
     step_table(1, kstep) = kstep
     do g = 1, ng
@@ -489,6 +504,8 @@ contains
     step_table(c + 1:c + 2 * size(sc%fixes), kstep) = reshape(res%reaction, [2 * size(sc%fixes)])
     c = c + 2 * size(sc%fixes)
     step_table(c + 1:c + 2 * cs%npair, kstep) = reshape(res%contact_force, [2 * cs%npair])
+    c = c + 2 * cs%npair
+    step_table(c + 1:c + 6 * size(sc%rigids), kstep) = reshape(res%rigid, [6 * size(sc%rigids)])
     step_table(nc - 1, kstep) = res%active_nodes
     step_table(nc, kstep) = step_iterations
   end subroutine add_step_row
@@ -506,6 +523,10 @@ contains
     end do
     do j = 1, cs%npair
       h = h // ',contact_' // int_to_str(j) // '_Fx,contact_' // int_to_str(j) // '_Fy'
+    end do
+    do j = 1, size(sc%rigids)
+      h = h // ',' // sc%rigids(j)%name // '_ux,' // sc%rigids(j)%name // '_uy,' // sc%rigids(j)%name // '_rz,' // &
+        sc%rigids(j)%name // '_fx,' // sc%rigids(j)%name // '_fy,' // sc%rigids(j)%name // '_m'
     end do
     h = h // ',active_nodes,lcp_iterations'
   end function step_header
@@ -622,11 +643,19 @@ contains
     end if
     ! H = B R (how the free modes open the gaps), e = R' f (their load), the
     ! combinations that the rows hold: mode_support (split)
-    call solve_contact(w, q, split%h, split%e, split%held, method, opts, sol)
+    if (rsplit%k > 0) then
+      ! the RIGIDs' free directions join the bodies' free modes (rigid_support)
+      call solve_contact(w, q, reshape([split%h, rsplit%h(1:cs%nrow, :)], [cs%nrow, fl%k + rsplit%k]), &
+                         [split%e, rsplit%e], &
+                         block_diagonal(split%held, rsplit%held), method, opts, sol)
+    else
+      call solve_contact(w, q, split%h, split%e, split%held, method, opts, sol)
+    end if
     res%lcp_method = method
     res%lcp_iterations = sol%rep%iterations
     res%lcp_residual = sol%rep%residual
     if (sol%rep%info /= 0) then
+      if (sol%rep%info == 1 .and. rsplit%k > 0) call diagnose_pulled_rigid()
       if (allocated(sol%rep%message)) then
         if (index(sol%rep%message, 'out of memory') == 1) call fail_numerical(sol%rep%message)
         call fail_numerical(step_prefix() // 'contact problem not solved: ' // sol%rep%message)
@@ -637,7 +666,8 @@ contains
     end if
     if (.not. all(ieee_is_finite(sol%mu))) call fail_numerical('the contact multipliers are not finite')
     call move_alloc(sol%mu, res%mu)
-    call move_alloc(sol%alpha, res%alpha)
+    rigid_alpha = sol%alpha(fl%k + 1:)
+    res%alpha = sol%alpha(1:fl%k)
     allocate(character(len=256) :: res%unheld_mode(size(split%unheld, 2)))
     do j = 1, size(split%unheld, 2)
       call say('note     body ' // sc%bodies(split%unheld_body(j))%name // ': rigid mode (' // &
@@ -763,14 +793,19 @@ contains
     ! their modes are unknowns of the friction LCP (friction_modes), against
     ! H = C R V and the load e = V'R'f of each ramp
     allocate(res%alpha(fl%k), source=0.0_dp)
-    floating = size(split%held, 2) > 0
+    floating = size(split%held, 2) + size(rsplit%held, 2) > 0
     if (floating) then
       method = 'lemke'
-      call say('friction ' // int_to_str(size(split%held, 2)) // ' rigid-mode amplitudes of the bodies held only by ' // &
-        'contact are unknowns of each step''s friction LCP, solved by Lemke (' // int_to_str(n + 3 * nt + &
-        2 * size(split%held, 2)) // ' unknowns)')
-      hh = matmul(split%h, split%held)
-      eg = matmul(transpose(split%held), matmul(transpose(fl%r), sc%fgroup))
+      call say('friction ' // int_to_str(size(split%held, 2) + size(rsplit%held, 2)) // ' rigid-mode amplitudes ' // &
+        'of the bodies and RIGIDs held only by contact are unknowns of each step''s friction LCP, solved by ' // &
+        'Lemke (' // int_to_str(n + 3 * nt + 2 * (size(split%held, 2) + size(rsplit%held, 2))) // ' unknowns)')
+      ! the bodies' held modes, then the RIGIDs' held free directions (their FORCE per ramp)
+      hh = reshape([matmul(split%h, split%held), matmul(rsplit%h, rsplit%held)], &
+                   [n + nt, size(split%held, 2) + size(rsplit%held, 2)])
+      eg = reshape([transpose(matmul(transpose(split%held), matmul(transpose(fl%r), sc%fgroup))), &
+                    transpose(matmul(transpose(rsplit%held), sc%fgroup(rsplit%dof, :)))], &
+                   [size(sc%ramp, 2), size(hh, 2)])
+      eg = transpose(eg)
       allocate(eh(size(hh, 2)), alpha(size(hh, 2)))
     end if
     allocate(z(n + nt), cu(n + nt), qn(n), qt(nt), sprev(nt), res%fstate(nt))
@@ -796,14 +831,15 @@ contains
         call solve_friction_floating(w, qn, qt, cs%tan_row, cs%tan_mu, cs%tan_bound, hh, eh, opts, z, alpha, rep, &
                                      unbalanced, cause)
         if (rep%info == no_equilibrium) call fail_numerical('friction, load step ' // int_to_str(kstep) // ' of ' // &
-          int_to_str(sc%steps) // ': ' // friction_no_equilibrium(matmul(split%held, unbalanced), cause))
+          int_to_str(sc%steps) // ': ' // floating_no_equilibrium(unbalanced, cause))
         if (rep%info /= 0 .and. index(rep%message, 'out of memory') /= 1) call fail_numerical('friction, load step ' &
           // int_to_str(kstep) // ' of ' // int_to_str(sc%steps) // ': no equilibrium found for the bodies held ' // &
           'only by contact (' // floating_names() // '): ' // rep%message)
         cu = cu + matmul(hh, alpha)                ! C u0 + C R alpha: the step's rigid motion
         qn = cs%g - cu(1:n)
         qt = qt - matmul(hh(n + 1:, :), alpha)
-        res%alpha = matmul(split%held, alpha)
+        res%alpha = matmul(split%held, alpha(1:size(split%held, 2)))
+        rigid_alpha = matmul(rsplit%held, alpha(size(split%held, 2) + 1:))
       else
         call solve_friction_lcp(w, qn, qt, cs%tan_row, cs%tan_mu, cs%tan_bound, method, opts, z, rep)
       end if
@@ -951,9 +987,13 @@ contains
         ' elements (', count(sc%bodies(b)%mesh%nen == 4 .or. sc%bodies(b)%mesh%nen >= 8), ' quadrilaterals)'
       call say('body     ' // sc%bodies(b)%name // ': ' // trim(line))
     end do
+    call report_rigids()
     do ip = 1, cs%npair
       write(line, '(a,i0,a,i0,a,i0,a,i0,a)') 'contact  pair ', ip, ': ', size(cs%pair(ip)%snode), &
         ' slave nodes, ', size(cs%pair(ip)%mnode), ' master nodes, ', cs%pair(ip)%nrow, ' constrained (mortar, '
+      if (cs%pair(ip)%spec%rigid > 0) write(line, '(a,i0,a,i0,a,i0,a)') 'contact  pair ', ip, ': ', &
+        size(cs%pair(ip)%snode), ' slave nodes against RIGID ' // sc%rigids(cs%pair(ip)%spec%rigid)%name // &
+        ' (its exact shape), ', cs%pair(ip)%nrow, ' constrained (mortar, '
       call say(trim(line) // ' ' // friction_law(deck%contacts(ip)%friction, cs%pair(ip)%spec) // ')')
       associate(pr => cs%pair(ip), mo => cs%pair(ip)%mortar)
         if (mo%first > 0) then
@@ -1019,6 +1059,59 @@ contains
     if (len(thread_note) > 0) call say('threads  ' // thread_note)
   end subroutine report_scene
 
+  !> The run log's lines of each RIGID: its shape, reference point, which
+  !> directions are prescribed and which are free (loaded or not, held by
+  !> contact or not).
+  subroutine report_rigids()
+    integer :: r, j, k
+    character(len=200) :: line
+    character(len=2), parameter :: dname(3) = ['ux', 'uy', 'rz']
+    character(len=:), allocatable :: how
+    do r = 1, size(sc%rigids)
+      associate (sh => sc%rigids(r))
+        select case (deck%rigids(r)%shape)
+        case ('circle')
+          write(line, '(a,g0.6,a,g0.6,a,g0.6,a)') 'circle of radius ', sh%radius, ' centred at (', sh%centre(1), ', ', &
+            sh%centre(2), ')'
+          if (sh%outside) then
+            line = trim(line) // ', solid outside (a hole)'
+          else
+            line = trim(line) // ', solid inside'
+          end if
+        case default
+          write(line, '(a,i0,a)') deck%rigids(r)%shape // ' of ', size(sh%pt, 2), ' points'
+        end select
+        write(line(len_trim(line) + 1:), '(a,g0.6,a,g0.6,a)') ', reference point (', sh%ref(1), ', ', sh%ref(2), ')'
+        call say('rigid    ' // sh%name // ': ' // trim(line))
+        how = ''
+        do j = 1, 3
+          if (sc%fixed(sh%dof0 + j)) then
+            how = how // ', ' // dname(j) // ' prescribed'
+          else
+            how = how // ', ' // dname(j) // ' free'
+            do k = 1, rsplit%k
+              if (rsplit%dof(k) == sh%dof0 + j .and. sc%fext(sh%dof0 + j) /= 0.0_dp) how = how // ' (FORCE)'
+            end do
+          end if
+        end do
+        if (size(deck%rigids(r)%fixes) + size(deck%rigids(r)%forces) == 0) then
+          call say('rigid    ' // sh%name // ': held fixed (no FIX, no FORCE)')
+        else if (all(sc%fixed(sh%dof0 + 1:sh%dof0 + 3))) then
+          call say('rigid    ' // sh%name // ': ' // how(3:))
+        else
+          call say('rigid    ' // sh%name // ': ' // how(3:) // ' (a free direction is held by contact alone: ' // &
+                   'its equilibrium is an equality of the contact problem)')
+        end if
+      end associate
+    end do
+    do j = 1, size(rsplit%unheld, 2)
+      if (rsplit%loaded(j)) cycle
+      call say('note     RIGID ' // sc%rigids(rsplit%unheld_owner(j))%name // ': free direction (' // &
+        rigid_direction(rsplit, rsplit%unheld(:, j)) // ') held by neither FIX nor contact and unloaded: its ' // &
+        'motion is set to 0 (the contact normals do not resist it)')
+    end do
+  end subroutine report_rigids
+
   !> x in es10.3
   function real_short(x) result(s)
     real(dp), intent(in) :: x
@@ -1079,6 +1172,11 @@ contains
       write(line, '(a,es12.4,a,es12.4)') 'contact  min gap ', res%min_gap, ', min pressure ', res%min_pressure
       call say(trim(line))
     end if
+    do p = 1, size(sc%rigids)
+      write(line, '(a,3es12.4,a,3es12.4)') ': motion (ux, uy, rz) =', res%rigid(1:3, p), &
+        ', contact force on it (fx, fy, m) =', res%rigid(4:6, p)
+      call say('rigid    ' // sc%rigids(p)%name // trim(line))
+    end do
     write(line, '(a,es16.8,a,i0)') 'energy   ', res%energy, ',  nnz(L) ', res%factor_nnz
     call say(trim(line) // ' (' // res%ordering // '),  peak memory ' // &
              trim(adjustl(real_fixed(res%memory_peak / 1048576.0_dp))) // ' MB')
@@ -1122,6 +1220,64 @@ contains
     if (allocated(step_note)) t = step_note
   end function step_prefix
 
+  !> Each RIGID's motion (u_x, u_y, theta of its reference point, res%u) and
+  !> the contact force on it (fc = -C' z on its dofs: force x, y, moment about
+  !> the reference point), for the summary, the step table and the log.
+  subroutine rigid_results()
+    integer :: r, nl
+    if (allocated(res%rigid)) deallocate(res%rigid, res%rigid_name)
+    nl = 1
+    do r = 1, size(sc%rigids)
+      nl = max(nl, len(sc%rigids(r)%name))
+    end do
+    allocate(character(len=nl) :: res%rigid_name(size(sc%rigids)))
+    allocate(res%rigid(6, size(sc%rigids)), source=0.0_dp)
+    do r = 1, size(sc%rigids)
+      res%rigid_name(r) = sc%rigids(r)%name
+      res%rigid(1:3, r) = res%u(sc%rigids(r)%dof0 + 1:sc%rigids(r)%dof0 + 3)
+      if (allocated(fc)) res%rigid(4:6, r) = fc(sc%rigids(r)%dof0 + 1:sc%rigids(r)%dof0 + 3)
+    end do
+  end subroutine rigid_results
+
+  !> [a 0; 0 b]: the held combinations of the bodies' modes and of the RIGIDs'
+  !> free directions, side by side.
+  function block_diagonal(a, b) result(c)
+    real(dp), intent(in) :: a(:,:), b(:,:)
+    real(dp), allocatable :: c(:,:)
+    allocate(c(size(a, 1) + size(b, 1), size(a, 2) + size(b, 2)), source=0.0_dp)
+    c(1:size(a, 1), 1:size(a, 2)) = a
+    c(size(a, 1) + 1:, size(a, 2) + 1:) = b
+  end function block_diagonal
+
+  !> A RIGID's free direction that contact does not hold must carry no load
+  !> (exit 1 naming the obstacle and the direction); an unloaded one keeps 0.
+  subroutine check_unheld_rigid_loads()
+    integer :: j
+    do j = 1, size(rsplit%unheld, 2)
+      if (.not. rsplit%loaded(j)) cycle
+      call fail_numerical(step_prefix() // 'no equilibrium: RIGID "' // sc%rigids(rsplit%unheld_owner(j))%name // &
+        '" is loaded along a direction (' // rigid_direction(rsplit, rsplit%unheld(:, j)) // ') that neither its ' // &
+        'FIX nor its contacts hold (frictionless contact pushes only normal to the contact surface; expected FIX ' // &
+        'on that direction, or a load the contact normals can balance)')
+    end do
+  end subroutine check_unheld_rigid_loads
+
+  !> The contact problem has no solution because some load pulls a body off its
+  !> contacts: when it is a RIGID's FORCE, say which RIGID and which way.
+  subroutine diagnose_pulled_rigid()
+    integer :: owner
+    real(dp) :: resid(3)
+    character(len=80) :: buf
+    call pulled_rigid(rsplit, owner, resid)
+    if (owner == 0) return
+    write(buf, '(a,es10.3,a,es10.3,a,es10.3,a)') '(', resid(1), ', ', resid(2), ', ', resid(3), ')'
+    call fail_numerical(step_prefix() // 'no equilibrium: the FORCE on RIGID "' // sc%rigids(owner)%name // &
+      '" pulls it away from its contacts: contact can only push, and the part (fx, fy, m) = ' // trim(buf) // &
+      ' of its load cannot be balanced by any contact pressure (expected a FORCE that presses the obstacle ' // &
+      'on the slave boundary)')
+  end subroutine diagnose_pulled_rigid
+
+
   !> How a pair's tangential behaviour is described in the log.
   function friction_law(kind, spec) result(t)
     character(len=*), intent(in) :: kind
@@ -1146,12 +1302,49 @@ contains
   !> with its mode amplitudes is solved by Lemke (friction_modes); lcp=pgs
   !> is refused at the SOLVER line (exit 2).
   subroutine check_floating_friction_solver()
-    if (cs%ntan == 0 .or. size(split%held, 2) == 0 .or. deck%solver%lcp /= 'pgs') return
+    if (cs%ntan == 0 .or. deck%solver%lcp /= 'pgs') return
+    if (size(split%held, 2) == 0 .and. size(rsplit%held, 2) > 0) then
+      call add_error(diag, deck%file, deck%solver%line, 'lcp=pgs with friction on a RIGID under FORCE is not ' // &
+        'supported (expected lcp=lemke or lcp=auto, which solve it by Lemke''s method)')
+      call stop_input_errors(diag)
+    end if
+    if (size(split%held, 2) == 0) return
     call add_error(diag, deck%file, deck%solver%line, 'lcp=pgs with friction on a body held only by contact (body "' // &
       sc%bodies(fl%mode_body(1))%name // '": ' // mode_name(fl, 1) // ' not held by FIX) is not supported ' // &
       '(expected lcp=lemke or lcp=auto, which solve it by Lemke''s method)')
     call stop_input_errors(diag)
   end subroutine check_floating_friction_solver
+
+  !> The diagnosis of a frictional step without equilibrium from the unbalanced
+  !> load along the held combinations (the bodies' modes, then the RIGIDs'
+  !> free directions): the body or the RIGID that carries most of it.
+  function floating_no_equilibrium(unbalanced, cause) result(t)
+    real(dp), intent(in) :: unbalanced(:)
+    character(len=*), intent(in) :: cause
+    character(len=:), allocatable :: t
+    real(dp), allocatable :: cr(:)
+    integer :: kb, r
+    kb = size(split%held, 2)
+    if (kb > 0) then
+      if (maxval(abs(unbalanced(1:kb))) >= maxval(abs(unbalanced(kb + 1:)), mask=.true.) .or. &
+          size(unbalanced) == kb) then
+        t = friction_no_equilibrium(matmul(split%held, unbalanced(1:kb)), cause)
+        return
+      end if
+    end if
+    cr = matmul(rsplit%held, unbalanced(kb + 1:))
+    r = rsplit%owner(maxloc(abs(cr), dim=1))
+    cr = merge(cr, 0.0_dp, rsplit%owner == r)
+    if (cause == 'friction') then
+      t = 'no equilibrium: the FORCE on RIGID "' // sc%rigids(r)%name // '" exceeds what friction can hold: it ' // &
+        'would move by ' // rigid_direction(rsplit, cr) // ' (the contact forces within the friction cone ' // &
+        'cannot balance its load)'
+    else
+      t = 'no equilibrium: the FORCE on RIGID "' // sc%rigids(r)%name // '" pulls it away from its contacts: it ' // &
+        'would move by ' // rigid_direction(rsplit, cr) // ' (no contact force balances its load, whatever ' // &
+        'the friction)'
+    end if
+  end function floating_no_equilibrium
 
   !> The names of the bodies with free rigid modes, quoted, comma-separated.
   function floating_names() result(t)

@@ -29,6 +29,7 @@ module contact_set
   use body, only: body_t, node_elements, edge_outward_normal
   use mortar_operator, only: mortar_t, build_mortar, zone_node_terms, zone_point, segment_rule
   use mortar_geometry, only: intersection_t, intersect_segments, common_normals
+  use rigid_obstacle, only: rigid_shape_t, build_rigid_mortar, orient_shape, rigid_terms
   use mortar_quadratic, only: build_mortar_quadratic
   implicit none
   private
@@ -43,6 +44,8 @@ module contact_set
     logical :: interference = .false.         !< initial penetrations deeper than a slave element accepted
     real(dp) :: mu = 0.0_dp                   !< Coulomb coefficient (0: none)
     real(dp) :: tresca = 0.0_dp               !< Tresca slip bound, a shear stress (0: none)
+    integer :: rigid = 0                      !< master=RIGID: its index (master_body 0), else 0
+    type(rigid_shape_t) :: shape              !< the RIGID's shape and dofs (rigid > 0)
   end type pair_spec_t
 
   type :: contact_pair_t
@@ -292,6 +295,20 @@ contains
           call set_error(err, 'CONTACT ' // int_to_str(ip) // ': the slave boundary cannot be used: ' // why, 2)
           return
         end if
+        if (sp%rigid > 0) then
+          ! a rigid master: its exact shape, no master mesh (rigid_obstacle)
+          call orient_shape(pr%spec%shape, pr%xs, nsl)
+          call build_rigid_mortar(pr%xs, nsl, pr%spec%shape, pr%mortar, merr)
+          if (allocated(merr)) then
+            call set_error(err, 'CONTACT ' // int_to_str(ip) // ': ' // merr%message, merr%status)
+            return
+          end if
+          allocate(pr%mnode(0), pr%mcov(0))
+          call finish_rows()
+          if (allocated(err)) return
+          cs%nrow = cs%nrow + pr%nrow
+          cycle
+        end if
         call boundary_polyline(bodies(sp%master_body), sp%master_bnd, mnodes, xm, nms, why)
         if (len(why) > 0) then
           call set_error(err, 'CONTACT ' // int_to_str(ip) // ': the master boundary cannot be used: ' // why, 2)
@@ -325,19 +342,8 @@ contains
           call set_error(err, 'CONTACT ' // int_to_str(ip) // ': ' // merr%message, merr%status)
           return
         end if
-        if (.not. sp%interference) then
-          call check_penetration(pr, err)
-          if (allocated(err)) then
-            err%message = 'CONTACT ' // int_to_str(ip) // ': ' // err%message
-            return
-          end if
-        end if
-        pr%row0 = cs%nrow
-        call constrained_nodes(pr%mortar, pr%row)
-        pr%closed = pr%snode(1) == pr%snode(size(pr%snode))
-        if (pr%closed .and. pr%mortar%first == 1 .and. pr%mortar%last == size(pr%snode)) &
-          pr%row(size(pr%snode)) = .false.                 ! periodic: the last node is the first
-        pr%nrow = count(pr%row)
+        call finish_rows()
+        if (allocated(err)) return
         if (mnodes(1) == mnodes(size(mnodes)) .and. allocated(pr%mortar%P)) then
           ! a closed master curve: its last hat is its first
           pr%mortar%P(:, 1) = pr%mortar%P(:, 1) + pr%mortar%P(:, size(mnodes))
@@ -375,6 +381,9 @@ contains
     maxdof = 0
     do i = 1, size(bodies)
       maxdof = max(maxdof, bodies(i)%dof0 + 2 * bodies(i)%mesh%nnode)
+    end do
+    do ip = 1, cs%npair                              ! a RIGID's dofs follow the bodies'
+      if (cs%pair(ip)%spec%rigid > 0) maxdof = max(maxdof, cs%pair(ip)%spec%shape%dof0 + 3)
     end do
     allocate(touched(maxdof), source=.false.)
     allocate(cs%row_pair(cs%nrow), cs%row_node(cs%nrow), cs%g(cs%nrow), cs%bptr(cs%nrow + cs%ntan + 1), &
@@ -417,6 +426,28 @@ contains
     end do
   contains
 
+    !> The checks and rows of pair ip once its mortar operator is built: the
+    !> initial penetration (unless allowed), its first row, the constrained
+    !> slave nodes (a periodic zone's last node is its first), nrow.  err is
+    !> set (with the pair's number) on a penetration.
+    subroutine finish_rows()
+      associate(pr => cs%pair(ip))
+        if (.not. pr%spec%interference) then
+          call check_penetration(pr, err)
+          if (allocated(err)) then
+            err%message = 'CONTACT ' // int_to_str(ip) // ': ' // err%message
+            return
+          end if
+        end if
+        pr%row0 = cs%nrow
+        call constrained_nodes(pr%mortar, pr%row)
+        pr%closed = pr%snode(1) == pr%snode(size(pr%snode))
+        if (pr%closed .and. pr%mortar%first == 1 .and. pr%mortar%last == size(pr%snode)) &
+          pr%row(size(pr%snode)) = .false.                 ! periodic: the last node is the first
+        pr%nrow = count(pr%row)
+      end associate
+    end subroutine finish_rows
+
     !> Direction of the rows of slave node i: the nodal normal n_i, or the
     !> tangent t_i = (-n_y, n_x) (n turned a quarter turn anticlockwise).
     pure function row_direction(mo, i, tangent) result(v)
@@ -437,6 +468,20 @@ contains
       associate(pr => cs%pair(ip), mo => cs%pair(ip)%mortar)
         if (pr%nrow == 0) return
         d0s = bodies(pr%spec%slave_body)%dof0
+        if (pr%spec%rigid > 0) then                  ! slave terms, then the rigid's three dofs
+          do i = mo%first, mo%last
+            if (.not. pr%row(i)) cycle
+            v = row_direction(mo, i, tangent)
+            do c = 1, 2
+              if (v(c) == 0.0_dp) cycle
+              touched(d0s + 2 * (pr%snode(i) - 1) + c) = .true.
+              nnz = nnz + 1
+            end do
+            nnz = nnz + 3
+          end do
+          touched(pr%spec%shape%dof0 + 1:pr%spec%shape%dof0 + 3) = .true.
+          return
+        end if
         d0m = bodies(pr%spec%master_body)%dof0
         nm = size(pr%mnode)
         if (pr%single) then
@@ -475,6 +520,10 @@ contains
       integer :: sn(2), nt, t
       associate(pr => cs%pair(ip), mo => cs%pair(ip)%mortar)
         d0s = bodies(pr%spec%slave_body)%dof0
+        if (pr%spec%rigid > 0) then
+          call rigid_rows(tangent)
+          return
+        end if
         d0m = bodies(pr%spec%master_body)%dof0
         nm = size(pr%mnode)
         if (pr%single) then
@@ -509,6 +558,41 @@ contains
         end do
       end associate
     end subroutine fill_pair_rows
+
+    !> The rows of pair ip against a RIGID (rigid_obstacle): v_i . u1(x_i) on
+    !> the slave node, minus the rigid motion's v_i . U(x_i) on its three dofs.
+    subroutine rigid_rows(tangent)
+      logical, intent(in) :: tangent
+      real(dp) :: v(2), rt(3)
+      integer :: t
+      associate(pr => cs%pair(ip), mo => cs%pair(ip)%mortar)
+        do i = mo%first, mo%last
+          if (.not. pr%row(i)) cycle
+          r = r + 1
+          if (.not. tangent) then
+            cs%weight(r) = mo%zone_weight(i)
+            cs%row_pair(r) = ip
+            cs%row_node(r) = i
+            cs%g(r) = mo%gap0(i)
+            if (pr%spec%gap_zero) cs%g(r) = 0.0_dp
+          end if
+          v = row_direction(mo, i, tangent)
+          do c = 1, 2
+            if (v(c) == 0.0_dp) cycle
+            k = k + 1
+            cs%bcol(k) = colmap(d0s + 2 * (pr%snode(i) - 1) + c)
+            cs%bval(k) = v(c)
+          end do
+          rt = rigid_terms(pr%spec%shape, pr%xs(:, i), v)
+          do t = 1, 3
+            k = k + 1
+            cs%bcol(k) = colmap(pr%spec%shape%dof0 + t)
+            cs%bval(k) = -rt(t)
+          end do
+          cs%bptr(r + 1) = k + 1
+        end do
+      end associate
+    end subroutine rigid_rows
 
     !> The mean-value row of a one-segment zone (pair ip, row r+1):
     !>   (1/L) int_cov (u1 - u2).n ds <= (1/L) int_cov (y - x).n ds,

@@ -103,7 +103,7 @@ module deck_reader
   implicit none
   private
   public :: fix_t, load_t, mesh_spec_t, material_t, body_deck_t, contact_deck_t
-  public :: solver_deck_t, output_deck_t, deck_t, curve_t, read_deck, curve_factor
+  public :: solver_deck_t, output_deck_t, deck_t, curve_t, read_deck, curve_factor, rigid_deck_t, rigid_load_t
   public :: load_traction, load_pressure, path_too_long
 
   integer, parameter :: load_traction = 1   !< load_t%kind of TRACTION
@@ -188,9 +188,37 @@ module deck_reader
     logical :: has_offset = .false.; real(dp) :: dx = 0, dy = 0; integer :: offset_line = 0
   end type body_deck_t
 
-  !> CONTACT slave=body:boundary master=body:boundary [gap=] [mu= | tresca=]
+  !> FIX [ux=] [uy=] [rz=] or FORCE [fx=] [fy=] [m=] of a RIGID, with its load path.
+  type :: rigid_load_t
+    logical :: has(3) = .false.                 !< the directions it names (u_x, u_y, theta / f_x, f_y, m)
+    real(dp) :: value(3) = 0                    !< their values (theta in radians)
+    integer :: ramp(2) = [0, 1]                 !< ramp k0:k1; default [0, steps]
+    integer :: curve = 0                        !< curve=NAME: index into deck%curves (0: the ramp)
+    character(len=:), allocatable :: curve_name !< curve=NAME as written ('' when absent)
+    integer :: line = 0
+  end type rigid_load_t
+
+  !> RIGID name ... END: a rigid obstacle, its exact shape and the motion or
+  !> load of its reference point (FIX ux= uy= rz=, FORCE fx= fy= m=).  The
+  !> directions FIX names are prescribed, the others free and loaded by FORCE
+  !> (0 when FORCE does not name them); no FIX and no FORCE: held fixed.
+  type :: rigid_deck_t
+    character(len=:), allocatable :: name
+    integer :: line = 0                         !< line of the RIGID statement
+    character(len=:), allocatable :: shape      !< 'line', 'circle', 'polyline' ('' when none)
+    real(dp), allocatable :: points(:,:)        !< (2, np) line: its two ends; polyline: its points
+    real(dp) :: centre(2) = 0, radius = 0       !< circle
+    logical :: outside = .false.                !< circle solid=outside: a hole in a rigid solid
+    integer :: shape_line = 0
+    logical :: has_ref = .false.; real(dp) :: ref(2) = 0; integer :: ref_line = 0
+    type(rigid_load_t), allocatable :: fixes(:)   !< FIX statements (each direction in one at most)
+    type(rigid_load_t), allocatable :: forces(:)  !< FORCE statements (each direction in one at most)
+  end type rigid_deck_t
+
+  !> CONTACT slave=body:boundary master=body:boundary|RIGID [gap=] [mu= | tresca=]
   type :: contact_deck_t
-    integer :: slave_body = 0, master_body = 0  !< indices into deck%bodies
+    integer :: slave_body = 0, master_body = 0  !< indices into deck%bodies (master 0 for a RIGID)
+    integer :: master_rigid = 0                 !< master=RIGIDNAME: index into deck%rigids
     character(len=:), allocatable :: slave_boundary, master_boundary
     logical :: gap_zero = .false.               !< gap=zero; default gap=geometry
     logical :: interference = .false.           !< interference=allow: any initial penetration accepted
@@ -247,6 +275,7 @@ module deck_reader
     integer :: steps = 1                        !< STEPS n: load steps, 1 <= n <= max_steps
     integer :: steps_line = 0                   !< line of the STEPS statement (0: none)
     type(contact_deck_t), allocatable :: contacts(:)   !< (ncontact), always allocated
+    type(rigid_deck_t), allocatable :: rigids(:) !< (nrigid) RIGID blocks, always allocated
     type(solver_deck_t) :: solver
     type(output_deck_t) :: output
     type(parameter_set_t) :: params             !< PARAMETER: names, final values, origins
@@ -360,7 +389,7 @@ contains
 
     deck%file = path
     call split_path(path, deck%dir, deck%name)
-    allocate(deck%bodies(0), deck%contacts(0), deck%curves(0))
+    allocate(deck%bodies(0), deck%contacts(0), deck%curves(0), deck%rigids(0))
     allocate(s%errs(16), s%echo(64), s%slave_name(4), s%master_name(4))
     if (present(overrides)) s%overrides = overrides
     call define_statements(table)
@@ -800,6 +829,11 @@ contains
                  names=[character(len=12) :: 'vtk', 'contact', 'summary', 'fields', 'steps'], &
                  forms=[character(len=28) :: name, name, name, 'LIST', 'last|all'])
     call add_row(table, 'PARAMETER', '*', do_parameter)
+    call add_row(table, 'RIGID', '', do_rigid, opens='RIGID')
+    call add_row(table, 'SHAPE', 'RIGID', rigid_shape_row, once=.true., expected='one SHAPE per RIGID')
+    call add_row(table, 'REF', 'RIGID', rigid_ref_row, once=.true., expected='one REF per RIGID')
+    call add_row(table, 'FIX', 'RIGID', rigid_fix_row)
+    call add_row(table, 'FORCE', 'RIGID', rigid_force_row)
   end subroutine define_statements
 
   !> Append a row to the table.
@@ -1842,7 +1876,13 @@ contains
     call require_key(s, st, seen(1), 'slave', 'CONTACT', usage)
     call require_key(s, st, seen(2), 'master', 'CONTACT', usage)
     call split_side(s, st, val(1), 'slave', sbody, c%slave_boundary, ok_s)
-    call split_side(s, st, val(2), 'master', mbody, c%master_boundary, ok_m)
+    if (allocated(val(2)%s) .and. index(val(2)%s, ':') == 0 .and. is_name(val(2)%s)) then
+      mbody = val(2)%s                               ! master=RIGIDNAME: resolved after the deck
+      c%master_boundary = ''
+      ok_m = .false.
+    else
+      call split_side(s, st, val(2), 'master', mbody, c%master_boundary, ok_m)
+    end if
     if (ok_s .and. ok_m) then
       if (sbody == mbody .and. c%slave_boundary == c%master_boundary) &
         call report(s, st%line, 'slave and master must be different boundaries (both are ' // &
@@ -2200,6 +2240,7 @@ contains
     if (resolved .and. .not. s%contact_bad) call check_rigid_modes(s, deck)
     call check_ramps(s, deck)
     call resolve_curves(s, deck)
+    call check_rigids(s, deck)
     call check_friction_solver(s, deck)
     call check_output_names(s, deck)
     if (deck%axisymmetric) call check_axisymmetric(s, deck)
@@ -2358,6 +2399,28 @@ contains
     do i = 1, s%ncontact
       associate (c => deck%contacts(i))
         c%slave_body = find_body(deck, s%nbody, s%slave_name(i)%s)
+        if (len(c%master_boundary) == 0) then         ! master=RIGIDNAME
+          do j = 1, size(deck%rigids)
+            if (deck%rigids(j)%name == s%master_name(i)%s .and. &
+                len(deck%rigids(j)%name) == len(s%master_name(i)%s)) c%master_rigid = j
+          end do
+          if (c%master_rigid == 0) call report(s, c%line, 'unknown RIGID ' // quoted(s%master_name(i)%s) // &
+            ' in CONTACT master= (expected master=body:boundary or the name of a RIGID block)')
+          if (c%slave_body == 0) call report(s, c%line, 'unknown body ' // quoted(s%slave_name(i)%s) // &
+                                             ' in CONTACT (expected one of ' // known // ')')
+          if (c%slave_body == 0 .or. c%master_rigid == 0) then
+            resolved = .false.
+          else
+            call check_contact_side(s, deck%bodies(c%slave_body), c%slave_boundary, c%line)
+            do j = 1, i - 1
+              if (deck%contacts(j)%master_rigid == c%master_rigid .and. deck%contacts(j)%slave_body == c%slave_body &
+                  .and. deck%contacts(j)%slave_boundary == c%slave_boundary) &
+                call report(s, c%line, 'duplicate CONTACT (same slave boundary and RIGID as at line ' // &
+                            int_to_str(deck%contacts(j)%line) // '; expected each pair once)')
+            end do
+          end if
+          cycle
+        end if
         c%master_body = find_body(deck, s%nbody, s%master_name(i)%s)
         if (c%slave_body == 0) call report(s, c%line, 'unknown body ' // quoted(s%slave_name(i)%s) // &
                                            ' in CONTACT (expected one of ' // known // ')')
@@ -2393,6 +2456,8 @@ contains
   !> Two CONTACTs join the same two boundaries (in either role).
   pure logical function same_pair(a, b)
     type(contact_deck_t), intent(in) :: a, b
+    same_pair = .false.
+    if (a%master_rigid > 0 .or. b%master_rigid > 0) return
     same_pair = (a%slave_body == b%slave_body .and. a%slave_boundary == b%slave_boundary .and. &
                  a%master_body == b%master_body .and. a%master_boundary == b%master_boundary) .or. &
                 (a%slave_body == b%master_body .and. a%slave_boundary == b%master_boundary .and. &
@@ -2416,7 +2481,7 @@ contains
     type(state_t), intent(inout) :: s
     type(deck_t), intent(in) :: deck
     integer, allocatable :: group(:)
-    logical, allocatable :: in_contact(:)
+    logical, allocatable :: in_contact(:), on_rigid(:)
     integer :: b, i, g, a, c, nmem
     logical :: held, changed
     character(len=:), allocatable :: members
@@ -2426,14 +2491,20 @@ contains
     do b = 1, s%nbody
       group(b) = b
     end do
+    allocate(on_rigid(s%nbody), source=.false.)
     do i = 1, s%ncontact
       in_contact(deck%contacts(i)%slave_body) = .true.
+      if (deck%contacts(i)%master_rigid > 0) then
+        on_rigid(deck%contacts(i)%slave_body) = .true.   ! a RIGID holds what touches it (checked when solved)
+        cycle
+      end if
       in_contact(deck%contacts(i)%master_body) = .true.
     end do
     changed = .true.                          ! label propagation: group = smallest member
     do while (changed)
       changed = .false.
       do i = 1, s%ncontact
+        if (deck%contacts(i)%master_rigid > 0) cycle
         a = deck%contacts(i)%slave_body
         c = deck%contacts(i)%master_body
         if (group(a) /= group(c)) then
@@ -2458,7 +2529,7 @@ contains
       nmem = 0
       do a = 1, s%nbody
         if (group(a) /= g) cycle
-        if (size(deck%bodies(a)%fixes) > 0) held = .true.
+        if (size(deck%bodies(a)%fixes) > 0 .or. on_rigid(a)) held = .true.
         nmem = nmem + 1
         if (nmem > 1) members = members // ', '
         members = members // quoted(deck%bodies(a)%name)
@@ -2600,12 +2671,340 @@ contains
       end associate
     end do
     if (deck%gravity_line == 0 .or. deck%gravity_ramp(2) == ramp_unset(2)) deck%gravity_ramp = [0, deck%steps]
+    do i = 1, size(deck%rigids)
+      associate (rg => deck%rigids(i))
+        if (.not. allocated(rg%name)) rg%name = ''
+        if (.not. allocated(rg%shape)) rg%shape = ''
+        if (.not. allocated(rg%points)) allocate(rg%points(2, 0))
+        if (.not. allocated(rg%fixes)) allocate(rg%fixes(0))
+        if (.not. allocated(rg%forces)) allocate(rg%forces(0))
+        do b = 1, size(rg%fixes)
+          if (rg%fixes(b)%ramp(2) == ramp_unset(2)) rg%fixes(b)%ramp = [0, deck%steps]
+        end do
+        do b = 1, size(rg%forces)
+          if (rg%forces(b)%ramp(2) == ramp_unset(2)) rg%forces(b)%ramp = [0, deck%steps]
+        end do
+      end associate
+    end do
     do i = 1, size(deck%contacts)
       if (.not. allocated(deck%contacts(i)%slave_boundary)) deck%contacts(i)%slave_boundary = ''
       if (.not. allocated(deck%contacts(i)%master_boundary)) deck%contacts(i)%master_boundary = ''
       if (.not. allocated(deck%contacts(i)%friction)) deck%contacts(i)%friction = 'none'
     end do
   end subroutine fill_defaults
+
+  ! ================================================================ RIGID blocks
+
+  !> RIGID name: opens a rigid obstacle's block (SHAPE, REF, FIX, FORCE, END).
+  subroutine do_rigid(s, deck, st)
+    type(state_t), intent(inout) :: s
+    type(deck_t), intent(inout) :: deck
+    type(stmt_t), intent(in) :: st
+    character(len=*), parameter :: usage = 'RIGID name'
+    type(rigid_deck_t), allocatable :: grown(:)
+    integer :: r, nr
+    logical :: ok
+
+    nr = size(deck%rigids)
+    allocate(grown(nr + 1))
+    do r = 1, nr
+      grown(r) = deck%rigids(r)
+    end do
+    call move_alloc(grown, deck%rigids)
+    s%block_line = st%line
+    s%block_name = ''
+    if (st%nword > 0) s%block_name = st%word(1)%s
+    associate (rg => deck%rigids(nr + 1))
+      rg%line = st%line
+      rg%name = ''
+      rg%shape = ''
+      allocate(rg%points(2, 0), rg%fixes(0), rg%forces(0))
+      if (st%nword == 0) then
+        call report(s, st%line, 'missing rigid obstacle name (expected ' // usage // ')')
+      else
+        call check_name(s, st, st%word(1)%s, 'rigid obstacle', ok)
+        if (ok) rg%name = st%word(1)%s
+        call check_extra_words(s, st, 1, usage)
+        do r = 1, nr
+          if (ok .and. deck%rigids(r)%name == rg%name .and. len(deck%rigids(r)%name) == len(rg%name)) &
+            call report(s, st%line, 'duplicate RIGID name ' // quoted(rg%name) // ' (first at line ' // &
+                        int_to_str(deck%rigids(r)%line) // '; expected a new name)')
+        end do
+      end if
+      if (st%npair > 0) call report(s, st%line, 'unexpected ' // quoted(st%key(1)%s // '=' // st%value(1)%s) // &
+                                    ' (expected ' // usage // ')')
+    end associate
+  end subroutine do_rigid
+
+  !> The statements of the open RIGID block (the last RIGID read).
+  subroutine rigid_shape_row(s, deck, st)
+    type(state_t), intent(inout) :: s
+    type(deck_t), intent(inout) :: deck
+    type(stmt_t), intent(in) :: st
+    call do_rigid_shape(s, deck%rigids(size(deck%rigids)), st)
+  end subroutine rigid_shape_row
+
+  subroutine rigid_ref_row(s, deck, st)
+    type(state_t), intent(inout) :: s
+    type(deck_t), intent(inout) :: deck
+    type(stmt_t), intent(in) :: st
+    call do_rigid_ref(s, deck%rigids(size(deck%rigids)), st)
+  end subroutine rigid_ref_row
+
+  subroutine rigid_fix_row(s, deck, st)
+    type(state_t), intent(inout) :: s
+    type(deck_t), intent(inout) :: deck
+    type(stmt_t), intent(in) :: st
+    call do_rigid_load(s, deck%rigids(size(deck%rigids)), st, .true.)
+  end subroutine rigid_fix_row
+
+  subroutine rigid_force_row(s, deck, st)
+    type(state_t), intent(inout) :: s
+    type(deck_t), intent(inout) :: deck
+    type(stmt_t), intent(in) :: st
+    call do_rigid_load(s, deck%rigids(size(deck%rigids)), st, .false.)
+  end subroutine rigid_force_row
+
+  !> SHAPE line x0= y0= x1= y1= | circle xc= yc= r= [solid=inside|outside] | polyline points=x1:y1,x2:y2,...
+  subroutine do_rigid_shape(s, rg, st)
+    type(state_t), intent(inout) :: s
+    type(rigid_deck_t), intent(inout) :: rg
+    type(stmt_t), intent(in) :: st
+    character(len=*), parameter :: usage = 'SHAPE line x0= y0= x1= y1= | SHAPE circle xc= yc= r= ' // &
+                                           '[solid=inside|outside] | SHAPE polyline points=x1:y1,x2:y2,...'
+    character(len=6), parameter :: names(9) = [character(len=6) :: 'x0', 'y0', 'x1', 'y1', 'xc', 'yc', 'r', &
+                                               'solid', 'points']
+    character(len=15), parameter :: forms(9) = [character(len=15) :: 'number', 'number', 'number', 'number', &
+                                                'number', 'number', 'number', 'inside|outside', 'x1:y1,x2:y2,...']
+    logical :: seen(9), ok, allowed(9)
+    type(text_t) :: val(9)
+    character(len=:), allocatable :: kind
+    integer :: k
+
+    if (rg%shape_line > 0) then
+      call report(s, st%line, 'second SHAPE in RIGID ' // quoted(rg%name) // ' (first at line ' // &
+                  int_to_str(rg%shape_line) // '; expected one SHAPE per RIGID)')
+      return
+    end if
+    rg%shape_line = st%line
+    if (st%nword == 0) then
+      call report(s, st%line, 'missing shape kind (expected ' // usage // ')')
+      return
+    end if
+    call check_extra_words(s, st, 1, usage)
+    kind = lower(st%word(1)%s)
+    call match_keys(s, st, names, forms, 'SHAPE', seen, val)
+    allowed = .false.
+    select case (kind)
+    case ('line')
+      allowed(1:4) = .true.
+      do k = 1, 4
+        call require_key(s, st, seen(k), trim(names(k)), 'SHAPE line', 'SHAPE line x0= y0= x1= y1=')
+      end do
+      rg%points = reshape([0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp], [2, 2])
+      call get_real(s, st, val(1), 'x0', rg%points(1, 1), ok)
+      call get_real(s, st, val(2), 'y0', rg%points(2, 1), ok)
+      call get_real(s, st, val(3), 'x1', rg%points(1, 2), ok)
+      call get_real(s, st, val(4), 'y1', rg%points(2, 2), ok)
+      if (all(rg%points(:, 1) == rg%points(:, 2)) .and. all(seen(1:4))) &
+        call report(s, st%line, 'SHAPE line of zero length (expected two different end points)')
+    case ('circle')
+      allowed(5:8) = .true.
+      do k = 5, 7
+        call require_key(s, st, seen(k), trim(names(k)), 'SHAPE circle', 'SHAPE circle xc= yc= r=')
+      end do
+      call get_real(s, st, val(5), 'xc', rg%centre(1), ok)
+      call get_real(s, st, val(6), 'yc', rg%centre(2), ok)
+      call get_real(s, st, val(7), 'r', rg%radius, ok, positive=.true.)
+      if (allocated(val(8)%s)) rg%outside = get_choice(s, st, val(8), 'solid', ['inside ', 'outside']) == 'outside'
+    case ('polyline')
+      allowed(9) = .true.
+      call require_key(s, st, seen(9), 'points', 'SHAPE polyline', 'SHAPE polyline points=x1:y1,x2:y2,...')
+      if (allocated(val(9)%s)) call get_points(val(9)%s)
+    case default
+      call report(s, st%line, 'unknown shape ' // quoted(st%word(1)%s) // ' (expected line, circle or polyline)')
+      return
+    end select
+    rg%shape = kind
+    do k = 1, 9
+      if (seen(k) .and. .not. allowed(k)) call report(s, st%line, 'key ' // quoted(trim(names(k))) // &
+        ' does not belong to SHAPE ' // kind // ' (expected ' // usage // ')')
+    end do
+  contains
+    !> points=x1:y1,x2:y2,...: at least two points, consecutive ones different.
+    subroutine get_points(text)
+      character(len=*), intent(in) :: text
+      integer :: p, q, colon, n, j
+      real(dp) :: x, y
+      logical :: okx, oky
+      real(dp), allocatable :: pts(:,:)
+      allocate(pts(2, 0))
+      p = 1
+      n = 0
+      do while (p <= len(text))
+        q = index(text(p:), ',')
+        if (q == 0) then
+          q = len(text) + 1
+        else
+          q = p + q - 1
+        end if
+        colon = index(text(p:q - 1), ':')
+        okx = .false.
+        oky = .false.
+        if (colon > 1) then
+          call parse_real(text(p:p + colon - 2), x, okx)
+          call parse_real(text(p + colon:q - 1), y, oky)
+        end if
+        if (.not. (okx .and. oky)) then
+          call report(s, st%line, 'bad point ' // quoted(text(p:q - 1)) // ' in points= (expected x:y with ' // &
+                      'two finite numbers, points separated by commas)')
+          return
+        end if
+        n = n + 1
+        pts = reshape([pts, x, y], [2, n])
+        p = q + 1
+      end do
+      if (n < 2) then
+        call report(s, st%line, 'SHAPE polyline with ' // int_to_str(n) // ' point (expected at least two points)')
+        return
+      end if
+      do j = 1, n - 1
+        if (all(pts(:, j) == pts(:, j + 1))) then
+          call report(s, st%line, 'SHAPE polyline repeats point ' // int_to_str(j) // ' (expected consecutive ' // &
+                      'points to differ)')
+          return
+        end if
+      end do
+      rg%points = pts
+    end subroutine get_points
+  end subroutine do_rigid_shape
+
+  !> REF x= y=: the reference point (default: the circle's centre, the first point)
+  subroutine do_rigid_ref(s, rg, st)
+    type(state_t), intent(inout) :: s
+    type(rigid_deck_t), intent(inout) :: rg
+    type(stmt_t), intent(in) :: st
+    logical :: seen(2), ok
+    type(text_t) :: val(2)
+    if (rg%ref_line > 0) then
+      call report(s, st%line, 'second REF in RIGID ' // quoted(rg%name) // ' (expected one REF per RIGID)')
+      return
+    end if
+    rg%ref_line = st%line
+    call check_extra_words(s, st, 0, 'REF x=number y=number')
+    call match_keys(s, st, ['x', 'y'], ['number', 'number'], 'REF', seen, val)
+    call require_key(s, st, seen(1), 'x', 'REF', 'REF x=number y=number')
+    call require_key(s, st, seen(2), 'y', 'REF', 'REF x=number y=number')
+    call get_real(s, st, val(1), 'x', rg%ref(1), ok)
+    call get_real(s, st, val(2), 'y', rg%ref(2), ok)
+    rg%has_ref = .true.
+  end subroutine do_rigid_ref
+
+  !> FIX [ux=] [uy=] [rz=] [ramp=|curve=] (none given: all three 0) or
+  !> FORCE [fx=] [fy=] [m=] [ramp=|curve=] (at least one) of a RIGID; each
+  !> direction in one FIX or one FORCE at most.
+  subroutine do_rigid_load(s, rg, st, is_fix)
+    type(state_t), intent(inout) :: s
+    type(rigid_deck_t), intent(inout) :: rg
+    type(stmt_t), intent(in) :: st
+    logical, intent(in) :: is_fix
+    character(len=5) :: names(5)
+    character(len=:), allocatable :: what, usage
+    logical :: seen(5), ok
+    type(text_t) :: val(5)
+    integer :: k, j
+    type(rigid_load_t) :: ld
+
+    if (is_fix) then
+      names = [character(len=5) :: 'ux', 'uy', 'rz', 'ramp', 'curve']
+      what = 'FIX'
+      usage = 'FIX [ux=number] [uy=number] [rz=radians] [ramp=k0:k1|curve=NAME]'
+    else
+      names = [character(len=5) :: 'fx', 'fy', 'm', 'ramp', 'curve']
+      what = 'FORCE'
+      usage = 'FORCE [fx=number] [fy=number] [m=number] [ramp=k0:k1|curve=NAME]'
+    end if
+    call check_extra_words(s, st, 0, usage)
+    call match_keys(s, st, names, [character(len=6) :: 'number', 'number', 'number', 'k0:k1', 'NAME'], what, seen, val)
+    do k = 1, 3
+      call get_real(s, st, val(k), trim(names(k)), ld%value(k), ok)
+    end do
+    call get_ramp(s, st, val(4), ld%ramp)
+    call get_curve_name(s, st, val(5), val(4), ld%curve_name)
+    ld%line = st%line
+    ld%has = seen(1:3)
+    if (is_fix .and. .not. any(seen(1:3))) ld%has = .true.        ! FIX alone: held fixed
+    if (.not. is_fix .and. .not. any(seen(1:3))) call report(s, st%line, 'FORCE without a component (expected ' // &
+                                                             usage // ')')
+    ! a direction is prescribed by one FIX or loaded by one FORCE
+    do j = 1, size(rg%fixes)
+      if (any(ld%has .and. rg%fixes(j)%has)) call report(s, st%line, what // ' names a direction that the FIX at ' // &
+        'line ' // int_to_str(rg%fixes(j)%line) // ' prescribes (expected each of ux/fx, uy/fy, rz/m in one ' // &
+        'FIX or FORCE of the RIGID)')
+    end do
+    do j = 1, size(rg%forces)
+      if (any(ld%has .and. rg%forces(j)%has)) call report(s, st%line, what // ' names a direction that the FORCE ' // &
+        'at line ' // int_to_str(rg%forces(j)%line) // ' loads (expected each of ux/fx, uy/fy, rz/m in one ' // &
+        'FIX or FORCE of the RIGID)')
+    end do
+    if (is_fix) then
+      rg%fixes = [rg%fixes, ld]
+    else
+      rg%forces = [rg%forces, ld]
+    end if
+  end subroutine do_rigid_load
+
+  !> After the whole deck: every RIGID has a SHAPE and a name no BODY has; the
+  !> RIGIDs' ramps end by STEPS and their curves exist.
+  subroutine check_rigids(s, deck)
+    type(state_t), intent(inout) :: s
+    type(deck_t), intent(inout) :: deck
+    integer :: r, b
+    do r = 1, size(deck%rigids)
+      associate (rg => deck%rigids(r))
+        if (len(rg%name) == 0) cycle
+        if (rg%shape_line == 0) call report(s, rg%line, 'RIGID ' // quoted(rg%name) // ' has no SHAPE (expected ' // &
+                                            'SHAPE line|circle|polyline in its block)')
+        do b = 1, s%nbody
+          if (deck%bodies(b)%name == rg%name .and. len(deck%bodies(b)%name) == len(rg%name)) &
+            call report(s, rg%line, 'RIGID ' // quoted(rg%name) // ' has the name of the BODY at line ' // &
+                        int_to_str(deck%bodies(b)%line) // ' (expected a name of its own)')
+        end do
+        do b = 1, size(rg%fixes)
+          call finish_load(rg%fixes(b))
+        end do
+        do b = 1, size(rg%forces)
+          call finish_load(rg%forces(b))
+        end do
+      end associate
+    end do
+  contains
+    subroutine finish_load(ld)
+      type(rigid_load_t), intent(inout) :: ld
+      call check_ramp_end(s, deck, ld%ramp, ld%line)
+      if (ld%ramp(2) == ramp_unset(2)) ld%ramp = [0, deck%steps]
+      if (allocated(ld%curve_name)) call resolve_curve(s, deck, ld%curve_name, ld%line, ld%curve)
+    end subroutine finish_load
+  end subroutine check_rigids
+
+  !> The index into deck%curves of curve=NAME ('': 0), reported when unknown.
+  subroutine resolve_curve(s, deck, name, line, curve)
+    type(state_t), intent(inout) :: s
+    type(deck_t), intent(in) :: deck
+    character(len=*), intent(in) :: name
+    integer, intent(in) :: line
+    integer, intent(out) :: curve
+    integer :: c
+    curve = 0
+    if (len(name) == 0) return
+    do c = 1, size(deck%curves)
+      if (deck%curves(c)%name == name .and. len(deck%curves(c)%name) == len(name)) then
+        curve = c
+        return
+      end if
+    end do
+    call report(s, line, 'unknown curve ' // quoted(name) // ' (expected a CURVE statement of that name)')
+  end subroutine resolve_curve
 
   ! ================================================================ numbers and text
 

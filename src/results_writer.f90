@@ -59,6 +59,9 @@ module results_writer
     real(dp), allocatable :: contact_force(:,:)  !< (2, npair) resultant of the contact forces on each
                                                  !< pair's slave body, -sum_i (mu_i n_i + tau_i t_i)
     character(len=:), allocatable :: fix_label(:) !< (nfix) BODY:BOUNDARY
+    character(len=:), allocatable :: rigid_name(:) !< (nrigid) the RIGID obstacles
+    real(dp), allocatable :: rigid(:,:)          !< (6, nrigid) ux uy rz of the reference point, fx fy m the
+                                                 !< contact force on the obstacle (summary rigid)
     real(dp) :: energy = 0
     character(len=:), allocatable :: lcp_method
     integer :: lcp_iterations = 0
@@ -410,6 +413,12 @@ contains
     if (allocated(r%contact_force)) then
       do k = 1, size(r%contact_force, 2)
         write(u, '(a,i0,a)') 'contact_force ', k, ' ' // num(r%contact_force(1, k)) // ' ' // num(r%contact_force(2, k))
+      end do
+    end if
+    if (allocated(r%rigid_name)) then
+      do k = 1, size(r%rigid_name)
+        write(u, '(a)') 'rigid ' // trim(r%rigid_name(k)) // ' ' // num(r%rigid(1, k)) // ' ' // num(r%rigid(2, k)) // &
+          ' ' // num(r%rigid(3, k)) // ' ' // num(r%rigid(4, k)) // ' ' // num(r%rigid(5, k)) // ' ' // num(r%rigid(6, k))
       end do
     end if
     if (allocated(r%unheld_mode)) then

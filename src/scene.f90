@@ -26,7 +26,7 @@
 module scene
   use kinds, only: dp
   use diagnostics, only: diag_t, add_error, has_errors, int_to_str, error_t, real_to_str
-  use deck_reader, only: deck_t, body_deck_t, curve_t, curve_factor, LOAD_TRACTION, LOAD_PRESSURE
+  use deck_reader, only: deck_t, body_deck_t, curve_t, curve_factor, LOAD_TRACTION, LOAD_PRESSURE, rigid_deck_t
   use mesh, only: mesh_t, is_quadratic, finalize_mesh, find_boundary, boundary_nodes, find_region, order_for_locality, &
                   node_in_file, locality_min_nodes
   use mesh_rect, only: make_rect_mesh
@@ -39,6 +39,7 @@ module scene
   use axisymmetric_elements, only: axi_element_body_load, axi_edge_load, axi_edge_load_quadratic
   use body, only: body_t, node_elements, edge_outward_normal, element_dofs, thermal_loads, to_local_axes
   use contact_set, only: pair_spec_t
+  use rigid_obstacle, only: rigid_shape_t, shape_line, shape_circle, shape_polyline
   implicit none
   private
   public :: scene_t, fix_ref_t, build_scene, load_factor, group_factor, step_loads, group_name
@@ -66,6 +67,7 @@ module scene
     type(fix_ref_t), allocatable :: fixes(:)  !< all FIX statements, deck order
     real(dp), allocatable :: fext(:)          !< (ndof) external nodal forces
     type(pair_spec_t), allocatable :: specs(:)  !< CONTACT pairs
+    type(rigid_shape_t), allocatable :: rigids(:)  !< (nrigid) RIGID obstacles; dofs after the bodies'
     character(len=:), allocatable :: effects  !< space-separated effects simulated
     ! load history (STEPS n, ramp=k0:k1, curve=NAME): the loads and prescribed
     ! values split by load path; fext and ubar are their sums weighted by the
@@ -123,6 +125,13 @@ contains
       sc%nnode = sc%nnode + sc%bodies(b)%mesh%nnode
       sc%nelem = sc%nelem + sc%bodies(b)%mesh%nelem
     end do
+    ! a RIGID: three dofs (u_x, u_y, theta of its reference point) after the bodies'
+    allocate(sc%rigids(size(deck%rigids)))
+    do b = 1, size(deck%rigids)
+      call make_rigid_shape(deck%rigids(b), sc%rigids(b))
+      sc%rigids(b)%dof0 = ndof
+      ndof = ndof + 3
+    end do
     sc%ndof = ndof
     allocate(sc%fixed(ndof), sc%ubar(ndof), sc%fix_owner(ndof), sc%fext(ndof))
     sc%fixed = .false.; sc%ubar = 0.0_dp; sc%fix_owner = 0; sc%fext = 0.0_dp
@@ -156,6 +165,7 @@ contains
       end if
     end do
     has_offset = any(deck%bodies(:)%has_offset)
+    call apply_rigid_motions(deck, sc)
     ! the nodes in local axes (FIX un=/ut=) take their forces in those axes
     if (any([(allocated(sc%bodies(b)%axes), b = 1, nb)])) then
       do ip = 1, size(sc%ramp, 2)
@@ -176,6 +186,13 @@ contains
         if (c%friction == 'coulomb') sc%specs(ip)%mu = c%mu
         if (c%friction == 'tresca') sc%specs(ip)%tresca = c%tresca
         sc%specs(ip)%slave_bnd = curve_index(deck, c%line, sc%bodies(c%slave_body), c%slave_boundary, 'CONTACT slave', diag)
+        if (c%master_rigid > 0) then                   ! against a RIGID: its exact shape, no master mesh
+          sc%specs(ip)%rigid = c%master_rigid
+          sc%specs(ip)%shape = sc%rigids(c%master_rigid)
+          if (is_quadratic(sc%bodies(c%slave_body)%mesh)) call add_error(diag, deck%file, c%line, 'contact on ' // &
+            'quadratic elements is not available yet (P1/Q1 boundaries expected)')
+          cycle
+        end if
         sc%specs(ip)%master_bnd = curve_index(deck, c%line, sc%bodies(c%master_body), c%master_boundary, &
                                               'CONTACT master', diag)
         ! quadratic traces (mortar_quadratic): frictionless only, the common normal is not carried over
@@ -205,6 +222,8 @@ contains
     if (has_thermal) sc%effects = sc%effects // ' thermal'
     if (has_offset) sc%effects = sc%effects // ' offset'
     if (size(sc%specs) > 0) sc%effects = sc%effects // ' contact'
+    if (size(sc%rigids) > 0) sc%effects = sc%effects // ' rigid_obstacle'
+    if (any([(size(deck%rigids(ip)%forces) > 0, ip = 1, size(deck%rigids))])) sc%effects = sc%effects // ' rigid_force'
     if (any([(deck%contacts(ip)%friction /= 'none', ip = 1, size(deck%contacts))])) &
       sc%effects = sc%effects // ' friction'
   end subroutine build_scene
@@ -233,6 +252,14 @@ contains
         call add([0, deck%steps], deck%bodies(b)%thermals(k)%curve)
       end do
       if (deck%bodies(b)%has_bodyforce) call add(deck%bodies(b)%bodyforce_ramp, deck%bodies(b)%bodyforce_curve)
+    end do
+    do b = 1, size(deck%rigids)
+      do k = 1, size(deck%rigids(b)%fixes)
+        call add(deck%rigids(b)%fixes(k)%ramp, deck%rigids(b)%fixes(k)%curve)
+      end do
+      do k = 1, size(deck%rigids(b)%forces)
+        call add(deck%rigids(b)%forces(k)%ramp, deck%rigids(b)%forces(k)%curve)
+      end do
     end do
     ramp = list(1:2, 1:n)
     curve = list(3, 1:n)
@@ -315,6 +342,60 @@ contains
       if (allocated(sc%thermal(b)%adt1)) sc%bodies(b)%adt = sc%thermal(b)%adt1 * f(sc%thermal(b)%group)
     end do
   end subroutine step_loads
+
+  !> The shape of a RIGID block: kind, points or circle, reference point
+  !> (default: the circle's centre, the first point), size.
+  subroutine make_rigid_shape(rd, sh)
+    type(rigid_deck_t), intent(in) :: rd
+    type(rigid_shape_t), intent(out) :: sh
+    sh%name = rd%name
+    select case (rd%shape)
+    case ('circle')
+      sh%kind = shape_circle
+      sh%centre = rd%centre
+      sh%radius = rd%radius
+      sh%outside = rd%outside
+      sh%ref = rd%centre
+      sh%length = rd%radius
+      allocate(sh%pt(2, 0))
+    case default
+      sh%kind = merge(shape_line, shape_polyline, rd%shape == 'line')
+      sh%pt = rd%points
+      sh%ref = rd%points(:, 1)
+      sh%length = max(maxval(rd%points(1, :)) - minval(rd%points(1, :)), &
+                      maxval(rd%points(2, :)) - minval(rd%points(2, :)))
+    end select
+    if (rd%has_ref) sh%ref = rd%ref
+  end subroutine make_rigid_shape
+
+  !> The dofs of each RIGID: the directions FIX names are prescribed (their
+  !> values in the FIX's load group), the others free and loaded by FORCE (its
+  !> load group); no FIX and no FORCE: all three held at 0.
+  subroutine apply_rigid_motions(deck, sc)
+    type(deck_t), intent(in) :: deck
+    type(scene_t), intent(inout) :: sc
+    integer :: r, j, d, i, g
+    do r = 1, size(deck%rigids)
+      associate (rd => deck%rigids(r))
+        d = sc%rigids(r)%dof0
+        if (size(rd%fixes) == 0 .and. size(rd%forces) == 0) sc%fixed(d + 1:d + 3) = .true.
+        do i = 1, size(rd%fixes)
+          g = ramp_group(sc, rd%fixes(i)%ramp, rd%fixes(i)%curve)
+          do j = 1, 3
+            if (.not. rd%fixes(i)%has(j)) cycle
+            sc%fixed(d + j) = .true.
+            sc%ugroup(d + j, g) = sc%ugroup(d + j, g) + rd%fixes(i)%value(j)
+          end do
+        end do
+        do i = 1, size(rd%forces)
+          g = ramp_group(sc, rd%forces(i)%ramp, rd%forces(i)%curve)
+          do j = 1, 3
+            if (rd%forces(i)%has(j)) sc%fgroup(d + j, g) = sc%fgroup(d + j, g) + rd%forces(i)%value(j)
+          end do
+        end do
+      end associate
+    end do
+  end subroutine apply_rigid_motions
 
   !> Load factor of ramp k0:k1 at step k: 0 up to k0, linear to 1 at k1, then 1.
   pure real(dp) function load_factor(ramp, k) result(f)

@@ -74,15 +74,17 @@ MSH_VERSIONS = ["3.0 0 8", "4 0 8", "4.0 0 8", "4.1 0 8", "2.2 0 8", "2.2 1 8", 
                 "-2.2 0 8", "2.2 -1 8", "4.1 0 -8", "2.2\t0\t8"]
 ELEMENT_TYPES = ["1", "2", "3", "4", "5", "8", "9", "10", "15", "16", "99", "0", "-1", "2147483648"]
 DECK_KEYWORDS = ["TITLE", "PLANE", "BODY", "MESH", "MATERIAL", "DENSITY", "FIX", "TRACTION",
-                 "PRESSURE", "BODYFORCE", "END", "GRAVITY", "CONTACT", "SOLVER", "OUTPUT"]
+                 "PRESSURE", "BODYFORCE", "END", "GRAVITY", "CONTACT", "SOLVER", "OUTPUT",
+                 "RIGID", "SHAPE", "REF", "FORCE"]
 DECK_KEYS = ["x0", "y0", "x1", "y1", "nx", "ny", "elem", "diag", "file", "E", "nu", "E1", "E2",
              "nu12", "G12", "angle", "E3", "nu13", "nu23", "rho", "ux", "uy", "tx", "ty", "p", "fx",
              "fy", "gx", "gy", "slave", "master", "gap", "lcp", "tol", "maxit", "omega", "vtk",
-             "contact", "summary", "thickness"]
+             "contact", "summary", "thickness", "xc", "yc", "r", "solid", "points", "rz", "m"]
 WORDS = ["rect", "gmsh", "isotropic", "orthotropic", "strain", "stress", "tri3", "quad4", "right",
          "left", "alt", "geometry", "zero", "auto", "lemke", "pgs", "top", "bottom", "lower",
          "upper", "block", "disk", "arc", "body", "rim", "corner", "quads", "whole", "2", "3",
-         "Top", "", "=", ":", "a:b", "x:y:z", "!", "#", "=1", "E==1", "BODY", "END"]
+         "Top", "", "=", ":", "a:b", "x:y:z", "!", "#", "=1", "E==1", "BODY", "END", "line", "circle",
+         "polyline", "inside", "outside", "RIGID", "points=0:0", "points=0:0,0:0", "points=1:2,,3:4"]
 FILE_NAMES = ["missing.msh", "missing.geo", "", ".msh", "a.msh.msh", "../x.msh", "/nonexistent/y.msh",
               "case.deck", ".", "..", "/dev/null", "sub/", "x.MSH", "x.msh ", "out", "mesh.txt"]
 NUM_RE = re.compile(r"^[+-]?(\d+\.?\d*|\.\d+)([eEdD][+-]?\d+)?$")
@@ -446,7 +448,9 @@ def m_deck_block(rng, lines, ctx):
             return f"drop END at line {i + 1}"
     if op == 1:
         i = rng.randrange(len(lines) + 1)
-        lines.insert(i, rng.choice(["END", "BODY extra", "BODY", "BODY b", "CONTACT", "SOLVER", "OUTPUT"]))
+        lines.insert(i, rng.choice(["END", "BODY extra", "BODY", "BODY b", "CONTACT", "SOLVER", "OUTPUT", "RIGID",
+                                    "RIGID r", "SHAPE circle xc=0 yc=0 r=1", "FORCE fy=-1", "FIX rz=0",
+                                    "CONTACT slave=lower:top master=r"]))
         return f"insert block statement at {i + 1}"
     if op == 2:
         bodies = [i for i, l in enumerate(lines) if l.strip().upper().startswith("BODY")]
