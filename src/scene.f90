@@ -128,6 +128,11 @@ contains
     ! a RIGID: three dofs (u_x, u_y, theta of its reference point) after the bodies'
     allocate(sc%rigids(size(deck%rigids)))
     do b = 1, size(deck%rigids)
+      ! rigid_obstacle's projection of the exact gap carries no radial weight,
+      ! and of the three motions only the axial one is axisymmetric
+      if (deck%axisymmetric) &
+        call add_error(diag, deck%file, deck%rigids(b)%line, 'RIGID obstacles are not available in PLANE ' // &
+                       'axisymmetric (line ' // int_to_str(deck%plane_line) // ') (a meshed body as the master expected)')
       call make_rigid_shape(deck%rigids(b), sc%rigids(b))
       sc%rigids(b)%dof0 = ndof
       ndof = ndof + 3
