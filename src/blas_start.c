@@ -51,6 +51,10 @@ static const int64_t blas_buffer = 135266304;
 /* glibc's second malloc arena reserves 64 MB of address space (two arenas
  * at most: threads.f90). */
 static const int64_t malloc_arena = (int64_t) 64 << 20;
+/* Beyond the buffer, what the first buffer's malloc and the run's start
+ * may still take (found by a sweep of limits in 0.5 MB steps: a limit that
+ * left the buffer and less than this hung in OpenBLAS). */
+static const int64_t probe_margin = (int64_t) 4 << 20;
 
 static int64_t thread_stack(void)
 {
@@ -71,12 +75,23 @@ int c2d_blas_start(int n, int64_t *left, int64_t *per_thread, int64_t *first)
 
     *left = c2d_address_space_left();
     *per_thread = blas_buffer + 2 * thread_stack();
-    *first = blas_buffer;
+    *first = blas_buffer + probe_margin;
     if (*left < 0 || openblas_set_num_threads == NULL) return n;
-    {   /* room for the first buffer, mapped as OpenBLAS will map it */
-        void *p = mmap(NULL, (size_t) blas_buffer, PROT_NONE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
-        if (p == MAP_FAILED) return 0;
-        (void) munmap(p, (size_t) blas_buffer);
+    /* the product's matrices first, so that the probe below sees the room
+     * that is left for the buffer once they are there */
+    a = calloc((size_t) 3 * (size_t) m * (size_t) m, sizeof *a);
+    if (a == NULL) return 0;
+    {   /* room for the first buffer as OpenBLAS will map it, and a margin:
+         * malloc asks for the buffer plus its header and page rounding, and
+         * one that cannot be had leaves OpenBLAS retrying without end */
+        size_t size = (size_t) (blas_buffer + probe_margin);
+        void *p = mmap(NULL, size, PROT_NONE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
+        if (p == MAP_FAILED)
+        {
+            free(a);
+            return 0;
+        }
+        (void) munmap(p, size);
     }
     fit = 1;
     if (n > 1 && *left - blas_buffer - malloc_arena > 0)
@@ -85,8 +100,6 @@ int c2d_blas_start(int n, int64_t *left, int64_t *per_thread, int64_t *first)
     openblas_set_num_threads(n);
     /* C = A B on 256 x 256: large enough for OpenBLAS to use its buffers and
      * every thread, a few milliseconds */
-    a = calloc((size_t) 3 * (size_t) m * (size_t) m, sizeof *a);
-    if (a == NULL) return 0;
     {
         const double one = 1.0, zero = 0.0;
         dgemm_("N", "N", &m, &m, &m, &one, a, &m, a + m * m, &m, &zero, a + 2 * m * m, &m);
