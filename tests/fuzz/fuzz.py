@@ -190,6 +190,9 @@ def repo_seed_decks(work, log, only=None):
             local = f"m{len(files) + 1}_{src.stem}.msh"
             if src.suffix == ".geo":
                 params = [(k, v) for k, v in kv if k.lower() != "file"]
+                if any("${" in v for _, v in params):
+                    ok = False                   # sizes set by PARAMETER: not meshed here
+                    break
                 nodes = 0
                 for _ in range(4):               # coarsen the h* sizes until small
                     nodes = mesh_geo(src, params, work / local)
