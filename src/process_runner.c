@@ -4,7 +4,15 @@
  * fork/exec rather than posix_spawn: the child must set PR_SET_PDEATHSIG, so
  * that it dies with contact2d even when contact2d is killed by SIGKILL, and
  * posix_spawn has no attribute for it.  Between fork and exec the child calls
- * only async-signal-safe functions (the parent may run OpenMP threads). */
+ * only async-signal-safe functions (the parent may run OpenMP threads).
+ *
+ * The death signal alone is not enough: bubblewrap's outer process, started
+ * as root, was seen to outlive a contact2d killed by SIGKILL at start-up
+ * under load, with gmsh running on inside it.  So each run also gets a
+ * watchdog, a second child that holds the read end of a pipe whose only
+ * write end contact2d keeps: a byte on it means the run is over (exit);
+ * end of file means contact2d is gone, and the watchdog kills the run's
+ * process group. */
 #define _GNU_SOURCE
 #include <errno.h>
 #include <fcntl.h>
@@ -113,12 +121,51 @@ static int wait_until(pid_t pid, double timeout, int *wstatus)
     }
 }
 
+/* The watchdog of the group `group` (module header): returns its pid, or -1
+ * (the run goes on without it) when it cannot be started; *done is the
+ * write end to signal a normal end on (-1 without a watchdog). */
+static pid_t start_watchdog(pid_t group, int *done)
+{
+    int fd[2];
+    pid_t pid;
+    char c;
+    *done = -1;
+    if (pipe2(fd, O_CLOEXEC) != 0) return -1;
+    pid = fork();
+    if (pid == 0) {
+        ssize_t got;
+        close(fd[1]);
+        do {
+            got = read(fd[0], &c, 1);
+        } while (got < 0 && errno == EINTR);
+        if (got != 1) kill(-group, SIGKILL);          /* end of file: contact2d is gone */
+        _exit(0);
+    }
+    close(fd[0]);
+    if (pid < 0) {
+        close(fd[1]);
+        return -1;
+    }
+    *done = fd[1];
+    return pid;
+}
+
+/* The run is over: the watchdog is told so and reaped. */
+static void stop_watchdog(pid_t pid, int done)
+{
+    const char c = 1;
+    if (pid <= 0) return;
+    if (write(done, &c, 1) < 0) kill(pid, SIGKILL);
+    close(done);
+    while (waitpid(pid, NULL, 0) < 0 && errno == EINTR) continue;
+}
+
 int c2d_run_program(const char *args, int nargs, const char *log_path, double timeout, int *how, int *status)
 {
     char **argv = calloc((size_t)nargs + 1, sizeof *argv);
     const char *p = args;
-    int log, pipefd[2], e = 0, wstatus = 0, i;
-    pid_t pid, parent = getpid();
+    int log, pipefd[2], e = 0, wstatus = 0, i, done;
+    pid_t pid, watchdog, parent = getpid();
     ssize_t got;
 
     *how = C2D_RUN_NOT_STARTED;
@@ -152,6 +199,7 @@ int c2d_run_program(const char *args, int nargs, const char *log_path, double ti
     }
     setpgid(pid, pid);                              /* both sides: no race with kill(-pid) */
     running_group = pid;
+    watchdog = start_watchdog(pid, &done);
     do {
         got = read(pipefd[0], &e, sizeof e);        /* EOF: exec succeeded */
     } while (got < 0 && errno == EINTR);
@@ -159,12 +207,14 @@ int c2d_run_program(const char *args, int nargs, const char *log_path, double ti
     if (got == (ssize_t)sizeof e) {
         waitpid(pid, &wstatus, 0);
         running_group = 0;
+        stop_watchdog(watchdog, done);
         *status = e;
         return 0;
     }
     if (wait_until(pid, timeout, &wstatus)) {
         kill(-pid, SIGKILL);                        /* anything it left running in its group */
         running_group = 0;
+        stop_watchdog(watchdog, done);
         if (WIFEXITED(wstatus)) {
             *how = C2D_RUN_EXITED;
             *status = WEXITSTATUS(wstatus);
@@ -175,6 +225,7 @@ int c2d_run_program(const char *args, int nargs, const char *log_path, double ti
         return 0;
     }
     c2d_kill_running();
+    stop_watchdog(watchdog, done);
     *how = C2D_RUN_TIMEOUT;
     *status = 0;
     return 0;
