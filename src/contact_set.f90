@@ -448,6 +448,20 @@ contains
       end associate
     end subroutine finish_rows
 
+    !> Open the next row r, for slave node i of pair ip: a normal row also
+    !> records its pair, node, weight int psi_i and initial gap.
+    subroutine open_row(mo, i, tangent)
+      type(mortar_t), intent(in) :: mo
+      integer, intent(in) :: i
+      logical, intent(in) :: tangent
+      r = r + 1
+      if (tangent) return
+      cs%weight(r) = mo%zone_weight(i)
+      cs%row_pair(r) = ip
+      cs%row_node(r) = i
+      cs%g(r) = mo%gap0(i)
+    end subroutine open_row
+
     !> Direction of the rows of slave node i: the nodal normal n_i, or the
     !> tangent t_i = (-n_y, n_x) (n turned a quarter turn anticlockwise).
     pure function row_direction(mo, i, tangent) result(v)
@@ -532,13 +546,7 @@ contains
         end if
         do i = mo%first, mo%last
           if (.not. pr%row(i)) cycle
-          r = r + 1
-          if (.not. tangent) then
-            cs%weight(r) = mo%zone_weight(i)
-            cs%row_pair(r) = ip
-            cs%row_node(r) = i
-            cs%g(r) = mo%gap0(i)
-          end if
+          call open_row(mo, i, tangent)
           v = row_direction(mo, i, tangent)
           call zone_node_terms(mo, i, sn, sc, nt)
           do c = 1, 2
@@ -568,14 +576,8 @@ contains
       associate(pr => cs%pair(ip), mo => cs%pair(ip)%mortar)
         do i = mo%first, mo%last
           if (.not. pr%row(i)) cycle
-          r = r + 1
-          if (.not. tangent) then
-            cs%weight(r) = mo%zone_weight(i)
-            cs%row_pair(r) = ip
-            cs%row_node(r) = i
-            cs%g(r) = mo%gap0(i)
-            if (pr%spec%gap_zero) cs%g(r) = 0.0_dp
-          end if
+          call open_row(mo, i, tangent)
+          if (.not. tangent .and. pr%spec%gap_zero) cs%g(r) = 0.0_dp
           v = row_direction(mo, i, tangent)
           do c = 1, 2
             if (v(c) == 0.0_dp) cycle
