@@ -93,6 +93,14 @@ class Field:
     def bodies(self):
         return sorted(set(self.body.tolist()))
 
+    def locator(self, b):
+        """The Locator of body b's triangles, built once per field."""
+        if not hasattr(self, "_locators"):
+            self._locators = {}
+        if b not in self._locators:
+            self._locators[b] = Locator(self, np.nonzero(self.body == b)[0])
+        return self._locators[b]
+
 
 def read_vtk(path):
     """(x, u, cells, body) of a legacy ASCII VTK file with one kind of triangle (type 5 or 22)."""
@@ -182,12 +190,17 @@ class Locator:
         bestmin = np.full(len(p), -np.inf)
         bxi = np.zeros(len(p))
         beta = np.zeros(len(p))
-        for j in range(cand.shape[1]):
-            cj = cand[:, j]
-            lam = np.einsum("mrd,md->mr", self.minv[cj], p - self.c0[cj])
+        todo = np.arange(len(p))
+        for j in range(cand.shape[1]):             # nearest centroids first; a point found inside is done
+            cj = cand[todo, j]
+            lam = np.einsum("mrd,md->mr", self.minv[cj], p[todo] - self.c0[cj])
             mn = np.minimum(np.minimum(lam[:, 0], lam[:, 1]), 1 - lam[:, 0] - lam[:, 1])
-            take = mn > bestmin + 1e-14
-            best[take], bestmin[take], bxi[take], beta[take] = cj[take], mn[take], lam[take, 0], lam[take, 1]
+            take = mn > bestmin[todo] + 1e-14
+            t = todo[take]
+            best[t], bestmin[t], bxi[t], beta[t] = cj[take], mn[take], lam[take, 0], lam[take, 1]
+            todo = todo[bestmin[todo] < 0.0]
+            if len(todo) == 0:
+                break
         cell = self.cells[best]
         if self.fld.nn == 6:                        # Newton on the isoparametric map (curved edges)
             for _ in range(6):
@@ -214,7 +227,7 @@ def energy_errors(ref, run, window=None, e=200000.0, nu=0.3):
             rc = rc[(cen[:, 0] >= x0) & (cen[:, 0] <= x1) & (cen[:, 1] >= y0) & (cen[:, 1] <= y1)]
         if len(rc) == 0:
             continue
-        loc = Locator(ref, np.nonzero(ref.body == b)[0])
+        loc = ref.locator(b)
         for s in range(0, len(rc), 20000):          # in chunks: memory
             cc = np.repeat(rc[s:s + 20000], q)
             xi = np.tile(QPTS[:, 0], len(cc) // q)
