@@ -33,10 +33,14 @@ This is the quadratic-capable counterpart of studies/c2dh1.f90 (P1 fields,
 exact intersection of the meshes), for the bench's references, which are P2.
 """
 import math
+import os
 import sys
 
 import numpy as np
 from scipy.spatial import cKDTree
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from ref_err import Checks  # noqa: E402
 
 # 6-point degree-4 rule on the unit triangle (Dunavant), weights summing to 1/2
 _A, _B = 0.445948490915965, 0.091576213509771
@@ -272,12 +276,7 @@ def _mesh(n, order, curve=0.0):
 
 def self_test():
     """Closed-form checks; returns the number of failures."""
-    fails = 0
-
-    def check(ok, name, detail):
-        nonlocal fails
-        print(("PASS " if ok else "FAIL ") + name + ("" if ok else ": " + detail))
-        fails += 0 if ok else 1
+    check = Checks()
 
     # 1. u = (x^2, x^2 - 3 y + x), in the isoparametric P2 space of both meshes (x is affine in the local
     #    coordinates of both, y is the coordinate itself): error 0 to round-off, the reference's edges curved
@@ -301,7 +300,7 @@ def self_test():
         h1, _ = energy_errors(ref, run)
         want = (1.0 / n) / 2.0
         check(abs(h1 - want) <= 1e-10 * want, f"h1_err: P1 interpolant of x^2, n = {n}", f"{h1!r} != {want!r}")
-    return fails
+    return check.fails
 
 
 def main(argv):
