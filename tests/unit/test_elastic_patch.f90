@@ -43,6 +43,7 @@ program test_elastic_patch
       call run_patch(trim(elems(ielem)), ilaw, trim(name))
     end do
   end do
+  deallocate(tmp)                                ! saved, never freed at the end (LeakSanitizer)
   call finish_tests()
 
 contains
