@@ -2,9 +2,12 @@
 table and the VTK file, and print one `PASS name` / `FAIL name: detail` line
 per check.  The references are independent of the code: closed forms,
 invariants, or reference files whose provenance is recorded beside them."""
+import functools
 import math
+import mmap
 import re
 import os
+import shutil
 import subprocess
 import sys
 
@@ -141,6 +144,28 @@ def text_difference(a, b, rtol, scale=None):
 
 def small(got, tol, name):
     check(math.isfinite(got) and got <= tol, name, f"{got:.3e} > {tol:.1e}")
+
+
+def skip(name, why):
+    """A check this build or machine cannot make: counted neither way."""
+    print(f"SKIP {name}: {why}")
+    sys.stdout.flush()
+
+
+# why a sanitized build cannot be run under an address-space limit
+NO_ADDRESS_LIMIT = ("an AddressSanitizer build reserves terabytes of shadow address space at start: "
+                    "no ulimit -v leaves it that room")
+
+
+@functools.lru_cache(maxsize=None)
+def sanitized(program=None):
+    """True when program (PROGRAM unless given) is built with AddressSanitizer:
+    its binary names __asan_init, the runtime's entry point that every
+    instrumented object calls at start, whether libasan is linked dynamically
+    (an undefined dynamic symbol) or statically (a defined one)."""
+    path = shutil.which(program or PROGRAM) or program or PROGRAM
+    with open(path, "rb") as f, mmap.mmap(f.fileno(), 0, access=mmap.ACCESS_READ) as m:
+        return m.find(b"__asan_init") >= 0
 
 
 def finish():
