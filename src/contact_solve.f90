@@ -115,7 +115,7 @@ contains
     if (sol%rep%info /= 0) then
       if (sol%rep%info == 1 .and. run%rsplit%k > 0) call diagnose_pulled_rigid(run)
       if (allocated(sol%rep%message)) then
-        if (index(sol%rep%message, 'out of memory') == 1) call fail_numerical(sol%rep%message)
+        if (sol%rep%no_memory) call fail_numerical(sol%rep%message)
         call fail_numerical(step_prefix(run) // 'contact problem not solved: ' // sol%rep%message)
       else
         call fail_numerical(step_prefix(run) // 'contact problem not solved by ' // method // ' (info ' // &
@@ -258,7 +258,7 @@ contains
                                      unbalanced, cause)
         if (rep%info == no_equilibrium) call fail_numerical('friction, load step ' // int_to_str(kstep) // ' of ' // &
           int_to_str(run%sc%steps) // ': ' // floating_no_equilibrium(run, unbalanced, cause))
-        if (rep%info /= 0 .and. index(rep%message, 'out of memory') /= 1) call fail_numerical('friction, load step ' &
+        if (rep%info /= 0 .and. .not. rep%no_memory) call fail_numerical('friction, load step ' &
           // int_to_str(kstep) // ' of ' // int_to_str(run%sc%steps) // ': no equilibrium found for the bodies held ' // &
           'only by contact (' // floating_names(run) // '): ' // rep%message)
         cu = cu + matmul(hh, alpha)                ! C u0 + C R alpha: the step's rigid motion
@@ -270,7 +270,7 @@ contains
         call solve_friction_lcp(run%w, qn, qt, run%cs%tan_row, run%cs%tan_mu, run%cs%tan_bound, method, opts, z, rep)
       end if
       iterations = iterations + rep%iterations
-      if (rep%info /= 0 .and. index(rep%message, 'out of memory') == 1) call fail_numerical(rep%message)
+      if (rep%info /= 0 .and. rep%no_memory) call fail_numerical(rep%message)
       if (rep%info /= 0) call fail_numerical('friction, load step ' // int_to_str(kstep) // ' of ' // &
         int_to_str(run%sc%steps) // ': contact problem not solved: ' // rep%message)
       if (.not. all(ieee_is_finite(z))) call fail_numerical('friction, load step ' // int_to_str(kstep) // &
