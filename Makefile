@@ -56,7 +56,7 @@ demo: all
 	$(PROGRAM) -o out/demo input/hertz.deck
 
 test: all unit
-	tests/run-tests $(PROGRAM) $(BUILD)/tests
+	$(TESTENV) tests/run-tests $(PROGRAM) $(BUILD)/tests
 
 study: all
 	studies/run-all
