@@ -6,12 +6,11 @@
 !>   MESH rect ... | MESH gmsh ...  one row per form; the form-less row reports a missing or unknown kind
 !>   MATERIAL isotropic | orthotropic, DENSITY, FIX, TRACTION, PRESSURE,
 !>   BODYFORCE, THERMAL, OFFSET     see deck_reader's header for their keys
+!>   GRAVITY                        a top-level statement, read as BODYFORCE is
 !>
 !> Programming interface (statement handlers, deck_syntax's statement_handler)
-!>   do_body, do_mesh, do_mesh_rect, do_mesh_gmsh, do_material, do_material_isotropic,
-!>   do_material_orthotropic, do_density, do_fix, do_load,
-!>   do_bodyforce, do_thermal, do_offset
-!>   read_vector_statement          GRAVITY, BODYFORCE, OFFSET: two components and a load path
+!>   do_body, do_mesh, do_mesh_rect, do_mesh_gmsh, do_material (its three rows), do_density,
+!>   do_fix, do_load (TRACTION, PRESSURE), do_thermal, do_vector (BODYFORCE, OFFSET, GRAVITY)
 !>   plane_compliance_ok, strain_compliance_ok   orthotropic compliance positive definite
 module deck_body_statements
   use kinds, only: dp
@@ -19,14 +18,13 @@ module deck_body_statements
   use safe_files, only: file_kind, kind_name, c2d_regular, c2d_missing, c2d_unreadable
   use deck_types, only: deck_t, body_deck_t, fix_t, load_t, material_t, thermal_t, load_traction, load_pressure
   use deck_syntax, only: state_t, stmt_t, key_values_t, report, read_keys, check_extra_words, check_name, &
-                         cut, quoted, shown
+                         form_word, cut, quoted, shown
   use text_scan, only: parse_real, lower, is_identifier, is_printable, ends_with_ci
   use, intrinsic :: iso_fortran_env, only: int64
   implicit none
   private
-  public :: do_body, do_mesh, do_mesh_rect, do_mesh_gmsh, do_material, do_material_isotropic
-  public :: do_material_orthotropic, do_density, do_fix, do_load, do_bodyforce
-  public :: do_thermal, do_offset, read_vector_statement, plane_compliance_ok, strain_compliance_ok
+  public :: do_body, do_mesh, do_mesh_rect, do_mesh_gmsh, do_material, do_density, do_fix, do_load
+  public :: do_thermal, do_vector, plane_compliance_ok, strain_compliance_ok
 
 contains
 
@@ -81,11 +79,8 @@ contains
     type(deck_t), intent(inout) :: deck
     type(stmt_t), intent(in) :: st
     deck%bodies(s%cur)%mesh%line = st%line
-    if (st%nword == 0) then
-      call report(s, st%line, 'missing mesh kind (expected ' // st%usage // ')')
-    else
-      call report(s, st%line, 'unknown mesh kind ' // quoted(st%word(1)%s) // ' (expected rect or gmsh)')
-    end if
+    if (len(form_word(s, st, 'mesh')) > 0) call report(s, st%line, 'unknown mesh kind ' // quoted(st%word(1)%s) // &
+                                                       ' (expected rect or gmsh)')
   end subroutine do_mesh
 
   !> MESH rect [x0=] [y0=] [x1=] [y1=] nx= ny= [elem=] [diag=]
@@ -249,71 +244,47 @@ contains
     end associate
   end subroutine do_mesh_gmsh
 
-  !> MATERIAL without a known kind: the form-less row of MATERIAL.
+  !> MATERIAL isotropic E= nu= | MATERIAL orthotropic E1= E2= nu12= G12= [angle=]
+  !> [E3=] [nu13=] [nu23=]; on the form-less row, a missing or unknown kind.
   subroutine do_material(s, deck, st)
     type(state_t), intent(inout) :: s
     type(deck_t), intent(inout) :: deck
     type(stmt_t), intent(in) :: st
+    type(key_values_t) :: v
+    type(material_t) :: mat
+    integer :: nerr0
+
     deck%bodies(s%cur)%material%line = st%line
     deck%bodies(s%cur)%material%kind = ''
-    if (st%nword == 0) then
-      call report(s, st%line, 'missing material kind (expected ' // st%usage // ')')
+    nerr0 = s%nerr
+    if (st%what == 'MATERIAL') then
+      if (len(form_word(s, st, 'material')) > 0) call report(s, st%line, 'unknown material kind ' // &
+        quoted(st%word(1)%s) // ' (expected isotropic or orthotropic)')
+      return
+    end if
+    call read_keys(s, st, v)
+    mat%line = st%line
+    if (st%what == 'MATERIAL isotropic') then
+      mat%kind = 'isotropic'
+      mat%e = v%x(1)
+      mat%nu = v%x(2)
     else
-      call report(s, st%line, 'unknown material kind ' // quoted(st%word(1)%s) // ' (expected isotropic or orthotropic)')
+      mat%kind = 'orthotropic'
+      mat%e1 = v%x(1)
+      mat%e2 = v%x(2)
+      mat%nu12 = v%x(3)
+      mat%g12 = v%x(4)
+      mat%angle = v%x(5)
+      mat%e3 = merge(v%x(6), mat%e2, v%ok(6))          ! E3 = E2, nu13 = nu23 = nu12 by default
+      mat%nu13 = merge(v%x(7), mat%nu12, v%ok(7))
+      mat%nu23 = merge(v%x(8), mat%nu12, v%ok(8))
+      if (all(v%ok(1:3))) then
+        if (.not. plane_compliance_ok(mat)) call report(s, st%line, 'orthotropic in-plane compliance not ' // &
+                                                        'positive definite (expected nu12^2 < E1/E2)')
+      end if
     end if
+    if (s%nerr == nerr0) deck%bodies(s%cur)%material = mat
   end subroutine do_material
-
-  !> MATERIAL isotropic E= nu=
-  subroutine do_material_isotropic(s, deck, st)
-    type(state_t), intent(inout) :: s
-    type(deck_t), intent(inout) :: deck
-    type(stmt_t), intent(in) :: st
-    type(key_values_t) :: v
-    type(material_t) :: mat
-    integer :: nerr0
-
-    deck%bodies(s%cur)%material%line = st%line
-    deck%bodies(s%cur)%material%kind = ''
-    nerr0 = s%nerr
-    call read_keys(s, st, v)
-    if (s%nerr /= nerr0) return
-    mat%kind = 'isotropic'
-    mat%line = st%line
-    mat%e = v%x(1)
-    mat%nu = v%x(2)
-    deck%bodies(s%cur)%material = mat
-  end subroutine do_material_isotropic
-
-  !> MATERIAL orthotropic E1= E2= nu12= G12= [angle=] [E3=] [nu13=] [nu23=]
-  subroutine do_material_orthotropic(s, deck, st)
-    type(state_t), intent(inout) :: s
-    type(deck_t), intent(inout) :: deck
-    type(stmt_t), intent(in) :: st
-    type(key_values_t) :: v
-    type(material_t) :: mat
-    integer :: nerr0
-
-    deck%bodies(s%cur)%material%line = st%line
-    deck%bodies(s%cur)%material%kind = ''
-    nerr0 = s%nerr
-    call read_keys(s, st, v)
-    mat%line = st%line
-    mat%e1 = v%x(1)
-    mat%e2 = v%x(2)
-    mat%nu12 = v%x(3)
-    mat%g12 = v%x(4)
-    mat%angle = v%x(5)
-    mat%e3 = merge(v%x(6), mat%e2, v%ok(6))            ! E3 = E2, nu13 = nu23 = nu12 by default
-    mat%nu13 = merge(v%x(7), mat%nu12, v%ok(7))
-    mat%nu23 = merge(v%x(8), mat%nu12, v%ok(8))
-    if (all(v%ok(1:3))) then
-      if (.not. plane_compliance_ok(mat)) call report(s, st%line, 'orthotropic in-plane compliance not ' // &
-                                                      'positive definite (expected nu12^2 < E1/E2)')
-    end if
-    if (s%nerr /= nerr0) return
-    mat%kind = 'orthotropic'
-    deck%bodies(s%cur)%material = mat
-  end subroutine do_material_orthotropic
 
   !> 1 - nu12^2 E2/E1 > 0, computed without overflow.
   pure logical function plane_compliance_ok(m) result(ok)
@@ -483,17 +454,6 @@ contains
     body%loads(body%nload) = load
   end subroutine append_load
 
-  !> BODYFORCE fx= fy= [ramp=|curve=]
-  subroutine do_bodyforce(s, deck, st)
-    type(state_t), intent(inout) :: s
-    type(deck_t), intent(inout) :: deck
-    type(stmt_t), intent(in) :: st
-    associate (body => deck%bodies(s%cur))
-      body%bodyforce_line = st%line
-      call read_vector_statement(s, st, body%fx, body%fy, body%has_bodyforce, body%bodyforce_ramp, &
-                                 body%bodyforce_curve_name)
-    end associate
-  end subroutine do_bodyforce
 
   !> THERMAL alpha= dT= [region=NAME]
   subroutine do_thermal(s, deck, st)
@@ -533,18 +493,33 @@ contains
     end associate
   end subroutine do_thermal
 
-  !> OFFSET dx= dy=: a rigid shift of the body's geometry (mesh) before anything else
-  subroutine do_offset(s, deck, st)
+  !> The statements of a vector: BODYFORCE fx= fy= [ramp=|curve=], OFFSET dx= dy=
+  !> (a rigid shift of the body's mesh before anything else), and GRAVITY gx= gy=
+  !> [ramp=|curve=] (at the top level: the deck's body force per unit mass).
+  subroutine do_vector(s, deck, st)
     type(state_t), intent(inout) :: s
     type(deck_t), intent(inout) :: deck
     type(stmt_t), intent(in) :: st
     integer :: ramp(2)
     character(len=:), allocatable :: curve
-    associate (body => deck%bodies(s%cur))
-      body%offset_line = st%line
-      call read_vector_statement(s, st, body%dx, body%dy, body%has_offset, ramp, curve)
-    end associate
-  end subroutine do_offset
+
+    select case (st%what)
+    case ('GRAVITY')
+      deck%gravity_line = st%line
+      call read_vector_statement(s, st, deck%gx, deck%gy, deck%has_gravity, deck%gravity_ramp, deck%gravity_curve_name)
+    case ('BODYFORCE')
+      associate (body => deck%bodies(s%cur))
+        body%bodyforce_line = st%line
+        call read_vector_statement(s, st, body%fx, body%fy, body%has_bodyforce, body%bodyforce_ramp, &
+                                   body%bodyforce_curve_name)
+      end associate
+    case default
+      associate (body => deck%bodies(s%cur))
+        body%offset_line = st%line
+        call read_vector_statement(s, st, body%dx, body%dy, body%has_offset, ramp, curve)
+      end associate
+    end select
+  end subroutine do_vector
 
   !> A statement of a vector (GRAVITY, BODYFORCE, OFFSET): no words, its two
   !> components first in its row (at least one given), then ramp= and curve=

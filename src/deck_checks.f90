@@ -16,7 +16,7 @@
 module deck_checks
   use kinds, only: dp
   use diagnostics, only: int_to_str
-  use deck_types, only: deck_t, body_deck_t, contact_deck_t, fix_t, load_t, rigid_load_t
+  use deck_types, only: deck_t, body_deck_t, contact_deck_t, rigid_load_t
   use deck_expressions, only: format_number
   use deck_syntax, only: state_t, report, quoted, ramp_unset
   use text_scan, only: is_name
@@ -485,24 +485,12 @@ contains
     type(state_t), intent(in) :: s
     type(deck_t), intent(inout) :: deck
     integer :: b
-    type(fix_t), allocatable :: fixes(:)
-    type(load_t), allocatable :: loads(:)
 
     if (.not. allocated(deck%bodies)) return
     do b = 1, min(s%nbody, size(deck%bodies))
       associate (body => deck%bodies(b))
-        if (allocated(body%fixes)) then
-          if (size(body%fixes) /= body%nfix) then
-            fixes = body%fixes(1:body%nfix)
-            call move_alloc(fixes, body%fixes)
-          end if
-        end if
-        if (allocated(body%loads)) then
-          if (size(body%loads) /= body%nload) then
-            loads = body%loads(1:body%nload)
-            call move_alloc(loads, body%loads)
-          end if
-        end if
+        if (allocated(body%fixes)) body%fixes = body%fixes(1:body%nfix)
+        if (allocated(body%loads)) body%loads = body%loads(1:body%nload)
       end associate
     end do
   end subroutine cut_statement_lists

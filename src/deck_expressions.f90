@@ -197,8 +197,8 @@ contains
     call parse_terms(c, set, '+-', x, message)
   end subroutine parse_sum
 
-  !> The terms of a sum (ops '+-') or of a product (ops '*/'), combined left
-  !> to right: operand { op operand }.
+  !> The terms of a sum (ops '+-', each a product) or of a product (ops '*/',
+  !> each a unary), combined left to right: operand { op operand }.
   recursive subroutine parse_terms(c, set, ops, x, message)
     type(cursor_t), intent(inout) :: c
     type(parameter_set_t), intent(in) :: set
@@ -207,28 +207,23 @@ contains
     character(len=:), allocatable, intent(inout) :: message
     real(dp) :: y
     character :: op
-    call parse_operand(c, set, ops, x, message)
+    call parse_operand(x)
     do while (.not. allocated(message))
       if (.not. next_operator(c, ops, op)) exit
-      call parse_operand(c, set, ops, y, message)
+      call parse_operand(y)
       if (allocated(message)) exit
       call combine(op, y, c, x, message)
     end do
+  contains
+    recursive subroutine parse_operand(z)
+      real(dp), intent(out) :: z
+      if (ops == '+-') then
+        call parse_terms(c, set, '*/', z, message)
+      else
+        call parse_unary(c, set, z, message)
+      end if
+    end subroutine parse_operand
   end subroutine parse_terms
-
-  !> An operand of ops: a product in a sum, a unary in a product.
-  recursive subroutine parse_operand(c, set, ops, x, message)
-    type(cursor_t), intent(inout) :: c
-    type(parameter_set_t), intent(in) :: set
-    character(len=2), intent(in) :: ops
-    real(dp), intent(out) :: x
-    character(len=:), allocatable, intent(inout) :: message
-    if (ops == '+-') then
-      call parse_terms(c, set, '*/', x, message)
-    else
-      call parse_unary(c, set, x, message)
-    end if
-  end subroutine parse_operand
 
   !> x = x op y for op one of + - * /, finite or an error (x then unchanged).
   subroutine combine(op, y, c, x, message)

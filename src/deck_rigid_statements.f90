@@ -15,7 +15,7 @@ module deck_rigid_statements
   use diagnostics, only: int_to_str
   use deck_types, only: deck_t, rigid_deck_t, rigid_load_t
   use deck_syntax, only: state_t, stmt_t, key_values_t, report, read_keys, require_key, check_extra_words, &
-                         check_name, quoted
+                         check_name, form_word, quoted
   use text_scan, only: parse_real, lower
   implicit none
   private
@@ -77,11 +77,8 @@ contains
 
     associate (rg => deck%rigids(size(deck%rigids)))
     rg%shape_line = st%line
-    if (st%nword == 0) then
-      call report(s, st%line, 'missing shape kind (expected ' // st%usage // ')')
-      return
-    end if
-    kind = lower(st%word(1)%s)
+    kind = form_word(s, st, 'shape')
+    if (len(kind) == 0) return
     call read_keys(s, st, v)
     allowed = .false.
     select case (kind)

@@ -18,11 +18,10 @@ module deck_statements
   use deck_expressions, only: add_parameter, find_parameter, evaluate, is_parameter_name
   use deck_syntax, only: state_t, stmt_t, statement_t, key_values_t, text_t, report, read_keys, add_row, &
                          real_key, integer_key, choice_key, ramp_key, curve_key, name_key, text_key, &
-                         check_extra_words, check_name, find_key, join_list, cut, quoted, max_mu, max_steps
-  use deck_body_statements, only: do_body, do_mesh, do_mesh_rect, do_mesh_gmsh, do_material, &
-                                  do_material_isotropic, do_material_orthotropic, do_density, do_fix, &
-                                  do_load, do_bodyforce, do_thermal, do_offset, &
-                                  read_vector_statement
+                         check_extra_words, check_name, form_word, find_key, join_list, cut, quoted, max_mu, &
+                         max_steps
+  use deck_body_statements, only: do_body, do_mesh, do_mesh_rect, do_mesh_gmsh, do_material, do_density, &
+                                  do_fix, do_load, do_thermal, do_vector
   use deck_rigid_statements, only: do_rigid, do_rigid_shape, do_rigid_ref, do_rigid_load
   use text_scan, only: parse_real, parse_integer, lower, is_name, ends_with_ci
   implicit none
@@ -74,10 +73,10 @@ contains
                  usage='MESH gmsh file=NAME.msh or file=NAME.geo [order=1|2] [name=number ...]')
     call add_row(table, 'MATERIAL', 'BODY', do_material, once=.true., expected='one MATERIAL per body', &
                  usage=iso_usage // ' or MATERIAL orthotropic ...')
-    call add_row(table, 'MATERIAL', 'BODY', do_material_isotropic, form='isotropic', words=1, usage=iso_usage, &
+    call add_row(table, 'MATERIAL', 'BODY', do_material, form='isotropic', words=1, usage=iso_usage, &
                  keys=[real_key('E', required=.true., gt=zero), &
                        real_key('nu', required=.true., gt=-1.0_dp, lt=0.5_dp)])
-    call add_row(table, 'MATERIAL', 'BODY', do_material_orthotropic, form='orthotropic', words=1, usage=ortho_usage, &
+    call add_row(table, 'MATERIAL', 'BODY', do_material, form='orthotropic', words=1, usage=ortho_usage, &
                  keys=[real_key('E1', required=.true., gt=zero), real_key('E2', required=.true., gt=zero), &
                        real_key('nu12', required=.true.), real_key('G12', required=.true., gt=zero), &
                        real_key('angle'), real_key('E3', gt=zero), real_key('nu13'), real_key('nu23')])
@@ -91,17 +90,17 @@ contains
                  keys=[real_key('tx'), real_key('ty'), ramp_key(), curve_key(), real_key('tn'), real_key('tt')])
     call add_row(table, 'PRESSURE', 'BODY', do_load, words=1, usage='PRESSURE boundary p=number' // ramp_curve, &
                  keys=[real_key('p', required=.true.), ramp_key(), curve_key()])
-    call add_row(table, 'BODYFORCE', 'BODY', do_bodyforce, once=.true., words=0, &
+    call add_row(table, 'BODYFORCE', 'BODY', do_vector, once=.true., words=0, &
                  usage='BODYFORCE fx=number fy=number' // ramp_curve, &
                  keys=[real_key('fx'), real_key('fy'), ramp_key(), curve_key()])
     call add_row(table, 'THERMAL', 'BODY', do_thermal, words=0, &
                  usage='THERMAL alpha=number dT=number [region=NAME] [curve=NAME]', &
                  keys=[real_key('alpha', required=.true.), real_key('dT', required=.true.), &
                        name_key('region', 'region'), curve_key()])
-    call add_row(table, 'OFFSET', 'BODY', do_offset, once=.true., words=0, usage='OFFSET dx=number dy=number', &
+    call add_row(table, 'OFFSET', 'BODY', do_vector, once=.true., words=0, usage='OFFSET dx=number dy=number', &
                  keys=[real_key('dx'), real_key('dy')])
     call add_row(table, 'END', '*')
-    call add_row(table, 'GRAVITY', '', do_gravity, once=.true., words=0, &
+    call add_row(table, 'GRAVITY', '', do_vector, once=.true., words=0, &
                  usage='GRAVITY gx=number gy=number' // ramp_curve, &
                  keys=[real_key('gx'), real_key('gy'), ramp_key(), curve_key()])
     call add_row(table, 'CONTACT', '', do_contact, words=0, usage=contact_usage, &
@@ -162,11 +161,8 @@ contains
     character(len=:), allocatable :: kind
 
     deck%plane_line = st%line
-    if (st%nword == 0) then
-      call report(s, st%line, 'missing plane kind (expected ' // st%usage // ')')
-      return
-    end if
-    kind = lower(st%word(1)%s)
+    kind = form_word(s, st, 'plane')
+    if (len(kind) == 0) return
     if (kind /= 'strain' .and. kind /= 'stress' .and. kind /= 'axisymmetric') then
       call report(s, st%line, 'unknown plane kind ' // quoted(st%word(1)%s) // ' (expected ' // st%usage // ')')
       return
@@ -185,15 +181,6 @@ contains
       if (v%ok(1)) deck%thickness = v%x(1)
     end select
   end subroutine do_plane
-
-  !> GRAVITY gx= gy= [ramp=|curve=]
-  subroutine do_gravity(s, deck, st)
-    type(state_t), intent(inout) :: s
-    type(deck_t), intent(inout) :: deck
-    type(stmt_t), intent(in) :: st
-    deck%gravity_line = st%line
-    call read_vector_statement(s, st, deck%gx, deck%gy, deck%has_gravity, deck%gravity_ramp, deck%gravity_curve_name)
-  end subroutine do_gravity
 
   !> CONTACT slave=body:boundary master=body:boundary [gap=geometry|zero] [mu=number | tresca=number]
   !>         [interference=allow|reject]

@@ -28,7 +28,7 @@
 !>   add_row, find_statement                                    the table
 !>   real_key, integer_key, choice_key, ramp_key, curve_key, name_key, text_key
 !>   read_keys(s, st, v [, what])                               a statement's words and keys
-!>   check_extra_words, require_key, check_name, find_key, join_list
+!>   check_extra_words, require_key, check_name, form_word, find_key, join_list
 !>   cut, quoted, shown                                         user text in messages
 !>   max_mu, max_steps, max_line_len, ramp_unset               the reader's limits
 module deck_syntax
@@ -43,7 +43,7 @@ module deck_syntax
   public :: report, hand_over, store_echo, split_words, join_equals, classify_words
   public :: add_row, find_statement
   public :: real_key, integer_key, choice_key, ramp_key, curve_key, name_key, text_key, read_keys
-  public :: check_extra_words, require_key, check_name, find_key, join_list
+  public :: check_extra_words, require_key, check_name, form_word, find_key, join_list
   public :: cut, quoted, shown
   public :: max_mu, max_steps, max_line_len, ramp_unset
 
@@ -702,6 +702,22 @@ contains
     if (.not. seen) call report(s, st%line, 'missing key ' // quoted(name) // ' for ' // what // &
                                 ' (expected ' // usage // ')')
   end subroutine require_key
+
+  !> The first word of a statement with forms (PLANE strain, SHAPE line) in
+  !> lower case; '' when it has none, reported: 'missing NOUN kind (expected
+  !> the statement's usage)'.
+  function form_word(s, st, noun) result(kind)
+    type(state_t), intent(inout) :: s
+    type(stmt_t), intent(in) :: st
+    character(len=*), intent(in) :: noun
+    character(len=:), allocatable :: kind
+    kind = ''
+    if (st%nword > 0) then
+      kind = lower(st%word(1)%s)
+    else
+      call report(s, st%line, 'missing ' // noun // ' kind (expected ' // st%usage // ')')
+    end if
+  end function form_word
 
   !> Report words after the first nmax positional words, and (when nmax = 0) any.
   subroutine check_extra_words(s, st, nmax, usage)
