@@ -1,10 +1,13 @@
 /* process_runner: start a program with an argument vector (no shell), in a
  * process group of its own, with its output sent to a log file, and wait for
- * it with a time limit.  The group is killed when the limit passes, when the
- * program ends normally (strays it left behind), and by c2d_kill_running
- * (the run's exit and signal cleanup, file_guard.c).
+ * it with a time limit.  A watchdog process (a child subreaper, see
+ * src/process_runner.c) starts it and kills it and everything it started,
+ * whatever group or session that moved to, when the limit passes, when the
+ * program ends normally (strays it left behind), when c2d_kill_running is
+ * called (the run's exit and signal cleanup, file_guard.c), and when this
+ * process is gone, even by SIGKILL.
  *
- * One program at a time: the running group is process state, read by the
+ * One program at a time: the running watchdog is process state, read by the
  * signal handler, so calls must not overlap (the gmsh runs are sequential). */
 #ifndef CONTACT2D_PROCESS_RUNNER_H
 #define CONTACT2D_PROCESS_RUNNER_H
@@ -24,13 +27,13 @@ int c2d_find_program(const char *name, char *path, int len);
 /* Run args[0] (an absolute path) with the argument vector packed in args:
  * nargs NUL-terminated strings one after the other.  Its stdin is /dev/null,
  * stdout and stderr go to log_path (created, must not exist: O_EXCL, no
- * symbolic link followed), or stay this process's when log_path is "".  It runs in a new process group with
- * PR_SET_PDEATHSIG = SIGKILL, so it ends with this process even on SIGKILL.
+ * symbolic link followed), or stay this process's when log_path is "".  It runs in a new process group;
+ * when the call returns, neither it nor anything it started runs any more.
  * timeout: seconds (> 0).  Returns 0; *how and *status as above. */
 int c2d_run_program(const char *args, int nargs, const char *log_path, double timeout, int *how, int *status);
 
-/* Kill the running program's group (SIGKILL) and reap it; nothing when none
- * runs.  Async-signal-safe. */
+/* End the running program and everything it started (the watchdog kills
+ * them, then is reaped); nothing when none runs.  Async-signal-safe. */
 void c2d_kill_running(void);
 
 #endif

@@ -4,15 +4,18 @@
  *
  * The smallest of: the address space left under RLIMIT_AS (ulimit -v, a
  * batch system's limit) once what the process has mapped (VmSize,
- * /proc/self/statm) is taken off; what its cgroup (v2) may still charge,
- * memory.max - memory.current + inactive_file of memory.stat, for the
- * process's own cgroup and each one above it (a batch system's or a
- * container's memory limit); and what the machine can still give
- * (MemAvailable + SwapFree of /proc/meminfo).  -1 when none is known.
+ * /proc/self/statm) is taken off; what its cgroup may still charge, for
+ * the process's own cgroup and each one above it (a batch system's or a
+ * container's memory limit): cgroup v2 memory.max - memory.current, cgroup
+ * v1 (the memory controller) memory.limit_in_bytes - memory.usage_in_bytes,
+ * each plus inactive_file of memory.stat; and what the machine can still
+ * give (MemAvailable + SwapFree of /proc/meminfo).  -1 when none is known.
  *
- * Test hook: CONTACT2D_CGROUP_ROOT, when set, is read as the cgroup v2
- * mount point instead of the one /proc/self/mountinfo names (a folder of
- * fake memory.max files: tests/robust/oom).  Not meant for users. */
+ * Test hooks, not meant for users: CONTACT2D_CGROUP_ROOT, when set, is read
+ * as the mount point of the cgroup hierarchies (v2, and v1's memory
+ * controller) instead of those /proc/self/mountinfo names, and
+ * CONTACT2D_CGROUP_FILE instead of /proc/self/cgroup: a folder of fake
+ * memory.max or memory.limit_in_bytes files (tests/robust/memory_limits). */
 #define _DEFAULT_SOURCE
 #include <limits.h>
 #include <stdint.h>
@@ -80,26 +83,48 @@ static int64_t cgroup_number(const char *dir, const char *name, const char *key)
     return v;
 }
 
-/* The cgroup v2 mount point (CONTACT2D_CGROUP_ROOT, else the cgroup2 line
- * of /proc/self/mountinfo) into root; 0 when there is none. */
-static int cgroup_root(char *root, size_t size)
+/* Whether the comma-separated list `list` holds `item`. */
+static int listed(const char *list, const char *item)
+{
+    size_t n = strlen(item);
+    while (list != NULL && *list != '\0')
+    {
+        if (strncmp(list, item, n) == 0 && (list[n] == ',' || list[n] == '\0')) return 1;
+        list = strchr(list, ',');
+        if (list != NULL) list++;
+    }
+    return 0;
+}
+
+/* A cgroup hierarchy's mount point and the cgroup path it shows as its root
+ * (ROOT of mountinfo: a container's own cgroup when the host's hierarchy is
+ * bound into it).  v2: the cgroup2 line; v1: the cgroup line whose super
+ * options hold "memory".  CONTACT2D_CGROUP_ROOT replaces the mount point
+ * (root "/").  0 when there is none. */
+static int cgroup_mount(int v1, char *mnt, char *root, size_t size)
 {
     const char *hook = getenv("CONTACT2D_CGROUP_ROOT");
-    char line[4096], mnt[PATH_MAX], fstype[64];
+    char line[4096], fstype[64], options[1024], m[PATH_MAX], r[PATH_MAX];
     int found = 0;
     FILE *f;
     if (hook != NULL && hook[0] != '\0')
-        return snprintf(root, size, "%s", hook) < (int) size;
+    {
+        strcpy(root, "/");
+        return snprintf(mnt, size, "%s", hook) < (int) size;
+    }
     f = fopen("/proc/self/mountinfo", "r");
     if (f == NULL) return 0;
     while (!found && fgets(line, sizeof line, f) != NULL)
     {
         /* ID PARENT MAJ:MIN ROOT MOUNTPOINT OPTIONS [TAGS] - FSTYPE SOURCE SUPER */
         const char *dash = strstr(line, " - ");
-        if (dash == NULL || sscanf(dash + 3, "%63s", fstype) != 1 || strcmp(fstype, "cgroup2") != 0) continue;
-        if (sscanf(line, "%*s %*s %*s %*s %4095s", mnt) == 1 && strlen(mnt) < size)
+        options[0] = '\0';
+        if (dash == NULL || sscanf(dash + 3, "%63s %*s %1023s", fstype, options) < 1) continue;
+        if (strcmp(fstype, v1 ? "cgroup" : "cgroup2") != 0 || (v1 && !listed(options, "memory"))) continue;
+        if (sscanf(line, "%*s %*s %*s %4095s %4095s", r, m) == 2 && strlen(m) < size && strlen(r) < size)
         {
-            strcpy(root, mnt);
+            strcpy(mnt, m);
+            strcpy(root, r);
             found = 1;
         }
     }
@@ -107,35 +132,64 @@ static int cgroup_root(char *root, size_t size)
     return found;
 }
 
-/* What the cgroups of this process may still charge, the smallest over its
- * own cgroup and those above it; -1 when no cgroup v2 limit is found. */
-static int64_t cgroup_left(void)
+/* This process's cgroup path in the v2 hierarchy (the "0::" line of
+ * /proc/self/cgroup) or, v1, in the memory controller's ("N:...memory...:");
+ * CONTACT2D_CGROUP_FILE replaces /proc/self/cgroup.  0 when absent. */
+static int cgroup_path(int v1, char *rel, size_t size)
 {
-    char root[PATH_MAX], line[4096], rel[PATH_MAX], dir[PATH_MAX];
-    int64_t left = -1;
-    FILE *f;
-
-    if (!cgroup_root(root, sizeof root)) return -1;
-    f = fopen("/proc/self/cgroup", "r");
-    if (f == NULL) return -1;
-    rel[0] = '\0';
-    while (fgets(line, sizeof line, f) != NULL)
-        if (strncmp(line, "0::", 3) == 0)               /* the v2 hierarchy's line */
+    const char *hook = getenv("CONTACT2D_CGROUP_FILE");
+    char line[4096];
+    int found = 0;
+    FILE *f = fopen(hook != NULL && hook[0] != '\0' ? hook : "/proc/self/cgroup", "r");
+    if (f == NULL) return 0;
+    while (!found && fgets(line, sizeof line, f) != NULL)
+    {
+        char *controllers = strchr(line, ':'), *path;
+        if (controllers == NULL) continue;
+        controllers++;
+        path = strchr(controllers, ':');
+        if (path == NULL) continue;
+        *path++ = '\0';
+        path[strcspn(path, "\n")] = '\0';
+        if (v1 ? !listed(controllers, "memory") : strncmp(line, "0:", 2) != 0 || controllers[0] != '\0') continue;
+        if (strlen(path) < size)
         {
-            line[strcspn(line, "\n")] = '\0';
-            if (strlen(line + 3) < sizeof rel) strcpy(rel, line + 3);
-            break;
+            strcpy(rel, path);
+            found = 1;
         }
+    }
     fclose(f);
+    return found;
+}
+
+/* What the cgroups of this process may still charge in one hierarchy, the
+ * smallest over its own cgroup and those above it (as far as the mount
+ * shows them); -1 when no limit is found.  v2: memory.max -
+ * memory.current; v1: memory.limit_in_bytes - memory.usage_in_bytes (no
+ * limit is a number near 2^63); each plus the inactive page cache of
+ * memory.stat, which the kernel drops before it refuses. */
+static int64_t cgroup_left(int v1)
+{
+    char mnt[PATH_MAX], root[PATH_MAX], rel[PATH_MAX], dir[PATH_MAX];
+    const char *limit_file = v1 ? "memory.limit_in_bytes" : "memory.max";
+    const char *usage_file = v1 ? "memory.usage_in_bytes" : "memory.current";
+    int64_t left = -1;
+    size_t n;
+
+    if (!cgroup_mount(v1, mnt, root, sizeof root) || !cgroup_path(v1, rel, sizeof rel)) return -1;
+    n = strlen(root);
+    if (strcmp(root, "/") != 0 && strncmp(rel, root, n) == 0 && (rel[n] == '/' || rel[n] == '\0'))
+        memmove(rel, rel + n, strlen(rel + n) + 1);   /* the mount shows the hierarchy from root down */
+    if (strcmp(rel, "/") == 0) rel[0] = '\0';
     for (;;)
     {
         char *slash;
-        if (snprintf(dir, sizeof dir, "%s%s", root, rel) < (int) sizeof dir)
+        if (snprintf(dir, sizeof dir, "%s%s", mnt, rel) < (int) sizeof dir)
         {
-            int64_t max = cgroup_number(dir, "memory.max", NULL), current = cgroup_number(dir, "memory.current", NULL);
-            if (max >= 0 && current >= 0)
+            int64_t max = cgroup_number(dir, limit_file, NULL), current = cgroup_number(dir, usage_file, NULL);
+            if (max >= 0 && max < INT64_C(1) << 62 && current >= 0)
             {
-                int64_t inactive = cgroup_number(dir, "memory.stat", "inactive_file");   /* page cache it can drop */
+                int64_t inactive = cgroup_number(dir, "memory.stat", "inactive_file");
                 int64_t here = max - current + (inactive > 0 ? inactive : 0);
                 if (here < 0) here = 0;
                 if (left < 0 || here < left) left = here;
@@ -150,10 +204,15 @@ static int64_t cgroup_left(void)
 
 int64_t c2d_memory_available(void)
 {
-    int64_t left = c2d_address_space_left(), group = cgroup_left();
+    int64_t left = c2d_address_space_left(), group;
+    int v1;
     FILE *f;
 
-    if (group >= 0 && (left < 0 || group < left)) left = group;
+    for (v1 = 0; v1 <= 1; v1++)                        /* a hybrid system may limit in either */
+    {
+        group = cgroup_left(v1);
+        if (group >= 0 && (left < 0 || group < left)) left = group;
+    }
     f = fopen("/proc/meminfo", "r");
     if (f != NULL)
     {

@@ -1,28 +1,54 @@
 /* process_runner: start a program with an argument vector and a time limit
  * (see include/process_runner.h).
  *
- * fork/exec rather than posix_spawn: the child must set PR_SET_PDEATHSIG, so
- * that it dies with contact2d even when contact2d is killed by SIGKILL, and
- * posix_spawn has no attribute for it.  Between fork and exec the child calls
- * only async-signal-safe functions (the parent may run OpenMP threads).
+ * Two processes per run:
  *
- * The death signal alone is not enough: bubblewrap's outer process, started
- * as root, was seen to outlive a contact2d killed by SIGKILL at start-up
- * under load, with gmsh running on inside it.  So each run also gets a
- * watchdog, a second child that holds the read end of a pipe whose only
- * write end contact2d keeps: a byte on it means the run is over (exit);
- * end of file means contact2d is gone, and the watchdog kills the run's
- * process group. */
+ *   contact2d
+ *     watchdog     its own process group, a child subreaper
+ *                  (PR_SET_CHILD_SUBREAPER), ignores INT/TERM/HUP/QUIT
+ *       program    its own process group, PR_SET_PDEATHSIG = SIGKILL
+ *
+ * The watchdog starts the program, waits for it and reports how it ended on
+ * a pipe; it also holds the read end of a second pipe (the control pipe)
+ * whose only write end contact2d keeps.  End of file there means contact2d
+ * is gone (killed, even by SIGKILL) or wants the program stopped (time limit,
+ * signal, exit).  Either way, and when the program ends by itself, the
+ * watchdog kills the program's group and then every process still below it:
+ * as a subreaper it becomes the parent of whatever the program leaves
+ * orphaned (a double fork into a new session, bubblewrap's process inside
+ * the sandbox when bubblewrap's outer process dies first), so it finds them
+ * in its list of children (/proc/self/task/PID/children) and kills them,
+ * generation by generation, until it has no child left.  Only then does it
+ * report and exit.  So no process the program started outlives the run,
+ * whatever group or session it moved to and whatever signals it ignores.
+ *
+ * Why not the death signal and the group alone (the earlier design):
+ * bubblewrap's inner process moves to a new session (--new-session) and
+ * sets its own death signal only after the namespaces are made; when the
+ * outer bubblewrap died first (contact2d killed at start-up under load),
+ * the inner one and gmsh ran on with PPID 1 (tests/robust/orphans reproduces
+ * it without load).  And a watchdog in contact2d's own group died with it
+ * when the whole group was killed.
+ *
+ * fork/exec rather than posix_spawn: the program's process must set
+ * PR_SET_PDEATHSIG (it dies with the watchdog, should that be killed) and
+ * posix_spawn has no attribute for it.  After fork both children call only
+ * async-signal-safe functions (contact2d may run OpenMP threads).
+ *
+ * Test hook: CONTACT2D_TEST_STOP_AT=spawn|watchdog|exec stops (SIGSTOP) the
+ * process at that point of a start: contact2d just after forking the
+ * watchdog, the watchdog before forking the program, the program's process
+ * before exec (tests/robust/orphans kills contact2d there). */
 #define _GNU_SOURCE
 #include <errno.h>
 #include <fcntl.h>
+#include <poll.h>
 #include <signal.h>
 #include <stdlib.h>
 #include <string.h>
-#include <poll.h>
 #include <sys/prctl.h>
-#include <sys/syscall.h>
 #include <sys/stat.h>
+#include <sys/syscall.h>
 #include <sys/types.h>
 #include <sys/wait.h>
 #include <time.h>
@@ -30,9 +56,28 @@
 
 #include "process_runner.h"
 
-/* the group of the program running now, 0 when none: read by the signal
- * handler (c2d_kill_running), hence sig_atomic_t-sized and volatile */
-static volatile sig_atomic_t running_group = 0;
+/* the running program's watchdog, read by the signal handler
+ * (c2d_kill_running): the write end of its control pipe (-1 when none runs)
+ * and its pid */
+static int running_control = -1;
+static pid_t running_watchdog = 0;
+
+/* what the watchdog (or the program's process, when exec fails) reports */
+struct report {
+    int how;                                /* C2D_RUN_EXITED, _SIGNALED or _NOT_STARTED */
+    int status;                             /* exit status, signal or errno */
+};
+
+/* the points of a start where CONTACT2D_TEST_STOP_AT stops a process */
+enum { STOP_NONE, STOP_SPAWN, STOP_WATCHDOG, STOP_EXEC };
+
+/* Seconds on the monotonic clock. */
+static double now_seconds(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
 
 int c2d_find_program(const char *name, char *path, int len)
 {
@@ -68,105 +113,227 @@ int c2d_find_program(const char *name, char *path, int len)
     return 1;
 }
 
-/* The child: own group, dies with its parent, stdin /dev/null, stdout and
- * stderr to log (kept as they are when log < 0); reports exec's errno on the
- * close-on-exec pipe. */
-static void start_child(char **argv, int log, int report, pid_t parent)
+/* Set the disposition of the signals a user or a batch system sends. */
+static void set_job_signals(void (*disposition)(int))
+{
+    static const int job_signals[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGPIPE};
+    struct sigaction sa;
+    size_t i;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = disposition;
+    sigemptyset(&sa.sa_mask);
+    for (i = 0; i < sizeof job_signals / sizeof job_signals[0]; i++) sigaction(job_signals[i], &sa, NULL);
+}
+
+/* The program's process: own group, dies with the watchdog, signals as a
+ * fresh process has them, stdin /dev/null, stdout and stderr to log (kept
+ * as they are when log < 0); reports exec's errno on the close-on-exec
+ * report pipe. */
+static void start_program(char **argv, int log, int report, pid_t watchdog, int stop)
 {
     int null = open("/dev/null", O_RDONLY | O_CLOEXEC);
-    int e;
+    struct report r = {C2D_RUN_NOT_STARTED, 0};
+    sigset_t none;
     setpgid(0, 0);
     prctl(PR_SET_PDEATHSIG, SIGKILL);
-    if (getppid() != parent) _exit(127);            /* the parent died before prctl */
+    if (getppid() != watchdog) _exit(127);          /* the watchdog died before prctl */
+    set_job_signals(SIG_DFL);
+    signal(SIGCHLD, SIG_DFL);
+    sigemptyset(&none);
+    sigprocmask(SIG_SETMASK, &none, NULL);
     if (null < 0 || dup2(null, 0) < 0 || (log >= 0 && (dup2(log, 1) < 0 || dup2(log, 2) < 0))) {
-        e = errno;
+        r.status = errno;
     } else {
+        if (stop == STOP_EXEC) raise(SIGSTOP);
         execv(argv[0], argv);
-        e = errno;
+        r.status = errno;
     }
-    if (write(report, &e, sizeof e) < 0) _exit(127);
+    if (write(report, &r, sizeof r) < 0) _exit(127);
     _exit(127);
 }
 
-/* Wait up to `timeout` seconds for pid; 1 when it ended (*wstatus set).
- * A pidfd (Linux 5.3) wakes poll(2) the moment the child ends; without one,
- * waitpid is polled every 1 ms, doubling to 50 ms. */
-static int wait_until(pid_t pid, double timeout, int *wstatus)
+/* Send SIGKILL to every child of this process listed in
+ * /proc/self/task/PID/children (this process has one thread); returns how
+ * many were listed, -1 when the list cannot be read. */
+static int kill_children(void)
 {
-    struct timespec start, now, nap = {0, 1000000};
-    int pidfd = (int)syscall(SYS_pidfd_open, pid, 0);
-    clock_gettime(CLOCK_MONOTONIC, &start);
+    char path[64] = "/proc/self/task/", digits[24], buf[512];
+    pid_t self = getpid(), pid = 0;
+    int fd, nd = 0, n = 0, pending = 0;
+    size_t at = strlen(path);
+    ssize_t got, i;
+    do {
+        digits[nd++] = (char)('0' + self % 10);
+        self /= 10;
+    } while (self > 0);
+    while (nd > 0) path[at++] = digits[--nd];
+    memcpy(path + at, "/children", sizeof "/children");
+    fd = open(path, O_RDONLY | O_CLOEXEC);
+    if (fd < 0) return -1;
+    while ((got = read(fd, buf, sizeof buf)) > 0) {    /* "pid pid ... ", a pid may span two reads */
+        for (i = 0; i < got; i++) {
+            if (buf[i] >= '0' && buf[i] <= '9') {
+                pid = 10 * pid + (buf[i] - '0');
+                pending = 1;
+            } else if (pending) {
+                kill(pid, SIGKILL);                 /* an unreaped child: its pid cannot be reused */
+                n++;
+                pid = 0;
+                pending = 0;
+            }
+        }
+    }
+    if (pending) {
+        kill(pid, SIGKILL);
+        n++;
+    }
+    close(fd);
+    return n;
+}
+
+/* Kill the program's group (while its process is unreaped, so the group id
+ * is still its own), then every process below this one, until none is
+ * left, each reaped.  Bounded (a process stuck in the kernel): after 10 s
+ * the rest is left to the death signals. */
+static void end_everything(pid_t program)
+{
+    struct timespec nap = {0, 1000000};
+    double give_up = now_seconds() + 10.0;
+    kill(-program, SIGKILL);
     for (;;) {
-        double left;
-        pid_t r = waitpid(pid, wstatus, WNOHANG);
-        if (r == pid || (r < 0 && errno != EINTR)) {
-            if (pidfd >= 0) close(pidfd);
-            return 1;
-        }
-        clock_gettime(CLOCK_MONOTONIC, &now);
-        left = timeout - ((double)(now.tv_sec - start.tv_sec) + 1e-9 * (double)(now.tv_nsec - start.tv_nsec));
-        if (left <= 0.0) {
-            if (pidfd >= 0) close(pidfd);
-            return 0;
-        }
-        if (pidfd >= 0) {
-            struct pollfd pfd;
-            pfd.fd = pidfd;
-            pfd.events = POLLIN;
-            poll(&pfd, 1, left > 1000.0 ? 1000000 : (int)(1000.0 * left) + 1);
-        } else {
-            nanosleep(&nap, NULL);
-            if (nap.tv_nsec < 50000000) nap.tv_nsec *= 2;
-        }
+        pid_t r;
+        int listed = kill_children();
+        while ((r = waitpid(-1, NULL, WNOHANG)) > 0) continue;
+        if (r < 0 && errno == ECHILD) return;       /* nothing left below */
+        if (listed < 0 || now_seconds() > give_up) return;
+        nanosleep(&nap, NULL);
+        if (nap.tv_nsec < 10000000) nap.tv_nsec *= 2;
     }
 }
 
-/* The watchdog of the group `group` (module header): returns its pid, or -1
- * (the run goes on without it) when it cannot be started; *done is the
- * write end to signal a normal end on (-1 without a watchdog). */
-static pid_t start_watchdog(pid_t group, int *done)
+/* Close every descriptor from 3 up but the n in keep (-1 entries ignored):
+ * the watchdog outlives contact2d for a moment and must hold nothing of
+ * its (pipes, files, the output folder's lock).  close_range(2), Linux 5.9;
+ * before it, the descriptors stay open (all are close-on-exec for the
+ * program). */
+static void close_others(int *keep, int n)
 {
-    int fd[2];
-    pid_t pid;
-    char c;
-    *done = -1;
-    if (pipe2(fd, O_CLOEXEC) != 0) return -1;
-    pid = fork();
-    if (pid == 0) {
-        ssize_t got;
-        close(fd[1]);
-        do {
-            got = read(fd[0], &c, 1);
-        } while (got < 0 && errno == EINTR);
-        if (got != 1) kill(-group, SIGKILL);          /* end of file: contact2d is gone */
+    unsigned int from = 3;
+    int i, j;
+    for (i = 0; i < n; i++)                         /* sort: n is 3 */
+        for (j = i + 1; j < n; j++)
+            if (keep[j] < keep[i]) {
+                int t = keep[i];
+                keep[i] = keep[j];
+                keep[j] = t;
+            }
+    for (i = 0; i < n; i++) {
+        if (keep[i] < (int)from) continue;
+        if ((unsigned int)keep[i] > from) syscall(SYS_close_range, from, (unsigned int)keep[i] - 1, 0);
+        from = (unsigned int)keep[i] + 1;
+    }
+    syscall(SYS_close_range, from, ~0U, 0);
+}
+
+/* The watchdog (module header): never returns. */
+static void run_watchdog(char **argv, int log, int control, int report, int stop)
+{
+    struct report r = {C2D_RUN_NOT_STARTED, 0};
+    pid_t program, self = getpid();
+    int pidfd;
+    siginfo_t info;
+
+    setpgid(0, 0);
+    set_job_signals(SIG_IGN);                       /* contact2d's handlers are not ours to run */
+    signal(SIGCHLD, SIG_DFL);                       /* SIG_IGN would reap the program unasked */
+    prctl(PR_SET_CHILD_SUBREAPER, 1);
+    {
+        int keep[3];
+        keep[0] = log;
+        keep[1] = control;
+        keep[2] = report;
+        close_others(keep, 3);
+    }
+    if (stop == STOP_WATCHDOG) raise(SIGSTOP);
+    program = fork();
+    if (program == 0) start_program(argv, log, report, self, stop);
+    if (program < 0) {
+        r.status = errno;
+        if (write(report, &r, sizeof r) < 0) _exit(1);
         _exit(0);
     }
-    close(fd[0]);
-    if (pid < 0) {
-        close(fd[1]);
-        return -1;
+    setpgid(program, program);                      /* both sides: no race with kill(-program) */
+    if (log >= 0) close(log);
+    pidfd = (int)syscall(SYS_pidfd_open, program, 0);
+    for (;;) {
+        struct pollfd fds[2];
+        int nfds = 1;
+        fds[0].fd = control;
+        fds[0].events = POLLIN;
+        if (pidfd >= 0) {
+            fds[1].fd = pidfd;
+            fds[1].events = POLLIN;
+            nfds = 2;
+        }
+        /* without a pidfd (Linux < 5.3) the program's end is polled every 10 ms */
+        if (poll(fds, (nfds_t)nfds, pidfd >= 0 ? -1 : 10) > 0 && (fds[0].revents != 0)) {
+            end_everything(program);                /* contact2d is gone or stops the run */
+            _exit(0);
+        }
+        memset(&info, 0, sizeof info);
+        if (waitid(P_PID, (id_t)program, &info, WEXITED | WNOHANG | WNOWAIT) == 0 && info.si_pid == program) break;
     }
-    *done = fd[1];
-    return pid;
+    if (info.si_code == CLD_EXITED) {
+        r.how = C2D_RUN_EXITED;
+    } else {
+        r.how = C2D_RUN_SIGNALED;
+    }
+    r.status = info.si_status;
+    end_everything(program);                        /* what it left running, before the report */
+    if (write(report, &r, sizeof r) < 0) _exit(1);
+    _exit(0);
 }
 
-/* The run is over: the watchdog is told so and reaped. */
-static void stop_watchdog(pid_t pid, int done)
+/* The run is over: the watchdog is told (end of file on its control pipe),
+ * ends what is left and is reaped; its wait status to *wstatus (left as it
+ * is when the watchdog was reaped already, by the signal handler).
+ * Async-signal-safe. */
+static void end_run(int *wstatus)
 {
-    const char c = 1;
-    if (pid <= 0) return;
-    if (write(done, &c, 1) < 0) kill(pid, SIGKILL);
-    close(done);
-    while (waitpid(pid, NULL, 0) < 0 && errno == EINTR) continue;
+    int control = __atomic_exchange_n(&running_control, -1, __ATOMIC_SEQ_CST);
+    pid_t watchdog = __atomic_load_n(&running_watchdog, __ATOMIC_SEQ_CST);
+    if (control < 0) return;
+    close(control);
+    while (waitpid(watchdog, wstatus, 0) < 0 && errno == EINTR) continue;
+}
+
+/* Read the watchdog's report within `timeout` seconds: 1 and *r set, 0 at
+ * the time limit, -1 when the pipe ended without one. */
+static int read_report(int fd, double timeout, struct report *r)
+{
+    double end = now_seconds() + timeout;
+    for (;;) {
+        struct pollfd pfd;
+        double left = end - now_seconds();
+        ssize_t got;
+        if (left <= 0.0) return 0;
+        pfd.fd = fd;
+        pfd.events = POLLIN;
+        if (poll(&pfd, 1, left > 1000.0 ? 1000000 : (int)(1000.0 * left) + 1) <= 0) continue;
+        got = read(fd, r, sizeof *r);               /* a record is written at once: PIPE_BUF */
+        if (got == (ssize_t)sizeof *r) return 1;
+        if (got < 0 && errno == EINTR) continue;
+        return -1;
+    }
 }
 
 int c2d_run_program(const char *args, int nargs, const char *log_path, double timeout, int *how, int *status)
 {
     char **argv = calloc((size_t)nargs + 1, sizeof *argv);
-    const char *p = args;
-    int log, pipefd[2], e = 0, wstatus = 0, i, done;
-    pid_t pid, watchdog, parent = getpid();
-    ssize_t got;
+    const char *p = args, *hook = getenv("CONTACT2D_TEST_STOP_AT");
+    int log, control[2], report[2], i, got, stop = STOP_NONE, wstatus = 0;
+    pid_t watchdog;
+    struct report r;
 
     *how = C2D_RUN_NOT_STARTED;
     *status = ENOMEM;
@@ -175,70 +342,72 @@ int c2d_run_program(const char *args, int nargs, const char *log_path, double ti
         argv[i] = (char *)p;
         p += strlen(p) + 1;
     }
+    if (hook != NULL) {
+        if (strcmp(hook, "spawn") == 0) stop = STOP_SPAWN;
+        if (strcmp(hook, "watchdog") == 0) stop = STOP_WATCHDOG;
+        if (strcmp(hook, "exec") == 0) stop = STOP_EXEC;
+    }
     log = log_path[0] == '\0' ? -1 : open(log_path, O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
     if (log < 0 && log_path[0] != '\0') {
         *status = errno;
         free(argv);
         return 0;
     }
-    if (pipe2(pipefd, O_CLOEXEC) != 0) {
+    if (pipe2(control, O_CLOEXEC) != 0) {
         *status = errno;
         if (log >= 0) close(log);
         free(argv);
         return 0;
     }
-    pid = fork();
-    if (pid == 0) start_child(argv, log, pipefd[1], parent);
-    close(pipefd[1]);
+    if (pipe2(report, O_CLOEXEC) != 0) {
+        *status = errno;
+        close(control[0]);
+        close(control[1]);
+        if (log >= 0) close(log);
+        free(argv);
+        return 0;
+    }
+    watchdog = fork();
+    if (watchdog == 0) {
+        close(control[1]);                          /* contact2d's alone: its end is the signal */
+        close(report[0]);
+        run_watchdog(argv, log, control[0], report[1], stop);
+    }
+    close(control[0]);
+    close(report[1]);
     if (log >= 0) close(log);
     free(argv);
-    if (pid < 0) {
+    if (watchdog < 0) {
         *status = errno;
-        close(pipefd[0]);
+        close(control[1]);
+        close(report[0]);
         return 0;
     }
-    setpgid(pid, pid);                              /* both sides: no race with kill(-pid) */
-    running_group = pid;
-    watchdog = start_watchdog(pid, &done);
-    do {
-        got = read(pipefd[0], &e, sizeof e);        /* EOF: exec succeeded */
-    } while (got < 0 && errno == EINTR);
-    close(pipefd[0]);
-    if (got == (ssize_t)sizeof e) {
-        waitpid(pid, &wstatus, 0);
-        running_group = 0;
-        stop_watchdog(watchdog, done);
-        *status = e;
-        return 0;
+    setpgid(watchdog, watchdog);                    /* both sides, as for the program */
+    __atomic_store_n(&running_watchdog, watchdog, __ATOMIC_SEQ_CST);
+    __atomic_store_n(&running_control, control[1], __ATOMIC_SEQ_CST);
+    if (stop == STOP_SPAWN) raise(SIGSTOP);
+    got = read_report(report[0], timeout, &r);
+    close(report[0]);
+    end_run(&wstatus);
+    if (got == 1) {
+        *how = r.how;
+        *status = r.status;
+    } else if (got == 0) {
+        *how = C2D_RUN_TIMEOUT;
+        *status = 0;
+    } else if (WIFSIGNALED(wstatus)) {              /* no report: the watchdog was killed */
+        *how = C2D_RUN_SIGNALED;
+        *status = WTERMSIG(wstatus);
+    } else {
+        *status = ECHILD;
     }
-    if (wait_until(pid, timeout, &wstatus)) {
-        kill(-pid, SIGKILL);                        /* anything it left running in its group */
-        running_group = 0;
-        stop_watchdog(watchdog, done);
-        if (WIFEXITED(wstatus)) {
-            *how = C2D_RUN_EXITED;
-            *status = WEXITSTATUS(wstatus);
-        } else {
-            *how = C2D_RUN_SIGNALED;
-            *status = WIFSIGNALED(wstatus) ? WTERMSIG(wstatus) : 0;
-        }
-        return 0;
-    }
-    c2d_kill_running();
-    stop_watchdog(watchdog, done);
-    *how = C2D_RUN_TIMEOUT;
-    *status = 0;
     return 0;
 }
 
 void c2d_kill_running(void)
 {
-    pid_t group = (pid_t)running_group;
     int saved = errno;
-    if (group > 0) {
-        running_group = 0;
-        kill(-group, SIGKILL);
-        while (waitpid(group, NULL, 0) < 0 && errno == EINTR) continue;
-    }
+    end_run(NULL);
     errno = saved;
 }
