@@ -28,7 +28,8 @@ module msh_sections
   use msh_text, only: msh_text_t, advance_line, remaining_lines, item, quoted_item, read_data_line, &
                       expect_section_end, next_section_line, fail, fail_at, get_integer, get_count, get_real, &
                       msh_real, read_block_header, scan_data_lines, out_of_memory, allocation_failed, no_integers, &
-                      no_reals, no_lower_bounds, is_end_line, end_blocks, read_block_line
+                      no_reals, no_lower_bounds, is_end_line, end_blocks, read_block_line, &
+                      get_dimension_tag
   use msh_data, only: msh_data_t, push_record, record_bytes
   use msh_elements, only: read_elements_22, read_elements_41
   implicit none
@@ -221,9 +222,7 @@ contains
         ok = .false.
         return
       end if
-      call get_integer(t, diag, 1, 'physical dimension', 0_i8, 3_i8, dim, ok)
-      if (.not. ok) return
-      call get_integer(t, diag, 2, 'physical tag', -huge(1_i8), huge(1_i8), tag, ok)
+      call get_dimension_tag(t, diag, 1, 'physical', dim, tag, ok)
       if (.not. ok) return
       q1 = t%tbeg(3)
       q2 = t%tend(t%ntok)
@@ -328,9 +327,7 @@ contains
               line_what // ')')
             return
           end if
-          call get_integer(t, diag, 2, 'parent dimension', 0_i8, 3_i8, pdim, ok)
-          if (.not. ok) return
-          call get_integer(t, diag, 3, 'parent tag', -huge(1_i8), huge(1_i8), v, ok)
+          call get_dimension_tag(t, diag, 2, 'parent', pdim, v, ok)
           if (.not. ok) return
           call get_integer(t, diag, 4, 'number of partitions', 0_i8, int(t%ntok - 4, i8), npart, ok)
           if (.not. ok) return

@@ -44,7 +44,7 @@ module msh_text
   private
   public :: msh_text_t, load_text, advance_line, next_section_line, remaining_lines, item, quoted_item, read_data_line
   public :: expect_section_end, is_end_line, end_blocks, report_end_of_file, fail, fail_at, get_integer, get_count
-  public :: get_real, msh_real, read_block_line
+  public :: get_real, msh_real, read_block_line, get_dimension_tag
   public :: read_block_header, scan_data_lines, out_of_memory, allocation_failed, no_integers, no_reals, no_lower_bounds
   public :: fast_parallel_min
 
@@ -282,9 +282,21 @@ contains
     integer(i8), intent(out) :: dim, tag
     logical, intent(out) :: ok
     call read_data_line(t, diag, section, 4, form, ok)
-    if (ok) call get_integer(t, diag, 1, 'entity dimension', 0_i8, 3_i8, dim, ok)
-    if (ok) call get_integer(t, diag, 2, 'entity tag', -huge(1_i8), huge(1_i8), tag, ok)
+    if (ok) call get_dimension_tag(t, diag, 1, 'entity', dim, tag, ok)
   end subroutine read_block_line
+
+  !> Items k and k + 1 of the current line: a dimension (0 to 3) and a tag,
+  !> called what // ' dimension' and what // ' tag' in messages.
+  subroutine get_dimension_tag(t, diag, k, what, dim, tag, ok)
+    type(msh_text_t), intent(in) :: t
+    type(diag_t), intent(inout) :: diag
+    integer, intent(in) :: k
+    character(len=*), intent(in) :: what
+    integer(i8), intent(out) :: dim, tag
+    logical, intent(out) :: ok
+    call get_integer(t, diag, k, what // ' dimension', 0_i8, 3_i8, dim, ok)
+    if (ok) call get_integer(t, diag, k + 1, what // ' tag', -huge(1_i8), huge(1_i8), tag, ok)
+  end subroutine get_dimension_tag
 
   !> The end of a section of entity blocks: the items of the blocks add up
   !> to the count of the header line, then $End<section>.
