@@ -189,7 +189,7 @@ contains
     type(deck_t), intent(inout) :: deck
     type(stmt_t), intent(in) :: st
     type(key_values_t) :: v
-    logical :: ok_s, ok_m
+    logical :: ok_s, ok_m, rigid_master
     type(contact_deck_t) :: c
     type(contact_deck_t), allocatable :: grown(:)
     type(text_t), allocatable :: gs(:), gm(:)
@@ -199,7 +199,9 @@ contains
     nerr0 = s%nerr
     call read_keys(s, st, v)
     call split_side(s, st, v%text(1), 'slave', sbody, c%slave_boundary, ok_s)
-    if (allocated(v%text(2)%s) .and. index(v%text(2)%s, ':') == 0 .and. is_name(v%text(2)%s)) then
+    rigid_master = allocated(v%text(2)%s)             ! (Fortran does not cut .and. short)
+    if (rigid_master) rigid_master = index(v%text(2)%s, ':') == 0 .and. is_name(v%text(2)%s)
+    if (rigid_master) then
       mbody = v%text(2)%s                            ! master=RIGIDNAME: resolved after the deck
       c%master_boundary = ''
       ok_m = .false.
