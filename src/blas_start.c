@@ -108,15 +108,31 @@ int c2d_blas_start(int n, int64_t *left, int64_t *per_thread, int64_t *first)
     return n;
 }
 
+/* How long an idle OpenBLAS worker spins before it sleeps, as the exponent
+ * of a cycle count (OPENBLAS_THREAD_TIMEOUT, read once when OpenBLAS loads;
+ * its default, 28, is about 0.1 s).  A worker spinning through the phases
+ * that use OpenMP and no BLAS (the meshes, the assembly, the stresses) takes
+ * a core from them; 2^20 cycles, a fraction of a millisecond, outlasts the
+ * gaps between the BLAS calls of one factorization (doc/performance.md,
+ * "OpenBLAS's idle workers"). */
+static const char *const idle_spin = "20";
+
 /* Run by the C library after the libraries' constructors (OpenBLAS's has
- * started its workers) and before main; glibc passes main's arguments. */
-__attribute__((constructor)) static void restart_with_one_blas_thread(int argc, char **argv, char **envp)
+ * started its workers) and before main; glibc passes main's arguments.
+ * What OpenBLAS reads when it loads can only be given to it by executing
+ * the program again, once, with the environment set: one thread under a
+ * limit (see above), and the idle spin unless the user set one. */
+__attribute__((constructor)) static void restart_with_blas_settings(int argc, char **argv, char **envp)
 {
     struct rlimit rl;
+    int limited, spin;
     (void) argc;
     (void) envp;
-    if (openblas_get_num_threads == NULL || openblas_get_num_threads() <= 1) return;
-    if (getrlimit(RLIMIT_AS, &rl) != 0 || rl.rlim_cur == RLIM_INFINITY) return;
-    if (argv == NULL || setenv("OPENBLAS_NUM_THREADS", "1", 1) != 0) return;
+    if (argv == NULL || openblas_get_num_threads == NULL || openblas_get_num_threads() <= 1) return;
+    limited = getrlimit(RLIMIT_AS, &rl) == 0 && rl.rlim_cur != RLIM_INFINITY;
+    spin = getenv("OPENBLAS_THREAD_TIMEOUT") == NULL;
+    if (!limited && !spin) return;
+    if (limited && setenv("OPENBLAS_NUM_THREADS", "1", 1) != 0) return;
+    if (spin && setenv("OPENBLAS_THREAD_TIMEOUT", idle_spin, 1) != 0) return;
     (void) execv("/proc/self/exe", argv);   /* on failure: go on as loaded */
 }

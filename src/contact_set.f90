@@ -269,7 +269,7 @@ contains
   !>   bodies (in)  the bodies, dof0 set
   !>   specs  (in)  (npair) the CONTACT statements, resolved
   !>   cs     (out) the contact set
-  !>   err    (out) allocated on failure; message says which pair (1-based)
+  !>   err    (out) allocated on failure; err%pair is the pair (1-based, its CONTACT statement)
   subroutine build_contact_set(bodies, specs, cs, err)
     type(body_t), intent(in) :: bodies(:)
     type(pair_spec_t), intent(in) :: specs(:)
@@ -292,7 +292,8 @@ contains
         pr%spec = sp
         call boundary_polyline(bodies(sp%slave_body), sp%slave_bnd, pr%snode, pr%xs, nsl, why)
         if (len(why) > 0) then
-          call set_error(err, 'CONTACT ' // int_to_str(ip) // ': the slave boundary cannot be used: ' // why, 2)
+          call set_error(err, 'the slave boundary cannot be used: ' // why, 2)
+          err%pair = ip
           return
         end if
         if (sp%rigid > 0) then
@@ -300,7 +301,8 @@ contains
           call orient_shape(pr%spec%shape, pr%xs, nsl)
           call build_rigid_mortar(pr%xs, nsl, pr%spec%shape, pr%mortar, merr)
           if (allocated(merr)) then
-            call set_error(err, 'CONTACT ' // int_to_str(ip) // ': ' // merr%message, merr%status)
+            call set_error(err, merr%message, merr%status)
+            err%pair = ip
             return
           end if
           allocate(pr%mnode(0), pr%mcov(0))
@@ -311,7 +313,8 @@ contains
         end if
         call boundary_polyline(bodies(sp%master_body), sp%master_bnd, mnodes, xm, nms, why)
         if (len(why) > 0) then
-          call set_error(err, 'CONTACT ' // int_to_str(ip) // ': the master boundary cannot be used: ' // why, 2)
+          call set_error(err, 'the master boundary cannot be used: ' // why, 2)
+          err%pair = ip
           return
         end if
         pr%mnode = mnodes
@@ -339,7 +342,8 @@ contains
                             axisymmetric=bodies(sp%slave_body)%axisymmetric)
         end if
         if (allocated(merr)) then
-          call set_error(err, 'CONTACT ' // int_to_str(ip) // ': ' // merr%message, merr%status)
+          call set_error(err, merr%message, merr%status)
+          err%pair = ip
           return
         end if
         call finish_rows()
@@ -435,7 +439,7 @@ contains
         if (.not. pr%spec%interference) then
           call check_penetration(pr, err)
           if (allocated(err)) then
-            err%message = 'CONTACT ' // int_to_str(ip) // ': ' // err%message
+            err%pair = ip
             return
           end if
         end if

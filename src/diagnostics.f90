@@ -16,7 +16,7 @@
 !>   stop_input_errors(d) print them and exit 2 (only when there are any)
 !>   fail_numerical(text) print `contact2d: error: text` and exit 1
 !>   exit_program(status) terminate with the given status, printing nothing
-!>   type(error_t)        a mid-level error: message, exit status (1 or 2), the equation it names
+!>   type(error_t)        a mid-level error: message, exit status (1 or 2), the equation or pair it names
 !>   printable(text)      text with control and non-ASCII bytes replaced by '?'
 !>   set_out_of_memory(err, phase, bytes)
 !>                        err = `out of memory while PHASE (about N MB needed)`, status 1
@@ -49,6 +49,7 @@ module diagnostics
     character(len=:), allocatable :: message  !< text after `contact2d: error: `
     integer :: status = 1                      !< exit status: 1 numerical, 2 input
     integer :: equation = 0                    !< the free equation (row of K) it names, 0: none
+    integer :: pair = 0                        !< the contact pair (its CONTACT statement, 1-based) it names, 0: none
   end type error_t
 
   interface

@@ -111,6 +111,7 @@ module friction_lcp
   use lcp_solvers, only: lcp_options_t, lcp_report_t, solve_lcp_lemke, solve_lcp_pgs, pgs_outcome, &
     solve_lcp_lemke_scaled, scale_lcp, set_report, pgs_monitor_t, pgs_watch_start, pgs_watch_iterate, &
     pgs_watch_progress, pgs_refresh_sweeps, negative_diagonal, out_of_memory
+  use lcp_scaling, only: residual_outcome
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
   private
@@ -586,16 +587,9 @@ contains
 
     select case (lrep%info)
     case (0, 4)
-      if (rep%residual <= opts%tol) then
-        rep%info = 0
-        rep%message = 'friction Lemke: solved in ' // int_to_str(rep%iterations) // ' pivots (LCP of size ' // &
-          int_to_str(nz) // '), residual ' // real_to_str(rep%residual)
-      else
-        rep%info = 4
-        rep%message = 'friction Lemke: terminated after ' // int_to_str(rep%iterations) // &
-          ' pivots but the residual ' // real_to_str(rep%residual) // ' exceeds tol ' // &
-          real_to_str(opts%tol) // ' (G ill-conditioned)'
-      end if
+      call residual_outcome(rep, opts%tol, 'friction Lemke: solved in ' // int_to_str(rep%iterations) // &
+        ' pivots (LCP of size ' // int_to_str(nz) // ')', 'friction Lemke: terminated after ' // &
+        int_to_str(rep%iterations) // ' pivots', 'G ill-conditioned')
     case (1)
       rep%info = 1
       rep%message = 'friction Lemke: ray termination after ' // int_to_str(rep%iterations) // ' pivots: '

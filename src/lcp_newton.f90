@@ -75,7 +75,9 @@ module lcp_newton
   use lapack_interfaces, only: dgemv, dpotrf, dpotrs, dpstrf, drot, dsyrk, dtrsm
   use diagnostics, only: int_to_str, real_to_str
   use lcp_solvers, only: lcp_options_t, lcp_report_t, scale_lcp, solve_lcp_lemke, lcp_natural_residual, &
-                         measure_solution, set_report, max_diagonal, negative_diagonal
+                         measure_solution, set_report, max_diagonal
+  use lcp_scaling, only: check_lcp_sizes, check_lcp_values, residual_outcome
+  use sorting, only: sort_small
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
   private
@@ -161,38 +163,15 @@ contains
     mode = pdas_factor_auto
     if (present(factor_mode)) mode = factor_mode
     n = size(q)
-    if (size(W, 1) /= size(W, 2)) then
-      call set_report(rep, -1, 'LCP: W is not square (' // int_to_str(size(W, 1)) // ' x ' // &
-        int_to_str(size(W, 2)) // ')')
-    else if (size(W, 1) /= n) then
-      call set_report(rep, -2, 'LCP: q has ' // int_to_str(n) // ' entries, W is ' // &
-        int_to_str(size(W, 1)) // ' x ' // int_to_str(size(W, 1)))
-    else if (size(z) /= n) then
-      call set_report(rep, -3, 'LCP: z has ' // int_to_str(size(z)) // ' entries (expected ' // &
-        int_to_str(n) // ')')
-    else if (.not. (ieee_is_finite(opts%tol) .and. opts%tol > 0.0_dp)) then
-      call set_report(rep, -4, 'LCP: tol = ' // real_to_str(opts%tol) // ' (expected tol > 0)')
-    else if (opts%maxit < 0) then
-      call set_report(rep, -4, 'LCP: maxit = ' // int_to_str(opts%maxit) // ' (expected >= 0)')
-    else if (mode < pdas_factor_auto .or. mode > pdas_factor_update) then
+    call check_lcp_sizes(W, q, size(z), opts, rep)
+    if (rep%info == 0 .and. (mode < pdas_factor_auto .or. mode > pdas_factor_update)) &
       call set_report(rep, -6, 'PDAS: factor_mode = ' // int_to_str(mode) // ' (expected 0, 1 or 2)')
-    else if (.not. all(ieee_is_finite(W))) then
-      call set_report(rep, -1, 'LCP: W has non-finite entries')
-    else if (.not. all(ieee_is_finite(q))) then
-      call set_report(rep, -2, 'LCP: q has non-finite entries')
-    end if
+    if (rep%info == 0) call check_lcp_values(W, q, rep)
     if (rep%info < 0) then
       if (present(stats)) stats = st
       return
     end if
     dmax = max_diagonal(W)
-    i = negative_diagonal(W)
-    if (i > 0) then
-      call set_report(rep, -1, 'LCP: W(' // int_to_str(i) // ',' // int_to_str(i) // ') = ' // &
-        real_to_str(W(i, i)) // ' < 0 (W must be positive semi-definite)')
-      if (present(stats)) stats = st
-      return
-    end if
 
     ! Scale; zero rows of W (redundant constraints) are set aside with z_i = 0.
     allocate(d(n), wsf(n, n), qsf(n))
@@ -257,16 +236,8 @@ contains
 
     select case (outcome)
     case (0)
-      if (rep%residual <= opts%tol) then
-        rep%info = 0
-        rep%message = 'PDAS: solved in ' // int_to_str(st%steps) // ' Newton steps, residual ' // &
-          real_to_str(rep%residual)
-      else
-        rep%info = 4
-        rep%message = 'PDAS: active set settled after ' // int_to_str(st%steps) // &
-          ' Newton steps but the residual ' // real_to_str(rep%residual) // ' exceeds tol ' // &
-          real_to_str(opts%tol) // ' (W ill-conditioned)'
-      end if
+      call residual_outcome(rep, opts%tol, 'PDAS: solved in ' // int_to_str(st%steps) // ' Newton steps', &
+        'PDAS: active set settled after ' // int_to_str(st%steps) // ' Newton steps', 'W ill-conditioned')
       if (st%single_exchanges > 0) rep%message = rep%message // '; ' // &
         int_to_str(st%single_exchanges) // ' single-index steps against cycling'
       if (st%redundant > 0) rep%message = rep%message // '; ' // int_to_str(st%redundant) // &
@@ -599,7 +570,8 @@ contains
     newcomers = joining
     call sort_by_key(newcomers, gap)                    ! most violated first
     if (use_givens) then
-      call sort_descending(positions)
+      call sort_small(positions)
+      positions = positions(size(positions):1:-1)     ! largest first: a deletion moves no position still to come
       do j = 1, r                                       ! highest position first
         call delete_position(f, positions(j))
       end do
@@ -851,21 +823,5 @@ contains
       idx(root) = v
     end subroutine sift_down
   end subroutine sort_by_key
-
-  !> Insertion sort, largest first (a few entries).
-  subroutine sort_descending(a)
-    integer, intent(inout) :: a(:)
-    integer :: i, j, v
-    do i = 2, size(a)
-      v = a(i)
-      j = i - 1
-      do while (j >= 1)
-        if (a(j) >= v) exit
-        a(j + 1) = a(j)
-        j = j - 1
-      end do
-      a(j + 1) = v
-    end do
-  end subroutine sort_descending
 
 end module lcp_newton
