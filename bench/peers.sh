@@ -15,10 +15,11 @@
 # on one core, at least 10x faster than the faster peer at every accuracy
 # both reach.  A peer that is not installed is skipped with a message.
 # Outputs go to bench/out/peers/ (PEERS_OUT); PEERS_HC overrides the sweep,
-# PEERS_SERIES the series (code:kind,...), PEERS_REF_HC the reference's size,
-# PEERS_GRADE the grading ratio, PEERS_THREADS the threads per process (1),
-# PEERS_TIMEOUT the wall-time limit of one run (s, default 900), PEERS_REF_HC_P1
-# the P1 reference's finest size, PEERS_A the zone's half-width (default: located).
+# PEERS_SERIES the series (code:kind,...), PEERS_REF_HC the reference's finest
+# size (levels 4, 2, 1 x it), PEERS_THREADS the threads per process (1),
+# PEERS_TIMEOUT the wall-time limit of one run (s, default 300),
+# PEERS_SERIES_STOP the CPU time (s, default 30) after which a series runs no
+# finer point, PEERS_A the zone's half-width (default: located).
 # PEERS_DOC=doc/accuracy-cost.md puts the tables (printed in markdown) into
 # that page between its "bench/peers.sh" markers.
 set -eu
@@ -42,18 +43,12 @@ for s in $(echo "$series" | tr , ' '); do
   esac
   keep=${keep:+$keep,}$s
 done
-# the energy-norm error tool of the studies, built once per output folder
-mkdir -p "$out/bin"
-if [ ! -x "$out/bin/c2dh1" ] || [ "$top/studies/c2dh1.f90" -nt "$out/bin/c2dh1" ]; then
-  gfortran -std=f2008 -O2 -J "$out/bin" -o "$out/bin/c2dh1" "$top/studies/c2dh1.f90"
-fi
-set -- --prog "$prog" --out "$out" --series "$keep" --reps "$reps" --threads "${PEERS_THREADS:-1}" \
-  --c2dh1 "$out/bin/c2dh1"
+"$py" -c 'import numpy, scipy' >/dev/null 2>&1 || { echo "peers: $py needs numpy and scipy (apt-get install python3-scipy)" >&2; exit 1; }
+set -- --prog "$prog" --out "$out" --series "$keep" --reps "$reps" --threads "${PEERS_THREADS:-1}"
 [ -z "${PEERS_HC:-}" ] || set -- "$@" --hc "$PEERS_HC"
 [ -z "${PEERS_REF_HC:-}" ] || set -- "$@" --ref-hc "$PEERS_REF_HC"
-[ -z "${PEERS_REF_HC_P1:-}" ] || set -- "$@" --ref-hc-p1 "$PEERS_REF_HC_P1"
 [ -z "${PEERS_A:-}" ] || set -- "$@" --a "$PEERS_A"
-[ -z "${PEERS_GRADE:-}" ] || set -- "$@" --grade "$PEERS_GRADE"
+[ -z "${PEERS_SERIES_STOP:-}" ] || set -- "$@" --series-stop "$PEERS_SERIES_STOP"
 [ -z "${PEERS_TIMEOUT:-}" ] || set -- "$@" --timeout "$PEERS_TIMEOUT"
 [ -z "${PEERS_DOC:-}" ] || set -- "$@" --doc "$(cd "$(dirname "$PEERS_DOC")" && pwd)/$(basename "$PEERS_DOC")"
 exec "$py" "$top/bench/peers/driver.py" "$@"

@@ -65,7 +65,7 @@ def ccx_profile(bfile, dfile, job, out, vtk=None):
             raise ValueError(f"{job}.frd: no DISP block")
         noff = max(bn)
         write_vtk(vtk, [(bn, bt, {n: u[n][:2] for n in bn}),
-                        (dn, dt, {n: u[n + noff][:2] for n in dn})])
+                        (dn, dt, {n: u[n + noff][:2] for n in dn})], order)
 
 
 if __name__ == "__main__":

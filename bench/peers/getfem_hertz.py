@@ -18,8 +18,9 @@ block top nodes with P = the vertical reaction on the disk top (the integral
 of the Dirichlet multiplier) and the Newton outcome.  The lumped weight is the
 row sum of the trace mass matrix: half of each neighbouring edge for P1, and
 Simpson's weights for P2 (a corner takes h/6 of each edge, a midside node
-2h/3), so that a uniform pressure is read back exactly.  With OUT.vtk (P1
-only) the displacement at the mesh nodes goes there too (field_vtk.py).  Exit
+2h/3), so that a uniform pressure is read back exactly.  With OUT.vtk the
+displacement goes there too (field_vtk.py; P2: at the corners and edge
+midpoints of the straight-edged mesh, as 6-node triangles).  Exit
 status 3 when Newton did not converge (the outputs are written all the same).
 The CPU time spent writing OUT.vtk goes to OUT.vtk.cpu.
 """
@@ -88,15 +89,26 @@ def main():
         w[1::2] = 2.0 * h / 3.0
     write_profile(out, list(xs), list(force / w), P=float(P), dofs=mf1.nbdof() + mf2.nbdof(),
                   newton_iterations=int(nit), converged=int(conv), order=degree)
-    if vtk is not None and degree == 1:
+    if vtk is not None:
         t_vtk = time.process_time()
         parts = []
         for (nodes, tris, _), mf, name in ((bmesh, mf1, "u1"), (dmesh, mf2, "u2")):
             u = md.variable(name)
             xy = mf.basic_dof_nodes()
             at = {(round(xy[0, k], 9), round(xy[1, k], 9)): (u[k], u[k + 1]) for k in range(0, mf.nbdof(), 2)}
-            parts.append((nodes, tris, {n: at[round(x, 9), round(y, 9)] for n, (x, y) in nodes.items()}))
-        write_vtk(vtk, parts)
+            if degree == 2:             # the straight-edged mesh: the P2 dofs at the corners and edge midpoints
+                nodes, tris6 = dict(nodes), []
+                for t in tris:
+                    mids = []
+                    for i, j in ((0, 1), (1, 2), (2, 0)):
+                        key = (min(t[i], t[j]), max(t[i], t[j]))
+                        nodes.setdefault(key, tuple(0.5 * (nodes[t[i]][d] + nodes[t[j]][d]) for d in (0, 1)))
+                        mids.append(key)
+                    tris6.append(tuple(t[:3]) + tuple(mids))
+                tris = tris6
+            used = {n for t in tris for n in t}
+            parts.append((nodes, tris, {n: at[round(nodes[n][0], 9), round(nodes[n][1], 9)] for n in used}))
+        write_vtk(vtk, parts, degree)
         with open(vtk + ".cpu", "w") as f:             # the driver does not count this in the solve's time
             f.write(f"{time.process_time() - t_vtk!r}\n")
     return 0 if conv else 3

@@ -116,14 +116,20 @@ def rel_error(run_path, ref_path):
     return int(meta.get("dofs", 0)), num / den
 
 
+class Checks:
+    """PASS/FAIL lines of a self-test, and the count of failures."""
+
+    def __init__(self):
+        self.fails = 0
+
+    def __call__(self, ok, name, detail):
+        print(("PASS " if ok else "FAIL ") + name + ("" if ok else ": " + detail))
+        self.fails += 0 if ok else 1
+
+
 def self_test():
     """Closed-form checks; returns the number of failures."""
-    fails = 0
-
-    def check(ok, name, detail):
-        nonlocal fails
-        print(("PASS " if ok else "FAIL ") + name + ("" if ok else ": " + detail))
-        fails += 0 if ok else 1
+    check = Checks()
 
     # 1. linear reference x + 2 on [-1, 1] (5 nodes), run = the same line + c on
     #    7 other nodes: || c ||^2 = 2 c^2, || x + 2 ||^2 = 2/3 + 8.
@@ -158,7 +164,7 @@ def self_test():
     num, den = l2_diff(Profile([-0.5, 0.5], [1.0, 1.0]), Profile([-1.0, 0.0, 1.0], [1.0, 1.0, 1.0]))
     check(abs(num / den - math.sqrt(0.5)) <= 1e-14, "ref_err: no pressure outside the run's span",
           f"{num / den!r}")
-    return fails
+    return check.fails
 
 
 def main(argv):

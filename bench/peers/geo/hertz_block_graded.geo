@@ -12,7 +12,7 @@ Include "../../../input/hertz_block.geo";
 Physical Curve("contact") = {4};
 If (graded)
   Field[2] = MathEval;
-  Field[2].F = Sprintf("%g + %g * Sqrt((Fabs(x) - %g)^2 + y^2)", hz, g, a);
+  Field[2].F = Sprintf("%.10g + %.10g * Sqrt((Fabs(x) - %.10g)^2 + y^2)", hz, g, a);
   Field[3] = Min;
   Field[3].FieldsList = {1, 2};
   Background Field = 3;
