@@ -89,7 +89,7 @@ module mortar_operator
   use axisymmetric_elements, only: radial_weight
   implicit none
   private
-  public :: mortar_t, build_mortar, zone_node_terms, zone_point, segment_rule
+  public :: mortar_t, build_mortar, start_mortar, zone_node_terms, zone_point, segment_rule
 
   !> The mortar operator of one contact pair.
   type :: mortar_t
@@ -117,6 +117,25 @@ module mortar_operator
   real(dp), parameter :: tol_sliver = 2.0e-2_dp    ! longest uncovered piece of a zone-end segment extended
 
 contains
+
+  !> Size an operator for ns slave and nm master nodes, every field zero and no
+  !> node constrained: the start of both builders (linear and quadratic traces).
+  !>   mortar (inout) the operator; its arrays (re)allocated
+  !>   ns, nm (in)    slave and master polyline nodes
+  subroutine start_mortar(mortar, ns, nm)
+    type(mortar_t), intent(inout) :: mortar
+    integer, intent(in) :: ns, nm
+    mortar%ns = ns
+    mortar%nm = nm
+    allocate(mortar%normal(2, ns), mortar%P(ns, nm), mortar%gap0(ns), mortar%weight(ns), mortar%arc(ns))
+    allocate(mortar%covered_weight(ns), mortar%zone_weight(ns), mortar%constrained(ns))
+    mortar%P = 0.0_dp
+    mortar%gap0 = 0.0_dp
+    mortar%weight = 0.0_dp
+    mortar%covered_weight = 0.0_dp
+    mortar%zone_weight = 0.0_dp
+    mortar%constrained = .false.
+  end subroutine start_mortar
 
   !> Build the mortar operator pi_h^1 (eq. (8)) of one contact pair, its effective
   !> zone, nodal normals, weights and initial gaps; see the module header.
@@ -153,16 +172,7 @@ contains
     ns = size(xs, 2)
     nm = size(xm, 2)
     if (present(axisymmetric)) mortar%axisymmetric = axisymmetric
-    mortar%ns = ns
-    mortar%nm = nm
-    allocate(mortar%normal(2, ns), mortar%P(ns, nm), mortar%gap0(ns), mortar%weight(ns))
-    allocate(mortar%covered_weight(ns), mortar%zone_weight(ns), mortar%arc(ns), mortar%constrained(ns))
-    mortar%P = 0.0_dp
-    mortar%zone_weight = 0.0_dp
-    mortar%gap0 = 0.0_dp
-    mortar%weight = 0.0_dp
-    mortar%covered_weight = 0.0_dp
-    mortar%constrained = .false.
+    call start_mortar(mortar, ns, nm)
 
     ! Arc length and nodal normals (normalized sum of the adjacent segment normals).
     allocate(seglen(ns - 1))

@@ -68,7 +68,7 @@ module mortar_quadratic
   use lapack_interfaces, only: dgbsv, dgesv
   use diagnostics, only: error_t, set_error, int_to_str
   use mortar_geometry, only: real_to_str
-  use mortar_operator, only: mortar_t
+  use mortar_operator, only: mortar_t, start_mortar
   implicit none
   private
   public :: build_mortar_quadratic, trace_point, gauss4
@@ -124,17 +124,8 @@ contains
     ns = size(xs, 2)
     nm = size(xm, 2)
     nes = (ns - 1) / ps
-    mortar%ns = ns
-    mortar%nm = nm
-    allocate(mortar%normal(2, ns), mortar%P(ns, nm), mortar%gap0(ns), mortar%weight(ns), mortar%arc(ns))
-    allocate(mortar%covered_weight(ns), mortar%zone_weight(ns), mortar%constrained(ns))
+    call start_mortar(mortar, ns, nm)
     allocate(mcov(nm), source=0.0_dp)
-    mortar%P = 0.0_dp
-    mortar%gap0 = 0.0_dp
-    mortar%weight = 0.0_dp
-    mortar%covered_weight = 0.0_dp
-    mortar%zone_weight = 0.0_dp
-    mortar%constrained = .false.
     closed = all(xs(:, 1) == xs(:, ns))
     extended = .false.
 
