@@ -13,7 +13,7 @@
 !> run log says what was done; bad input exits 2, a numerical failure or a
 !> problem without equilibrium exits 1, with the diagnosis.
 program contact2d
-  use diagnostics, only: fail_numerical, exit_program
+  use diagnostics, only: error_t, fail_numerical, exit_program
   use command_line, only: parse_command_line
   use threads, only: start_threads
   use run_state, only: run_t
@@ -24,7 +24,6 @@ program contact2d
   use post_processing, only: compute_results
   use run_outputs, only: write_outputs
   use run_report, only: start_clock, report_run
-  use diagnostics, only: error_t
   implicit none
 
   type(run_t) :: run

@@ -159,7 +159,7 @@ contains
     do while (s <= nfc)
       call trailing_block_end(factor, nfc, s, e, err)
       if (allocated(err)) then
-        if (index(err%message, 'out of memory') /= 1) &
+        if (.not. err%no_memory) &
           err%message = 'cannot extract the contact block of the Cholesky factor: ' // err%message
         return
       end if
@@ -178,7 +178,7 @@ contains
       nb = e - s + 1
       call trailing_factor_block(factor, nfc, lcc, err, first=s, count=nb)
       if (allocated(err)) then
-        if (index(err%message, 'out of memory') /= 1) &
+        if (.not. err%no_memory) &
           err%message = 'cannot extract the contact block of the Cholesky factor: ' // err%message
         return
       end if

@@ -115,7 +115,7 @@ contains
     if (sol%rep%info /= 0) then
       if (sol%rep%info == 1 .and. run%rsplit%k > 0) call diagnose_pulled_rigid(run)
       if (allocated(sol%rep%message)) then
-        if (index(sol%rep%message, 'out of memory') == 1) call fail_numerical(sol%rep%message)
+        if (sol%rep%no_memory) call fail_numerical(sol%rep%message)
         call fail_numerical(step_prefix(run) // 'contact problem not solved: ' // sol%rep%message)
       else
         call fail_numerical(step_prefix(run) // 'contact problem not solved by ' // method // ' (info ' // &
@@ -145,9 +145,14 @@ contains
   subroutine solve_earlier_steps(run)
     type(run_t), intent(inout) :: run
     type(results_t) :: saved
+    character(len=:), allocatable :: parameter(:)
     type(mode_split_t) :: split_n
     real(dp), allocatable :: fk(:), ubk(:), u0k(:), cq(:), q_n(:)
     integer :: kstep
+    ! the deck's parameters stay out of the copies of res: gfortran's assignment of a
+    ! derived type loses the length of a deferred-length character array component
+    ! (it wrote NUL bytes for `parameter mu 0.3` of rigid/friction/slide)
+    call move_alloc(run%res%parameter, parameter)
     saved = run%res
     split_n = run%split
     if (allocated(run%q)) q_n = run%q
@@ -184,6 +189,7 @@ contains
     if (allocated(q_n)) run%q = q_n
     run%step_note = 'load step ' // int_to_str(run%sc%steps) // ' of ' // int_to_str(run%sc%steps) // ': '
     call step_loads(run%sc, run%sc%steps, fk, ubk)         ! the bodies' thermal strains of the final step
+    call move_alloc(parameter, run%res%parameter)
   end subroutine solve_earlier_steps
 
   !> Frictional contact in load steps: at step k the loads are the ramps'
@@ -202,6 +208,7 @@ contains
     integer :: n, nt, kstep, g, r, iterations
     logical :: floating
     type(results_t) :: saved
+    character(len=:), allocatable :: parameter(:)
     character(len=200) :: line
     type(error_t), allocatable :: err
 
@@ -236,6 +243,10 @@ contains
     end if
     allocate(z(n + nt), cu(n + nt), qn(n), qt(nt), sprev(nt), run%res%fstate(nt))
     if (run%deck%output%steps_all) then
+      ! the deck's parameters stay out of the copies of res: gfortran's assignment of a
+      ! derived type loses the length of a deferred-length character array component
+      ! (it wrote NUL bytes for `parameter mu 0.3` of rigid/friction/slide)
+      call move_alloc(run%res%parameter, parameter)
       saved = run%res
       allocate(fk(run%sc%ndof), ubk(run%sc%ndof))
     end if
@@ -258,7 +269,7 @@ contains
                                      unbalanced, cause)
         if (rep%info == no_equilibrium) call fail_numerical('friction, load step ' // int_to_str(kstep) // ' of ' // &
           int_to_str(run%sc%steps) // ': ' // floating_no_equilibrium(run, unbalanced, cause))
-        if (rep%info /= 0 .and. index(rep%message, 'out of memory') /= 1) call fail_numerical('friction, load step ' &
+        if (rep%info /= 0 .and. .not. rep%no_memory) call fail_numerical('friction, load step ' &
           // int_to_str(kstep) // ' of ' // int_to_str(run%sc%steps) // ': no equilibrium found for the bodies held ' // &
           'only by contact (' // floating_names(run) // '): ' // rep%message)
         cu = cu + matmul(hh, alpha)                ! C u0 + C R alpha: the step's rigid motion
@@ -270,7 +281,7 @@ contains
         call solve_friction_lcp(run%w, qn, qt, run%cs%tan_row, run%cs%tan_mu, run%cs%tan_bound, method, opts, z, rep)
       end if
       iterations = iterations + rep%iterations
-      if (rep%info /= 0 .and. index(rep%message, 'out of memory') == 1) call fail_numerical(rep%message)
+      if (rep%info /= 0 .and. rep%no_memory) call fail_numerical(rep%message)
       if (rep%info /= 0) call fail_numerical('friction, load step ' // int_to_str(kstep) // ' of ' // &
         int_to_str(run%sc%steps) // ': contact problem not solved: ' // rep%message)
       if (.not. all(ieee_is_finite(z))) call fail_numerical('friction, load step ' // int_to_str(kstep) // &
@@ -315,6 +326,7 @@ contains
     end do
     run%res%stick_nodes = count(run%res%fstate == 1)
     run%res%slip_nodes = count(run%res%fstate == 2)
+    if (allocated(parameter)) call move_alloc(parameter, run%res%parameter)
   end subroutine solve_friction_steps
 
   !> One step's displacement from its multipliers z (res%mu, res%gap, ...

@@ -16,10 +16,11 @@
 !>   stop_input_errors(d) print them and exit 2 (only when there are any)
 !>   fail_numerical(text) print `contact2d: error: text` and exit 1
 !>   exit_program(status) terminate with the given status, printing nothing
-!>   type(error_t)        a mid-level error: message, exit status (1 or 2), the equation or pair it names
+!>   type(error_t)        a mid-level error: message, exit status (1 or 2), the equation or pair it names,
+!>                        whether K is singular or memory ran out
 !>   printable(text)      text with control and non-ASCII bytes replaced by '?'
 !>   set_out_of_memory(err, phase, bytes)
-!>                        err = `out of memory while PHASE (about N MB needed)`, status 1
+!>                        err = `out of memory while PHASE (about N MB needed)`, status 1, no_memory
 !>   real_to_str(x)       4 significant digits, any exponent (1.000E-05, 1.000E-300)
 module diagnostics
   use kinds, only: dp, i8
@@ -50,6 +51,8 @@ module diagnostics
     integer :: status = 1                      !< exit status: 1 numerical, 2 input
     integer :: equation = 0                    !< the free equation (row of K) it names, 0: none
     integer :: pair = 0                        !< the contact pair (its CONTACT statement, 1-based) it names, 0: none
+    logical :: singular = .false.              !< K singular or not positive definite (at equation, when > 0)
+    logical :: no_memory = .false.             !< an allocation failed (set_out_of_memory)
   end type error_t
 
   interface
@@ -164,6 +167,7 @@ contains
     integer(i8), intent(in) :: bytes
     call set_error(err, 'out of memory while ' // phase // ' (about ' // &
                    i8_to_str(max(1_i8, (bytes + 1048575_i8) / 1048576_i8)) // ' MB needed)', 1)
+    err%no_memory = .true.
   end subroutine set_out_of_memory
 
   !> Decimal text of an integer, no blanks.

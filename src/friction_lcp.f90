@@ -110,8 +110,8 @@ module friction_lcp
   use diagnostics, only: int_to_str, real_to_str, error_t, set_out_of_memory
   use lcp_solvers, only: lcp_options_t, lcp_report_t, solve_lcp_lemke, solve_lcp_pgs, pgs_outcome, &
     solve_lcp_lemke_scaled, scale_lcp, set_report, pgs_monitor_t, pgs_watch_start, pgs_watch_iterate, &
-    pgs_watch_progress, pgs_refresh_sweeps, negative_diagonal, out_of_memory
-  use lcp_scaling, only: residual_outcome
+    pgs_watch_progress, pgs_refresh_sweeps, negative_diagonal
+  use lcp_scaling, only: residual_outcome, report_out_of_memory
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
   private
@@ -197,8 +197,8 @@ contains
 
     call scale_friction(g, qn, qt, trow, cmu, bound, p, info)
     if (info /= 0) then
-      call set_report(rep, 3, out_of_memory('scaling the friction LCP (' // int_to_str(size(g, 1)) // ' rows)', &
-                                            scaled_bytes(size(g, 1))))
+      call report_out_of_memory(rep, 'scaling the friction LCP (' // int_to_str(size(g, 1)) // ' rows)', &
+                                scaled_bytes(size(g, 1)))
       lam = 0.0_dp
       return
     end if
@@ -547,8 +547,8 @@ contains
     js = n + 2 * nt                                    ! sigma = z(js+1 : js+nt)
     allocate(m(nz, nz), q(nz), d(nz), z(nz), stat=i)
     if (i /= 0) then
-      call set_report(rep, 3, out_of_memory('solving the friction LCP by Lemke (' // int_to_str(nz) // ' unknowns)', &
-                                            8.0_dp * real(nz, dp) * real(nz, dp)))
+      call report_out_of_memory(rep, 'solving the friction LCP by Lemke (' // int_to_str(nz) // ' unknowns)', &
+                                8.0_dp * real(nz, dp) * real(nz, dp))
       lam = 0.0_dp
       return
     end if
@@ -616,8 +616,9 @@ contains
     case default
       rep%info = lrep%info
       ! out of memory keeps the program's wording (`out of memory while ...`)
-      if (index(lrep%message, 'out of memory') == 1) then
+      if (lrep%no_memory) then
         rep%message = lrep%message
+        rep%no_memory = .true.
       else
         rep%message = 'friction ' // lrep%message
       end if

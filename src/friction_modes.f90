@@ -225,6 +225,7 @@ contains
       allocate(m(nx, nx), q(nx), d(nx), y(nx), ws(ny, ny), qs(ny), stat=k)
       if (k /= 0) then
         call set_report(rep, 3, 'out of memory in the existence test of the friction equilibrium')
+        rep%no_memory = .true.
         return
       end if
       m = 0.0_dp
@@ -281,6 +282,7 @@ contains
     if (st /= 0) then
       call set_report(rep, 3, 'out of memory: solving the friction LCP with rigid modes by Lemke (' // &
         int_to_str(nz) // ' unknowns)')
+      rep%no_memory = .true.
       return
     end if
     m = 0.0_dp

@@ -24,7 +24,7 @@ module lcp_lemke
   use lapack_interfaces, only: daxpy, dgemv, dger
   use diagnostics, only: int_to_str, real_to_str
   use lcp_scaling, only: lcp_options_t, lcp_report_t, scaled_lcp_t, prepare_lcp, measure_solution, scale_of, &
-                         set_report, out_of_memory, residual_outcome
+                         set_report, report_out_of_memory, residual_outcome
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
   private
@@ -143,8 +143,8 @@ contains
     p%m = n
     allocate(p%d(n), p%rows(n), p%ws(n, n), p%qs(n), zs(n), stat=st)
     if (st /= 0) then
-      call set_report(rep, 3, out_of_memory('scaling the LCP (' // int_to_str(n) // ' rows)', &
-                                            8.0_dp * real(n, dp) * real(n, dp)))
+      call report_out_of_memory(rep, 'scaling the LCP (' // int_to_str(n) // ' rows)', &
+                                8.0_dp * real(n, dp) * real(n, dp))
       return
     end if
     p%d = d
@@ -199,9 +199,8 @@ contains
     jrhs = 2 * m + 2
     allocate(t(m, jrhs), basis(m), stat=st)
     if (st /= 0) then
-      rep%info = 3
-      rep%message = out_of_memory('solving the LCP by Lemke (a tableau of ' // int_to_str(m) // ' rows)', &
-                                  8.0_dp * real(m, dp) * real(jrhs, dp))
+      call report_out_of_memory(rep, 'solving the LCP by Lemke (a tableau of ' // int_to_str(m) // ' rows)', &
+                                8.0_dp * real(m, dp) * real(jrhs, dp))
       return
     end if
     t = 0.0_dp

@@ -3,7 +3,7 @@
 !>
 !> LCP(W, q): find z >= 0 with w = q + W z >= 0 and z'w = 0, W (n x n) the
 !> symmetric positive semi-definite Delassus matrix (conventions, scaling and
-!> residual as in lcp_solvers).  The method works on the scaled problem
+!> residual as in lcp_scaling).  The method works on the scaled problem
 !>     Ws = D W D,  qs = D q,  D = diag(1/sqrt(W_ii))        (scale_lcp)
 !> and is Newton's method on the semismooth equation
 !>     F(zs) = zs - max(0, zs - c ws) = 0,   ws = qs + Ws zs,   c = 1,
@@ -56,6 +56,10 @@
 !> not a P-matrix) or a step cannot change the active set (a redundant
 !> constraint stays infeasible), the problem is handed to solve_lcp_lemke and
 !> the message says so.
+!>
+!> One file of about 830 lines: the active-set iteration and the Cholesky
+!> factor of Ws_AA it updates in place (append, delete, truncate) are one
+!> algorithm sharing one private type; apart, neither would read alone.
 !>
 !> Programming interface
 !>   solve_lcp_pdas(W, q, z, opts, rep [, factor_mode] [, stats])

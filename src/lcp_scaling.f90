@@ -34,6 +34,7 @@
 !>   check_lcp_sizes(W, q, nz, opts, rep), check_lcp_values(W, q, rep)   the argument checks
 !>   residual_outcome(rep, tol, solved, stopped, cause)   info 0 or 4 and the message from the residual
 !>   set_report(rep, info, message), out_of_memory(phase, bytes)
+!>   report_out_of_memory(rep, phase, bytes)   info 3, no_memory, `out of memory while PHASE (...)`
 module lcp_scaling
   use kinds, only: dp, i8
   use lapack_interfaces, only: dgemv
@@ -43,7 +44,7 @@ module lcp_scaling
   private
   public :: lcp_options_t, lcp_report_t, scaled_lcp_t
   public :: prepare_lcp, scale_lcp, measure_solution, lcp_natural_residual, max_diagonal, negative_diagonal, scale_of
-  public :: set_report, out_of_memory, check_lcp_sizes, check_lcp_values, residual_outcome
+  public :: set_report, out_of_memory, report_out_of_memory, check_lcp_sizes, check_lcp_values, residual_outcome
 
   !> Solver settings.
   type :: lcp_options_t
@@ -59,6 +60,7 @@ module lcp_scaling
     real(dp) :: residual = 0.0_dp            !< scaled natural residual of the returned z
     real(dp) :: complementarity = 0.0_dp     !< scaled complementarity of the returned z
     character(len=:), allocatable :: message !< one-line summary or diagnostic
+    logical :: no_memory = .false.           !< info 3 because an allocation failed (message: out of memory while ...)
   end type lcp_report_t
 
   !> The scaled problem restricted to the rows with a positive diagonal.
@@ -140,8 +142,8 @@ contains
 
     allocate(p%rows(p%m), p%ws(p%m, p%m), p%qs(p%m), stat=st)
     if (st /= 0) then
-      call set_report(rep, 3, out_of_memory('scaling the LCP (' // int_to_str(p%m) // ' rows)', &
-                                            8.0_dp * real(p%m, dp) * real(p%m, dp)))
+      call report_out_of_memory(rep, 'scaling the LCP (' // int_to_str(p%m) // ' rows)', &
+                                8.0_dp * real(p%m, dp) * real(p%m, dp))
       return
     end if
     p%m = 0
@@ -373,6 +375,19 @@ contains
   end function scale_of
 
   !> rep%info = info, rep%message = message.
+  !> A solve that could not allocate what it needs: info 3, no_memory set (a
+  !> caller tells it from a failure of the method without reading the text).
+  !>   rep   (inout) the report
+  !>   phase (in)    what the solver was doing
+  !>   bytes (in)    what it needed, >= 0
+  subroutine report_out_of_memory(rep, phase, bytes)
+    type(lcp_report_t), intent(inout) :: rep
+    character(len=*), intent(in) :: phase
+    real(dp), intent(in) :: bytes
+    call set_report(rep, 3, out_of_memory(phase, bytes))
+    rep%no_memory = .true.
+  end subroutine report_out_of_memory
+
   subroutine set_report(rep, info, message)
     type(lcp_report_t), intent(inout) :: rep
     integer, intent(in) :: info

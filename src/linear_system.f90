@@ -276,7 +276,7 @@ contains
     character(len=:), allocatable :: text
     integer :: b
     text = e%message // equation_location(run, e%equation)
-    if (index(e%message, 'stiffness matrix is singular') /= 1) return
+    if (.not. e%singular) return
     do b = 1, size(run%sc%bodies)
       ! beyond 1e12, K keeps fewer than 4 digits of u = 1.1e-16
       if (tensor_condition(run%sc%bodies(b)%law) > 1.0e12_dp) then

@@ -249,7 +249,8 @@ contains
     call put_line(tb, 'SCALARS ' // name // ' double 1')
     call put_line(tb, 'LOOKUP_TABLE default')
     call gather(values, 1, index, v)
-    call put_rows(tb, row_values, size(values), v)
+    ! a row per point or cell: a node array (ndof / 2) runs past the points when RIGIDs add dofs
+    call put_rows(tb, row_values, size(index), v)
   end subroutine put_scalars
 
   !> Rows 1..n of one section of the VTK file (kind: row_*), formatted in

@@ -473,6 +473,7 @@ contains
     integer(c_int), intent(in) :: column, equation
     call set_error(err, singular_message(global_equation(pt, equation), global_pivot(f%n, f%nlast, pt, column)), 1)
     err%equation = global_equation(pt, equation)
+    err%singular = .true.
   end subroutine set_singular
 
   !> Statistics of the parts' handles into f: nnz(L), flops and CHOLMOD's

@@ -98,7 +98,9 @@ def vtk(path):
             out[section][name] = [vals[k * ncomp:(k + 1) * ncomp] for k in range(count)]
             i += ncomp * count
         else:
-            i += 1
+            # every value belongs to a section of the size its header says:
+            # a stray one means a section has more rows than points or cells
+            raise ValueError(f"{path}: unexpected {w!r} after the values of a section")
     return out
 
 

@@ -763,7 +763,8 @@ contains
 
   !> A free body (no dof held: its rigid-body modes make K singular) is
   !> reported, with the equation a field of the error: err%equation is a dof
-  !> of A, the one the message names; METIS and AMD on the node graph.
+  !> of A, the one the message names, and err%singular set (the caller's
+  !> test, not the text); METIS and AMD on the node graph.
   subroutine test_singular_equation()
     type(csc_t) :: A
     type(factor_t) :: f
@@ -781,6 +782,7 @@ contains
       call check(err%equation >= 1 .and. err%equation <= A%n .and. &
                  contains_text(err%message, 'singular or not positive definite at equation ' // itoa(err%equation) // ' '), &
                  trim(methods(im)) // ': err%equation (' // itoa(err%equation) // ') is the equation the message names')
+      call check(err%singular .and. .not. err%no_memory, trim(methods(im)) // ': err%singular set, err%no_memory not')
     end do
   end subroutine test_singular_equation
 
