@@ -29,7 +29,8 @@
 !>   axi_edge_load_quadratic(xe, t, pr, fe)    as elements' edge_load_quadratic, 2 pi r ds
 module axisymmetric_elements
   use kinds, only: dp
-  use elements, only: shape_at, stiffness_rule, quadrature_rule, corner_count, max_nen, strain_operator
+  use elements, only: shape_at, stiffness_rule, quadrature_rule, corner_count, max_nen, strain_operator, &
+                      edge_load_quadratic
   implicit none
   private
   public :: radial_weight, axi_element_stiffness, axi_element_force, axi_element_body_load, axi_thermal_load
@@ -184,22 +185,7 @@ contains
   pure subroutine axi_edge_load_quadratic(xe, t, pr, fe)
     real(dp), intent(in) :: xe(2, 3), t(2), pr
     real(dp), intent(out) :: fe(6)
-    real(dp), parameter :: g3(3) = [-sqrt(0.6_dp), 0.0_dp, sqrt(0.6_dp)]
-    real(dp), parameter :: w3(3) = [5.0_dp, 8.0_dp, 5.0_dp] / 9.0_dp
-    real(dp) :: s, n(3), dn(3), tang(2), f(2), r
-    integer :: q, a
-    fe = 0.0_dp
-    do q = 1, 3
-      s = g3(q)
-      n = [0.5_dp * s * (s - 1), 0.5_dp * s * (s + 1), 1 - s * s]
-      dn = [s - 0.5_dp, s + 0.5_dp, -2 * s]
-      tang = xe(:, 1) * dn(1) + xe(:, 2) * dn(2) + xe(:, 3) * dn(3)      ! dx/ds
-      r = dot_product(n, xe(1, :))
-      f = t * norm2(tang) + pr * [tang(2), -tang(1)]                     ! (t + pr n_r) |dx/ds|
-      do a = 1, 3
-        fe(2 * a - 1:2 * a) = fe(2 * a - 1:2 * a) + (w3(q) * radial_weight(r) * n(a)) * f
-      end do
-    end do
+    call edge_load_quadratic(xe, t, pr, two_pi, fe, radial=.true.)
   end subroutine axi_edge_load_quadratic
 
 end module axisymmetric_elements

@@ -194,23 +194,73 @@ contains
     type(parameter_set_t), intent(in) :: set
     real(dp), intent(out) :: x
     character(len=:), allocatable, intent(inout) :: message
+    call parse_terms(c, set, '+-', x, message)
+  end subroutine parse_sum
+
+  !> The terms of a sum (ops '+-', each a product) or of a product (ops '*/',
+  !> each a unary), combined left to right: operand { op operand }.
+  recursive subroutine parse_terms(c, set, ops, x, message)
+    type(cursor_t), intent(inout) :: c
+    type(parameter_set_t), intent(in) :: set
+    character(len=2), intent(in) :: ops
+    real(dp), intent(out) :: x
+    character(len=:), allocatable, intent(inout) :: message
     real(dp) :: y
     character :: op
-    call parse_product(c, set, x, message)
+    call parse_operand(x)
     do while (.not. allocated(message))
-      if (.not. next_operator(c, '+-', op)) exit
-      call parse_product(c, set, y, message)
+      if (.not. next_operator(c, ops, op)) exit
+      call parse_operand(y)
       if (allocated(message)) exit
-      if (op == '-') y = -y
-      if (abs(x) > 0.5_dp * huge(x) .and. abs(y) > 0.5_dp * huge(x)) then
-        if (sign(1.0_dp, x) == sign(1.0_dp, y)) then
+      call combine(op, y, c, x, message)
+    end do
+  contains
+    recursive subroutine parse_operand(z)
+      real(dp), intent(out) :: z
+      if (ops == '+-') then
+        call parse_terms(c, set, '*/', z, message)
+      else
+        call parse_unary(c, set, z, message)
+      end if
+    end subroutine parse_operand
+  end subroutine parse_terms
+
+  !> x = x op y for op one of + - * /, finite or an error (x then unchanged).
+  subroutine combine(op, y, c, x, message)
+    character, intent(in) :: op
+    real(dp), intent(in) :: y
+    type(cursor_t), intent(in) :: c
+    real(dp), intent(inout) :: x
+    character(len=:), allocatable, intent(inout) :: message
+    real(dp) :: z
+    select case (op)
+    case ('+', '-')
+      z = merge(-y, y, op == '-')
+      if (abs(x) > 0.5_dp * huge(x) .and. abs(z) > 0.5_dp * huge(x)) then
+        if (sign(1.0_dp, x) == sign(1.0_dp, z)) then
           message = overflow(c)
-          exit
+          return
         end if
       end if
-      x = x + y
-    end do
-  end subroutine parse_sum
+      x = x + z
+    case ('/')
+      if (y == 0.0_dp) then
+        message = 'division by zero in "' // clip(c%text) // '" (expected a non-zero divisor)'
+        return
+      end if
+      if (x /= 0.0_dp .and. log(abs(x)) - log(abs(y)) > log_huge) then
+        message = overflow(c)
+        return
+      end if
+      x = x / y
+    case default
+      if (x /= 0.0_dp .and. y /= 0.0_dp .and. log(abs(x)) + log(abs(y)) > log_huge) then
+        message = overflow(c)
+        return
+      end if
+      x = x * y
+    end select
+  end subroutine combine
 
   !> The next character, when it is one of ops (not the '*' of the power
   !> operator '**'), taken as op; .false. (nothing taken) otherwise.
@@ -231,38 +281,6 @@ contains
     next_operator = .true.
   end function next_operator
 
-  !> product := unary { (*|/) unary }
-  recursive subroutine parse_product(c, set, x, message)
-    type(cursor_t), intent(inout) :: c
-    type(parameter_set_t), intent(in) :: set
-    real(dp), intent(out) :: x
-    character(len=:), allocatable, intent(inout) :: message
-    real(dp) :: y
-    character :: op
-    call parse_unary(c, set, x, message)
-    do while (.not. allocated(message))
-      if (.not. next_operator(c, '*/', op)) exit
-      call parse_unary(c, set, y, message)
-      if (allocated(message)) exit
-      if (op == '/') then
-        if (y == 0.0_dp) then
-          message = 'division by zero in "' // clip(c%text) // '" (expected a non-zero divisor)'
-          exit
-        end if
-        if (x /= 0.0_dp .and. log(abs(x)) - log(abs(y)) > log_huge) then
-          message = overflow(c)
-          exit
-        end if
-        x = x / y
-      else
-        if (x /= 0.0_dp .and. y /= 0.0_dp .and. log(abs(x)) + log(abs(y)) > log_huge) then
-          message = overflow(c)
-          exit
-        end if
-        x = x * y
-      end if
-    end do
-  end subroutine parse_product
 
   !> unary := (+|-) unary | power
   recursive subroutine parse_unary(c, set, x, message)

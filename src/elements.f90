@@ -372,13 +372,19 @@ contains
   !>               body whose outward normal is n_r: pr = -p)
   !>   thick (in)  thickness
   !>   fe    (out) (6) forces on end 1, end 2, middle (x, y each)
-  pure subroutine edge_load_quadratic(xe, t, pr, thick, fe)
+  !>   radial (in, optional) .true.: the weight is thick r(s), r = x the radius
+  !>               (axisymmetric_elements, thick = 2 pi; exact to degree 3 then)
+  pure subroutine edge_load_quadratic(xe, t, pr, thick, fe, radial)
     real(dp), intent(in) :: xe(2, 3), t(2), pr, thick
     real(dp), intent(out) :: fe(6)
+    logical, intent(in), optional :: radial
     real(dp), parameter :: g3(3) = [-sqrt(0.6_dp), 0.0_dp, sqrt(0.6_dp)]
     real(dp), parameter :: w3(3) = [5.0_dp, 8.0_dp, 5.0_dp] / 9.0_dp
-    real(dp) :: s, n(3), dn(3), tang(2), f(2)
+    real(dp) :: s, n(3), dn(3), tang(2), f(2), w
     integer :: q, a
+    logical :: by_radius
+    by_radius = .false.
+    if (present(radial)) by_radius = radial
     fe = 0.0_dp
     do q = 1, 3
       s = g3(q)
@@ -386,8 +392,10 @@ contains
       dn = [s - 0.5_dp, s + 0.5_dp, -2 * s]
       tang = xe(:, 1) * dn(1) + xe(:, 2) * dn(2) + xe(:, 3) * dn(3)      ! dx/ds
       f = t * norm2(tang) + pr * [tang(2), -tang(1)]                     ! (t + pr n_r) |dx/ds|
+      w = thick
+      if (by_radius) w = thick * dot_product(n, xe(1, :))
       do a = 1, 3
-        fe(2 * a - 1:2 * a) = fe(2 * a - 1:2 * a) + (w3(q) * thick * n(a)) * f
+        fe(2 * a - 1:2 * a) = fe(2 * a - 1:2 * a) + (w3(q) * w * n(a)) * f
       end do
     end do
   end subroutine edge_load_quadratic

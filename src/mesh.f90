@@ -19,6 +19,7 @@
 !>   find_boundary(mesh, name)  index into mesh%bnd of the boundary or point set
 !>        called name, 0 when there is none
 !>   find_region(mesh, name)    index into mesh%reg, 0 when there is none
+!>   name_list(mesh%bnd, none)  the names, 'a, b, c' (none: the text when there is none)
 !>   boundary_nodes(b, nodes)   sorted distinct nodes of a boundary or point set
 !>        (the mid-side nodes of its edges too)
 !>   is_quadratic(mesh)         whether the mesh has 6-, 8- or 9-node elements
@@ -37,7 +38,7 @@ module mesh
   use elements, only: corner_count, quadrature_rule, shape_at, max_nen
   implicit none
   private
-  public :: mesh_t, boundary_t, region_t, finalize_mesh, find_boundary, find_region
+  public :: mesh_t, named_t, boundary_t, region_t, finalize_mesh, find_boundary, find_region, name_list
   public :: boundary_nodes, element_area, mesh_size, is_quadratic
   public :: order_for_locality, file_node, file_elem, node_in_file, hilbert_index, locality_min_nodes
 
@@ -47,8 +48,12 @@ module mesh
   integer, parameter :: locality_min_nodes = 65536
 
   !> A named boundary: a set of edges (a physical curve) or of points.
-  type :: boundary_t
-    character(len=:), allocatable :: name  !< case-sensitive name
+  !> What boundaries and regions share: a name, by which find_name looks them up.
+  type :: named_t
+    character(len=:), allocatable :: name   !< case-sensitive name
+  end type named_t
+
+  type, extends(named_t) :: boundary_t
     integer :: nseg = 0                     !< number of edges
     integer, allocatable :: seg(:,:)        !< (2, nseg) node ids of each edge
     integer, allocatable :: seg_line(:)     !< (nseg) line of each edge in its mesh file (when read)
@@ -59,8 +64,7 @@ module mesh
   end type boundary_t
 
   !> A named set of elements (a physical surface).
-  type :: region_t
-    character(len=:), allocatable :: name   !< case-sensitive name
+  type, extends(named_t) :: region_t
     integer, allocatable :: elems(:)        !< element ids
   end type region_t
 
@@ -596,31 +600,44 @@ contains
   integer function find_boundary(mesh, name) result(ib)
     type(mesh_t), intent(in) :: mesh
     character(len=*), intent(in) :: name
-    integer :: b
     ib = 0
-    if (.not. allocated(mesh%bnd)) return
-    do b = 1, size(mesh%bnd)
-      if (mesh%bnd(b)%name == name) then
-        ib = b
-        return
-      end if
-    end do
+    if (allocated(mesh%bnd)) ib = find_name(mesh%bnd, name)
   end function find_boundary
 
   !> Index of the element region called name; 0 when none.
   integer function find_region(mesh, name) result(ir)
     type(mesh_t), intent(in) :: mesh
     character(len=*), intent(in) :: name
-    integer :: r
     ir = 0
-    if (.not. allocated(mesh%reg)) return
-    do r = 1, size(mesh%reg)
-      if (mesh%reg(r)%name == name) then
-        ir = r
-        return
-      end if
-    end do
+    if (allocated(mesh%reg)) ir = find_name(mesh%reg, name)
   end function find_region
+
+  !> Index of the first item of list called name; 0 when none.
+  pure integer function find_name(list, name) result(k)
+    class(named_t), intent(in) :: list(:)
+    character(len=*), intent(in) :: name
+    do k = 1, size(list)
+      if (list(k)%name == name) return
+    end do
+    k = 0
+  end function find_name
+
+  !> The names of list, 'a, b, c'; none when it has none (or is absent: an
+  !> unallocated list, mesh%bnd of a mesh without boundaries).
+  pure function name_list(list, none) result(s)
+    class(named_t), intent(in), optional :: list(:)
+    character(len=*), intent(in) :: none
+    character(len=:), allocatable :: s
+    integer :: k
+    s = ''
+    if (present(list)) then
+      do k = 1, size(list)
+        if (k > 1) s = s // ', '
+        s = s // list(k)%name
+      end do
+    end if
+    if (len(s) == 0) s = none
+  end function name_list
 
   !> Sorted distinct node ids of a boundary's edges and points.
   subroutine boundary_nodes(b, nodes)

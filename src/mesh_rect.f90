@@ -41,7 +41,12 @@ contains
     character(len=*), intent(in) :: diag
     type(mesh_t), intent(out) :: mesh
     type(error_t), allocatable, intent(out) :: err
-    integer :: i, j, e, n1, n2, n3, n4, m1, m2, m3, m4, mc, stat, g, gx, gy, width, b
+    integer :: i, j, e, n1, n2, n3, n4, m1, m2, m3, m4, mc, stat, g, gx, gy, width, b, d, nen, cell(9)
+    !> The two triangles of a cell, split(:, t, d): corners then mid-sides as
+    !> positions in cell = [n1 n2 n3 n4 m1 m2 m3 m4 mc]; d = 1 the diagonal
+    !> n1-n3, d = 2 the diagonal n2-n4; each counter-clockwise.
+    integer, parameter :: split(6, 2, 2) = reshape([1, 2, 3, 5, 6, 9,   1, 3, 4, 9, 7, 8, &
+                                                    1, 2, 4, 5, 9, 8,   2, 3, 4, 6, 7, 9], [6, 2, 2])
     logical :: rising, quads, quadratic
     integer(i8) :: bytes
 
@@ -76,19 +81,19 @@ contains
         n1 = node(i, j); n2 = node(i + g, j); n3 = node(i + g, j + g); n4 = node(i, j + g)
         m1 = node(i + 1, j); m2 = node(i + g, j + 1); m3 = node(i + 1, j + g); m4 = node(i, j + 1)
         mc = node(i + 1, j + 1)                   ! (the m's and mc: quadratic elements only)
+        cell = [n1, n2, n3, n4, m1, m2, m3, m4, mc]
         if (quads) then
           e = e + 1
           select case (elem)
           case ('quad8')
-            mesh%nen(e) = 8
-            mesh%conn(1:8, e) = [n1, n2, n3, n4, m1, m2, m3, m4]
+            nen = 8
           case ('quad9')
-            mesh%nen(e) = 9
-            mesh%conn(1:9, e) = [n1, n2, n3, n4, m1, m2, m3, m4, mc]
+            nen = 9
           case default
-            mesh%nen(e) = 4
-            mesh%conn(1:4, e) = [n1, n2, n3, n4]
+            nen = 4
           end select
+          mesh%nen(e) = nen
+          mesh%conn(1:nen, e) = cell(1:nen)
           cycle
         end if
         select case (diag)
@@ -99,22 +104,11 @@ contains
         case default
           rising = .true.
         end select
-        if (rising) then            ! diagonal n1-n3
-          mesh%conn(1:3, e + 1) = [n1, n2, n3]
-          mesh%conn(1:3, e + 2) = [n1, n3, n4]
-          if (quadratic) then
-            mesh%conn(4:6, e + 1) = [m1, m2, mc]
-            mesh%conn(4:6, e + 2) = [mc, m3, m4]
-          end if
-        else                        ! diagonal n2-n4
-          mesh%conn(1:3, e + 1) = [n1, n2, n4]
-          mesh%conn(1:3, e + 2) = [n2, n3, n4]
-          if (quadratic) then
-            mesh%conn(4:6, e + 1) = [m1, mc, m4]
-            mesh%conn(4:6, e + 2) = [m2, m3, mc]
-          end if
-        end if
-        mesh%nen(e + 1:e + 2) = merge(6, 3, quadratic)
+        d = merge(1, 2, rising)
+        nen = merge(6, 3, quadratic)
+        mesh%conn(1:nen, e + 1) = cell(split(1:nen, 1, d))
+        mesh%conn(1:nen, e + 2) = cell(split(1:nen, 2, d))
+        mesh%nen(e + 1:e + 2) = nen
         e = e + 2
       end do
     end do

@@ -19,7 +19,7 @@ module msh_elements
   use diagnostics, only: diag_t, int_to_str, i8_to_str
   use msh_text, only: msh_text_t, read_data_line, expect_section_end, remaining_lines, quoted_item, fail, fail_at, &
                       get_integer, get_count, read_block_header, scan_data_lines, out_of_memory, allocation_failed, &
-                      no_reals, fast_parallel_min
+                      no_reals, fast_parallel_min, end_blocks, read_block_line
   use msh_data, only: msh_data_t, raw_width, reserve_records, ensure_room, push_record, record_bytes, node_of_tag
   use sorting, only: search_columns
   implicit none
@@ -115,11 +115,7 @@ contains
     end if
     k = 0
     do b = 1, nblock
-      call read_data_line(t, diag, 'Elements', 4, 'entityDim entityTag elementType numElementsInBlock', ok)
-      if (.not. ok) return
-      call get_integer(t, diag, 1, 'entity dimension', 0_i8, 3_i8, dim, ok)
-      if (.not. ok) return
-      call get_integer(t, diag, 2, 'entity tag', -huge(1_i8), huge(1_i8), tag, ok)
+      call read_block_line(t, diag, 'Elements', 'entityDim entityTag elementType numElementsInBlock', dim, tag, ok)
       if (.not. ok) return
       call get_element_type(t, diag, 3, int(dim), etype, nn, ok)
       if (.not. ok) return
@@ -163,13 +159,7 @@ contains
       deallocate(phys)
       k = k + m
     end do
-    if (k /= n) then
-      call fail_at(t, diag, header, 'the element blocks hold ' // int_to_str(k) // ' elements, the header announces ' // &
-        int_to_str(n) // ' (equal counts expected)')
-      ok = .false.
-      return
-    end if
-    call expect_section_end(t, diag, 'Elements', ok)
+    call end_blocks(t, diag, 'Elements', 'element', header, k, n, ok)
     if (.not. ok) return
     call check_some_2d(t, d, diag, header - 1, ok)
   end subroutine read_elements_41
@@ -380,38 +370,31 @@ contains
   function element_description(etype) result(s)
     integer, intent(in) :: etype
     character(len=:), allocatable :: s
-    select case (etype)
-    case (4);  s = '4-node tetrahedron'
-    case (5);  s = '8-node hexahedron'
-    case (6);  s = '6-node prism'
-    case (7);  s = '5-node pyramid'
-    case (8);  s = '3-node second-order line'
-    case (9);  s = '6-node second-order triangle'
-    case (10); s = '9-node second-order quadrangle'
-    case (11); s = '10-node second-order tetrahedron'
-    case (12); s = '27-node second-order hexahedron'
-    case (13); s = '18-node second-order prism'
-    case (14); s = '14-node second-order pyramid'
-    case (16); s = '8-node second-order quadrangle'
-    case (17); s = '20-node second-order hexahedron'
-    case (18); s = '15-node second-order prism'
-    case (19); s = '13-node second-order pyramid'
-    case (20); s = '9-node third-order incomplete triangle'
-    case (21); s = '10-node third-order triangle'
-    case (22); s = '12-node fourth-order incomplete triangle'
-    case (23); s = '15-node fourth-order triangle'
-    case (24); s = '15-node fifth-order incomplete triangle'
-    case (25); s = '21-node fifth-order triangle'
-    case (26); s = '4-node third-order line'
-    case (27); s = '5-node fourth-order line'
-    case (28); s = '6-node fifth-order line'
-    case (29); s = '20-node third-order tetrahedron'
-    case (30); s = '35-node fourth-order tetrahedron'
-    case (31); s = '56-node fifth-order tetrahedron'
-    case (92); s = '64-node third-order hexahedron'
-    case (93); s = '125-node fourth-order hexahedron'
-    case default; s = ''
-    end select
+    !> gmsh's element types other than the 2D ones and points (gmsh's manual, MSH format)
+    integer, parameter :: types(29) = [ &
+      4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 16, 17, 18, 19, 20, &
+      21, 22, 23, 24, 25, 26, 27, 28, 29, 30, 31, 92, 93 ]
+    character(len=40), parameter :: descriptions(29) = [character(len=40) :: &
+      '4-node tetrahedron', '8-node hexahedron', &
+      '6-node prism', '5-node pyramid', &
+      '3-node second-order line', '6-node second-order triangle', &
+      '9-node second-order quadrangle', '10-node second-order tetrahedron', &
+      '27-node second-order hexahedron', '18-node second-order prism', &
+      '14-node second-order pyramid', '8-node second-order quadrangle', &
+      '20-node second-order hexahedron', '15-node second-order prism', &
+      '13-node second-order pyramid', '9-node third-order incomplete triangle', &
+      '10-node third-order triangle', '12-node fourth-order incomplete triangle', &
+      '15-node fourth-order triangle', '15-node fifth-order incomplete triangle', &
+      '21-node fifth-order triangle', '4-node third-order line', &
+      '5-node fourth-order line', '6-node fifth-order line', &
+      '20-node third-order tetrahedron', '35-node fourth-order tetrahedron', &
+      '56-node fifth-order tetrahedron', '64-node third-order hexahedron', &
+      '125-node fourth-order hexahedron' ]
+    integer :: k
+    s = ''
+    do k = 1, size(types)
+      if (types(k) == etype) s = trim(descriptions(k))
+    end do
   end function element_description
 
 end module msh_elements

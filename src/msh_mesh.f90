@@ -20,7 +20,8 @@
 module msh_mesh
   use kinds, only: i8
   use mesh, only: mesh_t
-  use sorting, only: sort_columns, search_columns, mark_repeated, sort_small, text_key_words, pack_text
+  use sorting, only: sort_columns, search_columns, mark_repeated, sort_small, text_key_words, pack_text, &
+                     number_classes
   use diagnostics, only: int_to_str, i8_to_str
   use msh_data, only: msh_data_t, string_t, raw_width
   implicit none
@@ -48,15 +49,7 @@ contains
     if (oom > 0) return
     allocate(elem_of_raw(nraw), stat=stat)
     if (failed(stat, 4_i8 * nraw, oom)) return
-    nelem = 0
-    do r = 1, nraw
-      if (rep(r) == r) then
-        nelem = nelem + 1
-        elem_of_raw(r) = nelem
-      else
-        elem_of_raw(r) = elem_of_raw(rep(r))
-      end if
-    end do
+    call number_classes(rep, elem_of_raw, nelem)
 
     mesh%nnode = d%nnode
     allocate(mesh%x(2, d%nnode), stat=stat)
@@ -419,15 +412,9 @@ contains
     nset = count([(leader(g) == g, g = 1, ng)])
     allocate(set_name(nset), stat=stat)
     if (failed(stat, 64_i8 * nset, oom)) return
-    nset = 0
+    call number_classes(leader, set_of_group, nset)
     do g = 1, ng
-      if (leader(g) == g) then
-        nset = nset + 1
-        set_of_group(g) = nset
-        set_name(nset)%s = gname(g)%s
-      else
-        set_of_group(g) = set_of_group(leader(g))
-      end if
+      if (leader(g) == g) set_name(set_of_group(g))%s = gname(g)%s
     end do
     allocate(set_of(n), stat=stat)
     if (failed(stat, 4_i8 * n, oom)) return

@@ -28,7 +28,8 @@ module msh_sections
   use msh_text, only: msh_text_t, advance_line, remaining_lines, item, quoted_item, read_data_line, &
                       expect_section_end, next_section_line, fail, fail_at, get_integer, get_count, get_real, &
                       msh_real, read_block_header, scan_data_lines, out_of_memory, allocation_failed, no_integers, &
-                      no_reals, no_lower_bounds
+                      no_reals, no_lower_bounds, is_end_line, end_blocks, read_block_line, &
+                      get_dimension_tag
   use msh_data, only: msh_data_t, push_record, record_bytes
   use msh_elements, only: read_elements_22, read_elements_41
   implicit none
@@ -85,11 +86,7 @@ contains
         call fail(t, diag, 'second $MeshFormat section (one per file expected)')
         return
       case ('$PhysicalNames')
-        if (d%have_names) then
-          call fail(t, diag, 'second $PhysicalNames section (one per file expected)')
-          return
-        end if
-        d%have_names = .true.
+        if (.not. first_section(d%have_names)) return
         call read_physical_names(t, d, diag, ok)
       case ('$Entities', '$PartitionedEntities')
         ! $PartitionedEntities (gmsh -part) comes after $Entities and replaces it
@@ -109,11 +106,7 @@ contains
           call read_entities(t, d, diag, partitioned, ok)
         end if
       case ('$Nodes')
-        if (d%have_nodes) then
-          call fail(t, diag, 'second $Nodes section (one per file expected)')
-          return
-        end if
-        d%have_nodes = .true.
+        if (.not. first_section(d%have_nodes)) return
         if (d%v41) then
           call read_nodes_41(t, d, diag, ok)
         else
@@ -121,15 +114,11 @@ contains
         end if
         if (ok) call check_nodes(t, d, diag, ok)
       case ('$Elements')
-        if (d%have_elements) then
-          call fail(t, diag, 'second $Elements section (one per file expected)')
-          return
-        end if
+        if (.not. first_section(d%have_elements)) return
         if (.not. d%have_nodes) then
           call fail(t, diag, '$Elements before $Nodes (the $Nodes section expected first)')
           return
         end if
-        d%have_elements = .true.
         if (d%v41) then
           call read_elements_41(t, d, diag, ok)
         else
@@ -157,6 +146,15 @@ contains
       return
     end if
     ok = .true.
+  contains
+    !> Section w is the first of its name in the file (seen false, then set);
+    !> a second one is reported.
+    logical function first_section(seen)
+      logical, intent(inout) :: seen
+      first_section = .not. seen
+      if (seen) call fail(t, diag, 'second ' // w // ' section (one per file expected)')
+      seen = .true.
+    end function first_section
   end subroutine read_sections
 
   !> $MeshFormat: `version file-type data-size`, then $EndMeshFormat.
@@ -224,9 +222,7 @@ contains
         ok = .false.
         return
       end if
-      call get_integer(t, diag, 1, 'physical dimension', 0_i8, 3_i8, dim, ok)
-      if (.not. ok) return
-      call get_integer(t, diag, 2, 'physical tag', -huge(1_i8), huge(1_i8), tag, ok)
+      call get_dimension_tag(t, diag, 1, 'physical', dim, tag, ok)
       if (.not. ok) return
       q1 = t%tbeg(3)
       q2 = t%tend(t%ntok)
@@ -331,9 +327,7 @@ contains
               line_what // ')')
             return
           end if
-          call get_integer(t, diag, 2, 'parent dimension', 0_i8, 3_i8, pdim, ok)
-          if (.not. ok) return
-          call get_integer(t, diag, 3, 'parent tag', -huge(1_i8), huge(1_i8), v, ok)
+          call get_dimension_tag(t, diag, 2, 'parent', pdim, v, ok)
           if (.not. ok) return
           call get_integer(t, diag, 4, 'number of partitions', 0_i8, int(t%ntok - 4, i8), npart, ok)
           if (.not. ok) return
@@ -471,11 +465,7 @@ contains
     if (.not. ok) return
     k = 0
     do b = 1, nblock
-      call read_data_line(t, diag, 'Nodes', 4, 'entityDim entityTag parametric numNodesInBlock', ok)
-      if (.not. ok) return
-      call get_integer(t, diag, 1, 'entity dimension', 0_i8, 3_i8, dim, ok)
-      if (.not. ok) return
-      call get_integer(t, diag, 2, 'entity tag', -huge(1_i8), huge(1_i8), tag, ok)
+      call read_block_line(t, diag, 'Nodes', 'entityDim entityTag parametric numNodesInBlock', dim, tag, ok)
       if (.not. ok) return
       call get_integer(t, diag, 3, 'parametric flag', 0_i8, 1_i8, param, ok)
       if (.not. ok) return
@@ -529,13 +519,7 @@ contains
       deallocate(xyz)
       k = k + m
     end do
-    if (k /= n) then
-      call fail_at(t, diag, header, 'the node blocks hold ' // int_to_str(k) // ' nodes, the header announces ' // &
-        int_to_str(n) // ' (equal counts expected)')
-      ok = .false.
-      return
-    end if
-    call expect_section_end(t, diag, 'Nodes', ok)
+    call end_blocks(t, diag, 'Nodes', 'node', header, k, n, ok)
   end subroutine read_nodes_41
 
   !> The node arrays of d for n nodes; ok = .false. when memory ran out.
@@ -646,9 +630,7 @@ contains
     do
       call next_section_line(t, diag, name, ok)
       if (.not. ok) return
-      if (t%ntok >= 1) then
-        if (t%buf(t%tbeg(1):t%tend(1)) == '$End' // name) exit
-      end if
+      if (is_end_line(t, name, alone=.false.)) exit
     end do
   end subroutine skip_section
 

@@ -43,7 +43,8 @@ module msh_text
   implicit none
   private
   public :: msh_text_t, load_text, advance_line, next_section_line, remaining_lines, item, quoted_item, read_data_line
-  public :: expect_section_end, report_end_of_file, fail, fail_at, get_integer, get_count, get_real, msh_real
+  public :: expect_section_end, is_end_line, end_blocks, report_end_of_file, fail, fail_at, get_integer, get_count
+  public :: get_real, msh_real, read_block_line, get_dimension_tag
   public :: read_block_header, scan_data_lines, out_of_memory, allocation_failed, no_integers, no_reals, no_lower_bounds
   public :: fast_parallel_min
 
@@ -251,9 +252,7 @@ contains
 
     call next_section_line(t, diag, section, ok)
     if (.not. ok) return
-    if (t%ntok == 1) then
-      if (item(t, 1) == '$End' // section) return
-    end if
+    if (is_end_line(t, section, alone=.true.)) return
     ok = .false.
     if (is_section_line(t)) then
       call fail(t, diag, 'unexpected ' // quoted_item(t, 1) // ' ($End' // section // ' expected)')
@@ -261,6 +260,62 @@ contains
       call fail(t, diag, 'more lines than the counts announce ($End' // section // ' expected)')
     end if
   end subroutine expect_section_end
+
+  !> The current line is $End<section> (with alone, and nothing else).
+  pure logical function is_end_line(t, section, alone)
+    type(msh_text_t), intent(in) :: t
+    character(len=*), intent(in) :: section
+    logical, intent(in) :: alone
+    is_end_line = .false.
+    if (t%ntok < 1 .or. (alone .and. t%ntok /= 1)) return
+    is_end_line = t%buf(t%tbeg(1):t%tend(1)) == '$End' // section
+  end function is_end_line
+
+  !> The line that opens an entity block (MSH 4.1): four items, the entity's
+  !> dimension (0 to 3) and tag first.
+  !>   section (in) 'Nodes' or 'Elements';  form (in) the line's items, for messages
+  !>   dim, tag (out) the first two items
+  subroutine read_block_line(t, diag, section, form, dim, tag, ok)
+    type(msh_text_t), intent(inout) :: t
+    type(diag_t), intent(inout) :: diag
+    character(len=*), intent(in) :: section, form
+    integer(i8), intent(out) :: dim, tag
+    logical, intent(out) :: ok
+    call read_data_line(t, diag, section, 4, form, ok)
+    if (ok) call get_dimension_tag(t, diag, 1, 'entity', dim, tag, ok)
+  end subroutine read_block_line
+
+  !> Items k and k + 1 of the current line: a dimension (0 to 3) and a tag,
+  !> called what // ' dimension' and what // ' tag' in messages.
+  subroutine get_dimension_tag(t, diag, k, what, dim, tag, ok)
+    type(msh_text_t), intent(in) :: t
+    type(diag_t), intent(inout) :: diag
+    integer, intent(in) :: k
+    character(len=*), intent(in) :: what
+    integer(i8), intent(out) :: dim, tag
+    logical, intent(out) :: ok
+    call get_integer(t, diag, k, what // ' dimension', 0_i8, 3_i8, dim, ok)
+    if (ok) call get_integer(t, diag, k + 1, what // ' tag', -huge(1_i8), huge(1_i8), tag, ok)
+  end subroutine get_dimension_tag
+
+  !> The end of a section of entity blocks: the items of the blocks add up
+  !> to the count of the header line, then $End<section>.
+  !>   section (in) 'Nodes' or 'Elements';  item_name (in) 'node' or 'element'
+  !>   header  (in) the header line;  k, n (in) the items read, announced
+  subroutine end_blocks(t, diag, section, item_name, header, k, n, ok)
+    type(msh_text_t), intent(inout) :: t
+    type(diag_t), intent(inout) :: diag
+    character(len=*), intent(in) :: section, item_name
+    integer, intent(in) :: header, k, n
+    logical, intent(out) :: ok
+    ok = k == n
+    if (.not. ok) then
+      call fail_at(t, diag, header, 'the ' // item_name // ' blocks hold ' // int_to_str(k) // ' ' // item_name // &
+        's, the header announces ' // int_to_str(n) // ' (equal counts expected)')
+      return
+    end if
+    call expect_section_end(t, diag, section, ok)
+  end subroutine end_blocks
 
   !> The header line of a section of entity blocks (MSH 4.1 $Nodes, $Elements):
   !> `numEntityBlocks numItems minItemTag maxItemTag`, the counts checked

@@ -15,11 +15,12 @@
 !>   text_key_words(text)             key words a text needs
 !>   pack_text(text, key)             the text as key words: sorted as Fortran
 !>                                    compares strings (blanks padded, byte order)
+!>   number_classes(leader, class, n)  classes of an equivalence numbered by their leaders
 module sorting
   use kinds, only: i8
   implicit none
   private
-  public :: sort_columns, search_columns, mark_repeated, sort_small, text_key_words, pack_text
+  public :: sort_columns, search_columns, mark_repeated, sort_small, text_key_words, pack_text, number_classes
 
   integer, parameter :: bytes_per_word = 7     !< 56 bits a key word: words stay >= 0
 
@@ -200,5 +201,27 @@ contains
       end do
     end do
   end subroutine pack_text
+
+  !> Number the classes of an equivalence given by a leader per item, in the
+  !> order of their leaders (mark_repeated's rep, a sort's runs).
+  !>   leader (in)  (n) leader(i) = i for the first item of a class, an earlier
+  !>                item of the same class (itself led by the first) otherwise
+  !>   class  (out) (n) class(i) the number of i's class, 1 .. nclass
+  !>   nclass (out) the number of classes
+  pure subroutine number_classes(leader, class, nclass)
+    integer, intent(in) :: leader(:)
+    integer, intent(out) :: class(:)
+    integer, intent(out) :: nclass
+    integer :: i
+    nclass = 0
+    do i = 1, size(leader)
+      if (leader(i) == i) then
+        nclass = nclass + 1
+        class(i) = nclass
+      else
+        class(i) = class(leader(i))
+      end if
+    end do
+  end subroutine number_classes
 
 end module sorting

@@ -13,8 +13,8 @@
 !> numbers: the texts of up to 18 significant digits and moderate exponents
 !> (every number gmsh writes) are rounded once in integer and double
 !> arithmetic (Clinger's fast path and two integer variants, decimal_to_real),
-!> which made the MSH reader 4-6 times faster with bit-identical results
-!> (commit d543bf3: 47 MB of MSH 4.1 read in 0.56 s instead of 3.5 s).
+!> with bit-identical results; the figure is in doc/performance.md ("Reading
+!> the mesh file").
 !>
 !> Programming interface
 !>   scan_integer(s, v)              logical: s is an integer of at most 18
@@ -25,7 +25,11 @@
 !>                                   |x| < 1e308, the sign of a zero kept
 !>   line_items(buf, first, last, b, e, n)
 !>                                   the blank-separated items of buf(first:last)
+!>   parse_integer(s, k, ok)         the deck's integer: at most 9 significant digits
 !>   is_blank(c), is_digit(c), is_letter(c), lower(s), upper(s)
+!>   is_name(s)                      [A-Za-z0-9_.-]+ (bodies, boundaries, files)
+!>   is_identifier(s)                [A-Za-z_][A-Za-z0-9_]*, at most 64 (.geo variables)
+!>   is_printable(s), ends_with_ci(s, suffix)
 module text_scan
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp, i8
@@ -33,6 +37,7 @@ module text_scan
   private
   public :: scan_integer, scan_real, parse_real, line_items
   public :: is_blank, is_digit, is_letter, lower, upper
+  public :: parse_integer, is_name, is_identifier, is_printable, ends_with_ci
 
   integer, parameter :: max_deck_number_length = 400   !< longest number of a deck value
   integer, parameter :: max_deck_exponent = 307        !< deck values below 1e308 in magnitude
@@ -416,5 +421,59 @@ contains
     code = iachar(c)
     is_blank = code == 32 .or. (code >= 9 .and. code <= 13)
   end function is_blank
+
+  !> Read an integer: [sign] digits, at most 9 significant digits.
+  subroutine parse_integer(str, k, ok)
+    character(len=*), intent(in) :: str
+    integer, intent(out) :: k
+    logical, intent(out) :: ok
+    integer(i8) :: v
+    k = 0
+    ok = scan_integer(str, v)
+    if (ok) ok = abs(v) < 1000000000_i8
+    if (ok) k = int(v)
+  end subroutine parse_integer
+
+  !> Names: [A-Za-z0-9_.-]+
+  pure logical function is_name(s)
+    character(len=*), intent(in) :: s
+    integer :: i
+    is_name = len(s) > 0
+    do i = 1, len(s)
+      if (.not. (is_digit(s(i:i)) .or. is_letter(s(i:i)) .or. index('_.-', s(i:i)) > 0)) then
+        is_name = .false.
+        return
+      end if
+    end do
+  end function is_name
+
+  !> .geo variable: [A-Za-z_][A-Za-z0-9_]*, at most 64 characters.
+  pure logical function is_identifier(s)
+    character(len=*), intent(in) :: s
+    integer :: i
+    is_identifier = len(s) > 0 .and. len(s) <= 64
+    if (.not. is_identifier) return
+    is_identifier = is_letter(s(1:1)) .or. s(1:1) == '_'
+    do i = 2, len(s)
+      if (.not. (is_digit(s(i:i)) .or. is_letter(s(i:i)) .or. s(i:i) == '_')) is_identifier = .false.
+    end do
+  end function is_identifier
+
+  !> No control characters (bytes >= 128 allowed).
+  pure logical function is_printable(s)
+    character(len=*), intent(in) :: s
+    integer :: i
+    is_printable = .true.
+    do i = 1, len(s)
+      if (iachar(s(i:i)) < 32 .or. iachar(s(i:i)) == 127) is_printable = .false.
+    end do
+  end function is_printable
+
+  pure logical function ends_with_ci(s, suffix)
+    character(len=*), intent(in) :: s, suffix
+    ends_with_ci = .false.
+    if (len(s) < len(suffix)) return
+    ends_with_ci = lower(s(len(s) - len(suffix) + 1:)) == lower(suffix)
+  end function ends_with_ci
 
 end module text_scan
