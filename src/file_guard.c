@@ -59,14 +59,17 @@ static void remove_tree(int at, const char *name, int depth)
 }
 
 /* Everything the run made and has not committed: the gmsh group, the
- * temporaries, the private folder.  Async-signal-safe. */
-static void clean_up(void)
+ * temporaries, the private folder.  Async-signal-safe when may_free is 0. */
+static void clean_up(int may_free)
 {
     int i;
     c2d_kill_running();
     for (i = 0; i < MAX_TEMPORARIES; i++) {
         char *t = __atomic_exchange_n(&temporaries[i], NULL, __ATOMIC_SEQ_CST);
-        if (t != NULL) unlink(t);           /* not freed: the handler may not call free */
+        if (t != NULL) {
+            unlink(t);
+            if (may_free) free(t);          /* a signal handler may not call free */
+        }
     }
     if (private_path[0] != '\0') {
         remove_tree(AT_FDCWD, private_path, 0);
@@ -77,7 +80,7 @@ static void clean_up(void)
 static void die_of(int sig)
 {
     int saved = errno;
-    clean_up();
+    clean_up(0);
     signal(sig, SIG_DFL);
     raise(sig);                             /* the default action: the status says which signal */
     errno = saved;
@@ -95,7 +98,7 @@ static void on_signal(int sig)
 
 static void on_exit_cleanup(void)
 {
-    clean_up();
+    clean_up(1);
 }
 
 static void install_cleanup(void)
