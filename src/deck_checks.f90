@@ -504,7 +504,6 @@ contains
     if (.not. allocated(deck%solver%lcp)) deck%solver%lcp = 'auto'
     if (.not. allocated(deck%solver%ordering)) deck%solver%ordering = 'auto'
     if (.not. allocated(deck%solver%condense)) deck%solver%condense = 'auto'
-    if (.not. allocated(deck%solver%cut)) deck%solver%cut = 'auto'
     if (.not. allocated(deck%output%vtk)) deck%output%vtk = deck%name // '.vtk'
     if (.not. allocated(deck%output%contact)) deck%output%contact = deck%name // '_contact.csv'
     if (.not. allocated(deck%output%summary)) deck%output%summary = deck%name // '.summary'

@@ -152,7 +152,7 @@ module deck_types
     character(len=:), allocatable :: lcp        !< 'auto' (default), 'lemke', 'pgs', 'pdas'
     character(len=:), allocatable :: ordering   !< 'auto' (default), 'metis', 'amd'
     character(len=:), allocatable :: condense   !< 'auto' (default), 'solve', 'inverse'
-    character(len=:), allocatable :: cut        !< 'auto' (default) or 'off': read and checked, then ignored (no body is cut)
+    character(len=:), allocatable :: cut        !< 'auto' or 'off' when given (else unallocated): read, checked, said to be ignored (no body is cut)
     real(dp) :: tol = 1.0e-10_dp
     integer :: maxit = 0                        !< 0: the solver's default
     real(dp) :: omega = 1.0_dp

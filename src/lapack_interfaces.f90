@@ -11,7 +11,7 @@ module lapack_interfaces
   implicit none
   private
   public :: daxpy, drot, dgemv, dger, dtrsv, dtrsm, dtrmm, dsyrk, dgtsv, dpotrf, dlauum, dpotri, dpotrs, dpstrf, &
-            dsysv, dgesvd, dgeqp3, dgbsv, dgesv
+            dsysv, dgesvd, dgeqp3, dgbsv, dgesv, dlasrt
 
   interface
     subroutine daxpy(n, alpha, x, incx, y, incy)
@@ -151,6 +151,13 @@ module lapack_interfaces
       real(dp), intent(inout) :: a(lda, *), b(ldb, *)
       integer, intent(out) :: ipiv(*), info
     end subroutine dgesv
+    subroutine dlasrt(id, n, d, info)
+      import :: dp
+      character(len=1), intent(in) :: id
+      integer, intent(in) :: n
+      real(dp), intent(inout) :: d(*)
+      integer, intent(out) :: info
+    end subroutine dlasrt
   end interface
 
 end module lapack_interfaces

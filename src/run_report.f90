@@ -190,6 +190,9 @@ contains
     write(line, '(a,i0,a,i0,a,i0,a)') 'sizes    ', run%sc%ndof, ' dofs, ', run%nfree, ' free, ', run%cs%nrow, ' contact constraints'
     call say(run, trim(line))
     if (len(run%thread_note) > 0) call say(run, 'threads  ' // run%thread_note)
+    ! a key kept so that old decks still read: say that it does nothing
+    if (allocated(run%deck%solver%cut)) call say(run, 'note     SOLVER cut=' // run%deck%solver%cut // &
+      ' is ignored: no body is cut any more (doc/performance.md, "A body cut in two: removed")')
   end subroutine report_scene
 
   !> The run log's lines of each RIGID: its shape, reference point, which

@@ -20,6 +20,7 @@ program test_gmsh_reader
   use mesh, only: mesh_t, finalize_mesh, find_boundary, find_region, element_area, boundary_nodes
   use gmsh_reader, only: read_gmsh_file
   use gmsh_runner, only: gmsh_options_t, mesh_geo_file
+  use sorting, only: sort_small
   use testing, only: check, check_close, check_small, finish_tests
   implicit none
 
@@ -609,8 +610,8 @@ contains
       eb = b%reg(j)%elems
       same = size(ea) == size(eb)
       if (.not. same) return
-      call sort_ints(ea)
-      call sort_ints(eb)
+      call sort_small(ea)
+      call sort_small(eb)
       same = all(ea == eb)
       if (.not. same) return
     end do
@@ -665,21 +666,6 @@ contains
       s = s + norm2(m%x(:, m%bnd(ib)%seg(2, k)) - m%x(:, m%bnd(ib)%seg(1, k)))
     end do
   end function total_length
-
-  subroutine sort_ints(a)
-    integer, intent(inout) :: a(:)
-    integer :: i, j, v
-    do i = 2, size(a)
-      v = a(i)
-      j = i - 1
-      do while (j >= 1)
-        if (a(j) <= v) exit
-        a(j + 1) = a(j)
-        j = j - 1
-      end do
-      a(j + 1) = v
-    end do
-  end subroutine sort_ints
 
   !> Folder for scratch files: $TMPDIR or /tmp, with a name prefix.
   function scratch_prefix() result(p)

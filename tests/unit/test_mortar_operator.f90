@@ -7,6 +7,7 @@ program test_mortar_operator
   use kinds, only: dp, i8
   use diagnostics, only: error_t
   use mortar_operator, only: mortar_t, build_mortar
+  use lapack_interfaces, only: dlasrt
   use testing, only: check, check_close, check_small, finish_tests
   implicit none
 
@@ -75,8 +76,7 @@ contains
   function breakpoints(a, b, lo, hi) result(p)
     real(dp), intent(in) :: a(:), b(:), lo, hi
     real(dp), allocatable :: p(:)
-    real(dp) :: c
-    integer :: i, j
+    integer :: i, info
     p = [lo, hi]
     do i = 1, size(a)
       if (a(i) > lo .and. a(i) < hi) p = [p, a(i)]
@@ -84,16 +84,7 @@ contains
     do i = 1, size(b)
       if (b(i) > lo .and. b(i) < hi) p = [p, b(i)]
     end do
-    do i = 2, size(p)
-      c = p(i)
-      j = i - 1
-      do while (j >= 1)
-        if (p(j) <= c) exit
-        p(j + 1) = p(j)
-        j = j - 1
-      end do
-      p(j + 1) = c
-    end do
+    call dlasrt('I', size(p), p, info)
   end function breakpoints
 
   !> int_lo^hi f g dx for f, g piecewise linear on (xf, vf), (xg, vg): Simpson on each
