@@ -82,6 +82,7 @@ static const char *const phases[][2] = {
     {"sparse_cholesky_solve.f90", "factorizing K"},
     {"linear_system.f90", "factorizing K"},
     {"contact_set.f90", "building the mortar operator"},
+    {"boundary_chain.f90", "building the mortar operator"},
     {"mortar_geometry.f90", "building the mortar operator"},
     {"mortar_operator.f90", "building the mortar operator"},
     {"mortar_quadratic.f90", "building the mortar operator"},
