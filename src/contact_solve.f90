@@ -126,12 +126,12 @@ contains
     call move_alloc(sol%mu, run%res%mu)
     run%rigid_alpha = sol%alpha(run%fl%k + 1:)
     run%res%alpha = sol%alpha(1:run%fl%k)
-    allocate(character(len=256) :: run%res%unheld_mode(size(run%split%unheld, 2)))
+    allocate(run%res%unheld_mode(size(run%split%unheld, 2)))
     do j = 1, size(run%split%unheld, 2)
       call say(run, 'note     body ' // run%sc%bodies(run%split%unheld_body(j))%name // ': rigid mode (' // &
         motion_name(run%fl, run%split%unheld(:, j)) // ') held by neither FIX nor contact and unloaded: its amplitude ' // &
         'is set to 0 (the displacement has no component along it; the pressures do not depend on it)')
-      run%res%unheld_mode(j) = unheld_summary(run, j)
+      run%res%unheld_mode(j)%s = unheld_summary(run, j)
     end do
 
     call move_alloc(sol%gap, run%res%gap)
@@ -145,14 +145,9 @@ contains
   subroutine solve_earlier_steps(run)
     type(run_t), intent(inout) :: run
     type(results_t) :: saved
-    character(len=:), allocatable :: parameter(:)
     type(mode_split_t) :: split_n
     real(dp), allocatable :: fk(:), ubk(:), u0k(:), cq(:), q_n(:)
     integer :: kstep
-    ! the deck's parameters stay out of the copies of res: gfortran's assignment of a
-    ! derived type loses the length of a deferred-length character array component
-    ! (it wrote NUL bytes for `parameter mu 0.3` of rigid/friction/slide)
-    call move_alloc(run%res%parameter, parameter)
     saved = run%res
     split_n = run%split
     if (allocated(run%q)) q_n = run%q
@@ -189,7 +184,6 @@ contains
     if (allocated(q_n)) run%q = q_n
     run%step_note = 'load step ' // int_to_str(run%sc%steps) // ' of ' // int_to_str(run%sc%steps) // ': '
     call step_loads(run%sc, run%sc%steps, fk, ubk)         ! the bodies' thermal strains of the final step
-    call move_alloc(parameter, run%res%parameter)
   end subroutine solve_earlier_steps
 
   !> Frictional contact in load steps: at step k the loads are the ramps'
@@ -208,7 +202,6 @@ contains
     integer :: n, nt, kstep, g, r, iterations
     logical :: floating
     type(results_t) :: saved
-    character(len=:), allocatable :: parameter(:)
     character(len=200) :: line
     type(error_t), allocatable :: err
 
@@ -243,10 +236,6 @@ contains
     end if
     allocate(z(n + nt), cu(n + nt), qn(n), qt(nt), sprev(nt), run%res%fstate(nt))
     if (run%deck%output%steps_all) then
-      ! the deck's parameters stay out of the copies of res: gfortran's assignment of a
-      ! derived type loses the length of a deferred-length character array component
-      ! (it wrote NUL bytes for `parameter mu 0.3` of rigid/friction/slide)
-      call move_alloc(run%res%parameter, parameter)
       saved = run%res
       allocate(fk(run%sc%ndof), ubk(run%sc%ndof))
     end if
@@ -326,7 +315,6 @@ contains
     end do
     run%res%stick_nodes = count(run%res%fstate == 1)
     run%res%slip_nodes = count(run%res%fstate == 2)
-    if (allocated(parameter)) call move_alloc(parameter, run%res%parameter)
   end subroutine solve_friction_steps
 
   !> One step's displacement from its multipliers z (res%mu, res%gap, ...

@@ -13,6 +13,7 @@
 !> nothing written), as the program would.
 !>
 !> Programming interface
+!>   name_results(run)            the summary's names of the FIXes and RIGIDs, once
 !>   compute_results(run)         everything below for the run's final state
 !>   pair_resultants(run, z)      fc = -C' z and the resultant on each pair's slave body
 !>   post_process(run, fext)      stresses, energy, reactions; u in x, y components
@@ -31,10 +32,25 @@ module post_processing
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
   private
-  public :: compute_results, pair_resultants, post_process, rigid_results, contact_measures, nodal_contact_fields
+  public :: name_results, compute_results, pair_resultants, post_process, rigid_results, contact_measures, nodal_contact_fields
   public :: check_finite_results
 
 contains
+
+  !> The names of the summary's rows, which the load steps do not change:
+  !> each FIX's BODY:BOUNDARY (its reaction), each RIGID's name.
+  !>   run (inout) the scene on entry; res%fix_label, res%rigid_name on exit
+  subroutine name_results(run)
+    type(run_t), intent(inout) :: run
+    integer :: j
+    allocate(run%res%fix_label(size(run%sc%fixes)), run%res%rigid_name(size(run%sc%rigids)))
+    do j = 1, size(run%sc%fixes)
+      run%res%fix_label(j)%s = run%sc%fixes(j)%label
+    end do
+    do j = 1, size(run%sc%rigids)
+      run%res%rigid_name(j)%s = run%sc%rigids(j)%name
+    end do
+  end subroutine name_results
 
   !> The results of the run's final state: the contact resultants (from mu,
   !> and tau with friction), stresses, energy, reactions, the RIGIDs, the
@@ -100,11 +116,10 @@ contains
   subroutine post_process(run, fext)
     type(run_t), intent(inout) :: run
     real(dp), intent(in) :: fext(:)
-    integer :: j, b, a, nlabel
+    integer :: j, b, a
     real(dp), allocatable :: axis(:,:), fint(:)
     if (allocated(run%res%stress)) deallocate(run%res%stress, run%res%vm)
     if (allocated(run%res%reaction)) deallocate(run%res%reaction)
-    if (allocated(run%res%fix_label)) deallocate(run%res%fix_label)
     allocate(run%res%stress(merge(4, 3, run%deck%axisymmetric), run%sc%nelem), run%res%vm(run%sc%nelem), fint(run%sc%ndof))
     if (run%deck%output%fields(4) .or. run%deck%output%fields(5)) then
       call element_response(run%sc%bodies, run%res%u, fint, run%res%stress, run%res%vm)
@@ -113,14 +128,6 @@ contains
     end if
     run%res%energy = 0.5_dp * dot_product(run%res%u, fint)
     allocate(run%res%reaction(2, size(run%sc%fixes)), source=0.0_dp)
-    nlabel = 1
-    do j = 1, size(run%sc%fixes)
-      nlabel = max(nlabel, len(run%sc%fixes(j)%label))
-    end do
-    allocate(character(len=nlabel) :: run%res%fix_label(size(run%sc%fixes)))
-    do j = 1, size(run%sc%fixes)
-      run%res%fix_label(j) = run%sc%fixes(j)%label
-    end do
     ! the direction of each dof: e_x, e_y, or n, t at a node in local axes
     allocate(axis(2, run%sc%ndof), source=0.0_dp)
     axis(1, 1::2) = 1.0_dp
@@ -150,16 +157,10 @@ contains
   !> the reference point), for the summary, the step table and the log.
   subroutine rigid_results(run)
     type(run_t), intent(inout) :: run
-    integer :: r, nl
-    if (allocated(run%res%rigid)) deallocate(run%res%rigid, run%res%rigid_name)
-    nl = 1
-    do r = 1, size(run%sc%rigids)
-      nl = max(nl, len(run%sc%rigids(r)%name))
-    end do
-    allocate(character(len=nl) :: run%res%rigid_name(size(run%sc%rigids)))
+    integer :: r
+    if (allocated(run%res%rigid)) deallocate(run%res%rigid)
     allocate(run%res%rigid(6, size(run%sc%rigids)), source=0.0_dp)
     do r = 1, size(run%sc%rigids)
-      run%res%rigid_name(r) = run%sc%rigids(r)%name
       run%res%rigid(1:3, r) = run%res%u(run%sc%rigids(r)%dof0 + 1:run%sc%rigids(r)%dof0 + 3)
       if (allocated(run%fc)) run%res%rigid(4:6, r) = run%fc(run%sc%rigids(r)%dof0 + 1:run%sc%rigids(r)%dof0 + 3)
     end do

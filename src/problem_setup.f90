@@ -25,6 +25,7 @@ module problem_setup
   use rigid_modes, only: find_floating_modes
   use mode_support, only: split_free_modes
   use rigid_support, only: split_rigid_modes
+  use post_processing, only: name_results
   use contact_solve, only: check_floating_bodies, check_floating_friction_solver, check_unheld_loads, &
                            check_unheld_rigid_loads
   use, intrinsic :: iso_fortran_env, only: error_unit
@@ -84,6 +85,7 @@ contains
     run%res%effects = run%sc%effects
     run%res%axisymmetric = run%deck%axisymmetric
     run%res%nfree = run%nfree
+    call name_results(run)
     call report_scene(run)
     if (run%check_only) then
       call say(run, 'check: the deck and its meshes are valid; nothing solved, nothing written')

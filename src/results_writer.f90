@@ -6,6 +6,7 @@
 !>
 !> Programming interface
 !>   type(results_t)      everything a run computed that the files report
+!>   type(string_t)       one string of any length (results_t's lists of names)
 !>   write_vtk(path, title, bodies, r, ok)
 !>   write_contact_csv(path, cs, r, ok)
 !>   write_summary(path, r, ok)
@@ -21,17 +22,26 @@ module results_writer
                          close_text
   implicit none
   private
-  public :: results_t, write_vtk, write_contact_csv, write_summary, write_pvd, write_step_table
+  public :: results_t, string_t, write_vtk, write_contact_csv, write_summary, write_pvd, write_step_table
   public :: phase_names, nphase, peak_memory
 
   integer, parameter :: nphase = 8
   character(len=8), parameter :: phase_names(nphase) = &
     [character(len=8) :: 'mesh', 'assemble', 'factor', 'condense', 'lcp', 'recover', 'output', 'total']
 
+  !> One string of any length.  results_t's lists of names and lines are
+  !> arrays of it, not deferred-length character arrays: gfortran 12's
+  !> assignment of a derived type loses the elements of such an array
+  !> component (NUL bytes in the copy), and results_t is copied while the
+  !> load steps are solved.
+  type :: string_t
+    character(len=:), allocatable :: s
+  end type string_t
+
   type :: results_t
     character(len=:), allocatable :: effects     !< effects simulated
     logical :: axisymmetric = .false.            !< forces for the full circle (summary force_basis)
-    character(len=:), allocatable :: parameter(:) !< (nparam) 'NAME VALUE' of each deck PARAMETER
+    type(string_t), allocatable :: parameter(:) !< (nparam) 'NAME VALUE' of each deck PARAMETER
     integer :: nfree = 0                         !< free equations
     real(dp), allocatable :: u(:)                !< (ndof) displacements
     real(dp), allocatable :: stress(:,:)         !< (3, nelem) sxx syy sxy per element, or
@@ -41,7 +51,7 @@ module results_writer
     real(dp), allocatable :: node_gap(:)         !< (ndof/2) final gap at slave nodes (0 elsewhere)
     real(dp), allocatable :: mu(:)               !< (nrow) multipliers (nodal forces)
     real(dp), allocatable :: alpha(:)            !< (k) amplitudes of the free rigid modes
-    character(len=:), allocatable :: unheld_mode(:) !< (nu) 'BODY KIND X Y' of each rigid motion held by
+    type(string_t), allocatable :: unheld_mode(:) !< (nu) 'BODY KIND X Y' of each rigid motion held by
                                                  !< neither FIX nor contact (summary unheld_mode)
     real(dp), allocatable :: gap(:)              !< (nrow) final gaps
     real(dp), allocatable :: pressure(:)         !< (nrow) pressures mu / w
@@ -58,8 +68,8 @@ module results_writer
     real(dp), allocatable :: reaction(:,:)       !< (2, nfix)
     real(dp), allocatable :: contact_force(:,:)  !< (2, npair) resultant of the contact forces on each
                                                  !< pair's slave body, -sum_i (mu_i n_i + tau_i t_i)
-    character(len=:), allocatable :: fix_label(:) !< (nfix) BODY:BOUNDARY
-    character(len=:), allocatable :: rigid_name(:) !< (nrigid) the RIGID obstacles
+    type(string_t), allocatable :: fix_label(:) !< (nfix) BODY:BOUNDARY
+    type(string_t), allocatable :: rigid_name(:) !< (nrigid) the RIGID obstacles
     real(dp), allocatable :: rigid(:,:)          !< (6, nrigid) ux uy rz of the reference point, fx fy m the
                                                  !< contact force on the obstacle (summary rigid)
     real(dp) :: energy = 0
@@ -388,7 +398,7 @@ contains
     write(u, '(a)') 'force_basis ' // trim(merge('full_circle       ', 'per_unit_thickness', r%axisymmetric))
     if (allocated(r%parameter)) then
       do k = 1, size(r%parameter)
-        write(u, '(a)') 'parameter ' // trim(r%parameter(k))
+        write(u, '(a)') 'parameter ' // r%parameter(k)%s
       end do
     end if
     write(u, '(a,i0)') 'dofs ', size(r%u)
@@ -409,7 +419,7 @@ contains
     end if
     write(u, '(a,a)') 'energy ', num(r%energy)
     do k = 1, size(r%fix_label)
-      write(u, '(a)') 'reaction ' // trim(r%fix_label(k)) // ' ' // num(r%reaction(1, k)) // ' ' // num(r%reaction(2, k))
+      write(u, '(a)') 'reaction ' // r%fix_label(k)%s // ' ' // num(r%reaction(1, k)) // ' ' // num(r%reaction(2, k))
     end do
     if (allocated(r%contact_force)) then
       do k = 1, size(r%contact_force, 2)
@@ -418,13 +428,13 @@ contains
     end if
     if (allocated(r%rigid_name)) then
       do k = 1, size(r%rigid_name)
-        write(u, '(a)') 'rigid ' // trim(r%rigid_name(k)) // ' ' // num(r%rigid(1, k)) // ' ' // num(r%rigid(2, k)) // &
+        write(u, '(a)') 'rigid ' // r%rigid_name(k)%s // ' ' // num(r%rigid(1, k)) // ' ' // num(r%rigid(2, k)) // &
           ' ' // num(r%rigid(3, k)) // ' ' // num(r%rigid(4, k)) // ' ' // num(r%rigid(5, k)) // ' ' // num(r%rigid(6, k))
       end do
     end if
     if (allocated(r%unheld_mode)) then
       do k = 1, size(r%unheld_mode)
-        write(u, '(a)') 'unheld_mode ' // trim(r%unheld_mode(k))
+        write(u, '(a)') 'unheld_mode ' // r%unheld_mode(k)%s
       end do
     end if
     write(u, '(a,i0)') 'factor_nnz ', r%factor_nnz

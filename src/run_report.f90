@@ -253,16 +253,12 @@ contains
   !> `parameter NAME VALUE` lines.
   subroutine report_parameters(run)
     type(run_t), intent(inout) :: run
-    integer :: k, width
+    integer :: k
     character(len=:), allocatable :: value
-    width = 1
-    do k = 1, run%deck%params%n
-      width = max(width, len_trim(run%deck%params%name(k)) + 1 + len(format_number(run%deck%params%value(k))))
-    end do
-    allocate(character(len=width) :: run%res%parameter(run%deck%params%n))
+    allocate(run%res%parameter(run%deck%params%n))
     do k = 1, run%deck%params%n
       value = format_number(run%deck%params%value(k))
-      run%res%parameter(k) = trim(run%deck%params%name(k)) // ' ' // value
+      run%res%parameter(k)%s = trim(run%deck%params%name(k)) // ' ' // value
       call say(run, 'param    ' // trim(run%deck%params%name(k)) // ' = ' // value // ' (' // &
         trim(run%deck%params%origin(k)) // ')')
     end do
