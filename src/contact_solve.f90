@@ -426,59 +426,70 @@ contains
 
   !> The diagnosis of a frictional step without equilibrium from the unbalanced
   !> load along the held combinations (the bodies' modes, then the RIGIDs'
-  !> free directions): the body or the RIGID that carries most of it.
+  !> free directions): the body or the RIGID that carries most of it, and
+  !> the motion of that one alone.
+  !>   unbalanced (in) e - H'z at the closest balance, along the held combinations
+  !>   cause      (in) 'friction' (the cone is too small) or 'contact'
   function floating_no_equilibrium(run, unbalanced, cause) result(t)
     type(run_t), intent(in) :: run
     real(dp), intent(in) :: unbalanced(:)
     character(len=*), intent(in) :: cause
     character(len=:), allocatable :: t
-    real(dp), allocatable :: cr(:)
-    integer :: kb, r
+    real(dp), allocatable :: c(:)
+    integer :: kb, owner
+    logical :: on_body
     kb = size(run%split%held, 2)
-    if (kb > 0) then
-      if (maxval(abs(unbalanced(1:kb))) >= maxval(abs(unbalanced(kb + 1:)), mask=.true.) .or. &
-          size(unbalanced) == kb) then
-        t = friction_no_equilibrium(run, matmul(run%split%held, unbalanced(1:kb)), cause)
-        return
-      end if
-    end if
-    cr = matmul(run%rsplit%held, unbalanced(kb + 1:))
-    r = run%rsplit%owner(maxloc(abs(cr), dim=1))
-    cr = merge(cr, 0.0_dp, run%rsplit%owner == r)
-    if (cause == 'friction') then
-      t = 'no equilibrium: the FORCE on RIGID "' // run%sc%rigids(r)%name // '" exceeds what friction can hold: it ' // &
-        'would move by ' // rigid_direction(run%rsplit, cr) // ' (the contact forces within the friction cone ' // &
-        'cannot balance its load)'
+    on_body = .false.
+    if (kb > 0) on_body = maxval(abs(unbalanced(1:kb))) >= maxval(abs(unbalanced(kb + 1:)), mask=.true.) .or. &
+                          size(unbalanced) == kb
+    if (on_body) then
+      call largest_owner(run%split%held, unbalanced(1:kb), run%fl%mode_body, c, owner)
+      t = no_equilibrium_text(cause, 'the loads on body "' // run%sc%bodies(owner)%name // '" exceed', &
+                              'the loads pull body "' // run%sc%bodies(owner)%name // '"', motion_name(run%fl, c), &
+                              'the loads')
     else
-      t = 'no equilibrium: the FORCE on RIGID "' // run%sc%rigids(r)%name // '" pulls it away from its contacts: it ' // &
-        'would move by ' // rigid_direction(run%rsplit, cr) // ' (no contact force balances its load, whatever ' // &
-        'the friction)'
+      call largest_owner(run%rsplit%held, unbalanced(kb + 1:), run%rsplit%owner, c, owner)
+      t = no_equilibrium_text(cause, 'the FORCE on RIGID "' // run%sc%rigids(owner)%name // '" exceeds', &
+                              'the FORCE on RIGID "' // run%sc%rigids(owner)%name // '" pulls it', &
+                              rigid_direction(run%rsplit, c), 'its load')
     end if
   end function floating_no_equilibrium
 
-  !> The diagnosis of a step without static equilibrium: the body and the
-  !> motion the unbalanced load c (k, along the modes) drives.
-  !>   c     (in) (k) e - H'z at the closest balance, in the modes' amplitudes
-  !>   cause (in) 'friction' (the cone is too small) or 'contact'
-  function friction_no_equilibrium(run, c, cause) result(t)
-    type(run_t), intent(in) :: run
-    real(dp), intent(in) :: c(:)
-    character(len=*), intent(in) :: cause
+  !> The unbalanced load in the modes' (or directions') amplitudes, c = H u,
+  !> kept on the owner (body or RIGID) with the largest amplitude.
+  !>   held     (in)  (k, m) the held combinations
+  !>   u        (in)  (m) the unbalanced load along them
+  !>   owner_of (in)  (k) the owner of each mode or direction
+  !>   c        (out) (k) H u on that owner's modes, 0 on the others
+  !>   owner    (out) that owner
+  subroutine largest_owner(held, u, owner_of, c, owner)
+    real(dp), intent(in) :: held(:,:), u(:)
+    integer, intent(in) :: owner_of(:)
+    real(dp), allocatable, intent(out) :: c(:)
+    integer, intent(out) :: owner
+    c = matmul(held, u)
+    owner = owner_of(maxloc(abs(c), dim=1))
+    c = merge(c, 0.0_dp, owner_of == owner)
+  end subroutine largest_owner
+
+  !> The sentence of a step without static equilibrium, one per cause.
+  !>   cause  (in) 'friction' (the friction cone is too small) or 'contact'
+  !>          (the load pulls away from the contacts)
+  !>   held   (in) who exceeds the cone, with the verb: 'the loads on body "A" exceed'
+  !>   pulled (in) who is pulled off, with the verb: 'the loads pull body "A"'
+  !>   motion (in) the motion it would make
+  !>   load   (in) what is not balanced: 'the loads', 'its load'
+  function no_equilibrium_text(cause, held, pulled, motion, load) result(t)
+    character(len=*), intent(in) :: cause, held, pulled, motion, load
     character(len=:), allocatable :: t
-    real(dp), allocatable :: cb(:)
-    integer :: b
-    b = run%fl%mode_body(maxloc(abs(c), dim=1))
-    cb = merge(c, 0.0_dp, run%fl%mode_body == b)          ! the motion of that body alone
     if (cause == 'friction') then
-      t = 'no equilibrium: the loads on body "' // run%sc%bodies(b)%name // '" exceed what friction can hold: ' // &
-        'it would move by ' // motion_name(run%fl, cb) // ' (the contact forces within the friction cone ' // &
-        'cannot balance the loads)'
+      t = 'no equilibrium: ' // held // ' what friction can hold: it would move by ' // motion // &
+        ' (the contact forces within the friction cone cannot balance ' // load // ')'
     else
-      t = 'no equilibrium: the loads pull body "' // run%sc%bodies(b)%name // '" away from its contacts: ' // &
-        'it would move by ' // motion_name(run%fl, cb) // ' (no contact force balances the loads, ' // &
-        'whatever the friction)'
+      t = 'no equilibrium: ' // pulled // ' away from its contacts: it would move by ' // motion // &
+        ' (no contact force balances ' // load // ', whatever the friction)'
     end if
-  end function friction_no_equilibrium
+  end function no_equilibrium_text
 
   !> The names of the bodies with free rigid modes, quoted, comma-separated.
   function floating_names(run) result(t)
