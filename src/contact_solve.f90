@@ -23,7 +23,8 @@ module contact_solve
   use diagnostics, only: error_t, add_error, stop_input_errors, fail_numerical, int_to_str
   use run_state, only: run_t, ph_lcp
   use run_report, only: say, say_step, lap
-  use scene, only: group_factor, step_loads
+  use scene, only: step_loads
+  use load_groups, only: group_factor
   use contact_condensation, only: constraint_values
   use lcp_solvers, only: lcp_options_t, lcp_report_t
   use friction_lcp, only: solve_friction_lcp, friction_state

@@ -21,7 +21,7 @@ module linear_system
   use diagnostics, only: error_t, fail_numerical, int_to_str, real_to_str
   use run_state, only: run_t, ph_assemble, ph_factor, ph_condense, ph_recover
   use run_report, only: lap, split_overlap
-  use scene, only: group_factor
+  use load_groups, only: group_factor
   use mesh, only: node_in_file
   use material, only: tensor_condition
   use body, only: build_pattern, assemble_stiffness, internal_forces

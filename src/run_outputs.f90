@@ -20,7 +20,7 @@ module run_outputs
   use run_state, only: run_t, ph_output
   use run_report, only: lap
   use deck_reader, only: path_too_long
-  use scene, only: group_factor, group_name
+  use load_groups, only: group_factor, group_name
   use post_processing, only: rigid_results
   use results_writer, only: write_vtk, write_contact_csv, write_summary, write_pvd, write_step_table, peak_memory
   use safe_files, only: make_folders, temporary_t, create_temporary, close_temporary, commit_temporaries, &

@@ -1,40 +1,36 @@
 !> scene: from the deck to the physics.  The one module that knows both
 !> deck_t and the bodies: it makes each body's mesh (MESH rect, a .msh file or a
 !> .geo file meshed by gmsh), its elasticity tensor, its Dirichlet data (FIX),
-!> its loads (TRACTION, PRESSURE, BODYFORCE, GRAVITY) and resolves the CONTACT
-!> pairs.  Every name that needs a mesh to check (boundaries) is checked here,
-!> and reported at the deck line of the statement that uses it.
+!> its loads (TRACTION, PRESSURE, BODYFORCE, GRAVITY, THERMAL) and resolves the
+!> CONTACT pairs.  Every name that needs a mesh to check (boundaries) is checked
+!> here or in its parts, and reported at the deck line of the statement that
+!> uses it.
 !>
 !> The scene declares its effects: only what the deck asks for is simulated,
 !> and scene%effects lists it for the run log and the summary.
 !>
-!> Load paths.  The loads and prescribed values are kept per load group (one
-!> per distinct ramp k0:k1 or CURVE); step k's are the groups weighted by their
-!> factors (step_loads), fext and ubar those of the last step.  FIX un=/ut=
-!> puts nodes in local axes (body%axes; apply_fixes), and the groups' forces
-!> are turned to those axes.
+!> Its parts, modules of their own: load_groups (the load history: one group
+!> per distinct ramp k0:k1 or CURVE, with its loads and prescribed values;
+!> scene_t extends load_groups_t, and fext, ubar are the last step's,
+!> step_loads), fix_dofs (the FIX statements' dofs, and the nodes' local axes
+!> of FIX un=/ut=, to which the groups' forces are turned here) and
+!> deck_boundaries (the boundary a statement names).
 !>
 !> PLANE axisymmetric: the bodies' kernels on the full circle (body), every
 !> node at r >= 0 (check_radius), u_r = 0 on the axis (apply_axis).
 !>
-!> Size.  About 900 lines, over the house's 800: the one module that reads
-!> both the deck and the physics, edited by other branches now; the load
-!> groups (collect_ramps to step_loads) and the FIX axes (apply_fixes,
-!> nodal_normals) are the parts to move to modules of their own next.
-!>
 !> Programming interface
-!>   type(scene_t)                       bodies, dof data, loads, pair specs, effects
-!>   group_factor(sc, g, k), group_name(sc, g)   load factor of group g at step k; its name
+!>   type(scene_t)                       bodies, dof data, loads, pair specs, effects;
+!>        extends load_groups_t (steps, ramp, fgroup, ugroup: load_groups' procedures take it)
 !>   step_loads(sc, k, fext, ubar)        the loads of step k (and the bodies' thermal strains)
-!>   build_scene(deck, gmsh, sc, diag)  gmsh: how .geo files are meshed (trust,
+!>   build_scene(deck, gmsh, sc, diag, err)  gmsh: how .geo files are meshed (trust,
 !>        time limit); errors go to diag with deck lines
 module scene
   use kinds, only: dp
   use diagnostics, only: diag_t, add_error, has_errors, int_to_str, error_t, real_to_str
-  use deck_reader, only: deck_t, body_deck_t, curve_t, curve_factor, LOAD_TRACTION, LOAD_PRESSURE, rigid_deck_t
-  use mesh, only: mesh_t, is_quadratic, finalize_mesh, find_boundary, boundary_nodes, find_region, order_for_locality, &
-                  name_list, &
-                  node_in_file, locality_min_nodes
+  use deck_reader, only: deck_t, body_deck_t, LOAD_TRACTION, LOAD_PRESSURE, rigid_deck_t
+  use mesh, only: mesh_t, is_quadratic, finalize_mesh, find_region, order_for_locality, name_list, node_in_file, &
+                  locality_min_nodes
   use mesh_rect, only: make_rect_mesh
   use gmsh_reader, only: read_gmsh_file
   use gmsh_runner, only: gmsh_options_t, mesh_geo_file
@@ -45,10 +41,13 @@ module scene
   use axisymmetric_elements, only: axi_element_body_load, axi_edge_load, axi_edge_load_quadratic
   use body, only: body_t, node_elements, edge_outward_normal, element_dofs, thermal_loads, to_local_axes
   use contact_set, only: pair_spec_t
+  use load_groups, only: load_groups_t, collect_groups, ramp_group, group_factors
+  use deck_boundaries, only: boundary_index
+  use fix_dofs, only: apply_fixes
   use rigid_obstacle, only: rigid_shape_t, shape_line, shape_circle, shape_polyline
   implicit none
   private
-  public :: scene_t, fix_ref_t, build_scene, load_factor, group_factor, step_loads, group_name
+  public :: scene_t, fix_ref_t, build_scene, step_loads
 
   !> A FIX statement, for its reaction line in the summary.
   type :: fix_ref_t
@@ -63,7 +62,7 @@ module scene
     integer, allocatable :: group(:)          !< (nelem) load group of each element's THERMAL
   end type thermal_path_t
 
-  type :: scene_t
+  type, extends(load_groups_t) :: scene_t
     type(body_t), allocatable :: bodies(:)
     integer :: ndof = 0                       !< 2 x all nodes
     integer :: nnode = 0, nelem = 0           !< totals over bodies
@@ -75,16 +74,7 @@ module scene
     type(pair_spec_t), allocatable :: specs(:)  !< CONTACT pairs
     type(rigid_shape_t), allocatable :: rigids(:)  !< (nrigid) RIGID obstacles; dofs after the bodies'
     character(len=:), allocatable :: effects  !< space-separated effects simulated
-    ! load history (STEPS n, ramp=k0:k1, curve=NAME): the loads and prescribed
-    ! values split by load path; fext and ubar are their sums weighted by the
-    ! paths' factors at the final step n
-    integer :: steps = 1                      !< load steps
-    integer, allocatable :: ramp(:,:)         !< (2, ngroup) distinct ramps k0:k1 ([0, 0] for a curve's group)
-    integer, allocatable :: group_curve(:)    !< (ngroup) the curve of each group, 0 for a ramp's
-    type(curve_t), allocatable :: curves(:)   !< the deck's CURVE statements
     type(thermal_path_t), allocatable :: thermal(:)  !< (nbody) alpha dT at factor 1 and its group
-    real(dp), allocatable :: fgroup(:,:)      !< (ndof, ngroup) external forces of each ramp
-    real(dp), allocatable :: ugroup(:,:)      !< (ndof, ngroup) prescribed values of each ramp
   end type scene_t
 
 contains
@@ -101,7 +91,7 @@ contains
     type(scene_t), intent(out) :: sc
     type(diag_t), intent(inout) :: diag
     type(error_t), allocatable, intent(out) :: err
-    integer :: b, nb, nfix, ifix, ndof, ip, naxis
+    integer :: b, nb, nfix, ifix, ndof, ip, naxis, k
     logical :: has_traction, has_pressure, has_bforce, has_gravity, has_dirichlet, has_thermal, has_offset, has_axis
 
     ! The bodies are read one after the other: gfortran 12 keeps the length of
@@ -111,8 +101,9 @@ contains
     nb = size(deck%bodies)
     allocate(sc%bodies(nb))
     do b = 1, nb
-      call make_body(deck, b, gmsh, sc%bodies(b), diag, err)
+      call make_mesh(deck, b, gmsh, sc%bodies(b)%mesh, diag, err)
       if (allocated(err)) return
+      call make_body(deck, b, sc%bodies(b), diag)
     end do
     if (has_errors(diag)) return
     ! a large mesh file's numbering is its generator's: renumber for locality
@@ -146,12 +137,8 @@ contains
     sc%ndof = ndof
     allocate(sc%fixed(ndof), sc%ubar(ndof), sc%fix_owner(ndof), sc%fext(ndof))
     sc%fixed = .false.; sc%ubar = 0.0_dp; sc%fix_owner = 0; sc%fext = 0.0_dp
-    sc%steps = deck%steps
-    sc%curves = deck%curves
-    call collect_ramps(deck, sc%ramp, sc%group_curve)
-    allocate(sc%fgroup(ndof, size(sc%ramp, 2)), sc%ugroup(ndof, size(sc%ramp, 2)))
+    call collect_groups(deck, ndof, sc%load_groups_t)
     allocate(sc%thermal(nb))
-    sc%fgroup = 0.0_dp; sc%ugroup = 0.0_dp
 
     nfix = 0
     do b = 1, nb
@@ -164,7 +151,15 @@ contains
     has_thermal = .false.
     has_axis = .false.
     do b = 1, nb
-      call apply_fixes(deck, deck%bodies(b), sc, b, ifix, diag)
+      associate(fixes => deck%bodies(b)%fixes)
+        do k = 1, size(fixes)
+          sc%fixes(ifix + k)%body = b
+          sc%fixes(ifix + k)%label = deck%bodies(b)%name // ':' // fixes(k)%boundary
+        end do
+        call apply_fixes(deck, deck%bodies(b), [(ramp_group(sc, fixes(k)%ramp, fixes(k)%curve), k = 1, size(fixes))], &
+                         ifix, sc%bodies(b), sc%fixed, sc%ugroup, sc%fix_owner, diag)
+        ifix = ifix + size(fixes)
+      end associate
       if (deck%axisymmetric) then
         call apply_axis(deck, sc, b, naxis, diag)
         has_axis = has_axis .or. naxis > 0
@@ -196,7 +191,8 @@ contains
         sc%specs(ip)%interference = c%interference
         if (c%friction == 'coulomb') sc%specs(ip)%mu = c%mu
         if (c%friction == 'tresca') sc%specs(ip)%tresca = c%tresca
-        sc%specs(ip)%slave_bnd = curve_index(deck, c%line, sc%bodies(c%slave_body), c%slave_boundary, 'CONTACT slave', diag)
+        sc%specs(ip)%slave_bnd = boundary_index(deck, c%line, sc%bodies(c%slave_body), c%slave_boundary, 'CONTACT slave', &
+                                                .true., diag)
         if (c%master_rigid > 0) then                   ! against a RIGID: its exact shape, no master mesh
           sc%specs(ip)%rigid = c%master_rigid
           sc%specs(ip)%shape = sc%rigids(c%master_rigid)
@@ -204,8 +200,8 @@ contains
             'quadratic elements is not available yet (P1/Q1 boundaries expected)')
           cycle
         end if
-        sc%specs(ip)%master_bnd = curve_index(deck, c%line, sc%bodies(c%master_body), c%master_boundary, &
-                                              'CONTACT master', diag)
+        sc%specs(ip)%master_bnd = boundary_index(deck, c%line, sc%bodies(c%master_body), c%master_boundary, &
+                                                 'CONTACT master', .true., diag)
         ! quadratic traces (mortar_quadratic): frictionless only, the common normal is not carried over
         if ((is_quadratic(sc%bodies(c%slave_body)%mesh) .or. is_quadratic(sc%bodies(c%master_body)%mesh)) &
             .and. (sc%specs(ip)%mu > 0.0_dp .or. sc%specs(ip)%tresca > 0.0_dp)) &
@@ -239,98 +235,6 @@ contains
       sc%effects = sc%effects // ' friction'
   end subroutine build_scene
 
-  !> The distinct load paths of the deck's loads and prescribed values: ramps
-  !> k0:k1 and curves, the default ramp [0, steps] first.
-  !>   ramp   (out) (2, ngroup) the ramp of each group, [0, 0] for a curve's
-  !>   curve  (out) (ngroup) the curve of each group, 0 for a ramp's
-  subroutine collect_ramps(deck, ramp, curve)
-    type(deck_t), intent(in) :: deck
-    integer, allocatable, intent(out) :: ramp(:,:), curve(:)
-    integer :: b, k, n
-    integer, allocatable :: list(:,:)
-    n = 1
-    allocate(list(3, 8))
-    list(:, 1) = [0, deck%steps, 0]
-    if (deck%has_gravity) call add(deck%gravity_ramp, deck%gravity_curve)
-    do b = 1, size(deck%bodies)
-      do k = 1, size(deck%bodies(b)%fixes)
-        call add(deck%bodies(b)%fixes(k)%ramp, deck%bodies(b)%fixes(k)%curve)
-      end do
-      do k = 1, size(deck%bodies(b)%loads)
-        call add(deck%bodies(b)%loads(k)%ramp, deck%bodies(b)%loads(k)%curve)
-      end do
-      do k = 1, size(deck%bodies(b)%thermals)
-        call add([0, deck%steps], deck%bodies(b)%thermals(k)%curve)
-      end do
-      if (deck%bodies(b)%has_bodyforce) call add(deck%bodies(b)%bodyforce_ramp, deck%bodies(b)%bodyforce_curve)
-    end do
-    do b = 1, size(deck%rigids)
-      do k = 1, size(deck%rigids(b)%fixes)
-        call add(deck%rigids(b)%fixes(k)%ramp, deck%rigids(b)%fixes(k)%curve)
-      end do
-      do k = 1, size(deck%rigids(b)%forces)
-        call add(deck%rigids(b)%forces(k)%ramp, deck%rigids(b)%forces(k)%curve)
-      end do
-    end do
-    ramp = list(1:2, 1:n)
-    curve = list(3, 1:n)
-  contains
-    subroutine add(r, c)
-      integer, intent(in) :: r(2), c
-      integer :: i, key(3)
-      integer, allocatable :: grown(:,:)
-      key = [r, 0]
-      if (c > 0) key = [0, 0, c]
-      do i = 1, n
-        if (all(list(:, i) == key)) return
-      end do
-      if (n == size(list, 2)) then
-        allocate(grown(3, 2 * n))
-        grown(:, 1:n) = list
-        call move_alloc(grown, list)
-      end if
-      n = n + 1
-      list(:, n) = key
-    end subroutine add
-  end subroutine collect_ramps
-
-  !> Column of sc%fgroup / sc%ugroup holding ramp r, or curve c when c > 0.
-  pure integer function ramp_group(sc, r, c) result(g)
-    type(scene_t), intent(in) :: sc
-    integer, intent(in) :: r(2), c
-    do g = 1, size(sc%ramp, 2)
-      if (c > 0) then
-        if (sc%group_curve(g) == c) return
-      else if (sc%group_curve(g) == 0 .and. sc%ramp(1, g) == r(1) .and. sc%ramp(2, g) == r(2)) then
-        return
-      end if
-    end do
-    g = 1
-  end function ramp_group
-
-  !> Load factor of group g at step k: its curve's value, or its ramp's.
-  pure real(dp) function group_factor(sc, g, k) result(f)
-    type(scene_t), intent(in) :: sc
-    integer, intent(in) :: g, k
-    if (sc%group_curve(g) > 0) then
-      f = curve_factor(sc%curves(sc%group_curve(g)), real(k, dp))
-    else
-      f = load_factor(sc%ramp(:, g), k)
-    end if
-  end function group_factor
-
-  !> Name of group g's load path for tables: the curve's name or ramp_K0_K1.
-  function group_name(sc, g) result(name)
-    type(scene_t), intent(in) :: sc
-    integer, intent(in) :: g
-    character(len=:), allocatable :: name
-    if (sc%group_curve(g) > 0) then
-      name = sc%curves(sc%group_curve(g))%name
-    else
-      name = 'ramp_' // int_to_str(sc%ramp(1, g)) // '_' // int_to_str(sc%ramp(2, g))
-    end if
-  end function group_name
-
   !> The loads of step k: fext = sum_g f_g(k) fgroup_g, ubar likewise, and the
   !> bodies' thermal strains alpha dT scaled by their groups' factors.
   !>   sc    (inout) the scene (its bodies' adt are set for step k)
@@ -341,12 +245,9 @@ contains
     type(scene_t), intent(inout) :: sc
     integer, intent(in) :: k
     real(dp), intent(out) :: fext(:), ubar(:)
-    integer :: g, b
-    real(dp), allocatable :: f(:)
-    allocate(f(size(sc%ramp, 2)))
-    do g = 1, size(f)
-      f(g) = group_factor(sc, g, k)
-    end do
+    real(dp) :: f(size(sc%ramp, 2))
+    integer :: b
+    f = group_factors(sc, k)
     fext = matmul(sc%fgroup, f)
     ubar = matmul(sc%ugroup, f)
     do b = 1, size(sc%bodies)
@@ -408,40 +309,67 @@ contains
     end do
   end subroutine apply_rigid_motions
 
-  !> Load factor of ramp k0:k1 at step k: 0 up to k0, linear to 1 at k1, then 1.
-  pure real(dp) function load_factor(ramp, k) result(f)
-    integer, intent(in) :: ramp(2), k
-    f = min(1.0_dp, max(0.0_dp, real(k - ramp(1), dp) / real(ramp(2) - ramp(1), dp)))
-  end function load_factor
-
-  !> Mesh and elasticity tensor of body ib.
-  subroutine make_body(deck, ib, gmsh, bd, diag, err)
+  !> The mesh of body ib: its MESH rect generated, its .msh file read, or its
+  !> .geo file meshed by gmsh into the run's private folder, after the screen
+  !> of what the .geo may do (unless trusted), and read.
+  !>   deck (in)    the deck;  ib (in) the body
+  !>   gmsh (in)    how .geo files are meshed: trusted or screened, time limit
+  !>   mesh (out)   the mesh, finalized (incomplete when diag has new errors)
+  !>   diag (inout) errors at the deck's MESH line or in the mesh file
+  !>   err  (out)   allocated when the memory ran out
+  subroutine make_mesh(deck, ib, gmsh, mesh, diag, err)
     type(deck_t), intent(in) :: deck
     integer, intent(in) :: ib
     type(gmsh_options_t), intent(in) :: gmsh
-    type(body_t), intent(out) :: bd
+    type(mesh_t), intent(out) :: mesh
     type(diag_t), intent(inout) :: diag
     type(error_t), allocatable, intent(out) :: err
+    character(len=:), allocatable :: path, work, deck_folder, log, message
+    logical :: ok
     integer :: n0
-
-    bd%name = deck%bodies(ib)%name
-    associate(ms => deck%bodies(ib)%mesh, bdeck => deck%bodies(ib))
-      select case (ms%kind)
-      case ('rect')
-        call make_rect_mesh(ms%x0, ms%y0, ms%x1, ms%y1, ms%nx, ms%ny, ms%elem, ms%diag, bd%mesh, err)
+    n0 = diag%count
+    associate(ms => deck%bodies(ib)%mesh)
+      if (ms%kind == 'rect') then
+        call make_rect_mesh(ms%x0, ms%y0, ms%x1, ms%y1, ms%nx, ms%ny, ms%elem, ms%diag, mesh, err)
         if (allocated(err)) return
-        call finalize_mesh(bd%mesh, deck%file, diag)
-      case default
-        n0 = diag%count
-        if (ms%is_geo) then
-          call mesh_geo_body(deck, ib, gmsh, bd, diag, err)
-        else
-          call read_gmsh_file(ms%path, bd%mesh, diag, err)
-          if (allocated(err)) return
-          if (diag%count == n0) call finalize_mesh(bd%mesh, ms%path, diag)
+        call finalize_mesh(mesh, deck%file, diag)
+        return
+      end if
+      path = ms%path                           ! the file read: the .msh, or what gmsh made of the .geo
+      if (ms%is_geo) then
+        call real_path(deck%dir, deck_folder, ok)
+        if (.not. ok) deck_folder = deck%dir
+        if (.not. gmsh%trust_geo) call screen_geo(ms%path, deck_folder, diag)
+        if (diag%count > n0) return
+        call private_folder(work, ok)
+        if (.not. ok) then
+          call add_error(diag, deck%file, ms%line, 'cannot make a private folder for gmsh''s files in $TMPDIR ' // &
+                         '(or /tmp) (a writable folder expected)')
+          return
         end if
-      end select
+        path = work // '/body' // int_to_str(ib) // '.msh'
+        log = work // '/body' // int_to_str(ib) // '.log'
+        call mesh_geo_file(ms%path, ms%order, ms%set_names, ms%set_values, gmsh, deck_folder, path, log, ok, message)
+        if (.not. ok) then
+          call add_error(diag, deck%file, ms%line, 'gmsh could not mesh "' // ms%file // '": ' // message)
+          return
+        end if
+      end if
+      call read_gmsh_file(path, mesh, diag, err)
+      if (allocated(err)) return
+      if (diag%count == n0) call finalize_mesh(mesh, ms%path, diag)
     end associate
+  end subroutine make_mesh
+
+  !> Body ib around its mesh: its name, OFFSET, elasticity tensor, thickness
+  !> and, axisymmetric, the check that no node is left of the axis.
+  !>   bd (inout) the body, its mesh made (make_mesh)
+  subroutine make_body(deck, ib, bd, diag)
+    type(deck_t), intent(in) :: deck
+    integer, intent(in) :: ib
+    type(body_t), intent(inout) :: bd
+    type(diag_t), intent(inout) :: diag
+    bd%name = deck%bodies(ib)%name
     associate(bdeck => deck%bodies(ib))
       ! OFFSET: a rigid shift of the geometry, before any contact geometry is made
       if (bdeck%has_offset .and. bd%mesh%nnode > 0) then
@@ -536,218 +464,6 @@ contains
     end associate
   end subroutine apply_axis
 
-  !> Body ib's .geo meshed by gmsh into the run's private folder, after the
-  !> screen of what the .geo may do (unless trusted), and read.
-  subroutine mesh_geo_body(deck, ib, gmsh, bd, diag, err)
-    type(deck_t), intent(in) :: deck
-    integer, intent(in) :: ib
-    type(gmsh_options_t), intent(in) :: gmsh
-    type(body_t), intent(inout) :: bd
-    type(diag_t), intent(inout) :: diag
-    type(error_t), allocatable, intent(out) :: err
-    character(len=:), allocatable :: work, deck_folder, msh, log, message
-    logical :: ok
-    integer :: n0
-    n0 = diag%count
-    associate(ms => deck%bodies(ib)%mesh)
-      call real_path(deck%dir, deck_folder, ok)
-      if (.not. ok) deck_folder = deck%dir
-      if (.not. gmsh%trust_geo) call screen_geo(ms%path, deck_folder, diag)
-      if (diag%count > n0) return
-      call private_folder(work, ok)
-      if (.not. ok) then
-        call add_error(diag, deck%file, ms%line, 'cannot make a private folder for gmsh''s files in $TMPDIR ' // &
-                       '(or /tmp) (a writable folder expected)')
-        return
-      end if
-      msh = work // '/body' // int_to_str(ib) // '.msh'
-      log = work // '/body' // int_to_str(ib) // '.log'
-      call mesh_geo_file(ms%path, ms%order, ms%set_names, ms%set_values, gmsh, deck_folder, msh, log, ok, message)
-      if (.not. ok) then
-        call add_error(diag, deck%file, ms%line, 'gmsh could not mesh "' // ms%file // '": ' // message)
-      else
-        call read_gmsh_file(msh, bd%mesh, diag, err)
-        if (allocated(err)) return
-        if (diag%count == n0) call finalize_mesh(bd%mesh, ms%path, diag)
-      end if
-    end associate
-  end subroutine mesh_geo_body
-
-  !> Boundary index of `name` in body bd, reporting at `line` when unknown.
-  integer function boundary_index(deck, line, bd, name, what, diag) result(ib)
-    type(deck_t), intent(in) :: deck
-    integer, intent(in) :: line
-    type(body_t), intent(in) :: bd
-    character(len=*), intent(in) :: name, what
-    type(diag_t), intent(inout) :: diag
-    ib = find_boundary(bd%mesh, name)
-    if (ib == 0) call add_error(diag, deck%file, line, what // ': unknown boundary "' // name // '" in body "' // &
-                                bd%name // '" (expected one of: ' // &
-                                name_list(bd%mesh%bnd, 'none: the mesh names no boundary') // ')')
-  end function boundary_index
-
-  !> Like boundary_index, and the boundary must be a curve (have edges).
-  integer function curve_index(deck, line, bd, name, what, diag) result(ib)
-    type(deck_t), intent(in) :: deck
-    integer, intent(in) :: line
-    type(body_t), intent(in) :: bd
-    character(len=*), intent(in) :: name, what
-    type(diag_t), intent(inout) :: diag
-    ib = boundary_index(deck, line, bd, name, what, diag)
-    if (ib == 0) return
-    if (bd%mesh%bnd(ib)%nseg == 0) then
-      call add_error(diag, deck%file, line, what // ': "' // name // '" in body "' // bd%name // &
-                     '" is a point set (a boundary curve with edges expected)')
-      ib = 0
-    end if
-  end function curve_index
-
-  !> Dirichlet dofs of the FIX statements of body b.  A component of a FIX
-  !> fixes the displacement along a direction d: e_x, e_y (ux=, uy=), or the
-  !> boundary's nodal normal n and t = (-n_y, n_x) (un=, ut=; n the
-  !> normalized sum of the outward normals of the boundary's edges at the
-  !> node).  A node keeps one pair of axes: those of the first FIX in local
-  !> axes that reaches it while none of its dofs is fixed, else x, y; a later
-  !> FIX must hold it along one of those axes (up to sign: a rectangle's
-  !> corner), else an error.
-  subroutine apply_fixes(deck, bdeck, sc, b, ifix, diag)
-    type(deck_t), intent(in) :: deck
-    type(body_deck_t), intent(in) :: bdeck
-    type(scene_t), intent(inout) :: sc
-    integer, intent(in) :: b
-    integer, intent(inout) :: ifix
-    type(diag_t), intent(inout) :: diag
-    real(dp), parameter :: same = 1.0e-9_dp       ! |cos| within this of 1: the same axis
-    integer :: k, ib, i, dof, c, a, slot
-    integer, allocatable :: nodes(:)
-    logical :: has(2), bad
-    real(dp) :: val(2), v, d(2), q(2, 2), p(2)
-    real(dp), allocatable :: nn(:,:)
-    do k = 1, size(bdeck%fixes)
-      associate(fx => bdeck%fixes(k), bd => sc%bodies(b))
-        ifix = ifix + 1
-        sc%fixes(ifix)%body = b
-        sc%fixes(ifix)%label = bdeck%name // ':' // fx%boundary
-        if (fx%local) then
-          ib = curve_index(deck, fx%line, bd, fx%boundary, 'FIX un=/ut=', diag)
-        else
-          ib = boundary_index(deck, fx%line, bd, fx%boundary, 'FIX', diag)
-        end if
-        if (ib == 0) cycle
-        call boundary_nodes(bd%mesh%bnd(ib), nodes)
-        if (fx%local) then
-          call nodal_normals(bd, ib, nodes, nn, bad)
-          if (bad) then
-            call add_error(diag, deck%file, fx%line, 'FIX un=/ut= on "' // fx%boundary // '": an edge is not on the ' // &
-              'outer boundary of body "' // bd%name // '" or the edge normals at a node cancel (a boundary ' // &
-              'curve with an outward normal at every node expected)')
-            cycle
-          end if
-          if (.not. allocated(bd%axes)) allocate(bd%axes(2, bd%mesh%nnode), source=0.0_dp)
-        end if
-        has = [fx%has_ux, fx%has_uy]
-        val = [fx%ux, fx%uy]
-        node_loop: do i = 1, size(nodes)
-          a = nodes(i)
-          dof = bd%dof0 + 2 * (a - 1)
-          if (fx%local .and. .not. any(sc%fixed(dof + 1:dof + 2))) then
-            if (all(bd%axes(:, a) == 0.0_dp)) bd%axes(:, a) = nn(:, i)     ! the node's axes: this FIX's
-          end if
-          q = reshape([1.0_dp, 0.0_dp, 0.0_dp, 1.0_dp], [2, 2])
-          if (allocated(bd%axes)) then
-            if (any(bd%axes(:, a) /= 0.0_dp)) q = reshape([bd%axes(:, a), -bd%axes(2, a), bd%axes(1, a)], [2, 2])
-          end if
-          do c = 1, 2
-            if (.not. has(c)) cycle
-            if (fx%local) then                          ! direction of component c
-              d = nn(:, i)
-              if (c == 2) d = [-nn(2, i), nn(1, i)]
-            else
-              d = 0.0_dp
-              d(c) = 1.0_dp
-            end if
-            p = matmul(transpose(q), d)                 ! d in the node's axes
-            if (abs(abs(p(1)) - 1.0_dp) <= same) then
-              slot = 1
-            else if (abs(abs(p(2)) - 1.0_dp) <= same) then
-              slot = 2
-            else
-              call add_error(diag, deck%file, fx%line, 'FIX ' // fx%boundary // ' holds node ' // &
-                int_to_str(node_in_file(bd%mesh, a)) // ' along ' // direction(d) // ', which is neither axis of ' // &
-                'the node set by an earlier FIX, ' // direction(q(:, 1)) // ' and ' // direction(q(:, 2)) // &
-                ' (expected FIX statements sharing a node to hold it along the same or perpendicular directions)')
-              exit node_loop
-            end if
-            v = sign(1.0_dp, p(slot)) * val(c)
-            dof = bd%dof0 + 2 * (a - 1) + slot
-            if (sc%fixed(dof)) then
-              if (sum(sc%ugroup(dof, :)) /= v .or. &
-                  (v /= 0.0_dp .and. sc%ugroup(dof, ramp_group(sc, fx%ramp, fx%curve)) /= v)) then
-                call add_error(diag, deck%file, fx%line, 'FIX ' // fx%boundary // ' gives node ' // &
-                  int_to_str(node_in_file(bd%mesh, a)) // ' a value that conflicts with an earlier ' // &
-                  'FIX (equal values where FIX statements share nodes expected)')
-                exit node_loop
-              end if
-            else
-              sc%fixed(dof) = .true.
-              sc%ugroup(dof, ramp_group(sc, fx%ramp, fx%curve)) = v
-              sc%fix_owner(dof) = ifix
-            end if
-          end do
-        end do node_loop
-      end associate
-    end do
-  end subroutine apply_fixes
-
-  !> '(dx, dy)' for messages.
-  function direction(d) result(t)
-    real(dp), intent(in) :: d(2)
-    character(len=:), allocatable :: t
-    character(len=16) :: bx, by
-    write(bx, '(f8.4)') d(1)
-    write(by, '(f8.4)') d(2)
-    t = '(' // trim(adjustl(bx)) // ', ' // trim(adjustl(by)) // ')'
-  end function direction
-
-  !> Unit normal at each node of boundary ib: the normalized sum of the outward
-  !> unit normals of the boundary's edges at the node.
-  !>   nodes (in) the boundary's nodes;  nn (out) (2, size(nodes))
-  !>   bad   (out) an edge not on the body's outer boundary, or a zero sum
-  subroutine nodal_normals(bd, ib, nodes, nn, bad)
-    type(body_t), intent(in) :: bd
-    integer, intent(in) :: ib, nodes(:)
-    real(dp), allocatable, intent(out) :: nn(:,:)
-    logical, intent(out) :: bad
-    integer, allocatable :: eptr(:), elist(:), slot(:)
-    integer :: s, na, nb, owner, i
-    real(dp) :: nrm(2)
-    call node_elements(bd%mesh, eptr, elist)
-    allocate(nn(2, size(nodes)), source=0.0_dp)
-    allocate(slot(bd%mesh%nnode), source=0)
-    do i = 1, size(nodes)
-      slot(nodes(i)) = i
-    end do
-    bad = .false.
-    do s = 1, bd%mesh%bnd(ib)%nseg
-      na = bd%mesh%bnd(ib)%seg(1, s)
-      nb = bd%mesh%bnd(ib)%seg(2, s)
-      call edge_outward_normal(bd%mesh, eptr, elist, na, nb, nrm, owner)
-      if (owner <= 0) then
-        bad = .true.
-        return
-      end if
-      nn(:, slot(na)) = nn(:, slot(na)) + nrm
-      nn(:, slot(nb)) = nn(:, slot(nb)) + nrm
-    end do
-    do i = 1, size(nodes)
-      if (norm2(nn(:, i)) < 1.0e-8_dp) then
-        bad = .true.
-        return
-      end if
-      nn(:, i) = nn(:, i) / norm2(nn(:, i))
-    end do
-  end subroutine nodal_normals
-
   !> alpha dT per element from the THERMAL statements of a body: the one
   !> without region= sets every element, those with region= set their region's
   !> elements (a region statement overrides the whole-body one there).  Each
@@ -814,11 +530,8 @@ contains
     associate(bd => sc%bodies(b), m => sc%bodies(b)%mesh)
       do k = 1, size(bdeck%loads)
         associate(ld => bdeck%loads(k))
-          if (ld%kind == LOAD_TRACTION) then
-            ib = curve_index(deck, ld%line, bd, ld%boundary, 'TRACTION', diag)
-          else
-            ib = curve_index(deck, ld%line, bd, ld%boundary, 'PRESSURE', diag)
-          end if
+          ib = boundary_index(deck, ld%line, bd, ld%boundary, merge('TRACTION', 'PRESSURE', ld%kind == LOAD_TRACTION), &
+                              .true., diag)
           if (ib == 0) cycle
           if ((ld%kind == LOAD_PRESSURE .or. ld%local) .and. .not. have_topology) then
             call node_elements(m, eptr, elist)
