@@ -62,28 +62,28 @@ contains
   !> A results_t with every string set and the arrays the summary reads.
   subroutine fill(r)
     type(results_t), intent(out) :: r
-    integer :: k
     r%effects = 'elasticity contact rigid_obstacle'
     r%lcp_method = 'lemke'
     r%ordering = 'amd(nodes)+last'
-    allocate(r%parameter(size(params)), r%fix_label(size(labels)), r%rigid_name(size(rigids)), &
-             r%unheld_mode(size(modes)))
-    do k = 1, size(params)
-      r%parameter(k)%s = trim(params(k))
-    end do
-    do k = 1, size(labels)
-      r%fix_label(k)%s = trim(labels(k))
-    end do
-    do k = 1, size(rigids)
-      r%rigid_name(k)%s = trim(rigids(k))
-    end do
-    do k = 1, size(modes)
-      r%unheld_mode(k)%s = trim(modes(k))
-    end do
+    r%parameter = strings(params)
+    r%fix_label = strings(labels)
+    r%rigid_name = strings(rigids)
+    r%unheld_mode = strings(modes)
     allocate(r%u(4), source=0.0_dp)
     allocate(r%reaction(2, size(labels)), source=1.0_dp)
     allocate(r%rigid(6, size(rigids)), source=0.5_dp)
   end subroutine fill
+
+  !> Each of list, its trailing blanks trimmed.
+  function strings(list) result(s)
+    character(len=*), intent(in) :: list(:)
+    type(string_t), allocatable :: s(:)
+    integer :: k
+    allocate(s(size(list)))
+    do k = 1, size(list)
+      s(k)%s = trim(list(k))
+    end do
+  end function strings
 
   !> Every string of r as fill set it, at its own length.
   logical function holds(r)
