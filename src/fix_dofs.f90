@@ -10,7 +10,6 @@
 !>   apply_fixes(deck, bdeck, group, ifix0, bd, fixed, ugroup, fix_owner, diag)
 !>        the FIX statements of one body: fixed dofs, their values in their
 !>        load groups, the FIX owning each, the nodes' local axes
-!>   nodal_normals(bd, ib, nodes, nn, bad)   unit normal at each node of a boundary
 module fix_dofs
   use kinds, only: dp
   use diagnostics, only: diag_t, add_error, int_to_str
@@ -20,7 +19,7 @@ module fix_dofs
   use deck_boundaries, only: boundary_index
   implicit none
   private
-  public :: apply_fixes, nodal_normals
+  public :: apply_fixes
 
 contains
 
