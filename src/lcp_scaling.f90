@@ -28,6 +28,7 @@
 !>   type(scaled_lcp_t)             the scaled problem on the rows kept
 !>   prepare_lcp(W, q, nz, opts, check_omega, p, rep)   check, scale, drop the zero rows
 !>   scale_lcp(W, q, d, Ws, qs)     the symmetric diagonal scaling
+!>   scaling_vector(W, d)           its d alone
 !>   measure_solution(W, q, d, z, rep)   residual and complementarity of z
 !>   lcp_natural_residual(W, q, z)  the residual r above
 !>   max_diagonal(W), negative_diagonal(W), scale_of(qmax)
@@ -43,7 +44,8 @@ module lcp_scaling
   implicit none
   private
   public :: lcp_options_t, lcp_report_t, scaled_lcp_t
-  public :: prepare_lcp, scale_lcp, measure_solution, lcp_natural_residual, max_diagonal, negative_diagonal, scale_of
+  public :: prepare_lcp, scale_lcp, scaling_vector, measure_solution, lcp_natural_residual
+  public :: max_diagonal, negative_diagonal, scale_of
   public :: set_report, out_of_memory, report_out_of_memory, check_lcp_sizes, check_lcp_values, residual_outcome
 
   !> Solver settings.
