@@ -71,9 +71,9 @@
 !>     s_i     <- max(0, s_i - omega v_i / Gs_ii)
 !>     s_{n+k} <- clamp(s_{n+k} - omega v_{n+k} / Gs_{n+k,n+k}, -bs_k, bs_k)
 !> with the current bs_k (the lambda just updated) and v kept up to date column
-!> by column (daxpy), recomputed every 50 sweeps.  Each update minimises the
-!> Tresca QP in one variable; at stick v_{n+k} = -d ds_k = 0 and tau stays.  A
-!> zero row takes the unit step.  The residual r is checked after every sweep
+!> by column (daxpy), recomputed every 50 sweeps (lcp_pgs' run_pgs drives the
+!> sweeps).  Each update minimises the Tresca QP in one variable; at stick
+!> v_{n+k} = -d ds_k = 0 and tau stays.  A zero row takes the unit step.  The residual r is checked after every sweep
 !> and confirmed with v recomputed.  Divergence (iterates beyond 1e150 or r
 !> grown by 1e6 over its minimum) and stagnation (the best r not decreased by
 !> a factor 0.999 over max(1000, 10 (n + nt)) sweeps) stop with info 3, the
@@ -112,12 +112,11 @@
 !> No routine prints anything; every outcome is in the report.
 module friction_lcp
   use kinds, only: dp, i8
-  use lapack_interfaces, only: daxpy, dgemv
   use diagnostics, only: int_to_str, real_to_str, error_t, set_out_of_memory
   use lcp_solvers, only: lcp_options_t, lcp_report_t, solve_lcp_lemke, solve_lcp_pgs, pgs_outcome, &
-    solve_lcp_lemke_scaled, scale_lcp, set_report, pgs_monitor_t, pgs_watch_start, pgs_watch_iterate, &
-    pgs_watch_progress, pgs_refresh_sweeps, negative_diagonal
-  use lcp_scaling, only: residual_outcome, report_out_of_memory, scaling_vector
+    solve_lcp_lemke_scaled, scale_lcp, set_report, pgs_problem_t, run_pgs, pgs_set_row, pgs_limits, &
+    negative_diagonal
+  use lcp_scaling, only: residual_outcome, report_out_of_memory, scaling_vector, lcp_gaps
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
   private
@@ -140,8 +139,8 @@ module friction_lcp
     real(dp), allocatable :: bound(:)    !< (nt) Tresca bounds, >= 0 (0 for Coulomb)
   end type friction_problem_t
 
-  !> The scaled problem (module header).
-  type :: scaled_friction_t
+  !> The scaled problem (module header), which method 'pgs' sweeps (run_pgs).
+  type, extends(pgs_problem_t) :: scaled_friction_t
     integer :: n = 0                     !< normal rows
     integer :: nt = 0                    !< tangential rows
     real(dp), allocatable :: d(:)        !< (n+nt) scaling D
@@ -155,6 +154,9 @@ module friction_lcp
     integer, allocatable :: tfirst(:)    !< (n+1) tangential rows of normal row i are
     integer, allocatable :: tlist(:)     !< (nt)  tlist(tfirst(i) : tfirst(i+1) - 1)
     real(dp) :: qscale = 1.0_dp          !< max(||qs||_inf, max bs0), 1 when 0
+  contains
+    procedure :: sweep => friction_sweep
+    procedure :: residual => scaled_residual
   end type scaled_friction_t
 
   real(dp), parameter :: state_tol = 1.0e-8_dp             ! friction_state: relative tolerance
@@ -333,7 +335,7 @@ contains
     if (info /= 0) return
     s = lam / p%d                                      ! s = D^-1 lam
     allocate(v(size(s)))
-    call scaled_gap(p, s, v)
+    call lcp_gaps(p%gs, p%qs, s, v)                    ! v = qs + Gs s
     r = scaled_residual(p, s, v)
   end function friction_residual
 
@@ -368,7 +370,7 @@ contains
     n = p%n
     s = lam / p%d
     allocate(v(size(s)))
-    call scaled_gap(p, s, v)
+    call lcp_gaps(p%gs, p%qs, s, v)                    ! v = qs + Gs s
     small = state_tol * p%qscale
     do k = 1, p%nt
       i = p%trow(k)
@@ -538,20 +540,9 @@ contains
     scaled_bytes = 8.0_dp * real(nrow, dp) * real(nrow + 5, dp)
   end function scaled_bytes
 
-  !> v = qs + Gs s.
-  subroutine scaled_gap(p, s, v)
-    type(scaled_friction_t), intent(in) :: p
-    real(dp), intent(in) :: s(:)
-    real(dp), intent(out) :: v(:)
-    integer :: nrow
-    nrow = p%n + p%nt
-    v = p%qs
-    if (nrow > 0) call dgemv('N', nrow, nrow, 1.0_dp, p%gs, nrow, s, 1, 1.0_dp, v, 1)
-  end subroutine scaled_gap
-
   !> The residual r of (s, v = qs + Gs s) (module header).
   pure function scaled_residual(p, s, v) result(r)
-    type(scaled_friction_t), intent(in) :: p
+    class(scaled_friction_t), intent(in) :: p
     real(dp), intent(in) :: s(:), v(:)
     real(dp) :: r
     real(dp) :: bk
@@ -599,7 +590,7 @@ contains
     type(lcp_report_t), intent(inout) :: rep
     real(dp), allocatable :: v(:)
     allocate(v(size(s)))
-    call scaled_gap(p, s, v)
+    call lcp_gaps(p%gs, p%qs, s, v)                    ! v = qs + Gs s
     rep%residual = scaled_residual(p, s, v)
     rep%complementarity = scaled_complementarity(p, s, v)
   end subroutine measure_scaled
@@ -715,97 +706,43 @@ contains
       return
     end if
 
-    maxit = opts%maxit
-    if (maxit == 0) maxit = nint(min(1.0e5_dp, max(1.0e4_dp, 1.0e10_dp / real(max(nrow, 1), dp)**2)))
-    window = max(1000, 10 * nrow)
+    call pgs_limits(opts%maxit, nrow, maxit, window)
     allocate(s(nrow))
     do i = 1, nrow                                     ! s = D^-1 lam, lambda >= 0
       s(i) = 0.0_dp
       if (ieee_is_finite(lam(i))) s(i) = lam(i) / p%d(i)
       if (i <= p%n) s(i) = max(0.0_dp, s(i))
     end do
-    call pgs_sweeps(p, opts%tol, opts%omega, maxit, window, s, rep%iterations, reason)
+    call run_pgs(p, p%gs, p%qs, opts%tol, opts%omega, maxit, window, s, rep%iterations, reason)
     lam = p%d * s                                      ! lam = D s
     call measure_scaled(p, s, rep)
 
     call pgs_outcome(reason, maxit, window, opts%tol, 'friction PGS', 'lam', 'problem', rep)
   end subroutine friction_pgs
 
-  !> Nonsmooth Gauss-Seidel sweeps (module header).
-  !>   p       (in)    the scaled problem
-  !>   tol     (in)    target on r
-  !>   omega   (in)    relaxation, 0 < omega < 2
-  !>   maxit   (in)    sweep limit
-  !>   window  (in)    stagnation window (sweeps)
-  !>   s       (inout) (n+nt) initial guess (s_i >= 0 on normal rows); on exit
-  !>                   the solution or the best iterate
-  !>   sweeps  (out)   sweeps done
-  !>   reason  (out)   0 converged, 2 limit, 3 divergence, 4 stagnation
-  subroutine pgs_sweeps(p, tol, omega, maxit, window, s, sweeps, reason)
-    type(scaled_friction_t), intent(in) :: p
-    real(dp), intent(in) :: tol, omega
-    integer, intent(in) :: maxit, window
-    real(dp), intent(inout) :: s(:)
-    integer, intent(out) :: sweeps, reason
-    type(pgs_monitor_t) :: mon
-    real(dp), allocatable :: v(:)
-    real(dp) :: res, bk
-    integer :: n, nrow, i, j, kk, k, sweep
+  !> One nonsmooth Gauss-Seidel sweep (module header): the normal rows in
+  !> order, each followed by the tangential rows of its node.
+  !>   p      (in)    the scaled problem
+  !>   omega  (in)    relaxation, 0 < omega < 2
+  !>   s      (inout) (n+nt) the iterate, s_i >= 0 on the normal rows
+  !>   v      (inout) (n+nt) its gaps qs + Gs s, kept up to date
+  subroutine friction_sweep(p, omega, s, v)
+    class(scaled_friction_t), intent(in) :: p
+    real(dp), intent(in) :: omega
+    real(dp), intent(inout) :: s(:), v(:)
+    real(dp) :: bk
+    integer :: n, i, j, kk, k
 
     n = p%n
-    nrow = n + p%nt
-    sweeps = 0
-    reason = 0
-    allocate(v(nrow))
-    call scaled_gap(p, s, v)
-    res = scaled_residual(p, s, v)
-    call pgs_watch_start(mon, tol, window, s, res)
-    if (res <= tol) return
-
-    reason = 2
-    do sweep = 1, maxit
-      sweeps = sweep
-      do i = 1, n
-        call set_row(i, max(0.0_dp, s(i) - omega * v(i) * p%step(i)))      ! lambda_i projected
-        do kk = p%tfirst(i), p%tfirst(i + 1) - 1
-          k = p%tlist(kk)
-          j = n + k
-          bk = p%bs0(k) + p%mus(k) * s(i)                                  ! bs_k with the new lambda_i
-          call set_row(j, min(bk, max(-bk, s(j) - omega * v(j) * p%step(j))))   ! tau_k clamped
-        end do
+    do i = 1, n
+      call pgs_set_row(p%gs, i, max(0.0_dp, s(i) - omega * v(i) * p%step(i)), s, v)      ! lambda_i projected
+      do kk = p%tfirst(i), p%tfirst(i + 1) - 1
+        k = p%tlist(kk)
+        j = n + k
+        bk = p%bs0(k) + p%mus(k) * s(i)                                        ! bs_k with the new lambda_i
+        call pgs_set_row(p%gs, j, min(bk, max(-bk, s(j) - omega * v(j) * p%step(j))), s, v)   ! tau_k clamped
       end do
-      if (mod(sweep, pgs_refresh_sweeps) == 0) call scaled_gap(p, s, v)
-
-      res = scaled_residual(p, s, v)
-      reason = pgs_watch_iterate(mon, s, v, res)
-      if (reason >= 0) exit
-      if (res <= tol) then
-        call scaled_gap(p, s, v)                       ! confirm without drift
-        res = scaled_residual(p, s, v)
-        if (res <= tol) then
-          reason = 0
-          exit
-        end if
-      end if
-      reason = pgs_watch_progress(mon, sweep, res)
-      if (reason >= 0) exit
-      reason = 2
     end do
-    if (reason /= 0) s = mon%xbest
-
-  contains
-
-    !> s_j <- snew, v <- v + (snew - s_j) Gs(:, j).
-    subroutine set_row(j, snew)
-      integer, intent(in) :: j
-      real(dp), intent(in) :: snew
-      real(dp) :: delta
-      delta = snew - s(j)
-      if (delta /= 0.0_dp) then
-        s(j) = snew
-        call daxpy(nrow, delta, p%gs(:, j), 1, v, 1)
-      end if
-    end subroutine set_row
-  end subroutine pgs_sweeps
+  end subroutine friction_sweep
 
 end module friction_lcp
