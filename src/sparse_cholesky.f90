@@ -90,7 +90,7 @@ module sparse_cholesky
   use sparse_matrix, only: csc_t, csc_nnz, csc_check
   use cholmod_binding, only: c2d_chol_create, c2d_chol_destroy, c2d_chol_analyze, c2d_chol_factorize_values, &
                              c2d_chol_set_ordering, c2d_order_amd, c2d_order_metis, &
-                             c2d_chol_stats, c2d_chol_ordering_name, c2d_chol_minor, c2d_chol_min_pivot_ratio, &
+                             c2d_chol_stats, c2d_chol_name, c2d_name_ordering, c2d_chol_minor, c2d_chol_min_pivot_ratio, &
                              c2d_solve_whole, c2d_solve_forward, &
                              c2d_solve_backward, cholmod_ok, cholmod_not_posdef, c2d_chol_block_moved, &
                              c2d_chol_bad_argument, cholmod_out_of_memory
@@ -496,7 +496,7 @@ contains
       f%memory_peak = f%memory_peak + int(memory_peak, i8)
       if (f%part(p)%nlast > 0 .and. f%part(named)%nlast == 0) named = p
     end do
-    call c2d_chol_ordering_name(f%part(named)%handle, buf, int(size(buf), c_int))
+    call c2d_chol_name(f%part(named)%handle, c2d_name_ordering, cholmod_ok, buf, int(size(buf), c_int))
     f%ordering = c_string(buf)
   end subroutine read_statistics
 
