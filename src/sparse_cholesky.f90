@@ -106,8 +106,6 @@ module sparse_cholesky
   public :: trailing_factor_block, trailing_block_end, solve_forward, solve_backward
   public :: free_factor, factor_nnz, factor_flops, factor_memory, factor_ordering
 
-
-
   !> A Cholesky factor P A P' = L L' and its statistics.
   type :: factor_t
     type(part_t), allocatable, private :: part(:)  !< the parts of A (one when A does not split)
@@ -352,12 +350,6 @@ contains
     end subroutine analyze_part
   end subroutine analyze_pattern
 
-
-
-
-
-
-
   !> The numeric factorization of A, whose pattern analyze_pattern analyzed:
   !> the second half of factorize.
   !>   f   (inout) the factor, analyzed; f%ready = .true. on success
@@ -500,13 +492,6 @@ contains
     f%ordering = c_string(buf)
   end subroutine read_statistics
 
-
-
-
-
-
-
-
   !> Release the CHOLMOD handles of f (no-op when it holds none); the
   !> statistics are kept.
   !>   f (inout) the factor; on return f%ready = .false.
@@ -547,7 +532,6 @@ contains
     factor_bytes = 12_i8 * f%nnz_l
   end function factor_bytes
 
-
   !> Peak memory used by CHOLMOD for this factor, bytes.
   pure integer(i8) function factor_memory(f)
     type(factor_t), intent(in) :: f
@@ -562,8 +546,5 @@ contains
     character(len=:), allocatable :: name
     name = trim(f%ordering)
   end function factor_ordering
-
-
-
 
 end module sparse_cholesky
