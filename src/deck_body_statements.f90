@@ -17,8 +17,8 @@ module deck_body_statements
   use diagnostics, only: int_to_str
   use safe_files, only: file_kind, kind_name, c2d_regular, c2d_missing, c2d_unreadable
   use deck_types, only: deck_t, body_deck_t, fix_t, load_t, material_t, thermal_t, load_traction, load_pressure
-  use deck_syntax, only: state_t, stmt_t, key_values_t, report, read_keys, check_extra_words, check_name, &
-                         form_word, cut, quoted, shown
+  use deck_syntax, only: state_t, stmt_t, key_values_t, report, read_keys, check_extra_words, check_no_pairs, &
+                         check_name, form_word, cut, quoted, shown
   use text_scan, only: parse_real, lower, is_identifier, is_printable, ends_with_ci
   use, intrinsic :: iso_fortran_env, only: int64
   implicit none
@@ -33,44 +33,36 @@ contains
     type(state_t), intent(inout) :: s
     type(deck_t), intent(inout) :: deck
     type(stmt_t), intent(in) :: st
-    type(body_deck_t), allocatable :: grown(:)
-    character(len=*), parameter :: usage = 'BODY name'
+    type(body_deck_t) :: body
     integer :: b
     logical :: ok
 
-    allocate(grown(s%nbody + 1))
-    do b = 1, s%nbody
-      grown(b) = deck%bodies(b)
-    end do
-    call move_alloc(grown, deck%bodies)
+    body%line = st%line
+    body%name = ''
+    allocate(body%fixes(0), body%loads(0), body%thermals(0))
+    if (st%nword == 0) then
+      call report(s, st%line, 'missing body name (expected ' // st%usage // ')')
+    else
+      body%name = st%word(1)%s
+      call check_name(s, st, body%name, 'body', ok)
+      if (ok) then
+        do b = 1, s%nbody
+          if (deck%bodies(b)%name == body%name) then
+            call report(s, st%line, 'duplicate BODY name ' // quoted(body%name) // ' (first at line ' // &
+                        int_to_str(deck%bodies(b)%line) // '; expected a new name)')
+            exit
+          end if
+        end do
+      end if
+      call check_extra_words(s, st, 1, st%usage)
+    end if
+    call check_no_pairs(s, st)
+    deck%bodies = [deck%bodies, body]
     s%nbody = s%nbody + 1
     s%cur = s%nbody
     s%end_hinted = .false.
-    associate (body => deck%bodies(s%nbody))
-      body%line = st%line
-      body%name = ''
-      allocate(body%fixes(0), body%loads(0), body%thermals(0))
-      if (st%nword == 0) then
-        call report(s, st%line, 'missing body name (expected ' // usage // ')')
-      else
-        body%name = st%word(1)%s
-        call check_name(s, st, body%name, 'body', ok)
-        if (ok) then
-          do b = 1, s%nbody - 1
-            if (deck%bodies(b)%name == body%name) then
-              call report(s, st%line, 'duplicate BODY name ' // quoted(body%name) // ' (first at line ' // &
-                          int_to_str(deck%bodies(b)%line) // '; expected a new name)')
-              exit
-            end if
-          end do
-        end if
-        call check_extra_words(s, st, 1, usage)
-      end if
-      if (st%npair > 0) call report(s, st%line, 'unexpected ' // quoted(st%key(1)%s // '=' // st%value(1)%s) // &
-                                    ' (expected ' // usage // ')')
-      s%block_name = body%name
-      s%block_line = body%line
-    end associate
+    s%block_name = body%name
+    s%block_line = body%line
   end subroutine do_body
 
   !> MESH without a known kind: the form-less row of MESH.
@@ -460,7 +452,6 @@ contains
     type(state_t), intent(inout) :: s
     type(deck_t), intent(inout) :: deck
     type(stmt_t), intent(in) :: st
-    type(thermal_t), allocatable :: grown(:)
     type(thermal_t) :: th
     type(key_values_t) :: v
     integer :: k
@@ -486,10 +477,7 @@ contains
         end if
       end do
       th%line = st%line
-      allocate(grown(size(body%thermals) + 1))
-      grown(1:size(body%thermals)) = body%thermals
-      grown(size(grown)) = th
-      call move_alloc(grown, body%thermals)
+      body%thermals = [body%thermals, th]
     end associate
   end subroutine do_thermal
 

@@ -15,7 +15,7 @@ module deck_rigid_statements
   use diagnostics, only: int_to_str
   use deck_types, only: deck_t, rigid_deck_t, rigid_load_t
   use deck_syntax, only: state_t, stmt_t, key_values_t, report, read_keys, require_key, check_extra_words, &
-                         check_name, form_word, quoted
+                         check_no_pairs, check_name, form_word, quoted
   use text_scan, only: parse_real, lower
   implicit none
   private
@@ -28,39 +28,31 @@ contains
     type(state_t), intent(inout) :: s
     type(deck_t), intent(inout) :: deck
     type(stmt_t), intent(in) :: st
-    type(rigid_deck_t), allocatable :: grown(:)
-    integer :: r, nr
+    type(rigid_deck_t) :: rg
+    integer :: r
     logical :: ok
 
-    nr = size(deck%rigids)
-    allocate(grown(nr + 1))
-    do r = 1, nr
-      grown(r) = deck%rigids(r)
-    end do
-    call move_alloc(grown, deck%rigids)
     s%block_line = st%line
     s%block_name = ''
     if (st%nword > 0) s%block_name = st%word(1)%s
-    associate (rg => deck%rigids(nr + 1))
-      rg%line = st%line
-      rg%name = ''
-      rg%shape = ''
-      allocate(rg%points(2, 0), rg%fixes(0), rg%forces(0))
-      if (st%nword == 0) then
-        call report(s, st%line, 'missing rigid obstacle name (expected ' // st%usage // ')')
-      else
-        call check_name(s, st, st%word(1)%s, 'rigid obstacle', ok)
-        if (ok) rg%name = st%word(1)%s
-        call check_extra_words(s, st, 1, st%usage)
-        do r = 1, nr
-          if (ok .and. deck%rigids(r)%name == rg%name .and. len(deck%rigids(r)%name) == len(rg%name)) &
-            call report(s, st%line, 'duplicate RIGID name ' // quoted(rg%name) // ' (first at line ' // &
-                        int_to_str(deck%rigids(r)%line) // '; expected a new name)')
-        end do
-      end if
-      if (st%npair > 0) call report(s, st%line, 'unexpected ' // quoted(st%key(1)%s // '=' // st%value(1)%s) // &
-                                    ' (expected ' // st%usage // ')')
-    end associate
+    rg%line = st%line
+    rg%name = ''
+    rg%shape = ''
+    allocate(rg%points(2, 0), rg%fixes(0), rg%forces(0))
+    if (st%nword == 0) then
+      call report(s, st%line, 'missing rigid obstacle name (expected ' // st%usage // ')')
+    else
+      call check_name(s, st, st%word(1)%s, 'rigid obstacle', ok)
+      if (ok) rg%name = st%word(1)%s
+      call check_extra_words(s, st, 1, st%usage)
+      do r = 1, size(deck%rigids)
+        if (ok .and. deck%rigids(r)%name == rg%name .and. len(deck%rigids(r)%name) == len(rg%name)) &
+          call report(s, st%line, 'duplicate RIGID name ' // quoted(rg%name) // ' (first at line ' // &
+                      int_to_str(deck%rigids(r)%line) // '; expected a new name)')
+      end do
+    end if
+    call check_no_pairs(s, st)
+    deck%rigids = [deck%rigids, rg]
   end subroutine do_rigid
 
   !> SHAPE line x0= y0= x1= y1= | circle xc= yc= r= [solid=inside|outside] | polyline points=x1:y1,x2:y2,...

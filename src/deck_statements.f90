@@ -18,7 +18,7 @@ module deck_statements
   use deck_expressions, only: add_parameter, find_parameter, evaluate, is_parameter_name
   use deck_syntax, only: state_t, stmt_t, statement_t, key_values_t, text_t, report, read_keys, add_row, &
                          real_key, integer_key, choice_key, ramp_key, curve_key, name_key, text_key, &
-                         check_extra_words, check_name, form_word, find_key, join_list, cut, quoted, max_mu, &
+                         check_extra_words, check_no_pairs, check_name, form_word, find_key, join_list, cut, quoted, max_mu, &
                          max_steps
   use deck_body_statements, only: do_body, do_mesh, do_mesh_rect, do_mesh_gmsh, do_material, do_density, &
                                   do_fix, do_load, do_thermal, do_vector
@@ -191,7 +191,6 @@ contains
     type(key_values_t) :: v
     logical :: ok_s, ok_m, rigid_master
     type(contact_deck_t) :: c
-    type(contact_deck_t), allocatable :: grown(:)
     type(text_t), allocatable :: gs(:), gm(:)
     character(len=:), allocatable :: sbody, mbody
     integer :: nerr0, i
@@ -233,12 +232,7 @@ contains
       s%contact_bad = .true.
       return
     end if
-    allocate(grown(s%ncontact + 1))
-    do i = 1, s%ncontact
-      grown(i) = deck%contacts(i)
-    end do
-    grown(s%ncontact + 1) = c
-    call move_alloc(grown, deck%contacts)
+    deck%contacts = [deck%contacts, c]
     if (s%ncontact + 1 > size(s%slave_name)) then
       allocate(gs(2 * size(s%slave_name)), gm(2 * size(s%slave_name)))
       do i = 1, s%ncontact
@@ -317,8 +311,7 @@ contains
       end if
       call check_extra_words(s, st, 1, st%usage)
     end if
-    if (st%npair > 0) call report(s, st%line, 'unexpected ' // quoted(st%key(1)%s // '=' // st%value(1)%s) // &
-                                  ' (expected ' // st%usage // ')')
+    call check_no_pairs(s, st)
     s%steps_bad = s%nerr /= nerr0
   end subroutine do_steps
 
@@ -330,15 +323,13 @@ contains
     type(deck_t), intent(inout) :: deck
     type(stmt_t), intent(in) :: st
     type(curve_t) :: c
-    type(curve_t), allocatable :: grown(:)
     integer :: k, colon, nerr0
     logical :: ok, ok1, ok2
     character(len=:), allocatable :: w
 
     nerr0 = s%nerr
     c%line = st%line
-    if (st%npair > 0) call report(s, st%line, 'unexpected ' // quoted(st%key(1)%s // '=' // st%value(1)%s) // &
-                                  ' (expected ' // st%usage // ')')
+    call check_no_pairs(s, st)
     if (st%nword == 0) then
       call report(s, st%line, 'missing curve name (expected ' // st%usage // ')')
       return
@@ -381,10 +372,7 @@ contains
       end if
     end do
     if (s%nerr /= nerr0) return
-    allocate(grown(size(deck%curves) + 1))
-    grown(1:size(deck%curves)) = deck%curves
-    grown(size(grown)) = c
-    call move_alloc(grown, deck%curves)
+    deck%curves = [deck%curves, c]
   end subroutine do_curve
 
   !> OUTPUT [vtk=] [contact=] [summary=]

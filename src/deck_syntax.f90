@@ -28,7 +28,7 @@
 !>   add_row, find_statement                                    the table
 !>   real_key, integer_key, choice_key, ramp_key, curve_key, name_key, text_key
 !>   read_keys(s, st, v [, what])                               a statement's words and keys
-!>   check_extra_words, require_key, check_name, form_word, find_key, join_list
+!>   check_extra_words, check_no_pairs, require_key, check_name, form_word, find_key, join_list
 !>   cut, quoted, shown                                         user text in messages
 !>   max_mu, max_steps, max_line_len, ramp_unset               the reader's limits
 module deck_syntax
@@ -43,7 +43,7 @@ module deck_syntax
   public :: report, hand_over, store_echo, split_words, join_equals, classify_words
   public :: add_row, find_statement
   public :: real_key, integer_key, choice_key, ramp_key, curve_key, name_key, text_key, read_keys
-  public :: check_extra_words, require_key, check_name, form_word, find_key, join_list
+  public :: check_extra_words, check_no_pairs, require_key, check_name, form_word, find_key, join_list
   public :: cut, quoted, shown
   public :: max_mu, max_steps, max_line_len, ramp_unset
 
@@ -728,6 +728,14 @@ contains
     if (st%nword > nmax) call report(s, st%line, 'unexpected word ' // quoted(st%word(nmax + 1)%s) // &
                                      ' (expected ' // usage // ')')
   end subroutine check_extra_words
+
+  !> Report the first key=value pair of a statement that takes none.
+  subroutine check_no_pairs(s, st)
+    type(state_t), intent(inout) :: s
+    type(stmt_t), intent(in) :: st
+    if (st%npair > 0) call report(s, st%line, 'unexpected ' // quoted(st%key(1)%s // '=' // st%value(1)%s) // &
+                                  ' (expected ' // st%usage // ')')
+  end subroutine check_no_pairs
 
   !> Check a name (body, boundary) and report when bad; ok false when bad.
   subroutine check_name(s, st, name, what, ok)

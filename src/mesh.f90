@@ -27,8 +27,8 @@
 !>   order_for_locality(mesh)   renumber nodes along a Hilbert curve and elements
 !>        by their lowest node, so that neighbours in the mesh are neighbours in
 !>        memory; the file's numbering is kept for output and messages
-!>   file_node(mesh, p)         the node that is node p of the mesh file
-!>   file_elem(mesh, p)         the element that is element p of the mesh file
+!>   file_item(mesh, p, element)  the node that is node p of the mesh file (with
+!>        element, the element that is element p)
 !>   node_in_file(mesh, a)      the number in the mesh file of node a
 !>   hilbert_index(bits, x, y)  index of cell (x, y) along the Hilbert curve
 !>        through a 2**bits x 2**bits grid
@@ -40,7 +40,7 @@ module mesh
   private
   public :: mesh_t, named_t, boundary_t, region_t, finalize_mesh, find_boundary, find_region, name_list
   public :: boundary_nodes, element_area, mesh_size, is_quadratic
-  public :: order_for_locality, file_node, file_elem, node_in_file, hilbert_index, locality_min_nodes
+  public :: order_for_locality, file_item, node_in_file, hilbert_index, locality_min_nodes
 
   !> Meshes of more nodes than this are renumbered for locality.  Below it the
   !> arrays stay in the cache and the renumbering does not pay for itself
@@ -515,19 +515,18 @@ contains
     perm = out
   end subroutine bucket_sort
 
-  !> The node that is node p of the mesh file.
-  pure integer function file_node(mesh, p) result(a)
+  !> The node that is node p of the mesh file, or with element the element
+  !> that is element p of the mesh file.
+  pure integer function file_item(mesh, p, element) result(a)
     type(mesh_t), intent(in) :: mesh
     integer, intent(in) :: p
-    a = mapped(mesh%file%file_nodes, p)
-  end function file_node
-
-  !> The element that is element p of the mesh file.
-  pure integer function file_elem(mesh, p) result(e)
-    type(mesh_t), intent(in) :: mesh
-    integer, intent(in) :: p
-    e = mapped(mesh%file%file_elems, p)
-  end function file_elem
+    logical, intent(in) :: element
+    if (element) then
+      a = mapped(mesh%file%file_elems, p)
+    else
+      a = mapped(mesh%file%file_nodes, p)
+    end if
+  end function file_item
 
   !> The number in the mesh file of node a.
   pure integer function node_in_file(mesh, a) result(p)
@@ -677,35 +676,31 @@ contains
   !> In-place heap sort of an integer array (ascending).
   subroutine sort_int(a)
     integer, intent(inout) :: a(:)
-    integer :: n, i, root, child, t, last
-    n = size(a)
-    do i = n / 2, 1, -1
-      root = i
+    integer :: i, t, last
+    do i = size(a) / 2, 1, -1                 ! a(1:n) a max-heap
+      call sift_down(i, size(a))
+    end do
+    do last = size(a), 2, -1                  ! the largest of a(1:last) to a(last)
+      t = a(1); a(1) = a(last); a(last) = t
+      call sift_down(1, last - 1)
+    end do
+  contains
+    !> Move a(root) down the heap a(1:n) until both its children are not larger.
+    subroutine sift_down(root, n)
+      integer, intent(in) :: root, n
+      integer :: r, child, t
+      r = root
       do
-        child = 2 * root
+        child = 2 * r
         if (child > n) exit
         if (child < n) then
           if (a(child + 1) > a(child)) child = child + 1
         end if
-        if (a(root) >= a(child)) exit
-        t = a(root); a(root) = a(child); a(child) = t
-        root = child
+        if (a(r) >= a(child)) exit
+        t = a(r); a(r) = a(child); a(child) = t
+        r = child
       end do
-    end do
-    do last = n, 2, -1
-      t = a(1); a(1) = a(last); a(last) = t
-      root = 1
-      do
-        child = 2 * root
-        if (child > last - 1) exit
-        if (child < last - 1) then
-          if (a(child + 1) > a(child)) child = child + 1
-        end if
-        if (a(root) >= a(child)) exit
-        t = a(root); a(root) = a(child); a(child) = t
-        root = child
-      end do
-    end do
+    end subroutine sift_down
   end subroutine sort_int
 
 end module mesh

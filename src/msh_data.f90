@@ -15,6 +15,7 @@
 !>   node_of_tag(d, tag)               node of a node tag, 0 when none
 module msh_data
   use kinds, only: dp, i8
+  use sorting, only: search_columns
   implicit none
   private
   public :: msh_data_t, record_list_t, string_t, raw_width
@@ -50,7 +51,6 @@ module msh_data
     integer, allocatable :: tag_index(:)      !< (max tag) node of each tag, 0 for none, when the
                                               !< tags are dense (max tag <= 2 nnode + 1000)
     integer, allocatable :: tag_perm(:)       !< (nnode) else: ntag(1, tag_perm) ascending
-    integer(i8), allocatable :: tag_sorted(:) !< (nnode) and ntag(1, tag_perm), for the search
     integer(i8), allocatable :: name_key(:,:) !< (2, nname) dimension, tag of each name
     type(string_t), allocatable :: name_text(:) !< (nname) physical names
     integer, allocatable :: name_perm(:)      !< (nname) name_key sorted
@@ -126,29 +126,15 @@ contains
   end subroutine push_record
 
   !> Node of a node tag, 0 when no node has it (tags are distinct here: the
-  !> $Nodes section passed check_nodes).
+  !> $Nodes section passed check_nodes, which indexed them).
   pure integer function node_of_tag(d, tag) result(node)
     type(msh_data_t), intent(in) :: d
     integer(i8), intent(in) :: tag
-    integer :: lo, hi, mid
     node = 0
     if (allocated(d%tag_index)) then
       if (tag >= 1 .and. tag <= size(d%tag_index, kind=i8)) node = d%tag_index(tag)
-      return
-    end if
-    ! binary search for the first sorted tag >= tag
-    lo = 1
-    hi = d%nnode + 1
-    do while (lo < hi)
-      mid = lo + (hi - lo) / 2
-      if (d%tag_sorted(mid) < tag) then
-        lo = mid + 1
-      else
-        hi = mid
-      end if
-    end do
-    if (lo <= d%nnode) then
-      if (d%tag_sorted(lo) == tag) node = d%tag_perm(lo)
+    else
+      node = search_columns(d%ntag, d%tag_perm, [tag])
     end if
   end function node_of_tag
 

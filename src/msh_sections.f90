@@ -26,9 +26,9 @@ module msh_sections
   use text_scan, only: scan_integer
   use sorting, only: sort_columns
   use msh_text, only: msh_text_t, advance_line, remaining_lines, item, quoted_item, read_data_line, &
-                      expect_section_end, next_section_line, fail, fail_at, get_integer, get_count, get_real, &
+                      expect_section_end, fail, fail_at, get_integer, get_count, get_real, &
                       msh_real, read_block_header, scan_data_lines, out_of_memory, allocation_failed, no_integers, &
-                      no_reals, no_lower_bounds, is_end_line, end_blocks, read_block_line, &
+                      no_reals, no_lower_bounds, end_blocks, read_block_line, &
                       get_dimension_tag
   use msh_data, only: msh_data_t, push_record, record_bytes
   use msh_elements, only: read_elements_22, read_elements_41
@@ -92,7 +92,7 @@ contains
         ! $PartitionedEntities (gmsh -part) comes after $Entities and replaces it
         partitioned = w == '$PartitionedEntities'
         if (.not. d%v41) then
-          call skip_section(t, diag, w(2:), ok)
+          call expect_section_end(t, diag, w(2:), ok, skip=.true.)
         else if (merge(d%have_partitions, d%have_entities, partitioned)) then
           call fail(t, diag, 'second ' // w // ' section (one per file expected)')
           return
@@ -131,7 +131,7 @@ contains
             return
           end if
         end if
-        call skip_section(t, diag, w(2:), ok)
+        call expect_section_end(t, diag, w(2:), ok, skip=.true.)
       end select
       if (.not. ok) return
       ok = .false.
@@ -584,13 +584,9 @@ contains
       end do
     else
       call sort_columns(d%ntag, d%tag_perm, stat)
-      if (stat == 0) allocate(d%tag_sorted(d%nnode), stat=stat)
-      if (allocation_failed(t, stat, 16_i8 * d%nnode)) return
-      do i = 1, d%nnode
-        d%tag_sorted(i) = d%ntag(1, d%tag_perm(i))
-      end do
+      if (allocation_failed(t, stat, 8_i8 * d%nnode)) return
       do i = 2, d%nnode
-        if (d%tag_sorted(i) == d%tag_sorted(i - 1)) then
+        if (d%ntag(1, d%tag_perm(i)) == d%ntag(1, d%tag_perm(i - 1))) then
           if (d%tag_line(d%tag_perm(i)) < dup_line) then
             dup_line = d%tag_line(d%tag_perm(i))
             dup_node = d%tag_perm(i)
@@ -620,18 +616,5 @@ contains
         ' (a planar mesh in z = 0 expected)')
     end if
   end subroutine check_nodes
-
-  !> Skip an unknown section up to its $End line.
-  subroutine skip_section(t, diag, name, ok)
-    type(msh_text_t), intent(inout) :: t
-    type(diag_t), intent(inout) :: diag
-    character(len=*), intent(in) :: name
-    logical, intent(out) :: ok
-    do
-      call next_section_line(t, diag, name, ok)
-      if (.not. ok) return
-      if (is_end_line(t, name, alone=.false.)) exit
-    end do
-  end subroutine skip_section
 
 end module msh_sections

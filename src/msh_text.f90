@@ -24,8 +24,7 @@
 !>   advance_line(t, more)         the next line and its items
 !>   read_data_line(t, diag, section, nexpected, what, ok)
 !>                                 the next line of a section, nexpected items
-!>   expect_section_end(t, diag, section, ok), report_end_of_file(t, diag, section),
-!>   next_section_line(t, diag, section, ok)
+!>   expect_section_end(t, diag, section, ok [, skip]), report_end_of_file(t, diag, section)
 !>   remaining_lines(t), item(t, k), quoted_item(t, k)
 !>   get_integer, get_count, get_real (t, diag, k, what, ...)   item k as a number
 !>   msh_real(s, v)                scan_real with the file's bounds (status)
@@ -42,8 +41,8 @@ module msh_text
   use text_scan, only: scan_integer, scan_real, line_items, upper
   implicit none
   private
-  public :: msh_text_t, load_text, advance_line, next_section_line, remaining_lines, item, quoted_item, read_data_line
-  public :: expect_section_end, is_end_line, end_blocks, report_end_of_file, fail, fail_at, get_integer, get_count
+  public :: msh_text_t, load_text, advance_line, remaining_lines, item, quoted_item, read_data_line
+  public :: expect_section_end, end_blocks, report_end_of_file, fail, fail_at, get_integer, get_count
   public :: get_real, msh_real, read_block_line, get_dimension_tag
   public :: read_block_header, scan_data_lines, out_of_memory, allocation_failed, no_integers, no_reals, no_lower_bounds
   public :: fast_parallel_min
@@ -243,16 +242,25 @@ contains
     end if
   end subroutine read_data_line
 
-  !> The next line must be $End<section>.
-  subroutine expect_section_end(t, diag, section, ok)
+  !> The end of a section: the next line must be $End<section>, alone; with
+  !> skip (a section this reader does not know) the lines up to the first that
+  !> begins with $End<section> are passed over.
+  subroutine expect_section_end(t, diag, section, ok, skip)
     type(msh_text_t), intent(inout) :: t
     type(diag_t), intent(inout) :: diag
     character(len=*), intent(in) :: section
     logical, intent(out) :: ok
+    logical, intent(in), optional :: skip
+    logical :: skipping
 
-    call next_section_line(t, diag, section, ok)
-    if (.not. ok) return
-    if (is_end_line(t, section, alone=.true.)) return
+    skipping = .false.
+    if (present(skip)) skipping = skip
+    do
+      call next_section_line(t, diag, section, ok)
+      if (.not. ok) return
+      if (is_end_line(t, section, alone=.not. skipping)) return
+      if (.not. skipping) exit
+    end do
     ok = .false.
     if (is_section_line(t)) then
       call fail(t, diag, 'unexpected ' // quoted_item(t, 1) // ' ($End' // section // ' expected)')

@@ -14,7 +14,7 @@
 module results_writer
   use kinds, only: dp, i8
   use body, only: body_t
-  use mesh, only: file_node, file_elem, node_in_file
+  use mesh, only: file_item, node_in_file
   use contact_set, only: contact_set_t, row_of_node, node_rows, node_traction
   use diagnostics, only: int_to_str
   use text_buffer, only: text_buffer_t, open_text, open_memory, put_text, put_line, put_real, put_int, put_newline, &
@@ -202,11 +202,11 @@ contains
     do b = 1, size(bodies)
       associate(m => bodies(b)%mesh)
         do p = 1, m%nnode
-          v%node_index(n0 + p) = n0 + file_node(m, p)
+          v%node_index(n0 + p) = n0 + file_item(m, p, element=.false.)
         end do
         !$omp parallel do private(e, k) if(m%nelem > 4096)
         do p = 1, m%nelem
-          e = file_elem(m, p)
+          e = file_item(m, p, element=.true.)
           v%elem_index(e0 + p) = e0 + e
           v%elem_body(e0 + p) = b
           v%cells(:, e0 + p) = 0

@@ -119,7 +119,7 @@ contains
 
   !> Column of keys equal to key (the first in file order), 0 when none.
   !>   keys (in) (m, n); perm (in) (n) from sort_columns(keys); key (in) (m)
-  integer function search_columns(keys, perm, key) result(found)
+  pure integer function search_columns(keys, perm, key) result(found)
     integer(i8), intent(in) :: keys(:,:)
     integer, intent(in) :: perm(:)
     integer(i8), intent(in) :: key(:)

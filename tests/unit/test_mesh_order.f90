@@ -4,7 +4,7 @@
 !> neighbours in the mesh become neighbours in memory.
 program test_mesh_order
   use kinds, only: dp, i8
-  use mesh, only: mesh_t, order_for_locality, file_node, file_elem, node_in_file, hilbert_index
+  use mesh, only: mesh_t, order_for_locality, file_item, node_in_file, hilbert_index
   use testing, only: check, check_small, finish_tests
   implicit none
   integer, parameter :: nx = 60, ny = 40
@@ -56,28 +56,28 @@ program test_mesh_order
   ! the maps: inverse permutations
   allocate(seen(max(m%nnode, m%nelem)))
   do p = 1, m%nnode
-    seen(p) = file_node(m, p)
+    seen(p) = file_item(m, p, element=.false.)
   end do
-  call check(is_permutation(seen(1:m%nnode)), 'file_node is a permutation of the nodes')
+  call check(is_permutation(seen(1:m%nnode)), 'file_item is a permutation of the nodes')
   k = 0
   do p = 1, m%nnode
-    if (node_in_file(m, file_node(m, p)) /= p) k = k + 1
+    if (node_in_file(m, file_item(m, p, element=.false.)) /= p) k = k + 1
   end do
-  call check(k == 0, 'node_in_file inverts file_node')
+  call check(k == 0, 'node_in_file inverts file_item')
   do p = 1, m%nelem
-    seen(p) = file_elem(m, p)
+    seen(p) = file_item(m, p, element=.true.)
   end do
-  call check(is_permutation(seen(1:m%nelem)), 'file_elem is a permutation of the elements')
+  call check(is_permutation(seen(1:m%nelem)), 'file_item is a permutation of the elements')
 
   ! the same mesh: points of nodes, elements, edges, point sets, regions
   err = 0
   do p = 1, m%nnode
-    err = max(err, maxval(abs(m%x(:, file_node(m, p)) - f%x(:, p))))
+    err = max(err, maxval(abs(m%x(:, file_item(m, p, element=.false.)) - f%x(:, p))))
   end do
   call check_small(err, 0.0_dp, 'node p of the file is at the same point')
   err = 0
   do p = 1, f%nelem
-    e = file_elem(m, p)
+    e = file_item(m, p, element=.true.)
     do k = 1, 3
       err = max(err, maxval(abs(m%x(:, m%conn(k, e)) - f%x(:, f%conn(k, p)))))
     end do
@@ -85,7 +85,7 @@ program test_mesh_order
   call check_small(err, 0.0_dp, 'element p of the file has the same corners, in the same order')
   k = 0
   do p = 1, f%nelem
-    if (m%elem_line(file_elem(m, p)) /= f%elem_line(p)) k = k + 1
+    if (m%elem_line(file_item(m, p, element=.true.)) /= f%elem_line(p)) k = k + 1
   end do
   call check(k == 0, 'element p of the file keeps its source line')
   err = 0
@@ -160,7 +160,7 @@ contains
     integer :: p
     file_elem_inverse = 0
     do p = 1, m%nelem
-      if (file_elem(m, p) == e) then
+      if (file_item(m, p, element=.true.) == e) then
         file_elem_inverse = p
         return
       end if
