@@ -47,28 +47,23 @@ int c2d_chol_set_ordering(void *h, int method);
 /* Free the factor, finish the common and free the handle (NULL is a no-op). */
 void c2d_chol_destroy(void *h);
 
-/* Analyze and factorize A = P' L L' P; any previous factor is freed first.
+/* The factorization A = P' L L' P in two halves, so that the values of A
+ * can be assembled while the pattern is being ordered.
  *   n       order of A, n >= 1
- *   colptr  [n+1] 1-based column pointers, colptr[0] = 1
- *   rowind  [colptr[n]-1] 1-based row indices, upper triangle, sorted per column
- *   val     [colptr[n]-1] values
+ *   colptr  [n+1] 1-based column pointers
+ *   rowind  [colptr[n]-colptr[0]] 1-based row indices, upper triangle, sorted per column
+ *   val     [colptr[n]-colptr[0]] values
  *   nlast   number of dofs to order last, 0 <= nlast <= n
  *   last    [nlast] 1-based distinct dofs, in pivot order (NULL when nlast = 0)
- * Returns CHOLMOD's status: CHOLMOD_OK, CHOLMOD_NOT_POSDEF (then
- * c2d_chol_minor tells where), another CHOLMOD code, or C2D_CHOL_BLOCK_MOVED
- * when the analysis did not keep the given block last. */
-int c2d_chol_factorize(void *h, int n, const int *colptr, const int *rowind,
-                       const double *val, int nlast, const int *last);
-
-/* The two halves of c2d_chol_factorize, so that the values of A can be
- * assembled while the pattern is being ordered.  c2d_chol_analyze: the
- * ordering and symbolic analysis of the pattern (arguments as above, no
+ * c2d_chol_analyze: the ordering and symbolic analysis of the pattern (no
  * values; any previous factor is freed first), returns CHOLMOD_OK, a CHOLMOD
- * code or C2D_CHOL_BLOCK_MOVED.  c2d_chol_factorize_values: the numeric
- * factorization of A with the pattern analyzed (same n, colptr, rowind),
- * returns as c2d_chol_factorize, or C2D_CHOL_NO_FACTOR when no analysis is
- * held.  group (ngroup = n; ngroup = 0 and group NULL: none): the 1-based
- * group of each dof, 1 <= group[i] <= n, e.g. its mesh node: METIS then
+ * code or C2D_CHOL_BLOCK_MOVED when the analysis did not keep the given
+ * block last.  c2d_chol_factorize_values: the numeric factorization of A
+ * with the pattern analyzed (same n, colptr, rowind), returns CHOLMOD's
+ * status: CHOLMOD_OK, CHOLMOD_NOT_POSDEF (then c2d_chol_minor tells where),
+ * another CHOLMOD code, or C2D_CHOL_NO_FACTOR when no analysis is held.
+ * group (ngroup = n; ngroup = 0 and group NULL: none): the 1-based group of
+ * each dof, 1 <= group[i] <= n, e.g. its mesh node: METIS then
  * orders the graph of the groups (vertex weights = group sizes, a quarter of
  * the edges of the dof graph, about half the time) and each group's dofs
  * follow one another.  offset (>= 0): A may be a diagonal block of a larger
@@ -93,21 +88,19 @@ void c2d_chol_minor(const void *h, int *column, int *equation);
 void c2d_chol_stats(const void *h, int64_t *lnz, double *flops, int64_t *memory_peak,
                     double *time_analyze, double *time_factorize);
 
-/* Name of the ordering used, NUL-terminated in buf[len]: "metis",
- * "metis+last", or the name CHOLMOD reports ("amd" when it fell back). */
-void c2d_chol_ordering_name(const void *h, char *buf, int len);
+/* A name, NUL-terminated in buf[len]: with what = C2D_NAME_ORDERING the
+ * ordering of h's factor ("metis", "metis+last", "amd(nodes)", ..., the name
+ * CHOLMOD reports, "amd" when it fell back, or "none"; status unused); with
+ * what = C2D_NAME_STATUS the name of the status code ("CHOLMOD_OUT_OF_MEMORY",
+ * ..., or one of the C2D_CHOL_* names; h unused, may be NULL). */
+#define C2D_NAME_ORDERING 0
+#define C2D_NAME_STATUS 1
+void c2d_chol_name(const void *h, int what, int status, char *buf, int len);
 
-/* Name of a status code, NUL-terminated in buf[len]: "CHOLMOD_OUT_OF_MEMORY",
- * ..., or one of the C2D_CHOL_* names. */
-void c2d_chol_status_name(int status, char *buf, int len);
-
-/* X = A \ B for nrhs dense columns (column-major, leading dimension n) in one
- * cholmod_solve call.  Returns CHOLMOD_OK or an error code. */
-int c2d_chol_solve(void *h, int n, int nrhs, const double *b, double *x);
-
-/* The solve or one half of it, A = P' L L' P: C2D_SOLVE_WHOLE gives x = A^-1 b,
+/* The solve or one half of it for nrhs dense columns (column-major, leading
+ * dimension n), A = P' L L' P: C2D_SOLVE_WHOLE gives x = A^-1 b,
  * C2D_SOLVE_FORWARD y = L^-1 P b,
- * C2D_SOLVE_BACKWARD x = P' L'^-1 y; the two in turn are c2d_chol_solve.
+ * C2D_SOLVE_BACKWARD x = P' L'^-1 y; the two in turn are the whole solve.
  * With `last`, the trailing nlast entries of y belong to the block L_cc.
  * Returns CHOLMOD_OK, an error code or C2D_CHOL_BAD_ARGUMENT for another half. */
 #define C2D_SOLVE_WHOLE 0

@@ -15,15 +15,13 @@
 !>
 !> Programming interface (see the headers above for the details)
 !>   c2d_chol_create() -> handle          c2d_chol_destroy(handle)
-!>   c2d_chol_factorize(handle, n, colptr, rowind, val, nlast, last) -> status
 !>   c2d_chol_set_ordering(handle, method) -> status   method: c2d_order_metis, c2d_order_amd
 !>   c2d_chol_analyze(handle, n, colptr, rowind, offset, nlast, last, ngroup, group) -> status
 !>   c2d_chol_factorize_values(handle, n, colptr, rowind, offset, val) -> status
 !>   c2d_chol_minor(handle, column, equation)
 !>   c2d_chol_stats(handle, lnz, flops, memory_peak, time_analyze, time_factorize)
 !>   c2d_chol_min_pivot_ratio(handle, ratio, column, equation)
-!>   c2d_chol_ordering_name(handle, buf, len)   c2d_chol_status_name(status, buf, len)
-!>   c2d_chol_solve(handle, n, nrhs, b, x) -> status
+!>   c2d_chol_name(handle, what, status, buf, len)   what: c2d_name_ordering, c2d_name_status
 !>   c2d_chol_solve_half(handle, half, n, nrhs, b, x) -> status   (c2d_solve_whole / _forward / _backward)
 !>   c2d_chol_trailing_range(handle, nlast, first, count, lcc) -> status
 !>   c2d_chol_trailing_block_end(handle, nlast, first, last_row) -> status
@@ -33,11 +31,10 @@ module cholmod_binding
   use, intrinsic :: iso_c_binding, only: c_ptr, c_int, c_double, c_int64_t, c_char
   implicit none
   private
-  public :: c2d_chol_create, c2d_chol_destroy, c2d_chol_factorize, c2d_chol_minor
+  public :: c2d_chol_create, c2d_chol_destroy, c2d_chol_minor
   public :: c2d_chol_analyze, c2d_chol_factorize_values, c2d_chol_set_ordering
   public :: c2d_order_metis, c2d_order_amd
-  public :: c2d_chol_stats, c2d_chol_min_pivot_ratio, c2d_chol_ordering_name
-  public :: c2d_chol_status_name, c2d_chol_solve
+  public :: c2d_chol_stats, c2d_chol_min_pivot_ratio, c2d_chol_name, c2d_name_ordering, c2d_name_status
   public :: c2d_chol_trailing_range, c2d_chol_trailing_block_end
   public :: c2d_chol_solve_half, c2d_solve_whole, c2d_solve_forward, c2d_solve_backward
   public :: cholmod_ok, cholmod_not_posdef, cholmod_out_of_memory, cholmod_too_large
@@ -48,6 +45,10 @@ module cholmod_binding
   ! fill-reducing orderings (cholmod_factor.h)
   integer(c_int), parameter :: c2d_order_metis = 0     !< METIS nested dissection
   integer(c_int), parameter :: c2d_order_amd = 1       !< approximate minimum degree
+
+  ! what c2d_chol_name names (cholmod_factor.h)
+  integer(c_int), parameter :: c2d_name_ordering = 0   !< the ordering of the handle's factor
+  integer(c_int), parameter :: c2d_name_status = 1     !< a status code
 
   ! the halves of a solve (cholmod_factor.h)
   integer(c_int), parameter :: c2d_solve_whole = 0     !< x = A^-1 b
@@ -80,19 +81,6 @@ module cholmod_binding
       type(c_ptr), value :: handle
     end subroutine c2d_chol_destroy
 
-    !> Analyze and factorize; returns the status (cholmod_ok on success).
-    function c2d_chol_factorize(handle, n, colptr, rowind, val, nlast, last) &
-        bind(c, name='c2d_chol_factorize') result(status)
-      import :: c_ptr, c_int, c_double
-      type(c_ptr), value :: handle
-      integer(c_int), value :: n
-      integer(c_int), intent(in) :: colptr(*)
-      integer(c_int), intent(in) :: rowind(*)
-      real(c_double), intent(in) :: val(*)
-      integer(c_int), value :: nlast
-      integer(c_int), intent(in) :: last(*)
-      integer(c_int) :: status
-    end function c2d_chol_factorize
 
     !> The ordering of the next analyses (c2d_order_*); returns the status.
     function c2d_chol_set_ordering(handle, method) bind(c, name='c2d_chol_set_ordering') result(status)
@@ -107,14 +95,8 @@ module cholmod_binding
         bind(c, name='c2d_chol_analyze') result(status)
       import :: c_ptr, c_int
       type(c_ptr), value :: handle
-      integer(c_int), value :: n
-      integer(c_int), intent(in) :: colptr(*)
-      integer(c_int), intent(in) :: rowind(*)
-      integer(c_int), value :: offset
-      integer(c_int), value :: nlast
-      integer(c_int), intent(in) :: last(*)
-      integer(c_int), value :: ngroup
-      integer(c_int), intent(in) :: group(*)
+      integer(c_int), value :: n, offset, nlast, ngroup
+      integer(c_int), intent(in) :: colptr(*), rowind(*), last(*), group(*)
       integer(c_int) :: status
     end function c2d_chol_analyze
 
@@ -123,10 +105,8 @@ module cholmod_binding
         bind(c, name='c2d_chol_factorize_values') result(status)
       import :: c_ptr, c_int, c_double
       type(c_ptr), value :: handle
-      integer(c_int), value :: n
-      integer(c_int), intent(in) :: colptr(*)
-      integer(c_int), intent(in) :: rowind(*)
-      integer(c_int), value :: offset
+      integer(c_int), value :: n, offset
+      integer(c_int), intent(in) :: colptr(*), rowind(*)
       real(c_double), intent(in) :: val(*)
       integer(c_int) :: status
     end function c2d_chol_factorize_values
@@ -158,31 +138,17 @@ module cholmod_binding
       integer(c_int), intent(out) :: column, equation
     end subroutine c2d_chol_min_pivot_ratio
 
-    !> Name of the ordering used, NUL-terminated in buf(1:len).
-    subroutine c2d_chol_ordering_name(handle, buf, len) bind(c, name='c2d_chol_ordering_name')
+    !> A name, NUL-terminated in buf(1:len): what = c2d_name_ordering, the
+    !> ordering of the handle's factor; what = c2d_name_status, the name of
+    !> the status code (handle unused).
+    subroutine c2d_chol_name(handle, what, status, buf, len) bind(c, name='c2d_chol_name')
       import :: c_ptr, c_int, c_char
       type(c_ptr), value :: handle
+      integer(c_int), value :: what, status
       character(kind=c_char), intent(out) :: buf(*)
       integer(c_int), value :: len
-    end subroutine c2d_chol_ordering_name
+    end subroutine c2d_chol_name
 
-    !> Name of a status code, NUL-terminated in buf(1:len).
-    subroutine c2d_chol_status_name(status, buf, len) bind(c, name='c2d_chol_status_name')
-      import :: c_int, c_char
-      integer(c_int), value :: status
-      character(kind=c_char), intent(out) :: buf(*)
-      integer(c_int), value :: len
-    end subroutine c2d_chol_status_name
-
-    !> x = A \ b for b(n, nrhs) column-major; returns the status.
-    function c2d_chol_solve(handle, n, nrhs, b, x) bind(c, name='c2d_chol_solve') result(status)
-      import :: c_ptr, c_int, c_double
-      type(c_ptr), value :: handle
-      integer(c_int), value :: n, nrhs
-      real(c_double), intent(in) :: b(*)
-      real(c_double), intent(inout) :: x(*)
-      integer(c_int) :: status
-    end function c2d_chol_solve
 
     !> The whole solve or one half (forward: y = L \ P b; backward: x = P' (L' \ y)).
     function c2d_chol_solve_half(handle, half, n, nrhs, b, x) bind(c, name='c2d_chol_solve_half') result(status)

@@ -316,14 +316,6 @@ int c2d_chol_factorize_values(void *handle, int n, const int *colptr, const int 
     return status;
 }
 
-int c2d_chol_factorize(void *handle, int n, const int *colptr, const int *rowind,
-                       const double *val, int nlast, const int *last)
-{
-    int status = c2d_chol_analyze(handle, n, colptr, rowind, 0, nlast, last, 0, NULL);
-    if (status == CHOLMOD_OK) status = c2d_chol_factorize_values(handle, n, colptr, rowind, 0, val);
-    return status;
-}
-
 void c2d_chol_minor(const void *handle, int *column, int *equation)
 {
     const struct c2d_chol *h = handle;
@@ -351,62 +343,57 @@ void c2d_chol_stats(const void *handle, int64_t *lnz, double *flops, int64_t *me
     *time_factorize = h->time_factorize;
 }
 
-void c2d_chol_ordering_name(const void *handle, char *buf, int len)
+/* A code and its name, for the lookups of c2d_chol_name. */
+struct code_name
 {
-    const struct c2d_chol *h = handle;
-    const char *name = "none";
-    if (h != NULL && h->L != NULL)
+    int code;
+    const char *name;
+};
+#define CODE_NAME(code) {code, #code}
+
+static const struct code_name cholmod_orderings[] = {
+    {CHOLMOD_NATURAL, "natural"}, {CHOLMOD_GIVEN, "given"}, {CHOLMOD_AMD, "amd"},
+    {CHOLMOD_METIS, "metis"}, {CHOLMOD_NESDIS, "nesdis"}, {CHOLMOD_COLAMD, "colamd"},
+    {CHOLMOD_POSTORDERED, "postordered"}};
+
+static const struct code_name status_codes[] = {
+    CODE_NAME(CHOLMOD_OK), CODE_NAME(CHOLMOD_NOT_INSTALLED), CODE_NAME(CHOLMOD_OUT_OF_MEMORY),
+    CODE_NAME(CHOLMOD_TOO_LARGE), CODE_NAME(CHOLMOD_INVALID), CODE_NAME(CHOLMOD_GPU_PROBLEM),
+    CODE_NAME(CHOLMOD_NOT_POSDEF), CODE_NAME(CHOLMOD_DSMALL), CODE_NAME(C2D_CHOL_NO_HANDLE),
+    CODE_NAME(C2D_CHOL_NO_FACTOR), CODE_NAME(C2D_CHOL_NOT_SUPER_LL), CODE_NAME(C2D_CHOL_BLOCK_MOVED),
+    CODE_NAME(C2D_CHOL_BAD_ARGUMENT)};
+
+/* The name of code in table[0..n-1], or `unknown` when it is not there. */
+static const char *name_of(const struct code_name *table, size_t n, int code, const char *unknown)
+{
+    size_t k;
+    for (k = 0; k < n; k++)
     {
-        int amd = h->method == C2D_ORDER_AMD;
-        if (h->nlast > 0 && h->grouped)
-        {
-            name = amd ? "amd(nodes)+last" : "metis(nodes)+last";
-        }
-        else if (h->nlast > 0)
-        {
-            name = amd ? "amd+last" : "metis+last";
-        }
-        else if (h->grouped)
-        {
-            name = amd ? "amd(nodes)" : "metis(nodes)";
-        }
-        else
-        {
-            switch (h->L->ordering)
-            {
-            case CHOLMOD_NATURAL: name = "natural"; break;
-            case CHOLMOD_GIVEN: name = "given"; break;
-            case CHOLMOD_AMD: name = "amd"; break;
-            case CHOLMOD_METIS: name = "metis"; break;
-            case CHOLMOD_NESDIS: name = "nesdis"; break;
-            case CHOLMOD_COLAMD: name = "colamd"; break;
-            case CHOLMOD_POSTORDERED: name = "postordered"; break;
-            default: name = "unknown"; break;
-            }
-        }
+        if (table[k].code == code) return table[k].name;
     }
-    copy_name(name, buf, len);
+    return unknown;
 }
 
-void c2d_chol_status_name(int status, char *buf, int len)
+/* The name of the ordering of h's factor: ours when we ordered, else CHOLMOD's. */
+static const char *ordering_name(const struct c2d_chol *h)
 {
-    const char *name;
-    switch (status)
+    int amd;
+    if (h == NULL || h->L == NULL) return "none";
+    amd = h->method == C2D_ORDER_AMD;
+    if (h->nlast > 0 && h->grouped) return amd ? "amd(nodes)+last" : "metis(nodes)+last";
+    if (h->nlast > 0) return amd ? "amd+last" : "metis+last";
+    if (h->grouped) return amd ? "amd(nodes)" : "metis(nodes)";
+    return name_of(cholmod_orderings, sizeof(cholmod_orderings) / sizeof(cholmod_orderings[0]),
+                   h->L->ordering, "unknown");
+}
+
+void c2d_chol_name(const void *handle, int what, int status, char *buf, int len)
+{
+    const char *name = "unknown";
+    if (what == C2D_NAME_ORDERING) name = ordering_name(handle);
+    if (what == C2D_NAME_STATUS)
     {
-    case CHOLMOD_OK: name = "CHOLMOD_OK"; break;
-    case CHOLMOD_NOT_INSTALLED: name = "CHOLMOD_NOT_INSTALLED"; break;
-    case CHOLMOD_OUT_OF_MEMORY: name = "CHOLMOD_OUT_OF_MEMORY"; break;
-    case CHOLMOD_TOO_LARGE: name = "CHOLMOD_TOO_LARGE"; break;
-    case CHOLMOD_INVALID: name = "CHOLMOD_INVALID"; break;
-    case CHOLMOD_GPU_PROBLEM: name = "CHOLMOD_GPU_PROBLEM"; break;
-    case CHOLMOD_NOT_POSDEF: name = "CHOLMOD_NOT_POSDEF"; break;
-    case CHOLMOD_DSMALL: name = "CHOLMOD_DSMALL"; break;
-    case C2D_CHOL_NO_HANDLE: name = "C2D_CHOL_NO_HANDLE"; break;
-    case C2D_CHOL_NO_FACTOR: name = "C2D_CHOL_NO_FACTOR"; break;
-    case C2D_CHOL_NOT_SUPER_LL: name = "C2D_CHOL_NOT_SUPER_LL"; break;
-    case C2D_CHOL_BLOCK_MOVED: name = "C2D_CHOL_BLOCK_MOVED"; break;
-    case C2D_CHOL_BAD_ARGUMENT: name = "C2D_CHOL_BAD_ARGUMENT"; break;
-    default: name = "unknown status"; break;
+        name = name_of(status_codes, sizeof(status_codes) / sizeof(status_codes[0]), status, "unknown status");
     }
     copy_name(name, buf, len);
 }
@@ -448,11 +435,6 @@ static int solve_steps(struct c2d_chol *h, int n, int nrhs, const double *b, dou
     memcpy(x, cur->x, (size_t) n * (size_t) nrhs * sizeof(double));
     cholmod_free_dense(&cur, &h->common);
     return CHOLMOD_OK;
-}
-
-int c2d_chol_solve(void *handle, int n, int nrhs, const double *b, double *x)
-{
-    return c2d_chol_solve_half(handle, C2D_SOLVE_WHOLE, n, nrhs, b, x);
 }
 
 int c2d_chol_solve_half(void *handle, int half, int n, int nrhs, const double *b, double *x)

@@ -27,7 +27,7 @@ module contact_solve
   use load_groups, only: group_factor
   use contact_condensation, only: constraint_values
   use lcp_solvers, only: lcp_options_t, lcp_report_t
-  use friction_lcp, only: solve_friction_lcp, friction_state
+  use friction_lcp, only: solve_friction_lcp, friction_state, friction_problem_t, friction_problem
   use friction_modes, only: solve_friction_floating, no_equilibrium
   use contact_lcp, only: contact_solution_t, solve_contact
   use rigid_modes, only: mode_name, motion_name, describe_motion, remove_motions
@@ -205,6 +205,7 @@ contains
     type(results_t) :: saved
     character(len=200) :: line
     type(error_t), allocatable :: err
+    type(friction_problem_t) :: fp
 
     n = run%cs%nrow
     nt = run%cs%ntan
@@ -250,13 +251,13 @@ contains
       end do
       qn = run%cs%g - cu(1:n)                          ! gaps without contact forces
       qt = sprev - cu(n + 1:)                      ! minus the slip of the step without contact forces
+      fp = friction_problem(qn, qt, run%cs%tan_row, run%cs%tan_mu, run%cs%tan_bound)
       if (floating) then
         eh = 0.0_dp
         do g = 1, size(run%sc%ramp, 2)
           eh = eh + group_factor(run%sc, g, kstep) * eg(:, g)
         end do
-        call solve_friction_floating(run%w, qn, qt, run%cs%tan_row, run%cs%tan_mu, run%cs%tan_bound, hh, eh, opts, z, alpha, rep, &
-                                     unbalanced, cause)
+        call solve_friction_floating(run%w, fp, hh, eh, opts, z, alpha, rep, unbalanced, cause)
         if (rep%info == no_equilibrium) call fail_numerical('friction, load step ' // int_to_str(kstep) // ' of ' // &
           int_to_str(run%sc%steps) // ': ' // floating_no_equilibrium(run, unbalanced, cause))
         if (rep%info /= 0 .and. .not. rep%no_memory) call fail_numerical('friction, load step ' &
@@ -265,10 +266,11 @@ contains
         cu = cu + matmul(hh, alpha)                ! C u0 + C R alpha: the step's rigid motion
         qn = run%cs%g - cu(1:n)
         qt = qt - matmul(hh(n + 1:, :), alpha)
+        fp = friction_problem(qn, qt, run%cs%tan_row, run%cs%tan_mu, run%cs%tan_bound)
         run%res%alpha = matmul(run%split%held, alpha(1:size(run%split%held, 2)))
         run%rigid_alpha = matmul(run%rsplit%held, alpha(size(run%split%held, 2) + 1:))
       else
-        call solve_friction_lcp(run%w, qn, qt, run%cs%tan_row, run%cs%tan_mu, run%cs%tan_bound, method, opts, z, rep)
+        call solve_friction_lcp(run%w, fp, method, opts, z, rep)
       end if
       iterations = iterations + rep%iterations
       if (rep%info /= 0 .and. rep%no_memory) call fail_numerical(rep%message)
@@ -277,7 +279,7 @@ contains
       if (.not. all(ieee_is_finite(z))) call fail_numerical('friction, load step ' // int_to_str(kstep) // &
         ': the contact multipliers are not finite')
       sprev = cu(n + 1:) - matmul(run%w(n + 1:, :), z)  ! T u_k = T u0_k - T K^-1 C' z
-      call friction_state(run%w, qn, qt, run%cs%tan_row, run%cs%tan_mu, run%cs%tan_bound, z, run%res%fstate, err)
+      call friction_state(run%w, fp, z, run%res%fstate, err)
       if (allocated(err)) call fail_numerical(err%message)
       write(line, '(a,i0,a,i0,a,i0,a,i0,a,i0,a,es9.2)') 'step     ', kstep, '/', run%sc%steps, ': ' // method // ' ', &
         rep%iterations, ' iterations, ', count(z(1:n) > 0.0_dp), ' active, ', count(run%res%fstate == 2), &

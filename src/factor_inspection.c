@@ -67,8 +67,10 @@ void c2d_chol_min_pivot_ratio(const void *handle, double *ratio, int *column, in
 }
 
 /* Checks shared by the trailing-block readers: the factor is supernodal LL'
- * with `last` (nlast dofs) at its last pivots. */
-static int trailing_ok(const struct c2d_chol *h, int nlast)
+ * with `last` (nlast dofs) at its last pivots, and first..first+count-1
+ * (1-based) is a range of L_cc; *start = the pivot of its first row
+ * (0-based). */
+static int trailing_start(const struct c2d_chol *h, int nlast, int first, int count, int *start)
 {
     const cholmod_factor *L;
     if (h == NULL) return C2D_CHOL_NO_HANDLE;
@@ -79,6 +81,8 @@ static int trailing_ok(const struct c2d_chol *h, int nlast)
     /* the factorization verified that Perm ends with `last`, in order; a
      * factor analyzed with any other ordering cannot hold the block there */
     if (L->ordering != CHOLMOD_GIVEN) return C2D_CHOL_BLOCK_MOVED;
+    if (first < 1 || count < 1 || first - 1 + count > nlast) return C2D_CHOL_BAD_ARGUMENT;
+    *start = h->n - nlast + first - 1;
     return CHOLMOD_OK;
 }
 
@@ -116,13 +120,11 @@ int c2d_chol_trailing_range(const void *handle, int nlast, int first, int count,
     const struct c2d_chol *h = handle;
     const int *rows;
     const double *vals;
-    int b0, b1, j, q, len, status;
+    int b0, b1, j, q, len;
+    int status = trailing_start(h, nlast, first, count, &b0);
 
-    status = trailing_ok(h, nlast);
     if (status != CHOLMOD_OK) return status;
-    if (first < 1 || count < 1 || first - 1 + count > nlast) return C2D_CHOL_BAD_ARGUMENT;
-    b0 = h->n - nlast + first - 1; /* the range: pivots b0..b1-1 (0-based) */
-    b1 = b0 + count;
+    b1 = b0 + count; /* the range: pivots b0..b1-1 (0-based) */
     memset(lcc, 0, (size_t) count * (size_t) count * sizeof(double));
     for (j = b0; j < b1; j++)
     {
@@ -140,14 +142,12 @@ int c2d_chol_trailing_block_end(const void *handle, int nlast, int first, int *l
     const struct c2d_chol *h = handle;
     const int *rows;
     const double *vals;
-    int c0, e, j, q, len, status;
+    int b0, e, j, q, len;
+    int status = trailing_start(h, nlast, first, 1, &b0);
 
-    status = trailing_ok(h, nlast);
     if (status != CHOLMOD_OK) return status;
-    if (first < 1 || first > nlast) return C2D_CHOL_BAD_ARGUMENT;
-    c0 = h->n - nlast;
-    e = c0 + first - 1; /* the block ends at pivot e so far */
-    for (j = c0 + first - 1; j <= e; j++)
+    e = b0; /* the block ends at pivot e so far */
+    for (j = b0; j <= e; j++)
     {
         len = column_below(h->L, j, &rows, &vals);
         for (q = 1; q < len; q++) /* the non-zeros below the diagonal */
@@ -155,6 +155,6 @@ int c2d_chol_trailing_block_end(const void *handle, int nlast, int first, int *l
             if (rows[q] > e && vals[q] != 0.0) e = rows[q];
         }
     }
-    *last_row = e - c0 + 1;
+    *last_row = e - (h->n - nlast) + 1;
     return CHOLMOD_OK;
 }

@@ -71,9 +71,9 @@
 !>     s_i     <- max(0, s_i - omega v_i / Gs_ii)
 !>     s_{n+k} <- clamp(s_{n+k} - omega v_{n+k} / Gs_{n+k,n+k}, -bs_k, bs_k)
 !> with the current bs_k (the lambda just updated) and v kept up to date column
-!> by column (daxpy), recomputed every 50 sweeps.  Each update minimises the
-!> Tresca QP in one variable; at stick v_{n+k} = -d ds_k = 0 and tau stays.  A
-!> zero row takes the unit step.  The residual r is checked after every sweep
+!> by column (daxpy), recomputed every 50 sweeps (lcp_pgs' run_pgs drives the
+!> sweeps).  Each update minimises the Tresca QP in one variable; at stick
+!> v_{n+k} = -d ds_k = 0 and tau stays.  A zero row takes the unit step.  The residual r is checked after every sweep
 !> and confirmed with v recomputed.  Divergence (iterates beyond 1e150 or r
 !> grown by 1e6 over its minimum) and stagnation (the best r not decreased by
 !> a factor 0.999 over max(1000, 10 (n + nt)) sweeps) stop with info 3, the
@@ -92,7 +92,11 @@
 !>     stick (1)  otherwise.
 !>
 !> Programming interface
-!>   solve_friction_lcp(g, qn, qt, trow, cmu, bound, method, opts, lam, rep)
+!>   type(friction_problem_t)   one step's problem beside G: n, nt, qn, qt,
+!>       trow, cmu, bound (the symbols above); built by
+!>   friction_problem(qn, qt, trow, cmu, bound), checked against G by
+!>   check_friction_problem(g, prob, rep)   info -1 (G) or -2 (prob) with the message
+!>   solve_friction_lcp(g, prob, method, opts, lam, rep)
 !>       method 'lemke' or 'pgs'; opts and rep are lcp_solvers' lcp_options_t
 !>       (tol on r, maxit, omega) and lcp_report_t (info, iterations: pivots or
 !>       sweeps, residual r, complementarity, message).  info 0 solved; 1 no
@@ -100,30 +104,43 @@
 !>       qn_i < 0); 2 pivot / sweep limit; 3 PGS divergence or stagnation;
 !>       4 Lemke terminated with r > tol; -k argument k invalid.  With nt = 0
 !>       the call is solve_lcp_lemke or solve_lcp_pgs on (g, qn), unchanged.
-!>   friction_residual(g, qn, qt, trow, cmu, bound, lam)   the residual r
-!>   friction_state(g, qn, qt, trow, cmu, bound, lam, state)
+!>   friction_residual(g, prob, lam)        the residual r
+!>   friction_state(g, prob, lam, state, err)
 !>       state(nt): state_open (0), state_stick (1) or state_slip (2)
+!>   friction_lcp_system(g, prob, m, q, d)  Lemke's LCP (M, q) and its scaling d
+!>   friction_forces(prob, z, lam)          lam = [lambda; tau] read off Lemke's z
 !> No routine prints anything; every outcome is in the report.
 module friction_lcp
   use kinds, only: dp, i8
-  use lapack_interfaces, only: daxpy, dgemv
   use diagnostics, only: int_to_str, real_to_str, error_t, set_out_of_memory
   use lcp_solvers, only: lcp_options_t, lcp_report_t, solve_lcp_lemke, solve_lcp_pgs, pgs_outcome, &
-    solve_lcp_lemke_scaled, scale_lcp, set_report, pgs_monitor_t, pgs_watch_start, pgs_watch_iterate, &
-    pgs_watch_progress, pgs_refresh_sweeps, negative_diagonal
-  use lcp_scaling, only: residual_outcome, report_out_of_memory
+    solve_lcp_lemke_scaled, scale_lcp, set_report, pgs_problem_t, run_pgs, pgs_set_row, pgs_limits, &
+    negative_diagonal
+  use lcp_scaling, only: residual_outcome, report_out_of_memory, scaling_vector, lcp_gaps
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
   private
-  public :: solve_friction_lcp, friction_residual, friction_state
-  public :: state_open, state_stick, state_slip
+  public :: friction_problem_t, friction_problem, check_friction_problem, state_open, state_stick, state_slip
+  public :: solve_friction_lcp, friction_residual, friction_state, friction_lcp_system, friction_forces
 
   integer, parameter :: state_open = 0    !< not in contact, no friction force available
   integer, parameter :: state_stick = 1   !< no slip: ds = 0, |tau| <= b
   integer, parameter :: state_slip = 2    !< slip: ds /= 0, tau = b sign(ds)
 
-  !> The scaled problem (module header).
-  type :: scaled_friction_t
+  !> One load step's friction problem (module header) but G, which the
+  !> caller keeps (the run's dense Delassus matrix, the same for every step).
+  type :: friction_problem_t
+    integer :: n = 0                     !< normal rows
+    integer :: nt = 0                    !< tangential rows
+    real(dp), allocatable :: qn(:)       !< (n) normal gaps of the unconstrained solution
+    real(dp), allocatable :: qt(:)       !< (nt) tangential right-hand side: ds = -(qt + (G lam)_t)
+    integer, allocatable :: trow(:)      !< (nt) normal row of each tangential row, 1..n
+    real(dp), allocatable :: cmu(:)      !< (nt) friction coefficients, >= 0 (0 for Tresca)
+    real(dp), allocatable :: bound(:)    !< (nt) Tresca bounds, >= 0 (0 for Coulomb)
+  end type friction_problem_t
+
+  !> The scaled problem (module header), which method 'pgs' sweeps (run_pgs).
+  type, extends(pgs_problem_t) :: scaled_friction_t
     integer :: n = 0                     !< normal rows
     integer :: nt = 0                    !< tangential rows
     real(dp), allocatable :: d(:)        !< (n+nt) scaling D
@@ -137,6 +154,9 @@ module friction_lcp
     integer, allocatable :: tfirst(:)    !< (n+1) tangential rows of normal row i are
     integer, allocatable :: tlist(:)     !< (nt)  tlist(tfirst(i) : tfirst(i+1) - 1)
     real(dp) :: qscale = 1.0_dp          !< max(||qs||_inf, max bs0), 1 when 0
+  contains
+    procedure :: sweep => friction_sweep
+    procedure :: residual => scaled_residual
   end type scaled_friction_t
 
   real(dp), parameter :: state_tol = 1.0e-8_dp             ! friction_state: relative tolerance
@@ -144,14 +164,89 @@ module friction_lcp
 
 contains
 
+  !> The friction problem of one load step, its sizes taken from qn and qt.
+  !>   qn     (in)  (n) normal gaps of the unconstrained solution
+  !>   qt     (in)  (nt) tangential right-hand side (ds = -(qt + (G lam)_t))
+  !>   trow   (in)  (nt) normal row of each tangential row
+  !>   cmu    (in)  (nt) friction coefficients (0 for Tresca)
+  !>   bound  (in)  (nt) Tresca bounds (0 for Coulomb)
+  !> The values are checked against G by check_friction_problem.
+  pure function friction_problem(qn, qt, trow, cmu, bound) result(prob)
+    real(dp), intent(in) :: qn(:), qt(:), cmu(:), bound(:)
+    integer, intent(in) :: trow(:)
+    type(friction_problem_t) :: prob
+    prob%n = size(qn)
+    prob%nt = size(qt)
+    allocate(prob%qn, source=qn)
+    allocate(prob%qt, source=qt)
+    allocate(prob%trow, source=trow)
+    allocate(prob%cmu, source=cmu)
+    allocate(prob%bound, source=bound)
+  end function friction_problem
+
+  !> Check G and the problem, the first bad entry reported.
+  !>   g     (in)    (n+nt, n+nt) Delassus matrix G: finite, no negative
+  !>                 diagonal entry beyond round-off (negative_diagonal)
+  !>   prob  (in)    the problem: qn, qt finite; trow, cmu, bound of nt
+  !>                 entries, 1 <= trow <= n, cmu and bound finite and >= 0
+  !>   rep   (inout) info -1 (G) or -2 (prob) with the message; 0 when valid
+  subroutine check_friction_problem(g, prob, rep)
+    real(dp), intent(in) :: g(:, :)
+    type(friction_problem_t), intent(in) :: prob
+    type(lcp_report_t), intent(inout) :: rep
+    integer :: n, nt, nrow, i
+
+    rep%info = 0
+    n = prob%n
+    nt = prob%nt
+    nrow = n + nt
+    if (size(prob%qn) /= n .or. size(prob%qt) /= nt) then
+      call set_report(rep, -2, 'friction LCP: qn and qt have ' // int_to_str(size(prob%qn)) // ' and ' // &
+        int_to_str(size(prob%qt)) // ' entries (expected n = ' // int_to_str(n) // ' and nt = ' // &
+        int_to_str(nt) // ')')
+      return
+    end if
+    if (size(g, 1) /= nrow .or. size(g, 2) /= nrow) then
+      call set_report(rep, -1, 'friction LCP: G is ' // int_to_str(size(g, 1)) // ' x ' // &
+        int_to_str(size(g, 2)) // ' (expected ' // int_to_str(nrow) // ' x ' // int_to_str(nrow) // &
+        ', n + nt from qn and qt)')
+      return
+    else if (.not. all(ieee_is_finite(g))) then
+      call set_report(rep, -1, 'friction LCP: G has non-finite entries')
+      return
+    end if
+    i = negative_diagonal(g)
+    if (i > 0) then
+      call set_report(rep, -1, 'friction LCP: G(' // int_to_str(i) // ',' // int_to_str(i) // &
+        ') < 0 (G must be positive semi-definite)')
+      return
+    end if
+    if (.not. all(ieee_is_finite(prob%qn))) then
+      call set_report(rep, -2, 'friction LCP: qn has non-finite entries')
+    else if (.not. all(ieee_is_finite(prob%qt))) then
+      call set_report(rep, -2, 'friction LCP: qt has non-finite entries')
+    else if (size(prob%trow) /= nt) then
+      call set_report(rep, -2, 'friction LCP: trow has ' // int_to_str(size(prob%trow)) // &
+        ' entries (expected nt = ' // int_to_str(nt) // ')')
+    else if (any(prob%trow < 1 .or. prob%trow > n)) then
+      call set_report(rep, -2, 'friction LCP: trow has entries outside 1..' // int_to_str(n))
+    else if (size(prob%cmu) /= nt) then
+      call set_report(rep, -2, 'friction LCP: cmu has ' // int_to_str(size(prob%cmu)) // &
+        ' entries (expected nt = ' // int_to_str(nt) // ')')
+    else if (.not. all(ieee_is_finite(prob%cmu) .and. prob%cmu >= 0.0_dp)) then
+      call set_report(rep, -2, 'friction LCP: cmu has entries that are not finite and >= 0')
+    else if (size(prob%bound) /= nt) then
+      call set_report(rep, -2, 'friction LCP: bound has ' // int_to_str(size(prob%bound)) // &
+        ' entries (expected nt = ' // int_to_str(nt) // ')')
+    else if (.not. all(ieee_is_finite(prob%bound) .and. prob%bound >= 0.0_dp)) then
+      call set_report(rep, -2, 'friction LCP: bound has entries that are not finite and >= 0')
+    end if
+  end subroutine check_friction_problem
+
   !> Solve one load step of contact with Coulomb or Tresca friction (module
   !> header) by Lemke on the friction LCP or by nonsmooth Gauss-Seidel.
   !>   g       (in)    (n+nt, n+nt) Delassus matrix G, symmetric PSD, finite
-  !>   qn      (in)    (n) normal gaps of the unconstrained solution, finite
-  !>   qt      (in)    (nt) tangential right-hand side (ds = -(qt + (G lam)_t)), finite
-  !>   trow    (in)    (nt) normal row of each tangential row, 1 <= trow(k) <= n
-  !>   cmu     (in)    (nt) friction coefficients, finite, >= 0 (0 for Tresca)
-  !>   bound   (in)    (nt) Tresca bounds, finite, >= 0 (0 for Coulomb)
+  !>   prob    (in)    qn, qt, trow, cmu, bound (check_friction_problem)
   !>   method  (in)    'lemke' or 'pgs'
   !>   opts    (in)    tol (> 0, on r), maxit (>= 0; 0: Lemke 10 (n + 3 nt) + 100
   !>                   pivots, PGS min(1e5, max(1e4, 1e10 / (n + nt)^2)) sweeps),
@@ -168,34 +263,44 @@ contains
   !>                   divergence or stagnation, 4 Lemke residual above tol, -k
   !>                   argument k invalid; iterations (pivots or sweeps);
   !>                   residual r and complementarity of the lam returned; message
-  subroutine solve_friction_lcp(g, qn, qt, trow, cmu, bound, method, opts, lam, rep)
+  subroutine solve_friction_lcp(g, prob, method, opts, lam, rep)
     real(dp), intent(in) :: g(:, :)
-    real(dp), intent(in) :: qn(:)
-    real(dp), intent(in) :: qt(:)
-    integer, intent(in) :: trow(:)
-    real(dp), intent(in) :: cmu(:)
-    real(dp), intent(in) :: bound(:)
+    type(friction_problem_t), intent(in) :: prob
     character(len=*), intent(in) :: method
     type(lcp_options_t), intent(in) :: opts
     real(dp), intent(inout) :: lam(:)
     type(lcp_report_t), intent(out) :: rep
     type(scaled_friction_t) :: p
-    integer :: info
+    integer :: info, nrow
 
-    call check_arguments(g, qn, qt, trow, cmu, bound, method, opts, size(lam), rep)
+    call check_friction_problem(g, prob, rep)
+    if (rep%info < 0) return
+    nrow = prob%n + prob%nt
+    if (method /= 'lemke' .and. method /= 'pgs') then
+      call set_report(rep, -3, 'friction LCP: method ''' // method // ''' (expected ''lemke'' or ''pgs'')')
+    else if (.not. (ieee_is_finite(opts%tol) .and. opts%tol > 0.0_dp)) then
+      call set_report(rep, -4, 'friction LCP: tol is not finite and > 0')
+    else if (opts%maxit < 0) then
+      call set_report(rep, -4, 'friction LCP: maxit = ' // int_to_str(opts%maxit) // ' (expected >= 0)')
+    else if (method == 'pgs' .and. .not. (opts%omega > 0.0_dp .and. opts%omega < 2.0_dp)) then
+      call set_report(rep, -4, 'friction LCP: omega is not in (0, 2)')
+    else if (size(lam) /= nrow) then
+      call set_report(rep, -5, 'friction LCP: lam has ' // int_to_str(size(lam)) // ' entries (expected n + nt = ' // &
+        int_to_str(nrow) // ')')
+    end if
     if (rep%info < 0) return
 
     ! Without tangential rows this is the frictionless LCP(Gnn, qn).
-    if (size(qt) == 0) then
+    if (prob%nt == 0) then
       if (method == 'lemke') then
-        call solve_lcp_lemke(g, qn, lam, opts, rep)
+        call solve_lcp_lemke(g, prob%qn, lam, opts, rep)
       else
-        call solve_lcp_pgs(g, qn, lam, opts, rep)
+        call solve_lcp_pgs(g, prob%qn, lam, opts, rep)
       end if
       return
     end if
 
-    call scale_friction(g, qn, qt, trow, cmu, bound, p, info)
+    call scale_friction(g, prob, p, info)
     if (info /= 0) then
       call report_out_of_memory(rep, 'scaling the friction LCP (' // int_to_str(size(g, 1)) // ' rows)', &
                                 scaled_bytes(size(g, 1)))
@@ -203,7 +308,7 @@ contains
       return
     end if
     if (method == 'lemke') then
-      call friction_lemke(g, qn, qt, cmu, bound, p, opts, lam, rep)
+      call friction_lemke(g, prob, p, opts, lam, rep)
     else
       call friction_pgs(p, opts, lam, rep)
     end if
@@ -211,17 +316,13 @@ contains
 
   !> Scale-free natural residual r (module header) of a candidate lam.
   !> r = 0 exactly when lam solves the frictional contact problem.
-  !>   g, qn, qt, trow, cmu, bound  (in) the problem, as in solve_friction_lcp
+  !>   g, prob  (in) the problem, as in solve_friction_lcp
   !>   lam  (in)     (n+nt) candidate, finite
-  !>   r    (result) the residual; huge(1.0_dp) when the sizes or trow are invalid
-  !>        or the scaled copy of g does not fit in memory
-  function friction_residual(g, qn, qt, trow, cmu, bound, lam) result(r)
+  !>   r    (result) the residual; huge(1.0_dp) when g, prob or lam's size are
+  !>        invalid or the scaled copy of g does not fit in memory
+  function friction_residual(g, prob, lam) result(r)
     real(dp), intent(in) :: g(:, :)
-    real(dp), intent(in) :: qn(:)
-    real(dp), intent(in) :: qt(:)
-    integer, intent(in) :: trow(:)
-    real(dp), intent(in) :: cmu(:)
-    real(dp), intent(in) :: bound(:)
+    type(friction_problem_t), intent(in) :: prob
     real(dp), intent(in) :: lam(:)
     real(dp) :: r
     type(scaled_friction_t) :: p
@@ -229,30 +330,26 @@ contains
     integer :: info
 
     r = huge(1.0_dp)
-    if (.not. valid_sizes(g, qn, qt, trow, cmu, bound, size(lam))) return
-    call scale_friction(g, qn, qt, trow, cmu, bound, p, info)
+    if (.not. valid_problem(g, prob, size(lam))) return
+    call scale_friction(g, prob, p, info)
     if (info /= 0) return
     s = lam / p%d                                      ! s = D^-1 lam
     allocate(v(size(s)))
-    call scaled_gap(p, s, v)
+    call lcp_gaps(p%gs, p%qs, s, v)                    ! v = qs + Gs s
     r = scaled_residual(p, s, v)
   end function friction_residual
 
   !> Stick / slip state of each tangential row of a (solved) lam, decided with
   !> the relative tolerance state_tol = 1e-8 (module header).
-  !>   g, qn, qt, trow, cmu, bound  (in) the problem, as in solve_friction_lcp
+  !>   g, prob  (in) the problem, as in solve_friction_lcp
   !>   lam    (in)  (n+nt) the forces, finite
   !>   state  (out) (nt) state_open (0), state_stick (1) or state_slip (2);
-  !>                -1 everywhere when the sizes or trow are invalid
+  !>                -1 everywhere when g, prob or the sizes are invalid
   !>   err    (out) allocated when the scaled copy of g does not fit in memory
   !>                (`out of memory while ...`, status 1; state is -1 then)
-  subroutine friction_state(g, qn, qt, trow, cmu, bound, lam, state, err)
+  subroutine friction_state(g, prob, lam, state, err)
     real(dp), intent(in) :: g(:, :)
-    real(dp), intent(in) :: qn(:)
-    real(dp), intent(in) :: qt(:)
-    integer, intent(in) :: trow(:)
-    real(dp), intent(in) :: cmu(:)
-    real(dp), intent(in) :: bound(:)
+    type(friction_problem_t), intent(in) :: prob
     real(dp), intent(in) :: lam(:)
     integer, intent(out) :: state(:)
     type(error_t), allocatable, intent(out) :: err
@@ -262,9 +359,9 @@ contains
     integer :: k, i, j, n, info
 
     state = -1
-    if (.not. valid_sizes(g, qn, qt, trow, cmu, bound, size(lam))) return
-    if (size(state) /= size(qt)) return
-    call scale_friction(g, qn, qt, trow, cmu, bound, p, info)
+    if (.not. valid_problem(g, prob, size(lam))) return
+    if (size(state) /= prob%nt) return
+    call scale_friction(g, prob, p, info)
     if (info /= 0) then
       call set_out_of_memory(err, 'measuring the friction states (' // int_to_str(size(g, 1)) // ' rows)', &
                              int(min(scaled_bytes(size(g, 1)), 9.0e18_dp), i8))
@@ -273,7 +370,7 @@ contains
     n = p%n
     s = lam / p%d
     allocate(v(size(s)))
-    call scaled_gap(p, s, v)
+    call lcp_gaps(p%gs, p%qs, s, v)                    ! v = qs + Gs s
     small = state_tol * p%qscale
     do k = 1, p%nt
       i = p%trow(k)
@@ -289,112 +386,104 @@ contains
     end do
   end subroutine friction_state
 
+  !> The friction LCP of method 'lemke' (module header) and its scaling, for
+  !> Lemke on D M D, D q (solve_lcp_lemke_scaled).
+  !>   g     (in)  (n+nt, n+nt) G
+  !>   prob  (in)  the problem, valid (check_friction_problem)
+  !>   m     (out) (n+3nt, n+3nt) M
+  !>   q     (out) (n+3nt) [qn; qt; -qt; bound]
+  !>   d     (out) (n+3nt) [dn; dt; dt; 1/dt], dn and dt the scaling of G (scale_lcp)
+  subroutine friction_lcp_system(g, prob, m, q, d)
+    real(dp), intent(in) :: g(:, :)
+    type(friction_problem_t), intent(in) :: prob
+    real(dp), intent(out) :: m(:, :)
+    real(dp), intent(out) :: q(:)
+    real(dp), intent(out) :: d(:)
+    real(dp), allocatable :: dg(:)
+    integer :: n, nt, jp, jm, js, k
+
+    n = prob%n
+    nt = prob%nt
+    jp = n                                             ! beta+ = z(jp+1 : jp+nt)
+    jm = n + nt                                        ! beta- = z(jm+1 : jm+nt)
+    js = n + 2 * nt                                    ! sigma = z(js+1 : js+nt)
+    m = 0.0_dp
+    ! Normal rows:  w = qn + Gnn lambda + Gnt (beta+ - beta-).
+    m(1:n, 1:n) = g(1:n, 1:n)
+    m(1:n, jp + 1:jp + nt) = g(1:n, n + 1:n + nt)
+    m(1:n, jm + 1:jm + nt) = -g(1:n, n + 1:n + nt)
+    ! beta+ rows:  w = qt + Gtn lambda + Gtt tau + sigma = sigma - ds.
+    m(jp + 1:jp + nt, 1:n) = g(n + 1:n + nt, 1:n)
+    m(jp + 1:jp + nt, jp + 1:jp + nt) = g(n + 1:n + nt, n + 1:n + nt)
+    m(jp + 1:jp + nt, jm + 1:jm + nt) = -g(n + 1:n + nt, n + 1:n + nt)
+    ! beta- rows:  w = -qt - Gtn lambda - Gtt tau + sigma = sigma + ds.
+    m(jm + 1:jm + nt, 1:jm + nt) = -m(jp + 1:jp + nt, 1:jm + nt)
+    do k = 1, nt
+      m(jp + k, js + k) = 1.0_dp
+      m(jm + k, js + k) = 1.0_dp
+      ! sigma rows:  w = bound + cmu lambda_trow - beta+ - beta- = b - (beta+ + beta-).
+      m(js + k, prob%trow(k)) = prob%cmu(k)
+      m(js + k, jp + k) = -1.0_dp
+      m(js + k, jm + k) = -1.0_dp
+    end do
+    q = [prob%qn, prob%qt, -prob%qt, prob%bound]
+    allocate(dg(n + nt))
+    call scaling_vector(g, dg)                         ! 1/sqrt(G_ii), as scale_lcp
+    d = [dg, dg(n + 1:n + nt), 1.0_dp / dg(n + 1:n + nt)]        ! [dn; dt; dt; 1/dt]
+  end subroutine friction_lcp_system
+
+  !> lam = [lambda; tau] read off a solution z = [lambda; beta+; beta-; ...] of
+  !> the friction LCP (module header): tau = beta+ - beta-, polished onto
+  !> [-b, b] (beta+ + beta- <= b holds only to round-off, and both may be
+  !> basic at a round-off level when b = 0).
+  !>   prob  (in)  the problem
+  !>   z     (in)  (>= n+2nt) Lemke's solution
+  !>   lam   (out) (n+nt) the forces
+  pure subroutine friction_forces(prob, z, lam)
+    type(friction_problem_t), intent(in) :: prob
+    real(dp), intent(in) :: z(:)
+    real(dp), intent(out) :: lam(:)
+    real(dp) :: bk
+    integer :: n, k
+
+    n = prob%n
+    lam(1:n) = z(1:n)                                  ! lambda
+    do k = 1, prob%nt
+      bk = prob%bound(k) + prob%cmu(k) * lam(prob%trow(k))
+      lam(n + k) = min(bk, max(-bk, z(n + k) - z(n + prob%nt + k)))
+    end do
+  end subroutine friction_forces
+
   ! ---------------------------------------------------------------------------
   ! Internals
   ! ---------------------------------------------------------------------------
 
-  !> Check every argument of solve_friction_lcp; info -k names argument k.
-  subroutine check_arguments(g, qn, qt, trow, cmu, bound, method, opts, nlam, rep)
+  !> .true. when g and prob pass check_friction_problem and lam has n + nt
+  !> entries (for the measures).
+  logical function valid_problem(g, prob, nlam)
     real(dp), intent(in) :: g(:, :)
-    real(dp), intent(in) :: qn(:)
-    real(dp), intent(in) :: qt(:)
-    integer, intent(in) :: trow(:)
-    real(dp), intent(in) :: cmu(:)
-    real(dp), intent(in) :: bound(:)
-    character(len=*), intent(in) :: method
-    type(lcp_options_t), intent(in) :: opts
+    type(friction_problem_t), intent(in) :: prob
     integer, intent(in) :: nlam
-    type(lcp_report_t), intent(inout) :: rep
-    integer :: n, nt, nrow, i
-
-    rep%info = 0
-    n = size(qn)
-    nt = size(qt)
-    nrow = n + nt
-    if (size(g, 1) /= nrow .or. size(g, 2) /= nrow) then
-      call set_report(rep, -1, 'friction LCP: G is ' // int_to_str(size(g, 1)) // ' x ' // &
-        int_to_str(size(g, 2)) // ' (expected ' // int_to_str(nrow) // ' x ' // int_to_str(nrow) // &
-        ', n + nt from qn and qt)')
-      return
-    else if (.not. all(ieee_is_finite(g))) then
-      call set_report(rep, -1, 'friction LCP: G has non-finite entries')
-      return
-    end if
-    i = negative_diagonal(g)
-    if (i > 0) then
-      call set_report(rep, -1, 'friction LCP: G(' // int_to_str(i) // ',' // int_to_str(i) // &
-        ') < 0 (G must be positive semi-definite)')
-      return
-    end if
-    if (.not. all(ieee_is_finite(qn))) then
-      call set_report(rep, -2, 'friction LCP: qn has non-finite entries')
-    else if (.not. all(ieee_is_finite(qt))) then
-      call set_report(rep, -3, 'friction LCP: qt has non-finite entries')
-    else if (size(trow) /= nt) then
-      call set_report(rep, -4, 'friction LCP: trow has ' // int_to_str(size(trow)) // &
-        ' entries (expected nt = ' // int_to_str(nt) // ')')
-    else if (any(trow < 1 .or. trow > n)) then
-      call set_report(rep, -4, 'friction LCP: trow has entries outside 1..' // int_to_str(n))
-    else if (size(cmu) /= nt) then
-      call set_report(rep, -5, 'friction LCP: cmu has ' // int_to_str(size(cmu)) // &
-        ' entries (expected nt = ' // int_to_str(nt) // ')')
-    else if (.not. all(ieee_is_finite(cmu) .and. cmu >= 0.0_dp)) then
-      call set_report(rep, -5, 'friction LCP: cmu has entries that are not finite and >= 0')
-    else if (size(bound) /= nt) then
-      call set_report(rep, -6, 'friction LCP: bound has ' // int_to_str(size(bound)) // &
-        ' entries (expected nt = ' // int_to_str(nt) // ')')
-    else if (.not. all(ieee_is_finite(bound) .and. bound >= 0.0_dp)) then
-      call set_report(rep, -6, 'friction LCP: bound has entries that are not finite and >= 0')
-    else if (method /= 'lemke' .and. method /= 'pgs') then
-      call set_report(rep, -7, 'friction LCP: method ''' // method // ''' (expected ''lemke'' or ''pgs'')')
-    else if (.not. (ieee_is_finite(opts%tol) .and. opts%tol > 0.0_dp)) then
-      call set_report(rep, -8, 'friction LCP: tol is not finite and > 0')
-    else if (opts%maxit < 0) then
-      call set_report(rep, -8, 'friction LCP: maxit = ' // int_to_str(opts%maxit) // ' (expected >= 0)')
-    else if (method == 'pgs' .and. .not. (opts%omega > 0.0_dp .and. opts%omega < 2.0_dp)) then
-      call set_report(rep, -8, 'friction LCP: omega is not in (0, 2)')
-    else if (nlam /= nrow) then
-      call set_report(rep, -9, 'friction LCP: lam has ' // int_to_str(nlam) // ' entries (expected n + nt = ' // &
-        int_to_str(nrow) // ')')
-    end if
-  end subroutine check_arguments
-
-  !> .true. when the sizes agree and trow is in range (for the measures).
-  logical function valid_sizes(g, qn, qt, trow, cmu, bound, nlam)
-    real(dp), intent(in) :: g(:, :)
-    real(dp), intent(in) :: qn(:)
-    real(dp), intent(in) :: qt(:)
-    integer, intent(in) :: trow(:)
-    real(dp), intent(in) :: cmu(:)
-    real(dp), intent(in) :: bound(:)
-    integer, intent(in) :: nlam
-    integer :: nrow, nt
-    nt = size(qt)
-    nrow = size(qn) + nt
-    valid_sizes = size(g, 1) == nrow .and. size(g, 2) == nrow .and. nlam == nrow .and. &
-      size(trow) == nt .and. size(cmu) == nt .and. size(bound) == nt
-    if (valid_sizes) valid_sizes = all(trow >= 1 .and. trow <= size(qn))
-  end function valid_sizes
+    type(lcp_report_t) :: rep
+    call check_friction_problem(g, prob, rep)
+    valid_problem = rep%info == 0 .and. nlam == prob%n + prob%nt
+  end function valid_problem
 
   !> Build the scaled problem (module header) from valid arguments.
-  !>   g, qn, qt, trow, cmu, bound  (in) the problem, as in solve_friction_lcp
+  !>   g, prob  (in) the problem, as in solve_friction_lcp
   !>   p     (out) the scaled problem
   !>   info  (out) 0; 1 when its arrays (about scaled_bytes(n + nt)) cannot
   !>               be allocated, p then holds nothing
-  subroutine scale_friction(g, qn, qt, trow, cmu, bound, p, info)
+  subroutine scale_friction(g, prob, p, info)
     real(dp), intent(in) :: g(:, :)
-    real(dp), intent(in) :: qn(:)
-    real(dp), intent(in) :: qt(:)
-    integer, intent(in) :: trow(:)
-    real(dp), intent(in) :: cmu(:)
-    real(dp), intent(in) :: bound(:)
+    type(friction_problem_t), intent(in) :: prob
     type(scaled_friction_t), intent(out) :: p
     integer, intent(out) :: info
     integer :: n, nt, nrow, i, k
     real(dp), allocatable :: q(:)
 
-    n = size(qn)
-    nt = size(qt)
+    n = prob%n
+    nt = prob%nt
     nrow = n + nt
     ! the dense copy Gs is as large as g: a failed allocation is a diagnosis
     allocate(p%d(nrow), p%gs(nrow, nrow), p%qs(nrow), p%step(nrow), p%zero(nrow), q(nrow), &
@@ -405,8 +494,8 @@ contains
     end if
     p%n = n
     p%nt = nt
-    q(1:n) = qn
-    q(n + 1:) = qt
+    q(1:n) = prob%qn
+    q(n + 1:) = prob%qt
     call scale_lcp(g, q, p%d, p%gs, p%qs)              ! Gs = D G D, qs = D q
     ! scale_lcp leaves Gs_ii = 1 (to round-off) on a row with a positive
     ! diagonal and Gs_ii <= 1e-30 on a zero row.
@@ -416,10 +505,10 @@ contains
       if (.not. p%zero(i)) p%step(i) = 1.0_dp / p%gs(i, i)
     end do
 
-    p%trow = trow
+    p%trow = prob%trow
     do k = 1, nt
-      p%bs0(k) = bound(k) / p%d(n + k)                            ! bound / d_t
-      p%mus(k) = cmu(k) * p%d(trow(k)) / p%d(n + k)               ! cmu d_n / d_t
+      p%bs0(k) = prob%bound(k) / p%d(n + k)                            ! bound / d_t
+      p%mus(k) = prob%cmu(k) * p%d(prob%trow(k)) / p%d(n + k)          ! cmu d_n / d_t
     end do
     p%qscale = 0.0_dp
     if (nrow > 0) p%qscale = maxval(abs(p%qs))
@@ -429,7 +518,7 @@ contains
     ! Tangential rows of each normal row, in order (counting sort on trow).
     p%tfirst = 0
     do k = 1, nt
-      p%tfirst(trow(k) + 1) = p%tfirst(trow(k) + 1) + 1
+      p%tfirst(p%trow(k) + 1) = p%tfirst(p%trow(k) + 1) + 1
     end do
     p%tfirst(1) = 1
     do i = 1, n
@@ -439,8 +528,8 @@ contains
       integer, allocatable :: next(:)
       next = p%tfirst(1:n)
       do k = 1, nt
-        p%tlist(next(trow(k))) = k
-        next(trow(k)) = next(trow(k)) + 1
+        p%tlist(next(p%trow(k))) = k
+        next(p%trow(k)) = next(p%trow(k)) + 1
       end do
     end block
   end subroutine scale_friction
@@ -451,20 +540,9 @@ contains
     scaled_bytes = 8.0_dp * real(nrow, dp) * real(nrow + 5, dp)
   end function scaled_bytes
 
-  !> v = qs + Gs s.
-  subroutine scaled_gap(p, s, v)
-    type(scaled_friction_t), intent(in) :: p
-    real(dp), intent(in) :: s(:)
-    real(dp), intent(out) :: v(:)
-    integer :: nrow
-    nrow = p%n + p%nt
-    v = p%qs
-    if (nrow > 0) call dgemv('N', nrow, nrow, 1.0_dp, p%gs, nrow, s, 1, 1.0_dp, v, 1)
-  end subroutine scaled_gap
-
   !> The residual r of (s, v = qs + Gs s) (module header).
   pure function scaled_residual(p, s, v) result(r)
-    type(scaled_friction_t), intent(in) :: p
+    class(scaled_friction_t), intent(in) :: p
     real(dp), intent(in) :: s(:), v(:)
     real(dp) :: r
     real(dp) :: bk
@@ -512,76 +590,40 @@ contains
     type(lcp_report_t), intent(inout) :: rep
     real(dp), allocatable :: v(:)
     allocate(v(size(s)))
-    call scaled_gap(p, s, v)
+    call lcp_gaps(p%gs, p%qs, s, v)                    ! v = qs + Gs s
     rep%residual = scaled_residual(p, s, v)
     rep%complementarity = scaled_complementarity(p, s, v)
   end subroutine measure_scaled
 
   !> Method 'lemke': build the friction LCP (module header), solve it with
   !> solve_lcp_lemke_scaled, and read lam = [lambda; beta+ - beta-] off z.
-  !>   g, qn, qt, cmu, bound  (in) the problem
-  !>   p      (in)    its scaled form (d, trow, the measures)
+  !>   g, prob (in)   the problem
+  !>   p      (in)    its scaled form (the zero rows, the measures)
   !>   opts   (in)    tol, maxit
   !>   lam    (out)   (n+nt) the solution, or the last almost-complementary point
   !>   rep    (inout) the report
-  subroutine friction_lemke(g, qn, qt, cmu, bound, p, opts, lam, rep)
+  subroutine friction_lemke(g, prob, p, opts, lam, rep)
     real(dp), intent(in) :: g(:, :)
-    real(dp), intent(in) :: qn(:)
-    real(dp), intent(in) :: qt(:)
-    real(dp), intent(in) :: cmu(:)
-    real(dp), intent(in) :: bound(:)
+    type(friction_problem_t), intent(in) :: prob
     type(scaled_friction_t), intent(in) :: p
     type(lcp_options_t), intent(in) :: opts
     real(dp), intent(out) :: lam(:)
     type(lcp_report_t), intent(inout) :: rep
     type(lcp_report_t) :: lrep
     real(dp), allocatable :: m(:, :), q(:), d(:), z(:)
-    real(dp) :: bk
-    integer :: n, nt, nz, jp, jm, js, k, i, nbad, first_bad
+    integer :: nz, st, nbad, first_bad
 
-    n = p%n
-    nt = p%nt
-    nz = n + 3 * nt
-    jp = n                                             ! beta+ = z(jp+1 : jp+nt)
-    jm = n + nt                                        ! beta- = z(jm+1 : jm+nt)
-    js = n + 2 * nt                                    ! sigma = z(js+1 : js+nt)
-    allocate(m(nz, nz), q(nz), d(nz), z(nz), stat=i)
-    if (i /= 0) then
+    nz = p%n + 3 * p%nt
+    allocate(m(nz, nz), q(nz), d(nz), z(nz), stat=st)
+    if (st /= 0) then
       call report_out_of_memory(rep, 'solving the friction LCP by Lemke (' // int_to_str(nz) // ' unknowns)', &
                                 8.0_dp * real(nz, dp) * real(nz, dp))
       lam = 0.0_dp
       return
     end if
-    m = 0.0_dp
-    ! Normal rows:  w = qn + Gnn lambda + Gnt (beta+ - beta-).
-    m(1:n, 1:n) = g(1:n, 1:n)
-    m(1:n, jp + 1:jp + nt) = g(1:n, n + 1:n + nt)
-    m(1:n, jm + 1:jm + nt) = -g(1:n, n + 1:n + nt)
-    ! beta+ rows:  w = qt + Gtn lambda + Gtt tau + sigma = sigma - ds.
-    m(jp + 1:jp + nt, 1:n) = g(n + 1:n + nt, 1:n)
-    m(jp + 1:jp + nt, jp + 1:jp + nt) = g(n + 1:n + nt, n + 1:n + nt)
-    m(jp + 1:jp + nt, jm + 1:jm + nt) = -g(n + 1:n + nt, n + 1:n + nt)
-    ! beta- rows:  w = -qt - Gtn lambda - Gtt tau + sigma = sigma + ds.
-    m(jm + 1:jm + nt, 1:jm + nt) = -m(jp + 1:jp + nt, 1:jm + nt)
-    do k = 1, nt
-      m(jp + k, js + k) = 1.0_dp
-      m(jm + k, js + k) = 1.0_dp
-      ! sigma rows:  w = bound + cmu lambda_trow - beta+ - beta- = b - (beta+ + beta-).
-      m(js + k, p%trow(k)) = cmu(k)
-      m(js + k, jp + k) = -1.0_dp
-      m(js + k, jm + k) = -1.0_dp
-    end do
-    q = [qn, qt, -qt, bound]
-    d = [p%d, p%d(n + 1:n + nt), 1.0_dp / p%d(n + 1:n + nt)]     ! [dn; dt; dt; 1/dt]
-
+    call friction_lcp_system(g, prob, m, q, d)
     call solve_lcp_lemke_scaled(m, q, d, z, opts, lrep)   ! maxit 0: 10 nz + 100 pivots
-    lam(1:n) = z(1:n)                                  ! lambda
-    do k = 1, nt
-      ! tau = beta+ - beta-, polished onto [-b, b]: beta+ + beta- <= b holds only
-      ! to round-off, and both may be basic at a round-off level when b = 0.
-      bk = bound(k) + cmu(k) * lam(p%trow(k))
-      lam(n + k) = min(bk, max(-bk, z(jp + k) - z(jm + k)))
-    end do
+    call friction_forces(prob, z, lam)
     call measure_scaled(p, lam / p%d, rep)
     rep%iterations = lrep%iterations
 
@@ -595,19 +637,12 @@ contains
       rep%message = 'friction Lemke: ray termination after ' // int_to_str(rep%iterations) // ' pivots: '
       ! Name the obvious cause when there is one: a zero normal row of G
       ! (w_i = qn_i whatever lam) with a negative gap.
-      nbad = 0
-      first_bad = 0
-      do i = 1, n
-        if (p%zero(i) .and. p%qs(i) < -opts%tol * p%qscale) then
-          nbad = nbad + 1
-          if (first_bad == 0) first_bad = i
-        end if
-      end do
+      first_bad = infeasible_row(p, opts%tol, nbad)
       if (nbad > 0) then
         rep%message = rep%message // 'row/column ' // int_to_str(first_bad) // ' of G is zero but qn(' // &
-          int_to_str(first_bad) // ') = ' // real_to_str(qn(first_bad)) // ' < 0: no solution (' // &
+          int_to_str(first_bad) // ') = ' // real_to_str(prob%qn(first_bad)) // ' < 0: no solution (' // &
           int_to_str(nbad) // ' such row(s))'
-      else if (all(cmu == 0.0_dp)) then
+      else if (all(prob%cmu == 0.0_dp)) then
         rep%message = rep%message // 'no solution (Tresca: the friction LCP is positive semi-definite)'
       else
         rep%message = rep%message // 'no solution found (Coulomb: large friction coefficients with' // &
@@ -625,6 +660,26 @@ contains
     end select
   end subroutine friction_lemke
 
+  !> The first zero normal row of G (w_i = qn_i whatever lam) whose gap is
+  !> clearly negative (qs_i < -tol qscale): the problem has no solution; 0 if none.
+  !>   p     (in)  the scaled problem
+  !>   tol   (in)  the residual target
+  !>   nbad  (out) how many such rows
+  integer function infeasible_row(p, tol, nbad) result(first_bad)
+    type(scaled_friction_t), intent(in) :: p
+    real(dp), intent(in) :: tol
+    integer, intent(out) :: nbad
+    integer :: i
+    nbad = 0
+    first_bad = 0
+    do i = 1, p%n
+      if (p%zero(i) .and. p%qs(i) < -tol * p%qscale) then
+        nbad = nbad + 1
+        if (first_bad == 0) first_bad = i
+      end if
+    end do
+  end function infeasible_row
+
   !> Method 'pgs': nonsmooth Gauss-Seidel on the scaled problem.
   !>   p      (in)    the scaled problem
   !>   opts   (in)    tol, maxit, omega
@@ -641,14 +696,7 @@ contains
     nrow = p%n + p%nt
     ! A zero normal row (w_i = qn_i whatever lam) with a clearly negative gap
     ! cannot be closed: no solution.
-    nbad = 0
-    first_bad = 0
-    do i = 1, p%n
-      if (p%zero(i) .and. p%qs(i) < -opts%tol * p%qscale) then
-        nbad = nbad + 1
-        if (first_bad == 0) first_bad = i
-      end if
-    end do
+    first_bad = infeasible_row(p, opts%tol, nbad)
     if (nbad > 0) then
       lam = 0.0_dp
       call measure_scaled(p, lam, rep)
@@ -658,97 +706,43 @@ contains
       return
     end if
 
-    maxit = opts%maxit
-    if (maxit == 0) maxit = nint(min(1.0e5_dp, max(1.0e4_dp, 1.0e10_dp / real(max(nrow, 1), dp)**2)))
-    window = max(1000, 10 * nrow)
+    call pgs_limits(opts%maxit, nrow, maxit, window)
     allocate(s(nrow))
     do i = 1, nrow                                     ! s = D^-1 lam, lambda >= 0
       s(i) = 0.0_dp
       if (ieee_is_finite(lam(i))) s(i) = lam(i) / p%d(i)
       if (i <= p%n) s(i) = max(0.0_dp, s(i))
     end do
-    call pgs_sweeps(p, opts%tol, opts%omega, maxit, window, s, rep%iterations, reason)
+    call run_pgs(p, p%gs, p%qs, opts%tol, opts%omega, maxit, window, s, rep%iterations, reason)
     lam = p%d * s                                      ! lam = D s
     call measure_scaled(p, s, rep)
 
     call pgs_outcome(reason, maxit, window, opts%tol, 'friction PGS', 'lam', 'problem', rep)
   end subroutine friction_pgs
 
-  !> Nonsmooth Gauss-Seidel sweeps (module header).
-  !>   p       (in)    the scaled problem
-  !>   tol     (in)    target on r
-  !>   omega   (in)    relaxation, 0 < omega < 2
-  !>   maxit   (in)    sweep limit
-  !>   window  (in)    stagnation window (sweeps)
-  !>   s       (inout) (n+nt) initial guess (s_i >= 0 on normal rows); on exit
-  !>                   the solution or the best iterate
-  !>   sweeps  (out)   sweeps done
-  !>   reason  (out)   0 converged, 2 limit, 3 divergence, 4 stagnation
-  subroutine pgs_sweeps(p, tol, omega, maxit, window, s, sweeps, reason)
-    type(scaled_friction_t), intent(in) :: p
-    real(dp), intent(in) :: tol, omega
-    integer, intent(in) :: maxit, window
-    real(dp), intent(inout) :: s(:)
-    integer, intent(out) :: sweeps, reason
-    type(pgs_monitor_t) :: mon
-    real(dp), allocatable :: v(:)
-    real(dp) :: res, bk
-    integer :: n, nrow, i, j, kk, k, sweep
+  !> One nonsmooth Gauss-Seidel sweep (module header): the normal rows in
+  !> order, each followed by the tangential rows of its node.
+  !>   p      (in)    the scaled problem
+  !>   omega  (in)    relaxation, 0 < omega < 2
+  !>   s      (inout) (n+nt) the iterate, s_i >= 0 on the normal rows
+  !>   v      (inout) (n+nt) its gaps qs + Gs s, kept up to date
+  subroutine friction_sweep(p, omega, s, v)
+    class(scaled_friction_t), intent(in) :: p
+    real(dp), intent(in) :: omega
+    real(dp), intent(inout) :: s(:), v(:)
+    real(dp) :: bk
+    integer :: n, i, j, kk, k
 
     n = p%n
-    nrow = n + p%nt
-    sweeps = 0
-    reason = 0
-    allocate(v(nrow))
-    call scaled_gap(p, s, v)
-    res = scaled_residual(p, s, v)
-    call pgs_watch_start(mon, tol, window, s, res)
-    if (res <= tol) return
-
-    reason = 2
-    do sweep = 1, maxit
-      sweeps = sweep
-      do i = 1, n
-        call set_row(i, max(0.0_dp, s(i) - omega * v(i) * p%step(i)))      ! lambda_i projected
-        do kk = p%tfirst(i), p%tfirst(i + 1) - 1
-          k = p%tlist(kk)
-          j = n + k
-          bk = p%bs0(k) + p%mus(k) * s(i)                                  ! bs_k with the new lambda_i
-          call set_row(j, min(bk, max(-bk, s(j) - omega * v(j) * p%step(j))))   ! tau_k clamped
-        end do
+    do i = 1, n
+      call pgs_set_row(p%gs, i, max(0.0_dp, s(i) - omega * v(i) * p%step(i)), s, v)      ! lambda_i projected
+      do kk = p%tfirst(i), p%tfirst(i + 1) - 1
+        k = p%tlist(kk)
+        j = n + k
+        bk = p%bs0(k) + p%mus(k) * s(i)                                        ! bs_k with the new lambda_i
+        call pgs_set_row(p%gs, j, min(bk, max(-bk, s(j) - omega * v(j) * p%step(j))), s, v)   ! tau_k clamped
       end do
-      if (mod(sweep, pgs_refresh_sweeps) == 0) call scaled_gap(p, s, v)
-
-      res = scaled_residual(p, s, v)
-      reason = pgs_watch_iterate(mon, s, v, res)
-      if (reason >= 0) exit
-      if (res <= tol) then
-        call scaled_gap(p, s, v)                       ! confirm without drift
-        res = scaled_residual(p, s, v)
-        if (res <= tol) then
-          reason = 0
-          exit
-        end if
-      end if
-      reason = pgs_watch_progress(mon, sweep, res)
-      if (reason >= 0) exit
-      reason = 2
     end do
-    if (reason /= 0) s = mon%xbest
-
-  contains
-
-    !> s_j <- snew, v <- v + (snew - s_j) Gs(:, j).
-    subroutine set_row(j, snew)
-      integer, intent(in) :: j
-      real(dp), intent(in) :: snew
-      real(dp) :: delta
-      delta = snew - s(j)
-      if (delta /= 0.0_dp) then
-        s(j) = snew
-        call daxpy(nrow, delta, p%gs(:, j), 1, v, 1)
-      end if
-    end subroutine set_row
-  end subroutine pgs_sweeps
+  end subroutine friction_sweep
 
 end module friction_lcp

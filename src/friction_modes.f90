@@ -58,14 +58,16 @@
 !> both below tol.
 !>
 !> Programming interface
-!>   solve_friction_floating(g, qn, qt, trow, cmu, bound, h, e, opts, lam, alpha, rep, unbalanced, cause)
+!>   solve_friction_floating(g, prob, h, e, opts, lam, alpha, rep, unbalanced, cause)
+!>       prob the step's friction_problem_t (friction_lcp)
 !>       rep%info 0 solved; 5 no equilibrium (unbalanced, cause); 1 Lemke's ray
 !>       after the existence test (Coulomb: none found); 4 inaccurate; 2 pivot limit
 module friction_modes
   use kinds, only: dp
   use lcp_solvers, only: lcp_options_t, lcp_report_t, solve_lcp_lemke, solve_lcp_lemke_scaled, set_report, &
-    scale_lcp
-  use friction_lcp, only: friction_residual
+    scaling_vector
+  use friction_lcp, only: friction_problem_t, check_friction_problem, friction_residual, friction_lcp_system, &
+    friction_forces
   use diagnostics, only: int_to_str, real_to_str
   use lapack_interfaces, only: dgesvd
   implicit none
@@ -79,11 +81,9 @@ contains
 
   !> One load step of frictional contact with floating bodies (module header).
   !>   g      (in)  (n+nt, n+nt) G = C K^# C', symmetric PSD
-  !>   qn     (in)  (n) normal gaps without contact forces, g - B K^# f
-  !>   qt     (in)  (nt) T u_{k-1} - T K^# f
-  !>   trow   (in)  (nt) normal row of each tangential row
-  !>   cmu    (in)  (nt) Coulomb coefficients (0 for Tresca)
-  !>   bound  (in)  (nt) Tresca bounds (0 for Coulomb)
+  !>   prob   (in)  qn (n) normal gaps without contact forces, g - B K^# f;
+  !>                qt (nt) T u_{k-1} - T K^# f; trow, cmu (0 for Tresca),
+  !>                bound (0 for Coulomb) (friction_lcp)
   !>   h      (in)  (n+nt, kh) C R V, V the held combinations, kh >= 1
   !>   e      (in)  (kh) V'R'f, the load along them
   !>   opts   (in)  tol (on both residuals), maxit (0: 10 size + 100 pivots)
@@ -91,14 +91,15 @@ contains
   !>   alpha  (out) (kh) amplitudes of the held combinations
   !>   rep    (out) info 0 solved; no_equilibrium when no forces in the cone
   !>                balance e; 1 ray termination; 2 pivot limit; 3 out of
-  !>                memory; 4 residual above tol.  residual: friction_lcp's r
+  !>                memory; 4 residual above tol; -1 g or -2 prob invalid
+  !>                (check_friction_problem).  residual: friction_lcp's r
   !>   unbalanced (out) (kh) e - H'z at the closest balance (0 unless info = 5)
   !>   cause  (out) 'friction': the load exceeds what friction can hold;
   !>                'contact': it pulls the body away from its contacts (or
   !>                along a direction no friction row resists); '' when solved
-  subroutine solve_friction_floating(g, qn, qt, trow, cmu, bound, h, e, opts, lam, alpha, rep, unbalanced, cause)
-    real(dp), intent(in) :: g(:,:), qn(:), qt(:), cmu(:), bound(:), h(:,:), e(:)
-    integer, intent(in) :: trow(:)
+  subroutine solve_friction_floating(g, prob, h, e, opts, lam, alpha, rep, unbalanced, cause)
+    real(dp), intent(in) :: g(:,:), h(:,:), e(:)
+    type(friction_problem_t), intent(in) :: prob
     type(lcp_options_t), intent(in) :: opts
     real(dp), intent(out) :: lam(:), alpha(:)
     type(lcp_report_t), intent(out) :: rep
@@ -106,26 +107,29 @@ contains
     character(len=:), allocatable, intent(out) :: cause
     real(dp), allocatable :: z(:), r(:)
     type(lcp_report_t) :: rep_b
+    type(friction_problem_t) :: shifted
     real(dp) :: eq_res
     integer :: n, nt, kh
 
-    n = size(qn)
-    nt = size(qt)
+    n = prob%n
+    nt = prob%nt
     kh = size(e)
     lam = 0.0_dp
     alpha = 0.0_dp
     cause = ''
     allocate(unbalanced(kh), source=0.0_dp)
+    call check_friction_problem(g, prob, rep)
+    if (rep%info < 0) return
 
     ! the step: the extended friction LCP
-    call extended_lemke(g, qn, qt, trow, cmu, bound, h, e, opts, lam, alpha, rep)
+    call extended_lemke(g, prob, h, e, opts, lam, alpha, rep)
     if (rep%info == 1) then
       ! no solution found: is there a balance within the friction cone at all?
-      call closest_balance(h, e, n, trow, cmu, bound, .true., opts, z, rep_b)
+      call closest_balance(h, e, prob, .true., opts, z, rep_b)
       if (rep_b%info /= 0) return
       r = e - matmul(transpose(h), z)
       if (norm2(r) <= reach_tol * norm2(e)) then           ! there is: Lemke's failure stands
-        if (any(cmu /= 0.0_dp)) rep%message = rep%message // '; the loads can be balanced by contact forces ' // &
+        if (any(prob%cmu /= 0.0_dp)) rep%message = rep%message // '; the loads can be balanced by contact forces ' // &
           'within the friction cone, so this does not prove that no equilibrium exists'
         return
       end if
@@ -133,7 +137,7 @@ contains
       unbalanced = along_contact(h(1:n, :), z(1:n), r)
       cause = 'friction'
       ! unlimited friction: does the cone or the contact fail?
-      call closest_balance(h, e, n, trow, cmu, bound, .false., opts, z, rep_b)
+      call closest_balance(h, e, prob, .false., opts, z, rep_b)
       if (rep_b%info == 0) then
         if (norm2(e - matmul(transpose(h), z)) > reach_tol * norm2(e)) then
           cause = 'contact'
@@ -145,8 +149,10 @@ contains
       return
     end if
     if (rep%info /= 0 .and. rep%info /= 4) return
-    rep%residual = friction_residual(g, qn - matmul(h(1:n, :), alpha), qt - matmul(h(n + 1:n + nt, :), alpha), &
-                                     trow, cmu, bound, lam)
+    shifted = prob                                       ! the step's q - H alpha
+    shifted%qn = prob%qn - matmul(h(1:n, :), alpha)
+    shifted%qt = prob%qt - matmul(h(n + 1:n + nt, :), alpha)
+    rep%residual = friction_residual(g, shifted, lam)
     eq_res = norm2(matmul(transpose(h), lam) - e) / max(norm2(e), maxval(abs(h)) * sum(abs(lam)), tiny(1.0_dp))
     if (rep%residual <= opts%tol .and. eq_res <= opts%tol) then
       rep%info = 0
@@ -192,23 +198,24 @@ contains
   !> The contact forces z = [lambda; tau] closest to balancing e: min |H'z - e|
   !> over lambda >= 0 and, when cone, |tau| <= bound + cmu lambda (module
   !> header, step 1).
-  !>   h, e, trow, cmu, bound  (in) as in solve_friction_floating; n normal rows
+  !>   h, e, prob  (in) as in solve_friction_floating (qn and qt unused)
   !>   cone (in)  .false.: unlimited friction (tau free)
   !>   opts (in)  tol, maxit
   !>   z    (out) (n+nt) the minimizer
   !>   rep  (out) info 0, or Lemke's failure
-  subroutine closest_balance(h, e, n, trow, cmu, bound, cone, opts, z, rep)
-    real(dp), intent(in) :: h(:,:), e(:), cmu(:), bound(:)
-    integer, intent(in) :: n, trow(:)
+  subroutine closest_balance(h, e, prob, cone, opts, z, rep)
+    real(dp), intent(in) :: h(:,:), e(:)
+    type(friction_problem_t), intent(in) :: prob
     logical, intent(in) :: cone
     type(lcp_options_t), intent(in) :: opts
     real(dp), allocatable, intent(out) :: z(:)
     type(lcp_report_t), intent(out) :: rep
-    real(dp), allocatable :: a(:,:), m(:,:), q(:), d(:), y(:), ws(:,:), qs(:)
-    integer :: nt, ny, nx, k, kh
+    real(dp), allocatable :: a(:,:), m(:,:), q(:), d(:), y(:)
+    integer :: n, nt, ny, nx, k, kh
     type(lcp_options_t) :: o
 
-    nt = size(h, 1) - n
+    n = prob%n
+    nt = prob%nt
     kh = size(e)
     ny = n + 2 * nt
     allocate(a(kh, ny))
@@ -222,7 +229,7 @@ contains
       call solve_lcp_lemke(matmul(transpose(a), a), -matmul(transpose(a), e), y, o, rep)
     else
       nx = ny + nt
-      allocate(m(nx, nx), q(nx), d(nx), y(nx), ws(ny, ny), qs(ny), stat=k)
+      allocate(m(nx, nx), q(nx), d(nx), y(nx), stat=k)
       if (k /= 0) then
         call set_report(rep, 3, 'out of memory in the existence test of the friction equilibrium')
         rep%no_memory = .true.
@@ -231,17 +238,17 @@ contains
       m = 0.0_dp
       m(1:ny, 1:ny) = matmul(transpose(a), a)
       q(1:ny) = -matmul(transpose(a), e)
-      q(ny + 1:) = bound
+      q(ny + 1:) = prob%bound
       do k = 1, nt
         ! cone row k: c = bound + cmu lambda_trow - beta+ - beta-;  -Gc' in the y rows
-        m(ny + k, trow(k)) = cmu(k)
+        m(ny + k, prob%trow(k)) = prob%cmu(k)
         m(ny + k, n + k) = -1.0_dp
         m(ny + k, n + nt + k) = -1.0_dp
-        m(trow(k), ny + k) = -cmu(k)
+        m(prob%trow(k), ny + k) = -prob%cmu(k)
         m(n + k, ny + k) = 1.0_dp
         m(n + nt + k, ny + k) = 1.0_dp
       end do
-      call scale_lcp(m(1:ny, 1:ny), q(1:ny), d(1:ny), ws, qs)    ! d_i = 1/sqrt((A'A)_ii)
+      call scaling_vector(m(1:ny, 1:ny), d(1:ny))              ! d_i = 1/sqrt((A'A)_ii)
       d(ny + 1:) = 1.0_dp / d(n + 1:n + nt)
       call solve_lcp_lemke_scaled(m, q, d, y, o, rep)
     end if
@@ -253,23 +260,23 @@ contains
 
   !> Step 2 (module header): the friction LCP extended by the mode amplitudes,
   !> solved by solve_lcp_lemke_scaled; lam and alpha read off its z.
-  !>   g, qn, qt, trow, cmu, bound, h, e  (in) as in solve_friction_floating
+  !>   g, prob, h, e  (in) as in solve_friction_floating
   !>   opts  (in)  tol, maxit (0: 10 (n + 3 nt + 2 kh) + 100 pivots)
   !>   lam   (out) (n+nt) [lambda; tau], tau polished onto [-b, b]
   !>   alpha (out) (kh) a+ - a-
   !>   rep   (out) Lemke's report (info 1: ray termination, with the message)
-  subroutine extended_lemke(g, qn, qt, trow, cmu, bound, h, e, opts, lam, alpha, rep)
-    real(dp), intent(in) :: g(:,:), qn(:), qt(:), cmu(:), bound(:), h(:,:), e(:)
-    integer, intent(in) :: trow(:)
+  subroutine extended_lemke(g, prob, h, e, opts, lam, alpha, rep)
+    real(dp), intent(in) :: g(:,:), h(:,:), e(:)
+    type(friction_problem_t), intent(in) :: prob
     type(lcp_options_t), intent(in) :: opts
     real(dp), intent(out) :: lam(:), alpha(:)
     type(lcp_report_t), intent(out) :: rep
-    real(dp), allocatable :: m(:,:), q(:), d(:), z(:), gs(:,:), qs(:), dg(:)
+    real(dp), allocatable :: m(:,:), q(:), d(:), z(:)
     real(dp) :: bk
-    integer :: n, nt, kh, nz, jp, jm, js, ja, jb, k, j, st, nr
+    integer :: n, nt, kh, nz, jp, jm, js, ja, jb, j, st, nr
 
-    n = size(qn)
-    nt = size(qt)
+    n = prob%n
+    nt = prob%nt
     kh = size(e)
     nr = n + nt
     nz = n + 3 * nt + 2 * kh
@@ -278,7 +285,7 @@ contains
     js = n + 2 * nt                      ! sigma
     ja = n + 3 * nt                      ! a+
     jb = ja + kh                         ! a-
-    allocate(m(nz, nz), q(nz), d(nz), z(nz), gs(nr, nr), qs(nr), dg(nr), stat=st)
+    allocate(m(nz, nz), q(nz), d(nz), z(nz), stat=st)
     if (st /= 0) then
       call set_report(rep, 3, 'out of memory: solving the friction LCP with rigid modes by Lemke (' // &
         int_to_str(nz) // ' unknowns)')
@@ -286,20 +293,7 @@ contains
       return
     end if
     m = 0.0_dp
-    m(1:n, 1:n) = g(1:n, 1:n)
-    m(1:n, jp + 1:jp + nt) = g(1:n, n + 1:nr)
-    m(1:n, jm + 1:jm + nt) = -g(1:n, n + 1:nr)
-    m(jp + 1:jp + nt, 1:n) = g(n + 1:nr, 1:n)
-    m(jp + 1:jp + nt, jp + 1:jp + nt) = g(n + 1:nr, n + 1:nr)
-    m(jp + 1:jp + nt, jm + 1:jm + nt) = -g(n + 1:nr, n + 1:nr)
-    m(jm + 1:jm + nt, 1:jm + nt) = -m(jp + 1:jp + nt, 1:jm + nt)
-    do k = 1, nt
-      m(jp + k, js + k) = 1.0_dp
-      m(jm + k, js + k) = 1.0_dp
-      m(js + k, trow(k)) = cmu(k)
-      m(js + k, jp + k) = -1.0_dp
-      m(js + k, jm + k) = -1.0_dp
-    end do
+    call friction_lcp_system(g, prob, m(1:ja, 1:ja), q(1:ja), d(1:ja))    ! friction_lcp's LCP and scaling
     ! v = q + G z - H alpha in the normal and beta+ rows, minus that in the beta- rows
     m(1:n, ja + 1:ja + kh) = -h(1:n, :)
     m(jp + 1:jp + nt, ja + 1:ja + kh) = -h(n + 1:nr, :)
@@ -310,31 +304,21 @@ contains
     m(ja + 1:ja + kh, jp + 1:jp + nt) = transpose(h(n + 1:nr, :))
     m(ja + 1:ja + kh, jm + 1:jm + nt) = -transpose(h(n + 1:nr, :))
     m(jb + 1:jb + kh, 1:js) = -m(ja + 1:ja + kh, 1:js)
-    q = [qn, qt, -qt, bound, -e, e]
-
-    call scale_lcp(g, [qn, qt], dg, gs, qs)                  ! dg = 1/sqrt(G_ii) (friction_lcp's d)
-    d(1:nr) = dg
-    d(jm + 1:jm + nt) = dg(n + 1:nr)
-    d(js + 1:js + nt) = 1.0_dp / dg(n + 1:nr)
+    q(ja + 1:) = [-e, e]
     do j = 1, kh
-      bk = maxval(abs(dg * h(:, j)))
+      bk = maxval(abs(d(1:nr) * h(:, j)))                    ! d(1:nr) = 1/sqrt(G_ii)
       d(ja + j) = 1.0_dp
       if (bk > 0.0_dp) d(ja + j) = 1.0_dp / bk
       d(jb + j) = d(ja + j)
     end do
 
     call solve_lcp_lemke_scaled(m, q, d, z, opts, rep)
-    lam(1:n) = z(1:n)
-    do k = 1, nt
-      ! tau = beta+ - beta-, polished onto [-b, b] (friction_lcp)
-      bk = bound(k) + cmu(k) * lam(trow(k))
-      lam(n + k) = min(bk, max(-bk, z(jp + k) - z(jm + k)))
-    end do
+    call friction_forces(prob, z, lam)
     alpha = z(ja + 1:ja + kh) - z(jb + 1:jb + kh)
     if (rep%info == 1) then
       rep%message = 'friction Lemke with rigid-mode amplitudes: ray termination after ' // &
         int_to_str(rep%iterations) // ' pivots: '
-      if (all(cmu == 0.0_dp)) then
+      if (all(prob%cmu == 0.0_dp)) then
         rep%message = rep%message // 'no solution (Tresca: the LCP is positive semi-definite)'
       else
         rep%message = rep%message // 'no solution found (Coulomb: the LCP is copositive only)'

@@ -24,7 +24,7 @@ module lcp_lemke
   use lapack_interfaces, only: daxpy, dgemv, dger
   use diagnostics, only: int_to_str, real_to_str
   use lcp_scaling, only: lcp_options_t, lcp_report_t, scaled_lcp_t, prepare_lcp, measure_solution, scale_of, &
-                         set_report, report_out_of_memory, residual_outcome
+                         set_report, report_out_of_memory, residual_outcome, check_lcp_options
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
   private
@@ -53,27 +53,11 @@ contains
     type(lcp_options_t), intent(in) :: opts
     type(lcp_report_t), intent(out) :: rep
     type(scaled_lcp_t) :: p
-    real(dp), allocatable :: zs(:)
-    integer :: maxit
 
     z = 0.0_dp
-    call prepare_lcp(W, q, size(z), opts, .false., p, rep)
-    if (rep%info < 0) return
-    if (rep%info > 0) then
-      call measure_solution(W, q, p%d, z, rep)
-      return
-    end if
-    maxit = opts%maxit
-    if (maxit == 0) maxit = 10 * p%n + 100
-
-    allocate(zs(p%m))
-    call lemke_scaled(p, maxit, zs, rep)
-    z(p%rows) = p%d(p%rows) * zs                      ! z = D zs
-    where (z < 0.0_dp) z = 0.0_dp                     ! polish: tiny negatives
-    call measure_solution(W, q, p%d, z, rep)
-
-    if (rep%info == 0) call residual_outcome(rep, opts%tol, 'Lemke: solved in ' // int_to_str(rep%iterations) // &
-      ' pivots', 'Lemke: terminated after ' // int_to_str(rep%iterations) // ' pivots', 'W ill-conditioned')
+    call prepare_lcp(W, q, z, opts, .false., p, rep)
+    if (rep%info /= 0) return
+    call lemke_solution(W, q, p, opts, 'W ill-conditioned', z, rep)
   end subroutine solve_lcp_lemke
 
   !> Solve LCP(M, q) by Lemke's complementary pivoting (lexicographic, covering
@@ -103,8 +87,7 @@ contains
     type(lcp_options_t), intent(in) :: opts
     type(lcp_report_t), intent(out) :: rep
     type(scaled_lcp_t) :: p
-    real(dp), allocatable :: zs(:)
-    integer :: n, i, j, maxit, st
+    integer :: n, i, j, st
 
     z = 0.0_dp
     rep%info = 0
@@ -112,36 +95,27 @@ contains
     if (size(M, 1) /= n .or. size(M, 2) /= n) then
       call set_report(rep, -1, 'LCP: M is ' // int_to_str(size(M, 1)) // ' x ' // int_to_str(size(M, 2)) // &
         ' (expected ' // int_to_str(n) // ' x ' // int_to_str(n) // ', the size of q)')
-      return
     else if (.not. all(ieee_is_finite(M))) then
       call set_report(rep, -1, 'LCP: M has non-finite entries')
-      return
     else if (.not. all(ieee_is_finite(q))) then
       call set_report(rep, -2, 'LCP: q has non-finite entries')
-      return
     else if (size(d) /= n) then
       call set_report(rep, -3, 'LCP: d has ' // int_to_str(size(d)) // ' entries (expected ' // &
         int_to_str(n) // ')')
-      return
     else if (.not. all(ieee_is_finite(d) .and. d > 0.0_dp)) then
       call set_report(rep, -3, 'LCP: the scaling d has entries that are not finite and > 0')
-      return
     else if (size(z) /= n) then
       call set_report(rep, -4, 'LCP: z has ' // int_to_str(size(z)) // ' entries (expected ' // &
         int_to_str(n) // ')')
-      return
-    else if (.not. (ieee_is_finite(opts%tol) .and. opts%tol > 0.0_dp)) then
-      call set_report(rep, -5, 'LCP: tol = ' // real_to_str(opts%tol) // ' (expected tol > 0)')
-      return
-    else if (opts%maxit < 0) then
-      call set_report(rep, -5, 'LCP: maxit = ' // int_to_str(opts%maxit) // ' (expected >= 0)')
-      return
+    else
+      call check_lcp_options(opts, -5, rep)
     end if
+    if (rep%info /= 0) return
 
     ! Every row kept: the scaled problem is the whole of D M D.
     p%n = n
     p%m = n
-    allocate(p%d(n), p%rows(n), p%ws(n, n), p%qs(n), zs(n), stat=st)
+    allocate(p%d(n), p%rows(n), p%ws(n, n), p%qs(n), stat=st)
     if (st /= 0) then
       call report_out_of_memory(rep, 'scaling the LCP (' // int_to_str(n) // ' rows)', &
                                 8.0_dp * real(n, dp) * real(n, dp))
@@ -155,23 +129,46 @@ contains
     p%qs = d * q                                       ! qs = D q
     p%qscale = 1.0_dp
     if (n > 0) p%qscale = scale_of(maxval(abs(p%qs)))
-    maxit = opts%maxit
-    if (maxit == 0) maxit = 10 * n + 100
 
-    call lemke_scaled(p, maxit, zs, rep)
-    z = d * zs                                         ! z = D zs
-    where (z < 0.0_dp) z = 0.0_dp
-    call measure_solution(M, q, d, z, rep)
-
-    if (rep%info == 0) then
-      call residual_outcome(rep, opts%tol, 'Lemke: solved in ' // int_to_str(rep%iterations) // ' pivots', &
-        'Lemke: terminated after ' // int_to_str(rep%iterations) // ' pivots', 'M ill-conditioned or badly scaled')
-    else if (rep%info == 1) then
+    call lemke_solution(M, q, p, opts, 'M ill-conditioned or badly scaled', z, rep)
+    if (rep%info == 1) then
       rep%message = 'Lemke: ray termination after ' // int_to_str(rep%iterations) // &
         ' pivots (no solution found; when M is copositive-plus, e.g. positive semi-definite,' // &
         ' the LCP has none)'
     end if
   end subroutine solve_lcp_lemke_scaled
+
+  !> Lemke on the scaled problem p of LCP(W, q), z read off, polished and
+  !> measured, and the outcome of a finished run.
+  !>   W, q   (in)    the problem
+  !>   p      (in)    its scaled form (prepare_lcp, or every row kept)
+  !>   opts   (in)    tol, maxit (0: 10 n + 100 pivots)
+  !>   cause  (in)    what a residual above tol points to
+  !>   z      (inout) zero on entry; z = D zs on the rows kept on exit
+  !>   rep    (inout) info 0 solved, 1 ray, 2 pivot limit, 4 residual above tol;
+  !>                  iterations, residual, complementarity, message
+  subroutine lemke_solution(W, q, p, opts, cause, z, rep)
+    real(dp), intent(in) :: W(:, :)
+    real(dp), intent(in) :: q(:)
+    type(scaled_lcp_t), intent(in) :: p
+    type(lcp_options_t), intent(in) :: opts
+    character(len=*), intent(in) :: cause
+    real(dp), intent(inout) :: z(:)
+    type(lcp_report_t), intent(inout) :: rep
+    real(dp), allocatable :: zs(:)
+    integer :: maxit
+
+    maxit = opts%maxit
+    if (maxit == 0) maxit = 10 * p%n + 100
+    allocate(zs(p%m))
+    call lemke_scaled(p, maxit, zs, rep)
+    z(p%rows) = p%d(p%rows) * zs                      ! z = D zs
+    where (z < 0.0_dp) z = 0.0_dp                     ! polish: tiny negatives
+    call measure_solution(W, q, p%d, z, rep)
+
+    if (rep%info == 0) call residual_outcome(rep, opts%tol, 'Lemke: solved in ' // int_to_str(rep%iterations) // &
+      ' pivots', 'Lemke: terminated after ' // int_to_str(rep%iterations) // ' pivots', cause)
+  end subroutine lemke_solution
 
   !> Lemke's algorithm on the scaled problem p (p%m > 0 rows).
   !>   p      (in)    the scaled problem

@@ -57,7 +57,7 @@
 !> constraint stays infeasible), the problem is handed to solve_lcp_lemke and
 !> the message says so.
 !>
-!> One file of about 830 lines: the active-set iteration and the Cholesky
+!> One file of about 820 lines: the active-set iteration and the Cholesky
 !> factor of Ws_AA it updates in place (append, delete, truncate) are one
 !> algorithm sharing one private type; apart, neither would read alone.
 !>
@@ -76,11 +76,11 @@
 !> No routine prints anything.
 module lcp_newton
   use kinds, only: dp, i8
-  use lapack_interfaces, only: dgemv, dpotrf, dpotrs, dpstrf, drot, dsyrk, dtrsm
+  use lapack_interfaces, only: dpotrf, dpotrs, dpstrf, drot, dsyrk, dtrsm
   use diagnostics, only: int_to_str, real_to_str
   use lcp_solvers, only: lcp_options_t, lcp_report_t, scale_lcp, solve_lcp_lemke, lcp_natural_residual, &
                          measure_solution, set_report, max_diagonal
-  use lcp_scaling, only: check_lcp_sizes, check_lcp_values, residual_outcome
+  use lcp_scaling, only: check_lcp_sizes, check_lcp_values, residual_outcome, lcp_gaps
   use sorting, only: sort_small
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
@@ -443,7 +443,7 @@ contains
         call dpotrs('L', p, 1, f%l, f%cap, b, p, info)   ! Ws_AA zs_A = -qs_A
         zs(f%order(1:p)) = b
       end if
-      call compute_gap(ws, qs, zs, gap)
+      call lcp_gaps(ws, qs, zs, gap)
       if (p == 0) return
       resa = maxval(abs(gap(f%order(1:p))))
       if (.not. allocated(gnew)) allocate(znew(m), gnew(m))
@@ -453,7 +453,7 @@ contains
         call dpotrs('L', p, 1, f%l, f%cap, b, p, info)   ! Ws_AA e = -r_A
         znew = zs
         znew(f%order(1:p)) = znew(f%order(1:p)) + b        ! zs_A + e
-        call compute_gap(ws, qs, znew, gnew)
+        call lcp_gaps(ws, qs, znew, gnew)
         resnew = maxval(abs(gnew(f%order(1:p))))
         st%refinements = st%refinements + 1
         if (.not. resnew < resa) exit
@@ -500,18 +500,6 @@ contains
       end do
     end do
   end subroutine largest_asymmetry
-
-  !> gap = qs + Ws zs (dgemv; Ws (m, m), the vectors (m)).
-  subroutine compute_gap(ws, qs, zs, gap)
-    real(dp), intent(in) :: ws(:, :)
-    real(dp), intent(in) :: qs(:)
-    real(dp), intent(in) :: zs(:)
-    real(dp), intent(out) :: gap(:)
-    integer :: m
-    m = size(qs)
-    gap = qs
-    call dgemv('N', m, m, 1.0_dp, ws, m, zs, 1, 1.0_dp, gap, 1)
-  end subroutine compute_gap
 
   !> A <- (A \ leaving) u joining, by Givens deletions, a trailing re-factor or
   !> a factor from scratch (module header), then one block append.  Blocks are

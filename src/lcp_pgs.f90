@@ -1,4 +1,4 @@
-!> lcp_pgs: LCP(W, q) by projected Gauss-Seidel, and the stop tests every
+!> lcp_pgs: LCP(W, q) by projected Gauss-Seidel, and the sweep driver every
 !> PGS loop shares.
 !>
 !> Projected Gauss-Seidel with over-relaxation omega on the scaled problem
@@ -9,32 +9,72 @@
 !> (the best residual not decreased by a factor 0.999 over max(1000, 10 n)
 !> sweeps) stop with info = 3; z then holds the best iterate.
 !>
-!> Why it exists: the iterative method and its monitor (best iterate,
-!> divergence, stagnation), which friction_lcp's block sweeps use too.  Who
-!> may use it: through lcp_solvers.
+!> Why it exists: the iterative method and its driver (the gaps refreshed,
+!> the convergence test confirmed on fresh gaps, the best iterate, divergence,
+!> stagnation, the stop reasons), which friction_lcp's block sweeps share:
+!> a problem says how it sweeps and measures its residual (an extension of
+!> pgs_problem_t), run_pgs does the rest on its matrix and vector.  The two
+!> are deferred bindings rather than procedure arguments because the sweeps
+!> need their problem's data, and an internal procedure passed as an argument
+!> would need an executable stack (gfortran's trampolines).  Who may use it:
+!> through lcp_solvers.
 !>
 !> Programming interface
 !>   solve_lcp_pgs(W, q, z, opts, rep)     z intent(inout): initial guess, clipped to >= 0
+!>   type, abstract :: pgs_problem_t       deferred sweep(omega, s, v), residual(s, v)
+!>   run_pgs(prob, a, q, tol, omega, maxit, window, x, sweeps, reason)   the sweeps until a stop
+!>   pgs_set_row(a, j, xnew, x, v)         x_j <- xnew with v = q + A x kept up to date
+!>   pgs_limits(maxit_opt, m, maxit, window)   the sweep limit and the stagnation window
 !>   pgs_outcome(reason, maxit, window, tol, label, iterate, problem, rep)   info and message
-!>   type(pgs_monitor_t), pgs_watch_start, pgs_watch_iterate, pgs_watch_progress, pgs_refresh_sweeps
 module lcp_pgs
   use kinds, only: dp
-  use lapack_interfaces, only: daxpy, dgemv
+  use lapack_interfaces, only: daxpy
   use diagnostics, only: int_to_str, real_to_str
-  use lcp_scaling, only: lcp_options_t, lcp_report_t, scaled_lcp_t, prepare_lcp, measure_solution
+  use lcp_scaling, only: lcp_options_t, lcp_report_t, scaled_lcp_t, prepare_lcp, measure_solution, lcp_gaps
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
   private
-  public :: solve_lcp_pgs, pgs_outcome
-  public :: pgs_monitor_t, pgs_watch_start, pgs_watch_iterate, pgs_watch_progress, pgs_refresh_sweeps
+  public :: solve_lcp_pgs, pgs_outcome, pgs_problem_t, run_pgs, pgs_set_row, pgs_limits
 
   real(dp), parameter :: divergence_factor = 1.0e6_dp      ! residual growth over its minimum
   real(dp), parameter :: stagnation_factor = 0.999_dp      ! decrease expected per window
   real(dp), parameter :: iterate_bound = 1.0e150_dp        ! iterates beyond this diverge
   integer, parameter :: pgs_refresh_sweeps = 50            ! recompute the gaps from scratch
 
-  !> The stop tests that every PGS loop shares (this module's and the friction
-  !> sweeps of friction_lcp): the best iterate, divergence, stagnation.
+  !> A problem that projected Gauss-Seidel solves (run_pgs): its iterate s
+  !> and its gaps v = q + A s, both of the problem's size; what a sweep
+  !> projects onto and how the residual is measured are the extension's.
+  type, abstract :: pgs_problem_t
+  contains
+    procedure(sweep_interface), deferred :: sweep        !< one sweep: x and v updated
+    procedure(residual_interface), deferred :: residual  !< the scale-free residual of (x, v)
+  end type pgs_problem_t
+
+  !> p the problem, s its (scaled) iterate, v the gaps of s, omega the relaxation.
+  abstract interface
+    subroutine sweep_interface(p, omega, s, v)
+      import :: pgs_problem_t, dp
+      class(pgs_problem_t), intent(in) :: p
+      real(dp), intent(in) :: omega
+      real(dp), intent(inout) :: s(:), v(:)
+    end subroutine sweep_interface
+    function residual_interface(p, s, v) result(r)
+      import :: pgs_problem_t, dp
+      class(pgs_problem_t), intent(in) :: p
+      real(dp), intent(in) :: s(:), v(:)
+      real(dp) :: r
+    end function residual_interface
+  end interface
+
+  !> LCP(W, q) for run_pgs: the scaled problem on the rows kept (lcp_scaling).
+  type, extends(pgs_problem_t) :: pgs_lcp_t
+    type(scaled_lcp_t) :: lcp
+  contains
+    procedure :: sweep => lcp_sweep
+    procedure :: residual => lcp_residual
+  end type pgs_lcp_t
+
+  !> The stop tests of run_pgs: the best iterate, divergence, stagnation.
   type :: pgs_monitor_t
     real(dp) :: tol = 0.0_dp               !< residual target
     real(dp) :: best = 0.0_dp              !< smallest residual so far
@@ -65,30 +105,24 @@ contains
     real(dp), intent(inout) :: z(:)
     type(lcp_options_t), intent(in) :: opts
     type(lcp_report_t), intent(out) :: rep
-    type(scaled_lcp_t) :: p
+    type(pgs_lcp_t) :: prob
     real(dp), allocatable :: zs(:)
     integer :: maxit, k, window, stop_reason
 
-    call prepare_lcp(W, q, size(z), opts, .true., p, rep)
-    if (rep%info < 0) return
-    if (rep%info > 0) then
+    call prepare_lcp(W, q, z, opts, .true., prob%lcp, rep)
+    if (rep%info /= 0) return
+    associate (p => prob%lcp)
+      call pgs_limits(opts%maxit, p%m, maxit, window)
+      allocate(zs(p%m))
+      do k = 1, p%m                                     ! zs = max(0, D^-1 z)
+        zs(k) = 0.0_dp
+        if (ieee_is_finite(z(p%rows(k)))) zs(k) = max(0.0_dp, z(p%rows(k)) / p%d(p%rows(k)))
+      end do
+      call run_pgs(prob, p%ws, p%qs, opts%tol, opts%omega, maxit, window, zs, rep%iterations, stop_reason)
       z = 0.0_dp
+      z(p%rows) = p%d(p%rows) * zs
       call measure_solution(W, q, p%d, z, rep)
-      return
-    end if
-    maxit = opts%maxit
-    if (maxit == 0) maxit = nint(min(1.0e5_dp, max(1.0e4_dp, 1.0e10_dp / real(max(p%m, 1), dp)**2)))
-    window = max(1000, 10 * p%m)
-
-    allocate(zs(p%m))
-    do k = 1, p%m                                     ! zs = max(0, D^-1 z)
-      zs(k) = 0.0_dp
-      if (ieee_is_finite(z(p%rows(k)))) zs(k) = max(0.0_dp, z(p%rows(k)) / p%d(p%rows(k)))
-    end do
-    call pgs_scaled(p, opts%tol, opts%omega, maxit, window, zs, rep%iterations, stop_reason)
-    z = 0.0_dp
-    z(p%rows) = p%d(p%rows) * zs
-    call measure_solution(W, q, p%d, z, rep)
+    end associate
 
     call pgs_outcome(stop_reason, maxit, window, opts%tol, 'PGS', 'z', 'LCP', rep)
   end subroutine solve_lcp_pgs
@@ -128,55 +162,69 @@ contains
     end select
   end subroutine pgs_outcome
 
-  !> Projected SOR sweeps on the scaled problem.
-  !>   p       (in)    the scaled problem
-  !>   tol     (in)    residual target (normalised by p%qscale)
-  !>   omega   (in)    relaxation, 0 < omega < 2
+  !> The sweep limit and the stagnation window of a PGS run on m unknowns.
+  !>   maxit_opt (in)  the caller's limit, >= 0; 0 selects
+  !>                   min(1e5, max(1e4, 1e10 / m^2))
+  !>   m         (in)  the unknowns, >= 0
+  !>   maxit     (out) the sweep limit
+  !>   window    (out) the stagnation window, max(1000, 10 m) sweeps
+  pure subroutine pgs_limits(maxit_opt, m, maxit, window)
+    integer, intent(in) :: maxit_opt, m
+    integer, intent(out) :: maxit, window
+    maxit = maxit_opt
+    if (maxit == 0) maxit = nint(min(1.0e5_dp, max(1.0e4_dp, 1.0e10_dp / real(max(m, 1), dp)**2)))
+    window = max(1000, 10 * m)
+  end subroutine pgs_limits
+
+  !> Projected Gauss-Seidel sweeps on prob until they converge or stop
+  !> (module header): the gaps v = q + A x recomputed every pgs_refresh_sweeps
+  !> sweeps, the residual checked after every sweep and a converged one
+  !> confirmed on recomputed gaps.
+  !>   prob    (in)    the problem (its sweep and residual)
+  !>   a       (in)    (m, m) its matrix A, which prob%sweep keeps v up to date with
+  !>   q       (in)    (m) its vector q
+  !>   tol     (in)    residual target
+  !>   omega   (in)    relaxation, 0 < omega < 2 (passed to prob%sweep)
   !>   maxit   (in)    sweep limit
   !>   window  (in)    stagnation window (sweeps)
-  !>   zs      (inout) (m) initial guess >= 0; on exit the solution or best iterate
+  !>   x       (inout) the initial guess, feasible; on exit the solution or the
+  !>                   best iterate
   !>   sweeps  (out)   sweeps done
   !>   reason  (out)   0 converged, 2 limit, 3 divergence, 4 stagnation
-  subroutine pgs_scaled(p, tol, omega, maxit, window, zs, sweeps, reason)
-    type(scaled_lcp_t), intent(in) :: p
+  subroutine run_pgs(prob, a, q, tol, omega, maxit, window, x, sweeps, reason)
+    class(pgs_problem_t), intent(in) :: prob
+    real(dp), intent(in) :: a(:, :)
+    real(dp), intent(in) :: q(:)
     real(dp), intent(in) :: tol, omega
     integer, intent(in) :: maxit, window
-    real(dp), intent(inout) :: zs(:)
+    real(dp), intent(inout) :: x(:)
     integer, intent(out) :: sweeps, reason
     type(pgs_monitor_t) :: mon
-    real(dp), allocatable :: ws(:)
-    real(dp) :: res, znew, dz
-    integer :: m, i, sweep
+    real(dp), allocatable :: v(:)
+    real(dp) :: res
+    integer :: sweep
 
-    m = p%m
     sweeps = 0
     reason = 0
-    if (m == 0) return
-    allocate(ws(m))
-    call update_gap(p, zs, ws)
-    res = maxval(abs(min(zs, ws))) / p%qscale
-    call pgs_watch_start(mon, tol, window, zs, res)
+    if (size(x) == 0) return
+    allocate(v(size(x)))
+    call lcp_gaps(a, q, x, v)
+    res = prob%residual(x, v)
+    call pgs_watch_start(mon, tol, window, x, res)
     if (res <= tol) return
 
     reason = 2
     do sweep = 1, maxit
       sweeps = sweep
-      do i = 1, m
-        znew = max(0.0_dp, zs(i) - omega * ws(i) / p%ws(i, i))   ! projected SOR update
-        dz = znew - zs(i)
-        if (dz /= 0.0_dp) then
-          zs(i) = znew
-          call daxpy(m, dz, p%ws(:, i), 1, ws, 1)                 ! ws = ws + dz Ws(:, i)
-        end if
-      end do
-      if (mod(sweep, pgs_refresh_sweeps) == 0) call update_gap(p, zs, ws)
+      call prob%sweep(omega, x, v)
+      if (mod(sweep, pgs_refresh_sweeps) == 0) call lcp_gaps(a, q, x, v)
 
-      res = maxval(abs(min(zs, ws))) / p%qscale
-      reason = pgs_watch_iterate(mon, zs, ws, res)
+      res = prob%residual(x, v)
+      reason = pgs_watch_iterate(mon, x, v, res)
       if (reason >= 0) exit
       if (res <= tol) then
-        call update_gap(p, zs, ws)                    ! confirm without drift
-        res = maxval(abs(min(zs, ws))) / p%qscale
+        call lcp_gaps(a, q, x, v)                     ! confirm without drift
+        res = prob%residual(x, v)
         if (res <= tol) then
           reason = 0
           exit
@@ -186,17 +234,47 @@ contains
       if (reason >= 0) exit
       reason = 2
     end do
-    if (reason /= 0) zs = mon%xbest
-  end subroutine pgs_scaled
+    if (reason /= 0) x = mon%xbest
+  end subroutine run_pgs
 
-  !> ws = qs + Ws zs.
-  subroutine update_gap(p, zs, ws)
-    type(scaled_lcp_t), intent(in) :: p
-    real(dp), intent(in) :: zs(:)
-    real(dp), intent(out) :: ws(:)
-    ws = p%qs
-    call dgemv('N', p%m, p%m, 1.0_dp, p%ws, p%m, zs, 1, 1.0_dp, ws, 1)
-  end subroutine update_gap
+  !> The update of one unknown: x_j <- xnew, and the gaps v = q + A x kept up
+  !> to date with column j of A (nothing when x_j does not change).
+  !>   a     (in)    (m, m) the matrix A
+  !>   j     (in)    the unknown, 1..m
+  !>   xnew  (in)    its new value
+  !>   x     (inout) (m) the iterate
+  !>   v     (inout) (m) its gaps
+  subroutine pgs_set_row(a, j, xnew, x, v)
+    real(dp), intent(in) :: a(:, :)
+    integer, intent(in) :: j
+    real(dp), intent(in) :: xnew
+    real(dp), intent(inout) :: x(:), v(:)
+    real(dp) :: delta
+    delta = xnew - x(j)
+    if (delta /= 0.0_dp) then
+      x(j) = xnew
+      call daxpy(size(v), delta, a(:, j), 1, v, 1)   ! v = v + delta A(:, j)
+    end if
+  end subroutine pgs_set_row
+
+  !> One projected SOR sweep on LCP(Ws, qs): zs_i <- max(0, zs_i - omega ws_i / Ws_ii).
+  subroutine lcp_sweep(p, omega, s, v)
+    class(pgs_lcp_t), intent(in) :: p
+    real(dp), intent(in) :: omega
+    real(dp), intent(inout) :: s(:), v(:)
+    integer :: i
+    do i = 1, p%lcp%m
+      call pgs_set_row(p%lcp%ws, i, max(0.0_dp, s(i) - omega * v(i) / p%lcp%ws(i, i)), s, v)
+    end do
+  end subroutine lcp_sweep
+
+  !> The natural residual ||min(zs, ws)||_inf / qscale.
+  function lcp_residual(p, s, v) result(r)
+    class(pgs_lcp_t), intent(in) :: p
+    real(dp), intent(in) :: s(:), v(:)
+    real(dp) :: r
+    r = maxval(abs(min(s, v))) / p%lcp%qscale
+  end function lcp_residual
 
   !> Start watching a PGS loop at its initial iterate x of residual res.
   pure subroutine pgs_watch_start(mon, tol, window, x, res)

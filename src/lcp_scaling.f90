@@ -26,12 +26,15 @@
 !> Programming interface
 !>   type(lcp_options_t), type(lcp_report_t)   see lcp_solvers
 !>   type(scaled_lcp_t)             the scaled problem on the rows kept
-!>   prepare_lcp(W, q, nz, opts, check_omega, p, rep)   check, scale, drop the zero rows
+!>   prepare_lcp(W, q, z, opts, check_omega, p, rep)   check, scale, drop the zero rows
 !>   scale_lcp(W, q, d, Ws, qs)     the symmetric diagonal scaling
+!>   scaling_vector(W, d)           its d alone
+!>   lcp_gaps(W, q, z, gap)         the gaps w = q + W z (dgemv)
 !>   measure_solution(W, q, d, z, rep)   residual and complementarity of z
 !>   lcp_natural_residual(W, q, z)  the residual r above
 !>   max_diagonal(W), negative_diagonal(W), scale_of(qmax)
-!>   check_lcp_sizes(W, q, nz, opts, rep), check_lcp_values(W, q, rep)   the argument checks
+!>   check_lcp_sizes(W, q, nz, opts, rep), check_lcp_values(W, q, rep),
+!>   check_lcp_options(opts, info, rep)   the argument checks
 !>   residual_outcome(rep, tol, solved, stopped, cause)   info 0 or 4 and the message from the residual
 !>   set_report(rep, info, message), out_of_memory(phase, bytes)
 !>   report_out_of_memory(rep, phase, bytes)   info 3, no_memory, `out of memory while PHASE (...)`
@@ -43,8 +46,10 @@ module lcp_scaling
   implicit none
   private
   public :: lcp_options_t, lcp_report_t, scaled_lcp_t
-  public :: prepare_lcp, scale_lcp, measure_solution, lcp_natural_residual, max_diagonal, negative_diagonal, scale_of
-  public :: set_report, out_of_memory, report_out_of_memory, check_lcp_sizes, check_lcp_values, residual_outcome
+  public :: prepare_lcp, scale_lcp, scaling_vector, lcp_gaps, measure_solution, lcp_natural_residual
+  public :: max_diagonal, negative_diagonal, scale_of
+  public :: set_report, out_of_memory, report_out_of_memory, check_lcp_sizes, check_lcp_values, check_lcp_options
+  public :: residual_outcome
 
   !> Solver settings.
   type :: lcp_options_t
@@ -80,18 +85,19 @@ module lcp_scaling
 contains
 
   !> Check the arguments, scale, and split off the zero rows.
-  !>   W, q       (in)  the problem
-  !>   nz         (in)  size of the caller's z
-  !>   opts       (in)  options
-  !>   check_omega(in)  .true. for PGS
-  !>   p          (out) the scaled problem on the rows kept (d set whenever the
-  !>                    sizes are valid)
-  !>   rep        (out) info -1..-4 on an invalid argument (message set); 1 when
-  !>                    a zero row has a clearly negative q_i; 0 otherwise
-  subroutine prepare_lcp(W, q, nz, opts, check_omega, p, rep)
+  !>   W, q       (in)    the problem
+  !>   z          (inout) the caller's z: unchanged but on rep%info = 1, when
+  !>                      it is set to 0 and measured (residual, complementarity)
+  !>   opts       (in)    options
+  !>   check_omega(in)    .true. for PGS
+  !>   p          (out)   the scaled problem on the rows kept (d set whenever the
+  !>                      sizes are valid)
+  !>   rep        (out)   info -1..-4 on an invalid argument (message set); 1 when
+  !>                      a zero row has a clearly negative q_i; 0 otherwise
+  subroutine prepare_lcp(W, q, z, opts, check_omega, p, rep)
     real(dp), intent(in) :: W(:, :)
     real(dp), intent(in) :: q(:)
-    integer, intent(in) :: nz
+    real(dp), intent(inout) :: z(:)
     type(lcp_options_t), intent(in) :: opts
     logical, intent(in) :: check_omega
     type(scaled_lcp_t), intent(out) :: p
@@ -102,7 +108,7 @@ contains
 
     rep%info = 0
     n = size(q)
-    call check_lcp_sizes(W, q, nz, opts, rep)
+    call check_lcp_sizes(W, q, size(z), opts, rep)
     if (rep%info == 0 .and. check_omega) then
       if (.not. (opts%omega > 0.0_dp .and. opts%omega < 2.0_dp)) &
         call set_report(rep, -4, 'LCP: omega = ' // real_to_str(opts%omega) // ' (expected 0 < omega < 2)')
@@ -137,6 +143,8 @@ contains
         ' of W is zero (redundant constraint) but q(' // int_to_str(first_bad) // ') = ' // &
         real_to_str(q(first_bad)) // ' < 0: the LCP has no solution (' // int_to_str(nbad) // &
         ' such row(s))')
+      z = 0.0_dp
+      call measure_solution(W, q, p%d, z, rep)
       return
     end if
 
@@ -182,12 +190,25 @@ contains
     else if (nz /= n) then
       call set_report(rep, -3, 'LCP: z has ' // int_to_str(nz) // ' entries (expected ' // &
         int_to_str(n) // ')')
-    else if (.not. (ieee_is_finite(opts%tol) .and. opts%tol > 0.0_dp)) then
-      call set_report(rep, -4, 'LCP: tol = ' // real_to_str(opts%tol) // ' (expected tol > 0)')
-    else if (opts%maxit < 0) then
-      call set_report(rep, -4, 'LCP: maxit = ' // int_to_str(opts%maxit) // ' (expected >= 0)')
+    else
+      call check_lcp_options(opts, -4, rep)
     end if
   end subroutine check_lcp_sizes
+
+  !> tol and maxit of the options.
+  !>   opts  (in)    tol (finite, > 0), maxit (>= 0)
+  !>   info  (in)    the info of an invalid option (-k, opts the k-th argument)
+  !>   rep   (inout) info and the message when one is invalid; unchanged otherwise
+  subroutine check_lcp_options(opts, info, rep)
+    type(lcp_options_t), intent(in) :: opts
+    integer, intent(in) :: info
+    type(lcp_report_t), intent(inout) :: rep
+    if (.not. (ieee_is_finite(opts%tol) .and. opts%tol > 0.0_dp)) then
+      call set_report(rep, info, 'LCP: tol = ' // real_to_str(opts%tol) // ' (expected tol > 0)')
+    else if (opts%maxit < 0) then
+      call set_report(rep, info, 'LCP: maxit = ' // int_to_str(opts%maxit) // ' (expected >= 0)')
+    end if
+  end subroutine check_lcp_options
 
   !> The values of LCP(W, q): W and q finite, no diagonal entry of W negative
   !> beyond round-off (negative_diagonal).
@@ -296,8 +317,7 @@ contains
     rep%complementarity = 0.0_dp
     if (n == 0) return
     allocate(gap(n), zs(n), ws(n))
-    gap = q
-    call dgemv('N', n, n, 1.0_dp, W, n, z, 1, 1.0_dp, gap, 1) ! w = q + W z
+    call lcp_gaps(W, q, z, gap)                               ! w = q + W z
     zs = z / d                                                ! zs = D^-1 z
     ws = d * gap                                              ! ws = D w
     qmax = maxval(abs(d * q))
@@ -312,6 +332,22 @@ contains
       end if
     end if
   end subroutine measure_solution
+
+  !> The gaps w = q + W z of a candidate z (dgemv; nothing to do when n = 0).
+  !>   W    (in)  (n, n)
+  !>   q    (in)  (n)
+  !>   z    (in)  (n)
+  !>   gap  (out) (n) w = q + W z
+  subroutine lcp_gaps(W, q, z, gap)
+    real(dp), intent(in) :: W(:, :)
+    real(dp), intent(in) :: q(:)
+    real(dp), intent(in) :: z(:)
+    real(dp), intent(out) :: gap(:)
+    integer :: n
+    n = size(q)
+    gap = q
+    if (n > 0) call dgemv('N', n, n, 1.0_dp, W, n, z, 1, 1.0_dp, gap, 1)
+  end subroutine lcp_gaps
 
   !> Scaled natural residual r = ||min(zs, ws)||_inf / ||qs||_inf of a
   !> candidate z (zs = D^-1 z, ws = D (q + W z), qs = D q, D as in scale_lcp).

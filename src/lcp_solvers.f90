@@ -29,8 +29,12 @@
 !>             of accuracy); -k argument k invalid
 !>   solve_lcp_lemke(W, q, z, opts, rep)   z intent(out)
 !>   solve_lcp_pgs(W, q, z, opts, rep)     z intent(inout): initial guess, clipped to >= 0
+!>   pgs_problem_t, run_pgs, pgs_set_row, pgs_limits, pgs_outcome
+!>                                         the PGS driver (lcp_pgs) that the friction
+!>                                         sweeps of friction_lcp share
 !>   lcp_natural_residual(W, q, z)         the scaled natural residual (lcp_scaling)
 !>   scale_lcp(W, q, d, Ws, qs)            the symmetric diagonal scaling
+!>   scaling_vector(W, d)                  its d alone
 !>   solve_lcp_lemke_scaled(M, q, d, z, opts, rep)
 !>                                         Lemke on D M D, D q with a scaling d
 !>                                         given by the caller and no row removed:
@@ -40,16 +44,15 @@
 !> the convergence of PGS and the meaning of ray termination assume W PSD.
 !> No routine prints anything; every outcome is in the report.
 module lcp_solvers
-  use lcp_scaling, only: lcp_options_t, lcp_report_t, lcp_natural_residual, scale_lcp, measure_solution, &
+  use lcp_scaling, only: lcp_options_t, lcp_report_t, lcp_natural_residual, scale_lcp, scaling_vector, measure_solution, &
                          set_report, out_of_memory, max_diagonal, negative_diagonal
   use lcp_lemke, only: solve_lcp_lemke, solve_lcp_lemke_scaled
-  use lcp_pgs, only: solve_lcp_pgs, pgs_outcome, pgs_monitor_t, pgs_watch_start, pgs_watch_iterate, &
-                     pgs_watch_progress, pgs_refresh_sweeps
+  use lcp_pgs, only: solve_lcp_pgs, pgs_outcome, pgs_problem_t, run_pgs, pgs_set_row, pgs_limits
   implicit none
   private
   public :: lcp_options_t, lcp_report_t
-  public :: solve_lcp_lemke, solve_lcp_pgs, lcp_natural_residual, scale_lcp, measure_solution
+  public :: solve_lcp_lemke, solve_lcp_pgs, lcp_natural_residual, scale_lcp, scaling_vector, measure_solution
   public :: solve_lcp_lemke_scaled, pgs_outcome, set_report, out_of_memory
-  public :: pgs_monitor_t, pgs_watch_start, pgs_watch_iterate, pgs_watch_progress, pgs_refresh_sweeps
+  public :: pgs_problem_t, run_pgs, pgs_set_row, pgs_limits
   public :: max_diagonal, negative_diagonal
 end module lcp_solvers

@@ -89,7 +89,8 @@ module mortar_operator
   use axisymmetric_elements, only: radial_weight
   implicit none
   private
-  public :: mortar_t, build_mortar, start_mortar, zone_node_terms, zone_point, segment_rule
+  public :: mortar_t, build_mortar, start_mortar, start_periodic, set_initial_gaps, zone_node_terms, zone_point, &
+            segment_rule
 
   !> The mortar operator of one contact pair.
   type :: mortar_t
@@ -137,6 +138,47 @@ contains
     mortar%constrained = .false.
   end subroutine start_mortar
 
+  !> The start of both periodic builders (a closed slave curve covered all
+  !> round): every node constrained, the zone the whole curve.
+  !>   mortar (inout) the operator from start_mortar; out: first, last, constrained
+  !>   nelem  (in)    the curve's slave elements, at least 3 (fewer: err)
+  !>   what   (in)    the elements' name in the message: 'segment' or 'element'
+  !>   err    (out)   status 2 for fewer than 3 elements
+  subroutine start_periodic(mortar, nelem, what, err)
+    type(mortar_t), intent(inout) :: mortar
+    integer, intent(in) :: nelem
+    character(len=*), intent(in) :: what
+    type(error_t), allocatable, intent(out) :: err
+    if (nelem < 3) then
+      call set_error(err, 'closed slave boundary has ' // int_to_str(nelem) // ' ' // what // &
+        '(s) (at least 3 expected on a closed contact curve)', 2)
+      return
+    end if
+    mortar%first = 1
+    mortar%last = mortar%ns
+    mortar%constrained = .true.
+  end subroutine start_periodic
+
+  !> Initial normal gaps (gap=geometry, module header, 5.) of both builders:
+  !>     gap0_i = n_i . ( sum_j P(i,j) y_j - x_i ),  i = i1..i2,
+  !> x_i the point of zone node i (zone_point).
+  !>   mortar   (inout) in: P, normal, the zone; out: gap0(i1:i2)
+  !>   xs, xm   (in)    (2, ns) slave and (2, nm) master trace nodes
+  !>   i1, i2   (in)    the rows, within the zone
+  !>   jlo, jhi (in)    the master columns that can be nonzero in those rows
+  subroutine set_initial_gaps(mortar, xs, xm, i1, i2, jlo, jhi)
+    type(mortar_t), intent(inout) :: mortar
+    real(dp), intent(in) :: xs(:,:), xm(:,:)
+    integer, intent(in) :: i1, i2, jlo, jhi
+    real(dp), allocatable :: py(:,:)
+    integer :: i
+    allocate(py(i1:i2, 2))
+    py = matmul(mortar%P(i1:i2, jlo:jhi), transpose(xm(:, jlo:jhi)))   ! (P y)_i, componentwise
+    do i = i1, i2
+      mortar%gap0(i) = dot_product(mortar%normal(:, i), py(i, :) - zone_point(mortar, xs, i))
+    end do
+  end subroutine set_initial_gaps
+
   !> Build the mortar operator pi_h^1 (eq. (8)) of one contact pair, its effective
   !> zone, nodal normals, weights and initial gaps; see the module header.
   !>   xs       (in)  (2, ns) slave polyline nodes in order along the boundary, ns >= 2
@@ -162,7 +204,7 @@ contains
     integer, allocatable :: ncover(:)
     logical :: ext(2)
     real(dp) :: r, y(2)
-    real(dp), allocatable :: seglen(:), py(:,:)
+    real(dp), allocatable :: seglen(:)
 
     call check_polyline(xs, ns_out, 'slave', err)
     if (allocated(err)) return
@@ -319,13 +361,7 @@ contains
     end if
 
     ! Initial normal gap, gap=geometry, at the zone's nodes (a cut end: at its point).
-    if (.not. gap_zero) then
-      allocate(py(first:last, 2))
-      py = matmul(mortar%P(first:last, jlo:jhi), transpose(xm(:, jlo:jhi)))   ! (P y)_i, componentwise
-      do i = first, last
-        mortar%gap0(i) = dot_product(mortar%normal(:, i), py(i, :) - zone_point(mortar, xs, i))
-      end do
-    end if
+    if (.not. gap_zero) call set_initial_gaps(mortar, xs, xm, first, last, jlo, jhi)
   end subroutine build_mortar
 
   !> Assemble D, M, E_0, E_n on the sub-segments (segment_rule, exact) with the
@@ -343,7 +379,7 @@ contains
     integer, parameter :: chunk = 128
     real(dp), allocatable :: dl(:), dd(:), du(:), e0(:), en(:), cl(:), cd(:), cu(:)
     integer :: ci
-    real(dp) :: sq, rq, wq, wa, v, lo, hi, phi(0:1), chi(0:1), sp(4), rp(4), wp(4)
+    real(dp) :: sq, wa, v, lo, hi, phi(0:1), sp(4), wp(4), phip(0:1, 4), chip(0:1, 4)
     integer :: n, first, last, k, m, f, q, ia, ib, a, b, kp, ns, nq, klo, khi, nu
 
     info = 0
@@ -366,19 +402,15 @@ contains
       hi = 1.0_dp
       if (m == 1) lo = mortar%cut(1)
       if (m == n) hi = mortar%cut(2)
-      call subsegment_points(mortar, xs, k, sp, rp, wp, nq)
+      call subsegment_points(mortar, xs, k, sp, wp, phip, chip, nq)
       do q = 1, nq
-        sq = sp(q)
-        rq = rp(q)
-        wq = wp(q)
-        chi = [1.0_dp - rq, rq]
-        phi = [1.0_dp - sq, sq]
-        mortar%covered_weight(first + m - 1:first + m) = mortar%covered_weight(first + m - 1:first + m) + wq * phi
-        sq = (sq - lo) / (hi - lo)                         ! the zone's hats: a cut segment is rescaled
+        mortar%covered_weight(first + m - 1:first + m) = mortar%covered_weight(first + m - 1:first + m) &
+                                                         + wp(q) * phip(:, q)
+        sq = (sp(q) - lo) / (hi - lo)                      ! the zone's hats: a cut segment is rescaled
         phi = [1.0_dp - sq, sq]
         do ia = 0, 1
           a = m - 1 + ia
-          wa = wq * phi(ia)
+          wa = wp(q) * phi(ia)
           mortar%zone_weight(first + a) = mortar%zone_weight(first + a) + wa
           if (n < 2) cycle
           kp = max(klo, min(khi, a))                       ! phi_a is part of psi_kp
@@ -398,8 +430,8 @@ contains
             end if
           end do
           ! M_kj = int psi_k chi_j, accumulated in row first+kp of P
-          mortar%P(first + kp, f) = mortar%P(first + kp, f) + wa * chi(0)
-          mortar%P(first + kp, f + 1) = mortar%P(first + kp, f + 1) + wa * chi(1)
+          mortar%P(first + kp, f) = mortar%P(first + kp, f) + wa * chip(0, q)
+          mortar%P(first + kp, f + 1) = mortar%P(first + kp, f + 1) + wa * chip(1, q)
         end do
       end do
     end do
@@ -439,19 +471,13 @@ contains
     real(dp), intent(in) :: xs(:,:), xm(:,:), seglen(:)
     logical, intent(in) :: gap_zero
     type(error_t), allocatable, intent(out) :: err
-    real(dp), allocatable :: dd(:), du(:), dl(:), rhs(:,:), b(:), py(:,:)
-    real(dp) :: sq, rq, wq, phi(0:1), chi(0:1), piv, sp(4), rp(4), wp(4)
-    integer :: n, k, e, f, q, ia, ib, node(0:1), jlo, jhi, nc, info, i, nq
+    real(dp), allocatable :: dd(:), du(:), dl(:), rhs(:,:), b(:)
+    real(dp) :: piv, sp(4), wp(4), phi(0:1, 4), chi(0:1, 4)
+    integer :: n, k, e, f, q, ia, node(0:1), jlo, jhi, nc, info, nq
 
     n = mortar%ns - 1
-    if (n < 3) then
-      call set_error(err, 'closed slave boundary has ' // int_to_str(n) // &
-        ' segment(s) (at least 3 expected on a closed contact curve)', 2)
-      return
-    end if
-    mortar%first = 1
-    mortar%last = mortar%ns
-    mortar%constrained = .true.
+    call start_periodic(mortar, n, 'segment', err)
+    if (allocated(err)) return
     do e = 1, n
       call add_hat_integrals(mortar, xs, seglen, e, e + 1)
     end do
@@ -461,22 +487,15 @@ contains
       e = mortar%inter%slave_seg(k)
       f = mortar%inter%master_seg(k)
       node = [e, modulo(e, n) + 1]
-      call subsegment_points(mortar, xs, k, sp, rp, wp, nq)
+      call subsegment_points(mortar, xs, k, sp, wp, phi, chi, nq)
       do q = 1, nq
-        sq = sp(q)
-        rq = rp(q)
-        wq = wp(q)
-        phi = [1.0_dp - sq, sq]
-        chi = [1.0_dp - rq, rq]
         do ia = 0, 1
-          mortar%covered_weight(node(ia)) = mortar%covered_weight(node(ia)) + wq * phi(ia)
-          do ib = 0, 1
-            if (ib == ia) dd(node(ia)) = dd(node(ia)) + wq * phi(ia) * phi(ib)
-          end do
-          mortar%P(node(ia), f) = mortar%P(node(ia), f) + wq * phi(ia) * chi(0)
-          mortar%P(node(ia), f + 1) = mortar%P(node(ia), f + 1) + wq * phi(ia) * chi(1)
+          mortar%covered_weight(node(ia)) = mortar%covered_weight(node(ia)) + wp(q) * phi(ia, q)
+          dd(node(ia)) = dd(node(ia)) + wp(q) * phi(ia, q) * phi(ia, q)
+          mortar%P(node(ia), f) = mortar%P(node(ia), f) + wp(q) * phi(ia, q) * chi(0, q)
+          mortar%P(node(ia), f + 1) = mortar%P(node(ia), f + 1) + wp(q) * phi(ia, q) * chi(1, q)
         end do
-        du(e) = du(e) + wq * phi(0) * phi(1)             ! D_e,e+1 (e = n: D_n,1)
+        du(e) = du(e) + wp(q) * phi(0, q) * phi(1, q)    ! D_e,e+1 (e = n: D_n,1)
       end do
     end do
     mortar%zone_weight(1:n) = mortar%covered_weight(1:n)
@@ -505,32 +524,35 @@ contains
     mortar%zone_weight(mortar%ns) = mortar%zone_weight(1)
     mortar%covered_weight(mortar%ns) = mortar%covered_weight(1)
     if (.not. gap_zero) then
-      allocate(py(n, 2))
-      py = matmul(mortar%P(1:n, jlo:jhi), transpose(xm(:, jlo:jhi)))
-      do i = 1, n
-        mortar%gap0(i) = dot_product(mortar%normal(:, i), py(i, :) - xs(:, i))
-      end do
+      call set_initial_gaps(mortar, xs, xm, 1, n, jlo, jhi)
       mortar%gap0(mortar%ns) = mortar%gap0(1)
     end if
   end subroutine build_periodic
 
   !> The quadrature points of sub-segment k of mortar%inter for the products
   !> of two P1 hats (degree 2 in s; 3 with the radial weight): slave
-  !> coordinates s, master coordinates r (linear in s on a sub-segment) and
-  !> weights w, nq of them.
-  pure subroutine subsegment_points(mortar, xs, k, s, r, w, nq)
+  !> coordinates s, weights w, and the slave and master hats there, the
+  !> master coordinate r being linear in s on a sub-segment; nq points.
+  !>   s, w (out) (4) slave coordinates and weights
+  !>   phi  (out) (0:1, 4) phi(:, q) = [1 - s_q, s_q], the slave segment's two hats
+  !>   chi  (out) (0:1, 4) chi(:, q) = [1 - r_q, r_q], the master segment's two hats
+  pure subroutine subsegment_points(mortar, xs, k, s, w, phi, chi, nq)
     type(mortar_t), intent(in) :: mortar
     real(dp), intent(in) :: xs(:,:)
     integer, intent(in) :: k
-    real(dp), intent(out) :: s(4), r(4), w(4)
+    real(dp), intent(out) :: s(4), w(4), phi(0:1, 4), chi(0:1, 4)
     integer, intent(out) :: nq
-    integer :: e
-    real(dp) :: xi(4)
+    integer :: e, q
+    real(dp) :: xi(4), r(4)
     associate(inter => mortar%inter)
       e = inter%slave_seg(k)
       call segment_rule(xs(:, e), xs(:, e + 1), inter%s(1, k), inter%s(2, k), 2, mortar%axisymmetric, s, w, nq, xi)
       r(1:nq) = 0.5_dp * (inter%r(1, k) + inter%r(2, k)) + (0.5_dp * xi(1:nq)) * (inter%r(2, k) - inter%r(1, k))
     end associate
+    do q = 1, nq
+      phi(:, q) = [1.0_dp - s(q), s(q)]
+      chi(:, q) = [1.0_dp - r(q), r(q)]
+    end do
   end subroutine subsegment_points
 
   !> Gauss-Legendre rule on the part [s1, s2] of the straight segment xa-xb
@@ -696,24 +718,12 @@ contains
     call ray_hit(a, n, xm, nm_out, f, r)
     if (f > 0) return
 
-    ! Constant extension of the master trace beyond its end.
-    if (at_start) then
-      do k = 1, inter%nsub
-        if (inter%slave_seg(k) == eend) then
-          f = inter%master_seg(k)
-          r = inter%r(1, k)
-          return
-        end if
-      end do
-    else
-      do k = inter%nsub, 1, -1
-        if (inter%slave_seg(k) == eend) then
-          f = inter%master_seg(k)
-          r = inter%r(2, k)
-          return
-        end if
-      end do
-    end if
+    ! Constant extension of the master trace beyond its end: its value at the
+    ! master end of the first (a1) or last (a2) sub-segment on eend.
+    k = findloc(inter%slave_seg(1:inter%nsub), eend, dim=1, back=.not. at_start)
+    if (k == 0) return
+    f = inter%master_seg(k)
+    r = inter%r(merge(1, 2, at_start), k)
   end subroutine end_row
 
 end module mortar_operator

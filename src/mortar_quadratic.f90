@@ -68,7 +68,7 @@ module mortar_quadratic
   use lapack_interfaces, only: dgbsv, dgesv
   use diagnostics, only: error_t, set_error, int_to_str
   use mortar_geometry, only: real_to_str
-  use mortar_operator, only: mortar_t, start_mortar
+  use mortar_operator, only: mortar_t, start_mortar, start_periodic, set_initial_gaps
   implicit none
   private
   public :: build_mortar_quadratic, trace_point, gauss4
@@ -119,7 +119,7 @@ contains
     integer, allocatable :: ncover(:)
     logical :: closed
     real(dp) :: sigma, y(2), dy(2), nrm(2)
-    real(dp), allocatable :: py(:,:), selen(:)
+    real(dp), allocatable :: selen(:)
 
     ns = size(xs, 2)
     nm = size(xm, 2)
@@ -217,13 +217,7 @@ contains
     end if
 
     ! initial normal gaps from the curved geometry: gap0_i = n_i.((P y)_i - x_i)
-    if (.not. gap_zero) then
-      allocate(py(ns, 2))
-      py = matmul(mortar%P, transpose(xm))
-      do i = mortar%first, mortar%last
-        mortar%gap0(i) = dot_product(mortar%normal(:, i), py(i, :) - xs(:, i))
-      end do
-    end if
+    if (.not. gap_zero) call set_initial_gaps(mortar, xs, xm, mortar%first, mortar%last, 1, nm)
   end subroutine build_mortar_quadratic
 
   !> The operator on an open zone, slave elements efirst..elast (module header, 3.-4.).
@@ -301,14 +295,8 @@ contains
     integer :: z, na, nb, k, l, kl, ldab, info, jlo, jhi, nc, m
 
     z = mortar%ns - 1
-    if (z < 3 * ps) then
-      call set_error(err, 'closed slave boundary has ' // int_to_str(z / ps) // &
-        ' element(s) (at least 3 expected on a closed contact curve)', 2)
-      return
-    end if
-    mortar%first = 1
-    mortar%last = mortar%ns
-    mortar%constrained = .true.
+    call start_periodic(mortar, z / ps, 'element', err)
+    if (allocated(err)) return
     jlo = minval(pm * (ov%f - 1) + 1)
     jhi = maxval(pm * ov%f + 1)
     nc = jhi - jlo + 1

@@ -90,7 +90,7 @@ module sparse_cholesky
   use sparse_matrix, only: csc_t, csc_nnz, csc_check
   use cholmod_binding, only: c2d_chol_create, c2d_chol_destroy, c2d_chol_analyze, c2d_chol_factorize_values, &
                              c2d_chol_set_ordering, c2d_order_amd, c2d_order_metis, &
-                             c2d_chol_stats, c2d_chol_ordering_name, c2d_chol_minor, c2d_chol_min_pivot_ratio, &
+                             c2d_chol_stats, c2d_chol_name, c2d_name_ordering, c2d_chol_minor, c2d_chol_min_pivot_ratio, &
                              c2d_solve_whole, c2d_solve_forward, &
                              c2d_solve_backward, cholmod_ok, cholmod_not_posdef, c2d_chol_block_moved, &
                              c2d_chol_bad_argument, cholmod_out_of_memory
@@ -105,8 +105,6 @@ module sparse_cholesky
   public :: factor_t, factorize, analyze_pattern, factorize_values, solve, solve_vector, solve_block
   public :: trailing_factor_block, trailing_block_end, solve_forward, solve_backward
   public :: free_factor, factor_nnz, factor_flops, factor_memory, factor_ordering
-
-
 
   !> A Cholesky factor P A P' = L L' and its statistics.
   type :: factor_t
@@ -352,12 +350,6 @@ contains
     end subroutine analyze_part
   end subroutine analyze_pattern
 
-
-
-
-
-
-
   !> The numeric factorization of A, whose pattern analyze_pattern analyzed:
   !> the second half of factorize.
   !>   f   (inout) the factor, analyzed; f%ready = .true. on success
@@ -496,16 +488,9 @@ contains
       f%memory_peak = f%memory_peak + int(memory_peak, i8)
       if (f%part(p)%nlast > 0 .and. f%part(named)%nlast == 0) named = p
     end do
-    call c2d_chol_ordering_name(f%part(named)%handle, buf, int(size(buf), c_int))
+    call c2d_chol_name(f%part(named)%handle, c2d_name_ordering, cholmod_ok, buf, int(size(buf), c_int))
     f%ordering = c_string(buf)
   end subroutine read_statistics
-
-
-
-
-
-
-
 
   !> Release the CHOLMOD handles of f (no-op when it holds none); the
   !> statistics are kept.
@@ -547,7 +532,6 @@ contains
     factor_bytes = 12_i8 * f%nnz_l
   end function factor_bytes
 
-
   !> Peak memory used by CHOLMOD for this factor, bytes.
   pure integer(i8) function factor_memory(f)
     type(factor_t), intent(in) :: f
@@ -562,8 +546,5 @@ contains
     character(len=:), allocatable :: name
     name = trim(f%ordering)
   end function factor_ordering
-
-
-
 
 end module sparse_cholesky

@@ -33,7 +33,7 @@ module sparse_cholesky_parts
   use runtime_binding, only: c2d_blas_threads
   use diagnostics, only: error_t, set_error, int_to_str
   use cholmod_binding, only: c2d_chol_solve_half, c2d_chol_trailing_range, c2d_chol_trailing_block_end, &
-                             c2d_chol_status_name, &
+                             c2d_chol_name, c2d_name_status, &
                              c2d_chol_not_super_ll, c2d_chol_block_moved
   implicit none
   private
@@ -279,7 +279,7 @@ contains
     integer(c_int), intent(in) :: status
     character(len=:), allocatable :: name
     character(kind=c_char) :: buf(32)
-    call c2d_chol_status_name(status, buf, int(size(buf), c_int))
+    call c2d_chol_name(c_null_ptr, c2d_name_status, status, buf, int(size(buf), c_int))
     name = c_string(buf)
   end function status_name
 

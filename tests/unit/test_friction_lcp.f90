@@ -9,8 +9,8 @@ program test_friction_lcp
   use diagnostics, only: error_t
   use testing, only: check, check_close, check_small, finish_tests, urand, random_spd
   use lcp_solvers, only: lcp_options_t, lcp_report_t, solve_lcp_lemke, solve_lcp_pgs, solve_lcp_lemke_scaled
-  use friction_lcp, only: solve_friction_lcp, friction_residual, friction_state, state_open, state_stick, &
-    state_slip
+  use friction_lcp, only: friction_problem_t, friction_problem, solve_friction_lcp, friction_residual, &
+    friction_state, state_open, state_stick, state_slip
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
 
@@ -68,27 +68,27 @@ contains
   !>   lambda >= 0, w >= 0, lambda_i w_i = 0 (one of them zero),
   !>   |tau_k| <= b_k, and for every k either ds_k = 0 (stick) or
   !>   tau_k = b_k sign(ds_k) (slip against the friction force).
-  subroutine check_conditions(g, qn, qt, trow, cmu, bound, lam, tol, name)
-    real(dp), intent(in) :: g(:, :), qn(:), qt(:), cmu(:), bound(:), lam(:), tol
-    integer, intent(in) :: trow(:)
+  subroutine check_conditions(g, prob, lam, tol, name)
+    real(dp), intent(in) :: g(:, :), lam(:), tol
+    type(friction_problem_t), intent(in) :: prob
     character(len=*), intent(in) :: name
     real(dp), allocatable :: w(:), ds(:), b(:), lambda(:), tau(:)
     real(dp) :: gscale, fscale, worst
     integer :: n, nt, k
 
-    n = size(qn)
-    nt = size(qt)
+    n = size(prob%qn)
+    nt = size(prob%qt)
     call check(all(ieee_is_finite(lam)), name // ': lam finite')
     allocate(lambda(n), tau(nt))
     lambda(:) = lam(1:n)
     tau(:) = lam(n + 1:n + nt)
-    w = qn + matmul(g(1:n, :), lam)
-    ds = -(qt + matmul(g(n + 1:n + nt, :), lam))
-    b = bound + cmu * lambda(trow)
-    gscale = max(tiny(1.0_dp), maxval(abs(qn)))
-    if (nt > 0) gscale = max(gscale, maxval(abs(qt)))
+    w = prob%qn + matmul(g(1:n, :), lam)
+    ds = -(prob%qt + matmul(g(n + 1:n + nt, :), lam))
+    b = prob%bound + prob%cmu * lambda(prob%trow)
+    gscale = max(tiny(1.0_dp), maxval(abs(prob%qn)))
+    if (nt > 0) gscale = max(gscale, maxval(abs(prob%qt)))
     fscale = max(tiny(1.0_dp), maxval(abs(lam)))
-    if (nt > 0) fscale = max(fscale, maxval(bound))
+    if (nt > 0) fscale = max(fscale, maxval(prob%bound))
     call check_small(max(0.0_dp, -minval(lambda)) / fscale, tol, name // ': lambda >= 0')
     call check_small(max(0.0_dp, -minval(w)) / gscale, tol, name // ': w >= 0')
     call check_small(maxval(min(abs(lambda) / fscale, abs(w) / gscale)), tol, name // ': lambda_i w_i = 0')
@@ -176,11 +176,11 @@ contains
   subroutine test_residual_hand_value()
     real(dp) :: g(2, 2)
     g = reshape([1.0_dp, 0.0_dp, 0.0_dp, 1.0_dp], [2, 2])
-    call check_close(friction_residual(g, [-1.0_dp], [0.0_dp], [1], [0.5_dp], [0.0_dp], [1.0_dp, 0.5_dp]), &
+    call check_close(friction_residual(g, friction_problem([-1.0_dp], [0.0_dp], [1], [0.5_dp], [0.0_dp]), [1.0_dp, 0.5_dp]), &
       0.5_dp, 1.0e-15_dp, 'residual: hand value 1/2')
-    call check_small(friction_residual(g, [-1.0_dp], [0.0_dp], [1], [0.5_dp], [0.0_dp], [1.0_dp, 0.0_dp]), &
+    call check_small(friction_residual(g, friction_problem([-1.0_dp], [0.0_dp], [1], [0.5_dp], [0.0_dp]), [1.0_dp, 0.0_dp]), &
       0.0_dp, 'residual: 0 at the solution')
-    call check(friction_residual(g, [-1.0_dp], [0.0_dp], [2], [0.5_dp], [0.0_dp], [1.0_dp, 0.0_dp]) == &
+    call check(friction_residual(g, friction_problem([-1.0_dp], [0.0_dp], [2], [0.5_dp], [0.0_dp]), [1.0_dp, 0.0_dp]) == &
       huge(1.0_dp), 'residual: trow out of range -> huge')
   end subroutine test_residual_hand_value
 
@@ -222,16 +222,18 @@ contains
     integer :: state(1)
     type(error_t), allocatable :: err
     character(len=:), allocatable :: full
+    type(friction_problem_t) :: prob
     full = 'one node ' // method_name // ' ' // name
     opts%tol = 1.0e-14_dp
+    prob = friction_problem([qn], [qt], [1], [mu], [bnd])
     lam = [5.0_dp, 1.0_dp]
-    call solve_friction_lcp(g, [qn], [qt], [1], [mu], [bnd], method_name, opts, lam, rep)
+    call solve_friction_lcp(g, prob, method_name, opts, lam, rep)
     call check(rep%info == 0, full // ': info 0')
     call check_close(lam(1), lambda, 1.0e-12_dp, full // ': lambda by hand', floor=1.0_dp)
     call check_close(lam(2), tau, 1.0e-12_dp, full // ': tau by hand', floor=1.0_dp)
-    call friction_state(g, [qn], [qt], [1], [mu], [bnd], lam, state, err)
+    call friction_state(g, prob, lam, state, err)
     call check(.not. allocated(err) .and. state(1) == st, full // ': state')
-    call check_conditions(g, [qn], [qt], [1], [mu], [bnd], lam, 1.0e-12_dp, full)
+    call check_conditions(g, prob, lam, 1.0e-12_dp, full)
   end subroutine one_case
 
   !> G = diag(2, 1) (decoupled), qn = -2 so lambda = 1, mu = 0.3, b = 0.3.
@@ -249,15 +251,15 @@ contains
     do method = 1, 2
       tag = merge('lemke', 'pgs  ', method == 1)
       lam = 0.0_dp
-      call solve_friction_lcp(g, [-2.0_dp], [1.0_dp], [1], [0.3_dp], [0.0_dp], trim(tag), opts, lam, rep)
+      call solve_friction_lcp(g, friction_problem([-2.0_dp], [1.0_dp], [1], [0.3_dp], [0.0_dp]), trim(tag), opts, lam, rep)
       call check(rep%info == 0 .and. abs(lam(1) - 1.0_dp) <= 1.0e-13_dp .and. abs(lam(2) + 0.3_dp) <= 1.0e-13_dp, &
         'sign ' // trim(tag) // ': qt = 1 slips with tau = -0.3 (ds = -0.7)')
       lam = 0.0_dp
-      call solve_friction_lcp(g, [-2.0_dp], [-1.0_dp], [1], [0.3_dp], [0.0_dp], trim(tag), opts, lam, rep)
+      call solve_friction_lcp(g, friction_problem([-2.0_dp], [-1.0_dp], [1], [0.3_dp], [0.0_dp]), trim(tag), opts, lam, rep)
       call check(rep%info == 0 .and. abs(lam(1) - 1.0_dp) <= 1.0e-13_dp .and. abs(lam(2) - 0.3_dp) <= 1.0e-13_dp, &
         'sign ' // trim(tag) // ': qt = -1 slips with tau = +0.3 (ds = +0.7)')
       lam = 0.0_dp
-      call solve_friction_lcp(g, [-2.0_dp], [0.2_dp], [1], [0.3_dp], [0.0_dp], trim(tag), opts, lam, rep)
+      call solve_friction_lcp(g, friction_problem([-2.0_dp], [0.2_dp], [1], [0.3_dp], [0.0_dp]), trim(tag), opts, lam, rep)
       call check(rep%info == 0 .and. abs(lam(1) - 1.0_dp) <= 1.0e-13_dp .and. abs(lam(2) + 0.2_dp) <= 1.0e-13_dp, &
         'sign ' // trim(tag) // ': qt = 0.2 sticks with tau = -0.2 (ds = 0)')
     end do
@@ -272,6 +274,7 @@ contains
     logical, intent(in) :: reversed
     real(dp), allocatable :: g(:, :), qn(:), qt(:), cmu(:), bound(:), lam_l(:), lam_p(:)
     integer, allocatable :: trow(:)
+    type(friction_problem_t) :: prob
     type(lcp_options_t) :: opts
     type(lcp_report_t) :: rep
     integer :: k
@@ -289,26 +292,27 @@ contains
     else
       trow = [(k + (n - nt) / 2, k = 1, nt)]
     end if
+    prob = friction_problem(qn, qt, trow, cmu, bound)
 
-    call solve_friction_lcp(g, qn, qt, trow, cmu, bound, 'lemke', opts, lam_l, rep)
+    call solve_friction_lcp(g, prob, 'lemke', opts, lam_l, rep)
     call check(rep%info == 0, name // ' lemke: info 0')
     call check(rep%iterations > 0, name // ' lemke: pivots counted')
     call check_small(rep%residual, opts%tol, name // ' lemke: reported residual <= tol')
-    call check_close(rep%residual, friction_residual(g, qn, qt, trow, cmu, bound, lam_l), 1.0e-12_dp, &
+    call check_close(rep%residual, friction_residual(g, prob, lam_l), 1.0e-12_dp, &
       name // ' lemke: reported residual is that of lam', floor=1.0e-16_dp)
-    call check_conditions(g, qn, qt, trow, cmu, bound, lam_l, 1.0e-9_dp, name // ' lemke')
+    call check_conditions(g, prob, lam_l, 1.0e-9_dp, name // ' lemke')
 
     opts%tol = 1.0e-13_dp
     lam_p = 0.0_dp
-    call solve_friction_lcp(g, qn, qt, trow, cmu, bound, 'pgs', opts, lam_p, rep)
+    call solve_friction_lcp(g, prob, 'pgs', opts, lam_p, rep)
     call check(rep%info == 0, name // ' pgs: info 0')
     call check(rep%iterations > 0, name // ' pgs: sweeps counted')
-    call check_conditions(g, qn, qt, trow, cmu, bound, lam_p, 1.0e-9_dp, name // ' pgs')
+    call check_conditions(g, prob, lam_p, 1.0e-9_dp, name // ' pgs')
     call check_small(rel_diff(lam_p, lam_l), 1.0e-8_dp, name // ': lemke and pgs agree')
 
     lam_p = 0.0_dp
     opts%omega = 1.3_dp
-    call solve_friction_lcp(g, qn, qt, trow, cmu, bound, 'pgs', opts, lam_p, rep)
+    call solve_friction_lcp(g, prob, 'pgs', opts, lam_p, rep)
     call check(rep%info == 0, name // ' pgs omega 1.3: info 0')
     call check_small(rel_diff(lam_p, lam_l), 1.0e-8_dp, name // ' pgs omega 1.3: agrees')
 
@@ -316,7 +320,7 @@ contains
     lam_p = lam_l
     opts%omega = 1.0_dp
     opts%tol = 1.0e-10_dp
-    call solve_friction_lcp(g, qn, qt, trow, cmu, bound, 'pgs', opts, lam_p, rep)
+    call solve_friction_lcp(g, prob, 'pgs', opts, lam_p, rep)
     call check(rep%info == 0 .and. rep%iterations <= 1, name // ' pgs warm start: converged at once')
   end subroutine test_tresca_random
 
@@ -333,6 +337,7 @@ contains
     real(dp), parameter :: mus(3) = [0.1_dp, 0.3_dp, 0.8_dp]
     real(dp), allocatable :: g(:, :), gnn(:, :), qn(:), qt(:), cmu(:), bound(:), lam_l(:), lam_p(:), zref(:), b(:)
     integer, allocatable :: trow(:), state(:)
+    type(friction_problem_t) :: prob
     type(lcp_options_t) :: opts
     type(lcp_report_t) :: rep
     integer :: imu, k
@@ -351,14 +356,15 @@ contains
       write(mtxt, '(f3.1)') mus(imu)
       name = 'coulomb ' // tag // ' mu ' // trim(mtxt)
       cmu = [(mus(imu), k = 1, n)]
+      prob = friction_problem(qn, qt, trow, cmu, bound)
       opts = lcp_options_t()
-      call solve_friction_lcp(g, qn, qt, trow, cmu, bound, 'lemke', opts, lam_l, rep)
+      call solve_friction_lcp(g, prob, 'lemke', opts, lam_l, rep)
       call check(rep%info == 0, name // ' lemke: info 0')
       call check(rep%iterations > 0, name // ' lemke: pivots counted')
-      call check_conditions(g, qn, qt, trow, cmu, bound, lam_l, 1.0e-9_dp, name // ' lemke')
+      call check_conditions(g, prob, lam_l, 1.0e-9_dp, name // ' lemke')
 
       ! States: slip has |tau| = b, stick |tau| <= b, open lambda = 0.
-      call friction_state(g, qn, qt, trow, cmu, bound, lam_l, state, err)
+      call friction_state(g, prob, lam_l, state, err)
       call check(.not. allocated(err), name // ' lemke: states measured')
       b = cmu * lam_l(1:n)
       consistent = .true.
@@ -380,11 +386,11 @@ contains
 
       opts%tol = 1.0e-12_dp
       lam_p = 0.0_dp
-      call solve_friction_lcp(g, qn, qt, trow, cmu, bound, 'pgs', opts, lam_p, rep)
+      call solve_friction_lcp(g, prob, 'pgs', opts, lam_p, rep)
       call check(rep%info >= 0 .and. rep%info /= 1 .and. all(ieee_is_finite(lam_p)), &
         name // ' pgs: converged or reported, lam finite')
       if (rep%info == 0) then
-        call check_conditions(g, qn, qt, trow, cmu, bound, lam_p, 1.0e-9_dp, name // ' pgs')
+        call check_conditions(g, prob, lam_p, 1.0e-9_dp, name // ' pgs')
       else
         call check(rep%residual > opts%tol, name // ' pgs: not converged and residual > tol')
       end if
@@ -405,6 +411,7 @@ contains
   subroutine test_zero_tangential_row()
     integer, parameter :: n = 8, kz = 3
     real(dp), allocatable :: g(:, :), qn(:), qt(:), cmu(:), bound(:), lam(:)
+    type(friction_problem_t) :: prob
     type(lcp_options_t) :: opts
     type(lcp_report_t) :: rep
     integer :: method, k
@@ -420,14 +427,14 @@ contains
     qt(kz) = -0.2_dp
     cmu = [(0.3_dp, k = 1, n)]
     bound = [(0.0_dp, k = 1, n)]
+    prob = friction_problem(qn, qt, identity_rows(n), cmu, bound)
     opts%tol = 1.0e-12_dp
     do method = 1, 2
       tag = merge('lemke', 'pgs  ', method == 1)
       lam = 0.0_dp
-      call solve_friction_lcp(g, qn, qt, identity_rows(n), cmu, bound, trim(tag), opts, lam, rep)
+      call solve_friction_lcp(g, prob, trim(tag), opts, lam, rep)
       call check(rep%info == 0, 'zero tangential row ' // trim(tag) // ': info 0')
-      call check_conditions(g, qn, qt, identity_rows(n), cmu, bound, lam, 1.0e-9_dp, &
-        'zero tangential row ' // trim(tag))
+      call check_conditions(g, prob, lam, 1.0e-9_dp, 'zero tangential row ' // trim(tag))
       call check(lam(kz) > 0.0_dp, 'zero tangential row ' // trim(tag) // ': node in contact')
       call check_close(lam(n + kz), 0.3_dp * lam(kz), 1.0e-10_dp, 'zero tangential row ' // trim(tag) // &
         ': tau = +mu lambda')
@@ -451,13 +458,13 @@ contains
     zero = [(0.0_dp, k = 1, n)]
     gnn = g(1:n, 1:n)
     call solve_lcp_lemke(gnn, qn, zref, opts, ref)
-    call solve_friction_lcp(g, qn, qt, identity_rows(n), zero, zero, 'lemke', opts, lam, rep)
+    call solve_friction_lcp(g, friction_problem(qn, qt, identity_rows(n), zero, zero), 'lemke', opts, lam, rep)
     call check(rep%info == 0, 'mu = 0 lemke: info 0')
     call check(maxval(abs(lam(n + 1:))) <= 1.0e-14_dp * maxval(lam(1:n)), 'mu = 0 lemke: tau = 0')
     call check_small(rel_diff(lam(1:n), zref), 1.0e-10_dp, 'mu = 0 lemke: lambda frictionless')
     lam = 1.0_dp
     opts%tol = 1.0e-13_dp
-    call solve_friction_lcp(g, qn, qt, identity_rows(n), zero, zero, 'pgs', opts, lam, rep)
+    call solve_friction_lcp(g, friction_problem(qn, qt, identity_rows(n), zero, zero), 'pgs', opts, lam, rep)
     call check(rep%info == 0 .and. all(lam(n + 1:) == 0.0_dp), 'mu = 0 pgs: info 0, tau = 0')
     call check_small(rel_diff(lam(1:n), zref), 1.0e-8_dp, 'mu = 0 pgs: lambda frictionless')
 
@@ -465,13 +472,13 @@ contains
     opts = lcp_options_t()
     deallocate(lam)
     allocate(lam(n))
-    call solve_friction_lcp(gnn, qn, empty, none, empty, empty, 'lemke', opts, lam, rep)
+    call solve_friction_lcp(gnn, friction_problem(qn, empty, none, empty, empty), 'lemke', opts, lam, rep)
     call check(all(lam == zref) .and. rep%info == ref%info .and. rep%iterations == ref%iterations .and. &
       rep%residual == ref%residual, 'nt = 0 lemke: identical to solve_lcp_lemke')
     zref = 0.5_dp
     call solve_lcp_pgs(gnn, qn, zref, opts, ref)
     lam = 0.5_dp
-    call solve_friction_lcp(gnn, qn, empty, none, empty, empty, 'pgs', opts, lam, rep)
+    call solve_friction_lcp(gnn, friction_problem(qn, empty, none, empty, empty), 'pgs', opts, lam, rep)
     call check(all(lam == zref) .and. rep%info == ref%info .and. rep%iterations == ref%iterations .and. &
       rep%residual == ref%residual, 'nt = 0 pgs: identical to solve_lcp_pgs')
   end subroutine test_frictionless_limits
@@ -482,6 +489,7 @@ contains
   subroutine test_failures()
     integer, parameter :: n = 6, iz = 3
     real(dp), allocatable :: g(:, :), qn(:), qt(:), cmu(:), bound(:), lam(:)
+    type(friction_problem_t) :: prob
     type(lcp_options_t) :: opts
     type(lcp_report_t) :: rep
     integer :: method, k
@@ -498,21 +506,22 @@ contains
     do method = 1, 2
       tag = merge('lemke', 'pgs  ', method == 1)
       qn(iz) = -0.5_dp
+      prob = friction_problem(qn, qt, identity_rows(n), cmu, bound)
       lam = 0.0_dp
-      call solve_friction_lcp(g, qn, qt, identity_rows(n), cmu, bound, trim(tag), opts, lam, rep)
+      call solve_friction_lcp(g, prob, trim(tag), opts, lam, rep)
       call check(rep%info == 1, 'zero normal row, qn < 0 ' // trim(tag) // ': info 1')
       call check(index(rep%message, 'row/column 3') > 0, 'zero normal row, qn < 0 ' // trim(tag) // &
         ': message names row 3')
       call check(all(ieee_is_finite(lam)) .and. ieee_is_finite(rep%residual), &
         'zero normal row, qn < 0 ' // trim(tag) // ': lam and residual finite')
       qn(iz) = 0.5_dp
+      prob = friction_problem(qn, qt, identity_rows(n), cmu, bound)
       lam = 0.0_dp
       opts%tol = 1.0e-12_dp
-      call solve_friction_lcp(g, qn, qt, identity_rows(n), cmu, bound, trim(tag), opts, lam, rep)
+      call solve_friction_lcp(g, prob, trim(tag), opts, lam, rep)
       call check(rep%info == 0 .and. lam(iz) == 0.0_dp .and. lam(n + iz) == 0.0_dp, &
         'zero normal row, qn > 0 ' // trim(tag) // ': solved, lambda = tau = 0 there')
-      call check_conditions(g, qn, qt, identity_rows(n), cmu, bound, lam, 1.0e-9_dp, &
-        'zero normal row, qn > 0 ' // trim(tag))
+      call check_conditions(g, prob, lam, 1.0e-9_dp, 'zero normal row, qn > 0 ' // trim(tag))
       opts = lcp_options_t()
     end do
     call check(index(rep%message, 'PGS') > 0, 'messages name the method')
@@ -524,64 +533,76 @@ contains
     call random_vector(seed, -1.0_dp, 1.0_dp, qt)
     cmu = [(0.3_dp, k = 1, 30)]
     bound = [(0.0_dp, k = 1, 30)]
+    prob = friction_problem(qn, qt, identity_rows(30), cmu, bound)
     lam = 0.0_dp
     opts%maxit = 2
     opts%tol = 1.0e-14_dp
-    call solve_friction_lcp(g, qn, qt, identity_rows(30), cmu, bound, 'pgs', opts, lam, rep)
+    call solve_friction_lcp(g, prob, 'pgs', opts, lam, rep)
     call check(rep%info == 2 .and. rep%iterations == 2, 'pgs maxit 2: info 2 after 2 sweeps')
     call check(all(ieee_is_finite(lam)) .and. all(lam(1:30) >= 0.0_dp), 'pgs maxit 2: best iterate finite')
     call check(rep%residual > opts%tol, 'pgs maxit 2: residual above tol')
-    call check_close(rep%residual, friction_residual(g, qn, qt, identity_rows(30), cmu, bound, lam), &
+    call check_close(rep%residual, friction_residual(g, prob, lam), &
       1.0e-12_dp, 'pgs maxit 2: reported residual is that of lam')
     call check(index(rep%message, 'sweep limit') > 0, 'pgs maxit 2: message')
 
     opts%maxit = 3
-    call solve_friction_lcp(g, qn, qt, identity_rows(30), cmu, bound, 'lemke', opts, lam, rep)
+    call solve_friction_lcp(g, prob, 'lemke', opts, lam, rep)
     call check(rep%info == 2 .and. all(ieee_is_finite(lam)), 'lemke maxit 3: info 2, lam finite')
   end subroutine test_failures
 
+  !> Every argument check: info -1 G, -2 the problem (each of its arrays),
+  !> -3 method, -4 options, -5 lam; lam unchanged.
   subroutine test_arguments()
     real(dp) :: g(4, 4), lam(4), lam3(3)
     type(lcp_options_t) :: opts
     type(lcp_report_t) :: rep
+    type(friction_problem_t) :: prob, bad
     integer :: i
     g = 0.0_dp
     do i = 1, 4
       g(i, i) = 1.0_dp
     end do
+    prob = friction_problem([-1.0_dp, -1.0_dp], [0.1_dp, 0.1_dp], [1, 2], [0.3_dp, 0.3_dp], [0.0_dp, 0.0_dp])
+    call check(prob%n == 2 .and. prob%nt == 2, 'arguments: friction_problem takes n and nt from qn and qt')
     lam = 7.0_dp
-    call solve_friction_lcp(g, [-1.0_dp, -1.0_dp], [0.1_dp, 0.1_dp], [1, 2], [0.3_dp, 0.3_dp], &
-      [0.0_dp, 0.0_dp], 'newton', opts, lam, rep)
-    call check(rep%info == -7 .and. all(lam == 7.0_dp), 'arguments: unknown method -> -7, lam unchanged')
-    call solve_friction_lcp(g, [-1.0_dp, -1.0_dp], [0.1_dp, 0.1_dp], [1, 3], [0.3_dp, 0.3_dp], &
-      [0.0_dp, 0.0_dp], 'lemke', opts, lam, rep)
-    call check(rep%info == -4, 'arguments: trow out of range -> -4')
-    call solve_friction_lcp(g, [-1.0_dp, -1.0_dp], [0.1_dp, 0.1_dp], [1, 2], [0.3_dp, -0.3_dp], &
-      [0.0_dp, 0.0_dp], 'lemke', opts, lam, rep)
-    call check(rep%info == -5, 'arguments: negative cmu -> -5')
-    call solve_friction_lcp(g, [-1.0_dp, -1.0_dp], [0.1_dp, 0.1_dp], [1, 2], [0.3_dp, 0.3_dp], &
-      [0.0_dp, -1.0_dp], 'lemke', opts, lam, rep)
-    call check(rep%info == -6, 'arguments: negative bound -> -6')
-    call solve_friction_lcp(g, [-1.0_dp, -1.0_dp], [0.1_dp, 0.1_dp], [1, 2], [0.3_dp, 0.3_dp], &
-      [0.0_dp, 0.0_dp], 'lemke', opts, lam3, rep)
-    call check(rep%info == -9, 'arguments: lam size -> -9')
-    call solve_friction_lcp(g(1:3, 1:3), [-1.0_dp, -1.0_dp], [0.1_dp, 0.1_dp], [1, 2], [0.3_dp, 0.3_dp], &
-      [0.0_dp, 0.0_dp], 'lemke', opts, lam, rep)
+    call solve_friction_lcp(g, prob, 'newton', opts, lam, rep)
+    call check(rep%info == -3 .and. all(lam == 7.0_dp), 'arguments: unknown method -> -3, lam unchanged')
+    bad = prob
+    bad%trow = [1, 3]
+    call solve_friction_lcp(g, bad, 'lemke', opts, lam, rep)
+    call check(rep%info == -2 .and. all(lam == 7.0_dp), 'arguments: trow out of range -> -2, lam unchanged')
+    bad = prob
+    bad%trow = [1]
+    call solve_friction_lcp(g, bad, 'lemke', opts, lam, rep)
+    call check(rep%info == -2 .and. index(rep%message, 'trow has 1 entries') > 0, 'arguments: trow size -> -2')
+    bad = prob
+    bad%cmu = [0.3_dp, -0.3_dp]
+    call solve_friction_lcp(g, bad, 'lemke', opts, lam, rep)
+    call check(rep%info == -2 .and. index(rep%message, 'cmu') > 0, 'arguments: negative cmu -> -2')
+    bad = prob
+    bad%bound = [0.0_dp, -1.0_dp]
+    call solve_friction_lcp(g, bad, 'lemke', opts, lam, rep)
+    call check(rep%info == -2 .and. index(rep%message, 'bound') > 0, 'arguments: negative bound -> -2')
+    bad = prob
+    bad%nt = 1
+    call solve_friction_lcp(g, bad, 'lemke', opts, lam, rep)
+    call check(rep%info == -2, 'arguments: nt not the size of qt -> -2')
+    call check(friction_residual(g, bad, lam) == huge(1.0_dp), 'arguments: residual of an invalid problem -> huge')
+    call solve_friction_lcp(g, prob, 'lemke', opts, lam3, rep)
+    call check(rep%info == -5, 'arguments: lam size -> -5')
+    call solve_friction_lcp(g(1:3, 1:3), prob, 'lemke', opts, lam, rep)
     call check(rep%info == -1, 'arguments: G size -> -1')
     g(3, 3) = -1.0e-3_dp
-    call solve_friction_lcp(g, [-1.0_dp, -1.0_dp], [0.1_dp, 0.1_dp], [1, 2], [0.3_dp, 0.3_dp], &
-      [0.0_dp, 0.0_dp], 'lemke', opts, lam, rep)
+    call solve_friction_lcp(g, prob, 'lemke', opts, lam, rep)
     call check(rep%info == -1 .and. index(rep%message, 'G(3,3) < 0') > 0, &
                'arguments: negative diagonal G(3,3) -> -1, named')
     g(3, 3) = -1.0e-12_dp
-    call solve_friction_lcp(g, [-1.0_dp, -1.0_dp], [0.1_dp, 0.1_dp], [1, 2], [0.3_dp, 0.3_dp], &
-      [0.0_dp, 0.0_dp], 'lemke', opts, lam, rep)
+    call solve_friction_lcp(g, prob, 'lemke', opts, lam, rep)
     call check(rep%info /= -1, 'arguments: G(3,3) = -1e-12 is round-off, accepted')
     g(3, 3) = 1.0_dp
     opts%omega = 2.0_dp
-    call solve_friction_lcp(g, [-1.0_dp, -1.0_dp], [0.1_dp, 0.1_dp], [1, 2], [0.3_dp, 0.3_dp], &
-      [0.0_dp, 0.0_dp], 'pgs', opts, lam, rep)
-    call check(rep%info == -8 .and. allocated(rep%message), 'arguments: omega = 2 -> -8')
+    call solve_friction_lcp(g, prob, 'pgs', opts, lam, rep)
+    call check(rep%info == -4 .and. allocated(rep%message), 'arguments: omega = 2 -> -4')
   end subroutine test_arguments
 
 end program test_friction_lcp

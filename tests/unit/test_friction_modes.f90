@@ -18,7 +18,7 @@
 program test_friction_modes
   use kinds, only: dp
   use lcp_solvers, only: lcp_options_t, lcp_report_t
-  use friction_lcp, only: friction_residual
+  use friction_lcp, only: friction_problem, friction_residual
   use friction_modes, only: solve_friction_floating, no_equilibrium
   use testing, only: check, check_small, finish_tests
   implicit none
@@ -56,8 +56,8 @@ contains
     character(len=:), allocatable, intent(out) :: cause
     type(lcp_options_t) :: opts
     opts%tol = 1.0e-10_dp
-    call solve_friction_floating(g, [0.0_dp, 0.0_dp], [0.0_dp, 0.0_dp], [1, 2], cmu, bound, h, e, opts, &
-                                 lam, alpha, rep, unbalanced, cause)
+    call solve_friction_floating(g, friction_problem([0.0_dp, 0.0_dp], [0.0_dp, 0.0_dp], [1, 2], cmu, bound), h, e, &
+                                 opts, lam, alpha, rep, unbalanced, cause)
   end subroutine solve_case
 
   subroutine solved(name, cmu, bound, e, lam_exact, alpha_exact)
@@ -73,8 +73,8 @@ contains
     call check_small(maxval(abs(alpha - alpha_exact)) / maxval(abs(alpha_exact)), tol, &
                      name // ': mode amplitudes, closed form')
     call check_small(maxval(abs(matmul(transpose(h), lam) - e)) / maxval(abs(e)), tol, name // ': H''z = e')
-    call check_small(friction_residual(g, -matmul(h(1:2, :), alpha), -matmul(h(3:4, :), alpha), [1, 2], cmu, bound, &
-                                       lam), tol, name // ': friction conditions with q - H alpha')
+    call check_small(friction_residual(g, friction_problem(-matmul(h(1:2, :), alpha), -matmul(h(3:4, :), alpha), [1, 2], &
+                                                          cmu, bound), lam), tol, name // ': friction conditions with q - H alpha')
   end subroutine solved
 
   subroutine refused(name, cmu, bound, e, cause_exact)

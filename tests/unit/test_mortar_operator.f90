@@ -2,11 +2,11 @@
 !> partially overlapping and curved interfaces, against independent facts (identity,
 !> pi 1 = 1, integral preservation, reproduction of linear functions, the defining
 !> orthogonality (8) evaluated by an exact Simpson rule on the merged breakpoints,
-!> closed-form gaps) and the input errors.
+!> closed-form gaps), the input errors, and the steps both builders share.
 program test_mortar_operator
   use kinds, only: dp, i8
   use diagnostics, only: error_t
-  use mortar_operator, only: mortar_t, build_mortar
+  use mortar_operator, only: mortar_t, build_mortar, start_mortar, start_periodic, set_initial_gaps
   use lapack_interfaces, only: dlasrt
   use testing, only: check, check_close, check_small, finish_tests
   implicit none
@@ -20,6 +20,7 @@ program test_mortar_operator
   call test_small_zones()
   call test_curved()
   call test_errors()
+  call test_shared_steps()
   call finish_tests()
 
 contains
@@ -497,5 +498,31 @@ contains
     call check(.not. allocated(err) .and. m%first == 0 .and. m%last == 0 .and. .not. any(m%constrained) .and. &
       all(m%P == 0.0_dp), 'no overlap: empty zone, no error')
   end subroutine test_errors
+
+  !> The steps the P1 and the quadratic builders share, alone: a closed
+  !> curve needs three elements; gap0_i = n_i.((P y)_i - x_i) on a made-up P
+  !> that puts the master line y = 1 above slave nodes on y = 0 (gap 1).
+  subroutine test_shared_steps()
+    type(mortar_t) :: m
+    type(error_t), allocatable :: err
+    real(dp) :: xs(2, 3), xm(2, 2)
+
+    call start_mortar(m, 3, 2)
+    call start_periodic(m, 2, 'segment', err)
+    call check(allocated(err), 'shared steps: two segments cannot close a curve')
+    if (allocated(err)) call check(err%status == 2 .and. index(err%message, 'has 2 segment(s)') > 0, &
+                                   'shared steps: the message names the two segments')
+    call start_periodic(m, 3, 'element', err)
+    call check(.not. allocated(err), 'shared steps: three elements close a curve')
+    call check(m%first == 1 .and. m%last == 3 .and. all(m%constrained), 'shared steps: the whole curve constrained')
+
+    xs = reshape([0.0_dp, 0.0_dp, 1.0_dp, 0.0_dp, 2.0_dp, 0.0_dp], [2, 3])
+    xm = reshape([0.0_dp, 1.0_dp, 2.0_dp, 1.0_dp], [2, 2])
+    m%P = reshape([1.0_dp, 0.5_dp, 0.0_dp, 0.0_dp, 0.5_dp, 1.0_dp], [3, 2])
+    m%normal = spread([0.0_dp, 1.0_dp], 2, 3)
+    call set_initial_gaps(m, xs, xm, 2, 3, 1, 2)
+    call check(m%gap0(1) == 0.0_dp, 'shared steps: gap0 only on the rows asked')
+    call check_small(maxval(abs(m%gap0(2:3) - 1.0_dp)), 1.0e-15_dp, 'shared steps: gap0 = 1 above the slave')
+  end subroutine test_shared_steps
 
 end program test_mortar_operator

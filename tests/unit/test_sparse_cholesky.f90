@@ -14,7 +14,9 @@ program test_sparse_cholesky
   use testing, only: check, check_close, check_small, finish_tests
   use sparse_matrix, only: csc_t, csc_nnz, csc_symv, csc_from_triplets, csc_check
   use omp_lib, only: omp_get_max_threads, omp_set_num_threads
-  use cholmod_binding, only: c2d_metis_per_thread
+  use cholmod_binding, only: c2d_metis_per_thread, cholmod_ok, cholmod_not_posdef, cholmod_out_of_memory, &
+                             c2d_chol_block_moved, c2d_chol_bad_argument
+  use sparse_cholesky_parts, only: status_name
   use sparse_cholesky, only: factor_t, factorize, solve, solve_vector, solve_block, trailing_factor_block, &
                              solve_forward, solve_backward, trailing_block_end, &
                              free_factor, factor_nnz, factor_flops, factor_memory, factor_ordering, &
@@ -35,6 +37,7 @@ program test_sparse_cholesky
   call test_fill_with_last()
   call test_node_groups()
   call test_singular_equation()
+  call test_status_names()
   call finish_tests()
 
 contains
@@ -1038,5 +1041,16 @@ contains
     call analyze_pattern(f, A%n, A%colptr, A%rowind, err, group=group)
     call check(allocated(err), 'a group out of 1..n is rejected')
   end subroutine test_node_groups
+
+  !> The names of the status codes, CHOLMOD's and the C layer's, as the
+  !> messages print them; a code that is neither is named as unknown.
+  subroutine test_status_names()
+    call check(status_name(cholmod_ok) == 'CHOLMOD_OK', 'status name: CHOLMOD_OK')
+    call check(status_name(cholmod_not_posdef) == 'CHOLMOD_NOT_POSDEF', 'status name: CHOLMOD_NOT_POSDEF')
+    call check(status_name(cholmod_out_of_memory) == 'CHOLMOD_OUT_OF_MEMORY', 'status name: CHOLMOD_OUT_OF_MEMORY')
+    call check(status_name(c2d_chol_block_moved) == 'C2D_CHOL_BLOCK_MOVED', 'status name: C2D_CHOL_BLOCK_MOVED')
+    call check(status_name(c2d_chol_bad_argument) == 'C2D_CHOL_BAD_ARGUMENT', 'status name: C2D_CHOL_BAD_ARGUMENT')
+    call check(status_name(-999) == 'unknown status', 'status name: an unknown code')
+  end subroutine test_status_names
 
 end program test_sparse_cholesky
