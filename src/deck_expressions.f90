@@ -248,15 +248,19 @@ contains
         message = 'division by zero in "' // clip(c%text) // '" (expected a non-zero divisor)'
         return
       end if
-      if (x /= 0.0_dp .and. log(abs(x)) - log(abs(y)) > log_huge) then
-        message = overflow(c)
-        return
+      if (x /= 0.0_dp) then                  ! (.and. does not cut short: log(0) traps)
+        if (log(abs(x)) - log(abs(y)) > log_huge) then
+          message = overflow(c)
+          return
+        end if
       end if
       x = x / y
     case default
-      if (x /= 0.0_dp .and. y /= 0.0_dp .and. log(abs(x)) + log(abs(y)) > log_huge) then
-        message = overflow(c)
-        return
+      if (x /= 0.0_dp .and. y /= 0.0_dp) then
+        if (log(abs(x)) + log(abs(y)) > log_huge) then
+          message = overflow(c)
+          return
+        end if
       end if
       x = x * y
     end select
