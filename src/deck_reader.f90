@@ -86,7 +86,7 @@ module deck_reader
                         output_deck_t, deck_t, curve_t, curve_factor, rigid_deck_t, rigid_load_t, &
                         load_traction, load_pressure
   use deck_expressions, only: parameter_set_t, substitute
-  use deck_syntax, only: state_t, stmt_t, statement_t, text_t, report, hand_over, store_echo, split_words, &
+  use deck_syntax, only: state_t, stmt_t, statement_t, string_t, report, hand_over, store_echo, split_words, &
                          join_equals, classify_words, find_statement, quoted, max_line_len
   use deck_statements, only: define_statements
   use deck_checks, only: finish_checks, cut_statement_lists, fill_defaults, path_too_long
@@ -239,7 +239,7 @@ contains
     character(len=*), intent(in) :: raw
     type(statement_t), intent(in) :: table(:)
     character(len=:), allocatable :: text
-    type(text_t), allocatable :: tok(:)
+    type(string_t), allocatable :: tok(:)
     type(stmt_t) :: st
     character(len=:), allocatable :: kw
     integer :: i, ntok, kwend

@@ -16,7 +16,7 @@ module deck_statements
   use diagnostics, only: int_to_str
   use deck_types, only: deck_t, contact_deck_t, curve_t
   use deck_expressions, only: add_parameter, find_parameter, evaluate, is_parameter_name
-  use deck_syntax, only: state_t, stmt_t, statement_t, key_values_t, text_t, report, read_keys, add_row, &
+  use deck_syntax, only: state_t, stmt_t, statement_t, key_values_t, string_t, report, read_keys, add_row, &
                          real_key, integer_key, choice_key, ramp_key, curve_key, name_key, text_key, &
                          check_extra_words, check_no_pairs, check_name, form_word, find_key, join_list, cut, quoted, max_mu, &
                          max_steps
@@ -191,7 +191,7 @@ contains
     type(key_values_t) :: v
     logical :: ok_s, ok_m, rigid_master
     type(contact_deck_t) :: c
-    type(text_t), allocatable :: gs(:), gm(:)
+    type(string_t), allocatable :: gs(:), gm(:)
     character(len=:), allocatable :: sbody, mbody
     integer :: nerr0, i
 
@@ -251,7 +251,7 @@ contains
   subroutine split_side(s, st, val, name, body, boundary, ok)
     type(state_t), intent(inout) :: s
     type(stmt_t), intent(in) :: st
-    type(text_t), intent(in) :: val
+    type(string_t), intent(in) :: val
     character(len=*), intent(in) :: name
     character(len=:), allocatable, intent(out) :: body
     character(len=:), allocatable, intent(inout) :: boundary

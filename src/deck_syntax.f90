@@ -22,7 +22,7 @@
 !> finds the values converted (key_values_t) and checks the rules between keys.
 !>
 !> Programming interface
-!>   text_t, stmt_t, state_t, statement_t, key_t, key_values_t, statement_handler
+!>   string_t (text_scan's), stmt_t, state_t, statement_t, key_t, key_values_t, statement_handler
 !>   report(s, line, text [, echo]), hand_over(s, file, diag)
 !>   store_echo, split_words, join_equals, classify_words      one line into a stmt_t
 !>   add_row, find_statement                                    the table
@@ -36,10 +36,10 @@ module deck_syntax
   use diagnostics, only: diag_t, add_error, int_to_str
   use deck_types, only: deck_t
   use deck_expressions, only: parameter_set_t, format_number
-  use text_scan, only: parse_real, parse_integer, line_items, lower, is_name
+  use text_scan, only: parse_real, parse_integer, line_items, lower, is_name, string_t
   implicit none
   private
-  public :: text_t, stmt_t, state_t, statement_t, key_t, key_values_t, statement_handler
+  public :: string_t, stmt_t, state_t, statement_t, key_t, key_values_t, statement_handler
   public :: report, hand_over, store_echo, split_words, join_equals, classify_words
   public :: add_row, find_statement
   public :: real_key, integer_key, choice_key, ramp_key, curve_key, name_key, text_key, read_keys
@@ -59,10 +59,6 @@ module deck_syntax
   ! key_t%kind
   integer, parameter :: key_number = 1, key_integer = 2, key_choice = 3, key_ramp = 4, key_curve = 5, &
                         key_name = 6, key_text = 7
-
-  type :: text_t
-    character(len=:), allocatable :: s
-  end type text_t
 
   !> One error before sorting by line.
   type :: err_t
@@ -88,7 +84,7 @@ module deck_syntax
   type :: key_values_t
     logical, allocatable :: seen(:)            !< (nkey) the key was written (possibly without a value)
     logical, allocatable :: ok(:)              !< (nkey) its value was given and is valid
-    type(text_t), allocatable :: text(:)       !< (nkey) the value as written, allocated when given and
+    type(string_t), allocatable :: text(:)       !< (nkey) the value as written, allocated when given and
                                                !< non-empty; a choice's value in its canonical spelling
     real(dp), allocatable :: x(:)              !< (nkey) a number key's value when ok
     integer, allocatable :: k(:)               !< (nkey) an integer key's value when ok
@@ -102,9 +98,9 @@ module deck_syntax
     character(len=:), allocatable :: keyword   !< as written
     character(len=:), allocatable :: rest      !< text after the keyword (TITLE)
     integer :: nword = 0                       !< positional words after the keyword
-    type(text_t), allocatable :: word(:)
+    type(string_t), allocatable :: word(:)
     integer :: npair = 0                       !< key=value pairs
-    type(text_t), allocatable :: key(:), value(:)
+    type(string_t), allocatable :: key(:), value(:)
     ! from the statement's row (dispatch)
     character(len=:), allocatable :: what      !< the statement for messages: 'FIX', 'MESH rect'
     character(len=:), allocatable :: usage     !< its usage line, for messages
@@ -118,7 +114,7 @@ module deck_syntax
     type(err_t), allocatable :: errs(:)
     logical :: gave_up = .false.
     integer :: nline = 0
-    type(text_t), allocatable :: echo(:)      !< (nline) cut lines for echoing
+    type(string_t), allocatable :: echo(:)      !< (nline) cut lines for echoing
     integer :: nbody = 0, ncontact = 0
     integer :: cur = 0                        !< body whose block is open, 0 outside
     logical :: end_hinted = .false.           !< a "missing END?" was said for the open block
@@ -129,7 +125,7 @@ module deck_syntax
     integer, allocatable :: block_first(:)    !< (nrow) the same in the open block
     logical :: contact_bad = .false.          !< some CONTACT statement had an error
     logical :: steps_bad = .false.            !< the STEPS statement had an error
-    type(text_t), allocatable :: slave_name(:), master_name(:)   !< (ncontact) body names
+    type(string_t), allocatable :: slave_name(:), master_name(:)   !< (ncontact) body names
     type(parameter_set_t) :: overrides        !< -D and --cases values of declared parameters
   end type state_t
 
@@ -232,7 +228,7 @@ contains
   subroutine store_echo(s, raw)
     type(state_t), intent(inout) :: s
     character(len=*), intent(in) :: raw
-    type(text_t), allocatable :: grown(:)
+    type(string_t), allocatable :: grown(:)
     character(len=:), allocatable :: e
     integer :: i
 
@@ -254,7 +250,7 @@ contains
   !> Blank-separated words of text (text_scan's items of a line).
   subroutine split_words(text, tok, ntok)
     character(len=*), intent(in) :: text
-    type(text_t), allocatable, intent(out) :: tok(:)
+    type(string_t), allocatable, intent(out) :: tok(:)
     integer, intent(out) :: ntok
     integer(i8), allocatable :: b(:), e(:)
     integer :: k
@@ -271,9 +267,9 @@ contains
   !> when that is unambiguous (the neighbours carry no '=' of their own); the
   !> keyword tok(1) is never joined.
   subroutine join_equals(tok, ntok)
-    type(text_t), intent(inout) :: tok(:)
+    type(string_t), intent(inout) :: tok(:)
     integer, intent(inout) :: ntok
-    type(text_t), allocatable :: out(:)
+    type(string_t), allocatable :: out(:)
     integer :: i, n
     logical :: prev_plain, next_plain
 
@@ -318,7 +314,7 @@ contains
 
   !> Sort the words after the keyword into positional words and key=value pairs.
   subroutine classify_words(tok, ntok, st)
-    type(text_t), intent(in) :: tok(:)
+    type(string_t), intent(in) :: tok(:)
     integer, intent(in) :: ntok
     type(stmt_t), intent(inout) :: st
     integer :: i, eq
@@ -527,7 +523,7 @@ contains
     !> The value of one key: its type, then its range.
     subroutine convert(key, text, ok, x, j)
       type(key_t), intent(in) :: key
-      type(text_t), intent(inout) :: text
+      type(string_t), intent(inout) :: text
       logical, intent(out) :: ok
       real(dp), intent(out) :: x
       integer, intent(out) :: j
@@ -782,7 +778,7 @@ contains
 
   !> Value as written, or a default text when not given.
   pure function shown(val, default) result(t)
-    type(text_t), intent(in) :: val
+    type(string_t), intent(in) :: val
     character(len=*), intent(in) :: default
     character(len=:), allocatable :: t
     if (allocated(val%s)) then

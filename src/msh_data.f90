@@ -6,7 +6,7 @@
 !> Programming interface
 !>   type(msh_data_t)                  the sections' content (see its components)
 !>   type(record_list_t)               a growing table of integer records
-!>   type(string_t)                    a character string of any length
+!>   type(string_t)                    a character string of any length (text_scan's)
 !>   raw_width                         width of an element record
 !>   reserve_records(list, width, capacity, ok), ensure_room(list, width, nmore, ok),
 !>   push_record(list, rec, ok)        grow and fill a table; ok = .false. when
@@ -16,6 +16,7 @@
 module msh_data
   use kinds, only: dp, i8
   use sorting, only: search_columns
+  use text_scan, only: string_t
   implicit none
   private
   public :: msh_data_t, record_list_t, string_t, raw_width
@@ -24,10 +25,6 @@ module msh_data
   integer, parameter :: raw_width = 11             !< nen, 9 nodes, line: an element read
 
   !> A character string of any length.
-  type :: string_t
-    character(len=:), allocatable :: s
-  end type string_t
-
   !> A growing table of integer records of a fixed width.
   type :: record_list_t
     integer :: n = 0                          !< number of records held

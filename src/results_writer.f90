@@ -6,7 +6,7 @@
 !>
 !> Programming interface
 !>   type(results_t)      everything a run computed that the files report
-!>   type(string_t)       one string of any length (results_t's lists of names)
+!>   type(string_t)       one string of any length (text_scan's; results_t's lists of names)
 !>   write_vtk(path, title, bodies, r, ok)
 !>   write_contact_csv(path, cs, r, ok)
 !>   write_summary(path, r, ok)
@@ -18,6 +18,7 @@ module results_writer
   use mesh, only: file_item, node_in_file
   use contact_set, only: contact_set_t, row_of_node, node_rows, node_traction
   use diagnostics, only: int_to_str
+  use text_scan, only: string_t
   use text_buffer, only: text_buffer_t, open_text, open_memory, put_text, put_line, put_real, put_int, put_newline, &
                          close_text
   implicit none
@@ -34,10 +35,6 @@ module results_writer
   !> assignment of a derived type loses the elements of such an array
   !> component (NUL bytes in the copy), and results_t is copied while the
   !> load steps are solved.
-  type :: string_t
-    character(len=:), allocatable :: s
-  end type string_t
-
   type :: results_t
     character(len=:), allocatable :: effects     !< effects simulated
     logical :: axisymmetric = .false.            !< forces for the full circle (summary force_basis)

@@ -30,6 +30,9 @@
 !>   is_name(s)                      [A-Za-z0-9_.-]+ (bodies, boundaries, files)
 !>   is_identifier(s)                [A-Za-z_][A-Za-z0-9_]*, at most 64 (.geo variables)
 !>   is_printable(s), ends_with_ci(s, suffix)
+!>   type(string_t)                  one string of its own length (%s), for
+!>                                   arrays of strings: gfortran 12 does not copy
+!>                                   arrays of deferred-length strings safely
 module text_scan
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp, i8
@@ -38,6 +41,12 @@ module text_scan
   public :: scan_integer, scan_real, parse_real, line_items
   public :: is_blank, is_digit, is_letter, lower, upper
   public :: parse_integer, is_name, is_identifier, is_printable, ends_with_ci
+  public :: string_t
+
+  !> One string of its own length; an array of them is a list of strings.
+  type :: string_t
+    character(len=:), allocatable :: s
+  end type string_t
 
   integer, parameter :: max_deck_number_length = 400   !< longest number of a deck value
   integer, parameter :: max_deck_exponent = 307        !< deck values below 1e308 in magnitude

@@ -4,7 +4,7 @@
 !> sides (a strict bound refuses the bound itself, an inclusive one takes it).
 program test_deck_syntax
   use kinds, only: dp
-  use deck_syntax, only: state_t, stmt_t, key_t, key_values_t, text_t, read_keys, store_echo, split_words, &
+  use deck_syntax, only: state_t, stmt_t, key_t, key_values_t, string_t, read_keys, store_echo, split_words, &
                          join_equals, classify_words, real_key, integer_key, choice_key, ramp_key, curve_key, &
                          name_key, text_key
   use testing, only: check, check_close, finish_tests
@@ -25,7 +25,7 @@ contains
     type(state_t), intent(out) :: s
     type(key_values_t), intent(out) :: v
     type(stmt_t) :: st
-    type(text_t), allocatable :: tok(:)
+    type(string_t), allocatable :: tok(:)
     integer :: ntok
 
     allocate(s%errs(16), s%echo(4))
