@@ -8,7 +8,7 @@
 module deck_boundaries
   use diagnostics, only: diag_t, add_error
   use deck_reader, only: deck_t
-  use mesh, only: find_boundary, name_list
+  use mesh, only: find_name, name_list
   use body, only: body_t
   implicit none
   private
@@ -32,7 +32,7 @@ contains
     character(len=*), intent(in) :: name, what
     logical, intent(in) :: curve
     type(diag_t), intent(inout) :: diag
-    ib = find_boundary(bd%mesh, name)
+    ib = find_name(bd%mesh%bnd, name)
     if (ib == 0) then
       call add_error(diag, deck%file, line, what // ': unknown boundary "' // name // '" in body "' // &
                      bd%name // '" (expected one of: ' // name_list(bd%mesh%bnd, 'none: the mesh names no boundary') // ')')

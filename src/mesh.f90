@@ -16,9 +16,8 @@
 !>        is clockwise, and report to diag: no elements, mixed orientation
 !>        (inverted elements), degenerate or non-convex elements, boundary edges
 !>        or points that name nodes outside the mesh
-!>   find_boundary(mesh, name)  index into mesh%bnd of the boundary or point set
-!>        called name, 0 when there is none
-!>   find_region(mesh, name)    index into mesh%reg, 0 when there is none
+!>   find_name(mesh%bnd, name)  index of the boundary or point set called name
+!>        (mesh%reg: of the region), 0 when there is none
 !>   name_list(mesh%bnd, none)  the names, 'a, b, c' (none: the text when there is none)
 !>   boundary_nodes(b, nodes)   sorted distinct nodes of a boundary or point set
 !>        (the mid-side nodes of its edges too)
@@ -38,7 +37,7 @@ module mesh
   use elements, only: corner_count, quadrature_rule, shape_at, max_nen
   implicit none
   private
-  public :: mesh_t, named_t, boundary_t, region_t, finalize_mesh, find_boundary, find_region, name_list
+  public :: mesh_t, named_t, boundary_t, region_t, finalize_mesh, find_name, name_list
   public :: boundary_nodes, element_area, mesh_size, is_quadratic
   public :: order_for_locality, file_item, node_in_file, hilbert_index, locality_min_nodes
 
@@ -595,26 +594,13 @@ contains
     end do
   end function min_corner_cross
 
-  !> Index of the boundary or point set called name; 0 when none.
-  integer function find_boundary(mesh, name) result(ib)
-    type(mesh_t), intent(in) :: mesh
-    character(len=*), intent(in) :: name
-    ib = 0
-    if (allocated(mesh%bnd)) ib = find_name(mesh%bnd, name)
-  end function find_boundary
-
-  !> Index of the element region called name; 0 when none.
-  integer function find_region(mesh, name) result(ir)
-    type(mesh_t), intent(in) :: mesh
-    character(len=*), intent(in) :: name
-    ir = 0
-    if (allocated(mesh%reg)) ir = find_name(mesh%reg, name)
-  end function find_region
-
-  !> Index of the first item of list called name; 0 when none.
+  !> Index of the first item of list called name; 0 when none or when list is
+  !> absent (an unallocated list: mesh%bnd or mesh%reg of a mesh without any).
   pure integer function find_name(list, name) result(k)
-    class(named_t), intent(in) :: list(:)
+    class(named_t), intent(in), optional :: list(:)
     character(len=*), intent(in) :: name
+    k = 0
+    if (.not. present(list)) return
     do k = 1, size(list)
       if (list(k)%name == name) return
     end do

@@ -29,7 +29,7 @@ module scene
   use kinds, only: dp
   use diagnostics, only: diag_t, add_error, has_errors, int_to_str, error_t, real_to_str
   use deck_reader, only: deck_t, body_deck_t, LOAD_TRACTION, LOAD_PRESSURE, rigid_deck_t
-  use mesh, only: mesh_t, is_quadratic, finalize_mesh, find_region, order_for_locality, name_list, node_in_file, &
+  use mesh, only: mesh_t, is_quadratic, finalize_mesh, find_name, order_for_locality, name_list, node_in_file, &
                   locality_min_nodes
   use mesh_rect, only: make_rect_mesh
   use gmsh_reader, only: read_gmsh_file
@@ -489,7 +489,7 @@ contains
     do k = 1, size(bdeck%thermals)
       associate(th => bdeck%thermals(k))
         if (len(th%region) == 0) cycle
-        ir = find_region(bd%mesh, th%region)
+        ir = find_name(bd%mesh%reg, th%region)
         if (ir == 0) then
           call add_error(diag, deck%file, th%line, 'THERMAL: unknown region "' // th%region // '" in body "' // &
                          bd%name // '" (expected one of: ' // &

@@ -17,7 +17,7 @@ program test_gmsh_reader
   use kinds, only: dp, i8
   use diagnostics, only: diag_t, int_to_str
   use elements, only: quadrature_rule, shape_at
-  use mesh, only: mesh_t, finalize_mesh, find_boundary, find_region, element_area, boundary_nodes
+  use mesh, only: mesh_t, finalize_mesh, find_name, element_area, boundary_nodes
   use gmsh_reader, only: read_gmsh_file
   use gmsh_runner, only: gmsh_options_t, mesh_geo_file
   use sorting, only: sort_small
@@ -65,7 +65,7 @@ contains
     call check(d%count == 0, what // ': read and finalized without error')
     if (d%count > 0) return
     call check(all(m%nen == nen) .and. size(m%conn, 1) == 9, what // ': every element has ' // int_to_str(nen) // ' nodes')
-    ib = find_boundary(m, 'inner')
+    ib = find_name(m%bnd, 'inner')
     call check(ib > 0, what // ': boundary "inner" found')
     if (ib == 0) return
     call check(allocated(m%bnd(ib)%mid) .and. m%bnd(ib)%nseg == 3, what // ': 3 three-node edges on "inner"')
@@ -104,7 +104,7 @@ contains
     call check(all(m41%nen == 3) .and. all(m41%conn(4, :) == 0), 'square: triangles have nen = 3, conn(4,:) = 0')
     call check(size(m41%bnd) == 5, 'square: 4 physical curves + 1 physical point')
     do k = 1, 4
-      ib = find_boundary(m41, trim(sides(k)))
+      ib = find_name(m41%bnd, trim(sides(k)))
       call check(ib > 0, 'square: boundary ' // trim(sides(k)) // ' exists')
       if (ib == 0) cycle
       call check(m41%bnd(ib)%nseg == n - 1 .and. m41%bnd(ib)%npoint == 0, &
@@ -114,15 +114,15 @@ contains
         1.0e-12_dp, 'square: boundary ' // trim(sides(k)) // ' lies on its side')
       call check_close(total_length(m41, ib), 1.0_dp, 1.0e-12_dp, 'square: boundary ' // trim(sides(k)) // ' has length 1')
     end do
-    ib = find_boundary(m41, 'corner')
+    ib = find_name(m41%bnd, 'corner')
     call check(ib > 0, 'square: physical point corner exists')
     if (ib > 0) then
       call check(m41%bnd(ib)%npoint == 1 .and. m41%bnd(ib)%nseg == 0, 'square: corner holds one point, no edge')
       call check_small(maxval(abs(m41%x(:, m41%bnd(ib)%points(1)))), 0.0_dp, 'square: corner is at (0,0)')
     end if
-    call check(find_region(m41, 'body') > 0 .and. find_region(m41, '7') > 0 .and. size(m41%reg) == 2, &
+    call check(find_name(m41%reg, 'body') > 0 .and. find_name(m41%reg, '7') > 0 .and. size(m41%reg) == 2, &
       'square: regions "body" and unnamed 7 (named "7")')
-    if (find_region(m41, '7') > 0) call check(size(m41%reg(find_region(m41, '7'))%elems) == m41%nelem, &
+    if (find_name(m41%reg, '7') > 0) call check(size(m41%reg(find_name(m41%reg, '7'))%elems) == m41%nelem, &
       'square: region 7 holds every element')
     call check(same_mesh(m22, m41), 'square: MSH 2.2 and 4.1 give the same mesh')
     call finalize_mesh(m41, 'square_41.msh', dfin)
@@ -146,20 +146,20 @@ contains
     call check(count(m41%nen == 4) == (n - 1)**2 .and. count(m41%nen == 3) == 2 * (n - 1)**2, &
       'mixed: (n-1)**2 quadrangles and 2 (n-1)**2 triangles')
     call check(all(m41%conn(4, :) == 0 .eqv. m41%nen == 3), 'mixed: conn(4,:) = 0 exactly for triangles')
-    ir = find_region(m41, 'quads')
+    ir = find_name(m41%reg, 'quads')
     call check(ir > 0, 'mixed: region quads exists')
     if (ir > 0) call check(size(m41%reg(ir)%elems) == (n - 1)**2 .and. all(m41%nen(m41%reg(ir)%elems) == 4), &
       'mixed: region quads holds the quadrangles')
-    ir = find_region(m41, 'whole')
+    ir = find_name(m41%reg, 'whole')
     if (ir > 0) call check(size(m41%reg(ir)%elems) == m41%nelem, 'mixed: region whole holds every element')
     call check(size(m41%bnd) == 2, 'mixed: physical point and curve named "right" make one boundary')
-    ib = find_boundary(m41, 'right')
+    ib = find_name(m41%bnd, 'right')
     if (ib > 0) then
       call check(m41%bnd(ib)%nseg == n - 1 .and. m41%bnd(ib)%npoint == 1, 'mixed: right has n-1 edges and 1 point')
       call check_small(maxval(abs(m41%x(:, m41%bnd(ib)%points(1)) - [2.0_dp, 0.0_dp])), 0.0_dp, &
         'mixed: the point of right is (2,0)')
     end if
-    ib = find_boundary(m41, 'bottom')
+    ib = find_name(m41%bnd, 'bottom')
     if (ib > 0) then
       call check(m41%bnd(ib)%nseg == 2 * (n - 1), 'mixed: bottom has 2 (n-1) edges')
       call check_close(total_length(m41, ib), 2.0_dp, 1.0e-12_dp, 'mixed: bottom has length 2')
@@ -191,7 +191,7 @@ contains
     call check(size(m41%reg) == 0, 'disk: no physical surface, no region')
     call check(size(m22%bnd) == 0, 'disk: MSH 2.2 with SaveAll carries no physical tags (gmsh writes 0)')
     call check(same_nodes_elements(m22, m41), 'disk: MSH 2.2 and 4.1 give the same nodes and elements')
-    ib = find_boundary(m41, 'rim')
+    ib = find_name(m41%bnd, 'rim')
     call check(ib > 0, 'disk: boundary rim exists')
     if (ib == 0) return
     nseg = m41%bnd(ib)%nseg
@@ -240,9 +240,9 @@ contains
       if (m(k)%nelem /= 2) cycle
       call check(all(m(k)%conn(:, 1) == [1, 2, 3, 0]) .and. all(m(k)%conn(:, 2) == [1, 3, 4, 0]), &
         files(k) // ': tags 10 30 20 7 map to nodes 1 2 3 4, file node order kept')
-      ib = find_boundary(m(k), '2')
-      ip = find_boundary(m(k), '3')
-      ir = find_region(m(k), '1')
+      ib = find_name(m(k)%bnd, '2')
+      ip = find_name(m(k)%bnd, '3')
+      ir = find_name(m(k)%reg, '1')
       call check(ib > 0 .and. ip > 0 .and. ir > 0, files(k) // ': unnamed groups named by their numbers')
       if (ib > 0) call check(m(k)%bnd(ib)%nseg == 1, files(k) // ': boundary 2 has one edge')
       if (ib > 0) call check(all(m(k)%bnd(ib)%seg(:, 1) == [1, 2]), files(k) // ': its edge is (10,30) = (1,2)')
@@ -425,7 +425,7 @@ contains
     if (ok) then
       call read_gmsh_file(msh, m, d)
       call check(d%count == 0 .and. m%nnode == 36 .and. m%nelem == 50, 'geo: n = 6 gives 36 nodes, 50 triangles')
-      ib = find_boundary(m, 'bottom')
+      ib = find_name(m%bnd, 'bottom')
       if (ib > 0) call check(m%bnd(ib)%nseg == 5, 'geo: bottom has n-1 = 5 edges')
     end if
     call delete_file(log)
@@ -590,7 +590,7 @@ contains
     same = size(a%bnd) == size(b%bnd) .and. size(a%reg) == size(b%reg)
     if (.not. same) return
     do k = 1, size(a%bnd)
-      j = find_boundary(b, a%bnd(k)%name)
+      j = find_name(b%bnd, a%bnd(k)%name)
       if (j == 0) then
         same = .false.
         return
@@ -601,7 +601,7 @@ contains
       if (.not. same) return
     end do
     do k = 1, size(a%reg)
-      j = find_region(b, a%reg(k)%name)
+      j = find_name(b%reg, a%reg(k)%name)
       if (j == 0) then
         same = .false.
         return
