@@ -17,7 +17,7 @@ program test_results_writer
   character(len=*), parameter :: rigids(2) = [character(len=24) :: 'floor', 'die_of_the_press']
   character(len=*), parameter :: modes(2) = [character(len=48) :: 'slab translation 1 0', &
                                              'punch rotation 0.5 -1.25']
-  character(len=:), allocatable :: path
+  character(len=*), parameter :: path = 'test_results_writer.summary'
   integer :: k
 
   call fill(r)
@@ -39,7 +39,6 @@ program test_results_writer
   r = copied(returned)
   call check(holds(r), 'function result assigned over an allocated one: every string survives')
 
-  path = 'test_results_writer.summary'
   call write_summary_of(copied(r), path)
   do k = 1, size(params)
     call check(has_line(path, 'parameter ' // trim(params(k))), 'summary line parameter ' // trim(params(k)))
