@@ -458,15 +458,20 @@ contains
   ! Internals
   ! ---------------------------------------------------------------------------
 
-  !> .true. when g and prob pass check_friction_problem and lam has n + nt
-  !> entries (for the measures).
+  !> .true. when the sizes of g, prob and lam (nlam entries) agree and trow is
+  !> in range: what the measures need.  The values are not scanned here (G is
+  !> the run's largest array and the measures run after every solve, which
+  !> checked them: check_friction_problem).
   logical function valid_problem(g, prob, nlam)
     real(dp), intent(in) :: g(:, :)
     type(friction_problem_t), intent(in) :: prob
     integer, intent(in) :: nlam
-    type(lcp_report_t) :: rep
-    call check_friction_problem(g, prob, rep)
-    valid_problem = rep%info == 0 .and. nlam == prob%n + prob%nt
+    integer :: nrow
+    nrow = prob%n + prob%nt
+    valid_problem = size(g, 1) == nrow .and. size(g, 2) == nrow .and. nlam == nrow .and. &
+      size(prob%qn) == prob%n .and. size(prob%qt) == prob%nt .and. size(prob%trow) == prob%nt .and. &
+      size(prob%cmu) == prob%nt .and. size(prob%bound) == prob%nt
+    if (valid_problem) valid_problem = all(prob%trow >= 1 .and. prob%trow <= prob%n)
   end function valid_problem
 
   !> Build the scaled problem (module header) from valid arguments.

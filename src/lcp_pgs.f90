@@ -245,7 +245,7 @@ contains
   !>   x     (inout) (m) the iterate
   !>   v     (inout) (m) its gaps
   subroutine pgs_set_row(a, j, xnew, x, v)
-    real(dp), intent(in) :: a(:, :)
+    real(dp), intent(in), contiguous :: a(:, :)   ! column j goes to daxpy without a copy
     integer, intent(in) :: j
     real(dp), intent(in) :: xnew
     real(dp), intent(inout) :: x(:), v(:)
