@@ -22,7 +22,7 @@
 module lcp_lemke
   use kinds, only: dp
   use lapack_interfaces, only: daxpy, dgemv, dger
-  use diagnostics, only: int_to_str, real_to_str
+  use diagnostics, only: int_to_str
   use lcp_scaling, only: lcp_options_t, lcp_report_t, scaled_lcp_t, prepare_lcp, measure_solution, scale_of, &
                          set_report, report_out_of_memory, residual_outcome, check_lcp_options
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite

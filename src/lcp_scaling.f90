@@ -86,14 +86,16 @@ contains
 
   !> Check the arguments, scale, and split off the zero rows.
   !>   W, q       (in)    the problem
-  !>   z          (inout) the caller's z: unchanged but on rep%info = 1, when
-  !>                      it is set to 0 and measured (residual, complementarity)
+  !>   z          (inout) the caller's z: unchanged but on rep%info = 1 or 3,
+  !>                      when it is set to 0 and measured (residual,
+  !>                      complementarity)
   !>   opts       (in)    options
   !>   check_omega(in)    .true. for PGS
   !>   p          (out)   the scaled problem on the rows kept (d set whenever the
   !>                      sizes are valid)
   !>   rep        (out)   info -1..-4 on an invalid argument (message set); 1 when
-  !>                      a zero row has a clearly negative q_i; 0 otherwise
+  !>                      a zero row has a clearly negative q_i; 3 when the scaled
+  !>                      problem's arrays cannot be allocated; 0 otherwise
   subroutine prepare_lcp(W, q, z, opts, check_omega, p, rep)
     real(dp), intent(in) :: W(:, :)
     real(dp), intent(in) :: q(:)
@@ -152,6 +154,8 @@ contains
     if (st /= 0) then
       call report_out_of_memory(rep, 'scaling the LCP (' // int_to_str(p%m) // ' rows)', &
                                 8.0_dp * real(p%m, dp) * real(p%m, dp))
+      z = 0.0_dp
+      call measure_solution(W, q, p%d, z, rep)
       return
     end if
     p%m = 0

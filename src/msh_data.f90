@@ -24,7 +24,6 @@ module msh_data
 
   integer, parameter :: raw_width = 11             !< nen, 9 nodes, line: an element read
 
-  !> A character string of any length.
   !> A growing table of integer records of a fixed width.
   type :: record_list_t
     integer :: n = 0                          !< number of records held

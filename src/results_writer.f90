@@ -30,8 +30,8 @@ module results_writer
   character(len=8), parameter :: phase_names(nphase) = &
     [character(len=8) :: 'mesh', 'assemble', 'factor', 'condense', 'lcp', 'recover', 'output', 'total']
 
-  !> One string of any length.  results_t's lists of names and lines are
-  !> arrays of it, not deferred-length character arrays: gfortran 12's
+  !> What a run found, for the writers.  Its lists of names and lines are
+  !> arrays of string_t, not deferred-length character arrays: gfortran 12's
   !> assignment of a derived type loses the elements of such an array
   !> component (NUL bytes in the copy), and results_t is copied while the
   !> load steps are solved.
