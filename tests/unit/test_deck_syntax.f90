@@ -50,6 +50,16 @@ contains
     if (s%nerr >= 1) call check(s%errs(1)%text == text, name // ': "' // s%errs(1)%text // '"')
   end subroutine check_message
 
+  !> Read `line` against keys: it is refused with the single message text.
+  subroutine check_refused(line, keys, text, name)
+    character(len=*), intent(in) :: line, text, name
+    type(key_t), intent(in) :: keys(:)
+    type(state_t) :: s
+    type(key_values_t) :: v
+    call read_line(line, keys, s, v)
+    call check_message(s, text, name)
+  end subroutine check_refused
+
   subroutine test_number_ranges()
     type(state_t) :: s
     type(key_values_t) :: v
@@ -65,16 +75,14 @@ contains
     call read_line('MATERIAL E=0', keys, s, v)
     call check_message(s, 'bad value E=0 (expected E > 0)', 'strict lower bound')
     call check(.not. v%ok(1), 'E=0 not ok')
-    call read_line('MATERIAL nu=0.5', keys, s, v)
-    call check_message(s, 'bad value nu=0.5 (expected -1 < nu < 0.5)', 'strict upper bound')
-    call read_line('MATERIAL nu=-1', keys, s, v)
-    call check_message(s, 'bad value nu=-1 (expected -1 < nu < 0.5)', 'strict lower bound of two')
-    call read_line('MATERIAL mu=1000.5', keys, s, v)
-    call check_message(s, 'bad value mu=1000.5 (expected 0 <= mu <= 1000)', 'inclusive upper bound')
-    call read_line('MATERIAL tresca=-2', keys, s, v)
-    call check_message(s, 'bad value tresca=-2 (expected tresca >= 0, a shear stress)', 'note after the range')
-    call read_line('MATERIAL E=1e400', keys, s, v)
-    call check_message(s, 'bad number "1e400" for "E" (expected a finite number)', 'not a finite number')
+    call check_refused('MATERIAL nu=0.5', keys, 'bad value nu=0.5 (expected -1 < nu < 0.5)', 'strict upper bound')
+    call check_refused('MATERIAL nu=-1', keys, 'bad value nu=-1 (expected -1 < nu < 0.5)', 'strict lower bound of two')
+    call check_refused('MATERIAL mu=1000.5', keys, &
+                       'bad value mu=1000.5 (expected 0 <= mu <= 1000)', 'inclusive upper bound')
+    call check_refused('MATERIAL tresca=-2', keys, &
+                       'bad value tresca=-2 (expected tresca >= 0, a shear stress)', 'note after the range')
+    call check_refused('MATERIAL E=1e400', keys, &
+                       'bad number "1e400" for "E" (expected a finite number)', 'not a finite number')
   end subroutine test_number_ranges
 
   subroutine test_integers_and_choices()
@@ -89,14 +97,11 @@ contains
     call check(v%k(1) == 3 .and. v%k(2) == 0, 'integers converted')
     call check(v%text(3)%s == 'pdas', 'choice in its canonical spelling')
     call check(v%text(5)%s == 'x,y', 'text as written')
-    call read_line('SOLVER nx=0', keys, s, v)
-    call check_message(s, 'bad value nx=0 (expected a positive integer)', 'positive integer')
-    call read_line('SOLVER maxit=1.5', keys, s, v)
-    call check_message(s, 'bad value maxit=1.5 (expected an integer >= 0)', 'integer at least 0')
-    call read_line('SOLVER lcp=newton', keys, s, v)
-    call check_message(s, 'bad value lcp=newton (expected lcp=auto|lemke|pgs|pdas)', 'choice')
-    call read_line('SOLVER region=a/b', keys, s, v)
-    call check_message(s, 'bad region name "a/b" (expected letters, digits, _ . - only)', 'name')
+    call check_refused('SOLVER nx=0', keys, 'bad value nx=0 (expected a positive integer)', 'positive integer')
+    call check_refused('SOLVER maxit=1.5', keys, 'bad value maxit=1.5 (expected an integer >= 0)', 'integer at least 0')
+    call check_refused('SOLVER lcp=newton', keys, 'bad value lcp=newton (expected lcp=auto|lemke|pgs|pdas)', 'choice')
+    call check_refused('SOLVER region=a/b', keys, &
+                       'bad region name "a/b" (expected letters, digits, _ . - only)', 'name')
   end subroutine test_integers_and_choices
 
   subroutine test_required_and_unknown()
@@ -105,17 +110,15 @@ contains
     type(key_t), allocatable :: keys(:)
 
     keys = [real_key('rho', required=.true., gt=0.0_dp), real_key('x')]
-    call read_line('DENSITY x=1', keys, s, v)
-    call check_message(s, 'missing key "rho" for DENSITY (expected DENSITY USAGE)', 'required key')
-    call read_line('DENSITY rho=1 y=2', keys, s, v)
-    call check_message(s, 'unknown key "y" for DENSITY (expected rho, x)', 'unknown key')
-    call read_line('DENSITY rho=1 RHO=2', keys, s, v)
-    call check_message(s, 'duplicate key "rho" (expected each key at most once)', 'repeated key, any case')
+    call check_refused('DENSITY x=1', keys, 'missing key "rho" for DENSITY (expected DENSITY USAGE)', 'required key')
+    call check_refused('DENSITY rho=1 y=2', keys, 'unknown key "y" for DENSITY (expected rho, x)', 'unknown key')
+    call check_refused('DENSITY rho=1 RHO=2', keys, &
+                       'duplicate key "rho" (expected each key at most once)', 'repeated key, any case')
     call read_line('DENSITY rho=', keys, s, v)
     call check(s%nerr == 1, 'empty value: one message')
     call check(s%errs(1)%text == 'missing value for "rho" (expected rho=number)', 'empty value')
-    call read_line('DENSITY rho=1 word', keys, s, v)
-    call check_message(s, 'unexpected word "word" (expected DENSITY USAGE)', 'a word where none is taken')
+    call check_refused('DENSITY rho=1 word', keys, &
+                       'unexpected word "word" (expected DENSITY USAGE)', 'a word where none is taken')
   end subroutine test_required_and_unknown
 
   subroutine test_load_path()
@@ -129,11 +132,11 @@ contains
     call check(v%curve == '', 'no curve: empty name')
     call read_line('BODYFORCE fx=1 curve=up', keys, s, v)
     call check(s%nerr == 0 .and. v%curve == 'up' .and. all(v%ramp == 0), 'curve=up read, no ramp')
-    call read_line('BODYFORCE ramp=5:2', keys, s, v)
-    call check_message(s, 'bad ramp "5:2" (expected ramp=k0:k1 with k0 < k1: the load rises from step k0 to ' // &
+    call check_refused('BODYFORCE ramp=5:2', keys, &
+                       'bad ramp "5:2" (expected ramp=k0:k1 with k0 < k1: the load rises from step k0 to ' // &
                        'step k1)', 'ramp k0 >= k1')
-    call read_line('BODYFORCE ramp=0:1 curve=up', keys, s, v)
-    call check_message(s, 'ramp= and curve= together (expected one load path per statement: ramp=k0:k1 or ' // &
+    call check_refused('BODYFORCE ramp=0:1 curve=up', keys, &
+                       'ramp= and curve= together (expected one load path per statement: ramp=k0:k1 or ' // &
                        'curve=NAME)', 'ramp and curve')
   end subroutine test_load_path
 
