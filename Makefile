@@ -12,10 +12,13 @@ else
 PROGRAM := $(BIN)/contact2d-$(MODE)
 endif
 
-FSRC    := $(sort $(wildcard src/*.f90))
-CSRC    := $(sort $(wildcard src/*.c))
-FOBJ    := $(patsubst src/%.f90,$(BUILD)/%.o,$(FSRC))
-COBJ    := $(patsubst src/%.c,$(BUILD)/%.o,$(CSRC))
+# The layer folders of src/, bottom first (src/layers); the objects of all of
+# them go to one folder per MODE, since a module's name is its file's.
+LAYERS  := $(shell sed -n 's/^\([a-z][a-z0-9_]*\) .*/\1/p' src/layers)
+FSRC    := $(foreach l,$(LAYERS),$(sort $(wildcard src/$(l)/*.f90))) src/contact2d.f90
+CSRC    := $(foreach l,$(LAYERS),$(sort $(wildcard src/$(l)/*.c)))
+FOBJ    := $(patsubst %.f90,$(BUILD)/%.o,$(notdir $(FSRC)))
+COBJ    := $(patsubst %.c,$(BUILD)/%.o,$(notdir $(CSRC)))
 LIBOBJ  := $(filter-out $(BUILD)/contact2d.o,$(FOBJ)) $(COBJ)
 UNITSRC := $(sort $(wildcard tests/unit/test_*.f90))
 UNITBIN := $(patsubst tests/unit/%.f90,$(BUILD)/tests/%,$(UNITSRC))
@@ -30,11 +33,18 @@ deps:
 $(PROGRAM): $(BUILD)/contact2d.o $(LIBOBJ) | $(BIN)
 	$(FC) $(FFLAGS) -o $@ $^ $(LIBS)
 
-$(BUILD)/%.o: src/%.f90 | $(BUILD)
-	$(FC) $(FFLAGS) -J$(BUILD) -c $< -o $@
+# One pair of rules per folder: src/LAYER/NAME.f90 or .c -> BUILD/NAME.o.
+define layer_rules
+$$(BUILD)/%.o: src/$(1)/%.f90 | $$(BUILD)
+	$$(FC) $$(FFLAGS) -J$$(BUILD) -c $$< -o $$@
 
-$(BUILD)/%.o: src/%.c include/*.h | $(BUILD)
-	$(CC) $(CFLAGS) -c $< -o $@
+$$(BUILD)/%.o: src/$(1)/%.c include/*.h | $$(BUILD)
+	$$(CC) $$(CFLAGS) -c $$< -o $$@
+endef
+$(foreach l,$(LAYERS),$(eval $(call layer_rules,$(l))))
+
+$(BUILD)/contact2d.o: src/contact2d.f90 | $(BUILD)
+	$(FC) $(FFLAGS) -J$(BUILD) -c $< -o $@
 
 $(BUILD)/testing.o: tests/unit/testing.f90 | $(BUILD)
 	$(FC) $(FFLAGS) -J$(BUILD) -c $< -o $@

@@ -1,5 +1,5 @@
 /* blas_start.h: OpenBLAS's threads and work buffers under an address-space
- * limit (src/blas_start.c), once at start-up (threads.f90). */
+ * limit (src/sys/blas_start.c), once at start-up (threads.f90). */
 #ifndef CONTACT2D_BLAS_START_H
 #define CONTACT2D_BLAS_START_H
 #include <stdint.h>

@@ -1,9 +1,9 @@
-/* cholmod_factor.h: the CHOLMOD handle and its factor (src/cholmod_factor.c).
+/* cholmod_factor.h: the CHOLMOD handle and its factor (src/linalg/cholmod_factor.c).
  *
  * One handle owns one cholmod_common and at most one factor L of a symmetric
  * positive definite matrix A (upper triangle given, compressed columns).  The
- * Fortran side sees the handle as an opaque type(c_ptr); src/cholmod_binding.f90
- * holds the matching bind(c) interfaces and src/sparse_cholesky.f90 the API.
+ * Fortran side sees the handle as an opaque type(c_ptr); src/linalg/cholmod_binding.f90
+ * holds the matching bind(c) interfaces and src/linalg/sparse_cholesky.f90 the API.
  *
  * The C layer, one job per file: this one (handle, analysis, numeric
  * factorization, solves, statistics), include/fill_ordering.h (the

@@ -1,6 +1,6 @@
 /* cholmod_handle.h: the handle behind the opaque pointer of cholmod_factor.h,
- * shared by the files of the C layer that read it (src/cholmod_factor.c, which
- * owns it, and src/factor_inspection.c).  Not for Fortran.
+ * shared by the files of the C layer that read it (src/linalg/cholmod_factor.c, which
+ * owns it, and src/linalg/factor_inspection.c).  Not for Fortran.
  *
  * Ownership: a handle is created by c2d_chol_create and freed by
  * c2d_chol_destroy; it owns its cholmod_common and the factor L.  Every

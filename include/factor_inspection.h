@@ -1,4 +1,4 @@
-/* factor_inspection.h: reading a supernodal factor (src/factor_inspection.c):
+/* factor_inspection.h: reading a supernodal factor (src/linalg/factor_inspection.c):
  * its pivots, and its trailing block L_cc when a block of dofs was ordered
  * last (include/cholmod_factor.h).  Indices 1-based, as Fortran holds them.
  *

@@ -1,5 +1,5 @@
 /* fill_ordering.h: the fill-reducing ordering of a stiffness pattern
- * (src/fill_ordering.c), for the analysis of src/cholmod_factor.c.
+ * (src/linalg/fill_ordering.c), for the analysis of src/linalg/cholmod_factor.c.
  *
  * The ordering works on the graph of dof groups (the mesh nodes: a node's
  * dofs share their neighbours), a quarter of the edges of the dof graph, and

@@ -1,5 +1,5 @@
 /* memory_limit.h: how much more memory this process can have
- * (src/memory_limit.c). */
+ * (src/sys/memory_limit.c). */
 #ifndef CONTACT2D_MEMORY_LIMIT_H
 #define CONTACT2D_MEMORY_LIMIT_H
 #include <stdint.h>

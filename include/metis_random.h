@@ -1,4 +1,4 @@
-/* metis_random.h: METIS orderings side by side (src/metis_random.c).
+/* metis_random.h: METIS orderings side by side (src/linalg/metis_random.c).
  *
  * METIS draws its random numbers from a sequence per thread, so that an
  * ordering does not depend on what runs beside it.  Every METIS call of the

@@ -1,7 +1,7 @@
 /* process_runner: start a program with an argument vector (no shell), in a
  * process group of its own, with its output sent to a log file, and wait for
  * it with a time limit.  A watchdog process (a child subreaper, see
- * src/process_runner.c) starts it and kills it and everything it started,
+ * src/sys/process_runner.c) starts it and kills it and everything it started,
  * whatever group or session that moved to, when the limit passes, when the
  * program ends normally (strays it left behind), when c2d_kill_running is
  * called (the run's exit and signal cleanup, file_guard.c), and when this

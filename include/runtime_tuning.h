@@ -1,4 +1,4 @@
-/* runtime_tuning.h: the process-wide settings of a run (src/runtime_tuning.c),
+/* runtime_tuning.h: the process-wide settings of a run (src/sys/runtime_tuning.c),
  * made once at start-up, and the BLAS thread count a loop of factors side by
  * side sets for itself.
  *

@@ -13,7 +13,8 @@
 !> run log says what was done; bad input exits 2, a numerical failure or a
 !> problem without equilibrium exits 1, with the diagnosis.
 program contact2d
-  use diagnostics, only: error_t, fail_numerical, exit_program
+  use errors, only: error_t
+  use exits, only: fail_numerical, exit_program
   use command_line, only: parse_command_line
   use threads, only: start_threads
   use run_state, only: run_t

@@ -13,7 +13,8 @@
 !>     precision is reported (overflow = the body) instead of overflowing.
 program test_body
   use kinds, only: dp
-  use diagnostics, only: diag_t, error_t, int_to_str
+  use strings, only: int_to_str
+  use errors, only: diag_t, error_t
   use mesh, only: finalize_mesh
   use mesh_rect, only: make_rect_mesh
   use material, only: make_isotropic

@@ -12,7 +12,7 @@
 !> Also: the recovery u = K^-1 (f - C' mu) against the dense solve.
 program test_contact_condensation
   use kinds, only: dp
-  use diagnostics, only: diag_t, error_t
+  use errors, only: diag_t, error_t
   use mesh, only: finalize_mesh
   use mesh_rect, only: make_rect_mesh
   use material, only: make_isotropic

@@ -16,7 +16,8 @@
 !> Checks compare with tolerances scaled by the unit roundoff (n eps).
 program test_contact_set
   use kinds, only: dp
-  use diagnostics, only: diag_t, error_t, int_to_str
+  use strings, only: int_to_str
+  use errors, only: diag_t, error_t
   use mesh, only: finalize_mesh
   use mesh_rect, only: make_rect_mesh
   use material, only: make_isotropic

@@ -17,7 +17,7 @@
 !> Run from the repository root.
 program test_deck_reader
   use kinds, only: dp
-  use diagnostics, only: diag_t
+  use errors, only: diag_t
   use deck_reader, only: deck_t, read_deck, load_traction, load_pressure, curve_factor
   use testing, only: check, check_close, finish_tests
   implicit none

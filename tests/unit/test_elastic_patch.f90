@@ -14,7 +14,7 @@
 !> = 0, moment = 0).
 program test_elastic_patch
   use kinds, only: dp
-  use diagnostics, only: diag_t, error_t
+  use errors, only: diag_t, error_t
   use mesh, only: mesh_t, finalize_mesh, boundary_nodes
   use mesh_rect, only: make_rect_mesh
   use gmsh_reader, only: read_gmsh_file

@@ -6,7 +6,7 @@
 !> nt = 0 against lcp_solvers, and the failures that must be reported.
 program test_friction_lcp
   use kinds, only: dp, i8
-  use diagnostics, only: error_t
+  use errors, only: error_t
   use testing, only: check, check_close, check_small, finish_tests, urand, random_spd
   use lcp_solvers, only: lcp_options_t, lcp_report_t, solve_lcp_lemke, solve_lcp_pgs, solve_lcp_lemke_scaled
   use friction_lcp, only: friction_problem_t, friction_problem, solve_friction_lcp, friction_residual, &

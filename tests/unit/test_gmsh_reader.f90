@@ -15,7 +15,8 @@
 !> Data provenance: tests/unit/data/README.md.  Run from the repository root.
 program test_gmsh_reader
   use kinds, only: dp, i8
-  use diagnostics, only: diag_t, int_to_str
+  use strings, only: int_to_str
+  use errors, only: diag_t
   use elements, only: quadrature_rule, shape_at
   use mesh, only: mesh_t, finalize_mesh, find_name, element_area, boundary_nodes
   use gmsh_reader, only: read_gmsh_file

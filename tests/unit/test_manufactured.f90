@@ -8,7 +8,7 @@
 !> Set MMS_LEVELS=N in the environment to print a longer table (for studies).
 program test_manufactured
   use kinds, only: dp
-  use diagnostics, only: diag_t, error_t
+  use errors, only: diag_t, error_t
   use mesh, only: finalize_mesh
   use mesh_rect, only: make_rect_mesh
   use material, only: make_isotropic

@@ -5,7 +5,7 @@
 !> closed-form gaps), the input errors, and the steps both builders share.
 program test_mortar_operator
   use kinds, only: dp, i8
-  use diagnostics, only: error_t
+  use errors, only: error_t
   use mortar_operator, only: mortar_t, build_mortar, start_mortar, start_periodic, set_initial_gaps
   use lapack_interfaces, only: dlasrt
   use testing, only: check, check_close, check_small, finish_tests

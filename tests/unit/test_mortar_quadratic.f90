@@ -6,7 +6,7 @@
 !> of 64 panels per element (module header, 2.), and the periodic zone.
 program test_mortar_quadratic
   use kinds, only: dp
-  use diagnostics, only: error_t
+  use errors, only: error_t
   use mortar_operator, only: mortar_t
   use mortar_quadratic, only: build_mortar_quadratic, trace_point, gauss4
   use testing, only: check, check_close, check_small, finish_tests

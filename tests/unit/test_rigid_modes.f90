@@ -15,7 +15,7 @@
 !>     K, to round-off.
 program test_rigid_modes
   use kinds, only: dp
-  use diagnostics, only: diag_t, error_t
+  use errors, only: diag_t, error_t
   use mesh, only: finalize_mesh
   use mesh_rect, only: make_rect_mesh
   use material, only: make_isotropic

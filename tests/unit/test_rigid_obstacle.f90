@@ -7,7 +7,7 @@
 !> int (pi d - d) psi_k = 0 on an open slave, the row's rigid terms.
 program test_rigid_obstacle
   use kinds, only: dp
-  use diagnostics, only: error_t
+  use errors, only: error_t
   use mortar_operator, only: mortar_t
   use rigid_obstacle, only: rigid_shape_t, shape_line, shape_circle, shape_polyline, signed_distance, orient_shape, &
                             build_rigid_mortar, rigid_terms

@@ -10,7 +10,7 @@
 !> and the null vectors of the singular matrices.
 program test_sparse_cholesky
   use kinds, only: dp, i8
-  use diagnostics, only: error_t
+  use errors, only: error_t
   use testing, only: check, check_close, check_small, finish_tests
   use sparse_matrix, only: csc_t, csc_nnz, csc_symv, csc_from_triplets, csc_check
   use omp_lib, only: omp_get_max_threads, omp_set_num_threads

@@ -1,6 +1,6 @@
 ! Reallocations on assignment, which gfortran does not check (no stat=, no
 ! call to the runtime's error routine): the result of malloc or realloc is
-! written through as it is.  Built by ./check with src/fortran_oom.c and the
+! written through as it is.  Built by ./check with src/sys/fortran_oom.c and the
 ! program's link flags, run under an address-space limit.
 !   grow copy N     a(10) assigned b(N): a reallocated to N reals
 !   grow fresh N    an unallocated c assigned b(N): a malloc

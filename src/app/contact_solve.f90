@@ -1,0 +1,544 @@
+!> contact_solve: the contact problem of a run, once W and q are condensed:
+!> the choice of method (SOLVER lcp=, auto from the measured crossovers), the
+!> load stepping (OUTPUT steps=all without friction, the friction steps with
+!> it), the bodies and RIGIDs held only by contact (their mode amplitudes as
+!> unknowns or equality constraints) and the diagnoses when no equilibrium
+!> exists, naming the body, the RIGID or the direction.
+!>
+!> Why it exists: it is the method's decision layer between the condensed
+!> problem and the solvers (contact_lcp, friction_lcp, friction_modes); the
+!> program calls it once.  Who may use it: the program and its step modules
+!> (run_state's list).  No equilibrium or an unsolved problem ends the run
+!> (exit 1 with the diagnosis), as the program would; input the solvers
+!> cannot take ends it with exit 2 at the SOLVER line.
+!>
+!> Programming interface
+!>   solve_contact_lcp(run)      the contact problem, every load step it needs
+!>   check_floating_bodies(run)  a body with a free rigid mode must be in a CONTACT (exit 2)
+!>   check_floating_friction_solver(run)  lcp=pgs refused for friction on bodies held only by contact (exit 2)
+!>   check_unheld_loads(run)     no load along a rigid mode nothing holds (exit 1)
+!>   check_unheld_rigid_loads(run)  no load along a RIGID's direction nothing holds (exit 1)
+module contact_solve
+  use kinds, only: dp
+  use strings, only: int_to_str
+  use errors, only: error_t, add_error
+  use exits, only: stop_input_errors, fail_numerical
+  use run_state, only: run_t, ph_lcp
+  use run_report, only: say, say_step, lap
+  use scene, only: step_loads
+  use load_groups, only: group_factor
+  use contact_condensation, only: constraint_values
+  use lcp_solvers, only: lcp_options_t, lcp_report_t
+  use friction_lcp, only: solve_friction_lcp, friction_state, friction_problem_t, friction_problem
+  use friction_modes, only: solve_friction_floating, no_equilibrium
+  use contact_lcp, only: contact_solution_t, solve_contact
+  use rigid_modes, only: mode_name, motion_name, describe_motion, remove_motions
+  use mode_support, only: mode_split_t, split_free_modes
+  use rigid_support, only: split_rigid_modes, rigid_direction, pulled_rigid
+  use results_writer, only: results_t
+  use linear_system, only: solve_loads
+  use post_processing, only: pair_resultants, post_process, contact_measures, nodal_contact_fields, &
+                             check_finite_results
+  use run_outputs, only: write_step
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+  implicit none
+  private
+  public :: solve_contact_lcp, check_floating_bodies, check_floating_friction_solver, check_unheld_loads, &
+            check_unheld_rigid_loads
+
+contains
+
+  !> The contact problem of the run, by the method the deck asks for:
+  !> frictionless, LCP(W, q) with the free rigid modes as equality
+  !> constraints (contact_lcp), the final step alone unless OUTPUT steps=all
+  !> asks for every step; with friction, the load steps in order, each a
+  !> friction LCP warm-started from the last (friction_lcp, friction_modes).
+  !> Without contact only the earlier steps of OUTPUT steps=all are solved.
+  !>   run (inout) W, q, the splits on entry; res%mu (tau, slip), gaps and the contact measures on exit
+  subroutine solve_contact_lcp(run)
+    type(run_t), intent(inout) :: run
+    if (.not. run%with_contact) then
+      if (run%deck%output%steps_all) call solve_earlier_steps(run)
+      return
+    end if
+    if (run%cs%ntan > 0) then
+      call solve_friction_steps(run)
+    else
+      if (run%deck%output%steps_all) call solve_earlier_steps(run)
+      call solve_contact_problem(run)
+      run%step_iterations = run%res%lcp_iterations
+      if (run%deck%output%steps_all) then
+        call contact_measures(run)
+        call say_step(run, run%sc%steps, run%res%lcp_method, run%step_iterations, run%res%active_nodes)
+        deallocate(run%res%pressure, run%res%status)         ! measured again below, as without steps
+      end if
+    end if
+    call contact_measures(run)
+    call lap(run, ph_lcp)
+  end subroutine solve_contact_lcp
+
+  !> The condensed contact problem by the chosen method (with the free rigid
+  !> modes as equality constraints); mu, gaps, pressures, status.
+  subroutine solve_contact_problem(run)
+    type(run_t), intent(inout) :: run
+    type(lcp_options_t) :: opts
+    type(contact_solution_t) :: sol
+    character(len=:), allocatable :: method
+    integer :: j
+
+    opts%tol = run%deck%solver%tol
+    opts%maxit = run%deck%solver%maxit
+    opts%omega = run%deck%solver%omega
+    method = run%deck%solver%lcp
+    ! lcp=auto from the measured crossovers (doc/performance.md, "The three LCP
+    ! solvers"): up to about 100 constraints the three tie and Lemke's exact
+    ! pivoting is kept; above, the primal-dual active set method needs a few
+    ! Newton steps where the others need many pivots or sweeps
+    if (method == 'auto') then
+      if (run%cs%nrow <= 100) then
+        method = 'lemke'
+      else
+        method = 'pdas'
+      end if
+    end if
+    ! H = B R (how the free modes open the gaps), e = R' f (their load), the
+    ! combinations that the rows hold: mode_support (split)
+    if (run%rsplit%k > 0) then
+      ! the RIGIDs' free directions join the bodies' free modes (rigid_support)
+      call solve_contact(run%w, run%q, reshape([run%split%h, run%rsplit%h(1:run%cs%nrow, :)], [run%cs%nrow, &
+        run%fl%k + run%rsplit%k]), &
+                         [run%split%e, run%rsplit%e], &
+                         block_diagonal(run%split%held, run%rsplit%held), method, opts, sol)
+    else
+      call solve_contact(run%w, run%q, run%split%h, run%split%e, run%split%held, method, opts, sol)
+    end if
+    run%res%lcp_method = method
+    run%res%lcp_iterations = sol%rep%iterations
+    run%res%lcp_residual = sol%rep%residual
+    if (sol%rep%info /= 0) then
+      if (sol%rep%info == 1 .and. run%rsplit%k > 0) call diagnose_pulled_rigid(run)
+      if (allocated(sol%rep%message)) then
+        if (sol%rep%no_memory) call fail_numerical(sol%rep%message)
+        call fail_numerical(step_prefix(run) // 'contact problem not solved: ' // sol%rep%message)
+      else
+        call fail_numerical(step_prefix(run) // 'contact problem not solved by ' // method // ' (info ' // &
+                            int_to_str(sol%rep%info) // ')')
+      end if
+    end if
+    if (.not. all(ieee_is_finite(sol%mu))) call fail_numerical('the contact multipliers are not finite')
+    call move_alloc(sol%mu, run%res%mu)
+    run%rigid_alpha = sol%alpha(run%fl%k + 1:)
+    run%res%alpha = sol%alpha(1:run%fl%k)
+    allocate(run%res%unheld_mode(size(run%split%unheld, 2)))
+    do j = 1, size(run%split%unheld, 2)
+      call say(run, 'note     body ' // run%sc%bodies(run%split%unheld_body(j))%name // ': rigid mode (' // &
+        motion_name(run%fl, run%split%unheld(:, j)) // ') held by neither FIX nor contact and unloaded: its amplitude ' // &
+        'is set to 0 (the displacement has no component along it; the pressures do not depend on it)')
+      run%res%unheld_mode(j)%s = unheld_summary(run, j)
+    end do
+
+    call move_alloc(sol%gap, run%res%gap)
+  end subroutine solve_contact_problem
+
+  !> OUTPUT steps=all without friction: steps 1 .. n-1, each an independent
+  !> solve at its load factors with the factorization and W of the final
+  !> step (only the right-hand side changes): u0_k = K^-1 f_k, q_k = g - B u0_k,
+  !> LCP(W, q_k), u_k = K^-1 (f_k - B' mu_k).  Each step's VTK file and table
+  !> row are written; res is then as before (the final step is solved next).
+  subroutine solve_earlier_steps(run)
+    type(run_t), intent(inout) :: run
+    type(results_t) :: saved
+    type(mode_split_t) :: split_n
+    real(dp), allocatable :: fk(:), ubk(:), u0k(:), cq(:), q_n(:)
+    integer :: kstep
+    saved = run%res
+    split_n = run%split
+    if (allocated(run%q)) q_n = run%q
+    allocate(fk(run%sc%ndof), ubk(run%sc%ndof), u0k(run%sc%ndof), cq(run%cs%nrow + run%cs%ntan))
+    do kstep = 1, run%sc%steps - 1
+      run%res = saved
+      run%step_note = 'load step ' // int_to_str(kstep) // ' of ' // int_to_str(run%sc%steps) // ': '
+      call step_loads(run%sc, kstep, fk, ubk)
+      call solve_loads(run, fk, ubk, [real(dp) ::], u0k)
+      if (run%with_contact) then
+        call constraint_values(run%cs, u0k, cq)
+        run%q = run%cs%g - cq(1:run%cs%nrow)                   ! gaps without contact forces
+        if (run%fl%k > 0) then
+          call split_free_modes(run%cs, run%sc%bodies, run%fl, fk, run%split)
+          call check_unheld_loads(run)
+        end if
+        if (run%rsplit%k > 0) then
+          call split_rigid_modes(run%cs, run%sc%rigids, run%sc%fixed, fk, run%rsplit)
+          call check_unheld_rigid_loads(run)
+        end if
+        call solve_contact_problem(run)
+        call contact_measures(run)
+        run%step_iterations = run%res%lcp_iterations
+        call record_step(run, kstep, fk, ubk, run%res%mu)
+        call say_step(run, kstep, run%res%lcp_method, run%step_iterations, run%res%active_nodes)
+      else
+        run%step_iterations = 0
+        call record_step(run, kstep, fk, ubk, [real(dp) ::])
+      end if
+    end do
+    run%res = saved
+    run%split = split_n
+    if (run%rsplit%k > 0) call split_rigid_modes(run%cs, run%sc%rigids, run%sc%fixed, run%sc%fext, run%rsplit)
+    if (allocated(q_n)) run%q = q_n
+    run%step_note = 'load step ' // int_to_str(run%sc%steps) // ' of ' // int_to_str(run%sc%steps) // ': '
+    call step_loads(run%sc, run%sc%steps, fk, ubk)         ! the bodies' thermal strains of the final step
+  end subroutine solve_earlier_steps
+
+  !> Frictional contact in load steps: at step k the loads are the ramps'
+  !> factors times their loads, the slip of the step is measured from the
+  !> tangential displacement T u of step k-1, and the condensed friction LCP
+  !> (normal and tangential multipliers, friction_lcp) is solved, warm-started
+  !> from step k-1.
+  subroutine solve_friction_steps(run)
+    type(run_t), intent(inout) :: run
+    type(lcp_options_t) :: opts
+    type(lcp_report_t) :: rep
+    character(len=:), allocatable :: method
+    real(dp), allocatable :: z(:), cu(:), qn(:), qt(:), sprev(:), fk(:), ubk(:)
+    real(dp), allocatable :: hh(:,:), eg(:,:), eh(:), alpha(:), unbalanced(:)
+    character(len=:), allocatable :: cause
+    integer :: n, nt, kstep, g, r, iterations
+    logical :: floating
+    type(results_t) :: saved
+    character(len=200) :: line
+    type(error_t), allocatable :: err
+    type(friction_problem_t) :: fp
+
+    n = run%cs%nrow
+    nt = run%cs%ntan
+    opts%tol = run%deck%solver%tol
+    opts%maxit = run%deck%solver%maxit
+    opts%omega = run%deck%solver%omega
+    method = run%deck%solver%lcp
+    ! lcp=auto: Lemke on the friction LCP (n + 3 nt unknowns) while its dense
+    ! tableau is small, the block Gauss-Seidel above
+    if (method == 'auto') method = merge('lemke', 'pgs  ', n + 3 * nt <= 400)
+    method = trim(method)
+    ! bodies held only by contact: the amplitudes of the held combinations of
+    ! their modes are unknowns of the friction LCP (friction_modes), against
+    ! H = C R V and the load e = V'R'f of each ramp
+    allocate(run%res%alpha(run%fl%k), source=0.0_dp)
+    floating = size(run%split%held, 2) + size(run%rsplit%held, 2) > 0
+    if (floating) then
+      method = 'lemke'
+      call say(run, 'friction ' // int_to_str(size(run%split%held, 2) + size(run%rsplit%held, 2)) // ' rigid-mode amplitudes ' // &
+        'of the bodies and RIGIDs held only by contact are unknowns of each step''s friction LCP, solved by ' // &
+        'Lemke (' // int_to_str(n + 3 * nt + 2 * (size(run%split%held, 2) + size(run%rsplit%held, 2))) // ' unknowns)')
+      ! the bodies' held modes, then the RIGIDs' held free directions (their FORCE per ramp)
+      hh = reshape([matmul(run%split%h, run%split%held), matmul(run%rsplit%h, run%rsplit%held)], &
+                   [n + nt, size(run%split%held, 2) + size(run%rsplit%held, 2)])
+      eg = reshape([transpose(matmul(transpose(run%split%held), matmul(transpose(run%fl%r), run%sc%fgroup))), &
+                    transpose(matmul(transpose(run%rsplit%held), run%sc%fgroup(run%rsplit%dof, :)))], &
+                   [size(run%sc%ramp, 2), size(hh, 2)])
+      eg = transpose(eg)
+      allocate(eh(size(hh, 2)), alpha(size(hh, 2)))
+    end if
+    allocate(z(n + nt), cu(n + nt), qn(n), qt(nt), sprev(nt), run%res%fstate(nt))
+    if (run%deck%output%steps_all) then
+      saved = run%res
+      allocate(fk(run%sc%ndof), ubk(run%sc%ndof))
+    end if
+    z = 0.0_dp
+    sprev = 0.0_dp
+    iterations = 0
+    do kstep = 1, run%sc%steps
+      cu = 0.0_dp
+      do g = 1, size(run%sc%ramp, 2)
+        cu = cu + group_factor(run%sc, g, kstep) * run%cu0(:, g)
+      end do
+      qn = run%cs%g - cu(1:n)                          ! gaps without contact forces
+      qt = sprev - cu(n + 1:)                      ! minus the slip of the step without contact forces
+      fp = friction_problem(qn, qt, run%cs%tan_row, run%cs%tan_mu, run%cs%tan_bound)
+      if (floating) then
+        eh = 0.0_dp
+        do g = 1, size(run%sc%ramp, 2)
+          eh = eh + group_factor(run%sc, g, kstep) * eg(:, g)
+        end do
+        call solve_friction_floating(run%w, fp, hh, eh, opts, z, alpha, rep, unbalanced, cause)
+        if (rep%info == no_equilibrium) call fail_numerical('friction, load step ' // int_to_str(kstep) // ' of ' // &
+          int_to_str(run%sc%steps) // ': ' // floating_no_equilibrium(run, unbalanced, cause))
+        if (rep%info /= 0 .and. .not. rep%no_memory) call fail_numerical('friction, load step ' &
+          // int_to_str(kstep) // ' of ' // int_to_str(run%sc%steps) // ': no equilibrium found for the bodies held ' // &
+          'only by contact (' // floating_names(run) // '): ' // rep%message)
+        cu = cu + matmul(hh, alpha)                ! C u0 + C R alpha: the step's rigid motion
+        qn = run%cs%g - cu(1:n)
+        qt = qt - matmul(hh(n + 1:, :), alpha)
+        fp = friction_problem(qn, qt, run%cs%tan_row, run%cs%tan_mu, run%cs%tan_bound)
+        run%res%alpha = matmul(run%split%held, alpha(1:size(run%split%held, 2)))
+        run%rigid_alpha = matmul(run%rsplit%held, alpha(size(run%split%held, 2) + 1:))
+      else
+        call solve_friction_lcp(run%w, fp, method, opts, z, rep)
+      end if
+      iterations = iterations + rep%iterations
+      if (rep%info /= 0 .and. rep%no_memory) call fail_numerical(rep%message)
+      if (rep%info /= 0) call fail_numerical('friction, load step ' // int_to_str(kstep) // ' of ' // &
+        int_to_str(run%sc%steps) // ': contact problem not solved: ' // rep%message)
+      if (.not. all(ieee_is_finite(z))) call fail_numerical('friction, load step ' // int_to_str(kstep) // &
+        ': the contact multipliers are not finite')
+      sprev = cu(n + 1:) - matmul(run%w(n + 1:, :), z)  ! T u_k = T u0_k - T K^-1 C' z
+      call friction_state(run%w, fp, z, run%res%fstate, err)
+      if (allocated(err)) call fail_numerical(err%message)
+      write(line, '(a,i0,a,i0,a,i0,a,i0,a,i0,a,es9.2)') 'step     ', kstep, '/', run%sc%steps, ': ' // method // ' ', &
+        rep%iterations, ' iterations, ', count(z(1:n) > 0.0_dp), ' active, ', count(run%res%fstate == 2), &
+        ' slipping, residual ', rep%residual
+      call say(run, trim(line))
+      run%step_iterations = rep%iterations
+      if (run%deck%output%steps_all .and. kstep < run%sc%steps) then
+        ! this step's displacement, fields and row (the final step is the run's own)
+        run%res%mu = z(1:n)
+        run%res%tau = z(n + 1:)
+        run%res%gap = qn + matmul(run%w(1:n, :), z)
+        call contact_measures(run)
+        call step_loads(run%sc, kstep, fk, ubk)
+        call record_step(run, kstep, fk, ubk, z)
+        call step_loads(run%sc, run%sc%steps, fk, ubk)
+        call move_alloc(run%res%fstate, saved%fstate)
+        call move_alloc(run%res%alpha, saved%alpha)
+        run%res = saved
+        call move_alloc(saved%fstate, run%res%fstate)
+        call move_alloc(saved%alpha, run%res%alpha)
+      end if
+    end do
+    run%res%lcp_method = method
+    run%res%lcp_iterations = iterations
+    run%res%lcp_residual = rep%residual
+    run%res%steps = run%sc%steps
+    run%res%mu = z(1:n)
+    run%res%tau = z(n + 1:)
+    run%res%gap = qn + matmul(run%w(1:n, :), z)
+    run%res%slip = sprev
+    allocate(run%res%shear(nt), run%res%tan_of_row(n))
+    run%res%tan_of_row = 0
+    do r = 1, nt
+      run%res%tan_of_row(run%cs%tan_row(r)) = r
+      run%res%shear(r) = -run%res%tau(r) / run%cs%weight(run%cs%tan_row(r))    ! the force on the slave is -tau t
+    end do
+    run%res%stick_nodes = count(run%res%fstate == 1)
+    run%res%slip_nodes = count(run%res%fstate == 2)
+  end subroutine solve_friction_steps
+
+  !> One step's displacement from its multipliers z (res%mu, res%gap, ...
+  !> set), its post-processing, VTK file and table row.
+  subroutine record_step(run, kstep, fk, ubk, z)
+    type(run_t), intent(inout) :: run
+    integer, intent(in) :: kstep
+    real(dp), intent(in) :: fk(:), ubk(:), z(:)
+    if (allocated(run%res%u)) deallocate(run%res%u)
+    allocate(run%res%u(run%sc%ndof))
+    call solve_loads(run, fk, ubk, z, run%res%u)
+    if (run%fl%k > 0) run%res%u = run%res%u + matmul(run%fl%r, run%res%alpha)
+    call remove_motions(run%fl, run%split%unheld, run%res%u)
+    if (allocated(run%rigid_alpha)) run%res%u(run%rsplit%dof) = run%rigid_alpha
+    if (.not. all(ieee_is_finite(run%res%u))) call fail_numerical('load step ' // int_to_str(kstep) // &
+      ': the displacement is not finite (overflow in the solve)')
+    call pair_resultants(run, z)
+    call post_process(run, fk)
+    if (allocated(run%res%node_pressure)) deallocate(run%res%node_pressure, run%res%node_gap)
+    if (allocated(run%res%node_shear)) deallocate(run%res%node_shear)
+    call nodal_contact_fields(run)
+    call check_finite_results(run)
+    call write_step(run, kstep)
+  end subroutine record_step
+
+  !> A body whose FIX leaves a rigid mode free must be held by a CONTACT.
+  subroutine check_floating_bodies(run)
+    type(run_t), intent(inout) :: run
+    integer :: j, ip, b
+    logical :: in_contact
+    do j = 1, run%fl%k
+      b = run%fl%mode_body(j)
+      in_contact = .false.
+      do ip = 1, size(run%sc%specs)
+        if (run%sc%specs(ip)%slave_body == b .or. run%sc%specs(ip)%master_body == b) in_contact = .true.
+      end do
+      if (.not. in_contact) call add_error(run%diag, run%deck%file, run%deck%bodies(b)%line, 'body "' // run%sc%bodies(b)%name // &
+        '": its FIX statements leave a rigid-body mode free (' // mode_name(run%fl, j) // ') and no CONTACT holds ' // &
+        'the body (a FIX that blocks it, or a CONTACT, expected)')
+    end do
+    call stop_input_errors(run%diag)
+  end subroutine check_floating_bodies
+
+  !> A body held only by contact in a scene with friction: the friction LCP
+  !> with its mode amplitudes is solved by Lemke (friction_modes); lcp=pgs
+  !> is refused at the SOLVER line (exit 2).
+  subroutine check_floating_friction_solver(run)
+    type(run_t), intent(inout) :: run
+    if (run%cs%ntan == 0 .or. run%deck%solver%lcp /= 'pgs') return
+    if (size(run%split%held, 2) == 0 .and. size(run%rsplit%held, 2) > 0) then
+      call add_error(run%diag, run%deck%file, run%deck%solver%line, 'lcp=pgs with friction on a RIGID under FORCE is not ' // &
+        'supported (expected lcp=lemke or lcp=auto, which solve it by Lemke''s method)')
+      call stop_input_errors(run%diag)
+    end if
+    if (size(run%split%held, 2) == 0) return
+    call add_error(run%diag, run%deck%file, run%deck%solver%line, &
+      'lcp=pgs with friction on a body held only by contact (body "' // &
+      run%sc%bodies(run%fl%mode_body(1))%name // '": ' // mode_name(run%fl, 1) // ' not held by FIX) is not supported ' // &
+      '(expected lcp=lemke or lcp=auto, which solve it by Lemke''s method)')
+    call stop_input_errors(run%diag)
+  end subroutine check_floating_friction_solver
+
+  !> A rigid motion that neither FIX nor contact holds must carry no load:
+  !> else no static equilibrium exists (exit 1, naming the body and motion).
+  subroutine check_unheld_loads(run)
+    type(run_t), intent(inout) :: run
+    integer :: j
+    character(len=16) :: buf
+    do j = 1, size(run%split%unheld, 2)
+      if (.not. run%split%loaded(j)) cycle
+      write(buf, '(es10.3)') run%split%load(j)
+      call fail_numerical(step_prefix(run) // 'no equilibrium: body "' // run%sc%bodies(run%split%unheld_body(j))%name // &
+        '" is loaded along ' // &
+        'a rigid mode (' // motion_name(run%fl, run%split%unheld(:, j)) // ') that neither FIX nor contact holds ' // &
+        '(frictionless contact holds only normal to the contact surface; load along it ' // trim(adjustl(buf)) // &
+        ' of the loads'' scale)')
+    end do
+  end subroutine check_unheld_loads
+
+  !> A RIGID's free direction that contact does not hold must carry no load
+  !> (exit 1 naming the obstacle and the direction); an unloaded one keeps 0.
+  subroutine check_unheld_rigid_loads(run)
+    type(run_t), intent(inout) :: run
+    integer :: j
+    do j = 1, size(run%rsplit%unheld, 2)
+      if (.not. run%rsplit%loaded(j)) cycle
+      call fail_numerical(step_prefix(run) // 'no equilibrium: RIGID "' // run%sc%rigids(run%rsplit%unheld_owner(j))%name // &
+        '" is loaded along a direction (' // rigid_direction(run%rsplit, run%rsplit%unheld(:, j)) // ') that neither its ' // &
+        'FIX nor its contacts hold (frictionless contact pushes only normal to the contact surface; expected FIX ' // &
+        'on that direction, or a load the contact normals can balance)')
+    end do
+  end subroutine check_unheld_rigid_loads
+
+  !> The contact problem has no solution because some load pulls a body off its
+  !> contacts: when it is a RIGID's FORCE, say which RIGID and which way.
+  subroutine diagnose_pulled_rigid(run)
+    type(run_t), intent(inout) :: run
+    integer :: owner
+    real(dp) :: resid(3)
+    character(len=80) :: buf
+    call pulled_rigid(run%rsplit, owner, resid)
+    if (owner == 0) return
+    write(buf, '(a,es10.3,a,es10.3,a,es10.3,a)') '(', resid(1), ', ', resid(2), ', ', resid(3), ')'
+    call fail_numerical(step_prefix(run) // 'no equilibrium: the FORCE on RIGID "' // run%sc%rigids(owner)%name // &
+      '" pulls it away from its contacts: contact can only push, and the part (fx, fy, m) = ' // trim(buf) // &
+      ' of its load cannot be balanced by any contact pressure (expected a FORCE that presses the obstacle ' // &
+      'on the slave boundary)')
+  end subroutine diagnose_pulled_rigid
+
+  !> The diagnosis of a frictional step without equilibrium from the unbalanced
+  !> load along the held combinations (the bodies' modes, then the RIGIDs'
+  !> free directions): the body or the RIGID that carries most of it, and
+  !> the motion of that one alone.
+  !>   unbalanced (in) e - H'z at the closest balance, along the held combinations
+  !>   cause      (in) 'friction' (the cone is too small) or 'contact'
+  function floating_no_equilibrium(run, unbalanced, cause) result(t)
+    type(run_t), intent(in) :: run
+    real(dp), intent(in) :: unbalanced(:)
+    character(len=*), intent(in) :: cause
+    character(len=:), allocatable :: t
+    real(dp), allocatable :: c(:)
+    integer :: kb, owner
+    logical :: on_body
+    kb = size(run%split%held, 2)
+    on_body = .false.
+    if (kb > 0) on_body = maxval(abs(unbalanced(1:kb))) >= maxval(abs(unbalanced(kb + 1:)), mask=.true.) .or. &
+                          size(unbalanced) == kb
+    if (on_body) then
+      call largest_owner(run%split%held, unbalanced(1:kb), run%fl%mode_body, c, owner)
+      t = no_equilibrium_text(cause, 'the loads on body "' // run%sc%bodies(owner)%name // '" exceed', &
+                              'the loads pull body "' // run%sc%bodies(owner)%name // '"', motion_name(run%fl, c), &
+                              'the loads')
+    else
+      call largest_owner(run%rsplit%held, unbalanced(kb + 1:), run%rsplit%owner, c, owner)
+      t = no_equilibrium_text(cause, 'the FORCE on RIGID "' // run%sc%rigids(owner)%name // '" exceeds', &
+                              'the FORCE on RIGID "' // run%sc%rigids(owner)%name // '" pulls it', &
+                              rigid_direction(run%rsplit, c), 'its load')
+    end if
+  end function floating_no_equilibrium
+
+  !> The unbalanced load in the modes' (or directions') amplitudes, c = H u,
+  !> kept on the owner (body or RIGID) with the largest amplitude.
+  !>   held     (in)  (k, m) the held combinations
+  !>   u        (in)  (m) the unbalanced load along them
+  !>   owner_of (in)  (k) the owner of each mode or direction
+  !>   c        (out) (k) H u on that owner's modes, 0 on the others
+  !>   owner    (out) that owner
+  subroutine largest_owner(held, u, owner_of, c, owner)
+    real(dp), intent(in) :: held(:,:), u(:)
+    integer, intent(in) :: owner_of(:)
+    real(dp), allocatable, intent(out) :: c(:)
+    integer, intent(out) :: owner
+    c = matmul(held, u)
+    owner = owner_of(maxloc(abs(c), dim=1))
+    c = merge(c, 0.0_dp, owner_of == owner)
+  end subroutine largest_owner
+
+  !> The sentence of a step without static equilibrium, one per cause.
+  !>   cause  (in) 'friction' (the friction cone is too small) or 'contact'
+  !>          (the load pulls away from the contacts)
+  !>   held   (in) who exceeds the cone, with the verb: 'the loads on body "A" exceed'
+  !>   pulled (in) who is pulled off, with the verb: 'the loads pull body "A"'
+  !>   motion (in) the motion it would make
+  !>   load   (in) what is not balanced: 'the loads', 'its load'
+  function no_equilibrium_text(cause, held, pulled, motion, load) result(t)
+    character(len=*), intent(in) :: cause, held, pulled, motion, load
+    character(len=:), allocatable :: t
+    if (cause == 'friction') then
+      t = 'no equilibrium: ' // held // ' what friction can hold: it would move by ' // motion // &
+        ' (the contact forces within the friction cone cannot balance ' // load // ')'
+    else
+      t = 'no equilibrium: ' // pulled // ' away from its contacts: it would move by ' // motion // &
+        ' (no contact force balances ' // load // ', whatever the friction)'
+    end if
+  end function no_equilibrium_text
+
+  !> The names of the bodies with free rigid modes, quoted, comma-separated.
+  function floating_names(run) result(t)
+    type(run_t), intent(in) :: run
+    character(len=:), allocatable :: t
+    integer :: b
+    t = ''
+    do b = 1, size(run%sc%bodies)
+      if (.not. any(run%fl%mode_body == b)) cycle
+      if (len(t) > 0) t = t // ', '
+      t = t // '"' // run%sc%bodies(b)%name // '"'
+    end do
+  end function floating_names
+
+  !> 'BODY KIND X Y' of unheld combination j for the summary: KIND rotation
+  !> (X Y its centre) or translation (X Y its unit direction).
+  function unheld_summary(run, j) result(t)
+    type(run_t), intent(in) :: run
+    integer, intent(in) :: j
+    character(len=:), allocatable :: t, kind
+    real(dp) :: point(2)
+    character(len=32) :: bx, by
+    call describe_motion(run%fl, run%split%unheld(:, j), kind, point)
+    write(bx, '(es24.16e3)') point(1)
+    write(by, '(es24.16e3)') point(2)
+    t = run%sc%bodies(run%split%unheld_body(j))%name // ' ' // kind // ' ' // trim(adjustl(bx)) // ' ' // trim(adjustl(by))
+  end function unheld_summary
+
+  !> 'load step k of n: ' while the steps of OUTPUT steps=all are solved, else ''.
+  function step_prefix(run) result(t)
+    type(run_t), intent(in) :: run
+    character(len=:), allocatable :: t
+    t = ''
+    if (allocated(run%step_note)) t = run%step_note
+  end function step_prefix
+
+  !> [a 0; 0 b]: the held combinations of the bodies' modes and of the RIGIDs'
+  !> free directions, side by side.
+  function block_diagonal(a, b) result(c)
+    real(dp), intent(in) :: a(:,:), b(:,:)
+    real(dp), allocatable :: c(:,:)
+    allocate(c(size(a, 1) + size(b, 1), size(a, 2) + size(b, 2)), source=0.0_dp)
+    c(1:size(a, 1), 1:size(a, 2)) = a
+    c(size(a, 1) + 1:, size(a, 2) + 1:) = b
+  end function block_diagonal
+
+end module contact_solve

@@ -1,0 +1,211 @@
+!> run_outputs: the files of a run (DECK.md, "Outputs"): the output folder,
+!> the VTK file, the contact table and the summary, and with OUTPUT
+!> steps=all a VTK file per step, the ParaView collection and the step
+!> table.  Every file is written to a temporary of its own and all are
+!> committed together once every one is written (safe_files), so a failed
+!> run leaves no half-written file.
+!>
+!> Why it exists: the naming of the files, their temporaries and the step
+!> table are bookkeeping the method does not need to show.  Who may use it:
+!> the program and its step modules (run_state's list).  A folder that takes
+!> no file ends the run (exit 2), as the program would.
+!>
+!> Programming interface
+!>   make_folder(path, diag)     create the output folder and its parents (an input error when it cannot)
+!>   write_step(run, k)          step k's table row and VTK file (OUTPUT steps=all)
+!>   write_outputs(run)          every file of the run, committed together; run%wrote for the log
+module run_outputs
+  use kinds, only: dp
+  use strings, only: int_to_str
+  use errors, only: diag_t, add_error
+  use exits, only: exit_program
+  use run_state, only: run_t, ph_output
+  use run_report, only: lap
+  use deck_reader, only: path_too_long
+  use load_groups, only: group_factor, group_name
+  use post_processing, only: rigid_results
+  use results_writer, only: write_vtk, write_contact_csv, write_summary, write_pvd, write_step_table, peak_memory
+  use safe_files, only: make_folders, temporary_t, create_temporary, close_temporary, commit_temporaries, &
+                        discard_temporaries
+  use, intrinsic :: iso_fortran_env, only: error_unit
+  implicit none
+  private
+  public :: make_folder, write_step, write_outputs
+
+contains
+
+  !> Create the output folder (and its parents) when missing: mkdir(2), no
+  !> shell, so any name a user can type works.
+  subroutine make_folder(path, d)
+    character(len=*), intent(in) :: path
+    type(diag_t), intent(inout) :: d
+    logical :: ok
+    if (len(path_too_long(path, 0)) > 0) then
+      call add_error(d, path(1:min(len(path), 40)) // '...', 0, 'cannot create the output folder: ' // path_too_long(path, 0))
+      return
+    end if
+    call make_folders(path, ok)
+    if (.not. ok) call add_error(d, path, 0, 'cannot create the output folder (a writable path expected)')
+  end subroutine make_folder
+
+  !> Step k's row of NAME_steps.csv and its VTK file STEM_000k.vtk (a
+  !> temporary, committed with the run's other files by write_outputs).
+  !>   run   (inout) the step's results on entry
+  !>   kstep (in)    the step, 1 .. steps - 1
+  subroutine write_step(run, kstep)
+    type(run_t), intent(inout) :: run
+    integer, intent(in) :: kstep
+    logical :: ok
+    call add_step_row(run, kstep)
+    call create_step_file(run, kstep, ok)
+    if (ok) call write_vtk(run%step_tmp(kstep)%io_path, run%deck%title, run%sc%bodies, run%res, &
+                           run%deck%output%fields, ok)
+    call close_temporary(run%step_tmp(kstep))
+    if (.not. ok) call output_failure(run)
+  end subroutine write_step
+
+  !> Write every output to a temporary of its own, then commit them all; the
+  !> run log's `wrote` lines are kept in run%wrote.  A folder that takes no
+  !> file ends the run (exit 2, nothing written).
+  !>   run (inout) the results on entry; step_table's last row, res%memory_peak, wrote on exit
+  subroutine write_outputs(run)
+    type(run_t), intent(inout) :: run
+    type(temporary_t), allocatable :: tmp(:)
+    logical :: ok
+    character(len=:), allocatable :: names(:)
+    integer :: kstep, nl, i
+    character(len=:), allocatable :: line1, line2
+    ! the run's three files, then with steps=all the .pvd, the step table and
+    ! the per-step VTK files (all but the last one written as they were solved)
+    if (run%deck%output%steps_all) call add_step_row(run, run%sc%steps)
+    allocate(tmp(3))
+    call create_temporary(run%outdir, run%deck%output%vtk, tmp(1), ok)
+    if (ok .and. run%cs%npair > 0) call create_temporary(run%outdir, run%deck%output%contact, tmp(2), ok)
+    if (ok) call create_temporary(run%outdir, run%deck%output%summary, tmp(3), ok)
+    if (ok) call write_vtk(tmp(1)%io_path, run%deck%title, run%sc%bodies, run%res, run%deck%output%fields, ok)
+    if (ok .and. run%cs%npair > 0) call write_contact_csv(tmp(2)%io_path, run%cs, run%res, ok)
+    if (ok .and. run%deck%output%steps_all) then
+      call create_step_file(run, run%sc%steps, ok)
+      if (ok) call write_vtk(run%step_tmp(run%sc%steps)%io_path, run%deck%title, run%sc%bodies, run%res, &
+                             run%deck%output%fields, ok)
+      nl = len(step_file(run, run%sc%steps))
+      allocate(character(len=nl) :: names(run%sc%steps))
+      do kstep = 1, run%sc%steps
+        names(kstep) = step_file(run, kstep)
+      end do
+      tmp = [tmp, temporary_t(), temporary_t(), run%step_tmp]
+      if (ok) call create_temporary(run%outdir, output_stem(run) // '.pvd', tmp(4), ok)
+      if (ok) call write_pvd(tmp(4)%io_path, names, ok)
+      if (ok) call create_temporary(run%outdir, output_stem(run) // '_steps.csv', tmp(5), ok)
+      if (ok) call write_step_table(tmp(5)%io_path, step_header(run), run%step_table, ok)
+    end if
+    if (ok) then
+      call lap(run, ph_output)
+      run%res%memory_peak = peak_memory()
+      call write_summary(tmp(3)%io_path, run%res, ok)
+    end if
+    do i = 1, size(tmp)
+      call close_temporary(tmp(i))
+    end do
+    if (ok) call commit_temporaries(run%outdir, tmp, ok)
+    if (.not. ok) then
+      call discard_temporaries(tmp)
+      write(error_unit, '(a)') 'contact2d: error: ' // run%outdir // ': cannot write the output files ' // &
+        '(a writable folder expected)'
+      call exit_program(2)
+    end if
+    if (run%cs%npair > 0) then
+      line1 = 'wrote    ' // run%outdir // '/' // run%deck%output%vtk // ', ' // run%deck%output%contact // ', ' // &
+              run%deck%output%summary
+    else
+      line1 = 'wrote    ' // run%outdir // '/' // run%deck%output%vtk // ', ' // run%deck%output%summary
+    end if
+    if (run%deck%output%steps_all) then
+      line2 = 'wrote    ' // step_file(run, 1) // ' .. ' // step_file(run, run%sc%steps) // ', ' // &
+              output_stem(run) // '.pvd, ' // output_stem(run) // '_steps.csv'
+      run%wrote = [character(len=max(len(line1), len(line2))) :: line1, line2]
+    else
+      run%wrote = [line1]
+    end if
+  end subroutine write_outputs
+
+  !> The temporary of step k's VTK file (STEM_000k.vtk).
+  subroutine create_step_file(run, kstep, ok)
+    type(run_t), intent(inout) :: run
+    integer, intent(in) :: kstep
+    logical, intent(out) :: ok
+    if (.not. allocated(run%step_tmp)) allocate(run%step_tmp(run%sc%steps))
+    call create_temporary(run%outdir, step_file(run, kstep), run%step_tmp(kstep), ok)
+  end subroutine create_step_file
+
+  !> STEM_000k.vtk, STEM the vtk= name without .vtk.
+  function step_file(run, kstep) result(name)
+    type(run_t), intent(in) :: run
+    integer, intent(in) :: kstep
+    character(len=:), allocatable :: name
+    character(len=16) :: buf
+    write(buf, '(i4.4)') kstep
+    name = output_stem(run) // '_' // trim(buf) // '.vtk'
+  end function step_file
+
+  function output_stem(run) result(stem)
+    type(run_t), intent(in) :: run
+    character(len=:), allocatable :: stem
+    stem = run%deck%output%vtk(1:len(run%deck%output%vtk) - 4)
+  end function output_stem
+
+  !> Row k of NAME_steps.csv from res: step, the load factor of each load
+  !> path, the reactions of every FIX, the contact resultant of every pair,
+  !> active nodes, LCP iterations.
+  subroutine add_step_row(run, kstep)
+    type(run_t), intent(inout) :: run
+    integer, intent(in) :: kstep
+    integer :: ng, nc, g, c
+    ng = size(run%sc%ramp, 2)
+    nc = 1 + ng + 2 * size(run%sc%fixes) + 2 * run%cs%npair + 6 * size(run%sc%rigids) + 2
+    call rigid_results(run)
+    if (.not. allocated(run%step_table)) allocate(run%step_table(nc, run%sc%steps), source=0.0_dp)
+    run%step_table(1, kstep) = kstep
+    do g = 1, ng
+      run%step_table(1 + g, kstep) = group_factor(run%sc, g, kstep)
+    end do
+    c = 1 + ng
+    run%step_table(c + 1:c + 2 * size(run%sc%fixes), kstep) = reshape(run%res%reaction, [2 * size(run%sc%fixes)])
+    c = c + 2 * size(run%sc%fixes)
+    run%step_table(c + 1:c + 2 * run%cs%npair, kstep) = reshape(run%res%contact_force, [2 * run%cs%npair])
+    c = c + 2 * run%cs%npair
+    run%step_table(c + 1:c + 6 * size(run%sc%rigids), kstep) = reshape(run%res%rigid, [6 * size(run%sc%rigids)])
+    run%step_table(nc - 1, kstep) = run%res%active_nodes
+    run%step_table(nc, kstep) = run%step_iterations
+  end subroutine add_step_row
+
+  !> The header line of NAME_steps.csv.
+  function step_header(run) result(h)
+    type(run_t), intent(in) :: run
+    character(len=:), allocatable :: h
+    integer :: g, j
+    h = 'step'
+    do g = 1, size(run%sc%ramp, 2)
+      h = h // ',factor_' // group_name(run%sc, g)
+    end do
+    do j = 1, size(run%sc%fixes)
+      h = h // ',' // run%sc%fixes(j)%label // '_Fx,' // run%sc%fixes(j)%label // '_Fy'
+    end do
+    do j = 1, run%cs%npair
+      h = h // ',contact_' // int_to_str(j) // '_Fx,contact_' // int_to_str(j) // '_Fy'
+    end do
+    do j = 1, size(run%sc%rigids)
+      h = h // ',' // run%sc%rigids(j)%name // '_ux,' // run%sc%rigids(j)%name // '_uy,' // run%sc%rigids(j)%name // '_rz,' // &
+        run%sc%rigids(j)%name // '_fx,' // run%sc%rigids(j)%name // '_fy,' // run%sc%rigids(j)%name // '_m'
+    end do
+    h = h // ',active_nodes,lcp_iterations'
+  end function step_header
+
+  subroutine output_failure(run)
+    type(run_t), intent(inout) :: run
+    if (allocated(run%step_tmp)) call discard_temporaries(run%step_tmp)
+    write(error_unit, '(a)') 'contact2d: error: ' // run%outdir // ': cannot write the output files (a writable folder expected)'
+    call exit_program(2)
+  end subroutine output_failure
+
+end module run_outputs

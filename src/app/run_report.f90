@@ -1,0 +1,356 @@
+!> run_report: the run log (stdout) and the run's clock.  Every run tells the
+!> user what it did: the scene it built (bodies, contact pairs, rigid modes,
+!> sizes, parameters), and at the end the contact solution, energy, factor,
+!> the phase timings and the files written.  The timing laps live here too:
+!> a lap charges the seconds since the last one to a phase of results_t.
+!>
+!> Why it exists: the log's wording is long and changes for reasons of its
+!> own; out of the program it leaves the program reading like the method.
+!> Who may use it: the program and its step modules (run_state's list).
+!>
+!> Programming interface
+!>   say(run, text)                  one line of the run log (nothing with -q)
+!>   start_clock(run)                the run's time zero
+!>   lap(run, ph)                    seconds since the last lap go to phase ph
+!>   split_overlap(run)              the ordering and the assembly ran side by side: charge each
+!>   say_step(run, k, method, it, active)   the line of a load step solved on its own
+!>   report_scene(run)               the scene: model, bodies, RIGIDs, pairs, steps, rigid modes, sizes
+!>   report_run(run)                 the results, factor, phases, files written
+!>   friction_law(kind, spec)        how a pair's tangential behaviour reads in the log
+module run_report
+  use kinds, only: dp, i8
+  use strings, only: int_to_str
+  use run_state, only: run_t, ph_total, ph_factor, ph_assemble, ph_lcp
+  use mesh, only: is_quadratic
+  use contact_set, only: pair_spec_t, has_friction
+  use contact_condensation, only: condensed_report
+  use rigid_modes, only: mode_name, motion_name
+  use rigid_support, only: rigid_direction
+  use deck_expressions, only: format_number
+  use results_writer, only: phase_names, nphase
+  use threads, only: run_threads
+  use command_line, only: version
+  use, intrinsic :: iso_fortran_env, only: output_unit
+  implicit none
+  private
+  public :: say, start_clock, lap, split_overlap, say_step, report_scene, report_run, friction_law
+
+contains
+
+  !> A line of the run log, unless -q.
+  !>   run  (in) its quiet flag
+  !>   text (in) the line
+  subroutine say(run, text)
+    type(run_t), intent(in) :: run
+    character(len=*), intent(in) :: text
+    if (.not. run%quiet) write(output_unit, '(a)') text
+  end subroutine say
+
+  !> The run's time zero: the phases are measured from here.
+  subroutine start_clock(run)
+    type(run_t), intent(inout) :: run
+    call system_clock(run%t_start)
+    run%t_phase = run%t_start
+  end subroutine start_clock
+
+  !> Seconds since the last lap go to phase ph; the total is kept up to date.
+  subroutine lap(run, ph)
+    type(run_t), intent(inout) :: run
+    integer, intent(in) :: ph
+    integer(i8) :: now, rate
+    call system_clock(now, rate)
+    run%res%time(ph) = run%res%time(ph) + real(now - run%t_phase, dp) / real(rate, dp)
+    run%res%time(ph_total) = real(now - run%t_start, dp) / real(rate, dp)
+    run%t_phase = now
+  end subroutine lap
+
+  !> The ordering and the assembly of the values ran side by side: the
+  !> ordering is charged to factor, the part of the assembly it did not hide
+  !> to assemble, so that the phases still add up to the total.
+  subroutine split_overlap(run)
+    type(run_t), intent(inout) :: run
+    integer(i8) :: now, rate
+    real(dp) :: wall
+    call system_clock(now, rate)
+    wall = real(now - run%t_phase, dp) / real(rate, dp)
+    run%res%time_assemble_values = real(run%t_asm1 - run%t_asm0, dp) / real(rate, dp)
+    run%res%time_ordering = min(wall, run%factor%time_analyze)
+    run%res%time(ph_factor) = run%res%time(ph_factor) + run%res%time_ordering
+    run%res%time(ph_assemble) = run%res%time(ph_assemble) + (wall - run%res%time_ordering)
+    run%res%time(ph_total) = real(now - run%t_start, dp) / real(rate, dp)
+    run%t_phase = now
+  end subroutine split_overlap
+
+  !> The run log's line of a step solved on its own (OUTPUT steps=all).
+  subroutine say_step(run, kstep, method, iterations, active)
+    type(run_t), intent(in) :: run
+    integer, intent(in) :: kstep, iterations, active
+    character(len=*), intent(in) :: method
+    character(len=160) :: line
+    write(line, '(a,i0,a,i0,a,i0,a,i0,a)') 'step     ', kstep, '/', run%sc%steps, ': ' // method // ' ', iterations, &
+      ' iterations, ', active, ' active'
+    call say(run, trim(line))
+  end subroutine say_step
+
+  subroutine report_scene(run)
+    type(run_t), intent(inout) :: run
+    integer :: b, ip
+    character(len=:), allocatable :: how, family
+    character(len=160) :: line
+    call say(run, 'contact2d ' // version // ': ' // run%deck%file)
+    if (len(run%deck%title) > 0) call say(run, 'title    ' // run%deck%title)
+    call report_parameters(run)
+    call say(run, 'effects  ' // run%sc%effects)
+    family = 'P1/Q1'                                 ! the element families of the bodies
+    if (any([(is_quadratic(run%sc%bodies(b)%mesh), b = 1, size(run%sc%bodies))])) family = 'quadratic (P2/Q8/Q9)'
+    if (any([(is_quadratic(run%sc%bodies(b)%mesh), b = 1, size(run%sc%bodies))]) .and. &
+        .not. all([(is_quadratic(run%sc%bodies(b)%mesh), b = 1, size(run%sc%bodies))])) family = 'P1/Q1 and quadratic'
+    if (run%deck%axisymmetric) then
+      call say(run, 'model    axisymmetric (x = r, y = z), ' // family // ' elasticity, small deformation; ' // &
+               'loads per unit area and volume, u_r = 0 on the axis; every force is for the full circle (2 pi r)')
+    else if (run%deck%plane_stress) then
+      call say(run, 'model    plane stress, ' // family // ' elasticity, small deformation')
+    else
+      call say(run, 'model    plane strain, ' // family // ' elasticity, small deformation')
+    end if
+    do b = 1, size(run%sc%bodies)
+      ! the body name is as long as the deck made it: not part of the buffer
+      write(line, '(i0,a,i0,a,i0,a)') run%sc%bodies(b)%mesh%nnode, ' nodes, ', run%sc%bodies(b)%mesh%nelem, &
+        ' elements (', count(run%sc%bodies(b)%mesh%nen == 4 .or. run%sc%bodies(b)%mesh%nen >= 8), ' quadrilaterals)'
+      call say(run, 'body     ' // run%sc%bodies(b)%name // ': ' // trim(line))
+    end do
+    call report_rigids(run)
+    do ip = 1, run%cs%npair
+      write(line, '(a,i0,a,i0,a,i0,a,i0,a)') 'contact  pair ', ip, ': ', size(run%cs%pair(ip)%snode), &
+        ' slave nodes, ', size(run%cs%pair(ip)%mnode), ' master nodes, ', run%cs%pair(ip)%nrow, ' constrained (mortar, '
+      if (run%cs%pair(ip)%spec%rigid > 0) write(line, '(a,i0,a,i0,a,i0,a)') 'contact  pair ', ip, ': ', &
+        size(run%cs%pair(ip)%snode), ' slave nodes against RIGID ' // run%sc%rigids(run%cs%pair(ip)%spec%rigid)%name // &
+        ' (its exact shape), ', run%cs%pair(ip)%nrow, ' constrained (mortar, '
+      call say(run, trim(line) // ' ' // friction_law(run%deck%contacts(ip)%friction, run%cs%pair(ip)%spec) // ')')
+      associate(pr => run%cs%pair(ip), mo => run%cs%pair(ip)%mortar)
+        if (mo%first > 0) then
+          write(line, '(a,es11.4,a,es11.4)') 'contact  pair ' // int_to_str(ip) // ': initial gap from ', &
+            minval(mo%gap0(mo%first:mo%last)), ' to ', maxval(mo%gap0(mo%first:mo%last))
+          if (pr%closed .and. mo%first == 1 .and. mo%last == size(pr%snode)) then
+            line = trim(line) // ', a closed curve covered all round (no zone ends)'
+          else if (any(pr%fold)) then
+            line = trim(line) // ', a zone end inside a slave segment (the master''s end)'
+          end if
+          if (pr%spec%interference) line = trim(line) // ', interference=allow'
+          if (pr%quadratic) then
+            ! the quadratic operator's choices (doc/theory.md, "Quadratic traces")
+            call say(run, trim(line))
+            write(line, '(a,i0,a,i0,a)') 'contact  pair ' // int_to_str(ip) // ': quadratic mortar, slave degree ', &
+              pr%degree(1), ', master degree ', pr%degree(2), ': non-penetration at every trace node'
+            if (any(pr%extended)) then
+              call say(run, trim(line))
+              line = 'contact  pair ' // int_to_str(ip) // ': the master ends inside a zone-end slave element: ' // &
+                     'its end value extended over the rest'
+            end if
+          end if
+          if (has_friction(pr%spec)) then
+            ! the assumption the frictional rows rest on (doc/theory.md, "Friction on curved surfaces")
+            call say(run, trim(line))
+            write(line, '(a,f5.3,a)') 'contact  pair ' // int_to_str(ip) // ': rows along the common normal ' // &
+              'w n_slave - (1 - w) n_master, w = ', pr%slave_weight, ' (from the two sides'' curvatures)'
+          end if
+        else
+          line = 'contact  pair ' // int_to_str(ip) // ': the master faces no slave segment (no contact possible)'
+        end if
+        call say(run, trim(line))
+      end associate
+    end do
+    if (run%sc%steps > 1 .and. run%cs%ntan > 0) then
+      call say(run, 'steps    ' // int_to_str(run%sc%steps) // ' load steps (friction: the answer depends on the load path)')
+    else if (run%sc%steps > 1 .and. run%deck%output%steps_all) then
+      call say(run, 'steps    ' // int_to_str(run%sc%steps) // ' load steps, each solved at its load factors (without ' // &
+               'friction the steps are independent; one factorization for all)')
+    else if (run%sc%steps > 1) then
+      call say(run, 'steps    ' // int_to_str(run%sc%steps) // ' load steps declared; without friction the answer does not ' // &
+               'depend on the load path: the final step alone is solved')
+    end if
+    do ip = 1, run%fl%k
+      if (any(run%split%unheld_body == run%fl%mode_body(ip))) then
+        call say(run, 'rigid    body ' // run%sc%bodies(run%fl%mode_body(ip))%name // ': ' // mode_name(run%fl, &
+          ip) // ' not held by FIX')
+      else
+        call say(run, 'rigid    body ' // run%sc%bodies(run%fl%mode_body(ip))%name // ': ' // mode_name(run%fl, ip) // &
+                 ' not held by FIX: held by contact (equilibrium as an equality constraint)')
+      end if
+    end do
+    do ip = 1, size(run%split%unheld, 2)
+      b = run%split%unheld_body(ip)
+      how = '(the contact normals do not resist it)'
+      if (run%split%tau(b) > 1.0e-10_dp) how = '(the contact normals do not resist it beyond the contact polygon''s median ' // &
+        'turning angle, ' // trim(adjustl(real_short(run%split%tau(b)))) // ' rad)'
+      call say(run, 'rigid    body ' // run%sc%bodies(b)%name // ': ' // motion_name(run%fl, run%split%unheld(:, ip)) // &
+        ' held by neither FIX nor contact ' // how // '; ' // int_to_str(count(run%fl%mode_body == b) - &
+        count(run%split%unheld_body == b)) // ' other combination(s) held by contact')
+    end do
+    write(line, '(a,i0,a,i0,a,i0,a)') 'sizes    ', run%sc%ndof, ' dofs, ', run%nfree, ' free, ', run%cs%nrow, ' contact constraints'
+    call say(run, trim(line))
+    if (len(run%thread_note) > 0) call say(run, 'threads  ' // run%thread_note)
+    ! a key kept so that old decks still read: say that it does nothing
+    if (allocated(run%deck%solver%cut)) call say(run, 'note     SOLVER cut=' // run%deck%solver%cut // &
+      ' is ignored: no body is cut any more (doc/performance.md, "A body cut in two: removed")')
+  end subroutine report_scene
+
+  !> The run log's lines of each RIGID: its shape, reference point, which
+  !> directions are prescribed and which are free (loaded or not, held by
+  !> contact or not).
+  subroutine report_rigids(run)
+    type(run_t), intent(inout) :: run
+    integer :: r, j, k
+    character(len=200) :: line
+    character(len=2), parameter :: dname(3) = ['ux', 'uy', 'rz']
+    character(len=:), allocatable :: how
+    do r = 1, size(run%sc%rigids)
+      associate (sh => run%sc%rigids(r))
+        select case (run%deck%rigids(r)%shape)
+        case ('circle')
+          write(line, '(a,g0.6,a,g0.6,a,g0.6,a)') 'circle of radius ', sh%radius, ' centred at (', sh%centre(1), ', ', &
+            sh%centre(2), ')'
+          if (sh%outside) then
+            line = trim(line) // ', solid outside (a hole)'
+          else
+            line = trim(line) // ', solid inside'
+          end if
+        case default
+          write(line, '(a,i0,a)') run%deck%rigids(r)%shape // ' of ', size(sh%pt, 2), ' points'
+        end select
+        write(line(len_trim(line) + 1:), '(a,g0.6,a,g0.6,a)') ', reference point (', sh%ref(1), ', ', sh%ref(2), ')'
+        call say(run, 'rigid    ' // sh%name // ': ' // trim(line))
+        how = ''
+        do j = 1, 3
+          if (run%sc%fixed(sh%dof0 + j)) then
+            how = how // ', ' // dname(j) // ' prescribed'
+          else
+            how = how // ', ' // dname(j) // ' free'
+            do k = 1, run%rsplit%k
+              if (run%rsplit%dof(k) == sh%dof0 + j .and. run%sc%fext(sh%dof0 + j) /= 0.0_dp) how = how // ' (FORCE)'
+            end do
+          end if
+        end do
+        if (size(run%deck%rigids(r)%fixes) + size(run%deck%rigids(r)%forces) == 0) then
+          call say(run, 'rigid    ' // sh%name // ': held fixed (no FIX, no FORCE)')
+        else if (all(run%sc%fixed(sh%dof0 + 1:sh%dof0 + 3))) then
+          call say(run, 'rigid    ' // sh%name // ': ' // how(3:))
+        else
+          call say(run, 'rigid    ' // sh%name // ': ' // how(3:) // ' (a free direction is held by contact alone: ' // &
+                   'its equilibrium is an equality of the contact problem)')
+        end if
+      end associate
+    end do
+    do j = 1, size(run%rsplit%unheld, 2)
+      if (run%rsplit%loaded(j)) cycle
+      call say(run, 'note     RIGID ' // run%sc%rigids(run%rsplit%unheld_owner(j))%name // ': free direction (' // &
+        rigid_direction(run%rsplit, run%rsplit%unheld(:, j)) // ') held by neither FIX nor contact and unloaded: its ' // &
+        'motion is set to 0 (the contact normals do not resist it)')
+    end do
+  end subroutine report_rigids
+
+  !> The run log's `param    name = value (origin)` lines; the summary's
+  !> `parameter NAME VALUE` lines.
+  subroutine report_parameters(run)
+    type(run_t), intent(inout) :: run
+    integer :: k
+    character(len=:), allocatable :: value
+    allocate(run%res%parameter(run%deck%params%n))
+    do k = 1, run%deck%params%n
+      value = format_number(run%deck%params%value(k))
+      run%res%parameter(k)%s = trim(run%deck%params%name(k)) // ' ' // value
+      call say(run, 'param    ' // trim(run%deck%params%name(k)) // ' = ' // value // ' (' // &
+        trim(run%deck%params%origin(k)) // ')')
+    end do
+  end subroutine report_parameters
+
+  subroutine report_run(run)
+    type(run_t), intent(inout) :: run
+    character(len=200) :: line
+    character(len=:), allocatable :: how
+    integer :: p
+    if (run%cs%nrow > 0) then
+      write(line, '(a,i0,a,i0,a,es10.3,a,es10.3)') 'lcp      ' // run%res%lcp_method // ': ', run%res%lcp_iterations, &
+        ' iterations, ', run%res%active_nodes, ' active nodes, residual ', run%res%lcp_residual, &
+        ', complementarity ', run%res%complementarity
+      if (run%res%lcp_method == 'lemke' .and. run%res%lcp_iterations > 0) then
+        ! Lemke's cost per pivot: O(n^2) on its dense tableau (performance.md)
+        write(line(len_trim(line) + 1:), '(a,es9.3,a)') ', ', &
+          run%res%time(ph_lcp) / run%res%lcp_iterations, ' s per pivot'
+      end if
+      call say(run, trim(line))
+      write(line, '(a,es12.4,a,es12.4)') 'contact  min gap ', run%res%min_gap, ', min pressure ', run%res%min_pressure
+      call say(run, trim(line))
+    end if
+    do p = 1, size(run%sc%rigids)
+      write(line, '(a,3es12.4,a,3es12.4)') ': motion (ux, uy, rz) =', run%res%rigid(1:3, p), &
+        ', contact force on it (fx, fy, m) =', run%res%rigid(4:6, p)
+      call say(run, 'rigid    ' // run%sc%rigids(p)%name // trim(line))
+    end do
+    write(line, '(a,es16.8,a,i0)') 'energy   ', run%res%energy, ',  nnz(L) ', run%res%factor_nnz
+    call say(run, trim(line) // ' (' // run%res%ordering // '),  peak memory ' // &
+             trim(adjustl(real_fixed(run%res%memory_peak / 1048576.0_dp))) // ' MB')
+    if (run%factor%nparts > 1) then
+      write(line, '(a,i0,a)') 'factor   ', run%factor%nparts, ' parts (blocks of K that no entry couples: the bodies)'
+      if (run%factor%side_by_side > 1) then
+        write(line, '(a,i0,a)') trim(line) // ' ordered and factorized side by side on ', &
+          run%factor%side_by_side, ' threads'
+      else
+        line = trim(line) // ' ordered and factorized one after the other'
+      end if
+      call say(run, trim(line))
+    end if
+    if (allocated(run%cd%block)) then
+      how = condensed_report(run%cd)
+      if (len(how) > 0) call say(run, 'condense W from L_cc by body: ' // how)
+    end if
+    call say(run, 'phase        seconds')
+    do p = 1, nphase
+      write(line, '(a,f12.4)') phase_names(p), run%res%time(p)
+      call say(run, trim(line))
+    end do
+    if (run_threads() > 1) then
+      write(line, '(a,f8.3,a,f8.3,a)') ' ordering (', run%res%time_ordering, &
+        ' s, in factor) and the assembly of K (', run%res%time_assemble_values, ' s) ran side by side'
+      call say(run, 'overlap  the ' // run%res%ordering // trim(line))
+    end if
+    do p = 1, size(run%wrote)
+      call say(run, trim(run%wrote(p)))          ! the files run_outputs wrote
+    end do
+  end subroutine report_run
+
+  !> How a pair's tangential behaviour is described in the log.
+  function friction_law(kind, spec) result(t)
+    character(len=*), intent(in) :: kind
+    type(pair_spec_t), intent(in) :: spec
+    character(len=:), allocatable :: t
+    character(len=32) :: v
+    select case (kind)
+    case ('coulomb')
+      write(v, '(g0.6)') spec%mu
+      t = 'Coulomb friction mu = ' // trim(v)
+      if (spec%mu == 0.0_dp) t = t // ': frictionless'
+    case ('tresca')
+      write(v, '(g0.6)') spec%tresca
+      t = 'Tresca friction, slip bound ' // trim(v)
+      if (spec%tresca == 0.0_dp) t = t // ': frictionless'
+    case default
+      t = 'frictionless'
+    end select
+  end function friction_law
+
+  !> x in es10.3
+  function real_short(x) result(s)
+    real(dp), intent(in) :: x
+    character(len=10) :: s
+    write(s, '(es10.3)') x
+  end function real_short
+
+  !> x with one decimal (f10.1)
+  function real_fixed(x) result(s)
+    real(dp), intent(in) :: x
+    character(len=10) :: s
+    write(s, '(f10.1)') x
+  end function real_fixed
+
+end module run_report

@@ -1,0 +1,127 @@
+!> errors: how an error travels across module boundaries.
+!>
+!> contact2d reports bad input as
+!>     contact2d: error: FILE:LINE: what is wrong (what was expected)
+!> collects every such error it can find before stopping (diag_t), and then
+!> exits with status 2.  A mid-level routine that fails returns an error_t
+!> (its last argument, intent(out), allocatable: the caller tests
+!> allocated(err) and returns); only the application layer (app/exits)
+!> ends the process.
+!>
+!> Programming interface
+!>   type(diag_t)         list of collected messages (file, line, text)
+!>   add_error(d, file, line, text [, echo])
+!>                        append one message; line <= 0 prints FILE: only;
+!>                        echo, when present, is the offending input line, printed
+!>                        indented under the message
+!>   has_errors(d)        .true. when at least one message was collected
+!>   print_errors(d)      write every message to stderr, in order
+!>   type(error_t)        a mid-level error: message, exit status (1 or 2), the equation or pair it names,
+!>                        whether K is singular or memory ran out
+!>   set_error(err, message [, status])
+!>                        err = message, status 2 (input) or 1 (numerical, the default)
+!>   set_out_of_memory(err, phase, bytes)
+!>                        err = `out of memory while PHASE (about N MB needed)`, status 1, no_memory
+module errors
+  use kinds, only: i8
+  use strings, only: int_to_str, i8_to_str, printable
+  use, intrinsic :: iso_fortran_env, only: error_unit
+  implicit none
+  private
+  public :: diag_t, add_error, has_errors, print_errors, error_t, set_error, set_out_of_memory
+
+  !> One collected message.
+  type :: message_t
+    character(len=:), allocatable :: text   !< full formatted line(s)
+  end type message_t
+
+
+  type :: diag_t
+    integer :: count = 0                       !< number of messages held
+    type(message_t), allocatable :: items(:)   !< (capacity) the messages
+  end type diag_t
+
+  !> A mid-level error: callers test allocated(err) and return.  The fields
+  !> after the message carry what a caller needs to act on it, so that no
+  !> caller reads them back out of the text.
+  type :: error_t
+    character(len=:), allocatable :: message  !< text after `contact2d: error: `
+    integer :: status = 1                      !< exit status: 1 numerical, 2 input
+    integer :: equation = 0                    !< the free equation (row of K) it names, 0: none
+    integer :: pair = 0                        !< the contact pair (its CONTACT statement, 1-based) it names, 0: none
+    logical :: singular = .false.              !< K singular or not positive definite (at equation, when > 0)
+    logical :: no_memory = .false.             !< an allocation failed (set_out_of_memory)
+  end type error_t
+
+contains
+
+  !> Append one message `FILE:LINE: text` to d.
+  !>   d     (inout) the list
+  !>   file  (in)    file name as the user knows it
+  !>   line  (in)    1-based line number; <= 0 omits it
+  !>   text  (in)    what is wrong (what was expected)
+  !>   echo  (in, optional) the offending line, printed under the message
+  subroutine add_error(d, file, line, text, echo)
+    type(diag_t), intent(inout) :: d
+    character(len=*), intent(in) :: file
+    integer, intent(in) :: line
+    character(len=*), intent(in) :: text
+    character(len=*), intent(in), optional :: echo
+    type(message_t), allocatable :: grown(:)
+    character(len=:), allocatable :: s
+
+    if (.not. allocated(d%items)) allocate(d%items(16))
+    if (d%count == size(d%items)) then
+      allocate(grown(2 * size(d%items)))
+      grown(1:d%count) = d%items(1:d%count)
+      call move_alloc(grown, d%items)
+    end if
+    if (line > 0) then
+      s = 'contact2d: error: ' // file // ':' // int_to_str(line) // ': ' // text
+    else
+      s = 'contact2d: error: ' // file // ': ' // text
+    end if
+    if (present(echo)) then
+      if (len_trim(echo) > 0) s = s // new_line('a') // '    ' // trim(printable(echo))
+    end if
+    d%count = d%count + 1
+    d%items(d%count)%text = s
+  end subroutine add_error
+  logical function has_errors(d)
+    type(diag_t), intent(in) :: d
+    has_errors = d%count > 0
+  end function has_errors
+  subroutine print_errors(d)
+    type(diag_t), intent(in) :: d
+    integer :: i
+    do i = 1, d%count
+      write(error_unit, '(a)') d%items(i)%text
+    end do
+    flush(error_unit)
+  end subroutine print_errors
+
+  !> Fill err with a message and status (2 input, 1 numerical).
+  subroutine set_error(err, message, status)
+    type(error_t), allocatable, intent(out) :: err
+    character(len=*), intent(in) :: message
+    integer, intent(in), optional :: status
+    allocate(err)
+    err%message = message
+    if (present(status)) err%status = status
+  end subroutine set_error
+
+  !> Exhausted memory is a diagnosis, not a crash: the run ends with exit 1 and
+  !> `out of memory while PHASE (about N MB needed)`.
+  !>   err    (out) the error, status 1
+  !>   phase  (in)  what the program was doing ('meshing body "b"', 'factorizing K')
+  !>   bytes  (in)  what that phase needs (an estimate), >= 0
+  subroutine set_out_of_memory(err, phase, bytes)
+    type(error_t), allocatable, intent(out) :: err
+    character(len=*), intent(in) :: phase
+    integer(i8), intent(in) :: bytes
+    call set_error(err, 'out of memory while ' // phase // ' (about ' // &
+                   i8_to_str(max(1_i8, (bytes + 1048575_i8) / 1048576_i8)) // ' MB needed)', 1)
+    err%no_memory = .true.
+  end subroutine set_out_of_memory
+
+end module errors

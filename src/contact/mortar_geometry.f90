@@ -1,0 +1,394 @@
+!> mortar_geometry: the geometry of a contact pair's two boundary polylines that the
+!> mortar operator is built on (mortar_operator): their checks, the intersection of
+!> the two 1D meshes, nodal normals, rays, and the common normal of a frictional pair.
+!>
+!> Segment intersection ("1D segment quadrature", `intersect_segments`).  For each slave segment
+!>    [x_a, x_b] (length L, unit tangent t, outward unit normal n) every master segment
+!>    that faces it (n_master . n < 0) is projected onto the slave segment's line along
+!>    n: s(y) = (y - x_a).t / L.  The overlap of the projected interval with [0, 1], when
+!>    longer than 1e-10, is a sub-segment; on it the slave hats (affine in s) and the
+!>    master hats (affine in the master coordinate r, itself affine in s) are both
+!>    linear, so 2-point Gauss on each sub-segment integrates every product
+!>    phi_i chi_j and phi_i phi_l exactly.  A master part counts whatever its distance
+!>    along n (initial gaps may be large); a slave part covered twice (a master that
+!>    folds back in front of the slave) is rejected.
+!> Common normal (`common_normals`, doc/theory.md "Friction on curved surfaces"):
+!>    n_c = normalize(w n1 - (1 - w) n2), w = k2 / (k1 + k2) from the two polylines'
+!>    mean curvatures over the parts that face: the direction along which two curved
+!>    surfaces approach, which pairs the points that meet.
+!>
+!> Programming interface
+!>   type(intersection_t)  the list of sub-segments of the two 1D meshes
+!>   intersect_segments(xs, ns_out, xm, nm_out, inter [, pairing])
+!>                         the sub-segment list (valid polylines assumed)
+!>   check_polyline(x, nrm, side, err)   a polyline and its segment normals usable
+!>   ray_hit(a, n, xm, nm_out, f, r)     nearest hit of a line on the facing master
+!>   common_normals(xs, ns_out, xm, nm_out, nc, w)   a frictional pair's pairing directions
+!>   real_to_str(v)                      short decimal text for messages
+module mortar_geometry
+  use kinds, only: dp
+  use strings, only: int_to_str
+  use errors, only: error_t, set_error
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+  implicit none
+  private
+  public :: intersection_t, intersect_segments, check_polyline, ray_hit, common_normals, real_to_str
+  public :: tol_overlap
+
+  !> Sub-segments of the intersection of the slave and master 1D meshes, ordered by
+  !> slave segment and, within one, by increasing s.
+  type :: intersection_t
+    integer :: nsub = 0                       !< number of sub-segments
+    integer, allocatable :: slave_seg(:)      !< (nsub) slave segment e (nodes e, e+1)
+    integer, allocatable :: master_seg(:)     !< (nsub) master segment f (nodes f, f+1)
+    real(dp), allocatable :: s(:,:)           !< (2, nsub) slave coordinates of the ends, 0 <= s(1) < s(2) <= 1
+    real(dp), allocatable :: r(:,:)           !< (2, nsub) master coordinates at the same ends (y = (1-r) y_f + r y_f+1)
+  end type intersection_t
+
+  real(dp), parameter :: tol_unit = 1.0e-8_dp      ! |n| = 1 and n.t = 0 up to this
+  real(dp), parameter :: tol_length = 1.0e-12_dp   ! zero length, relative to the polyline's extent
+  real(dp), parameter :: tol_overlap = 1.0e-10_dp  ! shortest sub-segment / double cover, relative to L
+  real(dp), parameter :: tol_ray = 1.0e-10_dp      ! slack on the master coordinate of a ray hit
+
+contains
+
+  !> The common normal of a frictional pair at each slave node (module header,
+  !> 7.): the direction along which the two surfaces approach, which pairs the
+  !> points that meet and is the normal of the slip's tangent plane.  Near the
+  !> first contact of two surfaces of curvatures k1 (slave) and k2 (master),
+  !> their normals at a distance x are tilted by k1 x and -k2 x from it, so
+  !>    n_c = normalize(w n1 - (1 - w) n2),   w = k2 / (k1 + k2)  in [0, 1],
+  !> n1 the slave nodal normal, n2 the master normal at the point its ray
+  !> meets.  k1, k2 are the mean curvatures of the two polylines over the
+  !> part of them that faces the other (convex > 0).  w = 1/2 (the bisector)
+  !> when they agree to tol_curv (a polygon's curvature is no better; mirror
+  !> images then pair exactly), when k1 + k2 is not positive (conforming
+  !> surfaces, whose normals are parallel anyway) and on flat pairs; w = 1 or
+  !> 0 when one side is flat to tol_curv of the other.
+  !>   xs, ns_out, xm, nm_out (in) the polylines and segment normals, as build_mortar
+  !>   nc (out) (2, ns) unit common normals; the slave nodal normal where no master faces
+  !>   w  (out) the weight of the slave normal
+  subroutine common_normals(xs, ns_out, xm, nm_out, nc, w)
+    real(dp), intent(in) :: xs(:,:), ns_out(:,:), xm(:,:), nm_out(:,:)
+    real(dp), allocatable, intent(out) :: nc(:,:)
+    real(dp), intent(out) :: w
+    real(dp), parameter :: tol_curv = 5.0e-2_dp
+    type(intersection_t) :: inter
+    real(dp), allocatable :: n1(:,:), n2(:,:)
+    logical, allocatable :: sface(:), mface(:)
+    real(dp) :: k1, k2, y(2), rr, m(2)
+    integer :: ns, nm, i, f, iter
+
+    ns = size(xs, 2)
+    nm = size(xm, 2)
+    call nodal_normals(xs, ns_out, n1)
+    call nodal_normals(xm, nm_out, n2)
+    nc = n1
+    w = 0.5_dp
+    call intersect_segments(xs, ns_out, xm, nm_out, inter)
+    if (inter%nsub == 0) return
+    allocate(sface(ns - 1), mface(nm - 1), source=.false.)
+    sface(inter%slave_seg(1:inter%nsub)) = .true.
+    mface(inter%master_seg(1:inter%nsub)) = .true.
+    k1 = mean_curvature(xs, ns_out, sface)
+    k2 = mean_curvature(xm, nm_out, mface)
+    if (abs(k1 - k2) <= tol_curv * 0.5_dp * (abs(k1) + abs(k2)) .or. .not. k1 + k2 > 0.0_dp) then
+      w = 0.5_dp
+    else if (abs(k1) <= tol_curv * abs(k2)) then
+      w = 1.0_dp
+    else if (abs(k2) <= tol_curv * abs(k1)) then
+      w = 0.0_dp
+    else
+      w = min(1.0_dp, max(0.0_dp, k2 / (k1 + k2)))
+    end if
+    do i = 1, ns
+      if (.not. (any(sface(max(1, i - 1):min(ns - 1, i))))) cycle
+      ! the master point on the ray along the current estimate, a few times:
+      ! each pass moves it closer to the point the common normal meets
+      do iter = 1, 4
+        call ray_hit(xs(:, i), nc(:, i), xm, nm_out, f, rr)
+        if (f == 0) exit
+        if (rr < 1.0e-8_dp) rr = 0.0_dp                    ! on a master node: its normal exactly
+        if (rr > 1.0_dp - 1.0e-8_dp) rr = 1.0_dp
+        m = (1.0_dp - rr) * n2(:, f) + rr * n2(:, f + 1)
+        m = m / norm2(m)
+        y = w * n1(:, i) - (1.0_dp - w) * m
+        if (.not. norm2(y) > 0.0_dp) exit
+        nc(:, i) = y / norm2(y)
+      end do
+    end do
+  end subroutine common_normals
+
+  !> Unit nodal normals of a polyline: the normalized sum of the two segment
+  !> normals at a node, the segment's own at an end (a closed curve has none).
+  subroutine nodal_normals(x, nrm, n)
+    real(dp), intent(in) :: x(:,:), nrm(:,:)
+    real(dp), allocatable, intent(out) :: n(:,:)
+    real(dp) :: y(2)
+    integer :: np, i
+    np = size(x, 2)
+    allocate(n(2, np))
+    n(:, 1) = nrm(:, 1)
+    n(:, np) = nrm(:, np - 1)
+    do i = 2, np - 1
+      y = nrm(:, i - 1) + nrm(:, i)
+      n(:, i) = y / norm2(y)
+    end do
+    if (all(x(:, 1) == x(:, np))) then
+      y = nrm(:, np - 1) + nrm(:, 1)
+      n(:, 1) = y / norm2(y)
+      n(:, np) = n(:, 1)
+    end if
+  end subroutine nodal_normals
+
+  !> Mean curvature of the segments of a polyline marked in seg (convex > 0):
+  !> the turning of the outward normal along the tangent, summed over
+  !> consecutive marked segments, over their half lengths.
+  real(dp) function mean_curvature(x, nrm, seg) result(k)
+    real(dp), intent(in) :: x(:,:), nrm(:,:)
+    logical, intent(in) :: seg(:)
+    real(dp) :: turn, length, ta(2), tb(2)
+    integer :: e
+    turn = 0.0_dp
+    length = 0.0_dp
+    do e = 1, size(seg) - 1
+      if (.not. (seg(e) .and. seg(e + 1))) cycle
+      ta = x(:, e + 1) - x(:, e)
+      tb = x(:, e + 2) - x(:, e + 1)
+      turn = turn + dot_product(nrm(:, e + 1) - nrm(:, e), ta / norm2(ta) + tb / norm2(tb)) * 0.5_dp
+      length = length + 0.5_dp * (norm2(ta) + norm2(tb))
+    end do
+    k = 0.0_dp
+    if (length > 0.0_dp) k = turn / length
+  end function mean_curvature
+
+  !> The nearest hit of the line a + tau n on a master segment facing n.
+  !>   a, n (in) (2) point and unit direction;  xm, nm_out (in) master nodes and segment normals
+  !>   f (out) the master segment, 0 when the line misses the master;  r (out) its coordinate in [0, 1]
+  subroutine ray_hit(a, n, xm, nm_out, f, r)
+    real(dp), intent(in) :: a(2), n(2), xm(:,:), nm_out(:,:)
+    integer, intent(out) :: f
+    real(dp), intent(out) :: r
+    real(dp) :: d(2), w(2), den, tau, rr, best
+    integer :: g
+    f = 0
+    r = 0.0_dp
+    best = huge(1.0_dp)
+    do g = 1, size(xm, 2) - 1
+      if (dot_product(nm_out(:, g), n) >= 0.0_dp) cycle
+      d = xm(:, g + 1) - xm(:, g)
+      w = xm(:, g) - a
+      den = cross(n, d)
+      if (abs(den) <= 1.0e-12_dp * norm2(d)) cycle        ! segment along the ray
+      rr = -cross(n, w) / den                              ! a + tau n = y_g + rr d
+      if (rr < -tol_ray .or. rr > 1.0_dp + tol_ray) cycle
+      tau = cross(w, d) / den
+      if (abs(tau) < best) then
+        best = abs(tau)
+        f = g
+        r = min(1.0_dp, max(0.0_dp, rr))
+      end if
+    end do
+  end subroutine ray_hit
+
+  !> Intersect the slave and master 1D meshes: for each slave segment, the master
+  !> segments facing it projected along its normal onto its line (module header, 1.).
+  !> The polylines are assumed valid (as checked by build_mortar).
+  !>   xs     (in)  (2, ns) slave nodes;  ns_out (in) (2, ns-1) slave segment normals
+  !>   xm     (in)  (2, nm) master nodes; nm_out (in) (2, nm-1) master segment normals
+  !>   inter  (out) the sub-segments, ordered by slave segment and increasing s
+  !>   pairing (in, optional) (2, ns) unit nodal pairing directions: the master is
+  !>                  projected onto segment e along their sum, not along its normal
+  subroutine intersect_segments(xs, ns_out, xm, nm_out, inter, pairing)
+    real(dp), intent(in) :: xs(:,:), ns_out(:,:), xm(:,:), nm_out(:,:)
+    type(intersection_t), intent(out) :: inter
+    real(dp), intent(in), optional :: pairing(:,:)
+    integer :: nss, nms, e, f, nc, i, j, cap
+    real(dp) :: xa(2), t(2), d(2), length, sa, sb, lo, hi
+    real(dp), allocatable :: clo(:), chi(:), rlo(:), rhi(:), sm(:)
+    integer, allocatable :: cf(:)
+
+    nss = size(xs, 2) - 1
+    nms = size(xm, 2) - 1
+    allocate(clo(nms), chi(nms), rlo(nms), rhi(nms), cf(nms), sm(nms + 1))
+    cap = max(16, nss + nms)
+    allocate(inter%slave_seg(cap), inter%master_seg(cap), inter%s(2, cap), inter%r(2, cap))
+    inter%nsub = 0
+    do e = 1, nss
+      xa = xs(:, e)
+      t = xs(:, e + 1) - xa
+      length = norm2(t)
+      t = t / length
+      nc = 0
+      if (present(pairing)) then           ! projected along the pairing direction d
+        d = pairing(:, e) + pairing(:, e + 1)
+        do f = 1, nms + 1
+          sm(f) = cross(xm(:, f) - xa, d) / cross(xs(:, e + 1) - xa, d)
+        end do
+      else
+        do f = 1, nms + 1                  ! each master node's coordinate along segment e, once
+          sm(f) = dot_product(xm(:, f) - xa, t) / length
+        end do
+      end if
+      do f = 1, nms
+        if (dot_product(nm_out(:, f), ns_out(:, e)) >= 0.0_dp) cycle   ! not facing
+        sa = sm(f)
+        sb = sm(f + 1)
+        lo = max(0.0_dp, min(sa, sb))
+        hi = min(1.0_dp, max(sa, sb))
+        if (hi - lo <= tol_overlap) cycle
+        nc = nc + 1
+        clo(nc) = lo
+        chi(nc) = hi
+        rlo(nc) = min(1.0_dp, max(0.0_dp, (lo - sa) / (sb - sa)))   ! y = y_f + r (y_f+1 - y_f)
+        rhi(nc) = min(1.0_dp, max(0.0_dp, (hi - sa) / (sb - sa)))
+        cf(nc) = f
+      end do
+      ! insertion sort by lo
+      do i = 2, nc
+        j = i
+        do while (j > 1)
+          if (clo(j - 1) <= clo(j)) exit
+          call swap_real(clo(j - 1), clo(j))
+          call swap_real(chi(j - 1), chi(j))
+          call swap_real(rlo(j - 1), rlo(j))
+          call swap_real(rhi(j - 1), rhi(j))
+          call swap_int(cf(j - 1), cf(j))
+          j = j - 1
+        end do
+      end do
+      if (inter%nsub + nc > cap) then
+        cap = max(2 * cap, inter%nsub + nc)
+        call grow_intersection(inter, cap)
+      end if
+      do i = 1, nc
+        inter%nsub = inter%nsub + 1
+        inter%slave_seg(inter%nsub) = e
+        inter%master_seg(inter%nsub) = cf(i)
+        inter%s(:, inter%nsub) = [clo(i), chi(i)]
+        inter%r(:, inter%nsub) = [rlo(i), rhi(i)]
+      end do
+    end do
+  end subroutine intersect_segments
+
+  !> Check one polyline and its segment normals; err (status 2) on the first defect.
+  !>   x     (in)  (2, np) nodes
+  !>   nrm   (in)  (2, np-1) outward unit segment normals
+  !>   side  (in)  'slave' or 'master', for messages
+  !>   err   (out) allocated when the polyline is not usable
+  subroutine check_polyline(x, nrm, side, err)
+    real(dp), intent(in) :: x(:,:), nrm(:,:)
+    character(len=*), intent(in) :: side
+    type(error_t), allocatable, intent(out) :: err
+    integer :: np, k
+    real(dp) :: scale, length, t(2), orient, c
+
+    np = size(x, 2)
+    if (size(x, 1) /= 2 .or. size(nrm, 1) /= 2) then
+      call set_error(err, side // ' boundary coordinates or normals are not 2D (arrays (2, n) expected)', 2)
+      return
+    end if
+    if (np < 2) then
+      call set_error(err, side // ' boundary has ' // int_to_str(np) // &
+        ' node(s) (at least 2 nodes, one segment, expected)', 2)
+      return
+    end if
+    if (size(nrm, 2) /= np - 1) then
+      call set_error(err, side // ' boundary has ' // int_to_str(size(nrm, 2)) // ' segment normals for ' // &
+        int_to_str(np) // ' nodes (one normal per segment, ' // int_to_str(np - 1) // ', expected)', 2)
+      return
+    end if
+    if (.not. (all(ieee_is_finite(x)) .and. all(ieee_is_finite(nrm)))) then
+      call set_error(err, side // ' boundary has non-finite coordinates or normals (finite numbers expected)', 2)
+      return
+    end if
+    scale = max(maxval(x(1, :)) - minval(x(1, :)), maxval(x(2, :)) - minval(x(2, :)))
+    orient = 0.0_dp
+    do k = 1, np - 1
+      t = x(:, k + 1) - x(:, k)
+      length = norm2(t)
+      if (length <= tol_length * scale) then
+        call set_error(err, 'zero-length segment on the ' // side // ' boundary at node ' // int_to_str(k) // &
+          ' (distinct consecutive nodes expected)', 2)
+        return
+      end if
+      t = t / length
+      if (abs(norm2(nrm(:, k)) - 1.0_dp) > tol_unit) then
+        call set_error(err, 'normal of ' // side // ' segment ' // int_to_str(k) // &
+          ' is not a unit vector (outward unit normals expected)', 2)
+        return
+      end if
+      if (abs(dot_product(nrm(:, k), t)) > tol_unit) then
+        call set_error(err, 'normal of ' // side // ' segment ' // int_to_str(k) // &
+          ' is not perpendicular to the segment (outward unit normals expected)', 2)
+        return
+      end if
+      c = cross(t, nrm(:, k))                              ! +1 or -1: the side of the normal
+      if (k == 1) then
+        orient = c
+      else if (c * orient < 0.0_dp) then
+        call set_error(err, 'normals of the ' // side // ' boundary change side at segment ' // int_to_str(k) // &
+          ' (outward normals, all on the body''s side, expected)', 2)
+        return
+      end if
+      if (k > 1) then
+        if (dot_product(nrm(:, k - 1), nrm(:, k)) <= -1.0_dp + tol_unit) then
+          call set_error(err, side // ' boundary turns back on itself at node ' // int_to_str(k) // &
+            ' (a boundary without folds expected)', 2)
+          return
+        end if
+      end if
+    end do
+  end subroutine check_polyline
+
+  !> Enlarge the arrays of inter to capacity cap, keeping the first nsub entries.
+  subroutine grow_intersection(inter, cap)
+    type(intersection_t), intent(inout) :: inter
+    integer, intent(in) :: cap
+    integer, allocatable :: ia(:)
+    real(dp), allocatable :: ra(:,:)
+    integer :: n
+    n = inter%nsub
+    allocate(ia(cap)); ia(1:n) = inter%slave_seg(1:n); call move_alloc(ia, inter%slave_seg)
+    allocate(ia(cap)); ia(1:n) = inter%master_seg(1:n); call move_alloc(ia, inter%master_seg)
+    allocate(ra(2, cap)); ra(:, 1:n) = inter%s(:, 1:n); call move_alloc(ra, inter%s)
+    allocate(ra(2, cap)); ra(:, 1:n) = inter%r(:, 1:n); call move_alloc(ra, inter%r)
+  end subroutine grow_intersection
+
+  !> z-component of the cross product of two plane vectors.
+  pure real(dp) function cross(u, v)
+    real(dp), intent(in) :: u(2), v(2)
+    cross = u(1) * v(2) - u(2) * v(1)
+  end function cross
+
+  pure subroutine swap_real(a, b)
+    real(dp), intent(inout) :: a, b
+    real(dp) :: c
+    c = a; a = b; b = c
+  end subroutine swap_real
+
+  pure subroutine swap_int(a, b)
+    integer, intent(inout) :: a, b
+    integer :: c
+    c = a; a = b; b = c
+  end subroutine swap_int
+
+  !> Short decimal text of a real (6 significant digits, trailing zeros dropped), for messages.
+  function real_to_str(v) result(s)
+    real(dp), intent(in) :: v
+    character(len=:), allocatable :: s
+    character(len=32) :: buf
+    integer :: k
+    write(buf, '(g0.6)') v
+    s = trim(adjustl(buf))
+    if (index(s, '.') > 0 .and. scan(s, 'EeDd') == 0) then
+      k = len_trim(s)
+      do while (s(k:k) == '0')
+        k = k - 1
+      end do
+      if (s(k:k) == '.') k = k - 1
+      s = s(1:k)
+    end if
+  end function real_to_str
+
+end module mortar_geometry

@@ -1,0 +1,603 @@
+!> mortar_quadratic: the mortar operator pi_h of one contact pair when either side's
+!> trace is quadratic (3-node edges of tri6, quad8, quad9 bodies, straight or curved
+!> as the mesh places the mid-side node), following P. Hild and P. Laborde,
+!> "Quadratic finite element methods for unilateral contact problems", Appl. Numer.
+!> Math. 41 (2002) 401-421, with the nodal non-penetration condition (doc/theory.md,
+!> "Quadratic traces").  It fills the same mortar_t as mortar_operator, so that the
+!> rows B u <= g, the condensation and the LCP are the ones of the linear case.
+!>
+!> Traces.  A trace of degree p (1 or 2) is the chain of its nodes x_1..x_n in order
+!>    along the boundary, element e holding the nodes p(e-1)+1 .. pe+1 (for p = 2:
+!>    corner, mid-side node, corner).  On element e, s in [0, 1]:
+!>       x(s) = sum_k N_k(s) x_k,   p = 1: N = (1-s, s),
+!>       p = 2: N = ((1-s)(1-2s), 4s(1-s), s(2s-1))   (isoparametric: curved edges kept).
+!>    phi_i (slave) and chi_j (master) are these shape functions on the traces.
+!> 1. Intersection.  Master element f faces slave element e when their chords'
+!>    outward normals point against each other, -n_f.n_e > 0.2 (within 78 degrees
+!>    of opposite): a curved slave element at a right angle to the master would
+!>    otherwise pair with all of it along its normal, a fold in the cover.  The master's end points are
+!>    projected onto the slave curve along the slave's normal field: s solves
+!>    (y - x(s)).x'(s) = 0 (Newton from the chord's value; linear on a straight e).
+!>    On the overlap [lo, hi] of [0, 1] with the projected interval, a slave point
+!>    x(s) is paired with the master point y(r(s)) where the line x(s) + tau n(s)
+!>    meets element f (Newton in r; linear on a straight f).
+!> 2. Quadrature.  Each overlap is integrated with 4-point Gauss-Legendre in s with
+!>    the weight |x'(s)|.  On straight edges r(s) is affine, the integrands
+!>    phi_i phi_l and phi_i chi_j are polynomials of degree <= 4 and |x'| is
+!>    constant: the rule (exact to degree 7) is exact.  On a curved edge |x'(s)|
+!>    is the square root of a quadratic and r(s) is not polynomial: the relative
+!>    error falls as h^6 (measured in tests/unit/test_mortar_quadratic.f90, the
+!>    figures in doc/theory.md, "Quadratic traces").
+!> 3. Zone and multipliers.  The zone is the slave elements with a covered part,
+!>    zone nodes z = 0..Z (Z = p times the element count).  The multiplier space
+!>    M_h is the continuous space of degree p on the zone, of degree p - 1 on its
+!>    two end elements (Hild-Laborde's end condition; constants for Z = p):
+!>       p = 1: psi_1 = phi_0 + phi_1, psi_k = phi_k, psi_{Z-1} = phi_{Z-1} + phi_Z;
+!>       p = 2: psi_1 = phi_0 + phi_1/2, psi_2 = phi_1/2 + phi_2, psi_k = phi_k,
+!>              psi_{Z-2} = phi_{Z-2} + phi_{Z-1}/2, psi_{Z-1} = phi_{Z-1}/2 + phi_Z;
+!>    dim M_h = Z - 1 = the interior nodes, and M_h holds the constants.
+!> 4. Projection, eq. (8) of the linear case carried over: for a master trace phi,
+!>       (pi phi)(x_0) = phi(y_0),  (pi phi)(x_Z) = phi(y_Z),
+!>       int_cov (phi - pi phi) psi_k = 0,  k = 1..Z-1,
+!>    y_0 (y_Z) the master point paired with the start (end) of the zone's cover:
+!>    where the master ends inside a zone-end element, its end point, i.e. the
+!>    master trace extended by its end value over the uncovered part (the linear
+!>    operator's rule for slivers; its cut zone ends are not carried over, so
+!>    that end's row is exact only while it stays open).
+!>    D v = C H - E_0 c_0 - E_Z c_Z with D = C G (interior columns), G_ml = int phi_m
+!>    phi_l, H_mj = int phi_m chi_j, C the coefficients of psi on phi; D is banded
+!>    (p + 1 off-diagonals) and solved by LAPACK dgbsv for all master columns.
+!>    pi reproduces the traces of degree p and int pi phi = int_cov phi: the
+!>    contact patch test holds to round-off on straight non-matching edges.
+!> 5. A closed slave curve that the master covers all round: M_h the periodic
+!>    space of degree p, D = G cyclic, solved by bordering (banded dgbsv on the
+!>    first Z - p nodes, a p x p Schur complement by dgesv).
+!> 6. Rows (contact_set): B_i u = n_i.u1(x_i) - n_i.sum_j P_ij u2(y_j) <= gap0_i at
+!>    every zone node i, corners and mid-side nodes (the nodal condition), with
+!>    gap0_i = n_i.((P y)_i - x_i) from the curved geometry and n_i the unit normal
+!>    of the curve at x_i (the mean of the two elements' at a corner).
+!>
+!> Programming interface
+!>   build_mortar_quadratic(xs, ps, sn_out, xm, pm, mn_out, gap_zero, mortar, mcov, err)
+!>         the operator in a mortar_t (cut = [0, 1]: the zone's ends are slave
+!>         nodes; inter is left empty), mcov(j) = int_cov chi_j, and which zone
+!>         end has the master's end value extended over part of an element
+!>   trace_point(x, p, e, s, y, dy)   point and derivative of element e at s
+module mortar_quadratic
+  use kinds, only: dp
+  use lapack_interfaces, only: dgbsv, dgesv
+  use strings, only: int_to_str
+  use errors, only: error_t, set_error
+  use mortar_geometry, only: real_to_str
+  use mortar_operator, only: mortar_t, start_mortar, start_periodic, set_initial_gaps
+  implicit none
+  private
+  public :: build_mortar_quadratic, trace_point, gauss4
+
+  real(dp), parameter :: tol_overlap = 1.0e-10_dp  ! shortest overlap, relative to the element
+  real(dp), parameter :: tol_piece = 1.0e-3_dp     ! shortest covered piece of a zone-end element kept
+  real(dp), parameter :: min_facing = 0.2_dp       ! -n_master.n_slave of the chords above which they face
+  real(dp), parameter :: tol_sliver = 2.0e-2_dp    ! uncovered piece of a zone-end element reported as extended
+
+  !> 4-point Gauss-Legendre on [0, 1]: points and weights.
+  real(dp), parameter :: gauss4(2, 4) = reshape([ &
+    0.5_dp - 0.5_dp * 0.86113631159405257522_dp, 0.5_dp * 0.34785484513745385737_dp, &
+    0.5_dp - 0.5_dp * 0.33998104358485626480_dp, 0.5_dp * 0.65214515486254614263_dp, &
+    0.5_dp + 0.5_dp * 0.33998104358485626480_dp, 0.5_dp * 0.65214515486254614263_dp, &
+    0.5_dp + 0.5_dp * 0.86113631159405257522_dp, 0.5_dp * 0.34785484513745385737_dp], [2, 4])
+
+  !> One overlap of a slave element e with a master element f.
+  type :: overlap_t
+    integer :: e = 0, f = 0
+    real(dp) :: lo = 0.0_dp, hi = 0.0_dp      !< slave coordinates of its ends
+    real(dp) :: rlo = 0.0_dp, rhi = 0.0_dp    !< master coordinates paired with them
+  end type overlap_t
+
+contains
+
+  !> Build the operator; see the module header.
+  !>   xs     (in)  (2, ns) slave trace nodes in order;  ps (in) its degree, 1 or 2
+  !>   sn_out (in)  (2, (ns-1)/ps) outward unit normal of each slave element's chord
+  !>   xm     (in)  (2, nm) master trace nodes;  pm (in) its degree
+  !>   mn_out (in)  (2, (nm-1)/pm) outward unit chord normals of the master elements
+  !>   gap_zero (in) .true.: gap0 = 0 (the boundaries coincide)
+  !>   mortar (out) the operator (fields as mortar_operator's mortar_t)
+  !>   mcov   (out) (nm) int over the covered zone of each master shape function
+  !>   extended (out) (2) the master ends inside the zone's first (1) / last (2)
+  !>                element by more than a sliver: its end value is extended there
+  !>   err    (out) status 2 for a master that folds or leaves a hole; 1 when
+  !>                LAPACK finds D singular
+  subroutine build_mortar_quadratic(xs, ps, sn_out, xm, pm, mn_out, gap_zero, mortar, mcov, extended, err)
+    real(dp), intent(in) :: xs(:,:), sn_out(:,:), xm(:,:), mn_out(:,:)
+    integer, intent(in) :: ps, pm
+    logical, intent(in) :: gap_zero
+    type(mortar_t), intent(out) :: mortar
+    real(dp), allocatable, intent(out) :: mcov(:)
+    logical, intent(out) :: extended(2)
+    type(error_t), allocatable, intent(out) :: err
+    type(overlap_t), allocatable :: ov(:)
+    integer :: ns, nm, nes, e, k, nov, efirst, elast, i0, i
+    integer, allocatable :: ncover(:)
+    logical :: closed
+    real(dp) :: sigma, y(2), dy(2), nrm(2)
+    real(dp), allocatable :: selen(:)
+
+    ns = size(xs, 2)
+    nm = size(xm, 2)
+    nes = (ns - 1) / ps
+    call start_mortar(mortar, ns, nm)
+    allocate(mcov(nm), source=0.0_dp)
+    closed = all(xs(:, 1) == xs(:, ns))
+    extended = .false.
+
+    ! Arc length, element lengths and nodal normals of the slave curve.
+    allocate(selen(nes))
+    mortar%arc(1) = 0.0_dp
+    mortar%normal = 0.0_dp
+    do e = 1, nes
+      sigma = side(xs, ps, e, sn_out(:, e))
+      selen(e) = curve_length(xs, ps, e, 0.0_dp, 1.0_dp)
+      if (ps == 2) mortar%arc(2 * e) = mortar%arc(2 * e - 1) + curve_length(xs, ps, e, 0.0_dp, 0.5_dp)
+      mortar%arc(ps * e + 1) = mortar%arc(ps * (e - 1) + 1) + selen(e)
+      do k = 0, ps
+        call trace_point(xs, ps, e, real(k, dp) / ps, y, dy)
+        nrm = sigma * [dy(2), -dy(1)] / norm2(dy)
+        mortar%normal(:, ps * (e - 1) + 1 + k) = mortar%normal(:, ps * (e - 1) + 1 + k) + nrm
+      end do
+    end do
+    if (closed) then
+      mortar%normal(:, 1) = mortar%normal(:, 1) + mortar%normal(:, ns)
+      mortar%normal(:, ns) = mortar%normal(:, 1)
+    end if
+    do i = 1, ns
+      mortar%normal(:, i) = mortar%normal(:, i) / norm2(mortar%normal(:, i))
+    end do
+
+    call intersect_traces(xs, ps, sn_out, xm, pm, mn_out, ov, nov)
+    if (nov == 0) return
+
+    ! Coverage per slave element: folds and holes.
+    allocate(ncover(nes), source=0)
+    do k = 1, nov
+      ncover(ov(k)%e) = ncover(ov(k)%e) + 1
+      if (k > 1) then
+        if (ov(k - 1)%e == ov(k)%e .and. ov(k)%lo < ov(k - 1)%hi - tol_overlap) then
+          call set_error(err, 'master boundary covers the slave boundary twice near arc length ' // &
+            real_to_str(mortar%arc(ps * (ov(k)%e - 1) + 1)) // &
+            ' (a master boundary that faces the slave once, without folds, expected)', 2)
+          return
+        end if
+      end if
+    end do
+    if (closed .and. all(ncover > 0)) then
+      call build_periodic_quadratic(mortar, xs, ps, xm, pm, ov(1:nov), err)
+      if (allocated(err)) return
+    else
+      efirst = ov(1)%e
+      elast = ov(nov)%e
+      do e = efirst, elast
+        if (ncover(e) == 0) then
+          call set_error(err, 'master boundary leaves a gap opposite the slave boundary at arc length ' // &
+            real_to_str(mortar%arc(ps * (e - 1) + 1)) // &
+            ' (a master that covers the slave contact zone without holes expected)', 2)
+          return
+        end if
+      end do
+      ! a covered piece shorter than tol_piece of a zone-end element is left out
+      if (elast > efirst .and. 1.0_dp - ov(1)%lo < tol_piece) then
+        ov = pack(ov(1:nov), ov(1:nov)%e /= efirst)
+        nov = size(ov)
+        efirst = efirst + 1
+      end if
+      if (elast > efirst .and. maxval(ov(1:nov)%hi, mask=ov(1:nov)%e == elast) < tol_piece) then
+        ov = pack(ov(1:nov), ov(1:nov)%e /= elast)
+        nov = size(ov)
+        elast = elast - 1
+      end if
+      ! a master that stops inside a zone-end element: its end value is
+      ! extended over the uncovered part (module header, 4.); the row of that
+      ! end is exact while it stays open (the caller says so when it closes)
+      extended = [ov(1)%lo > tol_sliver, ov(nov)%hi < 1.0_dp - tol_sliver]
+      call build_open_quadratic(mortar, xs, ps, xm, pm, ov(1:nov), efirst, elast, err)
+      if (allocated(err)) return
+    end if
+
+    ! master integrals over the cover (the single-row and resolution checks of contact_set)
+    do k = 1, nov
+      call add_master_integrals(xs, ps, xm, pm, ov(k), mcov)
+    end do
+    ! weights over the full zone elements
+    do e = 1, nes
+      i0 = ps * (e - 1) + 1
+      if (.not. all(mortar%constrained(i0:i0 + ps))) cycle
+      call add_shape_integrals(xs, ps, e, mortar%weight(i0:i0 + ps))
+    end do
+    if (closed .and. mortar%first == 1 .and. mortar%last == ns) then
+      mortar%weight(1) = mortar%weight(1) + mortar%weight(ns)
+      mortar%weight(ns) = mortar%weight(1)
+    end if
+
+    ! initial normal gaps from the curved geometry: gap0_i = n_i.((P y)_i - x_i)
+    if (.not. gap_zero) call set_initial_gaps(mortar, xs, xm, mortar%first, mortar%last, 1, nm)
+  end subroutine build_mortar_quadratic
+
+  !> The operator on an open zone, slave elements efirst..elast (module header, 3.-4.).
+  subroutine build_open_quadratic(mortar, xs, ps, xm, pm, ov, efirst, elast, err)
+    type(mortar_t), intent(inout) :: mortar
+    real(dp), intent(in) :: xs(:,:), xm(:,:)
+    integer, intent(in) :: ps, pm, efirst, elast
+    type(overlap_t), intent(in) :: ov(:)
+    type(error_t), allocatable, intent(out) :: err
+    real(dp), allocatable :: g(:,:), h(:,:), c(:,:), ab(:,:), rhs(:,:)
+    integer, allocatable :: ipiv(:)
+    integer :: z, i0, nz, k, m, l, kl, ldab, info, jlo, jhi, nc
+    real(dp) :: nr(3)
+
+    i0 = ps * (efirst - 1) + 1                  ! trace index of zone node 0
+    z = ps * (elast - efirst + 1)
+    mortar%first = i0
+    mortar%last = i0 + z
+    mortar%constrained(i0:i0 + z) = .true.
+    jlo = minval(pm * (ov%f - 1) + 1)
+    jhi = maxval(pm * ov%f + 1)
+    nc = jhi - jlo + 1
+    ! G (z+1, z+1) and H (z+1, nc) over the covered parts, zone numbering 0..z
+    allocate(g(0:z, 0:z), h(0:z, nc), source=0.0_dp)
+    do k = 1, size(ov)
+      call add_mass(xs, ps, xm, pm, ov(k), ps * (ov(k)%e - efirst), jlo, g, h)
+    end do
+    do m = 0, z
+      mortar%covered_weight(i0 + m) = sum(g(m, :))
+    end do
+    mortar%zone_weight(i0:i0 + z) = mortar%covered_weight(i0:i0 + z)
+    ! end rows: the master trace at the points paired with the cover's two ends
+    call master_shape(pm, ov(1)%rlo, nr)
+    mortar%P(i0, pm * (ov(1)%f - 1) + 1:pm * ov(1)%f + 1) = nr(1:pm + 1)
+    k = size(ov)
+    call master_shape(pm, ov(k)%rhi, nr)
+    mortar%P(i0 + z, pm * (ov(k)%f - 1) + 1:pm * ov(k)%f + 1) = &
+      mortar%P(i0 + z, pm * (ov(k)%f - 1) + 1:pm * ov(k)%f + 1) + nr(1:pm + 1)
+    nz = z - 1
+    if (nz < 1) return
+    call multiplier_coefficients(ps, z, .false., c)
+    ! D = C G (interior columns), right-hand sides C H - E_0 P_0 - E_Z P_Z
+    kl = ps + 1
+    ldab = 3 * kl + 1
+    allocate(ab(ldab, nz), source=0.0_dp)
+    allocate(rhs(nz, nc))
+    rhs = matmul(c(1:nz, 0:z), h)
+    do k = 1, nz
+      do l = max(1, k - kl), min(nz, k + kl)
+        ab(2 * kl + 1 + k - l, l) = dot_product(c(k, 0:z), g(0:z, l))
+      end do
+      rhs(k, :) = rhs(k, :) - dot_product(c(k, 0:z), g(0:z, 0)) * mortar%P(i0, jlo:jhi) &
+                            - dot_product(c(k, 0:z), g(0:z, z)) * mortar%P(i0 + z, jlo:jhi)
+    end do
+    allocate(ipiv(nz))
+    call dgbsv(nz, kl, kl, nc, ab, ldab, ipiv, rhs, nz, info)
+    if (info /= 0) then
+      call set_error(err, 'mortar matrix D of the quadratic contact zone is singular (LAPACK dgbsv info ' // &
+        int_to_str(info) // ')', 1)
+      return
+    end if
+    mortar%P(i0 + 1:i0 + nz, jlo:jhi) = rhs
+  end subroutine build_open_quadratic
+
+  !> The operator on a closed slave curve covered all round (module header, 5.):
+  !> zone nodes 0..Z-1 = trace nodes 1..Z, node Z = node 0.
+  subroutine build_periodic_quadratic(mortar, xs, ps, xm, pm, ov, err)
+    type(mortar_t), intent(inout) :: mortar
+    real(dp), intent(in) :: xs(:,:), xm(:,:)
+    integer, intent(in) :: ps, pm
+    type(overlap_t), intent(in) :: ov(:)
+    type(error_t), allocatable, intent(out) :: err
+    real(dp), allocatable :: g(:,:), h(:,:), ab(:,:), rhs(:,:), s(:,:), dab(:,:), dba(:,:)
+    integer, allocatable :: ipiv(:)
+    integer :: z, na, nb, k, l, kl, ldab, info, jlo, jhi, nc, m
+
+    z = mortar%ns - 1
+    call start_periodic(mortar, z / ps, 'element', err)
+    if (allocated(err)) return
+    jlo = minval(pm * (ov%f - 1) + 1)
+    jhi = maxval(pm * ov%f + 1)
+    nc = jhi - jlo + 1
+    allocate(g(0:z, 0:z), h(0:z, nc), source=0.0_dp)
+    do k = 1, size(ov)
+      call add_mass(xs, ps, xm, pm, ov(k), ps * (ov(k)%e - 1), jlo, g, h)
+    end do
+    ! fold node z onto node 0 (periodic)
+    g(0, :) = g(0, :) + g(z, :)
+    g(:, 0) = g(:, 0) + g(:, z)
+    h(0, :) = h(0, :) + h(z, :)
+    do m = 0, z - 1
+      mortar%covered_weight(m + 1) = sum(g(m, 0:z - 1))
+    end do
+    mortar%covered_weight(z + 1) = mortar%covered_weight(1)
+    mortar%zone_weight = mortar%covered_weight
+    ! bordering: unknowns A = 0..z-1-ps (banded, no wrap), B = the last ps nodes
+    nb = ps
+    na = z - nb
+    kl = ps
+    ldab = 3 * kl + 1
+    allocate(ab(ldab, na), source=0.0_dp)
+    do k = 1, na
+      do l = max(1, k - kl), min(na, k + kl)
+        ab(2 * kl + 1 + k - l, l) = g(k - 1, l - 1)
+      end do
+    end do
+    dab = g(0:na - 1, na:z - 1)                  ! (na, nb)
+    dba = g(na:z - 1, 0:na - 1)                  ! (nb, na)
+    allocate(rhs(na, nc + nb))
+    rhs(:, 1:nc) = h(0:na - 1, :)
+    rhs(:, nc + 1:nc + nb) = dab
+    allocate(ipiv(max(na, nb)))
+    call dgbsv(na, kl, kl, nc + nb, ab, ldab, ipiv, rhs, na, info)
+    if (info == 0) then
+      s = g(na:z - 1, na:z - 1) - matmul(dba, rhs(:, nc + 1:nc + nb))     ! Schur complement (nb, nb)
+      h(na:z - 1, :) = h(na:z - 1, :) - matmul(dba, rhs(:, 1:nc))
+      call dgesv(nb, nc, s, nb, ipiv, h(na:z - 1, :), nb, info)
+    end if
+    if (info /= 0) then
+      call set_error(err, 'mortar matrix D of the closed quadratic contact curve is singular (LAPACK info ' // &
+        int_to_str(info) // ')', 1)
+      return
+    end if
+    mortar%P(na + 1:z, jlo:jhi) = h(na:z - 1, :)
+    mortar%P(1:na, jlo:jhi) = rhs(:, 1:nc) - matmul(rhs(:, nc + 1:nc + nb), h(na:z - 1, :))
+    mortar%P(z + 1, :) = mortar%P(1, :)
+  end subroutine build_periodic_quadratic
+
+  !> Coefficients C(k, m) of the multiplier basis psi_k = sum_m C(k, m) phi_m,
+  !> k = 1..z-1, m = 0..z (module header, 3.).
+  subroutine multiplier_coefficients(ps, z, periodic, c)
+    integer, intent(in) :: ps, z
+    logical, intent(in) :: periodic
+    real(dp), allocatable, intent(out) :: c(:,:)
+    integer :: k
+    allocate(c(1:max(z - 1, 1), 0:z), source=0.0_dp)
+    do k = 1, z - 1
+      c(k, k) = 1.0_dp
+    end do
+    if (periodic) return
+    if (z == ps) then                           ! one element: the constants
+      c(1, :) = 1.0_dp
+    else if (ps == 1) then
+      c(1, 0) = 1.0_dp
+      c(z - 1, z) = 1.0_dp
+    else                                        ! degree 1 on the two end elements
+      c(1, 0) = 1.0_dp
+      c(1, 1) = 0.5_dp
+      c(2, 1) = c(2, 1) + 0.5_dp
+      c(z - 1, z) = 1.0_dp
+      c(z - 1, z - 1) = 0.5_dp
+      c(z - 2, z - 1) = c(z - 2, z - 1) + 0.5_dp
+    end if
+  end subroutine multiplier_coefficients
+
+  !> Add the integrals of one overlap to G (slave x slave) and H (slave x master).
+  !>   m0 (in) zone index of the slave element's first node;  jlo (in) master index of H's column 1
+  subroutine add_mass(xs, ps, xm, pm, o, m0, jlo, g, h)
+    real(dp), intent(in) :: xs(:,:), xm(:,:)
+    integer, intent(in) :: ps, pm, m0, jlo
+    type(overlap_t), intent(in) :: o
+    real(dp), intent(inout) :: g(0:, 0:), h(0:, :)
+    real(dp) :: s, r, w, ns(3), nr(3)
+    integer :: q, a, b, j0
+    j0 = pm * (o%f - 1) + 1 - jlo + 1
+    do q = 1, size(gauss4, 2)
+      call pair_point(xs, ps, xm, pm, o, q, s, r, w)
+      call master_shape(ps, s, ns)
+      call master_shape(pm, r, nr)
+      do a = 1, ps + 1
+        do b = 1, ps + 1
+          g(m0 + a - 1, m0 + b - 1) = g(m0 + a - 1, m0 + b - 1) + w * ns(a) * ns(b)
+        end do
+        do b = 1, pm + 1
+          h(m0 + a - 1, j0 + b - 1) = h(m0 + a - 1, j0 + b - 1) + w * ns(a) * nr(b)
+        end do
+      end do
+    end do
+  end subroutine add_mass
+
+  !> mcov(j) += int over the overlap of chi_j.
+  subroutine add_master_integrals(xs, ps, xm, pm, o, mcov)
+    real(dp), intent(in) :: xs(:,:), xm(:,:)
+    integer, intent(in) :: ps, pm
+    type(overlap_t), intent(in) :: o
+    real(dp), intent(inout) :: mcov(:)
+    real(dp) :: s, r, w, nr(3)
+    integer :: q, j0
+    j0 = pm * (o%f - 1) + 1
+    do q = 1, size(gauss4, 2)
+      call pair_point(xs, ps, xm, pm, o, q, s, r, w)
+      call master_shape(pm, r, nr)
+      mcov(j0:j0 + pm) = mcov(j0:j0 + pm) + w * nr(1:pm + 1)
+    end do
+  end subroutine add_master_integrals
+
+  !> w(0:p) += int over slave element e of its shape functions.
+  subroutine add_shape_integrals(x, p, e, w)
+    real(dp), intent(in) :: x(:,:)
+    integer, intent(in) :: p, e
+    real(dp), intent(inout) :: w(:)
+    real(dp) :: y(2), dy(2), nn(3)
+    integer :: q
+    do q = 1, size(gauss4, 2)
+      call trace_point(x, p, e, gauss4(1, q), y, dy)
+      call master_shape(p, gauss4(1, q), nn)
+      w(1:p + 1) = w(1:p + 1) + gauss4(2, q) * norm2(dy) * nn(1:p + 1)
+    end do
+  end subroutine add_shape_integrals
+
+  !> Gauss point q of an overlap: the slave coordinate s, the paired master
+  !> coordinate r (where the line x(s) + tau n(s) meets master element f) and
+  !> the quadrature weight w = w_q (hi - lo) |x'(s)|.
+  subroutine pair_point(xs, ps, xm, pm, o, q, s, r, w)
+    real(dp), intent(in) :: xs(:,:), xm(:,:)
+    integer, intent(in) :: ps, pm, q
+    type(overlap_t), intent(in) :: o
+    real(dp), intent(out) :: s, r, w
+    real(dp) :: x(2), dx(2)
+    s = o%lo + gauss4(1, q) * (o%hi - o%lo)
+    call trace_point(xs, ps, o%e, s, x, dx)
+    r = o%rlo + gauss4(1, q) * (o%rhi - o%rlo)
+    call ray_on_element(xm, pm, o%f, x, [dx(2), -dx(1)], r)
+    w = gauss4(2, q) * (o%hi - o%lo) * norm2(dx)
+  end subroutine pair_point
+
+  !> Intersect the slave and master traces (module header, 1.): the overlaps,
+  !> ordered by slave element and increasing lo.
+  subroutine intersect_traces(xs, ps, sn_out, xm, pm, mn_out, ov, nov)
+    real(dp), intent(in) :: xs(:,:), sn_out(:,:), xm(:,:), mn_out(:,:)
+    integer, intent(in) :: ps, pm
+    type(overlap_t), allocatable, intent(out) :: ov(:)
+    integer, intent(out) :: nov
+    type(overlap_t), allocatable :: tmp(:)
+    type(overlap_t) :: o
+    integer :: nes, nem, e, f, i, j, n0
+    real(dp) :: sa, sb, x(2), dx(2)
+    real(dp), allocatable :: sv(:)
+
+    nes = (size(xs, 2) - 1) / ps
+    nem = (size(xm, 2) - 1) / pm
+    allocate(ov(max(16, nes + nem)), sv(nem + 1))
+    nov = 0
+    do e = 1, nes
+      do f = 1, nem + 1                         ! each master corner's slave coordinate on e
+        sv(f) = project_on_element(xs, ps, e, xm(:, pm * (f - 1) + 1))
+      end do
+      n0 = nov
+      do f = 1, nem
+        if (dot_product(mn_out(:, f), sn_out(:, e)) >= -min_facing) cycle
+        sa = sv(f)
+        sb = sv(f + 1)
+        o%lo = max(0.0_dp, min(sa, sb))
+        o%hi = min(1.0_dp, max(sa, sb))
+        if (o%hi - o%lo <= tol_overlap) cycle
+        o%e = e
+        o%f = f
+        ! master coordinates at the overlap's ends: along the rays from x(lo), x(hi)
+        o%rlo = min(1.0_dp, max(0.0_dp, (o%lo - sa) / (sb - sa)))
+        o%rhi = min(1.0_dp, max(0.0_dp, (o%hi - sa) / (sb - sa)))
+        call trace_point(xs, ps, e, o%lo, x, dx)
+        call ray_on_element(xm, pm, f, x, [dx(2), -dx(1)], o%rlo)
+        call trace_point(xs, ps, e, o%hi, x, dx)
+        call ray_on_element(xm, pm, f, x, [dx(2), -dx(1)], o%rhi)
+        o%rlo = min(1.0_dp, max(0.0_dp, o%rlo))
+        o%rhi = min(1.0_dp, max(0.0_dp, o%rhi))
+        if (nov == size(ov)) then
+          allocate(tmp(2 * size(ov)))
+          tmp(1:nov) = ov(1:nov)
+          call move_alloc(tmp, ov)
+        end if
+        nov = nov + 1
+        ov(nov) = o
+      end do
+      do i = n0 + 2, nov                        ! insertion sort by lo within element e
+        o = ov(i)
+        j = i - 1
+        do while (j > n0)
+          if (ov(j)%lo <= o%lo) exit
+          ov(j + 1) = ov(j)
+          j = j - 1
+        end do
+        ov(j + 1) = o
+      end do
+    end do
+  end subroutine intersect_traces
+
+  !> The slave coordinate s of element e whose normal line passes through y:
+  !> (y - x(s)).x'(s) = 0, Newton from the chord's projection (exact in one
+  !> step on a straight element); may lie outside [0, 1].
+  real(dp) function project_on_element(x, p, e, y) result(s)
+    real(dp), intent(in) :: x(:,:), y(2)
+    integer, intent(in) :: p, e
+    real(dp) :: xa(2), xb(2), pt(2), d1(2), d2(2), f, df
+    integer :: it
+    xa = x(:, p * (e - 1) + 1)
+    xb = x(:, p * e + 1)
+    s = dot_product(y - xa, xb - xa) / dot_product(xb - xa, xb - xa)
+    if (p == 1) return
+    do it = 1, 20
+      call trace_point(x, p, e, s, pt, d1)
+      d2 = 4.0_dp * (x(:, p * (e - 1) + 1) - 2.0_dp * x(:, p * (e - 1) + 2) + x(:, p * e + 1))
+      f = dot_product(y - pt, d1)
+      df = -dot_product(d1, d1) + dot_product(y - pt, d2)
+      if (df == 0.0_dp) exit
+      s = s - f / df
+      if (abs(f / df) < 1.0e-15_dp) exit
+    end do
+  end function project_on_element
+
+  !> The master coordinate r of element f where the line a + tau d meets it:
+  !> cross(y(r) - a, d) = 0, Newton from r on entry (exact in one step on a
+  !> straight element).
+  subroutine ray_on_element(x, p, f, a, d, r)
+    real(dp), intent(in) :: x(:,:), a(2), d(2)
+    integer, intent(in) :: p, f
+    real(dp), intent(inout) :: r
+    real(dp) :: y(2), dy(2), g, dg
+    integer :: it
+    do it = 1, 20
+      call trace_point(x, p, f, r, y, dy)
+      g = (y(1) - a(1)) * d(2) - (y(2) - a(2)) * d(1)
+      dg = dy(1) * d(2) - dy(2) * d(1)
+      if (dg == 0.0_dp) exit
+      r = r - g / dg
+      if (abs(g / dg) < 1.0e-15_dp) exit
+    end do
+  end subroutine ray_on_element
+
+  !> Point y and derivative dy = dx/ds of element e of a trace of degree p at s.
+  pure subroutine trace_point(x, p, e, s, y, dy)
+    real(dp), intent(in) :: x(:,:), s
+    integer, intent(in) :: p, e
+    real(dp), intent(out) :: y(2), dy(2)
+    integer :: i0
+    i0 = p * (e - 1) + 1
+    if (p == 1) then
+      y = (1.0_dp - s) * x(:, i0) + s * x(:, i0 + 1)
+      dy = x(:, i0 + 1) - x(:, i0)
+    else
+      y = (1.0_dp - s) * (1.0_dp - 2.0_dp * s) * x(:, i0) + 4.0_dp * s * (1.0_dp - s) * x(:, i0 + 1) &
+          + s * (2.0_dp * s - 1.0_dp) * x(:, i0 + 2)
+      dy = (4.0_dp * s - 3.0_dp) * x(:, i0) + (4.0_dp - 8.0_dp * s) * x(:, i0 + 1) + (4.0_dp * s - 1.0_dp) * x(:, i0 + 2)
+    end if
+  end subroutine trace_point
+
+  !> Shape functions of a trace element of degree p at s (p + 1 values).
+  pure subroutine master_shape(p, s, n)
+    integer, intent(in) :: p
+    real(dp), intent(in) :: s
+    real(dp), intent(out) :: n(3)
+    n = 0.0_dp
+    if (p == 1) then
+      n(1:2) = [1.0_dp - s, s]
+    else
+      n = [(1.0_dp - s) * (1.0_dp - 2.0_dp * s), 4.0_dp * s * (1.0_dp - s), s * (2.0_dp * s - 1.0_dp)]
+    end if
+  end subroutine master_shape
+
+  !> +1 or -1: the side of [x'_2, -x'_1] on which the element's outward chord normal lies.
+  real(dp) function side(x, p, e, nout)
+    real(dp), intent(in) :: x(:,:), nout(2)
+    integer, intent(in) :: p, e
+    real(dp) :: t(2)
+    t = x(:, p * e + 1) - x(:, p * (e - 1) + 1)
+    side = sign(1.0_dp, dot_product([t(2), -t(1)], nout))
+  end function side
+
+  !> Length of element e of a trace between s = a and s = b (4-point Gauss).
+  real(dp) function curve_length(x, p, e, a, b) result(l)
+    real(dp), intent(in) :: x(:,:), a, b
+    integer, intent(in) :: p, e
+    real(dp) :: y(2), dy(2)
+    integer :: q
+    l = 0.0_dp
+    do q = 1, size(gauss4, 2)
+      call trace_point(x, p, e, a + gauss4(1, q) * (b - a), y, dy)
+      l = l + gauss4(2, q) * (b - a) * norm2(dy)
+    end do
+  end function curve_length
+
+end module mortar_quadratic

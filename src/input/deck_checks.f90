@@ -1,0 +1,558 @@
+!> deck_checks: what can be checked only once the whole deck is read, and the
+!> deck's defaults.
+!>
+!>   open block at the end, bodies with a MESH and a MATERIAL, orthotropic
+!>   compliance in plane strain, rect boundary names, CONTACT bodies and
+!>   RIGIDs resolved, rigid-body modes (every body held by a FIX, directly or
+!>   through CONTACT), ramps within STEPS, curve names resolved, RIGIDs with a
+!>   SHAPE, lcp=pdas without friction, output names distinct and not too long,
+!>   PLANE axisymmetric loads.
+!>
+!> Programming interface
+!>   finish_checks(s, deck)         every check above, reported through deck_syntax
+!>   cut_statement_lists(s, deck)   FIX and load lists cut to their counts
+!>   fill_defaults(deck)            every character component allocated, ramps resolved
+!>   path_too_long(path, reserve)   '' or what makes path an impossible file name
+module deck_checks
+  use kinds, only: dp
+  use strings, only: int_to_str
+  use deck_types, only: deck_t, body_deck_t, contact_deck_t, rigid_load_t
+  use deck_expressions, only: format_number
+  use deck_syntax, only: state_t, report, quoted, ramp_unset
+  use text_scan, only: is_name
+  use deck_body_statements, only: plane_compliance_ok, strain_compliance_ok
+  implicit none
+  private
+  public :: finish_checks, cut_statement_lists, fill_defaults, path_too_long
+
+contains
+
+  !> Checks that need the whole deck: open block, bodies complete, rect boundary
+  !> names, plane-strain compliance, CONTACT bodies, rigid-body modes, ramps within
+  !> STEPS, lcp=pdas without friction, output names.
+  subroutine finish_checks(s, deck)
+    type(state_t), intent(inout) :: s
+    type(deck_t), intent(inout) :: deck
+    integer :: b, i
+    logical :: resolved, rect
+
+    if (s%block /= '' .and. .not. s%end_hinted) &
+      call report(s, s%nline, 'missing END for ' // trim(s%block) // ' ' // quoted(s%block_name) // &
+                  ' opened at line ' // int_to_str(s%block_line) // &
+                  ' (expected END before the end of the file)', echo=.false.)
+    if (s%nbody == 0) then
+      call report(s, 0, 'deck has no BODY (at least one BODY ... END block expected)')
+      return
+    end if
+
+    do b = 1, s%nbody
+      associate (body => deck%bodies(b))
+        rect = is_name(body%name) .and. allocated(body%mesh%kind)
+        if (rect) rect = body%mesh%kind == 'rect'
+        do i = 1, size(body%fixes)
+          call check_statement(body, body%fixes(i)%boundary, body%fixes(i)%ramp, body%fixes(i)%line)
+        end do
+        do i = 1, size(body%loads)
+          call check_statement(body, body%loads(i)%boundary, body%loads(i)%ramp, body%loads(i)%line)
+        end do
+        if (.not. is_name(body%name)) cycle
+        if (body%mesh%line == 0) call report(s, body%line, 'body ' // quoted(body%name) // &
+                                             ' has no MESH (expected a MESH statement in its BODY block)')
+        if (body%material%line == 0) call report(s, body%line, 'body ' // quoted(body%name) // &
+                                                 ' has no MATERIAL (expected a MATERIAL statement in its BODY block)')
+        if (.not. deck%plane_stress .and. allocated(body%material%kind)) then
+          if (body%material%kind == 'orthotropic') then
+            if (plane_compliance_ok(body%material) .and. .not. strain_compliance_ok(body%material)) &
+              call report(s, body%material%line, 'orthotropic compliance not positive definite for PLANE ' // &
+                          'strain (expected 1 - nu12^2 E2/E1 - nu23^2 E3/E2 - nu13^2 E3/E1 - ' // &
+                          '2 nu12 nu23 nu13 E3/E1 > 0)')
+          end if
+        end if
+      end associate
+    end do
+
+    call resolve_contacts(s, deck, resolved)
+    if (resolved .and. .not. s%contact_bad) call check_rigid_modes(s, deck)
+    call check_ramps(s, deck)
+    call resolve_curves(s, deck)
+    call check_rigids(s, deck)
+    call check_friction_solver(s, deck)
+    call check_output_names(s, deck)
+    if (deck%axisymmetric) call check_axisymmetric(s, deck)
+  contains
+    !> A FIX or load of a body: its boundary (rect meshes), its ramp's end.
+    subroutine check_statement(body, boundary, ramp, line)
+      type(body_deck_t), intent(in) :: body
+      character(len=*), intent(in) :: boundary
+      integer, intent(in) :: ramp(2), line
+      if (rect) call check_rect_boundary(s, body, boundary, line)
+      if (.not. s%steps_bad) call check_ramp_end(s, deck, ramp, line)
+    end subroutine check_statement
+  end subroutine finish_checks
+
+  !> What PLANE axisymmetric cannot take: gravity off the axis (a load that
+  !> depends on the angle theta, not a solid of revolution's).  The bodies'
+  !> r >= 0 is checked with their meshes (scene).
+  subroutine check_axisymmetric(s, deck)
+    type(state_t), intent(inout) :: s
+    type(deck_t), intent(in) :: deck
+    if (deck%gravity_line > 0 .and. deck%gx /= 0.0_dp) &
+      call report(s, deck%gravity_line, 'GRAVITY gx= ' // trim(format_number(deck%gx)) // ' across the axis in ' // &
+                  'PLANE axisymmetric (line ' // int_to_str(deck%plane_line) // ') (gravity along the axis z ' // &
+                  'expected: gx=0, gy=...)')
+  end subroutine check_axisymmetric
+
+  !> BODYFORCE and GRAVITY ramps end at step STEPS at the latest (those of FIX
+  !> and loads: finish_checks; k0 < k1 and k0 >= 0 were checked with the
+  !> statement).  Nothing is said when STEPS itself was bad.
+  subroutine check_ramps(s, deck)
+    type(state_t), intent(inout) :: s
+    type(deck_t), intent(in) :: deck
+    integer :: b
+
+    if (s%steps_bad) return
+    do b = 1, s%nbody
+      associate (body => deck%bodies(b))
+        if (body%bodyforce_line > 0) call check_ramp_end(s, deck, body%bodyforce_ramp, body%bodyforce_line)
+      end associate
+    end do
+    if (deck%gravity_line > 0) call check_ramp_end(s, deck, deck%gravity_ramp, deck%gravity_line)
+  end subroutine check_ramps
+
+  !> Every curve=NAME names a CURVE of the deck (index into deck%curves).
+  subroutine resolve_curves(s, deck)
+    type(state_t), intent(inout) :: s
+    type(deck_t), intent(inout) :: deck
+    integer :: b, i
+    do b = 1, s%nbody
+      associate (body => deck%bodies(b))
+        do i = 1, size(body%fixes)
+          body%fixes(i)%curve = curve_index(s, deck, body%fixes(i)%curve_name, body%fixes(i)%line)
+        end do
+        do i = 1, size(body%loads)
+          body%loads(i)%curve = curve_index(s, deck, body%loads(i)%curve_name, body%loads(i)%line)
+        end do
+        do i = 1, size(body%thermals)
+          body%thermals(i)%curve = curve_index(s, deck, body%thermals(i)%curve_name, body%thermals(i)%line)
+        end do
+        body%bodyforce_curve = curve_index(s, deck, body%bodyforce_curve_name, body%bodyforce_line)
+      end associate
+    end do
+    deck%gravity_curve = curve_index(s, deck, deck%gravity_curve_name, deck%gravity_line)
+  end subroutine resolve_curves
+
+  !> Report ramp(2) > STEPS at the line of the statement holding the ramp.
+  subroutine check_ramp_end(s, deck, ramp, line)
+    type(state_t), intent(inout) :: s
+    type(deck_t), intent(in) :: deck
+    integer, intent(in) :: ramp(2), line
+    character(len=:), allocatable :: text
+
+    if (ramp(2) <= deck%steps) return
+    text = 'ramp=' // int_to_str(ramp(1)) // ':' // int_to_str(ramp(2)) // ' ends after the last load step'
+    if (deck%steps_line > 0) then
+      call report(s, line, text // ' (expected k1 <= ' // int_to_str(deck%steps) // ', the STEPS value at line ' // &
+                  int_to_str(deck%steps_line) // ')')
+    else
+      call report(s, line, text // ' (expected k1 <= 1, as STEPS defaults to 1 when absent)')
+    end if
+  end subroutine check_ramp_end
+
+  !> lcp=pdas solves the frictionless LCP only: refuse it when some CONTACT has a
+  !> friction bound that is not identically zero (mu=0 and tresca=0 are frictionless).
+  subroutine check_friction_solver(s, deck)
+    type(state_t), intent(inout) :: s
+    type(deck_t), intent(in) :: deck
+    integer :: i
+
+    if (.not. allocated(deck%solver%lcp)) return
+    if (deck%solver%lcp /= 'pdas') return
+    do i = 1, s%ncontact
+      if (deck%contacts(i)%mu > 0 .or. deck%contacts(i)%tresca > 0) then
+        call report(s, deck%solver%line, 'lcp=pdas solves frictionless contact only (expected lcp=auto, ' // &
+                    'lemke or pgs with friction)')
+        return
+      end if
+    end do
+  end subroutine check_friction_solver
+
+  !> A rect mesh names its boundaries left, right, bottom, top.
+  subroutine check_rect_boundary(s, body, name, line)
+    type(state_t), intent(inout) :: s
+    type(body_deck_t), intent(in) :: body
+    character(len=*), intent(in) :: name
+    integer, intent(in) :: line
+    if (len(name) == 0) return
+    select case (name)
+    case ('left', 'right', 'bottom', 'top')
+    case default
+      call report(s, line, 'unknown boundary ' // quoted(name) // ' of BODY ' // quoted(body%name) // &
+                  ' (expected one of left, right, bottom, top for MESH rect)')
+    end select
+  end subroutine check_rect_boundary
+
+  !> Body indices of the CONTACT statements; duplicates; rect boundary names.
+  subroutine resolve_contacts(s, deck, resolved)
+    type(state_t), intent(inout) :: s
+    type(deck_t), intent(inout) :: deck
+    logical, intent(out) :: resolved
+    integer :: i, j, b
+    character(len=:), allocatable :: known
+
+    resolved = .true.
+    known = ''
+    do b = 1, s%nbody
+      if (.not. is_name(deck%bodies(b)%name)) cycle
+      if (len(known) > 0) known = known // ', '
+      known = known // deck%bodies(b)%name
+    end do
+    if (len(known) > 200) known = known(1:200) // ' ...'
+    do i = 1, s%ncontact
+      associate (c => deck%contacts(i))
+        c%slave_body = find_body(deck, s%nbody, s%slave_name(i)%s)
+        if (len(c%master_boundary) == 0) then         ! master=RIGIDNAME
+          do j = 1, size(deck%rigids)
+            if (deck%rigids(j)%name == s%master_name(i)%s .and. &
+                len(deck%rigids(j)%name) == len(s%master_name(i)%s)) c%master_rigid = j
+          end do
+          if (c%master_rigid == 0) call report(s, c%line, 'unknown RIGID ' // quoted(s%master_name(i)%s) // &
+            ' in CONTACT master= (expected master=body:boundary or the name of a RIGID block)')
+          if (c%slave_body == 0) call report(s, c%line, 'unknown body ' // quoted(s%slave_name(i)%s) // &
+                                             ' in CONTACT (expected one of ' // known // ')')
+          if (c%slave_body == 0 .or. c%master_rigid == 0) then
+            resolved = .false.
+          else
+            call check_contact_side(s, deck%bodies(c%slave_body), c%slave_boundary, c%line)
+            do j = 1, i - 1
+              if (deck%contacts(j)%master_rigid == c%master_rigid .and. deck%contacts(j)%slave_body == c%slave_body &
+                  .and. deck%contacts(j)%slave_boundary == c%slave_boundary) &
+                call report(s, c%line, 'duplicate CONTACT (same slave boundary and RIGID as at line ' // &
+                            int_to_str(deck%contacts(j)%line) // '; expected each pair once)')
+            end do
+          end if
+          cycle
+        end if
+        c%master_body = find_body(deck, s%nbody, s%master_name(i)%s)
+        if (c%slave_body == 0) call report(s, c%line, 'unknown body ' // quoted(s%slave_name(i)%s) // &
+                                           ' in CONTACT (expected one of ' // known // ')')
+        if (c%master_body == 0 .and. s%master_name(i)%s /= s%slave_name(i)%s) &
+          call report(s, c%line, 'unknown body ' // quoted(s%master_name(i)%s) // ' in CONTACT (expected one of ' // &
+                      known // ')')
+        if (c%slave_body == 0 .or. c%master_body == 0) then
+          resolved = .false.
+          cycle
+        end if
+        call check_contact_side(s, deck%bodies(c%slave_body), c%slave_boundary, c%line)
+        call check_contact_side(s, deck%bodies(c%master_body), c%master_boundary, c%line)
+        do j = 1, i - 1
+          if (same_pair(c, deck%contacts(j))) then
+            call report(s, c%line, 'duplicate CONTACT (same two boundaries as at line ' // &
+                        int_to_str(deck%contacts(j)%line) // '; expected each pair once)')
+            exit
+          end if
+        end do
+      end associate
+    end do
+  end subroutine resolve_contacts
+
+  subroutine check_contact_side(s, body, boundary, line)
+    type(state_t), intent(inout) :: s
+    type(body_deck_t), intent(in) :: body
+    character(len=*), intent(in) :: boundary
+    integer, intent(in) :: line
+    if (.not. allocated(body%mesh%kind)) return
+    if (body%mesh%kind == 'rect') call check_rect_boundary(s, body, boundary, line)
+  end subroutine check_contact_side
+
+  !> Two CONTACTs join the same two boundaries (in either role).
+  pure logical function same_pair(a, b)
+    type(contact_deck_t), intent(in) :: a, b
+    same_pair = .false.
+    if (a%master_rigid > 0 .or. b%master_rigid > 0) return
+    same_pair = (a%slave_body == b%slave_body .and. a%slave_boundary == b%slave_boundary .and. &
+                 a%master_body == b%master_body .and. a%master_boundary == b%master_boundary) .or. &
+                (a%slave_body == b%master_body .and. a%slave_boundary == b%master_boundary .and. &
+                 a%master_body == b%slave_body .and. a%master_boundary == b%slave_boundary)
+  end function same_pair
+
+  pure integer function find_body(deck, nbody, name) result(b)
+    type(deck_t), intent(in) :: deck
+    integer, intent(in) :: nbody
+    character(len=*), intent(in) :: name
+    do b = 1, nbody
+      if (deck%bodies(b)%name == name .and. len(deck%bodies(b)%name) == len(name)) return
+    end do
+    b = 0
+  end function find_body
+
+  !> Every body must be held: a FIX of its own, or a CONTACT chain to a body with a
+  !> FIX.  A body with neither FIX nor CONTACT, and a group of bodies joined by
+  !> CONTACT none of which has a FIX, has rigid-body modes.
+  subroutine check_rigid_modes(s, deck)
+    type(state_t), intent(inout) :: s
+    type(deck_t), intent(in) :: deck
+    integer, allocatable :: group(:)
+    logical, allocatable :: in_contact(:), on_rigid(:)
+    integer :: b, i, g, a, c, nmem
+    logical :: held, changed
+    character(len=:), allocatable :: members
+
+    allocate(group(s%nbody), in_contact(s%nbody))
+    in_contact = .false.
+    do b = 1, s%nbody
+      group(b) = b
+    end do
+    allocate(on_rigid(s%nbody), source=.false.)
+    do i = 1, s%ncontact
+      in_contact(deck%contacts(i)%slave_body) = .true.
+      if (deck%contacts(i)%master_rigid > 0) then
+        on_rigid(deck%contacts(i)%slave_body) = .true.   ! a RIGID holds what touches it (checked when solved)
+        cycle
+      end if
+      in_contact(deck%contacts(i)%master_body) = .true.
+    end do
+    changed = .true.                          ! label propagation: group = smallest member
+    do while (changed)
+      changed = .false.
+      do i = 1, s%ncontact
+        if (deck%contacts(i)%master_rigid > 0) cycle
+        a = deck%contacts(i)%slave_body
+        c = deck%contacts(i)%master_body
+        if (group(a) /= group(c)) then
+          group(a) = min(group(a), group(c))
+          group(c) = group(a)
+          changed = .true.
+        end if
+      end do
+    end do
+    do b = 1, s%nbody
+      if (.not. is_name(deck%bodies(b)%name)) cycle
+      if (size(deck%bodies(b)%fixes) > 0) cycle
+      if (.not. in_contact(b)) then
+        call report(s, deck%bodies(b)%line, 'body ' // quoted(deck%bodies(b)%name) // ' has no FIX and is in no ' // &
+                    'CONTACT (rigid-body modes: expected FIX on a boundary, or a CONTACT that holds the body)')
+        cycle
+      end if
+      g = group(b)
+      if (g /= b) cycle                      ! report each group once, at its first body
+      held = .false.
+      members = ''
+      nmem = 0
+      do a = 1, s%nbody
+        if (group(a) /= g) cycle
+        if (size(deck%bodies(a)%fixes) > 0 .or. on_rigid(a)) held = .true.
+        nmem = nmem + 1
+        if (nmem > 1) members = members // ', '
+        members = members // quoted(deck%bodies(a)%name)
+      end do
+      if (.not. held) call report(s, deck%bodies(b)%line, 'no FIX on any of the bodies ' // members // &
+                                  ' held together by CONTACT (rigid-body modes: expected FIX on a boundary ' // &
+                                  'of at least one of them)')
+    end do
+  end subroutine check_rigid_modes
+
+  !> The three output files must have different names.
+  subroutine check_output_names(s, deck)
+    type(state_t), intent(inout) :: s
+    type(deck_t), intent(inout) :: deck
+    character(len=:), allocatable :: v, c, m
+    integer :: line
+    call fill_defaults(deck)
+    v = deck%output%vtk
+    c = deck%output%contact
+    m = deck%output%summary
+    line = deck%output%line
+    if (v == c .and. len(v) == len(c)) then
+      call report(s, line, 'OUTPUT files must differ (vtk and contact are both ' // quoted(v) // ')')
+    else if (v == m .and. len(v) == len(m)) then
+      call report(s, line, 'OUTPUT files must differ (vtk and summary are both ' // quoted(v) // ')')
+    else if (c == m .and. len(c) == len(m)) then
+      call report(s, line, 'OUTPUT files must differ (contact and summary are both ' // quoted(c) // ')')
+    else if (deck%output%steps_all) then
+      ! steps=all adds STEM.pvd and STEM_steps.csv (STEM: the vtk name without .vtk)
+      v = v(1:len(v) - 4)
+      if (c == v // '.pvd' .or. m == v // '.pvd' .or. c == v // '_steps.csv' .or. m == v // '_steps.csv') &
+        call report(s, line, 'OUTPUT files must differ (steps=all writes ' // quoted(v // '.pvd') // ' and ' // &
+                    quoted(v // '_steps.csv') // ', which contact= or summary= names too)')
+    end if
+    ! each is written as NAME.part first, then renamed: 5 bytes kept for that
+    if (len(path_too_long(v, 5)) > 0) call report(s, line, 'OUTPUT vtk: ' // path_too_long(v, 5))
+    if (len(path_too_long(c, 5)) > 0) call report(s, line, 'OUTPUT contact: ' // path_too_long(c, 5))
+    if (len(path_too_long(m, 5)) > 0) call report(s, line, 'OUTPUT summary: ' // path_too_long(m, 5))
+  end subroutine check_output_names
+
+  !> '' when the system can take path as a file name, else what is wrong: a
+  !> component longer than NAME_MAX (255 bytes) or a path longer than PATH_MAX
+  !> (4096), which open() refuses with ENAMETOOLONG whatever the folder.
+  !>   path    (in) the name, as it will be opened
+  !>   reserve (in) bytes the program adds to the last name (a temporary suffix)
+  function path_too_long(path, reserve) result(msg)
+    character(len=*), intent(in) :: path
+    integer, intent(in) :: reserve
+    character(len=:), allocatable :: msg
+    integer, parameter :: name_max = 255, path_max = 4096
+    integer :: i, first, limit
+    msg = ''
+    if (len(path) + reserve >= path_max) then
+      msg = 'the path is ' // int_to_str(len(path)) // ' characters long (fewer than ' // &
+            int_to_str(path_max - reserve) // ' expected: PATH_MAX)'
+      return
+    end if
+    first = 1
+    do i = 1, len(path) + 1
+      if (i <= len(path)) then
+        if (path(i:i) /= '/') cycle
+      end if
+      limit = name_max - merge(reserve, 0, i > len(path))
+      if (i - first > limit) then
+        msg = 'the name "' // path(first:first + 19) // '..." is ' // int_to_str(i - first) // &
+              ' characters long (at most ' // int_to_str(limit) // ' expected: NAME_MAX'
+        if (limit < name_max) msg = msg // ' is 255, less ' // int_to_str(reserve) // ' for the temporary suffix .part'
+        msg = msg // ')'
+        return
+      end if
+      first = i + 1
+    end do
+  end function path_too_long
+
+  !> The index into deck%curves of curve=NAME (0 when absent or empty), reported
+  !> with the deck's curve names when unknown.
+  integer function curve_index(s, deck, name, line) result(curve)
+    type(state_t), intent(inout) :: s
+    type(deck_t), intent(in) :: deck
+    character(len=:), allocatable, intent(in) :: name
+    integer, intent(in) :: line
+    character(len=:), allocatable :: known
+    integer :: c
+    curve = 0
+    if (.not. allocated(name)) return
+    if (len(name) == 0) return
+    do c = 1, size(deck%curves)
+      if (deck%curves(c)%name == name .and. len(deck%curves(c)%name) == len(name)) then
+        curve = c
+        return
+      end if
+    end do
+    known = ''
+    do c = 1, size(deck%curves)
+      if (c > 1) known = known // ', '
+      known = known // deck%curves(c)%name
+    end do
+    if (size(deck%curves) == 0) then
+      known = 'a CURVE statement of that name; the deck has none'
+    else
+      known = 'one of ' // known
+    end if
+    call report(s, line, 'unknown curve ' // quoted(name) // ' (expected ' // known // ')')
+  end function curve_index
+
+  !> After the whole deck: every RIGID has a SHAPE and a name no BODY has; the
+  !> RIGIDs' ramps end by STEPS and their curves exist.
+  subroutine check_rigids(s, deck)
+    type(state_t), intent(inout) :: s
+    type(deck_t), intent(inout) :: deck
+    integer :: r, b
+    do r = 1, size(deck%rigids)
+      associate (rg => deck%rigids(r))
+        if (len(rg%name) == 0) cycle
+        if (rg%shape_line == 0) call report(s, rg%line, 'RIGID ' // quoted(rg%name) // ' has no SHAPE (expected ' // &
+                                            'SHAPE line|circle|polyline in its block)')
+        do b = 1, s%nbody
+          if (deck%bodies(b)%name == rg%name .and. len(deck%bodies(b)%name) == len(rg%name)) &
+            call report(s, rg%line, 'RIGID ' // quoted(rg%name) // ' has the name of the BODY at line ' // &
+                        int_to_str(deck%bodies(b)%line) // ' (expected a name of its own)')
+        end do
+        do b = 1, size(rg%fixes)
+          call finish_load(rg%fixes(b))
+        end do
+        do b = 1, size(rg%forces)
+          call finish_load(rg%forces(b))
+        end do
+      end associate
+    end do
+  contains
+    subroutine finish_load(ld)
+      type(rigid_load_t), intent(inout) :: ld
+      call check_ramp_end(s, deck, ld%ramp, ld%line)
+      if (ld%ramp(2) == ramp_unset(2)) ld%ramp = [0, deck%steps]
+      ld%curve = curve_index(s, deck, ld%curve_name, ld%line)
+    end subroutine finish_load
+  end subroutine check_rigids
+
+  !> Cut each body's FIX and load lists, grown by doubling while reading, to the
+  !> statements they hold: from here on size() is the count.
+  subroutine cut_statement_lists(s, deck)
+    type(state_t), intent(in) :: s
+    type(deck_t), intent(inout) :: deck
+    integer :: b
+
+    if (.not. allocated(deck%bodies)) return
+    do b = 1, min(s%nbody, size(deck%bodies))
+      associate (body => deck%bodies(b))
+        if (allocated(body%fixes)) body%fixes = body%fixes(1:body%nfix)
+        if (allocated(body%loads)) body%loads = body%loads(1:body%nload)
+      end associate
+    end do
+  end subroutine cut_statement_lists
+
+  !> Allocate every character component left unset; resolve the ramps not given
+  !> (or not valid) to [0, steps].
+  subroutine fill_defaults(deck)
+    type(deck_t), intent(inout) :: deck
+    integer :: b, i
+    if (.not. allocated(deck%title)) deck%title = ''
+    if (.not. allocated(deck%solver%lcp)) deck%solver%lcp = 'auto'
+    if (.not. allocated(deck%solver%ordering)) deck%solver%ordering = 'auto'
+    if (.not. allocated(deck%solver%condense)) deck%solver%condense = 'auto'
+    if (.not. allocated(deck%output%vtk)) deck%output%vtk = deck%name // '.vtk'
+    if (.not. allocated(deck%output%contact)) deck%output%contact = deck%name // '_contact.csv'
+    if (.not. allocated(deck%output%summary)) deck%output%summary = deck%name // '.summary'
+    do b = 1, size(deck%bodies)
+      associate (body => deck%bodies(b), m => deck%bodies(b)%mesh)
+        if (.not. allocated(body%name)) body%name = ''
+        if (.not. allocated(m%kind)) m%kind = ''
+        if (.not. allocated(m%elem)) m%elem = ''
+        if (.not. allocated(m%diag)) m%diag = ''
+        if (.not. allocated(m%file)) m%file = ''
+        if (.not. allocated(m%path)) m%path = ''
+        if (.not. allocated(m%set_names)) allocate(m%set_names(0))
+        if (.not. allocated(m%set_values)) allocate(m%set_values(0))
+        if (.not. allocated(body%material%kind)) body%material%kind = ''
+        if (.not. allocated(body%fixes)) allocate(body%fixes(0))
+        if (.not. allocated(body%loads)) allocate(body%loads(0))
+        if (.not. allocated(body%thermals)) allocate(body%thermals(0))
+        do i = 1, size(body%fixes)
+          if (.not. allocated(body%fixes(i)%boundary)) body%fixes(i)%boundary = ''
+          if (body%fixes(i)%ramp(2) == ramp_unset(2)) body%fixes(i)%ramp = [0, deck%steps]
+        end do
+        do i = 1, size(body%loads)
+          if (body%loads(i)%ramp(2) == ramp_unset(2)) body%loads(i)%ramp = [0, deck%steps]
+        end do
+        if (body%bodyforce_line == 0 .or. body%bodyforce_ramp(2) == ramp_unset(2)) &
+          body%bodyforce_ramp = [0, deck%steps]
+      end associate
+    end do
+    if (deck%gravity_line == 0 .or. deck%gravity_ramp(2) == ramp_unset(2)) deck%gravity_ramp = [0, deck%steps]
+    do i = 1, size(deck%rigids)
+      associate (rg => deck%rigids(i))
+        if (.not. allocated(rg%name)) rg%name = ''
+        if (.not. allocated(rg%shape)) rg%shape = ''
+        if (.not. allocated(rg%points)) allocate(rg%points(2, 0))
+        if (.not. allocated(rg%fixes)) allocate(rg%fixes(0))
+        if (.not. allocated(rg%forces)) allocate(rg%forces(0))
+        do b = 1, size(rg%fixes)
+          if (rg%fixes(b)%ramp(2) == ramp_unset(2)) rg%fixes(b)%ramp = [0, deck%steps]
+        end do
+        do b = 1, size(rg%forces)
+          if (rg%forces(b)%ramp(2) == ramp_unset(2)) rg%forces(b)%ramp = [0, deck%steps]
+        end do
+      end associate
+    end do
+    do i = 1, size(deck%contacts)
+      if (.not. allocated(deck%contacts(i)%slave_boundary)) deck%contacts(i)%slave_boundary = ''
+      if (.not. allocated(deck%contacts(i)%master_boundary)) deck%contacts(i)%master_boundary = ''
+      if (.not. allocated(deck%contacts(i)%friction)) deck%contacts(i)%friction = 'none'
+    end do
+  end subroutine fill_defaults
+
+end module deck_checks

@@ -1,0 +1,307 @@
+!> gmsh_runner: mesh a .geo file by running gmsh, as an untrusted program.
+!>
+!> gmsh is started without a shell (an argument vector, src/sys/process_runner.c),
+!> found on PATH, in a process group of its own that is killed when the time
+!> limit passes or contact2d ends.  A .geo is a program: gmsh's language has
+!> SystemCall, Printf > FILE, Save, Include of any path.  Unless the user
+!> trusts the .geo (--trust-geo), gmsh runs under bubblewrap when this
+!> machine lets it make namespaces: no network, no other processes, the
+!> filesystem read-only and reduced to the system's programs and libraries,
+!> the deck's folder and the .geo, with one writable folder, where the mesh
+!> goes (the run's private folder).  The static screen of geo_screen runs
+!> before, sandbox or not, and is what refuses such a .geo with FILE:LINE.
+!>
+!> Programming interface
+!>   type(gmsh_options_t)    trust_geo, timeout (seconds)
+!>   mesh_geo_file(geo_path, order, names, values, opts, read_folder, msh_path, log_path, ok, message)
+!>        gmsh -2 -order ORDER -format msh41 -v 2 [-setnumber NAME VALUE]... GEO -o MSH,
+!>        its output to LOG (which must not exist); ok when gmsh exits 0 and wrote
+!>        MSH, else message says why (gmsh's first error lines, the time limit)
+module gmsh_runner
+  use, intrinsic :: iso_c_binding, only: c_int, c_double, c_null_char
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+  use kinds, only: dp, i8
+  use strings, only: int_to_str, real_to_str, printable
+  use system_binding, only: c2d_find_program, c2d_run_program, c_unlink, c2d_run_exited, c2d_run_signaled, &
+                            c2d_run_timeout
+  use safe_files, only: read_file, real_path, folder_of, file_kind, c2d_regular
+  implicit none
+  private
+  public :: gmsh_options_t, mesh_geo_file
+
+  type :: gmsh_options_t
+    logical :: trust_geo = .false.       !< run gmsh as it is: no screen, no sandbox (--trust-geo)
+    real(dp) :: timeout = 600.0_dp       !< seconds gmsh may take per .geo (--gmsh-timeout)
+  end type gmsh_options_t
+
+  !> an argument vector: NUL-terminated strings one after the other
+  type :: argv_t
+    character(len=:), allocatable :: packed
+    integer :: n = 0
+  end type argv_t
+
+  !> what the sandbox shows of the system, read-only (when present)
+  character(len=*), parameter :: system_paths(9) = [character(len=24) :: '/usr', '/bin', '/sbin', '/lib', &
+    '/lib32', '/lib64', '/libx32', '/etc/ld.so.cache', '/etc/alternatives']
+
+contains
+
+  !> Mesh a .geo file with gmsh (2D, MSH 4.1 ASCII).
+  !>   geo_path    (in)  the .geo file
+  !>   order       (in)  element order, 1 or 2 (gmsh -order: second-order
+  !>                     elements with the mid-side nodes on the curves)
+  !>   names       (in)  (n) names given to -setnumber (n may be 0)
+  !>   values      (in)  (n) their values
+  !>   opts        (in)  trust and time limit
+  !>   read_folder (in)  a folder the .geo may read (the deck's)
+  !>   msh_path    (in)  the mesh to write, in a folder of the run's own (the only
+  !>                     folder the sandbox lets gmsh write)
+  !>   log_path    (in)  where gmsh's output goes (made here: must not exist)
+  !>   ok          (out) .true. when gmsh exited with status 0 and wrote msh_path
+  !>   message     (out) '' when ok; else what went wrong
+  subroutine mesh_geo_file(geo_path, order, names, values, opts, read_folder, msh_path, log_path, ok, message)
+    character(len=*), intent(in) :: geo_path, read_folder, msh_path, log_path
+    integer, intent(in) :: order
+    character(len=*), intent(in) :: names(:)
+    real(dp), intent(in) :: values(:)
+    type(gmsh_options_t), intent(in) :: opts
+    logical, intent(out) :: ok
+    character(len=:), allocatable, intent(out) :: message
+    character(len=:), allocatable :: gmsh, bwrap, geo, out_folder
+    type(argv_t) :: argv
+    integer(c_int) :: how, status
+    integer :: i
+    logical :: found
+
+    ok = .false.
+    message = ''
+    if (size(names) /= size(values)) then
+      message = 'gmsh parameters: ' // int_to_str(size(names)) // ' names but ' // int_to_str(size(values)) // &
+        ' values (one value per name expected)'
+      return
+    end if
+    do i = 1, size(names)
+      if (len_trim(names(i)) == 0) then
+        message = 'gmsh parameter ' // int_to_str(i) // ' has an empty name (a name for -setnumber expected)'
+        return
+      end if
+      if (.not. ieee_is_finite(values(i))) then
+        message = 'gmsh parameter ' // trim(names(i)) // ' is not finite (a finite number expected)'
+        return
+      end if
+    end do
+    call find_program('gmsh', gmsh, found)
+    if (.not. found) then
+      message = 'gmsh not found on PATH (install the Debian package gmsh)'
+      return
+    end if
+    ! absolute paths: the same inside the sandbox, and never taken for an option
+    call real_path(geo_path, geo, found)
+    if (.not. found) then
+      message = 'cannot find "' // geo_path // '"'
+      return
+    end if
+    call real_path(folder_of(msh_path), out_folder, found)
+    if (.not. found) then
+      message = 'no folder for the mesh "' // msh_path // '"'
+      return
+    end if
+    if (c_unlink(msh_path // c_null_char) /= 0) continue    ! a mesh there afterwards is gmsh's
+
+    if (.not. opts%trust_geo) then
+      call find_program('bwrap', bwrap, found)
+      if (found) found = sandbox_works(bwrap, log_path)
+      if (found) call sandbox_arguments(bwrap, gmsh, read_folder, geo, out_folder, argv)
+    end if
+    call push(argv, gmsh)
+    call push(argv, '-2')
+    call push(argv, '-order')
+    call push(argv, int_to_str(order))
+    call push(argv, '-format')
+    call push(argv, 'msh41')
+    call push(argv, '-v')
+    call push(argv, '2')
+    do i = 1, size(names)
+      call push(argv, '-setnumber')
+      call push(argv, trim(names(i)))
+      call push(argv, real_to_text(values(i)))
+    end do
+    call push(argv, geo)
+    call push(argv, '-o')
+    call push(argv, out_folder // '/' // msh_path(index(msh_path, '/', back=.true.) + 1:))
+    if (c2d_run_program(argv%packed, int(argv%n, c_int), log_path // c_null_char, real(opts%timeout, c_double), &
+                        how, status) /= 0) continue
+    select case (how)
+    case (c2d_run_timeout)
+      message = 'gmsh did not finish within ' // real_to_str(opts%timeout) // ' s (--gmsh-timeout): stopped ' // &
+                '(a .geo that ends expected; an endless loop?)'
+      return
+    case (c2d_run_signaled)
+      message = 'gmsh was killed by signal ' // int_to_str(int(status)) // gmsh_errors(log_path, '; ')
+      return
+    case (c2d_run_exited)
+    case default
+      message = 'cannot run ' // gmsh // ' (error ' // int_to_str(int(status)) // ')'
+      return
+    end select
+    ok = file_kind(msh_path) == c2d_regular
+    ok = ok .and. status == 0
+    if (ok) return
+    message = gmsh_errors(log_path, '')
+    if (len(message) == 0) then
+      if (status /= 0) then
+        message = 'gmsh failed with exit status ' // int_to_str(int(status))
+      else
+        message = 'gmsh wrote no mesh file'
+      end if
+    end if
+  end subroutine mesh_geo_file
+
+  !> The path of a program on PATH.
+  subroutine find_program(name, path, found)
+    character(len=*), intent(in) :: name
+    character(len=:), allocatable, intent(out) :: path
+    logical, intent(out) :: found
+    character(len=4096) :: buf
+    found = c2d_find_program(name // c_null_char, buf, int(len(buf), c_int)) == 0
+    path = ''
+    if (found) path = buf(1:index(buf, c_null_char) - 1)
+  end subroutine find_program
+
+  !> bubblewrap can make its namespaces here (not in every container).
+  logical function sandbox_works(bwrap, log_path)
+    character(len=*), intent(in) :: bwrap, log_path
+    type(argv_t) :: argv
+    integer(c_int) :: how, status
+    call push(argv, bwrap)
+    call push(argv, '--unshare-all')
+    call push(argv, '--die-with-parent')
+    call push(argv, '--ro-bind')
+    call push(argv, '/')
+    call push(argv, '/')
+    call push(argv, 'true')
+    if (c2d_run_program(argv%packed, int(argv%n, c_int), log_path // '.probe' // c_null_char, 30.0_c_double, &
+                        how, status) /= 0) continue
+    if (c_unlink(log_path // '.probe' // c_null_char) /= 0) continue
+    sandbox_works = how == c2d_run_exited .and. status == 0
+  end function sandbox_works
+
+  !> bwrap's arguments up to the program: a new namespace of every kind (no
+  !> network, no other processes), a new session, the process dies with
+  !> contact2d; the system read-only, the deck's folder and the .geo
+  !> read-only, the output folder writable, the environment cleared.
+  subroutine sandbox_arguments(bwrap, gmsh, read_folder, geo, out_folder, argv)
+    character(len=*), intent(in) :: bwrap, gmsh, read_folder, geo, out_folder
+    type(argv_t), intent(inout) :: argv
+    character(len=:), allocatable :: deck_folder, prefix
+    logical :: found
+    integer :: i
+    call push(argv, bwrap)
+    call push(argv, '--unshare-all')
+    call push(argv, '--die-with-parent')
+    call push(argv, '--new-session')
+    call push(argv, '--clearenv')
+    call push(argv, '--setenv')
+    call push(argv, 'PATH')
+    call push(argv, '/usr/bin:/bin')
+    call push(argv, '--setenv')
+    call push(argv, 'HOME')
+    call push(argv, out_folder)
+    do i = 1, size(system_paths)
+      call push(argv, '--ro-bind-try')
+      call push(argv, trim(system_paths(i)))
+      call push(argv, trim(system_paths(i)))
+    end do
+    call push(argv, '--proc')
+    call push(argv, '/proc')
+    call push(argv, '--dev')
+    call push(argv, '/dev')
+    call push(argv, '--tmpfs')
+    call push(argv, '/tmp')
+    if (gmsh(1:min(5, len(gmsh))) /= '/usr/') then      ! a gmsh installed elsewhere: its prefix
+      prefix = folder_of(folder_of(gmsh))
+      call push(argv, '--ro-bind')
+      call push(argv, prefix)
+      call push(argv, prefix)
+    end if
+    call real_path(read_folder, deck_folder, found)
+    if (found) then
+      call push(argv, '--ro-bind')
+      call push(argv, deck_folder)
+      call push(argv, deck_folder)
+    end if
+    call push(argv, '--ro-bind')
+    call push(argv, geo)
+    call push(argv, geo)
+    call push(argv, '--bind')
+    call push(argv, out_folder)
+    call push(argv, out_folder)
+    call push(argv, '--chdir')
+    call push(argv, out_folder)
+    call push(argv, '--')
+  end subroutine sandbox_arguments
+
+  !> Append one argument.
+  subroutine push(argv, arg)
+    type(argv_t), intent(inout) :: argv
+    character(len=*), intent(in) :: arg
+    if (.not. allocated(argv%packed)) argv%packed = ''
+    argv%packed = argv%packed // arg // c_null_char
+    argv%n = argv%n + 1
+  end subroutine push
+
+  !> The first two lines of gmsh's log starting with "Error", joined by "; "
+  !> (else its first line: bwrap's own message), after lead when any.
+  function gmsh_errors(log_path, lead) result(text)
+    character(len=*), intent(in) :: log_path, lead
+    character(len=:), allocatable :: text
+    character(len=:), allocatable :: buf, line, first
+    integer :: status, nfound
+    integer(i8) :: p, q, n
+
+    text = ''
+    first = ''
+    call read_file(log_path, buf, status)
+    if (status /= 0) return
+    n = len(buf, kind=i8)
+    nfound = 0
+    p = 1
+    do while (p <= n .and. nfound < 2)
+      q = index(buf(p:), achar(10), kind=i8)
+      if (q == 0) then
+        line = buf(p:n)
+        p = n + 1
+      else
+        line = buf(p:p + q - 2)
+        p = p + q
+      end if
+      line = trim(adjustl(printable(line)))
+      if (len(line) > 300) line = line(1:300) // ' ...'
+      if (len(first) == 0) first = line
+      if (len(line) >= 5) then
+        if (line(1:5) == 'Error') then
+          if (nfound > 0) text = text // '; '
+          text = text // line
+          nfound = nfound + 1
+        end if
+      end if
+    end do
+    if (nfound == 0) text = first
+    if (len(text) > 0) text = lead // text
+  end function gmsh_errors
+
+  !> A real number as text that reads back exactly: an integer when it is
+  !> one, else 17 significant digits.
+  function real_to_text(v) result(s)
+    real(dp), intent(in) :: v
+    character(len=:), allocatable :: s
+    character(len=32) :: buf
+    if (abs(v) < 1.0e15_dp .and. v == aint(v)) then
+      write(buf, '(i0)') int(v, i8)
+    else
+      write(buf, '(es25.16e3)') v
+    end if
+    s = trim(adjustl(buf))
+  end function real_to_text
+
+end module gmsh_runner
