@@ -22,7 +22,7 @@ DECK
 }
 
 # signorini_deck DECK NX1 NY1 NX2 NY2 [STATEMENT...]: Signorini S of
-# BENCHMARKS.md, two MESH rect blocks (lower NX1 x NY1, upper NX2 x NY2)
+# doc/benchmarks.md, two MESH rect blocks (lower NX1 x NY1, upper NX2 x NY2)
 signorini_deck() {
   deck=$1 nx1=$2 ny1=$3 nx2=$4 ny2=$5
   shift 5

@@ -98,7 +98,7 @@ and, in practice, close to O(h).  The cost side of the same runs is in
 
 ${failures}## What is measured
 
-**Problems.** S (Signorini separation) and H (Hertz) of \`/work/shared/BENCHMARKS.md\`
+**Problems.** S (Signorini separation) and H (Hertz) of [benchmarks.md](benchmarks.md)
 (the decks are generated into \`studies/out/decks/\`).
 
 * **S**: the lower body is the slave. Slave mesh: MESH rect, \`nx = 12 2^k\`, \`ny = nx/2\`,
@@ -257,7 +257,7 @@ p0 $(rt "H h2/h1=1 slave=disk" p0_err_ref).
 
 ## Patch test
 
-Exact solution: uniform sigma_yy = -p in both bodies (BENCHMARKS.md, P); errors relative to p
+Exact solution: uniform sigma_yy = -p in both bodies ([benchmarks.md, P](benchmarks.md#p-the-contact-patch-test)); errors relative to p
 (stress per cell, nodal pressure) and to the prescribed 0.01 (displacement). Slave = lower body
 with ns x ns cells, master nm x nm, both orders; case a: equal materials, case b: E2 = 100 E1.
 
@@ -386,7 +386,7 @@ cat > "$doc/accuracy-cost.md" <<EOF
 
 $stamp
 
-For the problems S (Signorini separation) and H (Hertz) of \`/work/shared/BENCHMARKS.md\`,
+For the problems S (Signorini separation) and H (Hertz) of [benchmarks.md](benchmarks.md),
 this page sets the error of every run of the study against its run time: which LCP solver,
 which mesh ratio h2/h1 and which slave/master choice is cheapest for a given accuracy, where
 Lemke stops paying off against projected Gauss-Seidel (PGS), where refining the master side
