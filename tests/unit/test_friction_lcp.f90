@@ -383,7 +383,7 @@ contains
         case (state_open)
           consistent = consistent .and. lam_l(k) <= tol_direct * maxval(lam_l)
         case (state_stick)
-          consistent = consistent .and. abs(lam_l(n + k)) <= b(k) * (1.0_dp + tol_direct) + tol_direct
+          consistent = consistent .and. abs(lam_l(n + k)) <= b(k) * (1.0_dp + tol_direct) + tol_round(32)
         case (state_slip)
           consistent = consistent .and. abs(abs(lam_l(n + k)) - b(k)) <= tol_direct * maxval(lam_l)
         case default

@@ -173,7 +173,8 @@ contains
     do e = 1, m41%nelem
       if (m41%nen(e) == 4) err = max(err, abs(element_area(m41, e) - 1.0_dp / 9.0_dp))
     end do
-    call check_small(err, 1.0e-9_dp, 'mixed: each quadrangle of the 3x3 grid has area 1/9')
+    ! measured 833 eps: the thirds of the grid come from gmsh's text, not the nearest doubles
+    call check_small(err, tol_round(8192), 'mixed: each quadrangle of the 3x3 grid has area 1/9')
   end subroutine test_mixed
 
   !> Unit disk, unstructured, surface in no physical group (Mesh.SaveAll).
@@ -217,7 +218,7 @@ contains
     call finalize_mesh(m41, 'disk_41.msh', dfin)
     call check(dfin%count == 0, 'disk: finalize_mesh finds no defect')
     call check_close(total_area(m41), abs(polygon), tol_round(16), 'disk: element areas sum to the rim polygon area')
-    call check(abs(polygon) <= 0.5_dp * nseg * sin(2.0_dp * pi / nseg) + 1.0e-12_dp .and. abs(polygon) > 0.9_dp * pi, &
+    call check(abs(polygon) <= 0.5_dp * nseg * sin(2.0_dp * pi / nseg) + tol_round(16 * nseg) .and. abs(polygon) > 0.9_dp * pi, &
       'disk: rim polygon area below the regular polygon''s, close to pi')
   end subroutine test_disk
 
@@ -628,7 +629,7 @@ contains
     integer :: e, f
     same = a%nnode == b%nnode .and. a%nelem == b%nelem
     if (.not. same) return
-    same = maxval(abs(a%x - b%x)) <= 1.0e-14_dp
+    same = maxval(abs(a%x - b%x)) <= tol_round(32)
     if (.not. same) return
     allocate(map(a%nelem), source=0)
     allocate(taken(b%nelem), source=.false.)
