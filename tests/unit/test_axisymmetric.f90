@@ -8,7 +8,7 @@ program test_axisymmetric
   use axisymmetric_elements, only: radial_weight, axi_element_stiffness, axi_element_force, axi_edge_load, &
                                    axi_element_body_load, axi_element_strain
   use mortar_operator, only: segment_rule
-  use testing, only: check, check_close, check_small, finish_tests
+  use testing, only: check, check_close, check_small, finish_tests, tol_round
   implicit none
   real(dp), parameter :: pi = acos(-1.0_dp)
   type(elasticity_t) :: a, b
@@ -23,18 +23,18 @@ program test_axisymmetric
   dref = lam
   dref(3, :) = 0.0_dp; dref(:, 3) = 0.0_dp
   dref(1, 1) = lam + 2 * mu; dref(2, 2) = lam + 2 * mu; dref(4, 4) = lam + 2 * mu; dref(3, 3) = mu
-  call check_small(maxval(abs(a%d4 - dref)) / e, 1.0e-13_dp, 'isotropic D4 = 3D law on (rr, zz, rz, tt)')
+  call check_small(maxval(abs(a%d4 - dref)) / e, tol_round(16), 'isotropic D4 = 3D law on (rr, zz, rz, tt)')
   call make_orthotropic(e, e, e, nu, nu, nu, mu, 29.0_dp, .false., b)
-  call check_small(maxval(abs(b%d4 - a%d4)) / e, 1.0e-13_dp, 'isotropic D4 invariant under the in-plane rotation')
-  call check_close(von_mises_4([0.0_dp, 0.0_dp, 0.0_dp, 5.0_dp]), 5.0_dp, 1.0e-14_dp, 'von Mises of a pure hoop stress')
+  call check_small(maxval(abs(b%d4 - a%d4)) / e, tol_round(16), 'isotropic D4 invariant under the in-plane rotation')
+  call check_close(von_mises_4([0.0_dp, 0.0_dp, 0.0_dp, 5.0_dp]), 5.0_dp, tol_round(16), 'von Mises of a pure hoop stress')
 
   ! a Q1 ring element away from the axis and a P1 one touching it
   xe = reshape([1.0_dp, 0.0_dp, 1.5_dp, 0.1_dp, 1.4_dp, 0.7_dp, 0.9_dp, 0.6_dp], [2, 4])
   xt = reshape([0.0_dp, 0.0_dp, 0.5_dp, 0.1_dp, 0.0_dp, 0.4_dp], [2, 3])
   call axi_element_stiffness(4, xe, a%d4, ke)
-  call check_small(maxval(abs(ke - transpose(ke))) / maxval(abs(ke)), 1.0e-14_dp, 'Q1 ke symmetric')
+  call check_small(maxval(abs(ke - transpose(ke))) / maxval(abs(ke)), tol_round(16), 'Q1 ke symmetric')
   u = 0.0_dp; u(2::2) = 1.0_dp                       ! rigid translation along z: no force
-  call check_small(maxval(abs(matmul(ke, u))) / maxval(abs(ke)), 1.0e-14_dp, 'Q1: translation along z is rigid')
+  call check_small(maxval(abs(matmul(ke, u))) / maxval(abs(ke)), tol_round(16), 'Q1: translation along z is rigid')
   u = 0.0_dp; u(1::2) = 1.0_dp                       ! u_r = 1 strains the hoop: a force
   call check(dot_product(u, matmul(ke, u)) > 1.0e-2_dp * maxval(abs(ke)), &
              'Q1: translation along r is not rigid (hoop strain energy > 0)')
@@ -44,17 +44,19 @@ program test_axisymmetric
     u(2 * i) = -1.0e-3_dp * xe(2, i)
   end do
   call axi_element_strain(4, xe, u, eps)
-  call check_small(maxval(abs(eps - [2.0e-3_dp, -1.0e-3_dp, 0.0_dp, 2.0e-3_dp])), 1.0e-16_dp, 'Q1: linear field strain')
+  ! 16 roundings of the largest strain, 2e-3
+  call check_small(maxval(abs(eps - [2.0e-3_dp, -1.0e-3_dp, 0.0_dp, 2.0e-3_dp])), tol_round(16, 2.0e-3_dp), &
+                   'Q1: linear field strain')
   call axi_element_force(4, xe, a%d4, u, f)
-  call check_small(maxval(abs(f - matmul(ke, u))) / maxval(abs(f)), 1.0e-13_dp, 'Q1: element force = ke u')
+  call check_small(maxval(abs(f - matmul(ke, u))) / maxval(abs(f)), tol_round(16), 'Q1: element force = ke u')
 
   ! loads: a traction per unit area on an edge, full circle: sum = t 2 pi r_mid L
   call axi_edge_load([0.0_dp, 0.0_dp], [2.0_dp, 0.0_dp], [0.0_dp, -3.0_dp], fe)
-  call check_close(fe(2) + fe(4), -3.0_dp * 2 * pi * 1.0_dp * 2.0_dp, 1.0e-14_dp, 'edge load = t 2 pi r_mid L')
-  call check_close(fe(4) / fe(2), 2.0_dp, 1.0e-14_dp, 'edge load from the axis: 1/3 and 2/3 of it')
+  call check_close(fe(2) + fe(4), -3.0_dp * 2 * pi * 1.0_dp * 2.0_dp, tol_round(16), 'edge load = t 2 pi r_mid L')
+  call check_close(fe(4) / fe(2), 2.0_dp, tol_round(16), 'edge load from the axis: 1/3 and 2/3 of it')
   ! a body force per unit volume on the P1 triangle: sum = b 2 pi r_centroid area
   call axi_element_body_load(3, xt, [0.0_dp, 2.0_dp], f(1:6))
-  call check_close(sum(f(2:6:2)), 2.0_dp * radial_weight(0.5_dp / 3.0_dp) * 0.5_dp * 0.5_dp * 0.4_dp, 1.0e-14_dp, &
+  call check_close(sum(f(2:6:2)), 2.0_dp * radial_weight(0.5_dp / 3.0_dp) * 0.5_dp * 0.5_dp * 0.4_dp, tol_round(16), &
                    'body load = b 2 pi r_c A (Pappus)')
 
   ! segment_rule: exact for s^k, k <= degree, times 2 pi r(s) on [s1, s2]
@@ -66,7 +68,7 @@ program test_axisymmetric
       ! int_{0.2}^{0.9} s^k 2 pi ((1 - s) r0 + s r1) L ds, L = r1 - r0
       exact = 2 * pi * (r1 - r0) * (r0 * (0.9_dp**(k + 1) - 0.2_dp**(k + 1)) / (k + 1) + &
               (r1 - r0) * (0.9_dp**(k + 2) - 0.2_dp**(k + 2)) / (k + 2))
-      call check_close(sum_q, exact, 1.0e-14_dp, 'segment_rule with 2 pi r exact for degree ' // char(48 + deg) // &
+      call check_close(sum_q, exact, tol_round(16), 'segment_rule with 2 pi r exact for degree ' // char(48 + deg) // &
                        ', s^' // char(48 + k))
     end do
   end do

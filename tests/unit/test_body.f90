@@ -21,7 +21,7 @@ program test_body
   use body, only: body_t, number_equations, build_pattern, assemble_stiffness, internal_forces, &
                   node_elements, edge_outward_normal
   use sparse_matrix, only: csc_t
-  use testing, only: check, check_small, finish_tests
+  use testing, only: check, check_small, finish_tests, tol_round
   implicit none
   real(dp), parameter :: threshold = 30.0_dp
   type(body_t) :: bd(2)
@@ -99,13 +99,14 @@ contains
     ubar = 0.0_dp
     ! the lower body's bottom held with a prescribed value, the upper's left side held
     do a = 1, bd(1)%mesh%nnode
-      if (bd(1)%mesh%x(2, a) < 1e-12_dp) then
+      ! nodes on a side of a unit-size mesh: their coordinate is exact to round-off
+      if (bd(1)%mesh%x(2, a) < tol_round(16)) then
         fixed(2 * a - 1:2 * a) = .true.
         ubar(2 * a - 1:2 * a) = [1.0e-3_dp, -2.0e-3_dp * bd(1)%mesh%x(1, a)]
       end if
     end do
     do a = 1, bd(2)%mesh%nnode
-      if (bd(2)%mesh%x(1, a) < 1e-12_dp) fixed(bd(2)%dof0 + 2 * a - 1:bd(2)%dof0 + 2 * a) = .true.
+      if (bd(2)%mesh%x(1, a) < tol_round(16)) fixed(bd(2)%dof0 + 2 * a - 1:bd(2)%dof0 + 2 * a) = .true.
     end do
     call number_equations(fixed, eq, nfree)
     call check(nfree == count(.not. fixed) .and. maxval(eq) == nfree, 'number_equations: the free dofs numbered 1..nfree')
@@ -202,7 +203,7 @@ contains
     fixed = .false.
     ubar = 0.0_dp
     do a = 1, big(1)%mesh%nnode
-      if (big(1)%mesh%x(2, a) < 1e-12_dp) then
+      if (big(1)%mesh%x(2, a) < tol_round(16)) then
         fixed(2 * a - 1:2 * a) = .true.
         ubar(2 * a) = 1.0e10_dp
       end if

@@ -22,7 +22,7 @@ program test_contact_condensation
   use contact_set, only: contact_set_t
   use contact_condensation, only: contact_equations, condense, recover, condensed_t
   use lapack_interfaces, only: dpotrf, dpotrs
-  use testing, only: check, check_small, finish_tests, dense_symmetric
+  use testing, only: check, check_small, finish_tests, dense_symmetric, tol_round
   implicit none
   real(dp), parameter :: threshold = 30.0_dp
   character(len=*), parameter :: ways(3) = ['solve  ', 'inverse', 'auto   ']
@@ -70,16 +70,17 @@ contains
     ubar = 0.0_dp
     ! lower: bottom held; upper: top pushed down and sideways
     do i = 1, bd(1)%mesh%nnode
-      if (bd(1)%mesh%x(2, i) < 1e-12_dp) fixed(2 * i - 1:2 * i) = .true.
+      ! nodes on a side of a unit-size mesh: their coordinate is exact to round-off
+      if (bd(1)%mesh%x(2, i) < tol_round(16)) fixed(2 * i - 1:2 * i) = .true.
     end do
     do i = 1, bd(2)%mesh%nnode
-      if (bd(2)%mesh%x(2, i) > 2.0_dp - 1e-12_dp) then
+      if (bd(2)%mesh%x(2, i) > 2.0_dp - tol_round(16)) then
         fixed(bd(2)%dof0 + 2 * i - 1:bd(2)%dof0 + 2 * i) = .true.
         ubar(bd(2)%dof0 + 2 * i - 1:bd(2)%dof0 + 2 * i) = [0.002_dp, -0.01_dp]
       end if
     end do
-    lower_top = pack([(i, i = 1, bd(1)%mesh%nnode)], abs(bd(1)%mesh%x(2, :) - 1.0_dp) < 1e-12_dp)
-    upper_bottom = pack([(i, i = 1, bd(2)%mesh%nnode)], abs(bd(2)%mesh%x(2, :) - 1.0_dp) < 1e-12_dp)
+    lower_top = pack([(i, i = 1, bd(1)%mesh%nnode)], abs(bd(1)%mesh%x(2, :) - 1.0_dp) < tol_round(16))
+    upper_bottom = pack([(i, i = 1, bd(2)%mesh%nnode)], abs(bd(2)%mesh%x(2, :) - 1.0_dp) < tol_round(16))
     ntop = size(lower_top)
     nbot = size(upper_bottom)
     call check(diag%count == 0 .and. ntop == 7 .and. nbot == 5, name // ': meshes and contact sides')

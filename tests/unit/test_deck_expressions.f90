@@ -5,7 +5,7 @@
 program test_deck_expressions
   use kinds, only: dp, i8
   use deck_expressions, only: parameter_set_t, add_parameter, evaluate, substitute, format_number
-  use testing, only: check, check_close, finish_tests, urand
+  use testing, only: check, check_close, finish_tests, urand, tol_round
   implicit none
   type(parameter_set_t) :: set
   integer :: i, nbad, nlong, ios
@@ -95,7 +95,7 @@ contains
     character(len=:), allocatable :: message
     call evaluate(text, set, got, message)
     call check(.not. allocated(message), 'evaluate "' // text // '": no error')
-    if (.not. allocated(message)) call check_close(got, want, 1.0e-15_dp, 'evaluate "' // text // '"')
+    if (.not. allocated(message)) call check_close(got, want, tol_round(4), 'evaluate "' // text // '"')
   end subroutine value_is
 
   subroutine error_is(text, want)

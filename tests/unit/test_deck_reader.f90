@@ -19,7 +19,7 @@ program test_deck_reader
   use kinds, only: dp
   use errors, only: diag_t
   use deck_reader, only: deck_t, read_deck, load_traction, load_pressure, curve_factor
-  use testing, only: check, check_close, finish_tests
+  use testing, only: check, check_close, finish_tests, unit_roundoff
   implicit none
 
   call test_full_deck()
@@ -39,7 +39,7 @@ contains
   subroutine test_full_deck()
     type(deck_t) :: d
     type(diag_t) :: g
-    real(dp), parameter :: r = 1.0e-15_dp
+    real(dp), parameter :: r = 4 * unit_roundoff   ! read correctly rounded (eps/2), a few roundings more if computed
     integer :: i
 
     call read_deck('tests/unit/data/deck_full.deck', d, g)
@@ -159,7 +159,7 @@ contains
   subroutine test_odd_deck()
     type(deck_t) :: d
     type(diag_t) :: g
-    real(dp), parameter :: r = 1.0e-15_dp
+    real(dp), parameter :: r = 4 * unit_roundoff   ! read correctly rounded (eps/2), a few roundings more if computed
 
     call read_deck('tests/unit/data/deck_odd.deck', d, g)
     call check(g%count == 0, 'odd: no errors')
@@ -276,7 +276,7 @@ contains
       if (good_value(i) == 0) then
         call check(abs(d%gx) < 1.0e-300_dp, 'number value: ' // trim(good(i)))
       else
-        call check_close(d%gx, good_value(i), 1.0e-15_dp, 'number value: ' // trim(good(i)))
+        call check_close(d%gx, good_value(i), 4 * unit_roundoff, 'number value: ' // trim(good(i)))
       end if
     end do
     do i = 1, size(bad)
@@ -407,7 +407,7 @@ contains
     character(len=*), parameter :: nl = achar(10)
     type(deck_t) :: d
     type(diag_t) :: g
-    real(dp), parameter :: r = 1.0e-15_dp
+    real(dp), parameter :: r = 4 * unit_roundoff   ! read correctly rounded (eps/2), a few roundings more if computed
 
     call read_text_deck('STEPS 4' // nl // 'BODY b' // nl // ' MESH rect nx=2 ny=2' // nl // &
                         ' MATERIAL isotropic E=1 nu=0' // nl // ' DENSITY rho=1' // nl // &
@@ -453,7 +453,7 @@ contains
     character(len=*), parameter :: pair = 'CONTACT slave=lower:top master=upper:bottom'
     type(deck_t) :: d
     type(diag_t) :: g
-    real(dp), parameter :: r = 1.0e-15_dp
+    real(dp), parameter :: r = 4 * unit_roundoff   ! read correctly rounded (eps/2), a few roundings more if computed
 
     call read_text_deck(two // pair // nl // 'CONTACT slave=lower:bottom master=upper:top gap=zero MU=0.3' // nl // &
                         'CONTACT slave=upper:left master=lower:left tresca = 2.5e1' // nl // &

@@ -24,7 +24,7 @@ program test_elastic_patch
   use body, only: body_t, number_equations, build_pattern, assemble_stiffness, element_response
   use sparse_matrix, only: csc_t
   use sparse_cholesky, only: factor_t, factorize, solve
-  use testing, only: check, check_small, finish_tests
+  use testing, only: check, check_small, finish_tests, tol_round
   implicit none
   integer :: ielem, ilaw
   character(len=80) :: name
@@ -183,17 +183,19 @@ contains
       if (eq(i) > 0) u(i) = x(eq(i), 1)
     end do
     umax = maxval(abs(ubar))
-    call check_small(maxval(abs(u - ubar)) / umax, 1.0e-12_dp, name // ': displacement exact')
+    ! a solve with K: round-off amplified by cond(K) of these small patches,
+    ! sums over the nodes for the reactions (measured <= 40 eps; 8 times that)
+    call check_small(maxval(abs(u - ubar)) / umax, tol_round(128), name // ': displacement exact')
     allocate(stress(3, bd(1)%mesh%nelem), vm(bd(1)%mesh%nelem))
     call element_response(bd, u, fint, stress, vm)
     eps = [a(2), b(3), a(3) + b(2)]
     sexact = matmul(bd(1)%law%d, eps)
-    call check_small(maxval(abs(stress - spread(sexact, 2, bd(1)%mesh%nelem))) / maxval(abs(sexact)), 1.0e-11_dp, &
+    call check_small(maxval(abs(stress - spread(sexact, 2, bd(1)%mesh%nelem))) / maxval(abs(sexact)), tol_round(256), &
                      name // ': stress exact')
     r = [sum(fint(1::2)), sum(fint(2::2))]
     moment = sum(bd(1)%mesh%x(1, :) * fint(2::2) - bd(1)%mesh%x(2, :) * fint(1::2))
-    call check_small(maxval(abs([r, moment])) / maxval(abs(fint)), 1.0e-12_dp, name // ': reactions in equilibrium')
-    call check_small(maxval(abs(pack(fint, .not. fixed))) / maxval(abs(fint)), 1.0e-11_dp, &
+    call check_small(maxval(abs([r, moment])) / maxval(abs(fint)), tol_round(256), name // ': reactions in equilibrium')
+    call check_small(maxval(abs(pack(fint, .not. fixed))) / maxval(abs(fint)), tol_round(512), &
                      name // ': free dofs in equilibrium')
   end subroutine run_patch
 

@@ -7,13 +7,21 @@
 program test_friction_lcp
   use kinds, only: dp, i8
   use errors, only: error_t
-  use testing, only: check, check_close, check_small, finish_tests, urand, random_spd
+  use testing, only: check, check_close, check_small, finish_tests, urand, random_spd, tol_round, unit_roundoff
   use lcp_solvers, only: lcp_options_t, lcp_report_t, solve_lcp_lemke, solve_lcp_pgs, solve_lcp_lemke_scaled
   use friction_lcp, only: friction_problem_t, friction_problem, solve_friction_lcp, friction_residual, &
     friction_state, state_open, state_stick, state_slip
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
 
+  ! Tolerances, in the units of testing (tol_round: n eps scale).  G from
+  ! random_spd has eigenvalues in [1e-3, 0.83] (its shift, and
+  ! (1 + sqrt(1/3))^2 / 3 by Marchenko-Pastur): cond(G) <= cond_w.  Lemke
+  ! ends on a direct solve, so its answer is good to round-off times cond(G)
+  ! (tol_direct; measured <= 3 eps); PGS stops at a residual of opts%tol and
+  ! is within cond(G) opts%tol (measured <= 9 opts%tol).
+  real(dp), parameter :: cond_w = 1.0e3_dp
+  real(dp), parameter :: tol_direct = 64 * cond_w * epsilon(1.0_dp)
   integer(i8) :: seed
   seed = 20240917_i8
 
@@ -149,8 +157,8 @@ contains
     call solve_lcp_lemke_scaled(m2, [-1.0_dp, 1.0_dp], [1.0_dp, 1.0_dp], z2, opts, rep)
     call check(rep%info == 0, 'lemke scaled zero diagonal: info 0')
     w2 = [-1.0_dp, 1.0_dp] + matmul(m2, z2)
-    call check_close(z2(2), 1.0_dp, 1.0e-14_dp, 'lemke scaled zero diagonal: z2 = 1')
-    call check(all(z2 >= 0.0_dp) .and. all(w2 >= -1.0e-14_dp) .and. maxval(abs(z2 * w2)) <= 1.0e-14_dp, &
+    call check_close(z2(2), 1.0_dp, tol_round(16), 'lemke scaled zero diagonal: z2 = 1')
+    call check(all(z2 >= 0.0_dp) .and. all(w2 >= -tol_round(32)) .and. maxval(abs(z2 * w2)) <= tol_round(32), &
       'lemke scaled zero diagonal: complementary')
 
     ! [1 -1; -1 1], q = -1: w1 + w2 = -2 for every z (PSD, infeasible).
@@ -177,7 +185,7 @@ contains
     real(dp) :: g(2, 2)
     g = reshape([1.0_dp, 0.0_dp, 0.0_dp, 1.0_dp], [2, 2])
     call check_close(friction_residual(g, friction_problem([-1.0_dp], [0.0_dp], [1], [0.5_dp], [0.0_dp]), [1.0_dp, 0.5_dp]), &
-      0.5_dp, 1.0e-15_dp, 'residual: hand value 1/2')
+      0.5_dp, tol_round(4), 'residual: hand value 1/2')
     call check_small(friction_residual(g, friction_problem([-1.0_dp], [0.0_dp], [1], [0.5_dp], [0.0_dp]), [1.0_dp, 0.0_dp]), &
       0.0_dp, 'residual: 0 at the solution')
     call check(friction_residual(g, friction_problem([-1.0_dp], [0.0_dp], [2], [0.5_dp], [0.0_dp]), [1.0_dp, 0.0_dp]) == &
@@ -229,11 +237,11 @@ contains
     lam = [5.0_dp, 1.0_dp]
     call solve_friction_lcp(g, prob, method_name, opts, lam, rep)
     call check(rep%info == 0, full // ': info 0')
-    call check_close(lam(1), lambda, 1.0e-12_dp, full // ': lambda by hand', floor=1.0_dp)
-    call check_close(lam(2), tau, 1.0e-12_dp, full // ': tau by hand', floor=1.0_dp)
+    call check_close(lam(1), lambda, tol_round(512), full // ': lambda by hand', floor=1.0_dp)
+    call check_close(lam(2), tau, tol_round(256), full // ': tau by hand', floor=1.0_dp)
     call friction_state(g, prob, lam, state, err)
     call check(.not. allocated(err) .and. state(1) == st, full // ': state')
-    call check_conditions(g, prob, lam, 1.0e-12_dp, full)
+    call check_conditions(g, prob, lam, tol_round(512), full)
   end subroutine one_case
 
   !> G = diag(2, 1) (decoupled), qn = -2 so lambda = 1, mu = 0.3, b = 0.3.
@@ -252,15 +260,15 @@ contains
       tag = merge('lemke', 'pgs  ', method == 1)
       lam = 0.0_dp
       call solve_friction_lcp(g, friction_problem([-2.0_dp], [1.0_dp], [1], [0.3_dp], [0.0_dp]), trim(tag), opts, lam, rep)
-      call check(rep%info == 0 .and. abs(lam(1) - 1.0_dp) <= 1.0e-13_dp .and. abs(lam(2) + 0.3_dp) <= 1.0e-13_dp, &
+      call check(rep%info == 0 .and. abs(lam(1) - 1.0_dp) <= tol_round(256) .and. abs(lam(2) + 0.3_dp) <= tol_round(256), &
         'sign ' // trim(tag) // ': qt = 1 slips with tau = -0.3 (ds = -0.7)')
       lam = 0.0_dp
       call solve_friction_lcp(g, friction_problem([-2.0_dp], [-1.0_dp], [1], [0.3_dp], [0.0_dp]), trim(tag), opts, lam, rep)
-      call check(rep%info == 0 .and. abs(lam(1) - 1.0_dp) <= 1.0e-13_dp .and. abs(lam(2) - 0.3_dp) <= 1.0e-13_dp, &
+      call check(rep%info == 0 .and. abs(lam(1) - 1.0_dp) <= tol_round(256) .and. abs(lam(2) - 0.3_dp) <= tol_round(256), &
         'sign ' // trim(tag) // ': qt = -1 slips with tau = +0.3 (ds = +0.7)')
       lam = 0.0_dp
       call solve_friction_lcp(g, friction_problem([-2.0_dp], [0.2_dp], [1], [0.3_dp], [0.0_dp]), trim(tag), opts, lam, rep)
-      call check(rep%info == 0 .and. abs(lam(1) - 1.0_dp) <= 1.0e-13_dp .and. abs(lam(2) + 0.2_dp) <= 1.0e-13_dp, &
+      call check(rep%info == 0 .and. abs(lam(1) - 1.0_dp) <= tol_round(256) .and. abs(lam(2) + 0.2_dp) <= tol_round(256), &
         'sign ' // trim(tag) // ': qt = 0.2 sticks with tau = -0.2 (ds = 0)')
     end do
   end subroutine test_sign_convention
@@ -298,23 +306,25 @@ contains
     call check(rep%info == 0, name // ' lemke: info 0')
     call check(rep%iterations > 0, name // ' lemke: pivots counted')
     call check_small(rep%residual, opts%tol, name // ' lemke: reported residual <= tol')
-    call check_close(rep%residual, friction_residual(g, prob, lam_l), 1.0e-12_dp, &
-      name // ' lemke: reported residual is that of lam', floor=1.0e-16_dp)
-    call check_conditions(g, prob, lam_l, 1.0e-9_dp, name // ' lemke')
+    ! the same residual computed twice: equal to round-off, relative, or
+    ! absolute (floor eps) when the residual itself is at round-off
+    call check_close(rep%residual, friction_residual(g, prob, lam_l), tol_round(16), &
+      name // ' lemke: reported residual is that of lam', floor=unit_roundoff)
+    call check_conditions(g, prob, lam_l, tol_direct, name // ' lemke')
 
     opts%tol = 1.0e-13_dp
     lam_p = 0.0_dp
     call solve_friction_lcp(g, prob, 'pgs', opts, lam_p, rep)
     call check(rep%info == 0, name // ' pgs: info 0')
     call check(rep%iterations > 0, name // ' pgs: sweeps counted')
-    call check_conditions(g, prob, lam_p, 1.0e-9_dp, name // ' pgs')
-    call check_small(rel_diff(lam_p, lam_l), 1.0e-8_dp, name // ': lemke and pgs agree')
+    call check_conditions(g, prob, lam_p, cond_w * opts%tol, name // ' pgs')
+    call check_small(rel_diff(lam_p, lam_l), cond_w * opts%tol, name // ': lemke and pgs agree')
 
     lam_p = 0.0_dp
     opts%omega = 1.3_dp
     call solve_friction_lcp(g, prob, 'pgs', opts, lam_p, rep)
     call check(rep%info == 0, name // ' pgs omega 1.3: info 0')
-    call check_small(rel_diff(lam_p, lam_l), 1.0e-8_dp, name // ' pgs omega 1.3: agrees')
+    call check_small(rel_diff(lam_p, lam_l), cond_w * opts%tol, name // ' pgs omega 1.3: agrees')
 
     ! Warm start from the solution (the previous load step): at most one sweep.
     lam_p = lam_l
@@ -361,7 +371,7 @@ contains
       call solve_friction_lcp(g, prob, 'lemke', opts, lam_l, rep)
       call check(rep%info == 0, name // ' lemke: info 0')
       call check(rep%iterations > 0, name // ' lemke: pivots counted')
-      call check_conditions(g, prob, lam_l, 1.0e-9_dp, name // ' lemke')
+      call check_conditions(g, prob, lam_l, tol_direct, name // ' lemke')
 
       ! States: slip has |tau| = b, stick |tau| <= b, open lambda = 0.
       call friction_state(g, prob, lam_l, state, err)
@@ -371,11 +381,11 @@ contains
       do k = 1, n
         select case (state(k))
         case (state_open)
-          consistent = consistent .and. lam_l(k) <= 1.0e-8_dp * maxval(lam_l)
+          consistent = consistent .and. lam_l(k) <= tol_direct * maxval(lam_l)
         case (state_stick)
-          consistent = consistent .and. abs(lam_l(n + k)) <= b(k) * (1.0_dp + 1.0e-9_dp) + 1.0e-14_dp
+          consistent = consistent .and. abs(lam_l(n + k)) <= b(k) * (1.0_dp + tol_direct) + tol_round(32)
         case (state_slip)
-          consistent = consistent .and. abs(abs(lam_l(n + k)) - b(k)) <= 1.0e-9_dp * maxval(lam_l)
+          consistent = consistent .and. abs(abs(lam_l(n + k)) - b(k)) <= tol_direct * maxval(lam_l)
         case default
           consistent = .false.
         end select
@@ -390,17 +400,17 @@ contains
       call check(rep%info >= 0 .and. rep%info /= 1 .and. all(ieee_is_finite(lam_p)), &
         name // ' pgs: converged or reported, lam finite')
       if (rep%info == 0) then
-        call check_conditions(g, prob, lam_p, 1.0e-9_dp, name // ' pgs')
+        call check_conditions(g, prob, lam_p, cond_w * opts%tol, name // ' pgs')
       else
         call check(rep%residual > opts%tol, name // ' pgs: not converged and residual > tol')
       end if
       if (t == 0.0_dp) then
         call check(rep%info == 0, name // ' pgs: info 0 (decoupled)')
-        call check_small(rel_diff(lam_p, lam_l), 1.0e-8_dp, name // ': lemke and pgs agree (unique)')
+        call check_small(rel_diff(lam_p, lam_l), cond_w * opts%tol, name // ': lemke and pgs agree (unique)')
         allocate(zref(n))
         gnn = g(1:n, 1:n)
         call solve_lcp_lemke(gnn, qn, zref, lcp_options_t(), rep)
-        call check_small(rel_diff(lam_l(1:n), zref), 1.0e-10_dp, name // ': lambda is the frictionless one')
+        call check_small(rel_diff(lam_l(1:n), zref), tol_direct, name // ': lambda is the frictionless one')
         deallocate(zref)
       end if
     end do
@@ -434,9 +444,9 @@ contains
       lam = 0.0_dp
       call solve_friction_lcp(g, prob, trim(tag), opts, lam, rep)
       call check(rep%info == 0, 'zero tangential row ' // trim(tag) // ': info 0')
-      call check_conditions(g, prob, lam, 1.0e-9_dp, 'zero tangential row ' // trim(tag))
+      call check_conditions(g, prob, lam, cond_w * opts%tol, 'zero tangential row ' // trim(tag))
       call check(lam(kz) > 0.0_dp, 'zero tangential row ' // trim(tag) // ': node in contact')
-      call check_close(lam(n + kz), 0.3_dp * lam(kz), 1.0e-10_dp, 'zero tangential row ' // trim(tag) // &
+      call check_close(lam(n + kz), 0.3_dp * lam(kz), tol_round(16), 'zero tangential row ' // trim(tag) // &
         ': tau = +mu lambda')
     end do
   end subroutine test_zero_tangential_row
@@ -460,13 +470,13 @@ contains
     call solve_lcp_lemke(gnn, qn, zref, opts, ref)
     call solve_friction_lcp(g, friction_problem(qn, qt, identity_rows(n), zero, zero), 'lemke', opts, lam, rep)
     call check(rep%info == 0, 'mu = 0 lemke: info 0')
-    call check(maxval(abs(lam(n + 1:))) <= 1.0e-14_dp * maxval(lam(1:n)), 'mu = 0 lemke: tau = 0')
-    call check_small(rel_diff(lam(1:n), zref), 1.0e-10_dp, 'mu = 0 lemke: lambda frictionless')
+    call check(maxval(abs(lam(n + 1:))) <= tol_round(32) * maxval(lam(1:n)), 'mu = 0 lemke: tau = 0')
+    call check_small(rel_diff(lam(1:n), zref), tol_direct, 'mu = 0 lemke: lambda frictionless')
     lam = 1.0_dp
     opts%tol = 1.0e-13_dp
     call solve_friction_lcp(g, friction_problem(qn, qt, identity_rows(n), zero, zero), 'pgs', opts, lam, rep)
     call check(rep%info == 0 .and. all(lam(n + 1:) == 0.0_dp), 'mu = 0 pgs: info 0, tau = 0')
-    call check_small(rel_diff(lam(1:n), zref), 1.0e-8_dp, 'mu = 0 pgs: lambda frictionless')
+    call check_small(rel_diff(lam(1:n), zref), cond_w * opts%tol, 'mu = 0 pgs: lambda frictionless')
 
     ! nt = 0.
     opts = lcp_options_t()
@@ -521,7 +531,7 @@ contains
       call solve_friction_lcp(g, prob, trim(tag), opts, lam, rep)
       call check(rep%info == 0 .and. lam(iz) == 0.0_dp .and. lam(n + iz) == 0.0_dp, &
         'zero normal row, qn > 0 ' // trim(tag) // ': solved, lambda = tau = 0 there')
-      call check_conditions(g, prob, lam, 1.0e-9_dp, 'zero normal row, qn > 0 ' // trim(tag))
+      call check_conditions(g, prob, lam, cond_w * opts%tol, 'zero normal row, qn > 0 ' // trim(tag))
       opts = lcp_options_t()
     end do
     call check(index(rep%message, 'PGS') > 0, 'messages name the method')
@@ -542,7 +552,7 @@ contains
     call check(all(ieee_is_finite(lam)) .and. all(lam(1:30) >= 0.0_dp), 'pgs maxit 2: best iterate finite')
     call check(rep%residual > opts%tol, 'pgs maxit 2: residual above tol')
     call check_close(rep%residual, friction_residual(g, prob, lam), &
-      1.0e-12_dp, 'pgs maxit 2: reported residual is that of lam')
+      tol_round(16), 'pgs maxit 2: reported residual is that of lam')
     call check(index(rep%message, 'sweep limit') > 0, 'pgs maxit 2: message')
 
     opts%maxit = 3

@@ -22,7 +22,7 @@ program test_gmsh_reader
   use gmsh_reader, only: read_gmsh_file
   use gmsh_runner, only: gmsh_options_t, mesh_geo_file
   use sorting, only: sort_small
-  use testing, only: check, check_close, check_small, finish_tests
+  use testing, only: check, check_close, check_small, finish_tests, tol_round
   implicit none
 
   character(len=*), parameter :: data_dir = 'tests/unit/data/'
@@ -75,7 +75,7 @@ contains
     do k = 1, m%bnd(ib)%nseg
       rdev = max(rdev, abs(norm2(m%x(:, m%bnd(ib)%mid(k))) - 1), abs(norm2(m%x(:, m%bnd(ib)%seg(1, k))) - 1))
     end do
-    call check_small(rdev, 1.0e-12_dp, what // ': ends and middles of the inner edges on the unit circle')
+    call check_small(rdev, tol_round(16), what // ': ends and middles of the inner edges on the unit circle')
     area = 0
     do e = 1, m%nelem
       call quadrature_rule(nen, 2, xi, w)
@@ -112,8 +112,8 @@ contains
         'square: boundary ' // trim(sides(k)) // ' has n-1 edges')
       ic = merge(2, 1, k == 1 .or. k == 3)
       call check_small(maxval(abs(m41%x(ic, pack(m41%bnd(ib)%seg, .true.)) - merge(1.0_dp, 0.0_dp, k == 2 .or. k == 3))), &
-        1.0e-12_dp, 'square: boundary ' // trim(sides(k)) // ' lies on its side')
-      call check_close(total_length(m41, ib), 1.0_dp, 1.0e-12_dp, 'square: boundary ' // trim(sides(k)) // ' has length 1')
+        tol_round(16), 'square: boundary ' // trim(sides(k)) // ' lies on its side')
+      call check_close(total_length(m41, ib), 1.0_dp, tol_round(16), 'square: boundary ' // trim(sides(k)) // ' has length 1')
     end do
     ib = find_name(m41%bnd, 'corner')
     call check(ib > 0, 'square: physical point corner exists')
@@ -128,7 +128,7 @@ contains
     call check(same_mesh(m22, m41), 'square: MSH 2.2 and 4.1 give the same mesh')
     call finalize_mesh(m41, 'square_41.msh', dfin)
     call check(dfin%count == 0, 'square: finalize_mesh finds no defect')
-    call check_close(total_area(m41), 1.0_dp, 1.0e-12_dp, 'square: element areas sum to 1')
+    call check_close(total_area(m41), 1.0_dp, tol_round(16), 'square: element areas sum to 1')
   end subroutine test_square
 
   !> Two unit squares, quadrangles (recombined) and triangles, n = 4.
@@ -163,17 +163,18 @@ contains
     ib = find_name(m41%bnd, 'bottom')
     if (ib > 0) then
       call check(m41%bnd(ib)%nseg == 2 * (n - 1), 'mixed: bottom has 2 (n-1) edges')
-      call check_close(total_length(m41, ib), 2.0_dp, 1.0e-12_dp, 'mixed: bottom has length 2')
+      call check_close(total_length(m41, ib), 2.0_dp, tol_round(16), 'mixed: bottom has length 2')
     end if
     call check(same_mesh(m22, m41), 'mixed: MSH 2.2 and 4.1 give the same mesh (element order aside)')
     call finalize_mesh(m41, 'mixed_41.msh', dfin)
     call check(dfin%count == 0, 'mixed: finalize_mesh finds no defect')
-    call check_close(total_area(m41), 2.0_dp, 1.0e-12_dp, 'mixed: element areas sum to 2')
+    call check_close(total_area(m41), 2.0_dp, tol_round(16), 'mixed: element areas sum to 2')
     err = 0.0_dp
     do e = 1, m41%nelem
       if (m41%nen(e) == 4) err = max(err, abs(element_area(m41, e) - 1.0_dp / 9.0_dp))
     end do
-    call check_small(err, 1.0e-9_dp, 'mixed: each quadrangle of the 3x3 grid has area 1/9')
+    ! measured 833 eps: the thirds of the grid come from gmsh's text, not the nearest doubles
+    call check_small(err, tol_round(8192), 'mixed: each quadrangle of the 3x3 grid has area 1/9')
   end subroutine test_mixed
 
   !> Unit disk, unstructured, surface in no physical group (Mesh.SaveAll).
@@ -200,7 +201,7 @@ contains
     do k = 1, nseg
       r = max(r, maxval(abs(norm2(m41%x(:, m41%bnd(ib)%seg(:, k)), dim=1) - 1.0_dp)))
     end do
-    call check_small(r, 1.0e-12_dp, 'disk: rim nodes lie on the unit circle')
+    call check_small(r, tol_round(16), 'disk: rim nodes lie on the unit circle')
     call boundary_nodes(m41%bnd(ib), nodes)
     allocate(uses(m41%nnode), source=0)
     do k = 1, nseg
@@ -216,8 +217,8 @@ contains
     call check(polygon > 0.0_dp, 'disk: rim edges run counter-clockwise, as the arcs')
     call finalize_mesh(m41, 'disk_41.msh', dfin)
     call check(dfin%count == 0, 'disk: finalize_mesh finds no defect')
-    call check_close(total_area(m41), abs(polygon), 1.0e-12_dp, 'disk: element areas sum to the rim polygon area')
-    call check(abs(polygon) <= 0.5_dp * nseg * sin(2.0_dp * pi / nseg) + 1.0e-12_dp .and. abs(polygon) > 0.9_dp * pi, &
+    call check_close(total_area(m41), abs(polygon), tol_round(16), 'disk: element areas sum to the rim polygon area')
+    call check(abs(polygon) <= 0.5_dp * nseg * sin(2.0_dp * pi / nseg) + tol_round(16 * nseg) .and. abs(polygon) > 0.9_dp * pi, &
       'disk: rim polygon area below the regular polygon''s, close to pi')
   end subroutine test_disk
 
@@ -451,7 +452,7 @@ contains
       call read_gmsh_file(msh, m, d)
       call check(d%count == 0 .and. m%nelem == 4 .and. all(m%nen == 4), 'geo: n = 3 recombined gives 4 quadrangles')
       call finalize_mesh(m, msh, d)
-      call check_close(total_area(m), 2.0_dp, 1.0e-12_dp, 'geo: area of the 2 x 1 rectangle')
+      call check_close(total_area(m), 2.0_dp, tol_round(16), 'geo: area of the 2 x 1 rectangle')
     end if
     call delete_file(geo)
 
@@ -628,7 +629,7 @@ contains
     integer :: e, f
     same = a%nnode == b%nnode .and. a%nelem == b%nelem
     if (.not. same) return
-    same = maxval(abs(a%x - b%x)) <= 1.0e-14_dp
+    same = maxval(abs(a%x - b%x)) <= tol_round(32)
     if (.not. same) return
     allocate(map(a%nelem), source=0)
     allocate(taken(b%nelem), source=.false.)

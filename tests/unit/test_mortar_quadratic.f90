@@ -9,7 +9,7 @@ program test_mortar_quadratic
   use errors, only: error_t
   use mortar_operator, only: mortar_t
   use mortar_quadratic, only: build_mortar_quadratic, trace_point, gauss4
-  use testing, only: check, check_close, check_small, finish_tests
+  use testing, only: check, check_close, check_small, finish_tests, tol_round
   implicit none
 
   real(dp), parameter :: pi = 3.14159265358979323846_dp
@@ -73,17 +73,17 @@ contains
     if (allocated(err)) return
     call check(mo%first == 1 .and. mo%last == size(xs, 2) .and. .not. any(extended), &
                'straight ' // trim(tag) // ': the zone is the whole slave')
-    call check_small(maxval(abs(sum(mo%P, dim=2) - 1.0_dp)), 1.0e-13_dp, 'straight ' // trim(tag) // ': pi 1 = 1')
+    call check_small(maxval(abs(sum(mo%P, dim=2) - 1.0_dp)), tol_round(64), 'straight ' // trim(tag) // ': pi 1 = 1')
     deg = min(ps, pm)
     c = poly(xm(1, :), deg)
     v = matmul(mo%P, c)
-    call check_small(maxval(abs(v - poly(xs(1, :), deg))), 1.0e-12_dp, &
+    call check_small(maxval(abs(v - poly(xs(1, :), deg))), tol_round(64), &
                      'straight ' // trim(tag) // ': pi reproduces the polynomials of the common degree')
     c = cos(5.0_dp * xm(1, :))
-    call check_close(dot_product(mo%zone_weight, matmul(mo%P, c)), dot_product(mcov, c), 1.0e-13_dp, &
+    call check_close(dot_product(mo%zone_weight, matmul(mo%P, c)), dot_product(mcov, c), tol_round(16), &
                      'straight ' // trim(tag) // ': int pi phi = int phi')
-    call check_close(sum(mcov), 1.0_dp, 1.0e-14_dp, 'straight ' // trim(tag) // ': the master integrals sum to the length')
-    call check_small(maxval(abs(mo%gap0 - 0.1_dp)), 1.0e-13_dp, 'straight ' // trim(tag) // ': gap0 = 0.1')
+    call check_close(sum(mcov), 1.0_dp, tol_round(16), 'straight ' // trim(tag) // ': the master integrals sum to the length')
+    call check_small(maxval(abs(mo%gap0 - 0.1_dp)), tol_round(16), 'straight ' // trim(tag) // ': gap0 = 0.1')
   end subroutine test_straight
 
   !> 1 + 2x - 3x^2 (degree 2) or 1 + 2x (degree 1) at the points x.
@@ -190,14 +190,14 @@ contains
     call check(.not. allocated(err), 'periodic: built')
     if (allocated(err)) return
     call check(mo%first == 1 .and. mo%last == size(xs, 2), 'periodic: every slave node in the zone')
-    call check_small(maxval(abs(sum(mo%P, dim=2) - 1.0_dp)), 1.0e-12_dp, 'periodic: pi 1 = 1')
+    call check_small(maxval(abs(sum(mo%P, dim=2) - 1.0_dp)), tol_round(32), 'periodic: pi 1 = 1')
     dev = deviation(xs, 1.001_dp) + deviation(xm, 1.0_dp)
     write(*, '(a,es9.2,a,es9.2)') 'INFO periodic: largest |gap0 + 0.001| ', maxval(abs(mo%gap0 + 0.001_dp)), &
       ', the interpolants'' deviation from the circles ', dev
     call check_small(maxval(abs(mo%gap0 + 0.001_dp)), dev, 'periodic: gap0 = -0.001 up to the interpolation of the circles')
     c = xm(1, :)**2
     call check_close(dot_product(mo%zone_weight(1:size(xs, 2) - 1), matmul(mo%P(1:size(xs, 2) - 1, :), c)), &
-                     dot_product(mcov, c), 1.0e-12_dp, 'periodic: int pi phi = int phi')
+                     dot_product(mcov, c), tol_round(16), 'periodic: int pi phi = int phi')
   end subroutine test_periodic
 
   !> Largest | |x(s)| - r | over the elements of a degree-2 trace, 200 points each.

@@ -11,7 +11,7 @@
 program test_sparse_cholesky
   use kinds, only: dp, i8
   use errors, only: error_t
-  use testing, only: check, check_close, check_small, finish_tests
+  use testing, only: check, check_close, check_small, finish_tests, tol_round
   use sparse_matrix, only: csc_t, csc_nnz, csc_symv, csc_from_triplets, csc_check
   use omp_lib, only: omp_get_max_threads, omp_set_num_threads
   use cholmod_binding, only: c2d_metis_per_thread, cholmod_ok, cholmod_not_posdef, cholmod_out_of_memory, &
@@ -322,7 +322,7 @@ contains
       x(k) = 1.0_dp / k - 0.3_dp
     end do
     call csc_symv(A, x, y)
-    call check_small(maxval(abs(y - matmul(dense, x))) / maxval(abs(matmul(abs(dense), abs(x)))), 1.0e-15_dp, &
+    call check_small(maxval(abs(y - matmul(dense, x))) / maxval(abs(matmul(abs(dense), abs(x)))), tol_round(4), &
                      'csc_symv equals the dense product of the triplets')
   end subroutine test_triplets
 
@@ -355,7 +355,7 @@ contains
     allocate(b(n), x(n))
     b = smooth_rhs(n, 0)
     call solve(f, b, x, err)
-    call check_small(residual_ratio(A, x, b), 1.0e-14_dp, 'single RHS: scaled residual < 1e-14')
+    call check_small(residual_ratio(A, x, b), tol_round(16), 'single RHS: scaled residual < 16 eps')
 
     allocate(bb(n, nrhs), xx(n, nrhs))
     do k = 1, nrhs
@@ -367,8 +367,8 @@ contains
     do k = 1, nrhs
       worst = max(worst, residual_ratio(A, xx(:, k), bb(:, k)))
     end do
-    call check_small(worst, 1.0e-14_dp, '7-column block RHS: scaled residual < 1e-14 for every column')
-    call check_small(maxval(abs(xx(:, 1) - x)) / maxval(abs(x)), 1.0e-14_dp, &
+    call check_small(worst, tol_round(16), '7-column block RHS: scaled residual < 16 eps for every column')
+    call check_small(maxval(abs(xx(:, 1) - x)) / maxval(abs(x)), tol_round(32), &
                      'block solve column 1 equals the single solve')
 
     ! the top row of the grid ordered last, in reverse order
@@ -383,8 +383,9 @@ contains
     call check(factor_ordering(g) == 'metis+last', 'ordering with last is metis+last')
     allocate(xl(n))
     call solve_vector(g, b, xl, err)
-    call check_small(residual_ratio(A, xl, b), 1.0e-14_dp, 'last: scaled residual < 1e-14')
-    call check_small(maxval(abs(xl - x)) / maxval(abs(x)), 1.0e-12_dp, 'last: same solution as the default ordering')
+    call check_small(residual_ratio(A, xl, b), tol_round(16), 'last: scaled residual < 16 eps')
+    ! two orderings solve to cond(A) eps apart (measured 11 eps)
+    call check_small(maxval(abs(xl - x)) / maxval(abs(x)), tol_round(128), 'last: same solution as the default ordering')
     call free_factor(f)
     call free_factor(g)
   end subroutine test_laplacian_solves
@@ -429,7 +430,7 @@ contains
                'trailing block lower triangular with a positive diagonal')
     z = inverse_block(f, n, last)
     zinv = inverse_from_factor(lcc)
-    call check_small(maxval(abs(zinv - z)) / maxval(abs(z)), 1.0e-12_dp, &
+    call check_small(maxval(abs(zinv - z)) / maxval(abs(z)), tol_round(16), &
                      'Laplacian: (Lcc Lcc'')^-1 = (A^-1)(last,last)')
   end subroutine test_trailing_block_laplacian
 
@@ -516,9 +517,9 @@ contains
     if (allocated(err)) return
     call check(f%side_by_side == min(2, omp_get_max_threads()), 'parts: factorized side by side on the threads')
     call solve(f, b, x, err)
-    call check_small(residual_ratio(A, x, b), 1.0e-14_dp, 'parts: scaled residual < 1e-14')
-    call check_small(block_residual(f, A, b, 1.3_dp), 1.0e-14_dp, &
-                     'parts: 3-column block, scaled residual < 1e-14 for each')
+    call check_small(residual_ratio(A, x, b), tol_round(16), 'parts: scaled residual < 16 eps')
+    call check_small(block_residual(f, A, b, 1.3_dp), tol_round(16), &
+                     'parts: 3-column block, scaled residual < 16 eps for each')
 
     ! dofs of both bodies last, ascending: two parts; in the other order: one
     last = [(n1 - 6 + j, j = 1, 6), (n1 + m2 * (m2 - 1) + k, k = 1, 17)]
@@ -531,7 +532,8 @@ contains
     if (allocated(err)) return
     call solve(f, b, x, err)
     call solve(g, b, xw, err)
-    call check_small(maxval(abs(x - xw)) / maxval(abs(x)), 1.0e-12_dp, 'parts: the same solution as A whole')
+    ! two factorizations of A solve to cond(A) eps apart: measured 850 eps here
+    call check_small(maxval(abs(x - xw)) / maxval(abs(x)), tol_round(4096), 'parts: the same solution as A whole')
     call trailing_factor_block(f, size(last), lcc, err)
     call check_halves(f, n, b, x, last, lcc)
     call trailing_factor_block(f, size(last), blk, err, first=5, count=4)
@@ -627,7 +629,7 @@ contains
     allocate(b(A%n), x(A%n))
     b = [(sin(0.11_dp * k), k = 1, A%n)]
     call solve(f, b, x, err)
-    call check_small(residual_ratio(A, x, b), 1.0e-14_dp, 'METIS split: 42,300 dofs, scaled residual < 1e-14')
+    call check_small(residual_ratio(A, x, b), tol_round(16), 'METIS split: 42,300 dofs, scaled residual < 16 eps')
     differ = 0
     do run = 1, 3
       !$omp parallel num_threads(2) default(shared)
@@ -687,7 +689,7 @@ contains
     if (allocated(err)) return
     call trailing_factor_block(f, n, lcc, err)
     call check_small(maxval(abs(matmul(lcc, transpose(lcc)) - dense(last, last))) / maxval(abs(dense)), &
-                     1.0e-15_dp, 'every dof last: Lcc Lcc'' = A(last, last)')
+                     tol_round(4), 'every dof last: Lcc Lcc'' = A(last, last)')
   end subroutine test_trailing_block_all
 
   !> P1 elasticity, left edge fixed: solve residual, and the trailing block
@@ -718,12 +720,12 @@ contains
     allocate(b(A%n), x(A%n))
     b = smooth_rhs(A%n, 5)
     call solve(f, b, x, err)
-    call check_small(residual_ratio(A, x, b), 1.0e-14_dp, 'elasticity: scaled residual < 1e-14')
+    call check_small(residual_ratio(A, x, b), tol_round(16), 'elasticity: scaled residual < 16 eps')
     call trailing_factor_block(f, size(last), lcc, err)
     allocate(z(size(last), size(last)), zinv(size(last), size(last)))
     z = inverse_block(f, A%n, last)
     zinv = inverse_from_factor(lcc)
-    call check_small(maxval(abs(zinv - z)) / maxval(abs(z)), 1.0e-12_dp, &
+    call check_small(maxval(abs(zinv - z)) / maxval(abs(z)), tol_round(32), &
                      'elasticity: (Lcc Lcc'')^-1 = (A^-1)(top edge, top edge)')
     call check_halves(f, A%n, b, x, last, lcc)
   end subroutine test_elasticity
@@ -743,13 +745,13 @@ contains
     allocate(y(n), x2(n), v(n), yv(n))
     call solve_forward(f, b, y, err)
     call solve_backward(f, y, x2, err)
-    call check_small(maxval(abs(x2 - x)) / maxval(abs(x)), 1.0e-14_dp, 'elasticity: backward(forward(b)) = A^-1 b')
+    call check_small(maxval(abs(x2 - x)) / maxval(abs(x)), tol_round(16), 'elasticity: backward(forward(b)) = A^-1 b')
     ! L_cc' z = y_c by back substitution
     expect = y(n - nl + 1:)
     do i = nl, 1, -1
       expect(i) = (expect(i) - dot_product(lcc(i + 1:, i), expect(i + 1:))) / lcc(i, i)
     end do
-    call check_small(maxval(abs(expect - x(last))) / maxval(abs(x)), 1.0e-12_dp, &
+    call check_small(maxval(abs(expect - x(last))) / maxval(abs(x)), tol_round(32), &
                      'elasticity: x(last) = Lcc''^-1 y(trailing), y the forward half')
     v = 0.0_dp
     v(last) = smooth_rhs(nl, 3)
@@ -760,7 +762,7 @@ contains
       expect(i) = (expect(i) - dot_product(lcc(i, :i - 1), expect(:i - 1))) / lcc(i, i)
     end do
     call check(all(yv(:n - nl) == 0.0_dp), 'elasticity: forward half of a vector on `last` is zero off the block')
-    call check_small(maxval(abs(yv(n - nl + 1:) - expect)) / maxval(abs(expect)), 1.0e-12_dp, &
+    call check_small(maxval(abs(yv(n - nl + 1:) - expect)) / maxval(abs(expect)), tol_round(16), &
                      'elasticity: forward half of [0; v] = [0; Lcc^-1 v]')
   end subroutine check_halves
 
@@ -875,7 +877,7 @@ contains
       call check(contains_text(err%message, 'at equation ' // itoa(n + 2) // ' (column ' // itoa(n + 2) // ' '), &
                  'tiny positive pivot: equation n+2 at the last column')
     end if
-    call check_close(f%min_pivot_ratio, 2.0_dp**(-50) / (1.0_dp + 2.0_dp**(-50)), 1.0e-12_dp, &
+    call check_close(f%min_pivot_ratio, 2.0_dp**(-50) / (1.0_dp + 2.0_dp**(-50)), tol_round(16), &
                      'tiny positive pivot: ratio L(k,k)^2 / A(k,k) = 2^-50 / (1 + 2^-50)')
     call factorize(f, B, err)
     call check(allocated(err), 'tiny positive pivot, default ordering: error')
@@ -999,7 +1001,7 @@ contains
       call check(factor_ordering(f) == m // '(nodes)', m // ': ordering reported as ' // m // '(nodes): ' // &
                  factor_ordering(f))
       call solve(f, b, x, err)
-      call check_small(residual_ratio(A, x, b), 1.0e-14_dp, m // ', grouped ordering: scaled residual < 1e-14')
+      call check_small(residual_ratio(A, x, b), tol_round(16), m // ', grouped ordering: scaled residual < 16 eps')
       call check(abs(real(factor_nnz(f), dp) / real(factor_nnz(g), dp) - 1.0_dp) < 0.3_dp, &
                  m // ', grouped ordering: nnz(L) within 30% of METIS on the dof graph')
 
@@ -1010,10 +1012,11 @@ contains
       if (allocated(err)) return
       call check(factor_ordering(h) == m // '(nodes)+last', m // ': ordering reported as ' // m // '(nodes)+last')
       call solve(h, b, x, err)
-      call check_small(residual_ratio(A, x, b), 1.0e-14_dp, m // ', grouped, block last: scaled residual < 1e-14')
+      call check_small(residual_ratio(A, x, b), tol_round(16), m // ', grouped, block last: scaled residual < 16 eps')
       call trailing_factor_block(h, size(last), lcc, err)
       zinv = inverse_from_factor(lcc)
-      call check_small(maxval(abs(zinv - z)) / maxval(abs(z)), 1.0e-12_dp, &
+      ! the inverse of a factor block against A^-1 from a solve: cond(A) eps (measured 97 eps)
+      call check_small(maxval(abs(zinv - z)) / maxval(abs(z)), tol_round(1024), &
                        m // ', grouped: (Lcc Lcc'')^-1 = (A^-1)(top edge, top edge)')
     end do
 
@@ -1024,7 +1027,7 @@ contains
     if (allocated(err)) return
     call check(factor_ordering(f) == 'amd', 'amd on the dof graph: reported as amd: ' // factor_ordering(f))
     call solve(f, b, x, err)
-    call check_small(residual_ratio(A, x, b), 1.0e-14_dp, 'amd on the dof graph: scaled residual < 1e-14')
+    call check_small(residual_ratio(A, x, b), tol_round(16), 'amd on the dof graph: scaled residual < 16 eps')
     call analyze_pattern(h, A%n, A%colptr, A%rowind, err, last=last, method='amd')
     if (.not. allocated(err)) call factorize_values(h, A, err)
     call check(.not. allocated(err), 'amd+last on the dof graph: factorized')
@@ -1032,7 +1035,8 @@ contains
     call check(factor_ordering(h) == 'amd+last', 'amd+last: reported as amd+last: ' // factor_ordering(h))
     call trailing_factor_block(h, size(last), lcc, err)
     zinv = inverse_from_factor(lcc)
-    call check_small(maxval(abs(zinv - z)) / maxval(abs(z)), 1.0e-12_dp, &
+    ! as above: cond(A) eps (measured 133 eps)
+    call check_small(maxval(abs(zinv - z)) / maxval(abs(z)), tol_round(2048), &
                      'amd+last: (Lcc Lcc'')^-1 = (A^-1)(top edge, top edge)')
 
     call analyze_pattern(f, A%n, A%colptr, A%rowind, err, group=group, method='nesdis')

@@ -1,13 +1,27 @@
 !> testing: checks for the unit-test programs.  Each check prints one line
 !> `PASS name` or `FAIL name: detail`; finish_tests exits 1 when any failed.
 !> tests/run-tests counts the lines.
+!>
+!> Each check's verdict is a pure function (is_small, is_close) that the
+!> check prints, so test_testing can show that a check fails where it must.
+!>
+!> Tolerances are stated in units of the round-off, as LAPACK's tests do:
+!> tol_round(n, scale) = n eps scale, n the number of roundings the computed
+!> value may gather (a small count, a size, or a condition estimate times
+!> one) and scale the size of the data it is measured against (a norm, a
+!> largest entry; 1 when the checked value is already relative).
 module testing
   use kinds, only: dp, i8
   use, intrinsic :: iso_fortran_env, only: output_unit
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
   implicit none
   private
   public :: check, check_close, check_small, finish_tests
+  public :: is_small, is_close, tol_round, unit_roundoff
   public :: urand, random_spd, random_pair, dense_symmetric
+
+  !> eps, the distance from 1 to the next larger real(dp): 2^-52
+  real(dp), parameter :: unit_roundoff = epsilon(1.0_dp)
 
   integer, save :: nfail = 0
 contains
@@ -23,16 +37,47 @@ contains
     end if
   end subroutine check
 
-  !> PASS when |a - b| <= rtol * max(|b|, floor) (floor defaults to tiny).
+  !> n eps scale: a tolerance of n roundings on a quantity of size scale
+  !> (scale defaults to 1, for a value that is already relative).
+  !>   n     (in) roundings the value may gather, >= 1 (a count, a size, or a
+  !>              condition estimate times one)
+  !>   scale (in, optional) the size it is measured against, > 0
+  pure real(dp) function tol_round(n, scale) result(tol)
+    integer, intent(in) :: n
+    real(dp), intent(in), optional :: scale
+    tol = n * unit_roundoff
+    if (present(scale)) tol = tol * scale
+  end function tol_round
+
+  !> The verdict of check_close: |a - b| <= rtol max(|b|, floor), a a number.
+  pure logical function is_close(a, b, rtol, floor) result(ok)
+    real(dp), intent(in) :: a, b, rtol
+    real(dp), intent(in), optional :: floor
+    real(dp) :: scale
+    ok = .false.
+    if (ieee_is_nan(a) .or. ieee_is_nan(b)) return
+    scale = abs(b)
+    if (present(floor)) scale = max(scale, floor)
+    ok = abs(a - b) <= rtol * scale
+  end function is_close
+
+  !> The verdict of check_small: |a| <= tol, a a number.  |a|, not a: an
+  !> error measure that comes out far below zero (a signed difference, a
+  !> value too low) is as wrong as one far above.
+  pure logical function is_small(a, tol) result(ok)
+    real(dp), intent(in) :: a, tol
+    ok = .false.
+    if (ieee_is_nan(a)) return
+    ok = abs(a) <= tol
+  end function is_small
+
+  !> PASS when |a - b| <= rtol * max(|b|, floor) (no floor: |b|).
   subroutine check_close(a, b, rtol, name, floor)
     real(dp), intent(in) :: a, b, rtol
     character(len=*), intent(in) :: name
     real(dp), intent(in), optional :: floor
-    real(dp) :: scale
     character(len=120) :: detail
-    scale = abs(b)
-    if (present(floor)) scale = max(scale, floor)
-    if (abs(a - b) <= rtol * scale .and. a == a) then
+    if (is_close(a, b, rtol, floor)) then
       write(output_unit, '(a)') 'PASS ' // name
     else
       write(detail, '(a,es12.5,a,es12.5,a,es9.2)') ': got ', a, ' expected ', b, ' rtol ', rtol
@@ -41,15 +86,15 @@ contains
     end if
   end subroutine check_close
 
-  !> PASS when 0 <= a <= tol (a is an error measure; NaN fails).
+  !> PASS when |a| <= tol (a is an error measure, of either sign; NaN fails).
   subroutine check_small(a, tol, name)
     real(dp), intent(in) :: a, tol
     character(len=*), intent(in) :: name
     character(len=80) :: detail
-    if (a <= tol .and. a == a) then
+    if (is_small(a, tol)) then
       write(output_unit, '(a)') 'PASS ' // name
     else
-      write(detail, '(a,es12.5,a,es9.2)') ': ', a, ' > ', tol
+      write(detail, '(a,es12.5,a,es9.2)') ': |', a, '| > ', tol
       write(output_unit, '(a)') 'FAIL ' // name // trim(detail)
       nfail = nfail + 1
     end if
