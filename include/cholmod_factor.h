@@ -37,6 +37,19 @@
 #define C2D_ORDER_AMD   1 /* approximate minimum degree (AMD): a cheaper
                              ordering, more fill on large meshes */
 
+/* The codes of this interface as variables, for callers that cannot read a C
+ * header (src/linalg/cholmod_binding.f90 binds them by these names): the
+ * status codes, CHOLMOD's (c2d_cholmod_*, their values taken from cholmod.h
+ * where they are defined) and this layer's (c2d_chol_*, the C2D_CHOL_* above),
+ * and the selectors (C2D_ORDER_*, C2D_NAME_* and C2D_SOLVE_* below).  Written
+ * once, in cholmod_factor.c, so that no copy of a value can drift from the
+ * library's or this header's. */
+extern const int c2d_cholmod_ok, c2d_cholmod_not_posdef, c2d_cholmod_out_of_memory, c2d_cholmod_too_large;
+extern const int c2d_chol_no_handle, c2d_chol_no_factor, c2d_chol_not_super_ll, c2d_chol_block_moved,
+    c2d_chol_bad_argument;
+extern const int c2d_order_metis, c2d_order_amd, c2d_name_ordering, c2d_name_status, c2d_solve_whole,
+    c2d_solve_forward, c2d_solve_backward;
+
 /* New handle with contact2d's CHOLMOD settings; NULL when out of memory. */
 void *c2d_chol_create(void);
 

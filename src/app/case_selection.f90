@@ -4,8 +4,13 @@
 !>
 !> Why it exists: the choice of a case rewrites the run's overrides and
 !> output folder before the deck is read; it sits beside command_line and
-!> deck_cases, out of the program's story.  Who may use it: the program and
-!> problem_setup.  Bad input ends the run (exit 2, FILE:LINE messages).
+!> deck_cases (the table's parser, which runs nothing), out of the program's
+!> story.  Who may use it: the program and problem_setup.  Bad input ends the
+!> run (exit 2, FILE:LINE messages).
+!>
+!> A run of all the cases starts this program again once per case, one after
+!> the other, with the same arguments and `--case N` (fork/exec, no shell; its
+!> output is this run's): each case is exactly the run `--case N` alone.
 !>
 !> Programming interface
 !>   select_case(run)       the case's PARAMETERs join the overrides, its outputs go to DIR/case_N;
@@ -18,8 +23,12 @@ module case_selection
   use run_state, only: run_t
   use deck_reader, only: read_deck
   use deck_expressions, only: parameter_set_t, find_parameter
-  use deck_cases, only: case_table_t, read_case_table, case_parameters, run_every_case
+  use deck_cases, only: case_table_t, read_case_table, case_parameters
   use command_line, only: case_index
+  use safe_files, only: real_path
+  use system_binding, only: c2d_run_program, c2d_run_exited, c2d_run_signaled
+  use, intrinsic :: iso_c_binding, only: c_int, c_double, c_null_char
+  use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
   implicit none
   private
   public :: select_case, check_overrides
@@ -77,6 +86,66 @@ contains
     call check_overrides(run)
     call stop_input_errors(run%diag)
   end subroutine check_header
+
+  !> Run this program once per case, in turn, with its own arguments and
+  !> `--case N`; each case's output goes where this run's goes.
+  !>   ncase  (in)  number of cases
+  !>   quiet  (in)  no `case N of M` lines
+  !>   status (out) the worst exit status: the largest of the cases' (a case
+  !>                killed by a signal or that could not start counts as 1)
+  subroutine run_every_case(ncase, quiet, status)
+    integer, intent(in) :: ncase
+    logical, intent(in) :: quiet
+    integer, intent(out) :: status
+    character(len=:), allocatable :: self, packed, arg
+    integer :: n, j, length, nargs, case_status
+    integer(c_int) :: how, st
+    logical :: ok
+
+    status = 0
+    call real_path('/proc/self/exe', self, ok)
+    if (.not. ok) then
+      call get_command_argument(0, length=length)
+      allocate(character(len=length) :: self)
+      call get_command_argument(0, self)
+    end if
+    do n = 1, ncase
+      packed = self // c_null_char
+      nargs = 1
+      do j = 1, command_argument_count()
+        call get_command_argument(j, length=length)
+        if (allocated(arg)) deallocate(arg)
+        allocate(character(len=length) :: arg)
+        call get_command_argument(j, arg)
+        packed = packed // arg // c_null_char
+        nargs = nargs + 1
+      end do
+      packed = packed // '--case' // c_null_char // int_to_str(n) // c_null_char
+      nargs = nargs + 2
+      if (.not. quiet) then
+        write(output_unit, '(a)') 'case     ' // int_to_str(n) // ' of ' // int_to_str(ncase)
+        flush(output_unit)
+      end if
+      if (c2d_run_program(packed, int(nargs, c_int), c_null_char, huge(1.0_c_double), how, st) /= 0) continue
+      if (how == c2d_run_exited) then
+        case_status = int(st)
+      else
+        case_status = 1
+        if (how == c2d_run_signaled) then
+          write(error_unit, '(a)') 'contact2d: error: case ' // int_to_str(n) // ' was killed by signal ' // &
+                                   int_to_str(int(st))
+        else
+          write(error_unit, '(a)') 'contact2d: error: case ' // int_to_str(n) // ' could not start (error ' // &
+                                   int_to_str(int(st)) // ')'
+        end if
+      end if
+      status = max(status, case_status)
+    end do
+    if (.not. quiet) then
+      write(output_unit, '(a)') 'cases    ' // int_to_str(ncase) // ' run, exit status ' // int_to_str(status) // &
+                                ' (the worst of the cases)'
+    end if
+  end subroutine run_every_case
 
   !> Every -D and case-table name must be a PARAMETER of the deck.
   subroutine check_overrides(run)

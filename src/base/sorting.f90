@@ -1,26 +1,39 @@
-!> sorting: the index sorts and searches of the readers and of body, one of
-!> each: a stable merge sort of integer key columns (lexicographic), its
-!> binary search, duplicate marking, an insertion sort for a few integers, and
-!> text packed into key columns so that names sort by the same routine.
+!> sorting: the sorts and searches of the readers, the mesh, body and the
+!> active-set solver, one of each: a stable merge sort of integer key columns
+!> (lexicographic), its binary search, duplicate marking, a heap sort of
+!> indices by a real key, an insertion sort for a few integers, and text
+!> packed into key columns so that names sort by the same routine.
 !>
 !> A merge sort rather than LAPACK's dlasrt: the readers need a permutation
 !> (dlasrt sorts values in place) of multi-word keys, and a stable one (the
 !> first of equal keys in file order leads: repeated elements, names).
+!> A heap sort for indices by a real key: in place, no workspace, O(n log n)
+!> at worst, and ties broken by the index, so that the order is total and does
+!> not depend on the algorithm.  Integers of any number sort by the same
+!> routine (sort_integers); sort_small is for a handful (an element's nodes),
+!> where an insertion sort without workspace is quickest.  A counting sort for
+!> small integer keys over a whole mesh (mesh: order_for_locality, a Hilbert
+!> index 16 bits at a time): linear time, stable, so that two passes sort by a
+!> two-word key.
 !>
 !> Programming interface
 !>   sort_columns(keys, perm, stat)   perm: keys(:, perm) ascending, stable
 !>   search_columns(keys, perm, key)  the first column equal to key, 0 when none
 !>   mark_repeated(keys, repeated, stat)  repeated(i): an earlier column equals column i
+!>   sort_by_key(idx, key)            idx reordered: key(idx) ascending, ties by index
+!>   sort_integers(a)                 integers ascending, in place, any number
+!>   sort_by_counts(key, nkey, perm)  perm reordered: key(perm) ascending, stable, O(n + nkey)
 !>   sort_small(a)                    a few integers ascending, in place
 !>   text_key_words(text)             key words a text needs
 !>   pack_text(text, key)             the text as key words: sorted as Fortran
 !>                                    compares strings (blanks padded, byte order)
 !>   number_classes(leader, class, n)  classes of an equivalence numbered by their leaders
 module sorting
-  use kinds, only: i8
+  use kinds, only: dp, i8
   implicit none
   private
-  public :: sort_columns, search_columns, mark_repeated, sort_small, text_key_words, pack_text, number_classes
+  public :: sort_columns, search_columns, mark_repeated, sort_by_key, sort_integers, sort_by_counts, sort_small
+  public :: text_key_words, pack_text, number_classes
 
   integer, parameter :: bytes_per_word = 7     !< 56 bits a key word: words stay >= 0
 
@@ -158,6 +171,89 @@ contains
       if (all(keys(:, perm(i)) == keys(:, perm(i - 1)))) repeated(perm(i)) = .true.
     end do
   end subroutine mark_repeated
+
+  !> Heap sort of the indices idx by increasing key(idx), ties by index.
+  !>   idx (inout) (n) distinct indices into key; on exit key(idx) ascending,
+  !>               an index before a larger one of the same key
+  !>   key (in)    the keys, key(i) for each i in idx (no NaN)
+  subroutine sort_by_key(idx, key)
+    integer, intent(inout) :: idx(:)
+    real(dp), intent(in) :: key(:)
+    integer :: n, i, last, t
+    n = size(idx)
+    do i = n / 2, 1, -1                                ! build a max-heap
+      call sift_down(i, n)
+    end do
+    do last = n, 2, -1                                 ! move the largest to the end
+      t = idx(1)
+      idx(1) = idx(last)
+      idx(last) = t
+      call sift_down(1, last - 1)
+    end do
+  contains
+    logical function before(a, b)
+      integer, intent(in) :: a, b
+      before = key(a) < key(b) .or. (key(a) == key(b) .and. a < b)
+    end function before
+    !> Move idx(start) down the heap idx(start:finish) below the larger child.
+    subroutine sift_down(start, finish)
+      integer, intent(in) :: start, finish
+      integer :: root, child, v
+      root = start
+      v = idx(root)
+      do
+        child = 2 * root
+        if (child > finish) exit
+        if (child < finish) then
+          if (before(idx(child), idx(child + 1))) child = child + 1
+        end if
+        if (.not. before(v, idx(child))) exit
+        idx(root) = idx(child)
+        root = child
+      end do
+      idx(root) = v
+    end subroutine sift_down
+  end subroutine sort_by_key
+
+  !> Integers ascending, in place, any number of them: sort_by_key with the
+  !> values as keys (a default integer is exact in real(dp)).
+  !>   a (inout) (n) the integers
+  subroutine sort_integers(a)
+    integer, intent(inout) :: a(:)
+    integer :: idx(size(a)), i
+    do i = 1, size(a)
+      idx(i) = i
+    end do
+    call sort_by_key(idx, real(a, dp))
+    a = a(idx)
+  end subroutine sort_integers
+
+  !> Stable counting sort: perm reordered so that key(perm) is ascending,
+  !> equal keys keeping their order.
+  !>   key  (in)    the keys, key(i) in 0 .. nkey - 1 for each i in perm
+  !>   nkey (in)    the number of key values
+  !>   perm (inout) (n) indices into key
+  subroutine sort_by_counts(key, nkey, perm)
+    integer, intent(in) :: key(:), nkey
+    integer, intent(inout) :: perm(:)
+    integer, allocatable :: start(:), out(:)
+    integer :: i, k
+    allocate(start(0:nkey), source=0)
+    do i = 1, size(perm)
+      k = key(perm(i))
+      start(k + 1) = start(k + 1) + 1
+    end do
+    do k = 1, nkey
+      start(k) = start(k) + start(k - 1)
+    end do
+    allocate(out(size(perm)))
+    do i = 1, size(perm)
+      k = key(perm(i))
+      start(k) = start(k) + 1
+      out(start(k)) = perm(i)
+    end do
+    perm = out
+  end subroutine sort_by_counts
 
   !> Insertion sort of a few integers, ascending.
   pure subroutine sort_small(a)

@@ -4,7 +4,8 @@
 !> Programming interface
 !>   int_to_str(i)        decimal text of an integer, no blanks
 !>   i8_to_str(i)         the same for a 64-bit integer (nnz(L), file tags)
-!>   real_to_str(x)       4 significant digits, any exponent (1.000E-05, 1.000E-300)
+!>   real_to_str(x [, digits])  scientific, 4 significant digits unless digits
+!>                        says otherwise, any exponent (1.000E-05, 1.000E-300)
 !>   printable(text)      text with control and non-ASCII bytes replaced by '?'
 module strings
   use kinds, only: dp, i8
@@ -44,15 +45,24 @@ contains
     s = trim(buf)
   end function i8_to_str
 
-  !> Short scientific text of a real (4 significant digits), for messages.
-  function real_to_str(x) result(s)
+  !> Short scientific text of a real, for messages: 1.000E-05, -2.500E+300.
+  !>   x      (in) the number
+  !>   digits (in, optional) significant digits, 2 to 17 (clamped); 4 when
+  !>          absent.  More where a message must tell close values apart, such
+  !>          as an arc length along a long boundary (mortar_operator).
+  function real_to_str(x, digits) result(s)
     real(dp), intent(in) :: x
+    integer, intent(in), optional :: digits
     character(len=:), allocatable :: s
-    character(len=32) :: buf
-    integer :: e, k
+    character(len=40) :: buf
+    character(len=16) :: form
+    integer :: d, e, k
+    d = 4
+    if (present(digits)) d = max(2, min(17, digits))
     ! room for a 3-digit exponent (es10.3 writes 1e-300 as `1.000-300`), then
     ! the exponent's leading zero dropped down to two digits: 1.000E-05
-    write(buf, '(es12.3e3)') x
+    write(form, '(a, i0, a, i0, a)') '(es', d + 8, '.', d - 1, 'e3)'
+    write(buf, form) x
     s = trim(adjustl(buf))
     e = scan(s, 'E')
     if (e > 0 .and. len(s) >= e + 4) then

@@ -24,16 +24,19 @@
 !>   check_polyline(x, nrm, side, err)   a polyline and its segment normals usable
 !>   ray_hit(a, n, xm, nm_out, f, r)     nearest hit of a line on the facing master
 !>   common_normals(xs, ns_out, xm, nm_out, nc, w)   a frictional pair's pairing directions
-!>   real_to_str(v)                      short decimal text for messages
+!>   tol_overlap, tol_piece, tol_sliver  the tolerances of the cover, relative to a slave
+!>                         segment (element): shared by the linear and quadratic operators
+!>   arc_digits            significant digits of an arc length in the operators' messages
 module mortar_geometry
   use kinds, only: dp
   use strings, only: int_to_str
   use errors, only: error_t, set_error
+  use sorting, only: sort_by_key
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
   private
-  public :: intersection_t, intersect_segments, check_polyline, ray_hit, common_normals, real_to_str
-  public :: tol_overlap
+  public :: intersection_t, intersect_segments, check_polyline, ray_hit, common_normals
+  public :: tol_overlap, tol_piece, tol_sliver, arc_digits
 
   !> Sub-segments of the intersection of the slave and master 1D meshes, ordered by
   !> slave segment and, within one, by increasing s.
@@ -49,6 +52,19 @@ module mortar_geometry
   real(dp), parameter :: tol_length = 1.0e-12_dp   ! zero length, relative to the polyline's extent
   real(dp), parameter :: tol_overlap = 1.0e-10_dp  ! shortest sub-segment / double cover, relative to L
   real(dp), parameter :: tol_ray = 1.0e-10_dp      ! slack on the master coordinate of a ray hit
+  ! The zone's ends (doc/theory.md, "Zone ends"), in both operators (mortar_operator,
+  ! mortar_quadratic), relative to the zone-end slave segment or element:
+  ! a covered piece shorter than tol_piece is left out of the zone, since the rows
+  ! at its two ends would be nearly the same constraint;
+  real(dp), parameter :: tol_piece = 1.0e-3_dp
+  ! a master that stops short of the end node by less than tol_sliver reaches it:
+  ! such a sliver is below anything the mesh resolves, most often the sag of two
+  ! polygons that approximate one curve; a longer uncovered piece is an end of
+  ! the master inside the element, its end value extended over the piece.
+  real(dp), parameter :: tol_sliver = 2.0e-2_dp
+  ! An arc length in a message (real_to_str) points at a place on the slave
+  ! boundary: 6 digits tell one segment from the next on a boundary of 10^4 of them.
+  integer, parameter :: arc_digits = 6
 
 contains
 
@@ -206,11 +222,11 @@ contains
     integer :: nss, nms, e, f, nc, i, j, cap
     real(dp) :: xa(2), t(2), d(2), length, sa, sb, lo, hi
     real(dp), allocatable :: clo(:), chi(:), rlo(:), rhi(:), sm(:)
-    integer, allocatable :: cf(:)
+    integer, allocatable :: cf(:), order(:)
 
     nss = size(xs, 2) - 1
     nms = size(xm, 2) - 1
-    allocate(clo(nms), chi(nms), rlo(nms), rhi(nms), cf(nms), sm(nms + 1))
+    allocate(clo(nms), chi(nms), rlo(nms), rhi(nms), cf(nms), order(nms), sm(nms + 1))
     cap = max(16, nss + nms)
     allocate(inter%slave_seg(cap), inter%master_seg(cap), inter%s(2, cap), inter%r(2, cap))
     inter%nsub = 0
@@ -244,24 +260,15 @@ contains
         rhi(nc) = min(1.0_dp, max(0.0_dp, (hi - sa) / (sb - sa)))
         cf(nc) = f
       end do
-      ! insertion sort by lo
-      do i = 2, nc
-        j = i
-        do while (j > 1)
-          if (clo(j - 1) <= clo(j)) exit
-          call swap_real(clo(j - 1), clo(j))
-          call swap_real(chi(j - 1), chi(j))
-          call swap_real(rlo(j - 1), rlo(j))
-          call swap_real(rhi(j - 1), rhi(j))
-          call swap_int(cf(j - 1), cf(j))
-          j = j - 1
-        end do
-      end do
+      ! by increasing lo; equal ones in master order
+      order(1:nc) = [(i, i = 1, nc)]
+      call sort_by_key(order(1:nc), clo(1:nc))
       if (inter%nsub + nc > cap) then
         cap = max(2 * cap, inter%nsub + nc)
         call grow_intersection(inter, cap)
       end if
-      do i = 1, nc
+      do j = 1, nc
+        i = order(j)
         inter%nsub = inter%nsub + 1
         inter%slave_seg(inter%nsub) = e
         inter%master_seg(inter%nsub) = cf(i)
@@ -360,35 +367,5 @@ contains
     real(dp), intent(in) :: u(2), v(2)
     cross = u(1) * v(2) - u(2) * v(1)
   end function cross
-
-  pure subroutine swap_real(a, b)
-    real(dp), intent(inout) :: a, b
-    real(dp) :: c
-    c = a; a = b; b = c
-  end subroutine swap_real
-
-  pure subroutine swap_int(a, b)
-    integer, intent(inout) :: a, b
-    integer :: c
-    c = a; a = b; b = c
-  end subroutine swap_int
-
-  !> Short decimal text of a real (6 significant digits, trailing zeros dropped), for messages.
-  function real_to_str(v) result(s)
-    real(dp), intent(in) :: v
-    character(len=:), allocatable :: s
-    character(len=32) :: buf
-    integer :: k
-    write(buf, '(g0.6)') v
-    s = trim(adjustl(buf))
-    if (index(s, '.') > 0 .and. scan(s, 'EeDd') == 0) then
-      k = len_trim(s)
-      do while (s(k:k) == '0')
-        k = k - 1
-      end do
-      if (s(k:k) == '.') k = k - 1
-      s = s(1:k)
-    end if
-  end function real_to_str
 
 end module mortar_geometry

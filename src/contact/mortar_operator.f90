@@ -23,7 +23,8 @@
 !>    cut(2) likewise at the other end): items 3 to 5 hold on it, the cut node's trace
 !>    being the slave's linear interpolation (zone_node_terms).  A cover that stops
 !>    short of the end node by less than tol_sliver of the segment is stretched to it;
-!>    a covered piece shorter than tol_piece is left out (doc/theory.md, Zone ends).
+!>    a covered piece shorter than tol_piece is left out (doc/theory.md, Zone ends;
+!>    the two tolerances are mortar_geometry's, shared with mortar_quadratic).
 !> 3. Multiplier space M_h^1 (continuous P1, constant on the two end segments):
 !>       psi_1 = phi_0 + phi_1,  psi_k = phi_k (2 <= k <= n-2),  psi_{n-1} = phi_{n-1} + phi_n;
 !>    for n = 2, psi_1 = phi_0 + phi_1 + phi_2 = 1; for n = 1 there is no multiplier
@@ -83,10 +84,10 @@
 module mortar_operator
   use kinds, only: dp
   use lapack_interfaces, only: dgtsv
-  use strings, only: int_to_str
+  use strings, only: int_to_str, real_to_str
   use errors, only: error_t, set_error
-  use mortar_geometry, only: intersection_t, intersect_segments, check_polyline, ray_hit, real_to_str, &
-                             tol_overlap
+  use mortar_geometry, only: intersection_t, intersect_segments, check_polyline, ray_hit, &
+                             tol_overlap, tol_piece, tol_sliver, arc_digits
   use axisymmetric_elements, only: radial_weight
   implicit none
   private
@@ -114,9 +115,6 @@ module mortar_operator
     logical :: axis_end(2) = .false.          !< the zone's first / last node is on the axis (8.)
     type(intersection_t) :: inter             !< the sub-segments used for the integrals
   end type mortar_t
-
-  real(dp), parameter :: tol_piece = 1.0e-3_dp     ! shortest covered piece of a zone-end segment kept
-  real(dp), parameter :: tol_sliver = 2.0e-2_dp    ! longest uncovered piece of a zone-end segment extended
 
 contains
 
@@ -249,8 +247,8 @@ contains
         if (mortar%inter%slave_seg(k - 1) == e .and. &
             mortar%inter%s(1, k) < mortar%inter%s(2, k - 1) - tol_overlap) then
           call set_error(err, 'master boundary covers the slave boundary twice between arc length ' // &
-            real_to_str(mortar%arc(e) + mortar%inter%s(1, k) * seglen(e)) // ' and ' // &
-            real_to_str(mortar%arc(e) + min(mortar%inter%s(2, k - 1), mortar%inter%s(2, k)) * seglen(e)) // &
+            real_to_str(mortar%arc(e) + mortar%inter%s(1, k) * seglen(e), arc_digits) // ' and ' // &
+            real_to_str(mortar%arc(e) + min(mortar%inter%s(2, k - 1), mortar%inter%s(2, k)) * seglen(e), arc_digits) // &
             ' (a master boundary that faces the slave once, without folds, expected)', 2)
           return
         end if
@@ -271,7 +269,7 @@ contains
           k = k + 1
         end do
         call set_error(err, 'master boundary leaves a gap opposite the slave boundary between arc length ' // &
-          real_to_str(mortar%arc(e)) // ' and ' // real_to_str(mortar%arc(k + 1)) // &
+          real_to_str(mortar%arc(e), arc_digits) // ' and ' // real_to_str(mortar%arc(k + 1), arc_digits) // &
           ' (a master that covers the slave contact zone without holes expected)', 2)
         return
       end if

@@ -66,18 +66,16 @@
 module mortar_quadratic
   use kinds, only: dp
   use lapack_interfaces, only: dgbsv, dgesv
-  use strings, only: int_to_str
+  use strings, only: int_to_str, real_to_str
   use errors, only: error_t, set_error
-  use mortar_geometry, only: real_to_str
+  use sorting, only: sort_by_key
+  use mortar_geometry, only: tol_overlap, tol_piece, tol_sliver, arc_digits
   use mortar_operator, only: mortar_t, start_mortar, start_periodic, set_initial_gaps
   implicit none
   private
   public :: build_mortar_quadratic, trace_point, gauss4
 
-  real(dp), parameter :: tol_overlap = 1.0e-10_dp  ! shortest overlap, relative to the element
-  real(dp), parameter :: tol_piece = 1.0e-3_dp     ! shortest covered piece of a zone-end element kept
   real(dp), parameter :: min_facing = 0.2_dp       ! -n_master.n_slave of the chords above which they face
-  real(dp), parameter :: tol_sliver = 2.0e-2_dp    ! uncovered piece of a zone-end element reported as extended
 
   !> 4-point Gauss-Legendre on [0, 1]: points and weights.
   real(dp), parameter :: gauss4(2, 4) = reshape([ &
@@ -163,7 +161,7 @@ contains
       if (k > 1) then
         if (ov(k - 1)%e == ov(k)%e .and. ov(k)%lo < ov(k - 1)%hi - tol_overlap) then
           call set_error(err, 'master boundary covers the slave boundary twice near arc length ' // &
-            real_to_str(mortar%arc(ps * (ov(k)%e - 1) + 1)) // &
+            real_to_str(mortar%arc(ps * (ov(k)%e - 1) + 1), arc_digits) // &
             ' (a master boundary that faces the slave once, without folds, expected)', 2)
           return
         end if
@@ -178,7 +176,7 @@ contains
       do e = efirst, elast
         if (ncover(e) == 0) then
           call set_error(err, 'master boundary leaves a gap opposite the slave boundary at arc length ' // &
-            real_to_str(mortar%arc(ps * (e - 1) + 1)) // &
+            real_to_str(mortar%arc(ps * (e - 1) + 1), arc_digits) // &
             ' (a master that covers the slave contact zone without holes expected)', 2)
           return
         end if
@@ -454,9 +452,10 @@ contains
     integer, intent(out) :: nov
     type(overlap_t), allocatable :: tmp(:)
     type(overlap_t) :: o
-    integer :: nes, nem, e, f, i, j, n0
+    integer :: nes, nem, e, f, i, n0
     real(dp) :: sa, sb, x(2), dx(2)
     real(dp), allocatable :: sv(:)
+    integer, allocatable :: order(:)
 
     nes = (size(xs, 2) - 1) / ps
     nem = (size(xm, 2) - 1) / pm
@@ -493,16 +492,11 @@ contains
         nov = nov + 1
         ov(nov) = o
       end do
-      do i = n0 + 2, nov                        ! insertion sort by lo within element e
-        o = ov(i)
-        j = i - 1
-        do while (j > n0)
-          if (ov(j)%lo <= o%lo) exit
-          ov(j + 1) = ov(j)
-          j = j - 1
-        end do
-        ov(j + 1) = o
-      end do
+      if (nov - n0 > 1) then                    ! by increasing lo within element e, equal ones in master order
+        order = [(i, i = 1, nov - n0)]
+        call sort_by_key(order, ov(n0 + 1:nov)%lo)
+        ov(n0 + 1:nov) = ov(n0 + order)
+      end if
     end do
   end subroutine intersect_traces
 

@@ -1,5 +1,6 @@
-!> deck_cases: the case table of a parameter sweep (--cases FILE.csv) and the
-!> run of every case in turn.
+!> deck_cases: the case table of a parameter sweep (--cases FILE.csv): read,
+!> checked, and a row as parameter overrides.  It runs nothing: which case a
+!> run solves, and the run of every case in turn, are case_selection's (src/app).
 !>
 !> The table is comma-separated: a header row of parameter names, then one row
 !> per case, each field a number (Fortran or C notation).  Blank lines and
@@ -9,28 +10,20 @@
 !> checked whichever case runs, so that all the cases of a sweep fail alike on
 !> a bad table: errors are `FILE.csv:LINE: what is wrong (what was expected)`.
 !>
-!> A run of all the cases starts this program again once per case, one after
-!> the other, with the same arguments and `--case N` (fork/exec, no shell; its
-!> output is this run's): each case is exactly the run `--case N` alone.
-!>
 !> Programming interface
 !>   type(case_table_t)                      names, values, lines of the table
 !>   read_case_table(path, table, diag)      read and check FILE.csv
 !>   case_parameters(table, n, set)          row n as overrides with origin 'case n'
-!>   run_every_case(ncase, quiet, status)    this program once per case; the worst status
 module deck_cases
   use kinds, only: dp
   use strings, only: int_to_str
   use errors, only: diag_t, add_error
   use deck_expressions, only: parameter_set_t, add_parameter, is_parameter_name
   use text_scan, only: parse_real
-  use safe_files, only: read_file, real_path
-  use system_binding, only: c2d_run_program, c2d_run_exited, c2d_run_signaled
-  use, intrinsic :: iso_c_binding, only: c_int, c_double, c_null_char
-  use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
+  use safe_files, only: read_file
   implicit none
   private
-  public :: case_table_t, read_case_table, case_parameters, run_every_case
+  public :: case_table_t, read_case_table, case_parameters
 
   !> The case table.
   type :: case_table_t
@@ -166,66 +159,6 @@ contains
       call add_parameter(set, trim(table%name(k)), table%value(k, n), 'case ' // int_to_str(n))
     end do
   end subroutine case_parameters
-
-  !> Run this program once per case, in turn, with its own arguments and
-  !> `--case N`; each case's output goes where this run's goes.
-  !>   ncase  (in)  number of cases
-  !>   quiet  (in)  no `case N of M` lines
-  !>   status (out) the worst exit status: the largest of the cases' (a case
-  !>                killed by a signal or that could not start counts as 1)
-  subroutine run_every_case(ncase, quiet, status)
-    integer, intent(in) :: ncase
-    logical, intent(in) :: quiet
-    integer, intent(out) :: status
-    character(len=:), allocatable :: self, packed, arg
-    integer :: n, j, length, nargs, case_status
-    integer(c_int) :: how, st
-    logical :: ok
-
-    status = 0
-    call real_path('/proc/self/exe', self, ok)
-    if (.not. ok) then
-      call get_command_argument(0, length=length)
-      allocate(character(len=length) :: self)
-      call get_command_argument(0, self)
-    end if
-    do n = 1, ncase
-      packed = self // c_null_char
-      nargs = 1
-      do j = 1, command_argument_count()
-        call get_command_argument(j, length=length)
-        if (allocated(arg)) deallocate(arg)
-        allocate(character(len=length) :: arg)
-        call get_command_argument(j, arg)
-        packed = packed // arg // c_null_char
-        nargs = nargs + 1
-      end do
-      packed = packed // '--case' // c_null_char // int_to_str(n) // c_null_char
-      nargs = nargs + 2
-      if (.not. quiet) then
-        write(output_unit, '(a)') 'case     ' // int_to_str(n) // ' of ' // int_to_str(ncase)
-        flush(output_unit)
-      end if
-      if (c2d_run_program(packed, int(nargs, c_int), c_null_char, huge(1.0_c_double), how, st) /= 0) continue
-      if (how == c2d_run_exited) then
-        case_status = int(st)
-      else
-        case_status = 1
-        if (how == c2d_run_signaled) then
-          write(error_unit, '(a)') 'contact2d: error: case ' // int_to_str(n) // ' was killed by signal ' // &
-                                   int_to_str(int(st))
-        else
-          write(error_unit, '(a)') 'contact2d: error: case ' // int_to_str(n) // ' could not start (error ' // &
-                                   int_to_str(int(st)) // ')'
-        end if
-      end if
-      status = max(status, case_status)
-    end do
-    if (.not. quiet) then
-      write(output_unit, '(a)') 'cases    ' // int_to_str(ncase) // ' run, exit status ' // int_to_str(status) // &
-                                ' (the worst of the cases)'
-    end if
-  end subroutine run_every_case
 
   !> The comma-separated fields of line, blanks and double quotes around each removed.
   subroutine split_fields(line, fields, nf)

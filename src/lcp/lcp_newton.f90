@@ -81,7 +81,7 @@ module lcp_newton
   use lcp_solvers, only: lcp_options_t, lcp_report_t, scale_lcp, solve_lcp_lemke, lcp_natural_residual, &
                          measure_solution, set_report, max_diagonal
   use lcp_scaling, only: check_lcp_sizes, check_lcp_values, residual_outcome, lcp_gaps
-  use sorting, only: sort_small
+  use sorting, only: sort_by_key, sort_integers
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
   private
@@ -562,7 +562,7 @@ contains
     newcomers = joining
     call sort_by_key(newcomers, gap)                    ! most violated first
     if (use_givens) then
-      call sort_small(positions)
+      call sort_integers(positions)
       positions = positions(size(positions):1:-1)     ! largest first: a deletion moves no position still to come
       do j = 1, r                                       ! highest position first
         call delete_position(f, positions(j))
@@ -776,44 +776,5 @@ contains
     count = count + 1
     list(:, count) = hash
   end subroutine push_hash
-
-  !> Heapsort of the indices idx(:) by increasing key(idx), ties by index.
-  subroutine sort_by_key(idx, key)
-    integer, intent(inout) :: idx(:)
-    real(dp), intent(in) :: key(:)
-    integer :: n, i, last, t
-    n = size(idx)
-    do i = n / 2, 1, -1                                ! build a max-heap
-      call sift_down(i, n)
-    end do
-    do last = n, 2, -1                                 ! move the largest to the end
-      t = idx(1)
-      idx(1) = idx(last)
-      idx(last) = t
-      call sift_down(1, last - 1)
-    end do
-  contains
-    logical function before(a, b)
-      integer, intent(in) :: a, b
-      before = key(a) < key(b) .or. (key(a) == key(b) .and. a < b)
-    end function before
-    subroutine sift_down(start, finish)
-      integer, intent(in) :: start, finish
-      integer :: root, child, v
-      root = start
-      v = idx(root)
-      do
-        child = 2 * root
-        if (child > finish) exit
-        if (child < finish) then
-          if (before(idx(child), idx(child + 1))) child = child + 1
-        end if
-        if (.not. before(v, idx(child))) exit
-        idx(root) = idx(child)
-        root = child
-      end do
-      idx(root) = v
-    end subroutine sift_down
-  end subroutine sort_by_key
 
 end module lcp_newton

@@ -1,5 +1,5 @@
 !> cholmod_binding: raw bind(c) interfaces to the C layer over CHOLMOD, and
-!> the status codes it returns: the handle and its factor (src/linalg/cholmod_factor.c,
+!> the codes it returns and takes: the handle and its factor (src/linalg/cholmod_factor.c,
 !> include/cholmod_factor.h) and the reading of the
 !> factor (src/linalg/factor_inspection.c, include/factor_inspection.h).  The
 !> process-wide settings are runtime_binding's.
@@ -26,7 +26,8 @@
 !>   c2d_chol_trailing_range(handle, nlast, first, count, lcc) -> status
 !>   c2d_chol_trailing_block_end(handle, nlast, first, last_row) -> status
 !>   c2d_metis_per_thread() -> 1 when METIS draws its random numbers per thread
-!>   status codes: cholmod_ok, cholmod_not_posdef, c2d_chol_* (the C layer's codes)
+!>   status codes: cholmod_ok, cholmod_not_posdef, ... (CHOLMOD's), c2d_chol_* (the C layer's):
+!>   the C layer's variables, bound by name, like the selectors c2d_order_*, c2d_name_*, c2d_solve_*
 module cholmod_binding
   use, intrinsic :: iso_c_binding, only: c_ptr, c_int, c_double, c_int64_t, c_char
   implicit none
@@ -42,30 +43,39 @@ module cholmod_binding
   public :: c2d_chol_block_moved, c2d_chol_bad_argument
   public :: c2d_metis_per_thread
 
-  ! fill-reducing orderings (cholmod_factor.h)
-  integer(c_int), parameter :: c2d_order_metis = 0     !< METIS nested dissection
-  integer(c_int), parameter :: c2d_order_amd = 1       !< approximate minimum degree
+  ! The codes of the C layer are its variables (cholmod_factor.h), bound by
+  ! name: CHOLMOD's status codes as cholmod.h defines them and the C layer's
+  ! own as cholmod_factor.h does, so that no value is copied here to drift
+  ! from the library's.  Variables, not constants: they cannot label a
+  ! `select case`; protected: only the C side sets them.  Without an
+  ! initializer here, gfortran and flang emit each as a common symbol, so the
+  ! C definition is the one linked (test_sparse_cholesky checks the values
+  ! are CHOLMOD's, named and distinct, not zeros of an unlinked C side).
 
-  ! what c2d_chol_name names (cholmod_factor.h)
-  integer(c_int), parameter :: c2d_name_ordering = 0   !< the ordering of the handle's factor
-  integer(c_int), parameter :: c2d_name_status = 1     !< a status code
+  ! fill-reducing orderings
+  integer(c_int), bind(c, name='c2d_order_metis'), protected :: c2d_order_metis  !< METIS nested dissection
+  integer(c_int), bind(c, name='c2d_order_amd'), protected :: c2d_order_amd      !< approximate minimum degree
 
-  ! the halves of a solve (cholmod_factor.h)
-  integer(c_int), parameter :: c2d_solve_whole = 0     !< x = A^-1 b
-  integer(c_int), parameter :: c2d_solve_forward = 1   !< y = L^-1 P b
-  integer(c_int), parameter :: c2d_solve_backward = 2  !< x = P' L'^-1 y
+  ! what c2d_chol_name names
+  integer(c_int), bind(c, name='c2d_name_ordering'), protected :: c2d_name_ordering  !< the ordering of the handle's factor
+  integer(c_int), bind(c, name='c2d_name_status'), protected :: c2d_name_status      !< a status code
 
-  ! CHOLMOD status codes (cholmod_core.h)
-  integer(c_int), parameter :: cholmod_ok = 0             !< success
-  integer(c_int), parameter :: cholmod_not_posdef = 1     !< warning: matrix not positive definite
-  integer(c_int), parameter :: cholmod_out_of_memory = -2 !< failure: out of memory
-  integer(c_int), parameter :: cholmod_too_large = -3     !< failure: integer overflow
-  ! the C layer's codes (cholmod_factor.h)
-  integer(c_int), parameter :: c2d_chol_no_handle = -100     !< handle not created
-  integer(c_int), parameter :: c2d_chol_no_factor = -101     !< no valid numeric factor
-  integer(c_int), parameter :: c2d_chol_not_super_ll = -102  !< L not supernodal LL'
-  integer(c_int), parameter :: c2d_chol_block_moved = -103   !< last block not at the last pivots
-  integer(c_int), parameter :: c2d_chol_bad_argument = -104  !< inconsistent argument
+  ! the halves of a solve
+  integer(c_int), bind(c, name='c2d_solve_whole'), protected :: c2d_solve_whole        !< x = A^-1 b
+  integer(c_int), bind(c, name='c2d_solve_forward'), protected :: c2d_solve_forward    !< y = L^-1 P b
+  integer(c_int), bind(c, name='c2d_solve_backward'), protected :: c2d_solve_backward  !< x = P' L'^-1 y
+
+  ! CHOLMOD status codes (0 success, > 0 a warning, < 0 a failure)
+  integer(c_int), bind(c, name='c2d_cholmod_ok'), protected :: cholmod_ok                  !< success
+  integer(c_int), bind(c, name='c2d_cholmod_not_posdef'), protected :: cholmod_not_posdef  !< matrix not positive definite
+  integer(c_int), bind(c, name='c2d_cholmod_out_of_memory'), protected :: cholmod_out_of_memory  !< out of memory
+  integer(c_int), bind(c, name='c2d_cholmod_too_large'), protected :: cholmod_too_large    !< integer overflow
+  ! the C layer's codes (all <= -100)
+  integer(c_int), bind(c, name='c2d_chol_no_handle'), protected :: c2d_chol_no_handle        !< handle not created
+  integer(c_int), bind(c, name='c2d_chol_no_factor'), protected :: c2d_chol_no_factor        !< no valid numeric factor
+  integer(c_int), bind(c, name='c2d_chol_not_super_ll'), protected :: c2d_chol_not_super_ll  !< L not supernodal LL'
+  integer(c_int), bind(c, name='c2d_chol_block_moved'), protected :: c2d_chol_block_moved    !< last block not at the last pivots
+  integer(c_int), bind(c, name='c2d_chol_bad_argument'), protected :: c2d_chol_bad_argument  !< inconsistent argument
 
   interface
 

@@ -18,6 +18,24 @@
 #include "fill_ordering.h"
 #include "factor_inspection.h"
 
+/* The codes as variables, for the Fortran binding (cholmod_factor.h). */
+const int c2d_cholmod_ok = CHOLMOD_OK;
+const int c2d_cholmod_not_posdef = CHOLMOD_NOT_POSDEF;
+const int c2d_cholmod_out_of_memory = CHOLMOD_OUT_OF_MEMORY;
+const int c2d_cholmod_too_large = CHOLMOD_TOO_LARGE;
+const int c2d_chol_no_handle = C2D_CHOL_NO_HANDLE;
+const int c2d_chol_no_factor = C2D_CHOL_NO_FACTOR;
+const int c2d_chol_not_super_ll = C2D_CHOL_NOT_SUPER_LL;
+const int c2d_chol_block_moved = C2D_CHOL_BLOCK_MOVED;
+const int c2d_chol_bad_argument = C2D_CHOL_BAD_ARGUMENT;
+const int c2d_order_metis = C2D_ORDER_METIS;
+const int c2d_order_amd = C2D_ORDER_AMD;
+const int c2d_name_ordering = C2D_NAME_ORDERING;
+const int c2d_name_status = C2D_NAME_STATUS;
+const int c2d_solve_whole = C2D_SOLVE_WHOLE;
+const int c2d_solve_forward = C2D_SOLVE_FORWARD;
+const int c2d_solve_backward = C2D_SOLVE_BACKWARD;
+
 /* Copy a C string into buf[len], truncated and NUL-terminated. */
 static void copy_name(const char *name, char *buf, int len)
 {

@@ -317,26 +317,25 @@ contains
     call read_statistics(f)
 
     do p = 1, f%nparts
-      select case (f%part(p)%status)
-      case (cholmod_ok)
-        continue
-      case (c2d_chol_block_moved)
+      ! the codes are the C layer's variables, not constants: no select case
+      if (f%part(p)%status == cholmod_ok) cycle
+      if (f%part(p)%status == c2d_chol_block_moved) then
         call set_error(err, 'sparse Cholesky: the analysis did not keep the ' // int_to_str(f%nlast) &
                        // ' dofs given as `last` at the last pivots (' // status_name(f%part(p)%status) // ')', 1)
         return
-      case (cholmod_out_of_memory)
+      else if (f%part(p)%status == cholmod_out_of_memory) then
         ! the ordering's graphs and CHOLMOD's symbolic workspace: a few
         ! integers per stored entry and per dof (an order of magnitude)
         call set_out_of_memory(err, 'ordering K (' // int_to_str(n) // ' dofs, ' // &
                                trim(merge('AMD  ', 'METIS', ordering == c2d_order_amd)) // ')', &
                                ordering_bytes(n, int(colptr(n + 1) - 1, i8)))
         return
-      case default
+      else
         call set_error(err, 'sparse Cholesky analysis failed: ' // status_name(f%part(p)%status) // ' (status ' &
                        // int_to_str(int(f%part(p)%status)) // ') for a matrix of order ' // int_to_str(n) &
                        // ' with ' // int_to_str(colptr(n + 1) - 1) // ' stored entries', 1)
         return
-      end select
+      end if
     end do
 
   contains
@@ -407,22 +406,20 @@ contains
     f%time_factorize = omp_get_wtime() - t0
 
     do p = 1, f%nparts
-      select case (f%part(p)%status)
-      case (cholmod_ok)
-        continue
-      case (cholmod_not_posdef)
+      if (f%part(p)%status == cholmod_ok) cycle
+      if (f%part(p)%status == cholmod_not_posdef) then
         call c2d_chol_minor(f%part(p)%handle, column, equation)
         call set_singular(err, f, f%part(p), column, equation)
         return
-      case (cholmod_out_of_memory)
+      else if (f%part(p)%status == cholmod_out_of_memory) then
         call set_out_of_memory(err, 'factorizing K (nnz(L) = ' // i8_to_str(f%nnz_l) // ')', factor_bytes(f))
         return
-      case default
+      else
         call set_error(err, 'sparse Cholesky factorization failed: ' // status_name(f%part(p)%status) // &
                        ' (status ' // int_to_str(int(f%part(p)%status)) // ') for a matrix of order ' // &
                        int_to_str(A%n) // ' with ' // int_to_str(csc_nnz(A)) // ' stored entries', 1)
         return
-      end select
+      end if
     end do
 
     ! a dependent column whose pivot came out tiny but positive through rounding

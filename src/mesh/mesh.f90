@@ -35,6 +35,7 @@ module mesh
   use kinds, only: dp, i8
   use strings, only: int_to_str
   use errors, only: diag_t, add_error
+  use sorting, only: sort_integers, sort_by_counts
   use elements, only: corner_count, quadrature_rule, shape_at, max_nen
   implicit none
   private
@@ -391,9 +392,9 @@ contains
       perm(a) = a
     end do
     key(1:n) = int(iand(h, 65535_i8))
-    call bucket_sort(key(1:n), 65536, perm(1:n))
+    call sort_by_counts(key(1:n), 65536, perm(1:n))
     key(1:n) = int(shiftr(h, 16))
-    call bucket_sort(key(1:n), 65536, perm(1:n))
+    call sort_by_counts(key(1:n), 65536, perm(1:n))
     !$omp parallel if(n > 65536)
     !$omp do
     do a = 1, n
@@ -435,7 +436,7 @@ contains
       key(e) = key(e) - 1
     end do
     !$omp end parallel do
-    call bucket_sort(key(1:mesh%nelem), n, perm(1:mesh%nelem))
+    call sort_by_counts(key(1:mesh%nelem), n, perm(1:mesh%nelem))
     allocate(cnew(size(mesh%conn, 1), mesh%nelem), nnew(mesh%nelem))
     !$omp parallel do if(n > 65536)
     do e = 1, mesh%nelem
@@ -490,30 +491,6 @@ contains
       st = next(q, st)
     end do
   end function hilbert_index
-
-  !> Stable counting sort: perm reordered so that key(perm) is ascending,
-  !> equal keys keeping their order.  key(i) in 0 .. nkey - 1.
-  subroutine bucket_sort(key, nkey, perm)
-    integer, intent(in) :: key(:), nkey
-    integer, intent(inout) :: perm(:)
-    integer, allocatable :: start(:), out(:)
-    integer :: i, k
-    allocate(start(0:nkey), source=0)
-    do i = 1, size(perm)
-      k = key(perm(i))
-      start(k + 1) = start(k + 1) + 1
-    end do
-    do k = 1, nkey
-      start(k) = start(k) + start(k - 1)
-    end do
-    allocate(out(size(perm)))
-    do i = 1, size(perm)
-      k = key(perm(i))
-      start(k) = start(k) + 1
-      out(start(k)) = perm(i)
-    end do
-    perm = out
-  end subroutine bucket_sort
 
   !> The node that is node p of the mesh file, or with element the element
   !> that is element p of the mesh file.
@@ -637,7 +614,7 @@ contains
     if (b%nseg > 0) all(1:2 * b%nseg) = reshape(b%seg(:, 1:b%nseg), [2 * b%nseg])
     if (b%npoint > 0) all(2 * b%nseg + 1:2 * b%nseg + b%npoint) = b%points(1:b%npoint)
     if (allocated(b%mid)) all(2 * b%nseg + b%npoint + 1:n) = b%mid(1:b%nseg)
-    call sort_int(all)
+    call sort_integers(all)
     k = 0
     do i = 1, n
       if (k > 0) then
@@ -659,35 +636,5 @@ contains
     end do
     h = h / max(1, mesh%nelem)
   end function mesh_size
-
-  !> In-place heap sort of an integer array (ascending).
-  subroutine sort_int(a)
-    integer, intent(inout) :: a(:)
-    integer :: i, t, last
-    do i = size(a) / 2, 1, -1                 ! a(1:n) a max-heap
-      call sift_down(i, size(a))
-    end do
-    do last = size(a), 2, -1                  ! the largest of a(1:last) to a(last)
-      t = a(1); a(1) = a(last); a(last) = t
-      call sift_down(1, last - 1)
-    end do
-  contains
-    !> Move a(root) down the heap a(1:n) until both its children are not larger.
-    subroutine sift_down(root, n)
-      integer, intent(in) :: root, n
-      integer :: r, child, t
-      r = root
-      do
-        child = 2 * r
-        if (child > n) exit
-        if (child < n) then
-          if (a(child + 1) > a(child)) child = child + 1
-        end if
-        if (a(r) >= a(child)) exit
-        t = a(r); a(r) = a(child); a(child) = t
-        r = child
-      end do
-    end subroutine sift_down
-  end subroutine sort_int
 
 end module mesh

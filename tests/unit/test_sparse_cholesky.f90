@@ -15,7 +15,9 @@ program test_sparse_cholesky
   use sparse_matrix, only: csc_t, csc_nnz, csc_symv, csc_from_triplets, csc_check
   use omp_lib, only: omp_get_max_threads, omp_set_num_threads
   use cholmod_binding, only: c2d_metis_per_thread, cholmod_ok, cholmod_not_posdef, cholmod_out_of_memory, &
-                             c2d_chol_block_moved, c2d_chol_bad_argument
+                             cholmod_too_large, c2d_chol_no_handle, c2d_chol_no_factor, c2d_chol_not_super_ll, &
+                             c2d_chol_block_moved, c2d_chol_bad_argument, c2d_order_metis, c2d_order_amd, &
+                             c2d_name_ordering, c2d_name_status, c2d_solve_whole, c2d_solve_forward, c2d_solve_backward
   use sparse_cholesky_parts, only: status_name
   use sparse_cholesky, only: factor_t, factorize, solve, solve_vector, solve_block, trailing_factor_block, &
                              solve_forward, solve_backward, trailing_block_end, &
@@ -1046,15 +1048,35 @@ contains
     call check(allocated(err), 'a group out of 1..n is rejected')
   end subroutine test_node_groups
 
-  !> The names of the status codes, CHOLMOD's and the C layer's, as the
-  !> messages print them; a code that is neither is named as unknown.
+  !> The status codes as the binding reads them from the C layer: each is
+  !> named as the C macro of its value (the C side's table, built from
+  !> cholmod.h and cholmod_factor.h by the preprocessor, so a value read
+  !> wrongly is named wrongly), they follow CHOLMOD's convention (0 success,
+  !> a warning > 0, a failure < 0; the C layer's own <= -100) and no two are
+  !> equal; the selectors of a call are distinct within each kind.  A code
+  !> that is none of them is named as unknown.
   subroutine test_status_names()
+    integer :: codes(9), i
     call check(status_name(cholmod_ok) == 'CHOLMOD_OK', 'status name: CHOLMOD_OK')
     call check(status_name(cholmod_not_posdef) == 'CHOLMOD_NOT_POSDEF', 'status name: CHOLMOD_NOT_POSDEF')
     call check(status_name(cholmod_out_of_memory) == 'CHOLMOD_OUT_OF_MEMORY', 'status name: CHOLMOD_OUT_OF_MEMORY')
+    call check(status_name(cholmod_too_large) == 'CHOLMOD_TOO_LARGE', 'status name: CHOLMOD_TOO_LARGE')
+    call check(status_name(c2d_chol_no_handle) == 'C2D_CHOL_NO_HANDLE', 'status name: C2D_CHOL_NO_HANDLE')
+    call check(status_name(c2d_chol_no_factor) == 'C2D_CHOL_NO_FACTOR', 'status name: C2D_CHOL_NO_FACTOR')
+    call check(status_name(c2d_chol_not_super_ll) == 'C2D_CHOL_NOT_SUPER_LL', 'status name: C2D_CHOL_NOT_SUPER_LL')
     call check(status_name(c2d_chol_block_moved) == 'C2D_CHOL_BLOCK_MOVED', 'status name: C2D_CHOL_BLOCK_MOVED')
     call check(status_name(c2d_chol_bad_argument) == 'C2D_CHOL_BAD_ARGUMENT', 'status name: C2D_CHOL_BAD_ARGUMENT')
     call check(status_name(-999) == 'unknown status', 'status name: an unknown code')
+
+    call check(cholmod_ok == 0 .and. cholmod_not_posdef > 0 .and. cholmod_out_of_memory < 0 .and. &
+               cholmod_too_large < 0, 'status codes: CHOLMOD''s signs (0 success, warning > 0, failure < 0)')
+    codes = [cholmod_ok, cholmod_not_posdef, cholmod_out_of_memory, cholmod_too_large, c2d_chol_no_handle, &
+             c2d_chol_no_factor, c2d_chol_not_super_ll, c2d_chol_block_moved, c2d_chol_bad_argument]
+    call check(all(codes(5:) <= -100), 'status codes: the C layer''s are <= -100')
+    call check(all([(count(codes == codes(i)) == 1, i = 1, size(codes))]), 'status codes: no two equal')
+    call check(c2d_order_metis /= c2d_order_amd .and. c2d_name_ordering /= c2d_name_status .and. &
+               c2d_solve_whole /= c2d_solve_forward .and. c2d_solve_forward /= c2d_solve_backward .and. &
+               c2d_solve_whole /= c2d_solve_backward, 'selectors: distinct within each kind')
   end subroutine test_status_names
 
 end program test_sparse_cholesky
