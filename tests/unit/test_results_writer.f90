@@ -7,6 +7,7 @@
 program test_results_writer
   use kinds, only: dp
   use results_writer, only: results_t, string_t, write_summary
+  use errors, only: error_t
   use testing, only: check, finish_tests
   implicit none
   type(results_t) :: r, saved, passed, returned
@@ -129,9 +130,9 @@ contains
   subroutine write_summary_of(r, path)
     type(results_t), intent(in) :: r
     character(len=*), intent(in) :: path
-    logical :: ok
-    call write_summary(path, r, ok)
-    call check(ok, 'write_summary')
+    type(error_t), allocatable :: err
+    call write_summary(path, r, err)
+    call check(.not. allocated(err), 'write_summary')
   end subroutine write_summary_of
 
   !> Whether the file has the line `text` (or a line that starts with it).
