@@ -37,7 +37,6 @@
 !>        read the MSH file path into mesh; errors go to diag, out of memory to
 !>        err (to diag, as a file-level message, when err is absent)
 module gmsh_reader
-  use kinds, only: i8
   use errors, only: diag_t, add_error, error_t, set_out_of_memory
   use mesh, only: mesh_t
   use msh_text, only: msh_text_t, load_text
@@ -65,19 +64,11 @@ contains
     type(msh_text_t) :: t
     type(msh_data_t) :: d
     type(error_t), allocatable :: e
-    type(mesh_t) :: empty
-    integer(i8) :: bytes
 
     t%path = path
     call load_text(t, e)
     if (.not. allocated(e)) call read_sections(t, d, e)
-    if (.not. allocated(e)) then
-      call build_mesh(d, mesh, bytes)
-      if (bytes > 0) then
-        mesh = empty
-        call set_out_of_memory(e, 'reading the mesh file', bytes)
-      end if
-    end if
+    if (.not. allocated(e)) call build_mesh(d, mesh, e)
     if (.not. allocated(e)) return
     if (.not. e%no_memory) then                ! a defect of the file: FILE:LINE, the line echoed
       if (allocated(e%echo)) then
