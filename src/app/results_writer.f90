@@ -36,7 +36,7 @@ module results_writer
   !> arrays of string_t, not deferred-length character arrays: gfortran 12's
   !> assignment of a derived type loses the elements of such an array
   !> component (NUL bytes in the copy), and results_t is copied while the
-  !> load steps are solved.
+  !> load steps are solved (each step's results start from an empty one).
   type :: results_t
     character(len=:), allocatable :: effects     !< effects simulated
     logical :: axisymmetric = .false.            !< forces for the full circle (summary force_basis)

@@ -12,7 +12,7 @@
 !>
 !> Programming interface
 !>   make_folder(path, diag)     create the output folder and its parents (an input error when it cannot)
-!>   write_step(run, k)          step k's table row and VTK file (OUTPUT steps=all)
+!>   write_step(run, k, res)     step k's table row and VTK file from its results (OUTPUT steps=all)
 !>   write_outputs(run)          every file of the run, committed together; run%wrote for the log
 module run_outputs
   use kinds, only: dp
@@ -24,7 +24,7 @@ module run_outputs
   use deck_reader, only: path_too_long
   use load_groups, only: group_factor, group_name
   use post_processing, only: rigid_results
-  use results_writer, only: write_vtk, write_contact_csv, write_summary, write_pvd, write_step_table, peak_memory
+  use results_writer, only: results_t, write_vtk, write_contact_csv, write_summary, write_pvd, write_step_table, peak_memory
   use safe_files, only: make_folders, temporary_t, create_temporary, close_temporary, commit_temporaries, &
                         discard_temporaries
   use, intrinsic :: iso_fortran_env, only: error_unit
@@ -50,15 +50,17 @@ contains
 
   !> Step k's row of NAME_steps.csv and its VTK file STEM_000k.vtk (a
   !> temporary, committed with the run's other files by write_outputs).
-  !>   run   (inout) the step's results on entry
+  !>   run   (inout) step_table's row k, step_tmp(k) on exit
   !>   kstep (in)    the step, 1 .. steps - 1
-  subroutine write_step(run, kstep)
+  !>   res   (inout) the step's results (res%rigid set here)
+  subroutine write_step(run, kstep, res)
     type(run_t), intent(inout) :: run
     integer, intent(in) :: kstep
+    type(results_t), intent(inout) :: res
     type(error_t), allocatable :: err
-    call add_step_row(run, kstep)
+    call add_step_row(run, kstep, res)
     call create_step_file(run, kstep, err)
-    if (.not. allocated(err)) call write_vtk(run%step_tmp(kstep)%io_path, run%deck%title, run%sc%bodies, run%res, &
+    if (.not. allocated(err)) call write_vtk(run%step_tmp(kstep)%io_path, run%deck%title, run%sc%bodies, res, &
                                              run%deck%output%fields, err)
     call close_temporary(run%step_tmp(kstep))
     if (allocated(err)) call output_failure(run)
@@ -77,7 +79,7 @@ contains
     character(len=:), allocatable :: line1, line2
     ! the run's three files, then with steps=all the .pvd, the step table and
     ! the per-step VTK files (all but the last one written as they were solved)
-    if (run%deck%output%steps_all) call add_step_row(run, run%sc%steps)
+    if (run%deck%output%steps_all) call add_step_row(run, run%sc%steps, run%res)
     allocate(tmp(3))
     ! each call below runs only while no error has come (err is the first)
     call create_temporary(run%outdir, run%deck%output%vtk, tmp(1), err)
@@ -158,28 +160,29 @@ contains
     stem = run%deck%output%vtk(1:len(run%deck%output%vtk) - 4)
   end function output_stem
 
-  !> Row k of NAME_steps.csv from res: step, the load factor of each load
-  !> path, the reactions of every FIX, the contact resultant of every pair,
-  !> active nodes, LCP iterations.
-  subroutine add_step_row(run, kstep)
+  !> Row k of NAME_steps.csv from the step's results res: step, the load
+  !> factor of each load path, the reactions of every FIX, the contact
+  !> resultant of every pair, active nodes, LCP iterations.
+  subroutine add_step_row(run, kstep, res)
     type(run_t), intent(inout) :: run
     integer, intent(in) :: kstep
+    type(results_t), intent(inout) :: res
     integer :: ng, nc, g, c
     ng = size(run%sc%ramp, 2)
     nc = 1 + ng + 2 * size(run%sc%fixes) + 2 * run%cs%npair + 6 * size(run%sc%rigids) + 2
-    call rigid_results(run)
+    call rigid_results(run, res)
     if (.not. allocated(run%step_table)) allocate(run%step_table(nc, run%sc%steps), source=0.0_dp)
     run%step_table(1, kstep) = kstep
     do g = 1, ng
       run%step_table(1 + g, kstep) = group_factor(run%sc, g, kstep)
     end do
     c = 1 + ng
-    run%step_table(c + 1:c + 2 * size(run%sc%fixes), kstep) = reshape(run%res%reaction, [2 * size(run%sc%fixes)])
+    run%step_table(c + 1:c + 2 * size(run%sc%fixes), kstep) = reshape(res%reaction, [2 * size(run%sc%fixes)])
     c = c + 2 * size(run%sc%fixes)
-    run%step_table(c + 1:c + 2 * run%cs%npair, kstep) = reshape(run%res%contact_force, [2 * run%cs%npair])
+    run%step_table(c + 1:c + 2 * run%cs%npair, kstep) = reshape(res%contact_force, [2 * run%cs%npair])
     c = c + 2 * run%cs%npair
-    run%step_table(c + 1:c + 6 * size(run%sc%rigids), kstep) = reshape(run%res%rigid, [6 * size(run%sc%rigids)])
-    run%step_table(nc - 1, kstep) = run%res%active_nodes
+    run%step_table(c + 1:c + 6 * size(run%sc%rigids), kstep) = reshape(res%rigid, [6 * size(run%sc%rigids)])
+    run%step_table(nc - 1, kstep) = res%active_nodes
     run%step_table(nc, kstep) = run%step_iterations
   end subroutine add_step_row
 
