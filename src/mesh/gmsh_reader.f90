@@ -37,6 +37,7 @@
 !>        read the MSH file path into mesh; errors go to diag, out of memory to
 !>        err (to diag, as a file-level message, when err is absent)
 module gmsh_reader
+  use kinds, only: i8
   use errors, only: diag_t, add_error, error_t, set_out_of_memory
   use mesh, only: mesh_t
   use msh_text, only: msh_text_t, load_text
@@ -64,6 +65,7 @@ contains
     type(msh_text_t) :: t
     type(msh_data_t) :: d
     type(error_t), allocatable :: e
+    integer(i8) :: bytes
 
     t%path = path
     call load_text(t, e)
@@ -79,7 +81,8 @@ contains
       return
     end if
     ! the layers below say what ran out; the message names the file
-    call set_out_of_memory(e, 'reading the mesh file ' // path, e%bytes)
+    bytes = e%bytes                            ! (e is remade: not e%bytes itself as the argument)
+    call set_out_of_memory(e, 'reading the mesh file ' // path, bytes)
     if (present(err)) then
       call move_alloc(e, err)
     else
