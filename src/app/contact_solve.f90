@@ -54,9 +54,13 @@ contains
   !> asks for every step; with friction, the load steps in order, each a
   !> friction LCP warm-started from the last (friction_lcp, friction_modes).
   !> Without contact only the earlier steps of OUTPUT steps=all are solved.
+  !> Each earlier step's results are its own, recorded (its VTK file and
+  !> table row) and dropped; only the final step's are kept in res.
   !>   run (inout) W, q, the splits on entry; res%mu (tau, slip), gaps and the contact measures on exit
   subroutine solve_contact_lcp(run)
     type(run_t), intent(inout) :: run
+    type(results_t) :: final
+    real(dp), allocatable :: rigid_alpha(:)
     if (.not. run%with_contact) then
       if (run%deck%output%steps_all) call solve_earlier_steps(run)
       return
@@ -65,24 +69,50 @@ contains
       call solve_friction_steps(run)
     else
       if (run%deck%output%steps_all) call solve_earlier_steps(run)
-      call solve_contact_problem(run)
+      call solve_contact_problem(run, final, rigid_alpha)
+      call keep_solution(final, rigid_alpha, run)
       run%step_iterations = run%res%lcp_iterations
       if (run%deck%output%steps_all) then
-        call contact_measures(run)
+        call contact_measures(run, run%res)
         call say_step(run, run%sc%steps, run%res%lcp_method, run%step_iterations, run%res%active_nodes)
         deallocate(run%res%pressure, run%res%status)         ! measured again below, as without steps
       end if
     end if
-    call contact_measures(run)
+    call contact_measures(run, run%res)
     call lap(run, ph_lcp)
   end subroutine solve_contact_lcp
 
-  !> The condensed contact problem by the chosen method (with the free rigid
-  !> modes as equality constraints); mu, gaps, pressures, status.
-  subroutine solve_contact_problem(run)
+  !> The final step's solution into the run's results: mu, gaps, the
+  !> amplitudes of the free modes, the unheld modes, the method's report,
+  !> and the RIGIDs' free motion.
+  !>   sol         (inout) solve_contact_problem's results (moved out: empty on exit)
+  !>   rigid_alpha (inout) its RIGIDs' free motion (moved out)
+  subroutine keep_solution(sol, rigid_alpha, run)
+    type(results_t), intent(inout) :: sol
+    real(dp), allocatable, intent(inout) :: rigid_alpha(:)
     type(run_t), intent(inout) :: run
+    call move_alloc(sol%mu, run%res%mu)
+    call move_alloc(sol%gap, run%res%gap)
+    call move_alloc(sol%alpha, run%res%alpha)
+    call move_alloc(sol%unheld_mode, run%res%unheld_mode)
+    run%res%lcp_method = sol%lcp_method
+    run%res%lcp_iterations = sol%lcp_iterations
+    run%res%lcp_residual = sol%lcp_residual
+    call move_alloc(rigid_alpha, run%rigid_alpha)
+  end subroutine keep_solution
+
+  !> The condensed contact problem LCP(W, q) of the step by the chosen
+  !> method (with the free rigid modes as equality constraints).
+  !>   run         (inout) W, q and the splits of the step on entry
+  !>   sol         (out)   the step's mu, gap, alpha (the bodies' free modes),
+  !>                       unheld_mode and the method's report (lcp_*)
+  !>   rigid_alpha (out)   (rsplit%k) the RIGIDs' free motion
+  subroutine solve_contact_problem(run, sol, rigid_alpha)
+    type(run_t), intent(inout) :: run
+    type(results_t), intent(out) :: sol
+    real(dp), allocatable, intent(out) :: rigid_alpha(:)
     type(lcp_options_t) :: opts
-    type(contact_solution_t) :: sol
+    type(contact_solution_t) :: lcp
     character(len=:), allocatable :: method
     integer :: j
 
@@ -108,55 +138,55 @@ contains
       call solve_contact(run%w, run%q, reshape([run%split%h, run%rsplit%h(1:run%cs%nrow, :)], [run%cs%nrow, &
         run%fl%k + run%rsplit%k]), &
                          [run%split%e, run%rsplit%e], &
-                         block_diagonal(run%split%held, run%rsplit%held), method, opts, sol)
+                         block_diagonal(run%split%held, run%rsplit%held), method, opts, lcp)
     else
-      call solve_contact(run%w, run%q, run%split%h, run%split%e, run%split%held, method, opts, sol)
+      call solve_contact(run%w, run%q, run%split%h, run%split%e, run%split%held, method, opts, lcp)
     end if
-    run%res%lcp_method = method
-    run%res%lcp_iterations = sol%rep%iterations
-    run%res%lcp_residual = sol%rep%residual
-    if (sol%rep%info /= 0) then
-      if (sol%rep%info == 1 .and. run%rsplit%k > 0) call diagnose_pulled_rigid(run)
-      if (allocated(sol%rep%message)) then
-        if (sol%rep%no_memory) call fail_numerical(sol%rep%message)
-        call fail_numerical(step_prefix(run) // 'contact problem not solved: ' // sol%rep%message)
+    sol%lcp_method = method
+    sol%lcp_iterations = lcp%rep%iterations
+    sol%lcp_residual = lcp%rep%residual
+    if (lcp%rep%info /= 0) then
+      if (lcp%rep%info == 1 .and. run%rsplit%k > 0) call diagnose_pulled_rigid(run)
+      if (allocated(lcp%rep%message)) then
+        if (lcp%rep%no_memory) call fail_numerical(lcp%rep%message)
+        call fail_numerical(step_prefix(run) // 'contact problem not solved: ' // lcp%rep%message)
       else
         call fail_numerical(step_prefix(run) // 'contact problem not solved by ' // method // ' (info ' // &
-                            int_to_str(sol%rep%info) // ')')
+                            int_to_str(lcp%rep%info) // ')')
       end if
     end if
-    if (.not. all(ieee_is_finite(sol%mu))) call fail_numerical('the contact multipliers are not finite')
-    call move_alloc(sol%mu, run%res%mu)
-    run%rigid_alpha = sol%alpha(run%fl%k + 1:)
-    run%res%alpha = sol%alpha(1:run%fl%k)
-    allocate(run%res%unheld_mode(size(run%split%unheld, 2)))
+    if (.not. all(ieee_is_finite(lcp%mu))) call fail_numerical('the contact multipliers are not finite')
+    call move_alloc(lcp%mu, sol%mu)
+    rigid_alpha = lcp%alpha(run%fl%k + 1:)
+    sol%alpha = lcp%alpha(1:run%fl%k)
+    allocate(sol%unheld_mode(size(run%split%unheld, 2)))
     do j = 1, size(run%split%unheld, 2)
       call say(run, 'note     body ' // run%sc%bodies(run%split%unheld_body(j))%name // ': rigid mode (' // &
         motion_name(run%fl, run%split%unheld(:, j)) // ') held by neither FIX nor contact and unloaded: its amplitude ' // &
         'is set to 0 (the displacement has no component along it; the pressures do not depend on it)')
-      run%res%unheld_mode(j)%s = unheld_summary(run, j)
+      sol%unheld_mode(j)%s = unheld_summary(run, j)
     end do
 
-    call move_alloc(sol%gap, run%res%gap)
+    call move_alloc(lcp%gap, sol%gap)
   end subroutine solve_contact_problem
 
   !> OUTPUT steps=all without friction: steps 1 .. n-1, each an independent
   !> solve at its load factors with the factorization and W of the final
   !> step (only the right-hand side changes): u0_k = K^-1 f_k, q_k = g - B u0_k,
-  !> LCP(W, q_k), u_k = K^-1 (f_k - B' mu_k).  Each step's VTK file and table
-  !> row are written; res is then as before (the final step is solved next).
+  !> LCP(W, q_k), u_k = K^-1 (f_k - B' mu_k).  Each step's results are its
+  !> own (step), written to its VTK file and table row; res is not touched
+  !> (the final step is solved next).
   subroutine solve_earlier_steps(run)
     type(run_t), intent(inout) :: run
-    type(results_t) :: saved
+    type(results_t) :: step, none
     type(mode_split_t) :: split_n
-    real(dp), allocatable :: fk(:), ubk(:), u0k(:), cq(:), q_n(:)
+    real(dp), allocatable :: fk(:), ubk(:), u0k(:), cq(:), q_n(:), rigid_alpha(:)
     integer :: kstep
-    saved = run%res
     split_n = run%split
     if (allocated(run%q)) q_n = run%q
     allocate(fk(run%sc%ndof), ubk(run%sc%ndof), u0k(run%sc%ndof), cq(run%cs%nrow + run%cs%ntan))
     do kstep = 1, run%sc%steps - 1
-      run%res = saved
+      step = none
       run%step_note = 'load step ' // int_to_str(kstep) // ' of ' // int_to_str(run%sc%steps) // ': '
       call step_loads(run%sc, kstep, fk, ubk)
       call solve_loads(run, fk, ubk, [real(dp) ::], u0k)
@@ -171,17 +201,16 @@ contains
           call split_rigid_modes(run%cs, run%sc%rigids, run%sc%fixed, fk, run%rsplit)
           call check_unheld_rigid_loads(run)
         end if
-        call solve_contact_problem(run)
-        call contact_measures(run)
-        run%step_iterations = run%res%lcp_iterations
-        call record_step(run, kstep, fk, ubk, run%res%mu)
-        call say_step(run, kstep, run%res%lcp_method, run%step_iterations, run%res%active_nodes)
+        call solve_contact_problem(run, step, rigid_alpha)
+        call contact_measures(run, step)
+        run%step_iterations = step%lcp_iterations
+        call record_step(run, kstep, fk, ubk, step%mu, rigid_alpha, step)
+        call say_step(run, kstep, step%lcp_method, run%step_iterations, step%active_nodes)
       else
         run%step_iterations = 0
-        call record_step(run, kstep, fk, ubk, [real(dp) ::])
+        call record_step(run, kstep, fk, ubk, [real(dp) ::], rigid_alpha, step)
       end if
     end do
-    run%res = saved
     run%split = split_n
     if (run%rsplit%k > 0) call split_rigid_modes(run%cs, run%sc%rigids, run%sc%fixed, run%sc%fext, run%rsplit)
     if (allocated(q_n)) run%q = q_n
@@ -193,18 +222,20 @@ contains
   !> factors times their loads, the slip of the step is measured from the
   !> tangential displacement T u of step k-1, and the condensed friction LCP
   !> (normal and tangential multipliers, friction_lcp) is solved, warm-started
-  !> from step k-1.
+  !> from step k-1.  With OUTPUT steps=all each earlier step's results are
+  !> its own (step), recorded and dropped; res holds the final step's.
   subroutine solve_friction_steps(run)
     type(run_t), intent(inout) :: run
     type(lcp_options_t) :: opts
     type(lcp_report_t) :: rep
     character(len=:), allocatable :: method
     real(dp), allocatable :: z(:), cu(:), qn(:), qt(:), sprev(:), fk(:), ubk(:)
-    real(dp), allocatable :: hh(:,:), eg(:,:), eh(:), alpha(:), unbalanced(:)
+    real(dp), allocatable :: hh(:,:), eg(:,:), eh(:), alpha(:), unbalanced(:), body_alpha(:), rigid_alpha(:)
+    integer, allocatable :: fstate(:)
     character(len=:), allocatable :: cause
     integer :: n, nt, kstep, g, r, iterations
     logical :: floating
-    type(results_t) :: saved
+    type(results_t) :: step, none
     character(len=200) :: line
     type(error_t), allocatable :: err
     type(friction_problem_t) :: fp
@@ -222,7 +253,7 @@ contains
     ! bodies held only by contact: the amplitudes of the held combinations of
     ! their modes are unknowns of the friction LCP (friction_modes), against
     ! H = C R V and the load e = V'R'f of each ramp
-    allocate(run%res%alpha(run%fl%k), source=0.0_dp)
+    allocate(body_alpha(run%fl%k), source=0.0_dp)
     floating = size(run%split%held, 2) + size(run%rsplit%held, 2) > 0
     if (floating) then
       method = 'lemke'
@@ -238,11 +269,8 @@ contains
       eg = transpose(eg)
       allocate(eh(size(hh, 2)), alpha(size(hh, 2)))
     end if
-    allocate(z(n + nt), cu(n + nt), qn(n), qt(nt), sprev(nt), run%res%fstate(nt))
-    if (run%deck%output%steps_all) then
-      saved = run%res
-      allocate(fk(run%sc%ndof), ubk(run%sc%ndof))
-    end if
+    allocate(z(n + nt), cu(n + nt), qn(n), qt(nt), sprev(nt), fstate(nt))
+    if (run%deck%output%steps_all) allocate(fk(run%sc%ndof), ubk(run%sc%ndof))
     z = 0.0_dp
     sprev = 0.0_dp
     iterations = 0
@@ -269,8 +297,8 @@ contains
         qn = run%cs%g - cu(1:n)
         qt = qt - matmul(hh(n + 1:, :), alpha)
         fp = friction_problem(qn, qt, run%cs%tan_row, run%cs%tan_mu, run%cs%tan_bound)
-        run%res%alpha = matmul(run%split%held, alpha(1:size(run%split%held, 2)))
-        run%rigid_alpha = matmul(run%rsplit%held, alpha(size(run%split%held, 2) + 1:))
+        body_alpha = matmul(run%split%held, alpha(1:size(run%split%held, 2)))
+        rigid_alpha = matmul(run%rsplit%held, alpha(size(run%split%held, 2) + 1:))
       else
         call solve_friction_lcp(run%w, fp, method, opts, z, rep)
       end if
@@ -281,29 +309,29 @@ contains
       if (.not. all(ieee_is_finite(z))) call fail_numerical('friction, load step ' // int_to_str(kstep) // &
         ': the contact multipliers are not finite')
       sprev = cu(n + 1:) - matmul(run%w(n + 1:, :), z)  ! T u_k = T u0_k - T K^-1 C' z
-      call friction_state(run%w, fp, z, run%res%fstate, err)
+      call friction_state(run%w, fp, z, fstate, err)
       if (allocated(err)) call fail_numerical(err%message)
       write(line, '(a,i0,a,i0,a,i0,a,i0,a,i0,a,es9.2)') 'step     ', kstep, '/', run%sc%steps, ': ' // method // ' ', &
-        rep%iterations, ' iterations, ', count(z(1:n) > 0.0_dp), ' active, ', count(run%res%fstate == 2), &
+        rep%iterations, ' iterations, ', count(z(1:n) > 0.0_dp), ' active, ', count(fstate == 2), &
         ' slipping, residual ', rep%residual
       call say(run, trim(line))
       run%step_iterations = rep%iterations
       if (run%deck%output%steps_all .and. kstep < run%sc%steps) then
         ! this step's displacement, fields and row (the final step is the run's own)
-        run%res%mu = z(1:n)
-        run%res%tau = z(n + 1:)
-        run%res%gap = qn + matmul(run%w(1:n, :), z)
-        call contact_measures(run)
+        step = none
+        step%mu = z(1:n)
+        step%tau = z(n + 1:)
+        step%gap = qn + matmul(run%w(1:n, :), z)
+        step%alpha = body_alpha
+        call contact_measures(run, step)
         call step_loads(run%sc, kstep, fk, ubk)
-        call record_step(run, kstep, fk, ubk, z)
+        call record_step(run, kstep, fk, ubk, z, rigid_alpha, step)
         call step_loads(run%sc, run%sc%steps, fk, ubk)
-        call move_alloc(run%res%fstate, saved%fstate)
-        call move_alloc(run%res%alpha, saved%alpha)
-        run%res = saved
-        call move_alloc(saved%fstate, run%res%fstate)
-        call move_alloc(saved%alpha, run%res%alpha)
       end if
     end do
+    call move_alloc(body_alpha, run%res%alpha)
+    call move_alloc(fstate, run%res%fstate)
+    if (floating) call move_alloc(rigid_alpha, run%rigid_alpha)
     run%res%lcp_method = method
     run%res%lcp_iterations = iterations
     run%res%lcp_residual = rep%residual
@@ -322,27 +350,30 @@ contains
     run%res%slip_nodes = count(run%res%fstate == 2)
   end subroutine solve_friction_steps
 
-  !> One step's displacement from its multipliers z (res%mu, res%gap, ...
-  !> set), its post-processing, VTK file and table row.
-  subroutine record_step(run, kstep, fk, ubk, z)
+  !> One step's displacement from its multipliers z, its post-processing,
+  !> VTK file and table row, all on the step's own results.
+  !>   z           (in)    the step's multipliers (mu, or mu and tau)
+  !>   rigid_alpha (in)    the step's RIGID motion (unallocated: none)
+  !>   res         (inout) the step's results: mu, gap, alpha (and tau) and the
+  !>                       contact measures on entry; u and what the files report on exit
+  subroutine record_step(run, kstep, fk, ubk, z, rigid_alpha, res)
     type(run_t), intent(inout) :: run
     integer, intent(in) :: kstep
     real(dp), intent(in) :: fk(:), ubk(:), z(:)
-    if (allocated(run%res%u)) deallocate(run%res%u)
-    allocate(run%res%u(run%sc%ndof))
-    call solve_loads(run, fk, ubk, z, run%res%u)
-    if (run%fl%k > 0) run%res%u = run%res%u + matmul(run%fl%r, run%res%alpha)
-    call remove_motions(run%fl, run%split%unheld, run%res%u)
-    if (allocated(run%rigid_alpha)) run%res%u(run%rsplit%dof) = run%rigid_alpha
-    if (.not. all(ieee_is_finite(run%res%u))) call fail_numerical('load step ' // int_to_str(kstep) // &
+    real(dp), allocatable, intent(in) :: rigid_alpha(:)
+    type(results_t), intent(inout) :: res
+    allocate(res%u(run%sc%ndof))
+    call solve_loads(run, fk, ubk, z, res%u)
+    if (run%fl%k > 0) res%u = res%u + matmul(run%fl%r, res%alpha)
+    call remove_motions(run%fl, run%split%unheld, res%u)
+    if (allocated(rigid_alpha)) res%u(run%rsplit%dof) = rigid_alpha
+    if (.not. all(ieee_is_finite(res%u))) call fail_numerical('load step ' // int_to_str(kstep) // &
       ': the displacement is not finite (overflow in the solve)')
-    call pair_resultants(run, z)
-    call post_process(run, fk)
-    if (allocated(run%res%node_pressure)) deallocate(run%res%node_pressure, run%res%node_gap)
-    if (allocated(run%res%node_shear)) deallocate(run%res%node_shear)
-    call nodal_contact_fields(run)
-    call check_finite_results(run)
-    call write_step(run, kstep)
+    call pair_resultants(run, z, res)
+    call post_process(run, fk, res)
+    call nodal_contact_fields(run, res)
+    call check_finite_results(run, res)
+    call write_step(run, kstep, res)
   end subroutine record_step
 
   !> A body whose FIX leaves a rigid mode free must be held by a CONTACT.

@@ -8,24 +8,26 @@
 !>
 !> Why it exists: these are the run's results, not its method; the program
 !> asks for them in one call (compute_results), a load step of OUTPUT
-!> steps=all piece by piece.  Who may use it: the program and its step
+!> steps=all piece by piece, each piece on the results it is given (res:
+!> the run's own, or a step's).  Who may use it: the program and its step
 !> modules (run_state's list).  A result that overflows ends the run (exit 1,
 !> nothing written), as the program would.
 !>
 !> Programming interface
 !>   name_results(run)            the summary's names of the FIXes and RIGIDs, once
 !>   compute_results(run)         everything below for the run's final state
-!>   pair_resultants(run, z)      fc = -C' z and the resultant on each pair's slave body
-!>   post_process(run, fext)      stresses, energy, reactions; u in x, y components
-!>   rigid_results(run)           each RIGID's motion and the contact force on it
-!>   contact_measures(run)        pressures, status, counts, complementarity (mu, gap set)
-!>   nodal_contact_fields(run)    contact pressure, gap, shear on the nodes (VTK)
-!>   check_finite_results(run)    exit 1 when a result to be written is not finite
+!>   pair_resultants(run, z, res) fc = -C' z and the resultant on each pair's slave body
+!>   post_process(run, fext, res) stresses, energy, reactions; u in x, y components
+!>   rigid_results(run, res)      each RIGID's motion and the contact force on it
+!>   contact_measures(run, res)   pressures, status, counts, complementarity (mu, gap set)
+!>   nodal_contact_fields(run, res)  contact pressure, gap, shear on the nodes (VTK)
+!>   check_finite_results(run, res)  exit 1 when a result to be written is not finite
 module post_processing
   use kinds, only: dp
   use strings, only: int_to_str
   use exits, only: fail_numerical
   use run_state, only: run_t
+  use results_writer, only: results_t
   use body, only: element_response, to_global_axes
   use contact_set, only: row_of_node, node_rows, node_traction
   use contact_condensation, only: contact_forces
@@ -61,17 +63,17 @@ contains
     type(run_t), intent(inout) :: run
     if (run%with_contact) then
       if (run%cs%ntan > 0) then
-        call pair_resultants(run, [run%res%mu, run%res%tau])
+        call pair_resultants(run, [run%res%mu, run%res%tau], run%res)
       else
-        call pair_resultants(run, run%res%mu)
+        call pair_resultants(run, run%res%mu, run%res)
       end if
     else
-      call pair_resultants(run, [real(dp) ::])
+      call pair_resultants(run, [real(dp) ::], run%res)
     end if
-    call post_process(run, run%sc%fext)
-    call rigid_results(run)
-    call nodal_contact_fields(run)
-    call check_finite_results(run)
+    call post_process(run, run%sc%fext, run%res)
+    call rigid_results(run, run%res)
+    call nodal_contact_fields(run, run%res)
+    call check_finite_results(run, run%res)
   end subroutine compute_results
 
   !> res%contact_force: per pair, the resultant of the contact forces on its
@@ -79,15 +81,16 @@ contains
   !> pair's rows (-sum_i mu_i n_i - tau_i t_i, the slave's outward normal n);
   !> and fc = -C' z, all pairs, on every dof.
   !>   z (in) (nrow) normal multipliers, or (nrow + ntan) with the tangential ones
-  subroutine pair_resultants(run, z)
+  subroutine pair_resultants(run, z, res)
     type(run_t), intent(inout) :: run
     real(dp), intent(in) :: z(:)
+    type(results_t), intent(inout) :: res
     real(dp), allocatable :: zp(:)
     integer :: ip, r, d0, nn
     if (.not. allocated(run%fc)) allocate(run%fc(run%sc%ndof))
     run%fc = 0.0_dp
-    if (allocated(run%res%contact_force)) deallocate(run%res%contact_force)
-    allocate(run%res%contact_force(2, run%cs%npair), source=0.0_dp)
+    if (allocated(res%contact_force)) deallocate(res%contact_force)
+    allocate(res%contact_force(2, run%cs%npair), source=0.0_dp)
     if (size(z) == 0) return
     allocate(zp(size(z)))
     do ip = 1, run%cs%npair
@@ -102,8 +105,8 @@ contains
       call to_global_axes(run%sc%bodies, run%fc)
       d0 = run%sc%bodies(run%cs%pair(ip)%spec%slave_body)%dof0
       nn = run%sc%bodies(run%cs%pair(ip)%spec%slave_body)%mesh%nnode
-      run%res%contact_force(1, ip) = sum(run%fc(d0 + 1:d0 + 2 * nn:2))
-      run%res%contact_force(2, ip) = sum(run%fc(d0 + 2:d0 + 2 * nn:2))
+      res%contact_force(1, ip) = sum(run%fc(d0 + 1:d0 + 2 * nn:2))
+      res%contact_force(2, ip) = sum(run%fc(d0 + 2:d0 + 2 * nn:2))
     end do
     call contact_forces(run%cs, z, run%fc)
   end subroutine pair_resultants
@@ -114,21 +117,22 @@ contains
   !> axes: the reaction of a fixed dof along n or t is that force along n or
   !> t, summed in x, y into its FIX's reaction).
   !>   fext (in) (ndof) the external forces of the step (solver basis)
-  subroutine post_process(run, fext)
-    type(run_t), intent(inout) :: run
+  subroutine post_process(run, fext, res)
+    type(run_t), intent(in) :: run
     real(dp), intent(in) :: fext(:)
+    type(results_t), intent(inout) :: res
     integer :: j, b, a
     real(dp), allocatable :: axis(:,:), fint(:)
-    if (allocated(run%res%stress)) deallocate(run%res%stress, run%res%vm)
-    if (allocated(run%res%reaction)) deallocate(run%res%reaction)
-    allocate(run%res%stress(merge(4, 3, run%deck%axisymmetric), run%sc%nelem), run%res%vm(run%sc%nelem), fint(run%sc%ndof))
+    if (allocated(res%stress)) deallocate(res%stress, res%vm)
+    if (allocated(res%reaction)) deallocate(res%reaction)
+    allocate(res%stress(merge(4, 3, run%deck%axisymmetric), run%sc%nelem), res%vm(run%sc%nelem), fint(run%sc%ndof))
     if (run%deck%output%fields(4) .or. run%deck%output%fields(5)) then
-      call element_response(run%sc%bodies, run%res%u, fint, run%res%stress, run%res%vm)
+      call element_response(run%sc%bodies, res%u, fint, res%stress, res%vm)
     else
-      call element_response(run%sc%bodies, run%res%u, fint)        ! no stress field asked for: none computed
+      call element_response(run%sc%bodies, res%u, fint)        ! no stress field asked for: none computed
     end if
-    run%res%energy = 0.5_dp * dot_product(run%res%u, fint)
-    allocate(run%res%reaction(2, size(run%sc%fixes)), source=0.0_dp)
+    res%energy = 0.5_dp * dot_product(res%u, fint)
+    allocate(res%reaction(2, size(run%sc%fixes)), source=0.0_dp)
     ! the direction of each dof: e_x, e_y, or n, t at a node in local axes
     allocate(axis(2, run%sc%ndof), source=0.0_dp)
     axis(1, 1::2) = 1.0_dp
@@ -145,79 +149,81 @@ contains
     do j = 1, run%sc%ndof
       if (run%sc%fix_owner(j) > 0) then
         ! R = K u - f_ext - f_contact on a fixed dof, along its direction
-        associate (r => run%res%reaction(:, run%sc%fix_owner(j)))
+        associate (r => res%reaction(:, run%sc%fix_owner(j)))
           r = r + (fint(j) - fext(j) - run%fc(j)) * axis(:, j)
         end associate
       end if
     end do
-    call to_global_axes(run%sc%bodies, run%res%u)
+    call to_global_axes(run%sc%bodies, res%u)
   end subroutine post_process
 
   !> Each RIGID's motion (u_x, u_y, theta of its reference point, res%u) and
   !> the contact force on it (fc = -C' z on its dofs: force x, y, moment about
   !> the reference point), for the summary, the step table and the log.
-  subroutine rigid_results(run)
-    type(run_t), intent(inout) :: run
+  subroutine rigid_results(run, res)
+    type(run_t), intent(in) :: run
+    type(results_t), intent(inout) :: res
     integer :: r
-    if (allocated(run%res%rigid)) deallocate(run%res%rigid)
-    allocate(run%res%rigid(6, size(run%sc%rigids)), source=0.0_dp)
+    if (allocated(res%rigid)) deallocate(res%rigid)
+    allocate(res%rigid(6, size(run%sc%rigids)), source=0.0_dp)
     do r = 1, size(run%sc%rigids)
-      run%res%rigid(1:3, r) = run%res%u(run%sc%rigids(r)%dof0 + 1:run%sc%rigids(r)%dof0 + 3)
-      if (allocated(run%fc)) run%res%rigid(4:6, r) = run%fc(run%sc%rigids(r)%dof0 + 1:run%sc%rigids(r)%dof0 + 3)
+      res%rigid(1:3, r) = res%u(run%sc%rigids(r)%dof0 + 1:run%sc%rigids(r)%dof0 + 3)
+      if (allocated(run%fc)) res%rigid(4:6, r) = run%fc(run%sc%rigids(r)%dof0 + 1:run%sc%rigids(r)%dof0 + 3)
     end do
   end subroutine rigid_results
 
   !> Pressures, status, node counts and complementarity of the solved
   !> contact problem (res%mu, res%gap set).
-  subroutine contact_measures(run)
-    type(run_t), intent(inout) :: run
+  subroutine contact_measures(run, res)
+    type(run_t), intent(in) :: run
+    type(results_t), intent(inout) :: res
     integer :: r, ip, node, rows(3), nr
     real(dp) :: dmax, pmax, gmax
-    allocate(run%res%pressure(run%cs%nrow), run%res%status(run%cs%nrow))
-    run%res%contact_nodes = run%cs%nrow
+    allocate(res%pressure(run%cs%nrow), res%status(run%cs%nrow))
+    res%contact_nodes = run%cs%nrow
     if (run%cs%nrow == 0) return
     dmax = 0.0_dp
     do r = 1, run%cs%nrow
       dmax = max(dmax, run%w(r, r))
     end do
-    run%res%redundant = count([(run%w(r, r) <= 1.0e-14_dp * dmax, r = 1, run%cs%nrow)])
+    res%redundant = count([(run%w(r, r) <= 1.0e-14_dp * dmax, r = 1, run%cs%nrow)])
     pmax = 0.0_dp
     do r = 1, run%cs%nrow
       ip = run%cs%row_pair(r)
       node = run%cs%row_node(r)
-      run%res%pressure(r) = run%res%mu(r) / run%cs%weight(r)      ! p = mu / int(phi_i)
-      pmax = max(pmax, abs(run%res%pressure(r)))
+      res%pressure(r) = res%mu(r) / run%cs%weight(r)      ! p = mu / int(phi_i)
+      pmax = max(pmax, abs(res%pressure(r)))
     end do
     do r = 1, run%cs%nrow
-      run%res%status(r) = merge(1, 0, run%res%mu(r) > 1.0e-12_dp * maxval(abs(run%res%mu)) .and. run%res%mu(r) > 0.0_dp)
+      res%status(r) = merge(1, 0, res%mu(r) > 1.0e-12_dp * maxval(abs(res%mu)) .and. res%mu(r) > 0.0_dp)
     end do
     ! counts of slave nodes (a one-segment zone has two nodes on one row)
-    run%res%contact_nodes = 0
-    run%res%active_nodes = 0
+    res%contact_nodes = 0
+    res%active_nodes = 0
     do ip = 1, run%cs%npair
       do node = 1, size(run%cs%pair(ip)%snode)
         call node_rows(run%cs, ip, node, rows, nr)
         if (nr == 0) cycle
-        run%res%contact_nodes = run%res%contact_nodes + 1
-        if (any(run%res%status(rows(1:nr)) == 1)) run%res%active_nodes = run%res%active_nodes + 1
+        res%contact_nodes = res%contact_nodes + 1
+        if (any(res%status(rows(1:nr)) == 1)) res%active_nodes = res%active_nodes + 1
       end do
     end do
     ! length scale: the initial gaps, or the gaps the loads open without contact forces (q)
     gmax = max(maxval(abs(run%cs%g)), maxval(abs(run%q(1:run%cs%nrow))))
     if (pmax > 0.0_dp .and. gmax > 0.0_dp) then
-      run%res%complementarity = maxval(abs(run%res%pressure * run%res%gap)) / (pmax * gmax)
+      res%complementarity = maxval(abs(res%pressure * res%gap)) / (pmax * gmax)
     else
-      run%res%complementarity = 0.0_dp
+      res%complementarity = 0.0_dp
     end if
-    run%res%min_gap = min(0.0_dp, minval(run%res%gap))
-    run%res%min_pressure = minval(run%res%pressure)
+    res%min_gap = min(0.0_dp, minval(res%gap))
+    res%min_pressure = minval(res%pressure)
     do ip = 1, run%cs%npair                 ! quadratic: a closed row whose master value is extended
       do r = 1, 2
         if (.not. run%cs%pair(ip)%extended(r)) cycle
         node = merge(run%cs%pair(ip)%mortar%first, run%cs%pair(ip)%mortar%last, r == 1)
         nr = row_of_node(run%cs, ip, node)
         if (nr == 0) cycle
-        if (run%res%status(nr) == 1) write(error_unit, '(a)') 'contact2d: warning: ' // run%deck%file // ':' // &
+        if (res%status(nr) == 1) write(error_unit, '(a)') 'contact2d: warning: ' // run%deck%file // ':' // &
           int_to_str(run%deck%contacts(ip)%line) // ': the contact reaches the slave node ' // int_to_str(node) // &
           ' where the master ends inside a quadratic slave element: its row uses the master''s end value ' // &
           '(refine the slave there or swap slave and master)'
@@ -227,27 +233,28 @@ contains
 
   !> contact_pressure, gap (and shear) on the nodes, for the VTK file: what
   !> the contact table reports (node_traction).
-  subroutine nodal_contact_fields(run)
-    type(run_t), intent(inout) :: run
+  subroutine nodal_contact_fields(run, res)
+    type(run_t), intent(in) :: run
+    type(results_t), intent(inout) :: res
     integer :: r, ip, node, gnode, rows(3), nr
     real(dp), allocatable :: tforce(:)
-    allocate(run%res%node_pressure(run%sc%ndof / 2), run%res%node_gap(run%sc%ndof / 2))
-    run%res%node_pressure = 0.0_dp
-    run%res%node_gap = 0.0_dp
-    if (allocated(run%res%tau)) then
-      allocate(run%res%node_shear(run%sc%ndof / 2), source=0.0_dp)
+    allocate(res%node_pressure(run%sc%ndof / 2), res%node_gap(run%sc%ndof / 2))
+    res%node_pressure = 0.0_dp
+    res%node_gap = 0.0_dp
+    if (allocated(res%tau)) then
+      allocate(res%node_shear(run%sc%ndof / 2), source=0.0_dp)
       allocate(tforce(run%cs%nrow), source=0.0_dp)
-      tforce(run%cs%tan_row) = -run%res%tau                   ! the force on the slave is -tau t
+      tforce(run%cs%tan_row) = -res%tau                   ! the force on the slave is -tau t
     end if
     do ip = 1, run%cs%npair
       do node = 1, size(run%cs%pair(ip)%snode)
         r = row_of_node(run%cs, ip, node)
         if (r == 0) cycle
         gnode = run%sc%bodies(run%cs%pair(ip)%spec%slave_body)%dof0 / 2 + run%cs%pair(ip)%snode(node)
-        run%res%node_pressure(gnode) = node_traction(run%cs, ip, node, run%res%mu)
+        res%node_pressure(gnode) = node_traction(run%cs, ip, node, res%mu)
         call node_rows(run%cs, ip, node, rows, nr)
-        run%res%node_gap(gnode) = minval(run%res%gap(rows(1:nr)))
-        if (allocated(tforce)) run%res%node_shear(gnode) = node_traction(run%cs, ip, node, tforce)
+        res%node_gap(gnode) = minval(res%gap(rows(1:nr)))
+        if (allocated(tforce)) res%node_shear(gnode) = node_traction(run%cs, ip, node, tforce)
       end do
     end do
   end subroutine nodal_contact_fields
@@ -256,14 +263,15 @@ contains
   !> the accepted range can overflow in the post-processing (energy, stresses)
   !> even when the displacement did not.  Numerical failure, exit 1, nothing
   !> written.
-  subroutine check_finite_results(run)
-    type(run_t), intent(inout) :: run
+  subroutine check_finite_results(run, res)
+    type(run_t), intent(in) :: run
+    type(results_t), intent(inout) :: res
     logical :: ok
-    ok = ieee_is_finite(run%res%energy) .and. all(ieee_is_finite(run%res%reaction)) .and. &
-         ieee_is_finite(run%res%complementarity)
+    ok = ieee_is_finite(res%energy) .and. all(ieee_is_finite(res%reaction)) .and. &
+         ieee_is_finite(res%complementarity)
     if (run%deck%output%fields(4) .or. run%deck%output%fields(5)) &
-      ok = ok .and. all(ieee_is_finite(run%res%stress)) .and. all(ieee_is_finite(run%res%vm))
-    if (allocated(run%res%gap)) ok = ok .and. all(ieee_is_finite(run%res%gap)) .and. all(ieee_is_finite(run%res%pressure))
+      ok = ok .and. all(ieee_is_finite(res%stress)) .and. all(ieee_is_finite(res%vm))
+    if (allocated(res%gap)) ok = ok .and. all(ieee_is_finite(res%gap)) .and. all(ieee_is_finite(res%pressure))
     if (.not. ok) call fail_numerical('the results overflow (stresses, reactions, energy or contact quantities ' // &
       'are not finite): the loads or prescribed values are out of the range of double precision arithmetic')
   end subroutine check_finite_results

@@ -7,17 +7,19 @@
 !> Programming interface
 !>   type(results_t)      everything a run computed that the files report
 !>   type(string_t)       one string of any length (text_scan's; results_t's lists of names)
-!>   write_vtk(path, title, bodies, r, ok)
-!>   write_contact_csv(path, cs, r, ok)
-!>   write_summary(path, r, ok)
-!>   write_pvd(path, files, ok)            ParaView collection of the per-step VTK files
-!>   write_step_table(path, header, table, ok)   NAME_steps.csv: one row per load step
+!>   write_vtk(path, title, bodies, r, fields, err)
+!>   write_contact_csv(path, cs, r, err)
+!>   write_summary(path, r, err)
+!>   write_pvd(path, files, err)           ParaView collection of the per-step VTK files
+!>   write_step_table(path, header, table, err)   NAME_steps.csv: one row per load step
+!> Each writer returns err (status 2) when its file cannot be opened or written.
 module results_writer
   use kinds, only: dp, i8
   use body, only: body_t
   use mesh, only: file_item, node_in_file
   use contact_set, only: contact_set_t, row_of_node, node_rows, node_traction
   use strings, only: int_to_str
+  use errors, only: error_t, set_error
   use text_scan, only: string_t
   use text_buffer, only: text_buffer_t, open_text, open_memory, put_text, put_line, put_real, put_int, put_newline, &
                          close_text
@@ -34,7 +36,7 @@ module results_writer
   !> arrays of string_t, not deferred-length character arrays: gfortran 12's
   !> assignment of a derived type loses the elements of such an array
   !> component (NUL bytes in the copy), and results_t is copied while the
-  !> load steps are solved.
+  !> load steps are solved (each step's results start from an empty one).
   type :: results_t
     character(len=:), allocatable :: effects     !< effects simulated
     logical :: axisymmetric = .false.            !< forces for the full circle (summary force_basis)
@@ -105,12 +107,12 @@ module results_writer
 contains
 
   !> VTK legacy unstructured grid of every body (see DECK.md), ASCII.
-  subroutine write_vtk(path, title, bodies, r, fields, ok)
+  subroutine write_vtk(path, title, bodies, r, fields, err)
     character(len=*), intent(in) :: path, title
     type(body_t), intent(in) :: bodies(:)
     type(results_t), intent(in) :: r
     logical, intent(in) :: fields(5)   !< displacement, contact_pressure, gap, stress, von_mises
-    logical, intent(out) :: ok
+    type(error_t), allocatable, intent(out) :: err
     type(text_buffer_t) :: tb
     type(vtk_rows_t) :: v
     integer :: b, nnode, nelem, ncon, i
@@ -122,8 +124,8 @@ contains
       nelem = nelem + bodies(b)%mesh%nelem
       ncon = ncon + bodies(b)%mesh%nelem + sum(bodies(b)%mesh%nen)
     end do
-    call open_text(tb, path, ok)
-    if (.not. ok) return
+    call open_text(tb, path, err)
+    if (allocated(err)) return
     call vtk_rows(bodies, nnode, nelem, v)
     head = title
     if (len_trim(head) == 0) head = 'contact2d'
@@ -169,7 +171,8 @@ contains
       call put_rows(tb, row_values, nelem, v)
     end if
     if (fields(5)) call put_scalars(tb, 'von_mises', r%vm, v%elem_index, v)
-    call close_text(tb, ok)
+    call close_text(tb, err)
+    if (allocated(err)) call cannot_write(path, err)
   end subroutine write_vtk
 
   !> VTK cell type of an element of nen nodes: 5 triangle, 9 quad, 22 quadratic
@@ -316,19 +319,21 @@ contains
   !> Contact table: one row per slave node of each pair, along the boundary.
   !> Slave nodes with no master opposite (no constraint row) have empty gap0
   !> and gap fields and status -1.
-  subroutine write_contact_csv(path, cs, r, ok)
+  subroutine write_contact_csv(path, cs, r, err)
     character(len=*), intent(in) :: path
     type(contact_set_t), intent(in) :: cs
     type(results_t), intent(in) :: r
-    logical, intent(out) :: ok
+    type(error_t), allocatable, intent(out) :: err
     integer :: u, ios, ip, i, row, t, rows(3), nr
     real(dp), allocatable :: tforce(:)
     character(len=32) :: sx(4)
     character(len=:), allocatable :: extra
     logical :: friction
     open(newunit=u, file=path, status='replace', action='write', form='formatted', iostat=ios)
-    ok = ios == 0
-    if (.not. ok) return
+    if (ios /= 0) then
+      call cannot_write(path, err)
+      return
+    end if
     friction = allocated(r%tau)
     if (friction) then
       allocate(tforce(cs%nrow), source=0.0_dp)
@@ -371,8 +376,15 @@ contains
       end associate
     end do
     close(u, iostat=ios)
-    ok = ios == 0
+    if (ios /= 0) call cannot_write(path, err)
   end subroutine write_contact_csv
+
+  !> err: path cannot be written (status 2).
+  subroutine cannot_write(path, err)
+    character(len=*), intent(in) :: path
+    type(error_t), allocatable, intent(out) :: err
+    call set_error(err, path // ': cannot write the file', 2)
+  end subroutine cannot_write
 
   function num(x) result(s)
     real(dp), intent(in) :: x
@@ -383,14 +395,16 @@ contains
   end function num
 
   !> The summary: one `key value...` per line (DECK.md), plus extra keys.
-  subroutine write_summary(path, r, ok)
+  subroutine write_summary(path, r, err)
     character(len=*), intent(in) :: path
     type(results_t), intent(in) :: r
-    logical, intent(out) :: ok
+    type(error_t), allocatable, intent(out) :: err
     integer :: u, ios, k
     open(newunit=u, file=path, status='replace', action='write', form='formatted', iostat=ios)
-    ok = ios == 0
-    if (.not. ok) return
+    if (ios /= 0) then
+      call cannot_write(path, err)
+      return
+    end if
     write(u, '(a)') 'effects ' // r%effects
     write(u, '(a)') 'force_basis ' // trim(merge('full_circle       ', 'per_unit_thickness', r%axisymmetric))
     if (allocated(r%parameter)) then
@@ -451,21 +465,24 @@ contains
     write(u, '(a,a)') 'time_ordering ', num(r%time_ordering)
     write(u, '(a,a)') 'time_assemble_values ', num(r%time_assemble_values)
     close(u, iostat=ios)
-    ok = ios == 0
+    if (ios /= 0) call cannot_write(path, err)
   end subroutine write_summary
 
   !> A ParaView collection (.pvd) of the per-step VTK files: the dataset of
   !> step k is files(k), at timestep k.
   !>   path  (in)  file to write;  files (in) (nstep) names relative to the .pvd's folder
-  !>   ok    (out) written completely
-  subroutine write_pvd(path, files, ok)
+  !>   err   (out) allocated when not written completely
+  subroutine write_pvd(path, files, err)
     character(len=*), intent(in) :: path
     character(len=*), intent(in) :: files(:)
-    logical, intent(out) :: ok
+    type(error_t), allocatable, intent(out) :: err
     integer :: u, ios, k
+    logical :: ok
     open(newunit=u, file=path, status='replace', action='write', form='formatted', iostat=ios)
-    ok = ios == 0
-    if (.not. ok) return
+    if (ios /= 0) then
+      call cannot_write(path, err)
+      return
+    end if
     write(u, '(a)', iostat=ios) '<?xml version="1.0"?>'
     write(u, '(a)', iostat=ios) '<VTKFile type="Collection" version="0.1">'
     write(u, '(a)', iostat=ios) '  <Collection>'
@@ -476,22 +493,25 @@ contains
     write(u, '(a)', iostat=ios) '</VTKFile>'
     ok = ios == 0
     close(u, iostat=ios)
-    ok = ok .and. ios == 0
+    if (.not. ok .or. ios /= 0) call cannot_write(path, err)
   end subroutine write_pvd
 
   !> The table of the load steps (CSV): the header line, then one row per
   !> step; the first column (the step) and the last two (active nodes, LCP
   !> iterations) are integers.
   !>   header (in) the header line;  table (in) (ncol, nstep) the rows
-  subroutine write_step_table(path, header, table, ok)
+  subroutine write_step_table(path, header, table, err)
     character(len=*), intent(in) :: path, header
     real(dp), intent(in) :: table(:,:)
-    logical, intent(out) :: ok
+    type(error_t), allocatable, intent(out) :: err
     integer :: u, ios, k, c, nc
+    logical :: ok
     character(len=:), allocatable :: line
     open(newunit=u, file=path, status='replace', action='write', form='formatted', iostat=ios)
-    ok = ios == 0
-    if (.not. ok) return
+    if (ios /= 0) then
+      call cannot_write(path, err)
+      return
+    end if
     write(u, '(a)', iostat=ios) header
     nc = size(table, 1)
     do k = 1, size(table, 2)
@@ -508,7 +528,7 @@ contains
     end do
     ok = ios == 0
     close(u, iostat=ios)
-    ok = ok .and. ios == 0
+    if (.not. ok .or. ios /= 0) call cannot_write(path, err)
   end subroutine write_step_table
 
   !> Peak resident set size of this process in bytes (VmHWM of

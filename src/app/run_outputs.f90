@@ -12,19 +12,19 @@
 !>
 !> Programming interface
 !>   make_folder(path, diag)     create the output folder and its parents (an input error when it cannot)
-!>   write_step(run, k)          step k's table row and VTK file (OUTPUT steps=all)
+!>   write_step(run, k, res)     step k's table row and VTK file from its results (OUTPUT steps=all)
 !>   write_outputs(run)          every file of the run, committed together; run%wrote for the log
 module run_outputs
   use kinds, only: dp
   use strings, only: int_to_str
-  use errors, only: diag_t, add_error
+  use errors, only: diag_t, add_error, error_t
   use exits, only: exit_program
   use run_state, only: run_t, ph_output
   use run_report, only: lap
   use deck_reader, only: path_too_long
   use load_groups, only: group_factor, group_name
   use post_processing, only: rigid_results
-  use results_writer, only: write_vtk, write_contact_csv, write_summary, write_pvd, write_step_table, peak_memory
+  use results_writer, only: results_t, write_vtk, write_contact_csv, write_summary, write_pvd, write_step_table, peak_memory
   use safe_files, only: make_folders, temporary_t, create_temporary, close_temporary, commit_temporaries, &
                         discard_temporaries
   use, intrinsic :: iso_fortran_env, only: error_unit
@@ -39,29 +39,31 @@ contains
   subroutine make_folder(path, d)
     character(len=*), intent(in) :: path
     type(diag_t), intent(inout) :: d
-    logical :: ok
+    type(error_t), allocatable :: err
     if (len(path_too_long(path, 0)) > 0) then
       call add_error(d, path(1:min(len(path), 40)) // '...', 0, 'cannot create the output folder: ' // path_too_long(path, 0))
       return
     end if
-    call make_folders(path, ok)
-    if (.not. ok) call add_error(d, path, 0, 'cannot create the output folder (a writable path expected)')
+    call make_folders(path, err)
+    if (allocated(err)) call add_error(d, path, 0, 'cannot create the output folder (a writable path expected)')
   end subroutine make_folder
 
   !> Step k's row of NAME_steps.csv and its VTK file STEM_000k.vtk (a
   !> temporary, committed with the run's other files by write_outputs).
-  !>   run   (inout) the step's results on entry
+  !>   run   (inout) step_table's row k, step_tmp(k) on exit
   !>   kstep (in)    the step, 1 .. steps - 1
-  subroutine write_step(run, kstep)
+  !>   res   (inout) the step's results (res%rigid set here)
+  subroutine write_step(run, kstep, res)
     type(run_t), intent(inout) :: run
     integer, intent(in) :: kstep
-    logical :: ok
-    call add_step_row(run, kstep)
-    call create_step_file(run, kstep, ok)
-    if (ok) call write_vtk(run%step_tmp(kstep)%io_path, run%deck%title, run%sc%bodies, run%res, &
-                           run%deck%output%fields, ok)
+    type(results_t), intent(inout) :: res
+    type(error_t), allocatable :: err
+    call add_step_row(run, kstep, res)
+    call create_step_file(run, kstep, err)
+    if (.not. allocated(err)) call write_vtk(run%step_tmp(kstep)%io_path, run%deck%title, run%sc%bodies, res, &
+                                             run%deck%output%fields, err)
     call close_temporary(run%step_tmp(kstep))
-    if (.not. ok) call output_failure(run)
+    if (allocated(err)) call output_failure(run)
   end subroutine write_step
 
   !> Write every output to a temporary of its own, then commit them all; the
@@ -71,44 +73,48 @@ contains
   subroutine write_outputs(run)
     type(run_t), intent(inout) :: run
     type(temporary_t), allocatable :: tmp(:)
-    logical :: ok
+    type(error_t), allocatable :: err
     character(len=:), allocatable :: names(:)
     integer :: kstep, nl, i
     character(len=:), allocatable :: line1, line2
     ! the run's three files, then with steps=all the .pvd, the step table and
     ! the per-step VTK files (all but the last one written as they were solved)
-    if (run%deck%output%steps_all) call add_step_row(run, run%sc%steps)
+    if (run%deck%output%steps_all) call add_step_row(run, run%sc%steps, run%res)
     allocate(tmp(3))
-    call create_temporary(run%outdir, run%deck%output%vtk, tmp(1), ok)
-    if (ok .and. run%cs%npair > 0) call create_temporary(run%outdir, run%deck%output%contact, tmp(2), ok)
-    if (ok) call create_temporary(run%outdir, run%deck%output%summary, tmp(3), ok)
-    if (ok) call write_vtk(tmp(1)%io_path, run%deck%title, run%sc%bodies, run%res, run%deck%output%fields, ok)
-    if (ok .and. run%cs%npair > 0) call write_contact_csv(tmp(2)%io_path, run%cs, run%res, ok)
-    if (ok .and. run%deck%output%steps_all) then
-      call create_step_file(run, run%sc%steps, ok)
-      if (ok) call write_vtk(run%step_tmp(run%sc%steps)%io_path, run%deck%title, run%sc%bodies, run%res, &
-                             run%deck%output%fields, ok)
+    ! each call below runs only while no error has come (err is the first)
+    call create_temporary(run%outdir, run%deck%output%vtk, tmp(1), err)
+    if (.not. allocated(err) .and. run%cs%npair > 0) &
+      call create_temporary(run%outdir, run%deck%output%contact, tmp(2), err)
+    if (.not. allocated(err)) call create_temporary(run%outdir, run%deck%output%summary, tmp(3), err)
+    if (.not. allocated(err)) &
+      call write_vtk(tmp(1)%io_path, run%deck%title, run%sc%bodies, run%res, run%deck%output%fields, err)
+    if (.not. allocated(err) .and. run%cs%npair > 0) call write_contact_csv(tmp(2)%io_path, run%cs, run%res, err)
+    if (.not. allocated(err) .and. run%deck%output%steps_all) then
+      call create_step_file(run, run%sc%steps, err)
+      if (.not. allocated(err)) call write_vtk(run%step_tmp(run%sc%steps)%io_path, run%deck%title, run%sc%bodies, &
+                                               run%res, run%deck%output%fields, err)
       nl = len(step_file(run, run%sc%steps))
       allocate(character(len=nl) :: names(run%sc%steps))
       do kstep = 1, run%sc%steps
         names(kstep) = step_file(run, kstep)
       end do
       tmp = [tmp, temporary_t(), temporary_t(), run%step_tmp]
-      if (ok) call create_temporary(run%outdir, output_stem(run) // '.pvd', tmp(4), ok)
-      if (ok) call write_pvd(tmp(4)%io_path, names, ok)
-      if (ok) call create_temporary(run%outdir, output_stem(run) // '_steps.csv', tmp(5), ok)
-      if (ok) call write_step_table(tmp(5)%io_path, step_header(run), run%step_table, ok)
+      if (.not. allocated(err)) call create_temporary(run%outdir, output_stem(run) // '.pvd', tmp(4), err)
+      if (.not. allocated(err)) call write_pvd(tmp(4)%io_path, names, err)
+      if (.not. allocated(err)) call create_temporary(run%outdir, output_stem(run) // '_steps.csv', tmp(5), err)
+      if (.not. allocated(err)) call write_step_table(tmp(5)%io_path, step_header(run), run%step_table, err)
     end if
-    if (ok) then
+    if (.not. allocated(err)) then
       call lap(run, ph_output)
       run%res%memory_peak = peak_memory()
-      call write_summary(tmp(3)%io_path, run%res, ok)
+      call write_summary(tmp(3)%io_path, run%res, err)
     end if
     do i = 1, size(tmp)
       call close_temporary(tmp(i))
     end do
-    if (ok) call commit_temporaries(run%outdir, tmp, ok)
-    if (.not. ok) then
+    if (.not. allocated(err)) call commit_temporaries(run%outdir, tmp, err)
+    ! the message names the output folder, whichever file failed
+    if (allocated(err)) then
       call discard_temporaries(tmp)
       write(error_unit, '(a)') 'contact2d: error: ' // run%outdir // ': cannot write the output files ' // &
         '(a writable folder expected)'
@@ -130,12 +136,12 @@ contains
   end subroutine write_outputs
 
   !> The temporary of step k's VTK file (STEM_000k.vtk).
-  subroutine create_step_file(run, kstep, ok)
+  subroutine create_step_file(run, kstep, err)
     type(run_t), intent(inout) :: run
     integer, intent(in) :: kstep
-    logical, intent(out) :: ok
+    type(error_t), allocatable, intent(out) :: err
     if (.not. allocated(run%step_tmp)) allocate(run%step_tmp(run%sc%steps))
-    call create_temporary(run%outdir, step_file(run, kstep), run%step_tmp(kstep), ok)
+    call create_temporary(run%outdir, step_file(run, kstep), run%step_tmp(kstep), err)
   end subroutine create_step_file
 
   !> STEM_000k.vtk, STEM the vtk= name without .vtk.
@@ -154,28 +160,29 @@ contains
     stem = run%deck%output%vtk(1:len(run%deck%output%vtk) - 4)
   end function output_stem
 
-  !> Row k of NAME_steps.csv from res: step, the load factor of each load
-  !> path, the reactions of every FIX, the contact resultant of every pair,
-  !> active nodes, LCP iterations.
-  subroutine add_step_row(run, kstep)
+  !> Row k of NAME_steps.csv from the step's results res: step, the load
+  !> factor of each load path, the reactions of every FIX, the contact
+  !> resultant of every pair, active nodes, LCP iterations.
+  subroutine add_step_row(run, kstep, res)
     type(run_t), intent(inout) :: run
     integer, intent(in) :: kstep
+    type(results_t), intent(inout) :: res
     integer :: ng, nc, g, c
     ng = size(run%sc%ramp, 2)
     nc = 1 + ng + 2 * size(run%sc%fixes) + 2 * run%cs%npair + 6 * size(run%sc%rigids) + 2
-    call rigid_results(run)
+    call rigid_results(run, res)
     if (.not. allocated(run%step_table)) allocate(run%step_table(nc, run%sc%steps), source=0.0_dp)
     run%step_table(1, kstep) = kstep
     do g = 1, ng
       run%step_table(1 + g, kstep) = group_factor(run%sc, g, kstep)
     end do
     c = 1 + ng
-    run%step_table(c + 1:c + 2 * size(run%sc%fixes), kstep) = reshape(run%res%reaction, [2 * size(run%sc%fixes)])
+    run%step_table(c + 1:c + 2 * size(run%sc%fixes), kstep) = reshape(res%reaction, [2 * size(run%sc%fixes)])
     c = c + 2 * size(run%sc%fixes)
-    run%step_table(c + 1:c + 2 * run%cs%npair, kstep) = reshape(run%res%contact_force, [2 * run%cs%npair])
+    run%step_table(c + 1:c + 2 * run%cs%npair, kstep) = reshape(res%contact_force, [2 * run%cs%npair])
     c = c + 2 * run%cs%npair
-    run%step_table(c + 1:c + 6 * size(run%sc%rigids), kstep) = reshape(run%res%rigid, [6 * size(run%sc%rigids)])
-    run%step_table(nc - 1, kstep) = run%res%active_nodes
+    run%step_table(c + 1:c + 6 * size(run%sc%rigids), kstep) = reshape(res%rigid, [6 * size(run%sc%rigids)])
+    run%step_table(nc - 1, kstep) = res%active_nodes
     run%step_table(nc, kstep) = run%step_iterations
   end subroutine add_step_row
 

@@ -16,8 +16,8 @@
 !>                        indented under the message
 !>   has_errors(d)        .true. when at least one message was collected
 !>   print_errors(d)      write every message to stderr, in order
-!>   type(error_t)        a mid-level error: message, exit status (1 or 2), the equation or pair it names,
-!>                        whether K is singular or memory ran out
+!>   type(error_t)        a mid-level error: message, exit status (1 or 2), the input line, equation or
+!>                        pair it names, whether K is singular or memory ran out (and how much)
 !>   set_error(err, message [, status])
 !>                        err = message, status 2 (input) or 1 (numerical, the default)
 !>   set_out_of_memory(err, phase, bytes)
@@ -49,8 +49,11 @@ module errors
     integer :: status = 1                      !< exit status: 1 numerical, 2 input
     integer :: equation = 0                    !< the free equation (row of K) it names, 0: none
     integer :: pair = 0                        !< the contact pair (its CONTACT statement, 1-based) it names, 0: none
+    integer :: line = 0                        !< the line of the input file it names, 0: the file as a whole
+    character(len=:), allocatable :: echo      !< that line as read, for the message (unallocated: none)
     logical :: singular = .false.              !< K singular or not positive definite (at equation, when > 0)
     logical :: no_memory = .false.             !< an allocation failed (set_out_of_memory)
+    integer(i8) :: bytes = 0                   !< what that allocation needed, bytes (set_out_of_memory)
   end type error_t
 
 contains
@@ -122,6 +125,7 @@ contains
     call set_error(err, 'out of memory while ' // phase // ' (about ' // &
                    i8_to_str(max(1_i8, (bytes + 1048575_i8) / 1048576_i8)) // ' MB needed)', 1)
     err%no_memory = .true.
+    err%bytes = bytes
   end subroutine set_out_of_memory
 
 end module errors

@@ -12,7 +12,7 @@
 !>
 !> Programming interface
 !>   type(text_buffer_t)          byte buffer bound to a stream file
-!>   open_text(tb, path, ok)      create or replace the file
+!>   open_text(tb, path, err)     create or replace the file
 !>   open_memory(tb)              a buffer bound to no file: it grows, and
 !>                                tb%buf(1:tb%used) holds the text
 !>   put_text(tb, s)              append a string
@@ -20,9 +20,10 @@
 !>   put_real(tb, x)              append ' [-]d.dddddddddE+eee'
 !>   put_int(tb, i)               append ' digits'
 !>   put_newline(tb)
-!>   close_text(tb, ok)           flush and close; ok = every write succeeded
+!>   close_text(tb, err)          flush and close; err when a write failed
 module text_buffer
   use kinds, only: dp, i8
+  use errors, only: error_t, set_error
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
   implicit none
   private
@@ -52,18 +53,20 @@ module text_buffer
 
 contains
 
-  subroutine open_text(tb, path, ok)
+  !> Bind tb to a new stream file path (replaced when it exists).
+  !>   err (out) allocated when the file cannot be opened (tb is then bound to none)
+  subroutine open_text(tb, path, err)
     type(text_buffer_t), intent(out) :: tb
     character(len=*), intent(in) :: path
-    logical, intent(out) :: ok
+    type(error_t), allocatable, intent(out) :: err
     integer :: ios
     open(newunit=tb%unit, file=path, access='stream', form='unformatted', status='replace', &
          action='write', iostat=ios)
-    ok = ios == 0
-    tb%ok = ok
-    tb%opened = ok
+    tb%ok = ios == 0
+    tb%opened = tb%ok
     allocate(character(len=capacity) :: tb%buf)
     tb%used = 0
+    if (ios /= 0) call set_error(err, path // ': cannot open the file for writing', 2)
   end subroutine open_text
 
   subroutine open_memory(tb)
@@ -262,17 +265,19 @@ contains
     end if
   end subroutine append
 
-  subroutine close_text(tb, ok)
+  !> Write what is pending and close the file.
+  !>   err (out) allocated when any write or the close failed
+  subroutine close_text(tb, err)
     type(text_buffer_t), intent(inout) :: tb
-    logical, intent(out) :: ok
+    type(error_t), allocatable, intent(out) :: err
     integer :: ios
     if (.not. tb%memory) call flush_buffer(tb)
-    ok = tb%ok
     if (tb%opened) then
       close(tb%unit, iostat=ios)
-      if (ios /= 0) ok = .false.
+      if (ios /= 0) tb%ok = .false.
     end if
     tb%opened = .false.
+    if (.not. tb%ok) call set_error(err, 'cannot write the file (a write or its close failed)', 2)
   end subroutine close_text
 
 end module text_buffer

@@ -64,28 +64,29 @@ contains
     type(error_t), allocatable, intent(out), optional :: err
     type(msh_text_t) :: t
     type(msh_data_t) :: d
-    type(error_t), allocatable :: oom
-    type(mesh_t) :: empty
-    logical :: ok
+    type(error_t), allocatable :: e
     integer(i8) :: bytes
-    integer :: n0
 
-    n0 = diag%count
     t%path = path
-    call load_text(t, diag, ok)
-    if (ok) call read_sections(t, d, diag, ok)
-    bytes = t%oom_bytes
-    if (ok) then
-      call build_mesh(d, mesh, bytes)
-      if (bytes > 0) mesh = empty
+    call load_text(t, e)
+    if (.not. allocated(e)) call read_sections(t, d, e)
+    if (.not. allocated(e)) call build_mesh(d, mesh, e)
+    if (.not. allocated(e)) return
+    if (.not. e%no_memory) then                ! a defect of the file: FILE:LINE, the line echoed
+      if (allocated(e%echo)) then
+        call add_error(diag, path, e%line, e%message, echo=e%echo)
+      else
+        call add_error(diag, path, e%line, e%message)
+      end if
+      return
     end if
-    if (bytes == 0) return
-    diag%count = n0                  ! a message that came of the failure is not a defect of the file
-    call set_out_of_memory(oom, 'reading the mesh file ' // path, bytes)
+    ! the layers below say what ran out; the message names the file
+    bytes = e%bytes                            ! (e is remade: not e%bytes itself as the argument)
+    call set_out_of_memory(e, 'reading the mesh file ' // path, bytes)
     if (present(err)) then
-      call move_alloc(oom, err)
+      call move_alloc(e, err)
     else
-      call add_error(diag, path, 0, oom%message)
+      call add_error(diag, path, 0, e%message)
     end if
   end subroutine read_gmsh_file
 

@@ -13,15 +13,16 @@
 !>
 !> Programming interface
 !>   type(gmsh_options_t)    trust_geo, timeout (seconds)
-!>   mesh_geo_file(geo_path, order, names, values, opts, read_folder, msh_path, log_path, ok, message)
+!>   mesh_geo_file(geo_path, order, names, values, opts, read_folder, msh_path, log_path, err)
 !>        gmsh -2 -order ORDER -format msh41 -v 2 [-setnumber NAME VALUE]... GEO -o MSH,
-!>        its output to LOG (which must not exist); ok when gmsh exits 0 and wrote
-!>        MSH, else message says why (gmsh's first error lines, the time limit)
+!>        its output to LOG (which must not exist); err unless gmsh exits 0 and wrote
+!>        MSH, its message saying why (gmsh's first error lines, the time limit)
 module gmsh_runner
   use, intrinsic :: iso_c_binding, only: c_int, c_double, c_null_char
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp, i8
   use strings, only: int_to_str, real_to_str, printable
+  use errors, only: error_t, set_error
   use system_binding, only: c2d_find_program, c2d_run_program, c_unlink, c2d_run_exited, c2d_run_signaled, &
                             c2d_run_timeout
   use safe_files, only: read_file, real_path, folder_of, file_kind, c2d_regular
@@ -57,53 +58,50 @@ contains
   !>   msh_path    (in)  the mesh to write, in a folder of the run's own (the only
   !>                     folder the sandbox lets gmsh write)
   !>   log_path    (in)  where gmsh's output goes (made here: must not exist)
-  !>   ok          (out) .true. when gmsh exited with status 0 and wrote msh_path
-  !>   message     (out) '' when ok; else what went wrong
-  subroutine mesh_geo_file(geo_path, order, names, values, opts, read_folder, msh_path, log_path, ok, message)
+  !>   err         (out) unallocated when gmsh exited with status 0 and wrote msh_path;
+  !>                     else its message says what went wrong (status 2)
+  subroutine mesh_geo_file(geo_path, order, names, values, opts, read_folder, msh_path, log_path, err)
     character(len=*), intent(in) :: geo_path, read_folder, msh_path, log_path
     integer, intent(in) :: order
     character(len=*), intent(in) :: names(:)
     real(dp), intent(in) :: values(:)
     type(gmsh_options_t), intent(in) :: opts
-    logical, intent(out) :: ok
-    character(len=:), allocatable, intent(out) :: message
-    character(len=:), allocatable :: gmsh, bwrap, geo, out_folder
+    type(error_t), allocatable, intent(out) :: err
+    character(len=:), allocatable :: gmsh, bwrap, geo, out_folder, message
     type(argv_t) :: argv
     integer(c_int) :: how, status
     integer :: i
     logical :: found
 
-    ok = .false.
-    message = ''
     if (size(names) /= size(values)) then
-      message = 'gmsh parameters: ' // int_to_str(size(names)) // ' names but ' // int_to_str(size(values)) // &
-        ' values (one value per name expected)'
+      call set_error(err, 'gmsh parameters: ' // int_to_str(size(names)) // ' names but ' // int_to_str(size(values)) // &
+        ' values (one value per name expected)', 2)
       return
     end if
     do i = 1, size(names)
       if (len_trim(names(i)) == 0) then
-        message = 'gmsh parameter ' // int_to_str(i) // ' has an empty name (a name for -setnumber expected)'
+        call set_error(err, 'gmsh parameter ' // int_to_str(i) // ' has an empty name (a name for -setnumber expected)', 2)
         return
       end if
       if (.not. ieee_is_finite(values(i))) then
-        message = 'gmsh parameter ' // trim(names(i)) // ' is not finite (a finite number expected)'
+        call set_error(err, 'gmsh parameter ' // trim(names(i)) // ' is not finite (a finite number expected)', 2)
         return
       end if
     end do
     call find_program('gmsh', gmsh, found)
     if (.not. found) then
-      message = 'gmsh not found on PATH (install the Debian package gmsh)'
+      call set_error(err, 'gmsh not found on PATH (install the Debian package gmsh)', 2)
       return
     end if
     ! absolute paths: the same inside the sandbox, and never taken for an option
     call real_path(geo_path, geo, found)
     if (.not. found) then
-      message = 'cannot find "' // geo_path // '"'
+      call set_error(err, 'cannot find "' // geo_path // '"', 2)
       return
     end if
     call real_path(folder_of(msh_path), out_folder, found)
     if (.not. found) then
-      message = 'no folder for the mesh "' // msh_path // '"'
+      call set_error(err, 'no folder for the mesh "' // msh_path // '"', 2)
       return
     end if
     if (c_unlink(msh_path // c_null_char) /= 0) continue    ! a mesh there afterwards is gmsh's
@@ -133,20 +131,18 @@ contains
                         how, status) /= 0) continue
     select case (how)
     case (c2d_run_timeout)
-      message = 'gmsh did not finish within ' // real_to_str(opts%timeout) // ' s (--gmsh-timeout): stopped ' // &
-                '(a .geo that ends expected; an endless loop?)'
+      call set_error(err, 'gmsh did not finish within ' // real_to_str(opts%timeout) // ' s (--gmsh-timeout): stopped ' // &
+                '(a .geo that ends expected; an endless loop?)', 2)
       return
     case (c2d_run_signaled)
-      message = 'gmsh was killed by signal ' // int_to_str(int(status)) // gmsh_errors(log_path, '; ')
+      call set_error(err, 'gmsh was killed by signal ' // int_to_str(int(status)) // gmsh_errors(log_path, '; '), 2)
       return
     case (c2d_run_exited)
     case default
-      message = 'cannot run ' // gmsh // ' (error ' // int_to_str(int(status)) // ')'
+      call set_error(err, 'cannot run ' // gmsh // ' (error ' // int_to_str(int(status)) // ')', 2)
       return
     end select
-    ok = file_kind(msh_path) == c2d_regular
-    ok = ok .and. status == 0
-    if (ok) return
+    if (file_kind(msh_path) == c2d_regular .and. status == 0) return
     message = gmsh_errors(log_path, '')
     if (len(message) == 0) then
       if (status /= 0) then
@@ -155,6 +151,7 @@ contains
         message = 'gmsh wrote no mesh file'
       end if
     end if
+    call set_error(err, message, 2)
   end subroutine mesh_geo_file
 
   !> The path of a program on PATH.

@@ -8,19 +8,20 @@
 !>   type(record_list_t)               a growing table of integer records
 !>   type(string_t)                    a character string of any length (text_scan's)
 !>   raw_width                         width of an element record
-!>   reserve_records(list, width, capacity, ok), ensure_room(list, width, nmore, ok),
-!>   push_record(list, rec, ok)        grow and fill a table; ok = .false. when
-!>                                     memory ran out (the list is unchanged)
-!>   record_bytes(list, width, nmore)  what ensure_room would allocate
+!>   reserve_records(list, width, capacity, err), ensure_room(list, width, nmore, err),
+!>   push_record(list, rec, err)       grow and fill a table; err (out of memory, with
+!>                                     the bytes asked for) when memory ran out (the
+!>                                     list is then unchanged)
 !>   node_of_tag(d, tag)               node of a node tag, 0 when none
 module msh_data
   use kinds, only: dp, i8
+  use errors, only: error_t, set_out_of_memory
   use sorting, only: search_columns
   use text_scan, only: string_t
   implicit none
   private
   public :: msh_data_t, record_list_t, string_t, raw_width
-  public :: reserve_records, ensure_room, push_record, record_bytes, node_of_tag
+  public :: reserve_records, ensure_room, push_record, node_of_tag
 
   integer, parameter :: raw_width = 11             !< nen, 9 nodes, line: an element read
 
@@ -65,37 +66,37 @@ module msh_data
 contains
 
   !> Make room for capacity records of the given width in an empty list.
-  !>   ok (out) .false. when the allocation failed (the list is then unchanged)
-  subroutine reserve_records(list, width, capacity, ok)
+  !>   err (out) allocated when the allocation failed (the list is then unchanged)
+  subroutine reserve_records(list, width, capacity, err)
     type(record_list_t), intent(inout) :: list
     integer, intent(in) :: width, capacity
-    logical, intent(out) :: ok
+    type(error_t), allocatable, intent(out) :: err
     integer :: stat
-    ok = .true.
     if (allocated(list%v)) return
     allocate(list%v(width, max(capacity, 64)), stat=stat)
-    ok = stat == 0
+    if (stat /= 0) call set_out_of_memory(err, 'reading a mesh file', record_bytes(list, width, capacity))
   end subroutine reserve_records
 
   !> Room in a list of records of a given width for nmore more records: the
   !> capacity doubles (or grows to what is needed).
-  !>   ok (out) .false. when the allocation failed (the list is then unchanged)
-  subroutine ensure_room(list, width, nmore, ok)
+  !>   err (out) allocated when the allocation failed (the list is then unchanged)
+  subroutine ensure_room(list, width, nmore, err)
     type(record_list_t), intent(inout) :: list
     integer, intent(in) :: width, nmore
-    logical, intent(out) :: ok
+    type(error_t), allocatable, intent(out) :: err
     integer(i8), allocatable :: grown(:,:)
     integer :: stat
-    ok = .true.
     if (.not. allocated(list%v)) then
       allocate(list%v(width, max(nmore, 64)), stat=stat)
-      ok = stat == 0
+      if (stat /= 0) call set_out_of_memory(err, 'reading a mesh file', record_bytes(list, width, nmore))
       return
     end if
     if (list%n + nmore > size(list%v, 2)) then
       allocate(grown(width, max(2 * list%n, list%n + nmore)), stat=stat)
-      ok = stat == 0
-      if (.not. ok) return
+      if (stat /= 0) then
+        call set_out_of_memory(err, 'reading a mesh file', record_bytes(list, width, nmore))
+        return
+      end if
       grown(:, 1:list%n) = list%v(:, 1:list%n)
       call move_alloc(grown, list%v)
     end if
@@ -110,13 +111,13 @@ contains
   end function record_bytes
 
   !> Append one record to a list (width = size(rec), fixed by the first push).
-  !>   ok (out) .false. when the list could not grow (it is then unchanged)
-  subroutine push_record(list, rec, ok)
+  !>   err (out) allocated when the list could not grow (it is then unchanged)
+  subroutine push_record(list, rec, err)
     type(record_list_t), intent(inout) :: list
     integer(i8), intent(in) :: rec(:)
-    logical, intent(out) :: ok
-    call ensure_room(list, size(rec), 1, ok)
-    if (.not. ok) return
+    type(error_t), allocatable, intent(out) :: err
+    call ensure_room(list, size(rec), 1, err)
+    if (allocated(err)) return
     list%n = list%n + 1
     list%v(:, list%n) = rec
   end subroutine push_record

@@ -15,10 +15,11 @@
 !>   quality checks are the caller's (finalize_mesh of module mesh).
 !>
 !> Programming interface
-!>   build_mesh(d, mesh, oom_bytes)   the mesh of d; oom_bytes > 0 when an
-!>                                    allocation of that size failed (mesh empty)
+!>   build_mesh(d, mesh, err)         the mesh of d; err when an allocation
+!>                                    failed (out of memory, with its size; mesh empty)
 module msh_mesh
   use kinds, only: i8
+  use errors, only: error_t, set_out_of_memory
   use mesh, only: mesh_t
   use sorting, only: sort_columns, search_columns, mark_repeated, sort_small, text_key_words, pack_text, &
                      number_classes
@@ -32,9 +33,23 @@ contains
 
   !> Merge repeated 2D elements, fill the mesh and its named sets.
   !>   d    (in)  what the sections held
-  !>   mesh (out) the mesh; partial when memory ran out
-  !>   oom  (out) 0, or the size in bytes of an allocation that failed
-  subroutine build_mesh(d, mesh, oom)
+  !>   mesh (out) the mesh; empty when memory ran out
+  !>   err  (out) allocated when an allocation failed (no_memory, its bytes)
+  subroutine build_mesh(d, mesh, err)
+    type(msh_data_t), intent(in) :: d
+    type(mesh_t), intent(out) :: mesh
+    type(error_t), allocatable, intent(out) :: err
+    type(mesh_t) :: empty
+    integer(i8) :: oom
+    call fill_mesh(d, mesh, oom)
+    if (oom == 0) return
+    mesh = empty
+    call set_out_of_memory(err, 'building the mesh', oom)
+  end subroutine build_mesh
+
+  !> build_mesh's work; the helpers below record a failed allocation in oom.
+  !>   oom  (out) 0, or the size in bytes of an allocation that failed (mesh partial)
+  subroutine fill_mesh(d, mesh, oom)
     type(msh_data_t), intent(in) :: d
     type(mesh_t), intent(out) :: mesh
     integer(i8), intent(out) :: oom
@@ -71,7 +86,7 @@ contains
     call build_boundaries(d, mesh, oom)
     if (oom > 0) return
     call build_regions(d, elem_of_raw, mesh, oom)
-  end subroutine build_mesh
+  end subroutine fill_mesh
 
   !> stat /= 0: an allocation of about bytes failed, recorded in oom.
   logical function failed(stat, bytes, oom)

@@ -14,24 +14,23 @@
 !>     parametric coordinates are accepted.
 !>
 !> The section readers share their arguments: t (inout) the file and the
-!> reading position, d (inout) what has been read, diag (inout) the messages,
-!> and ok (out) .false. once an error has been reported (reading then stops)
-!> or an allocation failed (t%oom_bytes).
+!> reading position, d (inout) what has been read, and err (out) the first
+!> defect of the file or a failed allocation (reading then stops).
 !>
 !> Programming interface
-!>   read_sections(t, d, diag, ok)   every section of the loaded file t into d
+!>   read_sections(t, d, err)   every section of the loaded file t into d
 module msh_sections
   use kinds, only: dp, i8
   use strings, only: int_to_str, i8_to_str, real_to_str
-  use errors, only: diag_t, add_error
+  use errors, only: error_t
   use text_scan, only: scan_integer
   use sorting, only: sort_columns
   use msh_text, only: msh_text_t, advance_line, remaining_lines, item, quoted_item, read_data_line, &
-                      expect_section_end, fail, fail_at, get_integer, get_count, get_real, &
-                      msh_real, read_block_header, scan_data_lines, out_of_memory, allocation_failed, no_integers, &
+                      expect_section_end, fail, fail_at, file_error, get_integer, get_count, get_real, &
+                      msh_real, read_block_header, scan_data_lines, allocation_failed, no_integers, &
                       no_reals, no_lower_bounds, end_blocks, read_block_line, &
                       get_dimension_tag
-  use msh_data, only: msh_data_t, push_record, record_bytes
+  use msh_data, only: msh_data_t, push_record
   use msh_elements, only: read_elements_22, read_elements_41
   implicit none
   private
@@ -42,136 +41,131 @@ module msh_sections
 contains
 
   !> Read every section of the file into d, checking each line.
-  subroutine read_sections(t, d, diag, ok)
+  subroutine read_sections(t, d, err)
     type(msh_text_t), intent(inout) :: t
     type(msh_data_t), intent(inout) :: d
-    type(diag_t), intent(inout) :: diag
-    logical, intent(out) :: ok
+    type(error_t), allocatable, intent(out) :: err
     logical :: more, partitioned
     character(len=:), allocatable :: w
 
-    ok = .false.
     ! The first line that is not blank must open $MeshFormat.
     do
-      call advance_line(t, more)
+      call advance_line(t, more, err)
+      if (allocated(err)) return
       if (.not. more) then
-        call add_error(diag, t%path, 0, 'the mesh file holds only blank lines (a gmsh MSH file starting with '// &
-          '$MeshFormat expected)')
+        call file_error('the mesh file holds only blank lines (a gmsh MSH file starting with '// &
+          '$MeshFormat expected)', err)
         return
       end if
       if (t%ntok > 0) exit
     end do
     if (t%ntok /= 1 .or. item(t, 1) /= '$MeshFormat') then
-      call fail(t, diag, 'not a gmsh MSH file ($MeshFormat expected on the first line)')
+      call fail(t, 'not a gmsh MSH file ($MeshFormat expected on the first line)', err)
       return
     end if
-    call read_mesh_format(t, d, diag, ok)
-    if (.not. ok) return
+    call read_mesh_format(t, d, err)
+    if (allocated(err)) return
 
-    ok = .false.
     do
-      call advance_line(t, more)
+      call advance_line(t, more, err)
+      if (allocated(err)) return
       if (.not. more) exit
       if (t%ntok == 0) cycle
       w = item(t, 1)
       if (w(1:1) /= '$') then
-        call fail(t, diag, 'unexpected text outside a section (a section header such as $Nodes expected)')
+        call fail(t, 'unexpected text outside a section (a section header such as $Nodes expected)', err)
         return
       end if
       if (t%ntok /= 1) then
-        call fail(t, diag, 'wrong number of items: ' // int_to_str(t%ntok) // ' (a section header alone on its line expected)')
+        call fail(t, 'wrong number of items: ' // int_to_str(t%ntok) // ' (a section header alone on its line expected)', err)
         return
       end if
       select case (w)
       case ('$MeshFormat')
-        call fail(t, diag, 'second $MeshFormat section (one per file expected)')
+        call fail(t, 'second $MeshFormat section (one per file expected)', err)
         return
       case ('$PhysicalNames')
         if (.not. first_section(d%have_names)) return
-        call read_physical_names(t, d, diag, ok)
+        call read_physical_names(t, d, err)
       case ('$Entities', '$PartitionedEntities')
         ! $PartitionedEntities (gmsh -part) comes after $Entities and replaces it
         partitioned = w == '$PartitionedEntities'
         if (.not. d%v41) then
-          call expect_section_end(t, diag, w(2:), ok, skip=.true.)
+          call expect_section_end(t, w(2:), err, skip=.true.)
         else if (merge(d%have_partitions, d%have_entities, partitioned)) then
-          call fail(t, diag, 'second ' // w // ' section (one per file expected)')
+          call fail(t, 'second ' // w // ' section (one per file expected)', err)
           return
         else if (d%have_nodes .or. d%have_elements .or. (partitioned .neqv. d%have_entities)) then
-          call fail(t, diag, w // ' out of place (' // trim(merge('after $Entities and before', &
-            'before                    ', partitioned)) // ' $Nodes and $Elements expected)')
+          call fail(t, w // ' out of place (' // trim(merge('after $Entities and before', &
+            'before                    ', partitioned)) // ' $Nodes and $Elements expected)', err)
           return
         else
           d%have_entities = .true.
           d%have_partitions = partitioned
-          call read_entities(t, d, diag, partitioned, ok)
+          call read_entities(t, d, partitioned, err)
         end if
       case ('$Nodes')
         if (.not. first_section(d%have_nodes)) return
         if (d%v41) then
-          call read_nodes_41(t, d, diag, ok)
+          call read_nodes_41(t, d, err)
         else
-          call read_nodes_22(t, d, diag, ok)
+          call read_nodes_22(t, d, err)
         end if
-        if (ok) call check_nodes(t, d, diag, ok)
+        if (.not. allocated(err)) call check_nodes(t, d, err)
       case ('$Elements')
         if (.not. first_section(d%have_elements)) return
         if (.not. d%have_nodes) then
-          call fail(t, diag, '$Elements before $Nodes (the $Nodes section expected first)')
+          call fail(t, '$Elements before $Nodes (the $Nodes section expected first)', err)
           return
         end if
         if (d%v41) then
-          call read_elements_41(t, d, diag, ok)
+          call read_elements_41(t, d, err)
         else
-          call read_elements_22(t, d, diag, ok)
+          call read_elements_22(t, d, err)
         end if
       case default
         if (len(w) >= 4) then
           if (w(2:4) == 'End') then
-            call fail(t, diag, 'unexpected ' // quoted_item(t, 1) // ' (no section of that name is open)')
+            call fail(t, 'unexpected ' // quoted_item(t, 1) // ' (no section of that name is open)', err)
             return
           end if
         end if
-        call expect_section_end(t, diag, w(2:), ok, skip=.true.)
+        call expect_section_end(t, w(2:), err, skip=.true.)
       end select
-      if (.not. ok) return
-      ok = .false.
+      if (allocated(err)) return
     end do
 
     if (.not. d%have_nodes) then
-      call add_error(diag, t%path, 0, 'no $Nodes section (a gmsh mesh with $Nodes and $Elements sections expected)')
+      call file_error('no $Nodes section (a gmsh mesh with $Nodes and $Elements sections expected)', err)
       return
     end if
     if (.not. d%have_elements) then
-      call add_error(diag, t%path, 0, 'no $Elements section (a 2D mesh expected: mesh with gmsh -2)')
+      call file_error('no $Elements section (a 2D mesh expected: mesh with gmsh -2)', err)
       return
     end if
-    ok = .true.
   contains
     !> Section w is the first of its name in the file (seen false, then set);
     !> a second one is reported.
     logical function first_section(seen)
       logical, intent(inout) :: seen
       first_section = .not. seen
-      if (seen) call fail(t, diag, 'second ' // w // ' section (one per file expected)')
+      if (seen) call fail(t, 'second ' // w // ' section (one per file expected)', err)
       seen = .true.
     end function first_section
   end subroutine read_sections
 
   !> $MeshFormat: `version file-type data-size`, then $EndMeshFormat.
-  subroutine read_mesh_format(t, d, diag, ok)
+  subroutine read_mesh_format(t, d, err)
     type(msh_text_t), intent(inout) :: t
     type(msh_data_t), intent(inout) :: d
-    type(diag_t), intent(inout) :: diag
-    logical, intent(out) :: ok
+    type(error_t), allocatable, intent(out) :: err
     real(dp) :: version
     integer(i8) :: filetype, datasize
 
-    call read_data_line(t, diag, 'MeshFormat', 3, 'version file-type data-size, e.g. 4.1 0 8', ok)
-    if (.not. ok) return
-    ok = .false.
+    call read_data_line(t, 'MeshFormat', 3, 'version file-type data-size, e.g. 4.1 0 8', err)
+    if (allocated(err)) return
     if (msh_real(item(t, 1), version) /= 0) then
-      call fail(t, diag, 'bad MSH version ' // quoted_item(t, 1) // ' (2.2 or 4.1 expected)')
+      call fail(t, 'bad MSH version ' // quoted_item(t, 1) // ' (2.2 or 4.1 expected)', err)
       return
     end if
     if (abs(version - 2.2_dp) < 1.0e-9_dp) then
@@ -179,66 +173,61 @@ contains
     else if (abs(version - 4.1_dp) < 1.0e-9_dp) then
       d%v41 = .true.
     else
-      call fail(t, diag, 'unsupported MSH version ' // quoted_item(t, 1) // &
-        ' (2.2 or 4.1 expected: gmsh -format msh22 or -format msh41)')
+      call fail(t, 'unsupported MSH version ' // quoted_item(t, 1) // &
+        ' (2.2 or 4.1 expected: gmsh -format msh22 or -format msh41)', err)
       return
     end if
     if (.not. scan_integer(item(t, 2), filetype)) filetype = -1
     if (filetype == 1) then
-      call fail(t, diag, 'binary MSH file (ASCII expected: gmsh -format msh22 or -format msh41 without -bin)')
+      call fail(t, 'binary MSH file (ASCII expected: gmsh -format msh22 or -format msh41 without -bin)', err)
       return
     else if (filetype /= 0) then
-      call fail(t, diag, 'bad file type ' // quoted_item(t, 2) // ' (0 for ASCII expected)')
+      call fail(t, 'bad file type ' // quoted_item(t, 2) // ' (0 for ASCII expected)', err)
       return
     end if
     if (.not. scan_integer(item(t, 3), datasize)) datasize = -1
     if (datasize <= 0) then
-      call fail(t, diag, 'bad data size ' // quoted_item(t, 3) // ' (a positive integer, usually 8, expected)')
+      call fail(t, 'bad data size ' // quoted_item(t, 3) // ' (a positive integer, usually 8, expected)', err)
       return
     end if
-    call expect_section_end(t, diag, 'MeshFormat', ok)
+    call expect_section_end(t, 'MeshFormat', err)
   end subroutine read_mesh_format
 
   !> $PhysicalNames: count, then `dimension tag "name"` lines.
-  subroutine read_physical_names(t, d, diag, ok)
+  subroutine read_physical_names(t, d, err)
     type(msh_text_t), intent(inout) :: t
     type(msh_data_t), intent(inout) :: d
-    type(diag_t), intent(inout) :: diag
-    logical, intent(out) :: ok
+    type(error_t), allocatable, intent(out) :: err
     integer :: n, k, stat
     integer(i8) :: dim, tag, q1, q2
 
-    call read_data_line(t, diag, 'PhysicalNames', 1, 'the number of physical names', ok)
-    if (.not. ok) return
-    call get_count(t, diag, 1, 'number of physical names', remaining_lines(t), n, ok)
-    if (.not. ok) return
-    ok = .false.
+    call read_data_line(t, 'PhysicalNames', 1, 'the number of physical names', err)
+    if (allocated(err)) return
+    call get_count(t, 1, 'number of physical names', remaining_lines(t), n, err)
+    if (allocated(err)) return
     allocate(d%name_key(2, n), d%name_text(n), stat=stat)
-    if (allocation_failed(t, stat, 32_i8 * n)) return
+    if (allocation_failed(stat, 32_i8 * n, err)) return
     do k = 1, n
-      call read_data_line(t, diag, 'PhysicalNames', 0, 'dimension tag "name"', ok)
-      if (.not. ok) return
+      call read_data_line(t, 'PhysicalNames', 0, 'dimension tag "name"', err)
+      if (allocated(err)) return
       if (t%ntok < 3) then
-        call fail(t, diag, 'wrong number of items: ' // int_to_str(t%ntok) // ' (3 expected: dimension tag "name")')
-        ok = .false.
+        call fail(t, 'wrong number of items: ' // int_to_str(t%ntok) // ' (3 expected: dimension tag "name")', err)
         return
       end if
-      call get_dimension_tag(t, diag, 1, 'physical', dim, tag, ok)
-      if (.not. ok) return
+      call get_dimension_tag(t, 1, 'physical', dim, tag, err)
+      if (allocated(err)) return
       q1 = t%tbeg(3)
       q2 = t%tend(t%ntok)
       if (t%buf(q1:q1) /= '"' .or. q2 <= q1 .or. t%buf(q2:q2) /= '"') then
-        call fail(t, diag, 'bad physical name (a name in double quotes expected)')
-        ok = .false.
+        call fail(t, 'bad physical name (a name in double quotes expected)', err)
         return
       end if
       d%name_key(:, k) = [dim, tag]
       d%name_text(k)%s = t%buf(q1 + 1:q2 - 1)
     end do
-    ok = .false.
     call sort_columns(d%name_key, d%name_perm, stat)
-    if (allocation_failed(t, stat, 8_i8 * n)) return
-    call expect_section_end(t, diag, 'PhysicalNames', ok)
+    if (allocation_failed(stat, 8_i8 * n, err)) return
+    call expect_section_end(t, 'PhysicalNames', err)
   end subroutine read_physical_names
 
   !> $Entities (4.1): the physical tags of every point, curve, surface, volume.
@@ -253,12 +242,11 @@ contains
   !> curves and points gmsh adds where partitions meet list the tags of their
   !> parent surface or curve, which would name the wrong group.
   !>   partitioned (in) .true. for $PartitionedEntities
-  subroutine read_entities(t, d, diag, partitioned, ok)
+  subroutine read_entities(t, d, partitioned, err)
     type(msh_text_t), intent(inout) :: t
     type(msh_data_t), intent(inout) :: d
-    type(diag_t), intent(inout) :: diag
     logical, intent(in) :: partitioned
-    logical, intent(out) :: ok
+    type(error_t), allocatable, intent(out) :: err
     character(len=*), parameter :: what(0:3) = [character(len=18) :: 'number of points', &
       'number of curves', 'number of surfaces', 'number of volumes']
     character(len=*), parameter :: parent = 'tag parentDim parentTag numPartitions partitionTags'
@@ -275,39 +263,37 @@ contains
       point_line = parent // point_line(4:)
       entity_line = parent // entity_line(4:)
       section = 'PartitionedEntities'
-      call read_data_line(t, diag, section, 1, 'numPartitions', ok)
-      if (.not. ok) return
-      call get_integer(t, diag, 1, 'number of partitions', 1_i8, huge(1_i8), v, ok)
-      if (.not. ok) return
-      call read_data_line(t, diag, section, 1, 'numGhostEntities', ok)
-      if (.not. ok) return
-      call get_integer(t, diag, 1, 'number of ghost entities', 0_i8, int(remaining_lines(t), i8), v, ok)
-      if (.not. ok) return
+      call read_data_line(t, section, 1, 'numPartitions', err)
+      if (allocated(err)) return
+      call get_integer(t, 1, 'number of partitions', 1_i8, huge(1_i8), v, err)
+      if (allocated(err)) return
+      call read_data_line(t, section, 1, 'numGhostEntities', err)
+      if (allocated(err)) return
+      call get_integer(t, 1, 'number of ghost entities', 0_i8, int(remaining_lines(t), i8), v, err)
+      if (allocated(err)) return
       do k = 1, int(v)
-        call read_data_line(t, diag, section, 2, 'ghostEntityTag partition', ok)
-        if (.not. ok) return
+        call read_data_line(t, section, 2, 'ghostEntityTag partition', err)
+        if (allocated(err)) return
       end do
       ! the partitions' entities replace those of $Entities
       deallocate(d%ent_key, d%ent_first, d%ent_count, d%ent_perm)
       d%ent_phys%n = 0
     end if
-    call read_data_line(t, diag, section, 4, 'numPoints numCurves numSurfaces numVolumes', ok)
-    if (.not. ok) return
+    call read_data_line(t, section, 4, 'numPoints numCurves numSurfaces numVolumes', err)
+    if (allocated(err)) return
     left = remaining_lines(t)
     do dim = 0, 3
-      call get_count(t, diag, dim + 1, trim(what(dim)), left, counts(dim), ok)
-      if (.not. ok) return
+      call get_count(t, dim + 1, trim(what(dim)), left, counts(dim), err)
+      if (allocated(err)) return
     end do
     if (sum(int(counts, i8)) > int(left, i8)) then
-      call fail(t, diag, 'entity counts are more than the rest of the file holds (at most ' // int_to_str(left) // &
-        ' entities in all expected; truncated file?)')
-      ok = .false.
+      call fail(t, 'entity counts are more than the rest of the file holds (at most ' // int_to_str(left) // &
+        ' entities in all expected; truncated file?)', err)
       return
     end if
     nent = sum(counts)
-    ok = .false.
     allocate(d%ent_key(2, nent), d%ent_first(nent), d%ent_count(nent), stat=stat)
-    if (allocation_failed(t, stat, 24_i8 * nent)) return
+    if (allocation_failed(stat, 24_i8 * nent, err)) return
     nent = 0
     do dim = 0, 3
       do k = 1, counts(dim)
@@ -316,65 +302,60 @@ contains
         else
           line_what = entity_line
         end if
-        call read_data_line(t, diag, section, 0, line_what, ok)
-        if (.not. ok) return
-        ok = .false.
+        call read_data_line(t, section, 0, line_what, err)
+        if (allocated(err)) return
         ! o: the items before the coordinates that a partition's entity adds
         o = 0
         pdim = dim
         if (partitioned) then
           if (t%ntok < 4) then
-            call fail(t, diag, 'wrong number of items: ' // int_to_str(t%ntok) // ' (at least 4 expected: ' // &
-              line_what // ')')
+            call fail(t, 'wrong number of items: ' // int_to_str(t%ntok) // ' (at least 4 expected: ' // &
+              line_what // ')', err)
             return
           end if
-          call get_dimension_tag(t, diag, 2, 'parent', pdim, v, ok)
-          if (.not. ok) return
-          call get_integer(t, diag, 4, 'number of partitions', 0_i8, int(t%ntok - 4, i8), npart, ok)
-          if (.not. ok) return
-          ok = .false.
+          call get_dimension_tag(t, 2, 'parent', pdim, v, err)
+          if (allocated(err)) return
+          call get_integer(t, 4, 'number of partitions', 0_i8, int(t%ntok - 4, i8), npart, err)
+          if (allocated(err)) return
           o = 3 + int(npart)
         end if
         nfixed = merge(4, 7, dim == 0) + o
         if (t%ntok < nfixed + 1) then
-          call fail(t, diag, 'wrong number of items: ' // int_to_str(t%ntok) // ' (at least ' // &
-            int_to_str(nfixed + 1) // ' expected: ' // line_what // ')')
+          call fail(t, 'wrong number of items: ' // int_to_str(t%ntok) // ' (at least ' // &
+            int_to_str(nfixed + 1) // ' expected: ' // line_what // ')', err)
           return
         end if
-        call get_integer(t, diag, 1, 'entity tag', -huge(1_i8), huge(1_i8), tag, ok)
-        if (.not. ok) return
+        call get_integer(t, 1, 'entity tag', -huge(1_i8), huge(1_i8), tag, err)
+        if (allocated(err)) return
         do j = 2 + o, nfixed
-          call get_real(t, diag, j, 'a coordinate', r, ok)
-          if (.not. ok) return
+          call get_real(t, j, 'a coordinate', r, err)
+          if (allocated(err)) return
         end do
-        call get_integer(t, diag, nfixed + 1, 'number of physical tags', 0_i8, int(t%ntok - nfixed - 1, i8), nphys, ok)
-        if (.not. ok) return
+        call get_integer(t, nfixed + 1, 'number of physical tags', 0_i8, int(t%ntok - nfixed - 1, i8), nphys, err)
+        if (allocated(err)) return
         if (dim == 0) then
           if (t%ntok /= nfixed + 1 + nphys) then
-            call fail(t, diag, 'wrong number of items: ' // int_to_str(t%ntok) // ' (' // &
-              int_to_str(nfixed + 1 + int(nphys)) // ' expected: ' // point_line // ')')
-            ok = .false.
+            call fail(t, 'wrong number of items: ' // int_to_str(t%ntok) // ' (' // &
+              int_to_str(nfixed + 1 + int(nphys)) // ' expected: ' // point_line // ')', err)
             return
           end if
         else
           if (t%ntok < nfixed + 2 + nphys) then
-            call fail(t, diag, 'wrong number of items: ' // int_to_str(t%ntok) // ' (at least ' // &
-              int_to_str(nfixed + 2 + int(nphys)) // ' expected: ' // entity_line // ')')
-            ok = .false.
+            call fail(t, 'wrong number of items: ' // int_to_str(t%ntok) // ' (at least ' // &
+              int_to_str(nfixed + 2 + int(nphys)) // ' expected: ' // entity_line // ')', err)
             return
           end if
-          call get_integer(t, diag, nfixed + 2 + int(nphys), 'number of bounding entities', 0_i8, &
-            huge(1_i8), nbound, ok)
-          if (.not. ok) return
+          call get_integer(t, nfixed + 2 + int(nphys), 'number of bounding entities', 0_i8, &
+            huge(1_i8), nbound, err)
+          if (allocated(err)) return
           if (t%ntok /= nfixed + 2 + nphys + nbound) then
-            call fail(t, diag, 'wrong number of items: ' // int_to_str(t%ntok) // ' (' // &
-              trim(i8_to_str(nfixed + 2 + nphys + nbound)) // ' expected: ' // entity_line // ')')
-            ok = .false.
+            call fail(t, 'wrong number of items: ' // int_to_str(t%ntok) // ' (' // &
+              trim(i8_to_str(nfixed + 2 + nphys + nbound)) // ' expected: ' // entity_line // ')', err)
             return
           end if
           do j = nfixed + 3 + int(nphys), t%ntok
-            call get_integer(t, diag, j, 'bounding entity tag', -huge(1_i8), huge(1_i8), btag, ok)
-            if (.not. ok) return
+            call get_integer(t, j, 'bounding entity tag', -huge(1_i8), huge(1_i8), btag, err)
+            if (allocated(err)) return
           end do
         end if
         nent = nent + 1
@@ -383,42 +364,36 @@ contains
         if (pdim /= dim) nphys = 0            ! where partitions meet: no group of its own
         d%ent_count(nent) = int(nphys)
         do j = nfixed + 2, nfixed + 1 + int(nphys)
-          call get_integer(t, diag, j, 'physical tag', -huge(1_i8), huge(1_i8), phys, ok)
-          if (.not. ok) return
-          call push_record(d%ent_phys, [phys], ok)
-          if (.not. ok) then
-            call out_of_memory(t, record_bytes(d%ent_phys, 1, 1))
-            return
-          end if
+          call get_integer(t, j, 'physical tag', -huge(1_i8), huge(1_i8), phys, err)
+          if (allocated(err)) return
+          call push_record(d%ent_phys, [phys], err)
+          if (allocated(err)) return
         end do
       end do
     end do
-    ok = .false.
     call sort_columns(d%ent_key, d%ent_perm, stat)
-    if (allocation_failed(t, stat, 8_i8 * nent)) return
-    call expect_section_end(t, diag, section, ok)
+    if (allocation_failed(stat, 8_i8 * nent, err)) return
+    call expect_section_end(t, section, err)
   end subroutine read_entities
 
   !> $Nodes of MSH 2.2: count, then `tag x y z` lines.
-  subroutine read_nodes_22(t, d, diag, ok)
+  subroutine read_nodes_22(t, d, err)
     type(msh_text_t), intent(inout) :: t
     type(msh_data_t), intent(inout) :: d
-    type(diag_t), intent(inout) :: diag
-    logical, intent(out) :: ok
+    type(error_t), allocatable, intent(out) :: err
     integer :: n, k, first, stat
     real(dp), allocatable :: xyz(:,:)
     logical :: fast
 
-    call read_data_line(t, diag, 'Nodes', 1, 'the number of nodes', ok)
-    if (.not. ok) return
-    call get_count(t, diag, 1, 'number of nodes', remaining_lines(t), n, ok)
-    if (.not. ok) return
-    call allocate_nodes(t, d, n, ok)
-    if (.not. ok) return
+    call read_data_line(t, 'Nodes', 1, 'the number of nodes', err)
+    if (allocated(err)) return
+    call get_count(t, 1, 'number of nodes', remaining_lines(t), n, err)
+    if (allocated(err)) return
+    call allocate_nodes(d, n, err)
+    if (allocated(err)) return
     first = t%ln + 1
-    ok = .false.
     allocate(xyz(3, n), stat=stat)
-    if (allocation_failed(t, stat, 24_i8 * n)) return
+    if (allocation_failed(stat, 24_i8 * n, err)) return
     call scan_data_lines(t, n, [1_i8], 3, d%ntag, xyz, fast)
     if (fast) then
       do k = 1, n
@@ -427,31 +402,30 @@ contains
         d%tag_line(k) = first + k - 1
         d%coord_line(k) = first + k - 1
       end do
-      call expect_section_end(t, diag, 'Nodes', ok)
+      call expect_section_end(t, 'Nodes', err)
       return
     end if
     do k = 1, n
-      call read_data_line(t, diag, 'Nodes', 4, 'node-tag x y z', ok)
-      if (.not. ok) return
-      call get_integer(t, diag, 1, 'node tag', 1_i8, huge(1_i8), d%ntag(1, k), ok)
-      if (.not. ok) return
+      call read_data_line(t, 'Nodes', 4, 'node-tag x y z', err)
+      if (allocated(err)) return
+      call get_integer(t, 1, 'node tag', 1_i8, huge(1_i8), d%ntag(1, k), err)
+      if (allocated(err)) return
       d%tag_line(k) = t%ln
-      call get_coordinates(t, diag, 2, d%x(:, k), d%z(k), ok)
-      if (.not. ok) return
+      call get_coordinates(t, 2, d%x(:, k), d%z(k), err)
+      if (allocated(err)) return
       d%coord_line(k) = t%ln
     end do
-    call expect_section_end(t, diag, 'Nodes', ok)
+    call expect_section_end(t, 'Nodes', err)
   end subroutine read_nodes_22
 
   !> $Nodes of MSH 4.1: `numEntityBlocks numNodes minNodeTag maxNodeTag`, then
   !> per block `entityDim entityTag parametric numNodesInBlock`, the tags one per
   !> line, then the coordinates `x y z` followed by entityDim parametric
   !> coordinates when parametric = 1.
-  subroutine read_nodes_41(t, d, diag, ok)
+  subroutine read_nodes_41(t, d, err)
     type(msh_text_t), intent(inout) :: t
     type(msh_data_t), intent(inout) :: d
-    type(diag_t), intent(inout) :: diag
-    logical, intent(out) :: ok
+    type(error_t), allocatable, intent(out) :: err
     integer :: nblock, n, b, m, k, j, i, header, nitem, first, stat
     integer(i8) :: dim, param, tag
     real(dp) :: r
@@ -459,19 +433,19 @@ contains
     character(len=:), allocatable :: line_what
     logical :: fast
 
-    call read_block_header(t, diag, 'Nodes', 'node', 2, nblock, n, ok)
-    if (.not. ok) return
+    call read_block_header(t, 'Nodes', 'node', 2, nblock, n, err)
+    if (allocated(err)) return
     header = t%ln
-    call allocate_nodes(t, d, n, ok)
-    if (.not. ok) return
+    call allocate_nodes(d, n, err)
+    if (allocated(err)) return
     k = 0
     do b = 1, nblock
-      call read_block_line(t, diag, 'Nodes', 'entityDim entityTag parametric numNodesInBlock', dim, tag, ok)
-      if (.not. ok) return
-      call get_integer(t, diag, 3, 'parametric flag', 0_i8, 1_i8, param, ok)
-      if (.not. ok) return
-      call get_count(t, diag, 4, 'number of nodes in the block', n - k, m, ok)
-      if (.not. ok) return
+      call read_block_line(t, 'Nodes', 'entityDim entityTag parametric numNodesInBlock', dim, tag, err)
+      if (allocated(err)) return
+      call get_integer(t, 3, 'parametric flag', 0_i8, 1_i8, param, err)
+      if (allocated(err)) return
+      call get_count(t, 4, 'number of nodes in the block', n - k, m, err)
+      if (allocated(err)) return
       first = t%ln + 1
       call scan_data_lines(t, m, [1_i8], 0, d%ntag(:, k + 1:k + m), no_reals, fast)
       if (fast) then
@@ -480,18 +454,17 @@ contains
         end do
       else
         do j = k + 1, k + m
-          call read_data_line(t, diag, 'Nodes', 1, 'node-tag', ok)
-          if (.not. ok) return
-          call get_integer(t, diag, 1, 'node tag', 1_i8, huge(1_i8), d%ntag(1, j), ok)
-          if (.not. ok) return
+          call read_data_line(t, 'Nodes', 1, 'node-tag', err)
+          if (allocated(err)) return
+          call get_integer(t, 1, 'node tag', 1_i8, huge(1_i8), d%ntag(1, j), err)
+          if (allocated(err)) return
           d%tag_line(j) = t%ln
         end do
       end if
       nitem = 3 + int(param * dim)
       first = t%ln + 1
-      ok = .false.
       allocate(xyz(3, m), stat=stat)
-      if (allocation_failed(t, stat, 24_i8 * m)) return
+      if (allocation_failed(stat, 24_i8 * m, err)) return
       call scan_data_lines(t, m, no_lower_bounds, nitem, no_integers, xyz, fast)
       if (fast) then
         d%x(:, k + 1:k + m) = xyz(1:2, :)
@@ -506,13 +479,13 @@ contains
           line_what = 'x y z and ' // i8_to_str(dim) // ' parametric coordinates'
         end if
         do j = k + 1, k + m
-          call read_data_line(t, diag, 'Nodes', nitem, line_what, ok)
-          if (.not. ok) return
-          call get_coordinates(t, diag, 1, d%x(:, j), d%z(j), ok)
-          if (.not. ok) return
+          call read_data_line(t, 'Nodes', nitem, line_what, err)
+          if (allocated(err)) return
+          call get_coordinates(t, 1, d%x(:, j), d%z(j), err)
+          if (allocated(err)) return
           do i = 4, nitem
-            call get_real(t, diag, i, 'a parametric coordinate', r, ok)
-            if (.not. ok) return
+            call get_real(t, i, 'a parametric coordinate', r, err)
+            if (allocated(err)) return
           end do
           d%coord_line(j) = t%ln
         end do
@@ -520,33 +493,31 @@ contains
       deallocate(xyz)
       k = k + m
     end do
-    call end_blocks(t, diag, 'Nodes', 'node', header, k, n, ok)
+    call end_blocks(t, 'Nodes', 'node', header, k, n, err)
   end subroutine read_nodes_41
 
-  !> The node arrays of d for n nodes; ok = .false. when memory ran out.
-  subroutine allocate_nodes(t, d, n, ok)
-    type(msh_text_t), intent(inout) :: t
+  !> The node arrays of d for n nodes; err when memory ran out.
+  subroutine allocate_nodes(d, n, err)
     type(msh_data_t), intent(inout) :: d
     integer, intent(in) :: n
-    logical, intent(out) :: ok
+    type(error_t), allocatable, intent(out) :: err
     integer :: stat
     d%nnode = n
     allocate(d%x(2, n), d%z(n), d%ntag(1, n), d%tag_line(n), d%coord_line(n), stat=stat)
-    ok = .not. allocation_failed(t, stat, 40_i8 * n)
+    if (allocation_failed(stat, 40_i8 * n, err)) return
   end subroutine allocate_nodes
 
   !> x, y, z from items k, k+1, k+2 of the current line.
-  subroutine get_coordinates(t, diag, k, xy, z, ok)
+  subroutine get_coordinates(t, k, xy, z, err)
     type(msh_text_t), intent(in) :: t
-    type(diag_t), intent(inout) :: diag
     integer, intent(in) :: k
     real(dp), intent(out) :: xy(2), z
-    logical, intent(out) :: ok
-    call get_real(t, diag, k, 'x', xy(1), ok)
-    if (.not. ok) return
-    call get_real(t, diag, k + 1, 'y', xy(2), ok)
-    if (.not. ok) return
-    call get_real(t, diag, k + 2, 'z', z, ok)
+    type(error_t), allocatable, intent(out) :: err
+    call get_real(t, k, 'x', xy(1), err)
+    if (allocated(err)) return
+    call get_real(t, k + 1, 'y', xy(2), err)
+    if (allocated(err)) return
+    call get_real(t, k + 2, 'z', z, err)
   end subroutine get_coordinates
 
   !> After $Nodes: index the tags, report the first duplicate tag or the first
@@ -555,16 +526,14 @@ contains
   !> a table tag -> node, others by sorting them for a binary search.  Either
   !> way the duplicate reported is the node of the earliest line whose tag an
   !> earlier node has.
-  subroutine check_nodes(t, d, diag, ok)
+  subroutine check_nodes(t, d, err)
     type(msh_text_t), intent(inout) :: t
     type(msh_data_t), intent(inout) :: d
-    type(diag_t), intent(inout) :: diag
-    logical, intent(out) :: ok
+    type(error_t), allocatable, intent(out) :: err
     integer :: i, dup_line, z_line, dup_node, z_node, stat
     integer(i8) :: max_tag, tag
     real(dp) :: extent
 
-    ok = .false.
     dup_line = huge(1)
     dup_node = 0
     max_tag = 0
@@ -573,7 +542,7 @@ contains
     end do
     if (max_tag <= 2_i8 * d%nnode + 1000_i8) then
       allocate(d%tag_index(max_tag), source=0, stat=stat)
-      if (allocation_failed(t, stat, 4_i8 * max_tag)) return
+      if (allocation_failed(stat, 4_i8 * max_tag, err)) return
       do i = 1, d%nnode
         tag = d%ntag(1, i)
         if (d%tag_index(tag) == 0) then
@@ -585,7 +554,7 @@ contains
       end do
     else
       call sort_columns(d%ntag, d%tag_perm, stat)
-      if (allocation_failed(t, stat, 8_i8 * d%nnode)) return
+      if (allocation_failed(stat, 8_i8 * d%nnode, err)) return
       do i = 2, d%nnode
         if (d%ntag(1, d%tag_perm(i)) == d%ntag(1, d%tag_perm(i - 1))) then
           if (d%tag_line(d%tag_perm(i)) < dup_line) then
@@ -607,14 +576,13 @@ contains
         end if
       end do
     end if
-    ok = dup_node == 0 .and. z_node == 0
-    if (ok) return
+    if (dup_node == 0 .and. z_node == 0) return
     if (dup_line < z_line) then
-      call fail_at(t, diag, dup_line, 'duplicate node tag ' // i8_to_str(d%ntag(1, dup_node)) // &
-        ' (each node tag defined once expected)')
+      call fail_at(t, dup_line, 'duplicate node tag ' // i8_to_str(d%ntag(1, dup_node)) // &
+        ' (each node tag defined once expected)', err)
     else
-      call fail_at(t, diag, z_line, 'node ' // i8_to_str(d%ntag(1, z_node)) // ' has z = ' // real_to_str(d%z(z_node)) // &
-        ' (a planar mesh in z = 0 expected)')
+      call fail_at(t, z_line, 'node ' // i8_to_str(d%ntag(1, z_node)) // ' has z = ' // real_to_str(d%z(z_node)) // &
+        ' (a planar mesh in z = 0 expected)', err)
     end if
   end subroutine check_nodes
 

@@ -325,8 +325,9 @@ contains
     type(mesh_t), intent(out) :: mesh
     type(diag_t), intent(inout) :: diag
     type(error_t), allocatable, intent(out) :: err
-    character(len=:), allocatable :: path, work, deck_folder, log, message
-    logical :: ok
+    character(len=:), allocatable :: path, work, deck_folder, log
+    type(error_t), allocatable :: step_err
+    logical :: found
     integer :: n0
     n0 = diag%count
     associate(ms => deck%bodies(ib)%mesh)
@@ -338,21 +339,21 @@ contains
       end if
       path = ms%path                           ! the file read: the .msh, or what gmsh made of the .geo
       if (ms%is_geo) then
-        call real_path(deck%dir, deck_folder, ok)
-        if (.not. ok) deck_folder = deck%dir
+        call real_path(deck%dir, deck_folder, found)
+        if (.not. found) deck_folder = deck%dir
         if (.not. gmsh%trust_geo) call screen_geo(ms%path, deck_folder, diag)
         if (diag%count > n0) return
-        call private_folder(work, ok)
-        if (.not. ok) then
+        call private_folder(work, step_err)
+        if (allocated(step_err)) then
           call add_error(diag, deck%file, ms%line, 'cannot make a private folder for gmsh''s files in $TMPDIR ' // &
                          '(or /tmp) (a writable folder expected)')
           return
         end if
         path = work // '/body' // int_to_str(ib) // '.msh'
         log = work // '/body' // int_to_str(ib) // '.log'
-        call mesh_geo_file(ms%path, ms%order, ms%set_names, ms%set_values, gmsh, deck_folder, path, log, ok, message)
-        if (.not. ok) then
-          call add_error(diag, deck%file, ms%line, 'gmsh could not mesh "' // ms%file // '": ' // message)
+        call mesh_geo_file(ms%path, ms%order, ms%set_names, ms%set_values, gmsh, deck_folder, path, log, step_err)
+        if (allocated(step_err)) then
+          call add_error(diag, deck%file, ms%line, 'gmsh could not mesh "' // ms%file // '": ' // step_err%message)
           return
         end if
       end if

@@ -22,19 +22,22 @@
 !>                                         unformatted stream, else formatted sequential);
 !>                                         kind /= c2d_regular: not opened
 !>   read_file(path, buf, status)          the bytes of a regular file
-!>   make_folders(path, ok)                mkdir -p, without a shell
-!>   private_folder(path, ok)              the run's private folder (made once)
-!>   real_path(path, real, ok)             realpath(3)
+!>   make_folders(path, err)               mkdir -p, without a shell
+!>   private_folder(path, err)             the run's private folder (made once)
+!>   real_path(path, real, found)          realpath(3); found: the path exists
 !>   folder_of(path)                       the folder part of path ('.' when none)
 !>   type(temporary_t)                     an output temporary and its final name
-!>   create_temporary(dir, name, t, ok)    a temporary for the output dir/name
+!>   create_temporary(dir, name, t, err)   a temporary for the output dir/name
 !>   close_temporary(t)                    done writing it (its descriptor closed)
-!>   commit_temporaries(dir, t, ok)        rename each into place, all or none, under
+!>   commit_temporaries(dir, t, err)       rename each into place, all or none, under
 !>                                         the folder's lock
+!> A call that fails returns an error_t (status 2: the folder does not take
+!> the files); the callers say which folder the user should look at.
 !>   discard_temporaries(t)                remove them
 module safe_files
   use, intrinsic :: iso_c_binding, only: c_int, c_null_char
   use kinds, only: i8
+  use errors, only: error_t, set_error
   use system_binding, only: c2d_file_kind, c2d_open_input, c2d_close, c2d_make_folders, c2d_private_folder, &
                             c2d_create_temporary, c2d_forget_temporary, c2d_lock_folder, c2d_unlock_folder, &
                             c2d_real_path, c_unlink, c_rename, c2d_regular, c2d_missing, c2d_fifo, c2d_device, &
@@ -136,35 +139,41 @@ contains
     close(u)
   end subroutine read_file
 
-  !> Make folder path and its missing parents; ok = it is a folder now.
-  subroutine make_folders(path, ok)
+  !> Make folder path and its missing parents; err when it is not a folder now.
+  subroutine make_folders(path, err)
     character(len=*), intent(in) :: path
-    logical, intent(out) :: ok
-    ok = c2d_make_folders(path // c_null_char) == 0
+    type(error_t), allocatable, intent(out) :: err
+    if (c2d_make_folders(path // c_null_char) /= 0) call set_error(err, path // ': cannot create the folder', 2)
   end subroutine make_folders
 
   !> The run's private folder for temporary files (gmsh's meshes and logs):
   !> made on the first call under $TMPDIR (else /tmp), removed at exit.
-  subroutine private_folder(path, ok)
+  !>   path (out) the folder ('' when err)
+  !>   err  (out) allocated when it cannot be made
+  subroutine private_folder(path, err)
     character(len=:), allocatable, intent(out) :: path
-    logical, intent(out) :: ok
+    type(error_t), allocatable, intent(out) :: err
     character(len=path_max) :: buf
     integer(c_int) :: n
     n = c2d_private_folder(buf, int(len(buf), c_int))
-    ok = n > 0
     path = ''
-    if (ok) path = buf(1:n)
+    if (n > 0) then
+      path = buf(1:n)
+    else
+      call set_error(err, 'cannot make a private folder in $TMPDIR (or /tmp)', 2)
+    end if
   end subroutine private_folder
 
-  !> The absolute path of path with every link resolved; ok = it exists.
-  subroutine real_path(path, real, ok)
+  !> The absolute path of path with every link resolved; found = it exists
+  !> (a value the callers act on in their own ways, not an error).
+  subroutine real_path(path, real, found)
     character(len=*), intent(in) :: path
     character(len=:), allocatable, intent(out) :: real
-    logical, intent(out) :: ok
+    logical, intent(out) :: found
     character(len=path_max) :: buf
-    ok = c2d_real_path(path // c_null_char, buf, int(len(buf), c_int)) == 0
+    found = c2d_real_path(path // c_null_char, buf, int(len(buf), c_int)) == 0
     real = ''
-    if (ok) real = buf(1:index(buf, c_null_char) - 1)
+    if (found) real = buf(1:index(buf, c_null_char) - 1)
   end subroutine real_path
 
   !> The folder part of path: 'a/b' for 'a/b/c', '/' for '/c', '.' for 'c'.
@@ -186,18 +195,20 @@ contains
   !>   dir  (in)  the output folder (exists)
   !>   name (in)  the output's file name in dir
   !>   t    (out) the temporary: t%io_path to write it, t%final = dir/name
-  !>   ok   (out) .false. when it could not be made (t%path = '')
-  subroutine create_temporary(dir, name, t, ok)
+  !>   err  (out) allocated when it could not be made (t%path = '')
+  subroutine create_temporary(dir, name, t, err)
     character(len=*), intent(in) :: dir, name
     type(temporary_t), intent(out) :: t
-    logical, intent(out) :: ok
+    type(error_t), allocatable, intent(out) :: err
     character(len=path_max) :: buf
     integer(c_int) :: fd
     t%final = dir // '/' // name
     t%path = ''
     t%io_path = ''
-    ok = c2d_create_temporary(dir // c_null_char, name // c_null_char, buf, int(len(buf), c_int), fd) == 0
-    if (.not. ok) return
+    if (c2d_create_temporary(dir // c_null_char, name // c_null_char, buf, int(len(buf), c_int), fd) /= 0) then
+      call set_error(err, dir // ': cannot create a file for ' // name, 2)
+      return
+    end if
     t%path = buf(1:index(buf, c_null_char) - 1)
     t%fd = fd
     t%io_path = fd_path(fd)
@@ -215,29 +226,38 @@ contains
   !> exclusive lock of folder dir (another run committing into it waits), an
   !> existing final is first moved aside to a temporary of its own; when any
   !> rename fails, what was renamed is undone and the earlier outputs are
-  !> restored, ok = .false.  Temporaries not made are skipped.
-  subroutine commit_temporaries(dir, t, ok)
+  !> restored, err allocated.  Temporaries not made are skipped.
+  subroutine commit_temporaries(dir, t, err)
     character(len=*), intent(in) :: dir
     type(temporary_t), intent(inout) :: t(:)
-    logical, intent(out) :: ok
+    type(error_t), allocatable, intent(out) :: err
     type(temporary_t) :: aside(size(t))
     logical :: saved(size(t)), moved(size(t))
     integer(c_int) :: lock
     integer :: i, j
+    logical :: ok
+    type(error_t), allocatable :: aside_err
+    character(len=*), parameter :: cannot = ': cannot put the output files in place'
     saved = .false.
     moved = .false.
-    ok = .false.
     do i = 1, size(t)                       ! a folder in the way: fail before touching anything
       if (.not. made(t(i))) cycle
-      if (file_kind(t(i)%final) == c2d_folder) return
+      if (file_kind(t(i)%final) == c2d_folder) then
+        call set_error(err, dir // cannot, 2)
+        return
+      end if
     end do
     lock = c2d_lock_folder(dir // c_null_char)
-    if (lock < 0) return
+    if (lock < 0) then
+      call set_error(err, dir // cannot, 2)
+      return
+    end if
     ok = .true.
     do i = 1, size(t)
       if (.not. made(t(i))) cycle
       if (file_kind(t(i)%final) /= c2d_missing) then   ! a link at the name is moved aside, not followed
-        call create_temporary(dir, final_name(t(i)%final), aside(i), ok)
+        call create_temporary(dir, final_name(t(i)%final), aside(i), aside_err)
+        ok = .not. allocated(aside_err)
         if (ok) call close_temporary(aside(i))
         if (ok) ok = c_rename(t(i)%final // c_null_char, aside(i)%path // c_null_char) == 0
         if (.not. ok) exit
@@ -265,6 +285,7 @@ contains
       if (made(aside(j)) .and. .not. saved(j)) call remove_file(aside(j)%path)
     end do
     call c2d_unlock_folder(lock)
+    if (.not. ok) call set_error(err, dir // cannot, 2)
   end subroutine commit_temporaries
 
   !> Remove the temporaries that were made (their descriptors closed).

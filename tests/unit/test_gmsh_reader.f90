@@ -16,7 +16,7 @@
 program test_gmsh_reader
   use kinds, only: dp, i8
   use strings, only: int_to_str
-  use errors, only: diag_t
+  use errors, only: diag_t, error_t
   use elements, only: quadrature_rule, shape_at
   use mesh, only: mesh_t, finalize_mesh, find_name, element_area, boundary_nodes
   use gmsh_reader, only: read_gmsh_file
@@ -413,27 +413,27 @@ contains
   subroutine test_geo_meshing()
     type(mesh_t) :: m
     type(diag_t) :: d
-    character(len=:), allocatable :: message, msh, log, geo
+    character(len=:), allocatable :: msh, log, geo
+    type(error_t), allocatable :: err
     type(gmsh_options_t) :: opts
     character(len=8) :: no_names(0)
     real(dp) :: no_values(0)
-    logical :: ok
     integer :: ib
 
     msh = tmp // 'square.msh'
     log = tmp // 'square.log'
-    call mesh_geo_file(data_dir // 'square.geo', 1, ['n'], [6.0_dp], opts, data_dir, msh, log, ok, message)
-    call check(ok, 'geo: gmsh meshes square.geo with -setnumber n 6' // failure(message))
-    if (ok) then
+    call mesh_geo_file(data_dir // 'square.geo', 1, ['n'], [6.0_dp], opts, data_dir, msh, log, err)
+    call check(.not. allocated(err), 'geo: gmsh meshes square.geo with -setnumber n 6' // failure(err))
+    if (.not. allocated(err)) then
       call read_gmsh_file(msh, m, d)
       call check(d%count == 0 .and. m%nnode == 36 .and. m%nelem == 50, 'geo: n = 6 gives 36 nodes, 50 triangles')
       ib = find_name(m%bnd, 'bottom')
       if (ib > 0) call check(m%bnd(ib)%nseg == 5, 'geo: bottom has n-1 = 5 edges')
     end if
     call delete_file(log)
-    call mesh_geo_file(data_dir // 'square.geo', 1, no_names, no_values, opts, data_dir, msh, log, ok, message)
-    call check(ok, 'geo: gmsh meshes square.geo with no parameter' // failure(message))
-    if (ok) then
+    call mesh_geo_file(data_dir // 'square.geo', 1, no_names, no_values, opts, data_dir, msh, log, err)
+    call check(.not. allocated(err), 'geo: gmsh meshes square.geo with no parameter' // failure(err))
+    if (.not. allocated(err)) then
       call read_gmsh_file(msh, m, d)
       call check(d%count == 0 .and. m%nnode == 16 .and. m%nelem == 18, 'geo: default n = 4 gives 16 nodes, 18 triangles')
     end if
@@ -446,9 +446,9 @@ contains
       'Curve Loop(1) = {1,2,3,4}; Plane Surface(1) = {1};' // achar(10) // &
       'Transfinite Curve{1,2,3,4} = n; Transfinite Surface{1}; Recombine Surface{1};' // achar(10))
     call delete_file(log)
-    call mesh_geo_file(geo, 1, ['n'], [3.0_dp], opts, tmp, msh, log, ok, message)
-    call check(ok, 'geo: gmsh meshes a path with a blank and a quote' // failure(message))
-    if (ok) then
+    call mesh_geo_file(geo, 1, ['n'], [3.0_dp], opts, tmp, msh, log, err)
+    call check(.not. allocated(err), 'geo: gmsh meshes a path with a blank and a quote' // failure(err))
+    if (.not. allocated(err)) then
       call read_gmsh_file(msh, m, d)
       call check(d%count == 0 .and. m%nelem == 4 .and. all(m%nen == 4), 'geo: n = 3 recombined gives 4 quadrangles')
       call finalize_mesh(m, msh, d)
@@ -457,9 +457,10 @@ contains
     call delete_file(geo)
 
     call delete_file(log)
-    call mesh_geo_file(tmp // 'no such file.geo', 1, ['n'], [3.0_dp], opts, tmp, msh, log, ok, message)
-    call check(.not. ok, 'geo: a missing .geo file fails')
-    call check(index(message, 'cannot find') == 1, 'geo: message says the .geo is missing: ' // message)
+    call mesh_geo_file(tmp // 'no such file.geo', 1, ['n'], [3.0_dp], opts, tmp, msh, log, err)
+    call check(allocated(err), 'geo: a missing .geo file fails')
+    if (allocated(err)) call check(index(err%message, 'cannot find') == 1, 'geo: message says the .geo is missing: ' // &
+                                   err%message)
     call delete_file(msh)
     call delete_file(log)
   end subroutine test_geo_meshing
@@ -735,12 +736,12 @@ contains
     end do
   end function random_bytes
 
-  !> ': message' when message is not empty, else ''.
-  function failure(message) result(s)
-    character(len=*), intent(in) :: message
+  !> ': message' of err when allocated, else ''.
+  function failure(err) result(s)
+    type(error_t), allocatable, intent(in) :: err
     character(len=:), allocatable :: s
     s = ''
-    if (len(message) > 0) s = ': ' // message
+    if (allocated(err)) s = ': ' // err%message
   end function failure
 
   function itoa(i) result(s)

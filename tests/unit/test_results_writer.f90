@@ -1,12 +1,14 @@
 !> Unit test of results_writer: the strings of results_t (the deck's
 !> parameters, the FIX labels, the RIGID names, the unheld modes, the
 !> effects, the method and the ordering) survive every way the program copies
-!> a results_t: intrinsic assignment both ways (the load steps keep one and
-!> restore it), an intent(out) argument and a function result; and the
+!> a results_t: intrinsic assignment both ways (a load step's results start
+!> from an empty one), an intent(out) argument (a step's solve returns its
+!> results so) and a function result; and the
 !> summary written from a copy holds each of them on its line.
 program test_results_writer
   use kinds, only: dp
   use results_writer, only: results_t, string_t, write_summary
+  use errors, only: error_t
   use testing, only: check, finish_tests
   implicit none
   type(results_t) :: r, saved, passed, returned
@@ -23,13 +25,13 @@ program test_results_writer
   call fill(r)
   call check(holds(r), 'results_t strings as set')
 
-  saved = r                                             ! a load step keeps res ...
+  saved = r                                             ! a copy ...
   call check(holds(saved), 'assignment: every string survives')
   r%effects = 'changed'
   r%parameter(1)%s = 'changed'
   r%fix_label(2)%s = 'changed'
   call check(holds(saved), 'assignment: the copy owns its strings')
-  r = saved                                             ! ... and restores it
+  r = saved                                             ! ... and back
   call check(holds(r), 'assignment back: every string survives')
 
   call copy_out(saved, passed)
@@ -129,9 +131,9 @@ contains
   subroutine write_summary_of(r, path)
     type(results_t), intent(in) :: r
     character(len=*), intent(in) :: path
-    logical :: ok
-    call write_summary(path, r, ok)
-    call check(ok, 'write_summary')
+    type(error_t), allocatable :: err
+    call write_summary(path, r, err)
+    call check(.not. allocated(err), 'write_summary')
   end subroutine write_summary_of
 
   !> Whether the file has the line `text` (or a line that starts with it).

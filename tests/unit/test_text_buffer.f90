@@ -2,20 +2,21 @@
 program test_text_buffer
   use kinds, only: dp
   use text_buffer, only: text_buffer_t, open_text, open_memory, put_text, put_real, put_int, put_newline, close_text
+  use errors, only: error_t
   use testing, only: check, finish_tests
   implicit none
   type(text_buffer_t) :: tb
   real(dp) :: x(12), y
   integer :: i, u, ios, nbad, ints(5), j
-  logical :: ok
+  type(error_t), allocatable :: err
   character(len=64) :: line, ref
   character(len=*), parameter :: path = 'test_text_buffer.tmp'
 
   x = [1.0_dp, -1.0_dp, 0.0_dp, 123456.789_dp, -9.9999999999e-7_dp, 1.0e300_dp, 2.5e-310_dp, &
        -4.2e-120_dp, 9.9999999996_dp, 0.1_dp, 6.02214076e23_dp, -1.0e-5_dp]
   ints = [0, 7, -13, 2147483647, -2147483647]
-  call open_text(tb, path, ok)
-  call check(ok, 'open')
+  call open_text(tb, path, err)
+  call check(.not. allocated(err), 'open')
   do i = 1, size(x)
     call put_real(tb, x(i))
     call put_newline(tb)
@@ -30,8 +31,8 @@ program test_text_buffer
     call put_int(tb, ints(i))
     call put_newline(tb)
   end do
-  call close_text(tb, ok)
-  call check(ok, 'close')
+  call close_text(tb, err)
+  call check(.not. allocated(err), 'close')
   ! read back: every number equals the value written to 10 significant digits
   open(newunit=u, file=path, status='old', action='read')
   nbad = 0
