@@ -381,6 +381,11 @@ contains
     integer :: k
     write(buf, '(g0.6)') v
     s = trim(adjustl(buf))
+    ! the zero before the point is the compiler's choice under g0 (flang writes .500000)
+    if (s(1:1) == '.') s = '0' // s
+    if (len(s) > 1) then
+      if (s(1:2) == '-.') s = '-0' // s(2:)
+    end if
     if (index(s, '.') > 0 .and. scan(s, 'EeDd') == 0) then
       k = len_trim(s)
       do while (s(k:k) == '0')
