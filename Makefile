@@ -1,16 +1,32 @@
 # contact2d — top-level Makefile.  See README for the targets.
 include make.inc
 
-BUILD   := build/$(MODE)
+# One build folder and one program per MODE and compiler: modules and objects
+# of two compilers (or two versions of one) never mix.  The default compiler,
+# gfortran, keeps the short names (build/release, bin/contact2d,
+# bin/contact2d-debug); another FC adds its name (FC=gfortran-11 ->
+# build/release-gfortran-11, bin/contact2d-gfortran-11; FC=.../flang-new ->
+# build/debug-flang-new, bin/contact2d-debug-flang-new).
+FCNAME  := $(notdir $(FC))
+ifeq ($(FCNAME),gfortran)
+TAG     :=
+else
+TAG     := -$(FCNAME)
+endif
+BUILD   := build/$(MODE)$(TAG)
 BIN     := bin
 # The program's name is fixed here, before any rule names it: make expands the
 # prerequisites of a rule when it reads it, so `all` and `test` must see the
 # MODE's program, never the release one.
 ifeq ($(MODE),release)
-PROGRAM := $(BIN)/contact2d
+PROGRAM := $(BIN)/contact2d$(TAG)
 else
-PROGRAM := $(BIN)/contact2d-$(MODE)
+PROGRAM := $(BIN)/contact2d-$(MODE)$(TAG)
 endif
+
+# The tests and studies that build a Fortran program of their own use this
+# compiler (tests/robust/unchecked_alloc, studies/run-all).
+export FC FC_FAMILY
 
 # The layer folders of src/, bottom first (src/layers); the objects of all of
 # them go to one folder per MODE, since a module's name is its file's.
@@ -23,8 +39,10 @@ LIBOBJ  := $(filter-out $(BUILD)/contact2d.o,$(FOBJ)) $(COBJ)
 UNITSRC := $(sort $(wildcard tests/unit/test_*.f90))
 UNITBIN := $(patsubst tests/unit/%.f90,$(BUILD)/tests/%,$(UNITSRC))
 
-.PHONY: all deps demo test unit study bench clean distclean help
-all: deps $(PROGRAM)
+.PHONY: all deps demo test unit unit-build study bench clean distclean help names
+# Building installs nothing: `make deps` (and `make demo`, the first command
+# of the README) install what is missing.
+all: $(PROGRAM)
 
 # Debian packages, installed when missing (needs root on a fresh machine).
 deps:
@@ -36,7 +54,7 @@ $(PROGRAM): $(BUILD)/contact2d.o $(LIBOBJ) | $(BIN)
 # One pair of rules per folder: src/LAYER/NAME.f90 or .c -> BUILD/NAME.o.
 define layer_rules
 $$(BUILD)/%.o: src/$(1)/%.f90 | $$(BUILD)
-	$$(FC) $$(FFLAGS) -J$$(BUILD) -c $$< -o $$@
+	$$(FC) $$(FFLAGS) $$(FMODDIR) $$(BUILD) -c $$< -o $$@
 
 $$(BUILD)/%.o: src/$(1)/%.c include/*.h | $$(BUILD)
 	$$(CC) $$(CFLAGS) -c $$< -o $$@
@@ -44,10 +62,10 @@ endef
 $(foreach l,$(LAYERS),$(eval $(call layer_rules,$(l))))
 
 $(BUILD)/contact2d.o: src/contact2d.f90 | $(BUILD)
-	$(FC) $(FFLAGS) -J$(BUILD) -c $< -o $@
+	$(FC) $(FFLAGS) $(FMODDIR) $(BUILD) -c $< -o $@
 
 $(BUILD)/testing.o: tests/unit/testing.f90 | $(BUILD)
-	$(FC) $(FFLAGS) -J$(BUILD) -c $< -o $@
+	$(FC) $(FFLAGS) $(FMODDIR) $(BUILD) -c $< -o $@
 
 $(BUILD)/tests/%: tests/unit/%.f90 $(LIBOBJ) $(BUILD)/testing.o | $(BUILD)/tests
 	$(FC) $(FFLAGS) -I$(BUILD) -o $@ $< $(BUILD)/testing.o $(LIBOBJ) $(LIBS)
@@ -60,16 +78,22 @@ $(BUILD)/deps.mk: $(FSRC) scripts/f90deps | $(BUILD)
 	scripts/f90deps $(BUILD) $(FSRC) > $@
 -include $(BUILD)/deps.mk
 
-unit: deps $(UNITBIN)
+# `make unit` builds the unit tests and runs them; `make test` runs them and
+# every other test.  Both end with `N passed, N failed`.
+unit-build: $(UNITBIN)
 
-demo: all
+unit: unit-build
+	$(TESTENV) tests/run-tests --unit $(PROGRAM) $(BUILD)/tests
+
+demo: deps
+	$(MAKE) all
 	$(PROGRAM) -o out/demo input/hertz.deck
 
-test: all unit
+test: all unit-build
 	$(TESTENV) tests/run-tests $(PROGRAM) $(BUILD)/tests
 
 study: all
-	studies/run-all
+	CONTACT2D=$(CURDIR)/$(PROGRAM) C2D_BUILD=$(BUILD) studies/run-all
 
 bench: all
 	bench/run-all
@@ -80,5 +104,9 @@ clean:
 distclean: clean
 	rm -rf out
 
+# The program and the unit tests' folder of this MODE and FC (scripts/check-modes).
+names:
+	@echo $(PROGRAM) $(BUILD)/tests
+
 help:
-	@echo "make [MODE=release|debug|sanitize] [all|demo|test|unit|study|bench|clean]"
+	@echo "make [MODE=release|debug|sanitize] [FC=gfortran|gfortran-NN|flang-new] [ARCH=cpu] [all|deps|demo|test|unit|study|bench|clean]"

@@ -41,6 +41,7 @@ module contact_solve
                              check_finite_results
   use run_outputs, only: write_step
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+  use run_phase, only: enter_phase
   implicit none
   private
   public :: solve_contact_lcp, check_floating_bodies, check_floating_friction_solver, check_unheld_loads, &
@@ -61,11 +62,13 @@ contains
     type(run_t), intent(inout) :: run
     type(results_t) :: final
     real(dp), allocatable :: rigid_alpha(:)
+    call enter_phase('solving the LCP')
     if (.not. run%with_contact) then
       if (run%deck%output%steps_all) call solve_earlier_steps(run)
       return
     end if
     if (run%cs%ntan > 0) then
+      call enter_phase('solving the friction LCP')
       call solve_friction_steps(run)
     else
       if (run%deck%output%steps_all) call solve_earlier_steps(run)

@@ -34,6 +34,7 @@ module linear_system
   use rigid_modes, only: remove_motions
   use omp_lib, only: omp_get_thread_num, omp_get_num_threads
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+  use run_phase, only: enter_phase
   implicit none
   private
   public :: assemble_system, factorize_system, condense_system, recover_system, solve_loads
@@ -55,6 +56,7 @@ contains
     type(run_t), intent(inout) :: run
     type(error_t), allocatable :: err, err_order
     integer :: i
+    call enter_phase('assembling K')
     if (run%nfree == 0) call fail_numerical('every dof is fixed: there is nothing to solve')
     call build_pattern(run%sc%bodies, run%eq, run%nfree, run%k, err)
     if (allocated(err)) call fail_numerical(err%message)
@@ -86,6 +88,7 @@ contains
   subroutine factorize_system(run)
     type(run_t), intent(inout) :: run
     type(error_t), allocatable :: err
+    call enter_phase('factorizing K')
     call factorize_values(run%factor, run%k, err)
     if (allocated(err)) call fail_numerical(factor_failure(run, err))
     run%res%factor_nnz = factor_nnz(run%factor)
@@ -110,6 +113,7 @@ contains
     real(dp), allocatable :: x(:,:)
     integer(i8) :: t_solve, t_now, t_rate
     integer :: i
+    call enter_phase('condensing the contact problem')
     allocate(run%u0(run%sc%ndof))
     run%u0 = run%sc%ubar
     run%with_contact = run%cs%nrow > 0 .or. run%fl%k > 0 .or. run%rsplit%k > 0
@@ -149,6 +153,7 @@ contains
     type(run_t), intent(inout) :: run
     type(error_t), allocatable :: err
     integer(i8) :: t_solve, t_now, t_rate
+    call enter_phase('recovering the displacements')
     if (run%with_contact) then
       deallocate(run%w, run%q)
       allocate(run%res%u(run%sc%ndof))

@@ -33,6 +33,7 @@ module post_processing
   use contact_condensation, only: contact_forces
   use, intrinsic :: iso_fortran_env, only: error_unit
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+  use run_phase, only: enter_phase
   implicit none
   private
   public :: name_results, compute_results, pair_resultants, post_process, rigid_results, contact_measures, nodal_contact_fields
@@ -61,6 +62,7 @@ contains
   !>   run (inout) res%u and the multipliers on entry; the results on exit
   subroutine compute_results(run)
     type(run_t), intent(inout) :: run
+    call enter_phase('computing the results')
     if (run%with_contact) then
       if (run%cs%ntan > 0) then
         call pair_resultants(run, [run%res%mu, run%res%tau], run%res)

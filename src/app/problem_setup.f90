@@ -14,6 +14,7 @@
 module problem_setup
   use strings, only: int_to_str
   use errors, only: error_t, add_error
+  use run_phase, only: enter_phase
   use exits, only: stop_input_errors, fail_numerical, exit_program
   use run_state, only: run_t, ph_mesh
   use run_report, only: say, lap, report_scene
@@ -43,6 +44,7 @@ contains
   !>   run (inout) the command line on entry; deck on exit
   subroutine read_input(run)
     type(run_t), intent(inout) :: run
+    call enter_phase('reading the deck')
     call read_deck(run%deck_path, run%deck, run%diag, run%overrides)
     call check_overrides(run)
     call stop_input_errors(run%diag)
@@ -63,9 +65,11 @@ contains
     type(error_t), allocatable :: err
     logical, allocatable :: held(:)
     integer :: i
+    call enter_phase('building the scene')
     call build_scene(run%deck, run%gmsh, run%sc, run%diag, err)
     call stop_input_errors(run%diag)
     if (allocated(err)) call fail_numerical(err%message)
+    call enter_phase('building the mortar operator')
     call build_contact_set(run%sc%bodies, run%sc%specs, run%cs, err)
     if (allocated(err)) call contact_error(run, err)
     call rotate_constraint_rows(run%cs, run%sc%bodies)     ! nodes in local axes (FIX un=/ut=)
@@ -74,6 +78,7 @@ contains
         int_to_str(run%deck%contacts(i)%line) // ': no part of the master boundary faces the slave boundary: ' // &
         'this pair can never touch (check the boundary names and the slave/master choice)'
     end do
+    call enter_phase('finding the rigid modes')
     ! free rigid modes (bodies held only by contact): pin k dofs to factorize K^#
     call find_floating_modes(run%sc%bodies, run%sc%fixed, run%fl)
     call check_floating_bodies(run)

@@ -28,6 +28,7 @@ module run_outputs
   use safe_files, only: make_folders, temporary_t, create_temporary, close_temporary, commit_temporaries, &
                         discard_temporaries
   use, intrinsic :: iso_fortran_env, only: error_unit
+  use run_phase, only: enter_phase
   implicit none
   private
   public :: make_folder, write_step, write_outputs
@@ -77,6 +78,7 @@ contains
     character(len=:), allocatable :: names(:)
     integer :: kstep, nl, i
     character(len=:), allocatable :: line1, line2
+    call enter_phase('writing the outputs')
     ! the run's three files, then with steps=all the .pvd, the step table and
     ! the per-step VTK files (all but the last one written as they were solved)
     if (run%deck%output%steps_all) call add_step_row(run, run%sc%steps, run%res)

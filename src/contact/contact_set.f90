@@ -528,6 +528,9 @@ contains
     character(len=16) :: t
     write(t, '(g0.4)') v
     t = adjustl(t)
+    ! the zero before the point is the compiler's choice under g0 (flang writes .2500)
+    if (t(1:1) == '.') t = '0' // t
+    if (t(1:2) == '-.') t = '-0' // t(2:)
   end function real_text
 
   !> Open a closed slave polyline (nodes(n) = nodes(1)) where the master does

@@ -1,39 +1,48 @@
-/* fortran_oom.c: an allocation that gfortran's code checks and that fails
- * ends with the program's diagnosis, not with the runtime's abort.
- *
- * The code gfortran generates checks the result of an ALLOCATE without
- * stat=, of the array temporaries of an expression and, under
- * -fcheck=mem (make.inc), of automatic arrays; when malloc or realloc
- * returns NULL it calls the runtime's
- *     _gfortran_os_error_at("In file 'F.f90', around line L",
- *                           "Error allocating %lu bytes", bytes)
- * which prints "Operating system error", a backtrace and "Error
- * termination".  The program defines that entry point itself (its object
- * code calls it directly, so this definition is the one it runs; the
- * runtime's own internal calls are not affected) and ends the run as a
- * numerical failure does:
- *     contact2d: error: out of memory while PHASE (at F.f90:L) (about N MB needed)
+/* fortran_oom.c: an allocation that fails where the code does not check it
+ * ends with the program's diagnosis, not with a Fortran runtime's abort or a
+ * fault:
+ *     contact2d: error: out of memory while PHASE (...) (about N MB needed)
  * exit status 1; exit() runs the cleanup (file_guard.c: the temporaries and
- * the private folder), so nothing is written.  PHASE is named from the
- * source file: which file allocates tells which phase of the run it is, so
- * no state has to be kept for it.
+ * the private folder), so nothing is written.  PHASE is the step of the run
+ * the program last entered (c2d_set_phase, called through run_phase.f90 at
+ * the step boundaries of src/app/), "computing" before the first.  The
+ * allocations that grow with the problem have stat= in the code and their
+ * own message with the sizes (doc/robustness.md, "Memory limits"); this file
+ * is for the others.
  *
- * Allocations the generated code does not check write through the null
- * pointer instead: the (re)allocation on assignment of an allocatable array
- * or a deferred-length string (`a = [a, x]`, `a = b` with b larger, `s = s
- * // t`), which calls malloc or realloc and uses the result as it is.  The
- * program is linked with -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc
- * (make.inc): every such call of the program's own object code goes through
- * the wrappers below, which return what the C library returns and, when it
- * is NULL, remember the size and install a SIGSEGV handler.  A fault then
- * at an address below that size (plus 64 kB: the lower bound's offset) is
- * the write through that null pointer: the run ends with
- *     contact2d: error: out of memory while computing (an allocation the code does not check) (about N MB needed)
- * exit status 1, through exit() as above.  Any other fault goes to the
- * handler that was there before (gfortran's backtrace).  ALLOCATE with
- * stat= is not changed: it gets NULL and says what it says; the handler
- * waits for a fault that may never come.  The large arrays are allocated
- * with stat= in the code (doc/robustness.md, "Memory limits"). */
+ * Any compiler: the program is linked with
+ * -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc (make.inc): every such call
+ * of its own object code, and of a runtime linked statically (flang's), goes
+ * through the wrappers below, which return what the C library returns and,
+ * when it is NULL, remember the size and install two handlers.
+ *   SIGSEGV: a fault at an address below that size (plus 64 kB: a lower
+ *     bound's offset) is a write through the null pointer, from code that did
+ *     not check: gfortran's reallocation on assignment (`a = b` with b
+ *     larger, `s = s // t`), flang's ALLOCATE without stat=.  Any other
+ *     fault goes to the handler that was there before.
+ *   SIGABRT: a runtime that checked and aborts (after its own message, which
+ *     this cannot stop) ends with the diagnosis and exit 1 all the same.
+ * ALLOCATE with stat= is not changed: it gets NULL and says what it says; the
+ * handlers wait for a signal that may never come.
+ *
+ * The runtimes' own reports of a failed allocation, each used only where
+ * that runtime is linked, say it before anything is printed and add the
+ * source line, "(at F.f90:L)":
+ *   libgfortran: the code gfortran generates checks an ALLOCATE without
+ *     stat=, the array temporaries of an expression and, under -fcheck=mem,
+ *     automatic arrays, and calls
+ *         _gfortran_os_error_at("In file 'F.f90', around line L",
+ *                               "Error allocating %lu bytes", bytes)
+ *     which would print "Operating system error", a backtrace and "Error
+ *     termination".  The program defines that entry point (its object code
+ *     calls it directly, so this definition is the one it runs; the
+ *     runtime's own internal calls are not affected).
+ *   flang's runtime (libFortranRuntime, statically linked) ends an
+ *     allocation it checks (a reallocation on assignment, an intrinsic's
+ *     result) through its Terminator, which calls a handler registered
+ *     with Terminator::RegisterCrashHandler before it prints "fatal Fortran
+ *     runtime error" and aborts.  The registration is a weak reference: with
+ *     another runtime it is NULL and nothing is registered. */
 #define _GNU_SOURCE
 #include <signal.h>
 #include <stdarg.h>
@@ -42,113 +51,91 @@
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
+#include "fortran_oom.h"
+
+/* --- the phase ------------------------------------------------------------------- */
+
+/* The step of the run: set by the main thread between steps, read by a
+ * signal handler in any thread.  Two buffers: the one not in use is written,
+ * then published by one atomic store. */
+static char phase_buffers[2][96];
+static const char *phase_now = "computing";
+
+void c2d_set_phase(const char *phase, size_t length)
+{
+    char *next = phase_buffers[__atomic_load_n(&phase_now, __ATOMIC_SEQ_CST) == phase_buffers[0]];
+    size_t n = length < sizeof phase_buffers[0] - 1 ? length : sizeof phase_buffers[0] - 1;
+    memcpy(next, phase, n);
+    next[n] = '\0';
+    __atomic_store_n(&phase_now, next, __ATOMIC_SEQ_CST);
+}
+
+/* --- the diagnosis --------------------------------------------------------------- */
+
+static size_t failed_bytes = 0;             /* the largest allocation that failed */
+
+/* Write `contact2d: error: out of memory while PHASE (WHERE) (about N MB
+ * needed)` and end the run with status 1.  Called from signal handlers too:
+ * one write(2), after an snprintf of strings and integers into the stack
+ * (glibc allocates nothing for those), then exit(), for the cleanup. */
+static void out_of_memory(const char *where, size_t bytes) __attribute__((noreturn));
+static void out_of_memory(const char *where, size_t bytes)
+{
+    char text[400];
+    int n = snprintf(text, sizeof text, "contact2d: error: out of memory while %s (%s) (about %lu MB needed)\n",
+                     __atomic_load_n(&phase_now, __ATOMIC_SEQ_CST), where,
+                     (unsigned long) (bytes / 1048576 + (bytes % 1048576 != 0)));
+    if (n > 0) (void) !write(STDERR_FILENO, text, (size_t) n < sizeof text ? (size_t) n : sizeof text - 1);
+    exit(1);
+}
+
+/* The runtimes' hooks below can be left out (-DC2D_OOM_PORTABLE_ONLY), so
+ * that tests/robust/unchecked_alloc can show the portable path alone. */
+#ifndef C2D_OOM_PORTABLE_ONLY
+
+/* The file's name without its folder. */
+static const char *base_name(const char *path)
+{
+    const char *s, *base = path;
+    for (s = path; *s != '\0'; s++)
+        if (*s == '/') base = s + 1;
+    return base;
+}
+
+/* --- libgfortran's entry point ------------------------------------------------------ */
 
 void _gfortran_os_error_at(const char *where, const char *message, ...) __attribute__((noreturn));
 
-/* The phase of a run that allocates in each source file. */
-static const char *const phases[][2] = {
-    {"mesh_rect.f90", "meshing"},
-    {"gmsh_reader.f90", "reading the meshes"},
-    {"mesh.f90", "reading the meshes"},
-    {"msh_data.f90", "reading the meshes"},
-    {"msh_elements.f90", "reading the meshes"},
-    {"msh_mesh.f90", "reading the meshes"},
-    {"msh_sections.f90", "reading the meshes"},
-    {"msh_text.f90", "reading the meshes"},
-    {"geo_screen.f90", "screening the .geo files"},
-    {"gmsh_runner.f90", "running gmsh"},
-    {"deck_reader.f90", "reading the deck"},
-    {"deck_types.f90", "reading the deck"},
-    {"deck_syntax.f90", "reading the deck"},
-    {"deck_statements.f90", "reading the deck"},
-    {"deck_body_statements.f90", "reading the deck"},
-    {"deck_rigid_statements.f90", "reading the deck"},
-    {"deck_checks.f90", "reading the deck"},
-    {"deck_expressions.f90", "reading the deck"},
-    {"deck_cases.f90", "reading the deck"},
-    {"case_selection.f90", "reading the deck"},
-    {"text_scan.f90", "reading the input"},
-    {"command_line.f90", "reading the command line"},
-    {"scene.f90", "building the scene"},
-    {"material.f90", "building the scene"},
-    {"local_axes.f90", "building the scene"},
-    {"problem_setup.f90", "building the scene"},
-    {"body.f90", "assembling K"},
-    {"elements.f90", "assembling K"},
-    {"axisymmetric_elements.f90", "assembling K"},
-    {"sparse_matrix.f90", "assembling K"},
-    {"sparse_cholesky.f90", "factorizing K"},
-    {"sparse_cholesky_parts.f90", "factorizing K"},
-    {"sparse_cholesky_solve.f90", "factorizing K"},
-    {"linear_system.f90", "factorizing K"},
-    {"contact_set.f90", "building the mortar operator"},
-    {"boundary_chain.f90", "building the mortar operator"},
-    {"mortar_geometry.f90", "building the mortar operator"},
-    {"mortar_operator.f90", "building the mortar operator"},
-    {"mortar_quadratic.f90", "building the mortar operator"},
-    {"rigid_obstacle.f90", "building the mortar operator"},
-    {"mode_support.f90", "finding the rigid modes"},
-    {"rigid_modes.f90", "finding the rigid modes"},
-    {"rigid_support.f90", "finding the rigid modes"},
-    {"contact_condensation.f90", "condensing the contact problem"},
-    {"lcp_solvers.f90", "solving the LCP"},
-    {"lcp_scaling.f90", "solving the LCP"},
-    {"lcp_lemke.f90", "solving the LCP"},
-    {"lcp_pgs.f90", "solving the LCP"},
-    {"contact_solve.f90", "solving the LCP"},
-    {"lcp_newton.f90", "solving the LCP"},
-    {"contact_lcp.f90", "solving the LCP"},
-    {"friction_lcp.f90", "solving the friction LCP"},
-    {"friction_modes.f90", "solving the friction LCP"},
-    {"post_processing.f90", "computing the results"},
-    {"run_state.f90", "building the scene"},
-    {"results_writer.f90", "writing the outputs"},
-    {"run_outputs.f90", "writing the outputs"},
-    {"run_report.f90", "writing the outputs"},
-    {"text_buffer.f90", "writing the outputs"},
-    {"safe_files.f90", "writing the outputs"},
-};
-
-/* "In file 'F', around line L" -> file F and line L (0 when absent). */
-static void split_where(const char *where, char *file, size_t size, long *line)
+/* "In file 'F', around line L" -> "at F:L" (F without its folder). */
+static void split_where(const char *where, char *at, size_t size)
 {
     const char *a = where != NULL ? strchr(where, '\'') : NULL, *b = a != NULL ? strchr(a + 1, '\'') : NULL;
     const char *l = where != NULL ? strstr(where, "line ") : NULL;
-    size_t n = 0;
+    char file[128] = "";
     if (a != NULL && b != NULL)
     {
-        const char *base = a + 1, *s;
-        for (s = base; s < b; s++)
-            if (*s == '/') base = s + 1;     /* the file's name, without its folder */
-        n = (size_t) (b - base);
-        if (n >= size) n = size - 1;
-        memcpy(file, base, n);
+        size_t n = (size_t) (b - (a + 1));
+        if (n >= sizeof file) n = sizeof file - 1;
+        memcpy(file, a + 1, n);
+        file[n] = '\0';
     }
-    file[n] = '\0';
-    *line = l != NULL ? strtol(l + 5, NULL, 10) : 0;
+    snprintf(at, size, "at %s:%ld", base_name(file), l != NULL ? strtol(l + 5, NULL, 10) : 0L);
 }
 
 void _gfortran_os_error_at(const char *where, const char *message, ...)
 {
-    char file[128], text[512];
-    const char *phase = "computing";
-    unsigned long bytes = 0;
-    long line;
-    size_t i;
+    char at[160], text[512];
     va_list ap;
     int n;
 
-    split_where(where, file, sizeof file, &line);
-    for (i = 0; i < sizeof phases / sizeof phases[0]; i++)
-        if (strcmp(file, phases[i][0]) == 0) phase = phases[i][1];
+    split_where(where, at, sizeof at);
     if (message != NULL && strstr(message, "allocat") != NULL && strstr(message, "%lu") != NULL)
     {
+        unsigned long bytes;
         va_start(ap, message);
         bytes = va_arg(ap, unsigned long);
         va_end(ap);
-        n = snprintf(text, sizeof text,
-                     "contact2d: error: out of memory while %s (at %s:%ld) (about %lu MB needed)\n",
-                     phase, file, line, bytes / 1048576 + (bytes % 1048576 != 0));
+        out_of_memory(at, bytes);
     }
     else   /* another failure the runtime reports this way: its text, as a numerical failure */
     {
@@ -156,13 +143,47 @@ void _gfortran_os_error_at(const char *where, const char *message, ...)
         va_start(ap, message);
         (void) vsnprintf(what, sizeof what, message != NULL ? message : "", ap);
         va_end(ap);
-        n = snprintf(text, sizeof text, "contact2d: error: %s (at %s:%ld)\n", what, file, line);
+        n = snprintf(text, sizeof text, "contact2d: error: %s (%s)\n", what, at);
+        if (n > 0) (void) !write(STDERR_FILENO, text, (size_t) n < sizeof text ? (size_t) n : sizeof text - 1);
+        exit(1);
     }
-    if (n > 0) (void) !write(STDERR_FILENO, text, (size_t) n < sizeof text ? (size_t) n : sizeof text - 1);
-    exit(1);
 }
 
-/* --- allocations the generated code does not check -------------------------------- */
+/* --- flang's runtime ---------------------------------------------------------------- */
+
+/* Fortran::runtime::Terminator::RegisterCrashHandler(void (*)(const char *
+ * file, int line, const char *message, va_list &)), by its mangled name; a
+ * va_list & is a pointer to the va_list's one element on x86-64 and AArch64
+ * alike, as the handler below takes it. */
+typedef void (*crash_handler_t)(const char *file, int line, const char *message, va_list *ap);
+extern void _ZN7Fortran7runtime10Terminator20RegisterCrashHandlerEPFvPKciS3_RA1_13__va_list_tagE(
+    crash_handler_t handler) __attribute__((weak));
+
+/* The runtime is about to print `message` and abort: a failed allocation
+ * ("Memory allocation failed", "could not allocate memory for result", "out
+ * of memory, needed N bytes", ...)
+ * ends as the program's diagnosis; anything else goes on as the runtime
+ * says. */
+static void on_flang_crash(const char *file, int line, const char *message, va_list *ap)
+{
+    char at[160];
+    (void) ap;
+    if (message == NULL || strcasestr(message, "memory") == NULL
+        || (strcasestr(message, "alloc") == NULL && strcasestr(message, "out of memory") == NULL)) return;
+    if (file != NULL) snprintf(at, sizeof at, "at %s:%d", base_name(file), line);
+    else snprintf(at, sizeof at, "in the Fortran runtime");
+    out_of_memory(at, __atomic_load_n(&failed_bytes, __ATOMIC_SEQ_CST));
+}
+
+__attribute__((constructor)) static void register_flang_crash_handler(void)
+{
+    if (_ZN7Fortran7runtime10Terminator20RegisterCrashHandlerEPFvPKciS3_RA1_13__va_list_tagE != NULL)
+        _ZN7Fortran7runtime10Terminator20RegisterCrashHandlerEPFvPKciS3_RA1_13__va_list_tagE(on_flang_crash);
+}
+
+#endif /* C2D_OOM_PORTABLE_ONLY */
+
+/* --- allocations the code does not check -------------------------------------------- */
 
 void *__real_malloc(size_t size);
 void *__real_calloc(size_t count, size_t size);
@@ -171,30 +192,29 @@ void *__wrap_malloc(size_t size);
 void *__wrap_calloc(size_t count, size_t size);
 void *__wrap_realloc(void *p, size_t size);
 
-static size_t failed_bytes = 0;             /* the largest allocation that failed */
-static int armed = 0;                       /* the handler is installed */
-static struct sigaction before;             /* the SIGSEGV action it replaced */
+static int armed = 0;                       /* the handlers are installed */
+static struct sigaction segv_before;        /* the SIGSEGV action it replaced */
 
 static void on_null_write(int sig, siginfo_t *info, void *context)
 {
     size_t bytes = __atomic_load_n(&failed_bytes, __ATOMIC_SEQ_CST);
     uintptr_t at = (uintptr_t) info->si_addr;
-    char text[200];
-    int n;
     (void) context;
     if (bytes == 0 || at >= (uintptr_t) bytes + 65536)
     {
-        sigaction(sig, &before, NULL);      /* not ours: the fault again, under the earlier handler */
+        sigaction(sig, &segv_before, NULL); /* not ours: the fault again, under the earlier handler */
         return;
     }
-    n = snprintf(text, sizeof text, "contact2d: error: out of memory while computing "
-                 "(an allocation the code does not check) (about %lu MB needed)\n",
-                 (unsigned long) (bytes / 1048576 + (bytes % 1048576 != 0)));
-    if (n > 0) (void) !write(STDERR_FILENO, text, (size_t) n < sizeof text ? (size_t) n : sizeof text - 1);
-    exit(1);
+    out_of_memory("an allocation the code does not check", bytes);
 }
 
-/* An allocation of `bytes` failed: remember it, install the handler once. */
+static void on_abort(int sig)
+{
+    (void) sig;
+    out_of_memory("an abort after a failed allocation", __atomic_load_n(&failed_bytes, __ATOMIC_SEQ_CST));
+}
+
+/* An allocation of `bytes` failed: remember it, install the handlers once. */
 static void allocation_failed(size_t bytes)
 {
     struct sigaction sa;
@@ -207,7 +227,11 @@ static void allocation_failed(size_t bytes)
     sa.sa_sigaction = on_null_write;
     sa.sa_flags = SA_SIGINFO;
     sigemptyset(&sa.sa_mask);
-    sigaction(SIGSEGV, &sa, &before);
+    sigaction(SIGSEGV, &sa, &segv_before);
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_abort;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGABRT, &sa, NULL);
 }
 
 void *__wrap_malloc(size_t size)

@@ -112,8 +112,9 @@ contains
     character(len=*), intent(in) :: path
     character(len=:), allocatable, intent(out) :: buf
     integer, intent(out) :: status
+    integer(i8), parameter :: slice = 1048576
     integer :: u, ios, st, kind
-    integer(i8) :: nbytes
+    integer(i8) :: nbytes, first
     call open_input(path, u, .true., kind)
     if (kind /= c2d_regular) then
       status = merge(4, 1, kind == c2d_fifo .or. kind == c2d_device .or. kind == c2d_folder .or. kind == c2d_socket)
@@ -131,11 +132,16 @@ contains
       status = 3
       return
     end if
+    ! in slices of 1 MiB: flang's runtime stages a read through a buffer of
+    ! the read's size, which it allocates without a way to report failure
     status = 0
-    if (nbytes > 0) then
-      read(u, iostat=ios) buf
-      if (ios /= 0) status = 2
-    end if
+    do first = 1_i8, nbytes, slice
+      read(u, iostat=ios) buf(first:min(first + slice - 1, nbytes))
+      if (ios /= 0) then
+        status = 2
+        exit
+      end if
+    end do
     close(u)
   end subroutine read_file
 
