@@ -26,10 +26,10 @@ module post_processing
   use strings, only: int_to_str
   use exits, only: fail_numerical
   use run_state, only: run_t
+  use run_report, only: add_warning
   use body, only: element_response, to_global_axes
   use contact_set, only: row_of_node, node_rows, node_traction
   use contact_condensation, only: contact_forces
-  use, intrinsic :: iso_fortran_env, only: error_unit
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
   private
@@ -217,10 +217,10 @@ contains
         node = merge(run%cs%pair(ip)%mortar%first, run%cs%pair(ip)%mortar%last, r == 1)
         nr = row_of_node(run%cs, ip, node)
         if (nr == 0) cycle
-        if (run%res%status(nr) == 1) write(error_unit, '(a)') 'contact2d: warning: ' // run%deck%file // ':' // &
+        if (run%res%status(nr) == 1) call add_warning(run, 'master_end', run%deck%file // ':' // &
           int_to_str(run%deck%contacts(ip)%line) // ': the contact reaches the slave node ' // int_to_str(node) // &
           ' where the master ends inside a quadratic slave element: its row uses the master''s end value ' // &
-          '(refine the slave there or swap slave and master)'
+          '(refine the slave there or swap slave and master)')
       end do
     end do
   end subroutine contact_measures
