@@ -28,7 +28,7 @@ module contact_solve
   use scene, only: step_loads
   use load_groups, only: group_factor
   use contact_condensation, only: constraint_values
-  use lcp_solvers, only: lcp_options_t, lcp_report_t
+  use lcp_solvers, only: lcp_options_t, lcp_report_t, solve_lcp_lemke
   use friction_lcp, only: solve_friction_lcp, friction_state, friction_problem_t, friction_problem
   use friction_modes, only: solve_friction_floating, no_equilibrium
   use contact_lcp, only: contact_solution_t, solve_contact
@@ -150,6 +150,7 @@ contains
     sol%lcp_residual = lcp%rep%residual
     if (lcp%rep%info /= 0) then
       if (lcp%rep%info == 1 .and. run%rsplit%k > 0) call diagnose_pulled_rigid(run)
+      if (lcp%rep%info == 1 .and. run%fl%k > 0) call diagnose_pulled_body(run)
       if (allocated(lcp%rep%message)) then
         if (lcp%rep%no_memory) call fail_numerical(lcp%rep%message)
         call fail_numerical(step_prefix(run) // 'contact problem not solved: ' // lcp%rep%message)
@@ -463,6 +464,32 @@ contains
       'on the slave boundary)')
   end subroutine diagnose_pulled_rigid
 
+  !> The contact problem has no solution because some load pulls a body held
+  !> only by contact off its contacts: name the body and the motion it would
+  !> make.  The closest balance of its loads by contact forces alone,
+  !> min |Hh' mu - eh| over mu >= 0 (the test of contact_lcp, a nonnegative
+  !> least squares solved as the LCP of its normal equations), leaves the
+  !> unbalanced load r = eh - Hh' mu; the body that carries most of it and the
+  !> motion along it are named, as for a frictional step.
+  subroutine diagnose_pulled_body(run)
+    type(run_t), intent(inout) :: run
+    real(dp), allocatable :: hh(:,:), eh(:), mu(:), r(:), c(:)
+    type(lcp_options_t) :: opts
+    type(lcp_report_t) :: rep
+    integer :: owner
+    if (size(run%split%held, 2) == 0) return
+    hh = matmul(run%split%h(1:run%cs%nrow, :), run%split%held)    ! Hh = H V_h on the normal rows
+    eh = matmul(transpose(run%split%held), run%split%e)             ! eh = V_h' e
+    allocate(mu(run%cs%nrow), source=0.0_dp)
+    call solve_lcp_lemke(matmul(hh, transpose(hh)), -matmul(hh, eh), mu, opts, rep)
+    if (rep%info /= 0) return
+    r = eh - matmul(transpose(hh), mu)
+    if (norm2(r) <= 1.0e-8_dp * norm2(eh)) return        ! the bodies balance: a RIGID, or the coupling of several
+    call largest_owner(run%split%held, r, run%fl%mode_body, c, owner)
+    call fail_numerical(step_prefix(run) // no_equilibrium_text('contact', '', 'the loads pull body "' // &
+      run%sc%bodies(owner)%name // '"', motion_name(run%fl, c), 'the loads'))
+  end subroutine diagnose_pulled_body
+
   !> The diagnosis of a frictional step without equilibrium from the unbalanced
   !> load along the held combinations (the bodies' modes, then the RIGIDs'
   !> free directions): the body or the RIGID that carries most of it, and
@@ -530,16 +557,25 @@ contains
     end if
   end function no_equilibrium_text
 
-  !> The names of the bodies with free rigid modes, quoted, comma-separated.
+  !> Who is held only by contact, for messages: each body with a free rigid
+  !> mode (body "A"), then each RIGID with a free direction (RIGID "B"),
+  !> comma-separated.  A scene whose only floating part is a RIGID under
+  !> FORCE has no floating body: the RIGID must still be named.
   function floating_names(run) result(t)
     type(run_t), intent(in) :: run
     character(len=:), allocatable :: t
-    integer :: b
+    integer :: b, r
     t = ''
     do b = 1, size(run%sc%bodies)
       if (.not. any(run%fl%mode_body == b)) cycle
       if (len(t) > 0) t = t // ', '
-      t = t // '"' // run%sc%bodies(b)%name // '"'
+      t = t // 'body "' // run%sc%bodies(b)%name // '"'
+    end do
+    do r = 1, size(run%sc%rigids)
+      if (run%rsplit%k == 0) exit
+      if (.not. any(run%rsplit%owner == r)) cycle
+      if (len(t) > 0) t = t // ', '
+      t = t // 'RIGID "' // run%sc%rigids(r)%name // '"'
     end do
   end function floating_names
 

@@ -28,10 +28,10 @@ module post_processing
   use exits, only: fail_numerical
   use run_state, only: run_t
   use results_writer, only: results_t
+  use run_report, only: add_warning
   use body, only: element_response, to_global_axes
   use contact_set, only: row_of_node, node_rows, node_traction
   use contact_condensation, only: contact_forces
-  use, intrinsic :: iso_fortran_env, only: error_unit
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use run_phase, only: enter_phase
   implicit none
@@ -75,8 +75,31 @@ contains
     call post_process(run, run%sc%fext, run%res)
     call rigid_results(run, run%res)
     call nodal_contact_fields(run, run%res)
+    call warn_master_end(run)
     call check_finite_results(run, run%res)
   end subroutine compute_results
+
+  !> warning master_end: a quadratic pair whose master ends inside a slave
+  !> element, where the final contact reaches the node whose row uses the
+  !> master's end value extended (mortar_quadratic).
+  !>   run (inout) res%status of the final state on entry; the warning on exit
+  subroutine warn_master_end(run)
+    type(run_t), intent(inout) :: run
+    integer :: ip, r, node, nr
+    if (.not. allocated(run%res%status)) return
+    do ip = 1, run%cs%npair
+      do r = 1, 2
+        if (.not. run%cs%pair(ip)%extended(r)) cycle
+        node = merge(run%cs%pair(ip)%mortar%first, run%cs%pair(ip)%mortar%last, r == 1)
+        nr = row_of_node(run%cs, ip, node)
+        if (nr == 0) cycle
+        if (run%res%status(nr) == 1) call add_warning(run, 'master_end', run%deck%file // ':' // &
+          int_to_str(run%deck%contacts(ip)%line) // ': the contact reaches the slave node ' // int_to_str(node) // &
+          ' where the master ends inside a quadratic slave element: its row uses the master''s end value ' // &
+          '(refine the slave there or swap slave and master)')
+      end do
+    end do
+  end subroutine warn_master_end
 
   !> res%contact_force: per pair, the resultant of the contact forces on its
   !> slave body, the sum over the slave dofs of -C' z restricted to the
@@ -219,18 +242,6 @@ contains
     end if
     res%min_gap = min(0.0_dp, minval(res%gap))
     res%min_pressure = minval(res%pressure)
-    do ip = 1, run%cs%npair                 ! quadratic: a closed row whose master value is extended
-      do r = 1, 2
-        if (.not. run%cs%pair(ip)%extended(r)) cycle
-        node = merge(run%cs%pair(ip)%mortar%first, run%cs%pair(ip)%mortar%last, r == 1)
-        nr = row_of_node(run%cs, ip, node)
-        if (nr == 0) cycle
-        if (res%status(nr) == 1) write(error_unit, '(a)') 'contact2d: warning: ' // run%deck%file // ':' // &
-          int_to_str(run%deck%contacts(ip)%line) // ': the contact reaches the slave node ' // int_to_str(node) // &
-          ' where the master ends inside a quadratic slave element: its row uses the master''s end value ' // &
-          '(refine the slave there or swap slave and master)'
-      end do
-    end do
   end subroutine contact_measures
 
   !> contact_pressure, gap (and shear) on the nodes, for the VTK file: what

@@ -17,7 +17,7 @@ module problem_setup
   use run_phase, only: enter_phase
   use exits, only: stop_input_errors, fail_numerical, exit_program
   use run_state, only: run_t, ph_mesh
-  use run_report, only: say, lap, report_scene
+  use run_report, only: say, lap, report_scene, add_warning
   use run_outputs, only: make_folder
   use case_selection, only: check_overrides
   use deck_reader, only: read_deck
@@ -31,7 +31,6 @@ module problem_setup
   use post_processing, only: name_results
   use contact_solve, only: check_floating_bodies, check_floating_friction_solver, check_unheld_loads, &
                            check_unheld_rigid_loads
-  use, intrinsic :: iso_fortran_env, only: error_unit
   implicit none
   private
   public :: read_input, build_problem
@@ -74,9 +73,9 @@ contains
     if (allocated(err)) call contact_error(run, err)
     call rotate_constraint_rows(run%cs, run%sc%bodies)     ! nodes in local axes (FIX un=/ut=)
     do i = 1, run%cs%npair
-      if (run%cs%pair(i)%nrow == 0) write(error_unit, '(a)') 'contact2d: warning: ' // run%deck%file // ':' // &
+      if (run%cs%pair(i)%nrow == 0) call add_warning(run, 'no_contact', run%deck%file // ':' // &
         int_to_str(run%deck%contacts(i)%line) // ': no part of the master boundary faces the slave boundary: ' // &
-        'this pair can never touch (check the boundary names and the slave/master choice)'
+        'this pair can never touch (check the boundary names and the slave/master choice)')
     end do
     call enter_phase('finding the rigid modes')
     ! free rigid modes (bodies held only by contact): pin k dofs to factorize K^#

@@ -72,6 +72,11 @@ module results_writer
     real(dp), allocatable :: rigid(:,:)          !< (6, nrigid) ux uy rz of the reference point, fx fy m the
                                                  !< contact force on the obstacle (summary rigid)
     real(dp) :: energy = 0
+    ! the model's assumptions (model_checks): the largest strain and rotation
+    real(dp) :: max_strain(3) = 0                !< largest principal strain magnitude, x, y where
+    real(dp) :: max_rotation(3) = 0              !< largest |(du_y/dx - du_x/dy) / 2| (rad), x, y where
+    character(len=:), allocatable :: max_strain_body, max_rotation_body   !< the body of each
+    type(string_t), allocatable :: warning(:)    !< (nwarn) 'CODE text' of each warning (run_report add_warning)
     character(len=:), allocatable :: lcp_method
     integer :: lcp_iterations = 0
     real(dp) :: lcp_residual = 0
@@ -446,6 +451,15 @@ contains
     if (allocated(r%unheld_mode)) then
       do k = 1, size(r%unheld_mode)
         write(u, '(a)') 'unheld_mode ' // r%unheld_mode(k)%s
+      end do
+    end if
+    if (allocated(r%max_strain_body)) write(u, '(a)') 'max_strain ' // num(r%max_strain(1)) // ' ' // &
+      r%max_strain_body // ' ' // num(r%max_strain(2)) // ' ' // num(r%max_strain(3))
+    if (allocated(r%max_rotation_body)) write(u, '(a)') 'max_rotation ' // num(r%max_rotation(1)) // ' ' // &
+      r%max_rotation_body // ' ' // num(r%max_rotation(2)) // ' ' // num(r%max_rotation(3))
+    if (allocated(r%warning)) then
+      do k = 1, size(r%warning)
+        write(u, '(a)') 'warning ' // r%warning(k)%s
       end do
     end if
     write(u, '(a,i0)') 'factor_nnz ', r%factor_nnz

@@ -17,6 +17,7 @@
 !>   report_scene(run)               the scene: model, bodies, RIGIDs, pairs, steps, rigid modes, sizes
 !>   report_run(run)                 the results, factor, phases, files written
 !>   friction_law(kind, spec)        how a pair's tangential behaviour reads in the log
+!>   add_warning(run, code, text)    a warning: stderr (unless -q) and the summary's `warning CODE text`
 module run_report
   use kinds, only: dp, i8
   use strings, only: int_to_str
@@ -27,15 +28,45 @@ module run_report
   use rigid_modes, only: mode_name, motion_name
   use rigid_support, only: rigid_direction
   use deck_expressions, only: format_number
-  use results_writer, only: phase_names, nphase
+  use results_writer, only: phase_names, nphase, string_t
   use threads, only: run_threads
   use command_line, only: version
-  use, intrinsic :: iso_fortran_env, only: output_unit
+  use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
   implicit none
   private
   public :: say, start_clock, lap, split_overlap, say_step, report_scene, report_run, friction_law
+  public :: add_warning
 
 contains
+
+  !> A warning: the run goes on, but its answer rests on something the user
+  !> must know (an assumption of the model it has left, a pair that cannot
+  !> touch).  The one way warnings are given: on stderr as
+  !> `contact2d: warning: TEXT [CODE]` (unless -q: only errors there), and in
+  !> the summary as `warning CODE TEXT`, so that a batch script finds it.
+  !> The same warning given again (a load step measured twice) is kept once.
+  !>   run  (inout) its quiet flag; res%warning gains the line
+  !>   code (in)    one word naming the kind: locking, large_strain, large_rotation, ...
+  !>   text (in)    what is wrong and what to do, one line; FILE:LINE: first
+  !>                when a deck statement is the cause
+  subroutine add_warning(run, code, text)
+    type(run_t), intent(inout) :: run
+    character(len=*), intent(in) :: code, text
+    type(string_t), allocatable :: grown(:)
+    integer :: k, n
+    if (.not. allocated(run%res%warning)) allocate(run%res%warning(0))
+    n = size(run%res%warning)
+    do k = 1, n
+      if (run%res%warning(k)%s == code // ' ' // text) return
+    end do
+    allocate(grown(n + 1))
+    do k = 1, n
+      call move_alloc(run%res%warning(k)%s, grown(k)%s)
+    end do
+    grown(n + 1)%s = code // ' ' // text
+    call move_alloc(grown, run%res%warning)
+    if (.not. run%quiet) write(error_unit, '(a)') 'contact2d: warning: ' // text // ' [' // code // ']'
+  end subroutine add_warning
 
   !> A line of the run log, unless -q.
   !>   run  (in) its quiet flag

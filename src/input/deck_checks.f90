@@ -34,7 +34,7 @@ contains
     type(state_t), intent(inout) :: s
     type(deck_t), intent(inout) :: deck
     integer :: b, i
-    logical :: resolved, rect
+    logical :: resolved, rect, unknown
 
     if (s%block /= '' .and. .not. s%end_hinted) &
       call report(s, s%nline, 'missing END for ' // trim(s%block) // ' ' // quoted(s%block_name) // &
@@ -56,9 +56,14 @@ contains
           call check_statement(body, body%loads(i)%boundary, body%loads(i)%ramp, body%loads(i)%line)
         end do
         if (.not. is_name(body%name)) cycle
-        if (body%mesh%line == 0) call report(s, body%line, 'body ' // quoted(body%name) // &
+        ! a body block with an unknown keyword: that statement is most likely its
+        ! misspelt MESH or MATERIAL, already reported at its own line; "has no
+        ! MATERIAL" at the BODY line would come first and point the user elsewhere
+        unknown = .false.
+        if (allocated(s%unknown_body)) unknown = any(s%unknown_body == b)
+        if (body%mesh%line == 0 .and. .not. unknown) call report(s, body%line, 'body ' // quoted(body%name) // &
                                              ' has no MESH (expected a MESH statement in its BODY block)')
-        if (body%material%line == 0) call report(s, body%line, 'body ' // quoted(body%name) // &
+        if (body%material%line == 0 .and. .not. unknown) call report(s, body%line, 'body ' // quoted(body%name) // &
                                                  ' has no MATERIAL (expected a MATERIAL statement in its BODY block)')
         if (.not. deck%plane_stress .and. allocated(body%material%kind)) then
           if (body%material%kind == 'orthotropic') then

@@ -315,6 +315,10 @@ contains
           list = list // trim(table(k)%keyword)
         end do
         call report(s, st%line, 'unknown keyword ' // quoted(st%keyword) // ' (expected one of ' // list // ')')
+        if (s%block == 'BODY' .and. s%cur > 0) then
+          if (.not. allocated(s%unknown_body)) allocate(s%unknown_body(0))
+          s%unknown_body = [s%unknown_body, s%cur]
+        end if
         return
       end if
       if (table(k)%block /= '') then            ! a block statement outside its block

@@ -125,6 +125,8 @@ module deck_syntax
     integer, allocatable :: first_line(:)     !< (nrow) line of each top-level statement seen (once rows)
     integer, allocatable :: block_first(:)    !< (nrow) the same in the open block
     logical :: contact_bad = .false.          !< some CONTACT statement had an error
+    integer, allocatable :: unknown_body(:)   !< bodies whose block holds an unknown keyword (a misspelt
+                                              !< MESH or MATERIAL: "has no ..." would be its echo)
     logical :: steps_bad = .false.            !< the STEPS statement had an error
     type(string_t), allocatable :: slave_name(:), master_name(:)   !< (ncontact) body names
     type(parameter_set_t) :: overrides        !< -D and --cases values of declared parameters

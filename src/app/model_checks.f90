@@ -1,0 +1,220 @@
+!> model_checks: the monitors of the model's assumptions, run once on the
+!> final state, each a warning when the answer rests on an assumption it has
+!> broken (doc/theory.md, "The model's assumptions, and the monitors that
+!> guard them"):
+!>   locking         linear elements (3-node triangles, 4-node quadrangles)
+!>                   with nu > 0.45 in plane strain or axisymmetric analysis:
+!>                   fully integrated, they lock as nu -> 1/2
+!>   large_strain    a principal strain above 0.05 over more than 1 % of a
+!>                   body's area: the strain is the linearized one,
+!>                   eps = (grad u + grad u')/2
+!>   large_rotation  a rotation above 0.05 rad over more than 1 % of a body's
+!>                   area, or a RIGID turned by more: rotations are linearized too
+!> and the summary's max_strain and max_rotation, the measures themselves.
+!>
+!> Why it exists: a small-strain linear elastic answer is silent about the
+!> loads and geometries it does not describe; these checks make the run say
+!> so.  Each threshold lives here once, with its reason.  Who may use it: the
+!> program (one call, after the results are computed).
+!>
+!> Programming interface
+!>   check_model(run)   the monitors: res%max_strain, res%max_rotation set,
+!>                      a warning (run_report's add_warning) for each one broken
+module model_checks
+  use kinds, only: dp
+  use strings, only: int_to_str, real_to_str
+  use run_state, only: run_t
+  use run_report, only: add_warning
+  use body, only: body_t
+  use elements, only: quadrature_rule, shape_at, max_nen
+  use deck_expressions, only: format_number
+  implicit none
+  private
+  public :: check_model
+
+  !> nu above which linear elements lock: lambda / mu = 2 nu / (1 - 2 nu) = 9
+  !> at 0.45, where P1's error from the volumetric constraint becomes of the
+  !> order of its discretization error (doc/theory.md, the monitors' table)
+  real(dp), parameter :: locking_nu = 0.45_dp
+  !> strain above which the linearized strain misses its quadratic term
+  !> (Green-Lagrange E = eps + grad u' grad u / 2) by more than 2.5 %
+  real(dp), parameter :: strain_limit = 0.05_dp
+  !> rotation (rad) above which the linearized rotation's spurious stretch
+  !> theta^2 / 2 (1.25e-3) reaches the elastic strains of a metal at yield
+  real(dp), parameter :: rotation_limit = 0.05_dp
+  !> share of a body's area over a limit above which the run warns: the
+  !> singular points of a linear solution (a punch's edge, a loaded corner, a
+  !> zone end) pass any limit on a fine enough mesh, but over a zone that
+  !> shrinks with the elements (below 0.6 % of the body in every deck of the
+  !> tests); a load the model cannot carry passes it over a zone of its own
+  !> size (1.6 % and more)
+  real(dp), parameter :: area_limit = 0.01_dp
+
+contains
+
+  !> The model's monitors on the run's final state (module header).
+  !>   run (inout) scene, deck and res%u (x, y components) on entry;
+  !>               res%max_strain, max_rotation and the warnings on exit
+  subroutine check_model(run)
+    type(run_t), intent(inout) :: run
+    real(dp), allocatable :: over(:,:)
+    call check_locking(run)
+    call measure_deformation(run, over)
+    call check_deformation(run, over)
+  end subroutine check_model
+
+  !> A `warning locking` per body of isotropic material with nu > 0.45 meshed
+  !> (in part) by 3-node triangles or 4-node quadrangles, in plane strain or
+  !> axisymmetric analysis.  Plane stress: the through-thickness strain takes
+  !> up the volume change, nu causes no locking.  Quadratic elements lock
+  !> much less (their richer displacement space satisfies div u = 0 without
+  !> freezing the mesh) and are not warned about; orthotropic laws are not
+  !> judged (their incompressibility is not one number).
+  subroutine check_locking(run)
+    type(run_t), intent(inout) :: run
+    integer :: b, ntri, nquad
+    character(len=:), allocatable :: which, model
+    if (run%deck%plane_stress) return
+    model = merge('axisymmetric analysis', 'plane strain         ', run%deck%axisymmetric)
+    do b = 1, size(run%sc%bodies)
+      associate (mat => run%deck%bodies(b)%material, m => run%sc%bodies(b)%mesh)
+        if (.not. allocated(mat%kind)) cycle
+        if (mat%kind /= 'isotropic' .or. mat%nu <= locking_nu) cycle
+        ntri = count(m%nen == 3)
+        nquad = count(m%nen == 4)
+        if (ntri + nquad == 0) cycle
+        which = ''
+        if (ntri > 0) which = int_to_str(ntri) // ' 3-node triangles'
+        if (ntri > 0 .and. nquad > 0) which = which // ' and '
+        if (nquad > 0) which = which // int_to_str(nquad) // ' 4-node quadrangles'
+        call add_warning(run, 'locking', run%deck%file // ':' // int_to_str(mat%line) // ': body "' // &
+          run%sc%bodies(b)%name // '": nu = ' // format_number(mat%nu) // ' above ' // format_number(locking_nu) // &
+          ' on ' // which // ' in ' // trim(model) // ': linear elements lock as nu -> 1/2 (the displacements ' // &
+          'come out too small, the stresses oscillate); quadratic elements (elem=tri6, quad8, quad9 or ' // &
+          'order=2) lock much less')
+      end associate
+    end do
+  end subroutine check_locking
+
+  !> res%max_strain and res%max_rotation: over the quadrature points of the
+  !> stiffness rule of every element, the largest principal strain magnitude
+  !> of eps = (grad u + grad u')/2 (in-plane; with the hoop strain u_r / r in
+  !> axisymmetric analysis) and the largest |omega|, omega = (du_y/dx -
+  !> du_x/dy)/2, with the point and the body where each is reached; and the
+  !> share of each body's area (of its section, axisymmetric) where each
+  !> passes its limit.
+  !>   over (out) (2, nbody) that share, strain then rotation
+  subroutine measure_deformation(run, over)
+    type(run_t), intent(inout) :: run
+    real(dp), allocatable, intent(out) :: over(:,:)
+    real(dp) :: xe(2, max_nen), ue(2, max_nen), n(max_nen), dndx(2, max_nen), detj
+    real(dp) :: g(2, 2), x(2), ur, c, r, strain, omega, da, area
+    real(dp), allocatable :: xi(:,:), w(:)
+    integer :: b, e, a, k, nen, d, rule_nen
+    allocate(over(2, size(run%sc%bodies)), source=0.0_dp)
+    run%res%max_strain = 0.0_dp
+    run%res%max_rotation = 0.0_dp
+    run%res%max_strain_body = run%sc%bodies(1)%name
+    run%res%max_rotation_body = run%sc%bodies(1)%name
+    rule_nen = 0
+    do b = 1, size(run%sc%bodies)
+      associate (bd => run%sc%bodies(b), m => run%sc%bodies(b)%mesh)
+        area = 0.0_dp
+        do e = 1, m%nelem
+          nen = m%nen(e)
+          do a = 1, nen
+            xe(:, a) = m%x(:, m%conn(a, e))
+            d = bd%dof0 + 2 * (m%conn(a, e) - 1)
+            ue(:, a) = run%res%u(d + 1:d + 2)
+          end do
+          if (nen /= rule_nen) call quadrature_rule(nen, 1, xi, w)   ! once per element kind met
+          rule_nen = nen
+          do k = 1, size(w)
+            call shape_at(nen, xe(:, 1:nen), xi(:, k), n(1:nen), dndx(:, 1:nen), detj)
+            g = matmul(ue(:, 1:nen), transpose(dndx(:, 1:nen)))    ! g(i, j) = du_i / dx_j
+            x = matmul(xe(:, 1:nen), n(1:nen))
+            c = 0.5_dp * (g(1, 1) + g(2, 2))                       ! principal strains c +- r
+            r = hypot(0.5_dp * (g(1, 1) - g(2, 2)), 0.5_dp * (g(1, 2) + g(2, 1)))
+            strain = abs(c) + r
+            if (bd%axisymmetric .and. x(1) > 0.0_dp) then
+              ur = dot_product(ue(1, 1:nen), n(1:nen))
+              strain = max(strain, abs(ur / x(1)))                 ! eps_tt = u_r / r
+            end if
+            omega = abs(0.5_dp * (g(2, 1) - g(1, 2)))
+            da = w(k) * abs(detj)                                  ! the point's share of the area
+            area = area + da
+            if (strain > strain_limit) over(1, b) = over(1, b) + da
+            if (omega > rotation_limit) over(2, b) = over(2, b) + da
+            if (strain > run%res%max_strain(1)) then
+              run%res%max_strain = [strain, x(1), x(2)]
+              run%res%max_strain_body = bd%name
+            end if
+            if (omega > run%res%max_rotation(1)) then
+              run%res%max_rotation = [omega, x(1), x(2)]
+              run%res%max_rotation_body = bd%name
+            end if
+          end do
+        end do
+        if (area > 0.0_dp) over(:, b) = over(:, b) / area
+      end associate
+    end do
+  end subroutine measure_deformation
+
+  !> `warning large_strain` and `warning large_rotation` when the measures
+  !> pass their limits over more than area_limit of a body (the body with the
+  !> largest share named, with the largest value and its point); a RIGID
+  !> turned by more than the rotation limit too
+  !> (its points move by the linearized U(x) = u + theta e_z x (x - x_r)),
+  !> unless it is a circle turned about its centre.
+  subroutine check_deformation(run, over)
+    type(run_t), intent(inout) :: run
+    real(dp), intent(in) :: over(:,:)
+    integer :: r, bs, bo
+    character(len=*), parameter :: why = ': the model is small-deformation linear elasticity (strains and ' // &
+      'rotations linearized, contact pairing and normals of the initial configuration); its answer is not to be ' // &
+      'trusted there'
+    bs = maxloc(over(1, :), dim=1)
+    bo = maxloc(over(2, :), dim=1)
+    associate (s => run%res%max_strain, o => run%res%max_rotation)
+      if (over(1, bs) > area_limit) call add_warning(run, 'large_strain', 'the principal strain exceeds ' // &
+        format_number(strain_limit) // ' over ' // percent(over(1, bs)) // ' of body "' // run%sc%bodies(bs)%name // &
+        '" (the largest, ' // real_to_str(s(1)) // ', in body "' // run%res%max_strain_body // '" at (' // &
+        real_to_str(s(2)) // ', ' // real_to_str(s(3)) // '))' // why // ' (check the loads and units, and ' // &
+        'any initial penetration an interference=allow pair accepts)')
+      if (over(2, bo) > area_limit) call add_warning(run, 'large_rotation', 'the rotation exceeds ' // &
+        format_number(rotation_limit) // ' rad over ' // percent(over(2, bo)) // ' of body "' // &
+        run%sc%bodies(bo)%name // '" (the largest, ' // real_to_str(o(1)) // ' rad, in body "' // &
+        run%res%max_rotation_body // '" at (' // real_to_str(o(2)) // ', ' // real_to_str(o(3)) // '))' // why)
+    end associate
+    do r = 1, size(run%sc%rigids)
+      if (abs(run%res%rigid(3, r)) <= rotation_limit) cycle
+      ! a circle turned about its centre moves along itself: its gaps do not
+      ! depend on the rotation, linearized or not
+      associate (sh => run%sc%rigids(r))
+        if (run%deck%rigids(r)%shape == 'circle' .and. norm2(sh%ref - sh%centre) <= 1.0e-12_dp * sh%radius) cycle
+      end associate
+      call add_warning(run, 'large_rotation', 'RIGID "' // run%sc%rigids(r)%name // '" turns by ' // &
+        real_to_str(run%res%rigid(3, r)) // ' rad, above ' // format_number(rotation_limit) // ' rad' // why)
+    end do
+  end subroutine check_deformation
+
+  !> f (a fraction) as a percentage: '100 %', '41 %', '4.1 %', '0.12 %', '1.2E-03 %'.
+  function percent(f) result(t)
+    real(dp), intent(in) :: f
+    character(len=:), allocatable :: t
+    character(len=16) :: buf
+    real(dp) :: p
+    p = 100.0_dp * f
+    if (p >= 9.95_dp) then
+      write(buf, '(i0)') nint(p)
+    else if (p >= 0.995_dp) then
+      write(buf, '(f4.1)') p
+    else if (p >= 0.00995_dp) then
+      write(buf, '(f5.2)') p
+    else
+      buf = real_to_str(p)
+    end if
+    t = trim(adjustl(buf)) // ' %'
+  end function percent
+
+end module model_checks
