@@ -9,7 +9,7 @@
 !>   -> condense the contact problem onto the slave nodes: W, q
 !>   -> solve LCP(W, q) (Lemke, PDAS, PGS; friction in load steps)
 !>   -> recover u -> stresses, reactions, energy -> the model's assumptions
-!>   checked (warnings) -> VTK, contact table, summary.
+!>   checked (warnings) -> the error estimate -> VTK, contact table, summary.
 !> Everything the steps hand each other is in one run_t (run_state).  The
 !> run log says what was done; bad input exits 2, a numerical failure or a
 !> problem without equilibrium exits 1, with the diagnosis.
@@ -25,6 +25,7 @@ program contact2d
   use contact_solve, only: solve_contact_lcp
   use post_processing, only: compute_results
   use model_checks, only: check_model
+  use run_estimate, only: estimate_error
   use run_outputs, only: write_outputs
   use run_report, only: start_clock, report_run
   implicit none
@@ -48,6 +49,7 @@ program contact2d
   call recover_system(run)       ! u = K^-1 (f - C' z) + the rigid motions
   call compute_results(run)      ! stresses, reactions, energy, contact fields
   call check_model(run)          ! the model's assumptions: locking, strain, rotation (warnings)
+  call estimate_error(run)       ! the run's own error: recovered stresses, element indicators
   call write_outputs(run)        ! VTK, contact table, summary (and the steps' files)
   call report_run(run)           ! the run log: results, factor, timings, files written
   call exit_program(0)

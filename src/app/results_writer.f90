@@ -28,9 +28,9 @@ module results_writer
   public :: results_t, string_t, write_vtk, write_contact_csv, write_summary, write_pvd, write_step_table
   public :: phase_names, nphase, peak_memory
 
-  integer, parameter :: nphase = 8
+  integer, parameter :: nphase = 9
   character(len=8), parameter :: phase_names(nphase) = &
-    [character(len=8) :: 'mesh', 'assemble', 'factor', 'condense', 'lcp', 'recover', 'output', 'total']
+    [character(len=8) :: 'mesh', 'assemble', 'factor', 'condense', 'lcp', 'recover', 'estimate', 'output', 'total']
 
   !> What a run found, for the writers.  Its lists of names and lines are
   !> arrays of string_t, not deferred-length character arrays: gfortran 12's
@@ -77,6 +77,12 @@ module results_writer
     real(dp) :: max_rotation(3) = 0              !< largest |(du_y/dx - du_x/dy) / 2| (rad), x, y where
     character(len=:), allocatable :: max_strain_body, max_rotation_body   !< the body of each
     type(string_t), allocatable :: warning(:)    !< (nwarn) 'CODE text' of each warning (run_report add_warning)
+    logical :: estimated = .false.               !< the error was estimated (ESTIMATE, on by default)
+    real(dp) :: estimate_energy = 0              !< estimated relative energy-norm error of u_h
+    real(dp), allocatable :: error_indicator(:)  !< (nelem) each element's share eta_K / ||u||_E of it:
+                                                 !< the sum of their squares is estimate_energy^2
+    real(dp), allocatable :: estimate_pressure(:) !< (npair) estimated relative L2 error of the contact
+                                                 !< pressure over the pair's zone; < 0: no zone in contact
     character(len=:), allocatable :: lcp_method
     integer :: lcp_iterations = 0
     real(dp) :: lcp_residual = 0
@@ -176,6 +182,7 @@ contains
       call put_rows(tb, row_values, nelem, v)
     end if
     if (fields(5)) call put_scalars(tb, 'von_mises', r%vm, v%elem_index, v)
+    if (allocated(r%error_indicator)) call put_scalars(tb, 'error_indicator', r%error_indicator, v%elem_index, v)
     call close_text(tb, err)
     if (allocated(err)) call cannot_write(path, err)
   end subroutine write_vtk
@@ -434,6 +441,13 @@ contains
       write(u, '(a,i0)') 'slip_nodes ', r%slip_nodes
     end if
     write(u, '(a,a)') 'energy ', num(r%energy)
+    if (r%estimated) then
+      write(u, '(a,a)') 'estimate energy ', num(r%estimate_energy)
+      do k = 1, size(r%estimate_pressure)
+        if (r%estimate_pressure(k) >= 0.0_dp) &
+          write(u, '(a,i0,a)') 'estimate pressure ', k, ' ' // num(r%estimate_pressure(k))
+      end do
+    end if
     do k = 1, size(r%fix_label)
       write(u, '(a)') 'reaction ' // r%fix_label(k)%s // ' ' // num(r%reaction(1, k)) // ' ' // num(r%reaction(2, k))
     end do

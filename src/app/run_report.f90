@@ -321,6 +321,22 @@ contains
     write(line, '(a,es16.8,a,i0)') 'energy   ', run%res%energy, ',  nnz(L) ', run%res%factor_nnz
     call say(run, trim(line) // ' (' // run%res%ordering // '),  peak memory ' // &
              trim(adjustl(real_fixed(run%res%memory_peak / 1048576.0_dp))) // ' MB')
+    if (run%res%estimated) then
+      write(line, '(a,f8.3,a)') 'estimate energy-norm error of u ', 100 * run%res%estimate_energy, &
+        ' % (stress recovery; error_indicator in the VTK)'
+      call say(run, trim(line))
+      do p = 1, size(run%res%estimate_pressure)
+        if (run%res%estimate_pressure(p) < 0.0_dp) then
+          write(line, '(a,i0,a)') 'estimate pair ', p, ': no node in contact, no pressure to estimate'
+        else
+          write(line, '(a,i0,a,f8.3,a)') 'estimate pair ', p, ': L2 error of the contact pressure ', &
+            100 * run%res%estimate_pressure(p), ' %'
+        end if
+        call say(run, trim(line))
+      end do
+    else
+      call say(run, 'estimate off (ESTIMATE off): the run does not estimate its error')
+    end if
     if (run%factor%nparts > 1) then
       write(line, '(a,i0,a)') 'factor   ', run%factor%nparts, ' parts (blocks of K that no entry couples: the bodies)'
       if (run%factor%side_by_side > 1) then

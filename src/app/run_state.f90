@@ -33,10 +33,10 @@ module run_state
   implicit none
   private
   public :: run_t
-  public :: ph_mesh, ph_assemble, ph_factor, ph_condense, ph_lcp, ph_recover, ph_output, ph_total
+  public :: ph_mesh, ph_assemble, ph_factor, ph_condense, ph_lcp, ph_recover, ph_estimate, ph_output, ph_total
 
   integer, parameter :: ph_mesh = 1, ph_assemble = 2, ph_factor = 3, ph_condense = 4, ph_lcp = 5, &
-                        ph_recover = 6, ph_output = 7, ph_total = 8
+                        ph_recover = 6, ph_estimate = 7, ph_output = 8, ph_total = 9
 
   type :: run_t
     ! --- the command line (command_line, case_selection) -----------------

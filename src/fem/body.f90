@@ -50,7 +50,7 @@ module body
   private
   public :: body_t, number_equations, build_pattern, assemble_stiffness, internal_forces
   public :: node_elements, element_dofs, edge_outward_normal, element_response
-  public :: thermal_loads, to_global_axes, to_local_axes
+  public :: thermal_loads, to_global_axes, to_local_axes, axi_thermal_strain
 
   type :: body_t
     character(len=:), allocatable :: name  !< as in the deck

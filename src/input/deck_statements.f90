@@ -114,6 +114,7 @@ contains
                        choice_key('ordering', 'auto|metis|amd'), choice_key('condense', 'auto|solve|inverse'), &
                        choice_key('cut', 'auto|off')])
     call add_row(table, 'STEPS', '', do_steps, once=.true., usage='STEPS n with an integer 1 <= n <= 100000')
+    call add_row(table, 'ESTIMATE', '', do_estimate, once=.true., usage='ESTIMATE [on|off]')
     call add_row(table, 'CURVE', '', do_curve, &
                  usage='CURVE name t0:v0 t1:v1 ... with step numbers t0 < t1 < ... and load factors v')
     call add_row(table, 'OUTPUT', '', do_output, once=.true., words=0, &
@@ -314,6 +315,26 @@ contains
     call check_no_pairs(s, st)
     s%steps_bad = s%nerr /= nerr0
   end subroutine do_steps
+
+  !> ESTIMATE [on|off]: the a posteriori error estimate of the run (on when
+  !> the deck does not say).
+  subroutine do_estimate(s, deck, st)
+    type(state_t), intent(inout) :: s
+    type(deck_t), intent(inout) :: deck
+    type(stmt_t), intent(in) :: st
+    if (st%nword >= 1) then
+      select case (st%word(1)%s)
+      case ('on')
+        deck%estimate = .true.
+      case ('off')
+        deck%estimate = .false.
+      case default
+        call report(s, st%line, 'bad value ' // quoted(st%word(1)%s) // ' (expected ' // st%usage // ')')
+      end select
+      call check_extra_words(s, st, 1, st%usage)
+    end if
+    call check_no_pairs(s, st)
+  end subroutine do_estimate
 
   !> CURVE name t0:v0 t1:v1 ...: a piecewise-linear load factor against the
   !> step number, at least one point, t strictly increasing (numbers, not

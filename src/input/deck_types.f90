@@ -193,6 +193,7 @@ module deck_types
     type(curve_t), allocatable :: curves(:)     !< (ncurve) CURVE statements, always allocated
     integer :: steps = 1                        !< STEPS n: load steps, 1 <= n <= max_steps
     integer :: steps_line = 0                   !< line of the STEPS statement (0: none)
+    logical :: estimate = .true.                !< ESTIMATE [on|off]: the a posteriori error estimate
     type(contact_deck_t), allocatable :: contacts(:)   !< (ncontact), always allocated
     type(rigid_deck_t), allocatable :: rigids(:) !< (nrigid) RIGID blocks, always allocated
     type(solver_deck_t) :: solver

@@ -19,6 +19,7 @@
 !>        for loads and error integrals (P1: 3 points, degree 2; Q1: 3x3 Gauss;
 !>        P2: Dunavant's 6 points, degree 4; Q8, Q9: 4x4 Gauss)
 !>   corner_count(nen)                     3 (triangles) or 4 (quadrilaterals)
+!>   reference_node(nen, a)                the reference coordinates of node a
 !>   stiffness_rule(nen, nq, xi, w)        the order-1 rule in fixed-size arrays
 !>   shape_at(nen, xe, xi, n, dndx, detj)  shape functions, their x-y gradients
 !>        and the Jacobian determinant at a reference point
@@ -38,7 +39,7 @@ module elements
   implicit none
   private
   public :: quadrature_rule, shape_at, element_stiffness, element_force, element_body_load, element_strain
-  public :: edge_load, edge_load_quadratic, strain_operator, corner_count, max_nen, stiffness_rule
+  public :: edge_load, edge_load_quadratic, strain_operator, corner_count, max_nen, stiffness_rule, reference_node
 
   !> The most nodes of an element (Q9).  The kernels run once per element:
   !> their work arrays have this fixed size, not nen, because gfortran puts
@@ -115,6 +116,21 @@ contains
     integer, intent(in) :: nen
     nc = merge(3, 4, nen == 3 .or. nen == 6)
   end function corner_count
+
+  !> The reference coordinates of node a (1..nen) of an element, in the node
+  !> order of the module header: where shape function a is 1.
+  pure function reference_node(nen, a) result(xi)
+    integer, intent(in) :: nen, a
+    real(dp) :: xi(2)
+    real(dp), parameter :: ts(6) = [0.0_dp, 1.0_dp, 0.0_dp, 0.5_dp, 0.5_dp, 0.0_dp], &
+                           tt(6) = [0.0_dp, 0.0_dp, 1.0_dp, 0.0_dp, 0.5_dp, 0.5_dp], &
+                           qs(9) = [-1, 1, 1, -1, 0, 1, 0, -1, 0], qt(9) = [-1, -1, 1, 1, -1, 0, 1, 0, 0]
+    if (corner_count(nen) == 3) then
+      xi = [ts(a), tt(a)]
+    else
+      xi = [qs(a), qt(a)]
+    end if
+  end function reference_node
 
   !> Shape functions and x-y derivatives at reference point xi.
   !>   nen  (in)  3, 4, 6, 8 or 9

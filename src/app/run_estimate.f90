@@ -1,0 +1,160 @@
+!> run_estimate: every run's estimate of its own error (ESTIMATE, on unless
+!> the deck says off), from the final displacement.
+!>
+!> The relative energy-norm error of the displacement,
+!>     estimate_energy = eta / sqrt(||u_h||_E^2 + eta^2),
+!> eta^2 = sum_K eta_K^2 over the elements of every body, by stress recovery
+!> (module error_estimate; doc/theory.md, "Error estimate"): ||u_h||_E^2 +
+!> eta^2 stands for ||u||_E^2, since u_h is the energy projection of u on an
+!> elastic problem (Galerkin orthogonality, exact without contact and a good
+!> guide with it).  Each element gets error_indicator = eta_K / sqrt(||u_h||_E^2
+!> + eta^2), whose squares add up to estimate_energy^2: the VTK's picture of
+!> where the error is.
+!>
+!> The contact pressure.  On each pair's slave side the mortar pressure p_h
+!> and the normal traction of the recovered stress, p* = max(0, -n.sigma* n),
+!> are two approximations of the same pressure; their difference estimates
+!> the error of p_h:
+!>     estimate_pressure = ||p_h - p*||_L2(zone) / ||p_h||_L2(zone),
+!> both piecewise linear between the slave trace's nodes, over the segments
+!> of the effective zone (dS = ds, or 2 pi r ds in axisymmetry).  The same
+!> difference enters the energy estimate as the contact term of the slave
+!> element K on each zone segment E,
+!>     eta_K^2 += (|E| / E_K) int_E (p_h - p*)^2 dS,
+!> the energy of a traction error spread over a depth |E| of a material of
+!> stiffness E_K (its largest Young's modulus).
+!>
+!> Programming interface
+!>   estimate_error(run)   res%estimated, res%estimate_energy, res%error_indicator,
+!>                         res%estimate_pressure (res%u in x, y)
+module run_estimate
+  use kinds, only: dp
+  use run_state, only: run_t, ph_output, ph_estimate
+  use run_report, only: lap
+  use run_phase, only: enter_phase
+  use error_estimate, only: recover_stress, energy_indicators
+  use body, only: node_elements
+  use axisymmetric_elements, only: radial_weight
+  implicit none
+  private
+  public :: estimate_error
+
+  !> The recovered nodal stresses of one body.
+  type :: recovered_t
+    real(dp), allocatable :: s(:,:)      !< (ncomp, nnode)
+  end type recovered_t
+
+contains
+
+  !> The error estimate of the run's final state, timed as phase estimate.
+  !>   run (inout) res%u in x, y components on entry (post_processing); the
+  !>               estimate and the indicators on exit, when deck%estimate
+  subroutine estimate_error(run)
+    type(run_t), intent(inout) :: run
+    type(recovered_t), allocatable :: rec(:)
+    real(dp), allocatable :: u(:,:), eta2(:)
+    real(dp) :: energy2, body_energy2, total
+    integer :: b, nn, d0, e0, ne
+    call lap(run, ph_output)                     ! the results computed so far: output, as before
+    run%res%estimated = .false.
+    if (allocated(run%res%error_indicator)) deallocate(run%res%error_indicator)
+    if (.not. run%deck%estimate) return
+    call enter_phase('estimating the error')
+    allocate(eta2(run%sc%nelem), source=0.0_dp)
+    allocate(rec(size(run%sc%bodies)))
+    energy2 = 0.0_dp
+    do b = 1, size(run%sc%bodies)
+      associate (bd => run%sc%bodies(b))
+        nn = bd%mesh%nnode
+        ne = bd%mesh%nelem
+        d0 = bd%dof0
+        e0 = bd%elem0
+        u = reshape(run%res%u(d0 + 1:d0 + 2 * nn), [2, nn])
+        call recover_stress(bd, u, rec(b)%s)
+        call energy_indicators(bd, u, rec(b)%s, eta2(e0 + 1:e0 + ne), body_energy2)
+        energy2 = energy2 + body_energy2
+      end associate
+    end do
+    call pressure_estimates(run, rec, eta2)
+    total = energy2 + sum(eta2)
+    if (total > 0.0_dp) then
+      run%res%estimate_energy = sqrt(sum(eta2) / total)
+      allocate(run%res%error_indicator, source=sqrt(eta2 / total))
+    else                                          ! no deformation at all: nothing to be wrong about
+      run%res%estimate_energy = 0.0_dp
+      allocate(run%res%error_indicator(run%sc%nelem), source=0.0_dp)
+    end if
+    run%res%estimated = .true.
+    call lap(run, ph_estimate)
+  end subroutine estimate_error
+
+  !> res%estimate_pressure of every pair, and the contact terms added to the
+  !> slave elements' eta2 (module header).
+  !>   run  (inout) the contact set, res%node_pressure on entry; res%estimate_pressure on exit
+  !>   rec  (in)    (nbody) the recovered stresses
+  !>   eta2 (inout) (nelem) the element indicators squared
+  subroutine pressure_estimates(run, rec, eta2)
+    type(run_t), intent(inout) :: run
+    type(recovered_t), intent(in) :: rec(:)
+    real(dp), intent(inout) :: eta2(:)
+    real(dp), allocatable :: ph(:), pstar(:)
+    integer, allocatable :: eptr(:), elist(:)
+    real(dp) :: d2, p2, seg_d2, seg_p2, len, dv, sn(2)
+    integer :: ip, k, ns, sb, owner
+    if (allocated(run%res%estimate_pressure)) deallocate(run%res%estimate_pressure)
+    allocate(run%res%estimate_pressure(run%cs%npair), source=-1.0_dp)
+    do ip = 1, run%cs%npair
+      associate (pr => run%cs%pair(ip), bd => run%sc%bodies(run%cs%pair(ip)%spec%slave_body))
+        sb = pr%spec%slave_body
+        ns = size(pr%snode)
+        allocate(ph(ns), pstar(ns))
+        do k = 1, ns                        ! p_h and p* = max(0, -n.sigma* n) at the slave nodes
+          ph(k) = run%res%node_pressure(bd%dof0 / 2 + pr%snode(k))
+          associate (s => rec(sb)%s(:, pr%snode(k)), n => pr%mortar%normal(:, k))
+            sn = [s(1) * n(1) + s(3) * n(2), s(3) * n(1) + s(2) * n(2)]      ! sigma* n, in-plane
+            pstar(k) = max(0.0_dp, -dot_product(n, sn))
+          end associate
+        end do
+        call node_elements(bd%mesh, eptr, elist)
+        d2 = 0.0_dp
+        p2 = 0.0_dp
+        do k = 1, ns - 1
+          if (.not. (pr%mortar%constrained(k) .and. pr%mortar%constrained(k + 1))) cycle
+          len = norm2(pr%xs(:, k + 1) - pr%xs(:, k))
+          dv = merge(radial_weight(0.5_dp * (pr%xs(1, k) + pr%xs(1, k + 1))), bd%thick, bd%axisymmetric)
+          ! int over the segment of a linear function squared: L (a^2 + a b + b^2) / 3
+          seg_d2 = dv * len * linear_square(ph(k) - pstar(k), ph(k + 1) - pstar(k + 1))
+          seg_p2 = dv * len * linear_square(ph(k), ph(k + 1))
+          d2 = d2 + seg_d2
+          p2 = p2 + seg_p2
+          owner = common_element(eptr, elist, pr%snode(k), pr%snode(k + 1))
+          if (owner > 0 .and. bd%law%emax > 0.0_dp) &
+            eta2(bd%elem0 + owner) = eta2(bd%elem0 + owner) + len / bd%law%emax * seg_d2
+        end do
+        if (p2 > 0.0_dp) run%res%estimate_pressure(ip) = sqrt(d2 / p2)
+        deallocate(ph, pstar)
+      end associate
+    end do
+  end subroutine pressure_estimates
+
+  !> (a^2 + a b + b^2) / 3: the mean square of the linear function from a to b.
+  pure real(dp) function linear_square(a, b)
+    real(dp), intent(in) :: a, b
+    linear_square = (a * a + a * b + b * b) / 3.0_dp
+  end function linear_square
+
+  !> An element that has both nodes a and b (0: none), from the lists of
+  !> the elements around each node.
+  pure integer function common_element(eptr, elist, a, b) result(e)
+    integer, intent(in) :: eptr(:), elist(:), a, b
+    integer :: i
+    e = 0
+    do i = eptr(a), eptr(a + 1) - 1
+      if (any(elist(eptr(b):eptr(b + 1) - 1) == elist(i))) then
+        e = elist(i)
+        return
+      end if
+    end do
+  end function common_element
+
+end module run_estimate

@@ -1,0 +1,32 @@
+// Hertz problem H, body 1 (slave): the block [-4,4] x [-4,0].
+// Element size hc on |x| <= 0.3 near the top edge, hf far away.
+DefineConstant[ hc = 0.02, hf = 0.5 ];
+Point(1) = {-4, -4, 0, hf};
+Point(2) = { 4, -4, 0, hf};
+Point(3) = { 4,  0, 0, hf};
+Point(4) = { 0.3, 0, 0, hc};
+Point(5) = {-0.3, 0, 0, hc};
+Point(6) = {-4,  0, 0, hf};
+Line(1) = {1, 2};
+Line(2) = {2, 3};
+Line(3) = {3, 4};
+Line(4) = {4, 5};
+Line(5) = {5, 6};
+Line(6) = {6, 1};
+Curve Loop(1) = {1, 2, 3, 4, 5, 6};
+Plane Surface(1) = {1};
+Field[1] = Box;
+Field[1].VIn = hc;
+Field[1].VOut = hf;
+Field[1].XMin = -0.3; Field[1].XMax = 0.3;
+Field[1].YMin = -0.3; Field[1].YMax = 0.1;
+Field[1].Thickness = 1.5;
+Background Field = 1;
+Mesh.MeshSizeExtendFromBoundary = 0;
+Mesh.MeshSizeFromPoints = 0;
+Mesh.MeshSizeFromCurvature = 0;
+Physical Curve("bottom") = {1};
+Physical Curve("right") = {2};
+Physical Curve("top") = {3, 4, 5};
+Physical Curve("left") = {6};
+Physical Surface("block") = {1};
