@@ -23,6 +23,7 @@ program contact2d
   use linear_system, only: assemble_system, factorize_system, condense_system, recover_system
   use contact_solve, only: solve_contact_lcp
   use post_processing, only: compute_results
+  use contact_checks, only: check_contact_model
   use run_outputs, only: write_outputs
   use run_report, only: start_clock, report_run
   implicit none
@@ -45,6 +46,7 @@ program contact2d
   call solve_contact_lcp(run)    ! mu (and tau) from LCP(W, q), every load step the deck asks for
   call recover_system(run)       ! u = K^-1 (f - C' z) + the rigid motions
   call compute_results(run)      ! stresses, reactions, energy, contact fields
+  call check_contact_model(run, run%sc%steps)   ! the model's assumptions: slide (exit 1), polygon gaps (warning)
   call write_outputs(run)        ! VTK, contact table, summary (and the steps' files)
   call report_run(run)           ! the run log: results, factor, timings, files written
   call exit_program(0)

@@ -40,6 +40,7 @@ module contact_solve
   use post_processing, only: pair_resultants, post_process, contact_measures, nodal_contact_fields, &
                              check_finite_results
   use run_outputs, only: write_step
+  use contact_checks, only: check_contact_model
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
   private
@@ -342,6 +343,7 @@ contains
     if (allocated(run%res%node_shear)) deallocate(run%res%node_shear)
     call nodal_contact_fields(run)
     call check_finite_results(run)
+    call check_contact_model(run, kstep)                    ! the slide against small sliding (exit 1 beyond)
     call write_step(run, kstep)
   end subroutine record_step
 

@@ -50,6 +50,7 @@ module results_writer
     real(dp), allocatable :: alpha(:)            !< (k) amplitudes of the free rigid modes
     type(string_t), allocatable :: unheld_mode(:) !< (nu) 'BODY KIND X Y' of each rigid motion held by
                                                  !< neither FIX nor contact (summary unheld_mode)
+    type(string_t), allocatable :: warning(:)    !< 'CODE free text' of each warning (summary warning)
     real(dp), allocatable :: gap(:)              !< (nrow) final gaps
     real(dp), allocatable :: pressure(:)         !< (nrow) pressures mu / w
     integer, allocatable :: status(:)            !< (nrow) 1 contact, 0 open
@@ -432,6 +433,11 @@ contains
     if (allocated(r%unheld_mode)) then
       do k = 1, size(r%unheld_mode)
         write(u, '(a)') 'unheld_mode ' // r%unheld_mode(k)%s
+      end do
+    end if
+    if (allocated(r%warning)) then
+      do k = 1, size(r%warning)
+        write(u, '(a)') 'warning ' // r%warning(k)%s
       end do
     end if
     write(u, '(a,i0)') 'factor_nnz ', r%factor_nnz
