@@ -51,7 +51,6 @@ module contact_checks
   use results_writer, only: string_t
   use contact_set, only: row_of_node, contact_pair_t
   use rigid_obstacle, only: rigid_terms, shape_circle
-  use boundary_chain, only: boundary_polyline
   implicit none
   private
   public :: check_contact_model, add_warning
@@ -303,31 +302,37 @@ contains
   subroutine check_polygon_gap(run, ip)
     type(run_t), intent(inout) :: run
     integer, intent(in) :: ip
-    integer, allocatable :: mnodes(:)
     real(dp), allocatable :: xm(:,:), nm(:,:), ns_seg(:,:), g(:)
-    character(len=:), allocatable :: why
     logical, allocatable :: sface(:), mface(:)
-    real(dp) :: ks, km, hs, hm, sag, gmax
-    integer :: e, f, k
+    real(dp) :: ks, km, hs, hm, sag, gmax, vote
+    integer :: e, f, k, nmn
     associate(pr => run%cs%pair(ip), mo => run%cs%pair(ip)%mortar)
       if (pr%spec%rigid > 0 .or. pr%spec%gap_zero .or. pr%quadratic .or. mo%first == 0) return
       if (mo%inter%nsub == 0) return
-      call boundary_polyline(run%sc%bodies(pr%spec%master_body), pr%spec%master_bnd, mnodes, xm, nm, why)
-      if (len(why) > 0) return
-      if (size(mnodes) /= size(pr%mnode)) return
-      if (any(mnodes /= pr%mnode)) return
-      ! the slave segments' outward normals from the nodal ones (the chain's own)
-      allocate(ns_seg(2, size(pr%snode) - 1))
-      allocate(sface(size(pr%snode) - 1), mface(size(mnodes) - 1), source=.false.)
+      xm = run%sc%bodies(pr%spec%master_body)%mesh%x(:, pr%mnode)
+      nmn = size(pr%mnode)
+      ! the segments' unit normals, one turn of the tangent on each chain; the
+      ! slave's outward by its nodal normals, the master's facing the slave
+      ! segments it meets (a vote over the intersection), so that no mesh
+      ! adjacency is needed
+      allocate(ns_seg(2, size(pr%snode) - 1), nm(2, nmn - 1))
+      allocate(sface(size(pr%snode) - 1), mface(nmn - 1), source=.false.)
       do e = 1, size(pr%snode) - 1
         ns_seg(:, e) = [pr%xs(2, e + 1) - pr%xs(2, e), pr%xs(1, e) - pr%xs(1, e + 1)]
         ns_seg(:, e) = ns_seg(:, e) / norm2(ns_seg(:, e))
         if (dot_product(ns_seg(:, e), mo%normal(:, e) + mo%normal(:, e + 1)) < 0.0_dp) ns_seg(:, e) = -ns_seg(:, e)
       end do
+      do f = 1, nmn - 1
+        nm(:, f) = [xm(2, f + 1) - xm(2, f), xm(1, f) - xm(1, f + 1)]
+        if (norm2(nm(:, f)) > 0.0_dp) nm(:, f) = nm(:, f) / norm2(nm(:, f))
+      end do
+      vote = 0.0_dp
       do k = 1, mo%inter%nsub
         sface(mo%inter%slave_seg(k)) = .true.
         mface(mo%inter%master_seg(k)) = .true.
+        vote = vote + dot_product(nm(:, mo%inter%master_seg(k)), ns_seg(:, mo%inter%slave_seg(k)))
       end do
+      if (vote > 0.0_dp) nm = -nm                      ! outward normals oppose the slave's
       ks = chain_curvature(pr%xs, ns_seg, sface)
       km = chain_curvature(xm, nm, mface)
       ! one curve: one chain convex, the other concave, radii within radius_match
@@ -349,7 +354,7 @@ contains
       if (any(g > 0.05_dp * gmax) .and. any(g < -0.05_dp * gmax)) return
       call add_warning(run, 'polygon_gap', run%deck%file // ':' // int_to_str(run%deck%contacts(ip)%line) // &
         ': CONTACT pair ' // int_to_str(ip) // ': the two boundaries are polygons of one curve (radius ' // &
-        real_to_str(1.0_dp / abs(ks)) // ') and start ' // trim(merge('open       ', 'penetrating', g(1) + sum(g) > 0.0_dp)) // &
+        real_to_str(1.0_dp / abs(ks)) // ') and start ' // trim(merge('open       ', 'penetrating', sum(g) > 0.0_dp)) // &
         ' by up to ' // real_to_str(gmax) // ', the chords'' sagitta h^2/(8R) = ' // real_to_str(sag) // &
         ', a gap that is not in the geometry: the pressures can be far off (remedies: gap=zero when the ' // &
         'curves coincide, matching nodes on the two curves, order=2 meshes whose edges follow the curve, ' // &
