@@ -8,7 +8,8 @@
 !> initial configuration and keeps that pairing, the gaps and the normals
 !> through the run.  Two things it cannot see are measured here:
 !>
-!> 1. The slide.  For every active slave node x_i (multiplier > 0) the slide
+!> 1. The slide.  For every active slave node x_i (status 1 in the contact
+!>    table: multiplier above 1e-12 of the largest) the slide
 !>    is the relative displacement along the slave surface,
 !>        s_i = | (u_slave(x_i) - u_master(y_i)) . t_i |,
 !>    y_i the master point nearest x_i in the initial configuration (for a
@@ -88,15 +89,18 @@ contains
     integer, intent(in) :: ip, step
     logical, allocatable :: active(:)
     real(dp), allocatable :: arc(:), halfwidth(:)
-    real(dp) :: t(2), nu(2), du(2), slide, cap, h, worst, ratio
+    real(dp) :: t(2), nu(2), du(2), slide, cap, h, worst, ratio, mumax
     integer :: ns, i, r, a, b, iworst
     logical :: edge_on, worst_edge
     associate(pr => run%cs%pair(ip))
       ns = size(pr%snode)
+      ! active as the outputs' status says: a multiplier above 1e-12 of the largest
+      ! (a round-off one far from the zone is no contact)
+      mumax = maxval(abs(run%res%mu))                  ! this pair has rows: mu is not empty
       allocate(active(ns), source=.false.)
       do i = 1, ns
         r = row_of_node(run%cs, ip, i)
-        if (r > 0) active(i) = run%res%mu(r) > 0.0_dp
+        if (r > 0) active(i) = run%res%mu(r) > 1.0e-12_dp * mumax
       end do
       if (.not. any(active)) return
       allocate(arc(ns), halfwidth(ns), source=0.0_dp)
