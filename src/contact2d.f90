@@ -25,6 +25,7 @@ program contact2d
   use contact_solve, only: solve_contact_lcp
   use post_processing, only: compute_results
   use model_checks, only: check_model
+  use contact_checks, only: check_contact_model
   use run_estimate, only: estimate_error
   use run_outputs, only: write_outputs
   use run_report, only: start_clock, report_run
@@ -49,6 +50,7 @@ program contact2d
   call recover_system(run)       ! u = K^-1 (f - C' z) + the rigid motions
   call compute_results(run)      ! stresses, reactions, energy, contact fields
   call check_model(run)          ! the model's assumptions: locking, strain, rotation (warnings)
+  call check_contact_model(run, run%sc%steps)   ! small sliding (exit 1 beyond), polygon gaps (warning)
   call estimate_error(run)       ! the run's own error: recovered stresses, element indicators
   call write_outputs(run)        ! VTK, contact table, summary (and the steps' files)
   call report_run(run)           ! the run log: results, factor, timings, files written

@@ -40,6 +40,7 @@ module contact_solve
   use post_processing, only: pair_resultants, post_process, contact_measures, nodal_contact_fields, &
                              check_finite_results
   use run_outputs, only: write_step
+  use contact_checks, only: check_step_sliding
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use run_phase, only: enter_phase
   implicit none
@@ -377,6 +378,7 @@ contains
     call post_process(run, fk, res)
     call nodal_contact_fields(run, res)
     call check_finite_results(run, res)
+    call check_step_sliding(run, res, kstep)                ! the slide against small sliding (exit 1 beyond)
     call write_step(run, kstep, res)
   end subroutine record_step
 

@@ -45,7 +45,7 @@ contains
                                                  'G12=number [angle=degrees] [E3=number] [nu13=number] [nu23=number]'
     character(len=*), parameter :: contact_usage = 'CONTACT slave=body:boundary master=body:boundary ' // &
                                                    '[gap=geometry|zero] [mu=number|tresca=number] ' // &
-                                                   '[interference=allow|reject]'
+                                                   '[interference=allow|reject] [sliding=small|finite]'
     character(len=*), parameter :: solver_usage = 'SOLVER [lcp=auto|lemke|pgs|pdas] [tol=number] [maxit=integer] ' // &
                                                   '[omega=number] [ordering=auto|metis|amd] ' // &
                                                   '[condense=auto|solve|inverse] [cut=auto|off]'
@@ -107,7 +107,7 @@ contains
                  keys=[text_key('slave', 'body:boundary', required=.true.), &
                        text_key('master', 'body:boundary', required=.true.), choice_key('gap', 'geometry|zero'), &
                        real_key('mu', ge=zero, le=max_mu), real_key('tresca', ge=zero, note=', a shear stress'), &
-                       choice_key('interference', 'allow|reject')])
+                       choice_key('interference', 'allow|reject'), choice_key('sliding', 'small|finite')])
     call add_row(table, 'SOLVER', '', do_solver, once=.true., words=0, usage=solver_usage, &
                  keys=[choice_key('lcp', 'auto|lemke|pgs|pdas'), real_key('tol', gt=zero), &
                        integer_key('maxit', at_least=0), real_key('omega', gt=zero, lt=2.0_dp), &
@@ -184,7 +184,7 @@ contains
   end subroutine do_plane
 
   !> CONTACT slave=body:boundary master=body:boundary [gap=geometry|zero] [mu=number | tresca=number]
-  !>         [interference=allow|reject]
+  !>         [interference=allow|reject] [sliding=small|finite]
   subroutine do_contact(s, deck, st)
     type(state_t), intent(inout) :: s
     type(deck_t), intent(inout) :: deck
@@ -216,6 +216,12 @@ contains
     c%gap_zero = v%ok(3) .and. v%text(3)%s == 'zero'
     ! an initial penetration deeper than a slave element is an input error unless allowed
     c%interference = v%ok(6) .and. v%text(6)%s == 'allow'
+    ! small sliding (the default) is the only kinematics solved: pairing, gaps and normals of the
+    ! initial configuration, with a run that slides beyond it ending in exit 1 (contact_checks)
+    if (v%ok(7)) then
+      if (v%text(7)%s == 'finite') call report(s, st%line, 'sliding=finite is not available yet (expected ' // &
+        'sliding=small, the default: pairing, gaps and normals of the initial configuration)')
+    end if
     ! friction (beyond the paper): |tau| <= mu p (Coulomb) or |tau| <= tresca
     c%friction = 'none'
     if (v%seen(4) .and. v%seen(5)) &

@@ -500,7 +500,7 @@ contains
     call expect_error(two // pair // ' tresca=1e999' // nl, 11, 'bad number "1e999" for "tresca"', &
                       'friction: tresca=1e999 refused')
     call expect_error(two // pair // ' friction=0.3' // nl, 11, 'unknown key "friction" for CONTACT (expected ' // &
-                      'slave, master, gap, mu, tresca, interference)', 'friction: unknown key lists mu, tresca')
+                      'slave, master, gap, mu, tresca, interference, sliding)', 'friction: unknown key lists mu, tresca')
   end subroutine test_friction
 
   !> Read text as a deck: exactly one error, at `line`, whose text after 'FILE:LINE: '
