@@ -220,7 +220,9 @@ contains
   !>   a (inout) (n) the integers
   subroutine sort_integers(a)
     integer, intent(inout) :: a(:)
-    integer :: idx(size(a)), i
+    integer, allocatable :: idx(:)
+    integer :: i
+    allocate(idx(size(a)))                  ! not automatic: a mesh's boundary may be large
     do i = 1, size(a)
       idx(i) = i
     end do

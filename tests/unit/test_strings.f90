@@ -7,7 +7,7 @@ program test_strings
   use testing, only: check, finish_tests
   implicit none
   real(dp) :: x, back
-  character(len=:), allocatable :: text
+  character(len=40) :: text
   integer :: d, ios
   logical :: ok
 
