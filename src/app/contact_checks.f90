@@ -51,6 +51,7 @@ module contact_checks
   use run_report, only: add_warning
   use contact_set, only: row_of_node, contact_pair_t
   use rigid_obstacle, only: rigid_terms, shape_circle
+  use mortar_geometry, only: mean_curvature
   implicit none
   private
   public :: check_contact_model, check_step_sliding
@@ -356,8 +357,8 @@ contains
         vote = vote + dot_product(nm(:, mo%inter%master_seg(k)), ns_seg(:, mo%inter%slave_seg(k)))
       end do
       if (vote > 0.0_dp) nm = -nm                      ! outward normals oppose the slave's
-      ks = chain_curvature(pr%xs, ns_seg, sface)
-      km = chain_curvature(xm, nm, mface)
+      ks = mean_curvature(pr%xs, ns_seg, sface)
+      km = mean_curvature(xm, nm, mface)
       ! one curve: one chain convex, the other concave, radii within radius_match
       if (.not. (ks * km < 0.0_dp)) return
       if (abs(abs(ks) - abs(km)) > radius_match * max(abs(ks), abs(km))) return
@@ -384,27 +385,5 @@ contains
         'or a gap measured on the true curve)')
     end associate
   end subroutine check_polygon_gap
-
-  !> Mean curvature of the marked segments of a chain (convex > 0): the
-  !> turning of the outward normal between consecutive marked segments over
-  !> their half lengths (as mortar_geometry's, for the common normal).
-  real(dp) function chain_curvature(x, nrm, seg) result(k)
-    real(dp), intent(in) :: x(:,:), nrm(:,:)
-    logical, intent(in) :: seg(:)
-    real(dp) :: turn, length, ta(2), tb(2)
-    integer :: e
-    turn = 0.0_dp
-    length = 0.0_dp
-    do e = 1, size(seg) - 1
-      if (.not. (seg(e) .and. seg(e + 1))) cycle
-      ta = x(:, e + 1) - x(:, e)
-      tb = x(:, e + 2) - x(:, e + 1)
-      turn = turn + dot_product(nrm(:, e + 1) - nrm(:, e), ta / norm2(ta) + tb / norm2(tb)) * 0.5_dp
-      length = length + 0.5_dp * (norm2(ta) + norm2(tb))
-    end do
-    k = 0.0_dp
-    if (length > 0.0_dp) k = turn / length
-  end function chain_curvature
-
 
 end module contact_checks

@@ -24,6 +24,7 @@
 !>   check_polyline(x, nrm, side, err)   a polyline and its segment normals usable
 !>   ray_hit(a, n, xm, nm_out, f, r)     nearest hit of a line on the facing master
 !>   common_normals(xs, ns_out, xm, nm_out, nc, w)   a frictional pair's pairing directions
+!>   mean_curvature(x, nrm, seg)         mean curvature of the marked segments of a polyline (convex > 0)
 !>   tol_overlap, tol_piece, tol_sliver  the tolerances of the cover, relative to a slave
 !>                         segment (element): shared by the linear and quadratic operators
 !>   arc_digits            significant digits of an arc length in the operators' messages
@@ -35,7 +36,7 @@ module mortar_geometry
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
   private
-  public :: intersection_t, intersect_segments, check_polyline, ray_hit, common_normals
+  public :: intersection_t, intersect_segments, check_polyline, ray_hit, common_normals, mean_curvature
   public :: tol_overlap, tol_piece, tol_sliver, arc_digits
 
   !> Sub-segments of the intersection of the slave and master 1D meshes, ordered by
