@@ -39,7 +39,7 @@ LIBOBJ  := $(filter-out $(BUILD)/contact2d.o,$(FOBJ)) $(COBJ)
 UNITSRC := $(sort $(wildcard tests/unit/test_*.f90))
 UNITBIN := $(patsubst tests/unit/%.f90,$(BUILD)/tests/%,$(UNITSRC))
 
-.PHONY: all deps demo test unit unit-build study bench clean distclean help names
+.PHONY: all deps demo test check unit unit-build study bench clean distclean help names
 # Building installs nothing: `make deps` (and `make demo`, the first command
 # of the README) install what is missing.
 all: $(PROGRAM)
@@ -89,7 +89,13 @@ demo: deps
 	$(MAKE) all
 	$(PROGRAM) -o out/demo input/hertz.deck
 
-test: all unit-build
+# `make test` first installs what is missing (make deps: a look at dpkg when
+# all is there), so that it works on a fresh machine as the README says;
+# `make check` builds and runs every test and installs nothing.
+test: deps
+	@$(MAKE) --no-print-directory check
+
+check: all unit-build
 	$(TESTENV) tests/run-tests $(PROGRAM) $(BUILD)/tests
 
 study: all
@@ -109,4 +115,4 @@ names:
 	@echo $(PROGRAM) $(BUILD)/tests
 
 help:
-	@echo "make [MODE=release|debug|sanitize] [FC=gfortran|gfortran-NN|flang-new] [ARCH=cpu] [all|deps|demo|test|unit|study|bench|clean]"
+	@echo "make [MODE=release|debug|sanitize] [FC=gfortran|gfortran-NN|flang-new] [ARCH=cpu] [all|deps|demo|test|check|unit|study|bench|clean]"

@@ -26,15 +26,15 @@
 !>   recover_stress(bd, u, sstar)          sstar(ncomp, nnode): the recovered nodal stresses of body bd
 !>   energy_indicators(bd, u, sstar, eta2, energy2)
 !>                                         eta2(nelem) = eta_K^2 and energy2 = ||u_h||_E^2 of bd
-!>   point_stress(bd, e, xi, u, sig, dv)   sigma_h at the reference point xi of element e, and
-!>                                         the volume factor dV / (dxi) there
+!>   point_stress(bd, e, xe, ue, xi, sig, dv, n)   sigma_h at the reference point xi of element e,
+!>                                         the volume factor dV / (dxi) and the shape functions there
 !> u is the body's nodal displacement u(2, nnode) in x, y components; ncomp
 !> is 3 (sxx, syy, sxy) in the plane, 4 (srr, szz, srz, stt) in axisymmetry.
 module error_estimate
   use kinds, only: dp
   use body, only: body_t, axi_thermal_strain
-  use elements, only: quadrature_rule, shape_at, strain_operator, max_nen, reference_node
-  use axisymmetric_elements, only: axi_point_strain, radial_weight
+  use elements, only: quadrature_rule, shape_at, max_nen, reference_node
+  use axisymmetric_elements, only: radial_weight
   use lapack_interfaces, only: dpotrf, dpotri
   implicit none
   private
@@ -49,15 +49,15 @@ module error_estimate
 
 contains
 
-  !> rules: quadrature_rule(nen, order) for every element size.
+  !> rules: quadrature_rule(nen, order(k)) for the element sizes 3, 4, 6, 8, 9.
   subroutine make_rules(order, rules)
-    integer, intent(in) :: order
+    integer, intent(in) :: order(5)
     type(rules_t), intent(out) :: rules
     real(dp), allocatable :: xi(:,:), w(:)
     integer :: k
     integer, parameter :: sizes(5) = [3, 4, 6, 8, 9]
     do k = 1, size(sizes)
-      call quadrature_rule(sizes(k), order, xi, w)
+      call quadrature_rule(sizes(k), order(k), xi, w)
       rules%nq(sizes(k)) = size(w)
       rules%xi(:, 1:size(w), sizes(k)) = xi
       rules%w(1:size(w), sizes(k)) = w
@@ -66,31 +66,37 @@ contains
 
   !> sigma_h(xi) = D (eps(u_h) - alpha dT eps_th) on element e of bd, and
   !> dv = detJ t (plane) or detJ 2 pi r (axisymmetric) at xi.
-  !>   bd  (in)  the body;  e (in) its element;  xi (in) (2) reference point
-  !>   u   (in)  (2, nnode) the body's displacement, x, y components
+  !>   bd  (in)  the body;  e (in) its element
+  !>   xe  (in)  (2, nen) the element's nodes;  ue (in) (2, nen) their displacements, x, y
+  !>   xi  (in)  (2) reference point
   !>   sig (out) (ncomp) the stress;  dv (out) the volume factor
-  pure subroutine point_stress(bd, e, xi, u, sig, dv)
+  !>   n   (out) (nen) the shape functions at xi
+  pure subroutine point_stress(bd, e, xe, ue, xi, sig, dv, n)
     type(body_t), intent(in) :: bd
     integer, intent(in) :: e
-    real(dp), intent(in) :: xi(2), u(:,:)
-    real(dp), intent(out) :: sig(:), dv
-    real(dp) :: xe(2, max_nen), ue(2 * max_nen), n(max_nen), dndx(2, max_nen), detj, b(3, 2 * max_nen)
-    real(dp) :: eps(3), eps4(4)
+    real(dp), intent(in) :: xe(:,:), ue(:,:), xi(2)
+    real(dp), intent(out) :: sig(:), dv, n(:)
+    real(dp) :: dndx(2, max_nen), detj, eps(3), eps4(4), r
     integer :: nen, a
-    nen = bd%mesh%nen(e)
+    nen = size(xe, 2)
+    call shape_at(nen, xe, xi, n(1:nen), dndx(:, 1:nen), detj)
+    eps = 0.0_dp                                      ! (exx, eyy, gxy) = B u, written out
     do a = 1, nen
-      xe(:, a) = bd%mesh%x(:, bd%mesh%conn(a, e))
-      ue(2 * a - 1:2 * a) = u(:, bd%mesh%conn(a, e))
+      eps(1) = eps(1) + dndx(1, a) * ue(1, a)
+      eps(2) = eps(2) + dndx(2, a) * ue(2, a)
+      eps(3) = eps(3) + dndx(2, a) * ue(1, a) + dndx(1, a) * ue(2, a)
     end do
-    call shape_at(nen, xe(:, 1:nen), xi, n(1:nen), dndx(:, 1:nen), detj)
     if (bd%axisymmetric) then
-      call axi_point_strain(nen, xe(:, 1:nen), xi, ue(1:2 * nen), eps4)
+      r = dot_product(n(1:nen), xe(1, :))
+      if (r > 1.0e-6_dp * (maxval(xe(1, :)) - minval(xe(1, :)))) then
+        eps4 = [eps, dot_product(n(1:nen), ue(1, :)) / r]         ! the hoop strain u_r / r
+      else
+        eps4 = [eps, eps(1)]                          ! on the axis: its limit du_r / dr
+      end if
       if (allocated(bd%adt)) eps4 = eps4 - bd%adt(e) * axi_thermal_strain
       sig(1:4) = matmul(bd%law%d4, eps4)
-      dv = detj * radial_weight(dot_product(n(1:nen), xe(1, 1:nen)))
+      dv = detj * radial_weight(r)
     else
-      call strain_operator(nen, dndx(:, 1:nen), b(:, 1:2 * nen))
-      eps = matmul(b(:, 1:2 * nen), ue(1:2 * nen))
       if (allocated(bd%adt)) eps = eps - bd%adt(e) * bd%law%eth
       sig(1:3) = matmul(bd%law%d, eps)
       dv = detj * bd%thick
@@ -105,28 +111,36 @@ contains
     type(body_t), intent(in) :: bd
     real(dp), intent(in) :: u(:,:)
     real(dp), allocatable, intent(out) :: sstar(:,:)
-    real(dp), allocatable :: weight(:)
+    real(dp), allocatable :: weight(:), es(:,:,:), area(:)
     type(rules_t) :: rules
-    real(dp) :: sig(4), dv, area, n(max_nen), dndx(2, max_nen), detj, xe(2, max_nen)
+    real(dp) :: dv, n(max_nen), dndx(2, max_nen), detj, xe(2, max_nen), ue(2, max_nen)
     integer :: e, a, q, nen, nc
     nc = merge(4, 3, bd%axisymmetric)
-    call make_rules(1, rules)
+    call make_rules([1, 1, 1, 1, 1], rules)
     allocate(sstar(nc, bd%mesh%nnode), source=0.0_dp)
     allocate(weight(bd%mesh%nnode), source=0.0_dp)
+    allocate(es(nc, maxval(bd%mesh%nen), bd%mesh%nelem), area(bd%mesh%nelem))
+    ! each element's stresses at its nodes, threaded; then the sums in element
+    ! order, so the result does not depend on the threads (reproducible runs)
+    !$omp parallel do private(e, nen, xe, ue, q, n, dndx, detj, a, dv) schedule(static)
     do e = 1, bd%mesh%nelem
       nen = bd%mesh%nen(e)
       xe(:, 1:nen) = bd%mesh%x(:, bd%mesh%conn(1:nen, e))
-      area = 0.0_dp
-      associate (xi => rules%xi(:, :, nen), w => rules%w(:, nen))
-        do q = 1, rules%nq(nen)
-          call shape_at(nen, xe(:, 1:nen), xi(:, q), n(1:nen), dndx(:, 1:nen), detj)
-          area = area + w(q) * detj
-        end do
-      end associate
+      ue(:, 1:nen) = u(:, bd%mesh%conn(1:nen, e))
+      area(e) = 0.0_dp
+      do q = 1, rules%nq(nen)
+        call shape_at(nen, xe(:, 1:nen), rules%xi(:, q, nen), n(1:nen), dndx(:, 1:nen), detj)
+        area(e) = area(e) + rules%w(q, nen) * detj
+      end do
       do a = 1, nen
-        call point_stress(bd, e, reference_node(nen, a), u, sig(1:nc), dv)
-        sstar(:, bd%mesh%conn(a, e)) = sstar(:, bd%mesh%conn(a, e)) + area * sig(1:nc)
-        weight(bd%mesh%conn(a, e)) = weight(bd%mesh%conn(a, e)) + area
+        call point_stress(bd, e, xe(:, 1:nen), ue(:, 1:nen), reference_node(nen, a), es(:, a, e), dv, n)
+      end do
+    end do
+    !$omp end parallel do
+    do e = 1, bd%mesh%nelem
+      do a = 1, bd%mesh%nen(e)
+        sstar(:, bd%mesh%conn(a, e)) = sstar(:, bd%mesh%conn(a, e)) + area(e) * es(:, a, e)
+        weight(bd%mesh%conn(a, e)) = weight(bd%mesh%conn(a, e)) + area(e)
       end do
     end do
     do a = 1, bd%mesh%nnode
@@ -135,8 +149,8 @@ contains
   end subroutine recover_stress
 
   !> eta_K^2 = int_K (sigma* - sigma_h) : D^-1 (sigma* - sigma_h) dV for every
-  !> element K of bd, and ||u_h||_E^2 = int sigma_h : D^-1 sigma_h dV, with
-  !> the richer quadrature rule of module elements (order 2).
+  !> element K of bd, and ||u_h||_E^2 = int sigma_h : D^-1 sigma_h dV, by a
+  !> rule exact for these integrands on affine elements.
   !>   bd (in) the body;  u (in) (2, nnode);  sstar (in) (ncomp, nnode) from recover_stress
   !>   eta2 (out) (nelem) the element indicators squared (energy)
   !>   energy2 (out) the body's energy norm of u_h squared (twice its strain energy)
@@ -145,31 +159,54 @@ contains
     real(dp), intent(in) :: u(:,:), sstar(:,:)
     real(dp), intent(out) :: eta2(:), energy2
     type(rules_t) :: rules
-    real(dp) :: c(4, 4), sig(4), rec(4), dv, n(max_nen), dndx(2, max_nen), detj, xe(2, max_nen)
+    real(dp) :: c(4, 4), sig(4), rec(4), dv, n(max_nen), xe(2, max_nen), ue(2, max_nen)
+    real(dp), allocatable :: e2(:)
     integer :: e, q, nen, nc, a
     nc = size(sstar, 1)
-    call make_rules(2, rules)
+    ! the lowest rule of module elements exact for |sigma* - sigma_h|^2 on an
+    ! affine element: P1 (degree 2) and P2 (degree 4) the richer rules (3 and
+    ! 6 points), Q1 (degree 2 in each variable) 2 x 2 and Q8, Q9 (degree 4) 3 x 3
+    call make_rules([2, 1, 2, 1, 1], rules)
     c(1:nc, 1:nc) = compliance(bd, nc)
-    energy2 = 0.0_dp
+    allocate(e2(bd%mesh%nelem))
+    ! threaded over the elements; each element's energy kept apart and summed
+    ! in element order afterwards, so the result does not depend on the threads
+    !$omp parallel do private(e, nen, xe, ue, q, sig, dv, n, rec, a) schedule(static)
     do e = 1, bd%mesh%nelem
       nen = bd%mesh%nen(e)
       xe(:, 1:nen) = bd%mesh%x(:, bd%mesh%conn(1:nen, e))
+      ue(:, 1:nen) = u(:, bd%mesh%conn(1:nen, e))
       eta2(e) = 0.0_dp
+      e2(e) = 0.0_dp
       do q = 1, rules%nq(nen)
-        associate (xq => rules%xi(:, q, nen), wq => rules%w(q, nen))
-        call point_stress(bd, e, xq, u, sig(1:nc), dv)
-        call shape_at(nen, xe(:, 1:nen), xq, n(1:nen), dndx(:, 1:nen), detj)
+        call point_stress(bd, e, xe(:, 1:nen), ue(:, 1:nen), rules%xi(:, q, nen), sig(1:nc), dv, n(1:nen))
         rec(1:nc) = 0.0_dp
         do a = 1, nen                                   ! sigma*(x_q) = sum_a N_a sigma*_a
           rec(1:nc) = rec(1:nc) + n(a) * sstar(:, bd%mesh%conn(a, e))
         end do
         rec(1:nc) = rec(1:nc) - sig(1:nc)
-        eta2(e) = eta2(e) + wq * dv * dot_product(rec(1:nc), matmul(c(1:nc, 1:nc), rec(1:nc)))
-        energy2 = energy2 + wq * dv * dot_product(sig(1:nc), matmul(c(1:nc, 1:nc), sig(1:nc)))
-        end associate
+        eta2(e) = eta2(e) + rules%w(q, nen) * dv * energy_density(c, rec, nc)
+        e2(e) = e2(e) + rules%w(q, nen) * dv * energy_density(c, sig, nc)
       end do
     end do
+    !$omp end parallel do
+    energy2 = sum(e2)
   end subroutine energy_indicators
+
+  !> s : D^-1 s = sum_ij s_i c_ij s_j over the first nc components, in loops
+  !> of fixed-size arrays (a matmul on the run-time size nc would put a
+  !> temporary on the heap at every quadrature point).
+  pure real(dp) function energy_density(c, s, nc) result(w)
+    real(dp), intent(in) :: c(4, 4), s(4)
+    integer, intent(in) :: nc
+    integer :: i, j
+    w = 0.0_dp
+    do j = 1, nc
+      do i = 1, nc
+        w = w + s(i) * c(i, j) * s(j)
+      end do
+    end do
+  end function energy_density
 
   !> D^-1, the compliance of the body's law (D symmetric positive definite;
   !> Cholesky, then the inverse from the factor).
