@@ -529,7 +529,7 @@ contains
     write(t, '(g0.4)') v
     t = adjustl(t)
     ! the zero before the point is the compiler's choice under g0 (flang writes .2500)
-    if (t(1:1) == '.') t = '0' // t
+    if (t(1:1) == '.') t = '0' // t(1:len(t) - 1)   ! the last of 16 characters a blank
     if (t(1:2) == '-.') t = '-0' // t(2:)
   end function real_text
 

@@ -25,7 +25,6 @@
 !>   axi_element_body_load(nen, xe, b, fe)     fe = int N' b 2 pi r dA (constant b)
 !>   axi_thermal_load(nen, xe, s0, fe)         fe = int B4' s0 2 pi r dA (constant stress s0)
 !>   axi_element_strain(nen, xe, ue, eps4)     (err, ezz, grz, ett) at the element centre
-!>   axi_point_strain(nen, xe, xi, ue, eps4)   the same at any reference point, on the axis too
 !>   axi_edge_load(xa, xb, t, fe)              fe(4) = int N' t 2 pi r ds on the edge xa-xb
 !>   axi_edge_load_quadratic(xe, t, pr, fe)    as elements' edge_load_quadratic, 2 pi r ds
 module axisymmetric_elements
@@ -35,7 +34,7 @@ module axisymmetric_elements
   implicit none
   private
   public :: radial_weight, axi_element_stiffness, axi_element_force, axi_element_body_load, axi_thermal_load
-  public :: axi_element_strain, axi_point_strain, axi_edge_load, axi_edge_load_quadratic
+  public :: axi_element_strain, axi_edge_load, axi_edge_load_quadratic
 
   real(dp), parameter :: two_pi = 2.0_dp * acos(-1.0_dp)
 
@@ -166,30 +165,6 @@ contains
     call axi_strain_operator(nen, n(1:nen), dndx(:, 1:nen), dot_product(n(1:nen), xe(1, :)), b(:, 1:2 * nen))
     eps4 = matmul(b(:, 1:2 * nen), ue)
   end subroutine axi_element_strain
-
-  !> Strain (err, ezz, grz, ett) at the reference point xi, which may lie on
-  !> the axis (a node of the stress recovery, error_estimate): there u_r = 0
-  !> and u_r / r tends to du_r / dr, the limit taken for r below a millionth
-  !> of the element's radial extent.
-  pure subroutine axi_point_strain(nen, xe, xi, ue, eps4)
-    integer, intent(in) :: nen
-    real(dp), intent(in) :: xe(2, nen), xi(2), ue(2 * nen)
-    real(dp), intent(out) :: eps4(4)
-    real(dp) :: n(max_nen), dndx(2, max_nen), detj, b(3, 2 * max_nen), r
-    integer :: a
-    call shape_at(nen, xe, xi, n(1:nen), dndx(:, 1:nen), detj)
-    call strain_operator(nen, dndx(:, 1:nen), b(:, 1:2 * nen))
-    eps4(1:3) = matmul(b(:, 1:2 * nen), ue)
-    r = dot_product(n(1:nen), xe(1, :))
-    if (r > 1.0e-6_dp * (maxval(xe(1, :)) - minval(xe(1, :)))) then
-      eps4(4) = 0.0_dp
-      do a = 1, nen
-        eps4(4) = eps4(4) + n(a) * ue(2 * a - 1) / r
-      end do
-    else
-      eps4(4) = eps4(1)
-    end if
-  end subroutine axi_point_strain
 
   !> Nodal forces of a constant traction t (per unit area) on the straight
   !> edge xa-xb of the section, int N_a t 2 pi r ds in closed form: with r

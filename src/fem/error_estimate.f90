@@ -124,9 +124,7 @@ contains
     ! order, so the result does not depend on the threads (reproducible runs)
     !$omp parallel do private(e, nen, xe, ue, q, n, dndx, detj, a, dv) schedule(static)
     do e = 1, bd%mesh%nelem
-      nen = bd%mesh%nen(e)
-      xe(:, 1:nen) = bd%mesh%x(:, bd%mesh%conn(1:nen, e))
-      ue(:, 1:nen) = u(:, bd%mesh%conn(1:nen, e))
+      call element_values(bd, e, u, nen, xe, ue)
       area(e) = 0.0_dp
       do q = 1, rules%nq(nen)
         call shape_at(nen, xe(:, 1:nen), rules%xi(:, q, nen), n(1:nen), dndx(:, 1:nen), detj)
@@ -173,9 +171,7 @@ contains
     ! in element order afterwards, so the result does not depend on the threads
     !$omp parallel do private(e, nen, xe, ue, q, sig, dv, n, rec, a) schedule(static)
     do e = 1, bd%mesh%nelem
-      nen = bd%mesh%nen(e)
-      xe(:, 1:nen) = bd%mesh%x(:, bd%mesh%conn(1:nen, e))
-      ue(:, 1:nen) = u(:, bd%mesh%conn(1:nen, e))
+      call element_values(bd, e, u, nen, xe, ue)
       eta2(e) = 0.0_dp
       e2(e) = 0.0_dp
       do q = 1, rules%nq(nen)
@@ -192,6 +188,18 @@ contains
     !$omp end parallel do
     energy2 = sum(e2)
   end subroutine energy_indicators
+
+  !> The nodes xe(2, nen) and displacements ue(2, nen) of element e of bd.
+  pure subroutine element_values(bd, e, u, nen, xe, ue)
+    type(body_t), intent(in) :: bd
+    integer, intent(in) :: e
+    real(dp), intent(in) :: u(:,:)
+    integer, intent(out) :: nen
+    real(dp), intent(out) :: xe(2, max_nen), ue(2, max_nen)
+    nen = bd%mesh%nen(e)
+    xe(:, 1:nen) = bd%mesh%x(:, bd%mesh%conn(1:nen, e))
+    ue(:, 1:nen) = u(:, bd%mesh%conn(1:nen, e))
+  end subroutine element_values
 
   !> s : D^-1 s = sum_ij s_i c_ij s_j over the first nc components, in loops
   !> of fixed-size arrays (a matmul on the run-time size nc would put a
