@@ -22,7 +22,7 @@
 program test_mode_support
   use kinds, only: dp
   use errors, only: diag_t, error_t
-  use mesh, only: finalize_mesh
+  use mesh, only: finalize_mesh, find_name
   use mesh_rect, only: make_rect_mesh
   use material, only: make_isotropic
   use body, only: body_t
@@ -80,9 +80,9 @@ contains
     k = fl%k
 
     spec(1)%slave_body = 1
-    spec(1)%slave_bnd = boundary_index(bd(1), 'top')
+    spec(1)%slave_bnd = find_name(bd(1)%mesh%bnd, 'top')
     spec(1)%master_body = 2
-    spec(1)%master_bnd = boundary_index(bd(2), 'bottom')
+    spec(1)%master_bnd = find_name(bd(2)%mesh%bnd, 'bottom')
     spec(1)%gap_zero = .true.
     if (friction) spec(1)%mu = 0.3_dp
     call build_contact_set(bd, spec, cs, err)
@@ -162,16 +162,5 @@ contains
     real(dp), intent(in) :: a(2, 2)
     determinant2 = a(1, 1) * a(2, 2) - a(1, 2) * a(2, 1)
   end function determinant2
-
-  !> The index of the boundary named name in a body's mesh (0: none).
-  integer function boundary_index(bd, name)
-    type(body_t), intent(in) :: bd
-    character(len=*), intent(in) :: name
-    integer :: i
-    boundary_index = 0
-    do i = 1, size(bd%mesh%bnd)
-      if (bd%mesh%bnd(i)%name == name) boundary_index = i
-    end do
-  end function boundary_index
 
 end program test_mode_support

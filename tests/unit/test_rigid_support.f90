@@ -20,7 +20,7 @@
 program test_rigid_support
   use kinds, only: dp
   use errors, only: diag_t, error_t
-  use mesh, only: finalize_mesh
+  use mesh, only: finalize_mesh, find_name
   use mesh_rect, only: make_rect_mesh
   use material, only: make_isotropic
   use body, only: body_t
@@ -77,7 +77,7 @@ contains
     n = sh%dof0 + 3
 
     spec(1)%slave_body = 1
-    spec(1)%slave_bnd = boundary_index(bd(1), 'top')
+    spec(1)%slave_bnd = find_name(bd(1)%mesh%bnd, 'top')
     spec(1)%rigid = 1
     spec(1)%shape = sh
     spec(1)%gap_zero = .true.
@@ -144,16 +144,5 @@ contains
       call check_small(maxval(abs(resid - [0.0_dp, 1.0_dp, 0.0_dp])), tol_round(8), &
                        name // ': all of the lift is unbalanced, resid = (0, 1, 0)')
   end subroutine run_case
-
-  !> The index of the boundary named name in a body's mesh (0: none).
-  integer function boundary_index(bd, name)
-    type(body_t), intent(in) :: bd
-    character(len=*), intent(in) :: name
-    integer :: i
-    boundary_index = 0
-    do i = 1, size(bd%mesh%bnd)
-      if (bd%mesh%bnd(i)%name == name) boundary_index = i
-    end do
-  end function boundary_index
 
 end program test_rigid_support
