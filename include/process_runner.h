@@ -36,4 +36,9 @@ int c2d_run_program(const char *args, int nargs, const char *log_path, double ti
  * them, then is reaped); nothing when none runs.  Async-signal-safe. */
 void c2d_kill_running(void);
 
+/* CPU seconds (user + system) of this process and of every program it has
+ * run and waited for (gmsh, through its watchdog): what a run costs, where
+ * the elapsed time would also count the waits. */
+double c2d_cpu_seconds(void);
+
 #endif

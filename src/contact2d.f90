@@ -9,7 +9,8 @@
 !>   -> condense the contact problem onto the slave nodes: W, q
 !>   -> solve LCP(W, q) (Lemke, PDAS, PGS; friction in load steps)
 !>   -> recover u -> stresses, reactions, energy -> the model's assumptions
-!>   checked (warnings) -> the error estimate -> VTK, contact table, summary.
+!>   checked (warnings) -> the error estimate -> (ADAPT: re-mesh from the
+!>   indicators and solve again, until the target) -> VTK, contact table, summary.
 !> Everything the steps hand each other is in one run_t (run_state).  The
 !> run log says what was done; bad input exits 2, a numerical failure or a
 !> problem without equilibrium exits 1, with the diagnosis.
@@ -27,6 +28,7 @@ program contact2d
   use model_checks, only: check_model
   use contact_checks, only: check_contact_model
   use run_estimate, only: estimate_error
+  use adaptivity, only: check_adaptable, adapt_mesh, keep_meshes
   use run_outputs, only: write_outputs
   use run_report, only: start_clock, report_run
   implicit none
@@ -42,17 +44,22 @@ program contact2d
   call start_clock(run)
 
   call read_input(run)           ! the deck and its overrides; the output folder
-  call build_problem(run)        ! scene, contact set, rigid modes, equations (--check ends here)
-  call assemble_system(run)      ! K_ff and f_f - K_fd ubar; the fill-reducing ordering beside it
-  call factorize_system(run)     ! K_ff = L L'
-  call condense_system(run)      ! u0 = K^-1 f; W = C K^-1 C', q = g - C u0
-  call solve_contact_lcp(run)    ! mu (and tau) from LCP(W, q), every load step the deck asks for
-  call recover_system(run)       ! u = K^-1 (f - C' z) + the rigid motions
-  call compute_results(run)      ! stresses, reactions, energy, contact fields
-  call check_model(run)          ! the model's assumptions: locking, strain, rotation (warnings)
-  call check_contact_model(run, run%sc%steps)   ! small sliding (exit 1 beyond), polygon gaps (warning)
-  call estimate_error(run)       ! the run's own error: recovered stresses, element indicators
+  call check_adaptable(run)      ! ADAPT: every body's mesh is one gmsh can make again
+  do
+    call build_problem(run)      ! scene, contact set, rigid modes, equations (--check ends here)
+    call assemble_system(run)    ! K_ff and f_f - K_fd ubar; the fill-reducing ordering beside it
+    call factorize_system(run)   ! K_ff = L L'
+    call condense_system(run)    ! u0 = K^-1 f; W = C K^-1 C', q = g - C u0
+    call solve_contact_lcp(run)  ! mu (and tau) from LCP(W, q), every load step the deck asks for
+    call recover_system(run)     ! u = K^-1 (f - C' z) + the rigid motions
+    call compute_results(run)    ! stresses, reactions, energy, contact fields
+    call check_model(run)        ! the model's assumptions: locking, strain, rotation (warnings)
+    call check_contact_model(run, run%sc%steps)   ! small sliding (exit 1 beyond), polygon gaps (warning)
+    call estimate_error(run)     ! the run's own error: recovered stresses, element indicators
+    if (.not. adapt_mesh(run)) exit   ! ADAPT: below target or at a limit; else every body re-meshed, solve again
+  end do
   call write_outputs(run)        ! VTK, contact table, summary (and the steps' files)
+  call keep_meshes(run)          ! ADAPT: the final meshes next to the outputs
   call report_run(run)           ! the run log: results, factor, timings, files written
   call exit_program(0)
 end program contact2d

@@ -379,8 +379,9 @@ nmax=$(lastrow contact_nodes %d)
 lmax=$(lastrow time_lcp_lemke %.3g)
 pmax=$(lastrow time_lcp_pgs %.3g)
 rmax=$(lastrow lcp_ratio %.0f)
-# the section on peers is bench/peers.sh's (its numbers come from that script): kept as it is
-peers=$(sed -n '/^## Against peers/,$p' "$doc/accuracy-cost.md" 2>/dev/null || true)
+# the sections on adaptive meshes and on peers are bench/adapt.sh's and
+# bench/peers.sh's (their numbers come from those scripts): kept as they are
+peers=$(sed -n '/^## \(Adaptive meshes\|Against peers\)/,$p' "$doc/accuracy-cost.md" 2>/dev/null || true)
 cat > "$doc/accuracy-cost.md" <<EOF
 # What accuracy costs
 

@@ -18,7 +18,7 @@ module results_writer
   use body, only: body_t
   use mesh, only: file_item, node_in_file
   use contact_set, only: contact_set_t, row_of_node, node_rows, node_traction
-  use strings, only: int_to_str
+  use strings, only: int_to_str, i8_to_str
   use errors, only: error_t, set_error
   use text_scan, only: string_t
   use text_buffer, only: text_buffer_t, open_text, open_memory, put_text, put_line, put_real, put_int, put_newline, &
@@ -83,6 +83,10 @@ module results_writer
                                                  !< the sum of their squares is estimate_energy^2
     real(dp), allocatable :: estimate_pressure(:) !< (npair) estimated relative L2 error of the contact
                                                  !< pressure over the pair's zone; < 0: no zone in contact
+    real(dp) :: cost_seconds = -1, cost_dofs = -1  !< estimate cost_to_halve: predicted cpu_total and dofs
+                                                 !< of a run with half the energy error (< 0: none)
+    real(dp), allocatable :: adapt(:,:)          !< (3, nstep) ADAPT: dofs, estimate, CPU seconds of each step
+    character(len=:), allocatable :: adapt_result   !< ADAPT: 'reached' or 'stopped WHY'
     character(len=:), allocatable :: lcp_method
     integer :: lcp_iterations = 0
     real(dp) :: lcp_residual = 0
@@ -93,6 +97,7 @@ module results_writer
     integer, allocatable :: condense_block(:,:)  !< (3, blocks of L_cc reached by rows): dofs, rows,
                                                  !< 1 by its inverse / 0 by triangular solves
     real(dp) :: time(nphase) = 0                 !< seconds per phase_names
+    real(dp) :: cpu(nphase) = 0                  !< CPU seconds per phase_names (gmsh's included)
     real(dp) :: memory_peak = 0                  !< peak resident memory, bytes (0 when unknown)
     real(dp) :: factor_memory = 0                !< CHOLMOD's peak memory for the factor, bytes
     real(dp) :: time_solve = 0                   !< seconds of the one solve u0 = K^-1 f (inside a phase)
@@ -447,7 +452,16 @@ contains
         if (r%estimate_pressure(k) >= 0.0_dp) &
           write(u, '(a,i0,a)') 'estimate pressure ', k, ' ' // num(r%estimate_pressure(k))
       end do
+      if (r%cost_dofs > 0.0_dp) write(u, '(a)') 'estimate cost_to_halve ' // num(r%cost_seconds) // ' ' // &
+        i8_to_str(nint(r%cost_dofs, i8))
     end if
+    if (allocated(r%adapt)) then
+      do k = 1, size(r%adapt, 2)
+        write(u, '(a,i0,a)') 'adapt ', k, ' dofs ' // i8_to_str(nint(r%adapt(1, k), i8)) // ' estimate ' // &
+          num(r%adapt(2, k)) // ' cpu ' // num(r%adapt(3, k))
+      end do
+    end if
+    if (allocated(r%adapt_result)) write(u, '(a)') 'adapt_result ' // r%adapt_result
     do k = 1, size(r%fix_label)
       write(u, '(a)') 'reaction ' // r%fix_label(k)%s // ' ' // num(r%reaction(1, k)) // ' ' // num(r%reaction(2, k))
     end do
@@ -489,6 +503,7 @@ contains
     do k = 1, nphase
       write(u, '(a,a)') 'time_' // trim(phase_names(k)) // ' ', num(r%time(k))
     end do
+    write(u, '(a,a)') 'cpu_total ', num(r%cpu(nphase))
     write(u, '(a,a)') 'time_solve ', num(r%time_solve)
     write(u, '(a,a)') 'time_ordering ', num(r%time_ordering)
     write(u, '(a,a)') 'time_assemble_values ', num(r%time_assemble_values)

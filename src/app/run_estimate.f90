@@ -24,12 +24,27 @@
 !> the energy of a traction error spread over a depth |E| of a material of
 !> stiffness E_K (its largest Young's modulus).
 !>
+!> The cost of the next digit.  estimate cost_to_halve is the dofs and the
+!> CPU time (cpu_total) of a run with half this run's energy error, on the mesh ADAPT
+!> would make for it: the fewest elements for the error (estimate / 2)^2
+!> (module size_field), each element's error falling as h^(2 p) with p its
+!> order, or the rate observed between ADAPT's last two meshes when that is
+!> lower (a singularity's).  The dofs grow as the elements, by r; each
+!> phase's CPU seconds (cpu_total's parts: the elapsed time would count
+!> gmsh's sandbox starting, which does not grow) by r^g, g = 1 for the phases that visit each element or
+!> dof a fixed number of times, 1.5 for the factorization (nested dissection
+!> in 2D), the condensation and the LCP (their rows grow as the contact
+!> boundary, sqrt(r), their work per row as the factor).
+!>
 !> Programming interface
 !>   estimate_error(run)   res%estimated, res%estimate_energy, res%error_indicator,
 !>                         res%estimate_pressure (res%u in x, y)
+!>   predict_cost(run)     res%cost_seconds, res%cost_dofs, from the indicators and
+!>                         the phases' times so far (called when only the summary is left)
 module run_estimate
   use kinds, only: dp
   use run_state, only: run_t, ph_output, ph_estimate
+  use size_field, only: optimal_scales, element_count
   use run_report, only: lap
   use run_phase, only: enter_phase
   use error_estimate, only: recover_stress, energy_indicators
@@ -37,7 +52,10 @@ module run_estimate
   use axisymmetric_elements, only: radial_weight
   implicit none
   private
-  public :: estimate_error
+  public :: estimate_error, predict_cost, element_rates
+
+  !> how each phase's time grows with the dofs (module header): r^growth
+  real(dp), parameter :: growth(ph_output) = [1.0_dp, 1.0_dp, 1.5_dp, 1.5_dp, 1.5_dp, 1.0_dp, 1.0_dp, 1.0_dp]
 
   !> The recovered nodal stresses of one body.
   type :: recovered_t
@@ -87,6 +105,55 @@ contains
     run%res%estimated = .true.
     call lap(run, ph_estimate)
   end subroutine estimate_error
+
+  !> estimate cost_to_halve (module header): res%cost_dofs and
+  !> res%cost_seconds, from the indicators, the elements' orders (or ADAPT's
+  !> observed rate) and this mesh's phase times.
+  !>   run (inout) res%error_indicator, res%time on entry
+  subroutine predict_cost(run)
+    type(run_t), intent(inout) :: run
+    real(dp), allocatable :: s(:), spent(:)
+    real(dp) :: r
+    run%res%cost_dofs = -1
+    run%res%cost_seconds = -1
+    if (.not. run%res%estimated .or. .not. run%res%estimate_energy > 0.0_dp) return
+    allocate(s(run%sc%nelem))
+    call optimal_scales(run%res%error_indicator**2, element_rates(run), (run%res%estimate_energy / 2)**2, &
+                        1.0e-3_dp, 8.0_dp, s)
+    r = element_count(s) / run%sc%nelem
+    run%res%cost_dofs = run%sc%ndof * r
+    spent = run%res%cpu(1:ph_output)
+    if (allocated(run%adapt%time0)) spent = spent - run%adapt%time0(1:ph_output)   ! this mesh's step alone
+    run%res%cost_seconds = sum(max(0.0_dp, spent) * r**growth)
+  end subroutine predict_cost
+
+  !> The rate in h of each element's energy error: its order (1 for 3- and
+  !> 4-node elements, 2 for quadratic ones), or the rate ADAPT observed
+  !> between its last two meshes when lower, error ~ dofs^(-p/2) in 2D:
+  !> p = 2 log(e_prev / e) / log(dofs / dofs_prev), at least 1/2.
+  !>   run (in) the mesh, res%estimate_energy and ADAPT's last mesh
+  function element_rates(run) result(rate)
+    type(run_t), intent(in) :: run
+    real(dp), allocatable :: rate(:)
+    real(dp) :: observed, dofs
+    integer :: b, e
+    allocate(rate(run%sc%nelem))
+    do b = 1, size(run%sc%bodies)
+      associate (m => run%sc%bodies(b)%mesh, e0 => run%sc%bodies(b)%elem0)
+        do e = 1, m%nelem
+          rate(e0 + e) = merge(1.0_dp, 2.0_dp, m%nen(e) <= 4)
+        end do
+      end associate
+    end do
+    dofs = real(run%sc%ndof, dp)
+    associate (a => run%adapt)
+      if (a%energy_prev > 0.0_dp .and. a%dofs_prev > 0.0_dp .and. dofs > 1.2_dp * a%dofs_prev .and. &
+          run%res%estimate_energy > 0.0_dp) then
+        observed = 2 * log(a%energy_prev / run%res%estimate_energy) / log(dofs / a%dofs_prev)
+        rate = min(rate, max(0.5_dp, observed))
+      end if
+    end associate
+  end function element_rates
 
   !> res%estimate_pressure of every pair, and the contact terms added to the
   !> slave elements' eta2 (module header).

@@ -29,6 +29,7 @@ module run_outputs
                         discard_temporaries
   use, intrinsic :: iso_fortran_env, only: error_unit
   use run_phase, only: enter_phase
+  use run_estimate, only: predict_cost
   implicit none
   private
   public :: make_folder, write_step, write_outputs
@@ -109,6 +110,7 @@ contains
     if (.not. allocated(err)) then
       call lap(run, ph_output)
       run%res%memory_peak = peak_memory()
+      call predict_cost(run)                  ! every phase timed but the summary's own writing
       call write_summary(tmp(3)%io_path, run%res, err)
     end if
     do i = 1, size(tmp)

@@ -30,6 +30,7 @@ module run_report
   use deck_expressions, only: format_number
   use results_writer, only: phase_names, nphase, string_t
   use threads, only: run_threads
+  use system_binding, only: c2d_cpu_seconds
   use command_line, only: version
   use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
   implicit none
@@ -82,6 +83,7 @@ contains
     type(run_t), intent(inout) :: run
     call system_clock(run%t_start)
     run%t_phase = run%t_start
+    run%c_phase = c2d_cpu_seconds()
   end subroutine start_clock
 
   !> Seconds since the last lap go to phase ph; the total is kept up to date.
@@ -93,7 +95,21 @@ contains
     run%res%time(ph) = run%res%time(ph) + real(now - run%t_phase, dp) / real(rate, dp)
     run%res%time(ph_total) = real(now - run%t_start, dp) / real(rate, dp)
     run%t_phase = now
+    call lap_cpu(run, [ph], [1.0_dp])
   end subroutine lap
+
+  !> CPU seconds (gmsh's included) since the last lap, shared between the
+  !> phases ph in the given proportions; the total is the process's.
+  subroutine lap_cpu(run, ph, share)
+    type(run_t), intent(inout) :: run
+    integer, intent(in) :: ph(:)
+    real(dp), intent(in) :: share(:)
+    real(dp) :: now
+    now = c2d_cpu_seconds()
+    run%res%cpu(ph) = run%res%cpu(ph) + share * (now - run%c_phase)
+    run%res%cpu(ph_total) = now
+    run%c_phase = now
+  end subroutine lap_cpu
 
   !> The ordering and the assembly of the values ran side by side: the
   !> ordering is charged to factor, the part of the assembly it did not hide
@@ -110,6 +126,11 @@ contains
     run%res%time(ph_assemble) = run%res%time(ph_assemble) + (wall - run%res%time_ordering)
     run%res%time(ph_total) = real(now - run%t_start, dp) / real(rate, dp)
     run%t_phase = now
+    if (wall > 0.0_dp) then
+      call lap_cpu(run, [ph_factor, ph_assemble], [run%res%time_ordering, wall - run%res%time_ordering] / wall)
+    else
+      call lap_cpu(run, [ph_factor], [1.0_dp])
+    end if
   end subroutine split_overlap
 
   !> The run log's line of a step solved on its own (OUTPUT steps=all).

@@ -18,6 +18,7 @@ module run_state
   use kinds, only: dp, i8
   use errors, only: diag_t
   use deck_reader, only: deck_t
+  use deck_types, only: mesh_spec_t
   use deck_expressions, only: parameter_set_t
   use scene, only: scene_t
   use contact_set, only: contact_set_t
@@ -32,11 +33,21 @@ module run_state
   use gmsh_runner, only: gmsh_options_t
   implicit none
   private
-  public :: run_t
+  public :: run_t, adapt_state_t
   public :: ph_mesh, ph_assemble, ph_factor, ph_condense, ph_lcp, ph_recover, ph_estimate, ph_output, ph_total
 
   integer, parameter :: ph_mesh = 1, ph_assemble = 2, ph_factor = 3, ph_condense = 4, ph_lcp = 5, &
                         ph_recover = 6, ph_estimate = 7, ph_output = 8, ph_total = 9
+
+  !> ADAPT's loop (adaptivity), carried from one mesh's solve to the next.
+  type :: adapt_state_t
+    integer :: step = 0                            !< meshes solved so far
+    real(dp) :: cpu0 = 0                           !< CPU seconds (gmsh's included) when this mesh's step began
+    real(dp), allocatable :: time0(:)              !< (nphase) res%cpu when this mesh's step began
+    real(dp) :: energy_prev = -1, dofs_prev = -1   !< the previous mesh's energy estimate and dofs (< 0: none)
+    logical :: capped = .false.                    !< this mesh was made coarser than asked, to keep within max_dofs
+    type(mesh_spec_t), allocatable :: geo(:)       !< (nbody) each body's mesh as the deck gives it: what gmsh re-meshes
+  end type adapt_state_t
 
   type :: run_t
     ! --- the command line (command_line, case_selection) -----------------
@@ -89,8 +100,12 @@ module run_state
     integer :: step_iterations = 0                 !< LCP iterations of the step being recorded
     character(len=:), allocatable :: step_note     !< 'load step k of n: ' in messages while steps are solved
 
+    ! --- ADAPT (adaptivity) ----------------------------------------------
+    type(adapt_state_t) :: adapt
+
     ! --- the clock (run_report) ------------------------------------------
     integer(i8) :: t_start = 0, t_phase = 0        !< the run's start, the last lap
+    real(dp) :: c_phase = 0                        !< the process's CPU seconds at the last lap
     integer(i8) :: t_asm0 = 0, t_asm1 = 0          !< the assembly of K's values, beside the ordering
     character(len=:), allocatable :: wrote(:)      !< the run log's `wrote` lines (run_outputs)
   end type run_t

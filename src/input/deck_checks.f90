@@ -84,6 +84,7 @@ contains
     call check_friction_solver(s, deck)
     call check_output_names(s, deck)
     if (deck%axisymmetric) call check_axisymmetric(s, deck)
+    if (deck%adapt%on) call check_adapt(s, deck)
   contains
     !> A FIX or load of a body: its boundary (rect meshes), its ramp's end.
     subroutine check_statement(body, boundary, ramp, line)
@@ -94,6 +95,19 @@ contains
       if (.not. s%steps_bad) call check_ramp_end(s, deck, ramp, line)
     end subroutine check_statement
   end subroutine finish_checks
+
+  !> ADAPT against the rest of the deck: it is driven by the error estimate
+  !> (not with ESTIMATE off) and quantity=pressure needs a CONTACT.  (That
+  !> gmsh can make every mesh again, an .msh with its .geo beside it, is
+  !> checked with the files, in the adaptive loop's setup.)
+  subroutine check_adapt(s, deck)
+    type(state_t), intent(inout) :: s
+    type(deck_t), intent(in) :: deck
+    if (.not. deck%estimate) call report(s, deck%adapt%line, 'ADAPT needs the error estimate, which ESTIMATE off ' // &
+      'at line ' // int_to_str(deck%estimate_line) // ' turns off (expected one of them)')
+    if (deck%adapt%quantity == 'pressure' .and. size(deck%contacts) == 0) call report(s, deck%adapt%line, &
+      'ADAPT quantity=pressure but the deck has no CONTACT (expected quantity=energy, or a CONTACT pair)')
+  end subroutine check_adapt
 
   !> What PLANE axisymmetric cannot take: gravity off the axis (a load that
   !> depends on the angle theta, not a solid of revolution's).  The bodies'

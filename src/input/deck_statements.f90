@@ -115,6 +115,11 @@ contains
                        choice_key('cut', 'auto|off')])
     call add_row(table, 'STEPS', '', do_steps, once=.true., usage='STEPS n with an integer 1 <= n <= 100000')
     call add_row(table, 'ESTIMATE', '', do_estimate, once=.true., usage='ESTIMATE [on|off]')
+    call add_row(table, 'ADAPT', '', do_adapt, once=.true., words=0, &
+                 usage='ADAPT target=number [quantity=energy|pressure] [max_steps=N] [max_dofs=N]', &
+                 keys=[real_key('target', required=.true., gt=zero, lt=1.0_dp, note=', a relative error'), &
+                       choice_key('quantity', 'energy|pressure'), integer_key('max_steps'), &
+                       integer_key('max_dofs', at_least=100)])
     call add_row(table, 'CURVE', '', do_curve, &
                  usage='CURVE name t0:v0 t1:v1 ... with step numbers t0 < t1 < ... and load factors v')
     call add_row(table, 'OUTPUT', '', do_output, once=.true., words=0, &
@@ -328,6 +333,7 @@ contains
     type(state_t), intent(inout) :: s
     type(deck_t), intent(inout) :: deck
     type(stmt_t), intent(in) :: st
+    deck%estimate_line = st%line
     if (st%nword >= 1) then
       select case (st%word(1)%s)
       case ('on')
@@ -341,6 +347,23 @@ contains
     end if
     call check_no_pairs(s, st)
   end subroutine do_estimate
+
+  !> ADAPT target= [quantity=energy|pressure] [max_steps=] [max_dofs=]: the
+  !> adaptive loop (its checks against the rest of the deck: deck_checks).
+  subroutine do_adapt(s, deck, st)
+    type(state_t), intent(inout) :: s
+    type(deck_t), intent(inout) :: deck
+    type(stmt_t), intent(in) :: st
+    type(key_values_t) :: v
+    deck%adapt%line = st%line
+    call read_keys(s, st, v)
+    deck%adapt%on = .true.
+    deck%adapt%quantity = 'energy'
+    if (v%ok(1)) deck%adapt%target = v%x(1)
+    if (v%ok(2)) deck%adapt%quantity = v%text(2)%s
+    if (v%ok(3)) deck%adapt%max_steps = v%k(3)
+    if (v%ok(4)) deck%adapt%max_dofs = v%k(4)
+  end subroutine do_adapt
 
   !> CURVE name t0:v0 t1:v1 ...: a piecewise-linear load factor against the
   !> step number, at least one point, t strictly increasing (numbers, not

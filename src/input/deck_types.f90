@@ -21,7 +21,7 @@ module deck_types
   use deck_expressions, only: parameter_set_t
   implicit none
   private
-  public :: fix_t, load_t, mesh_spec_t, material_t, thermal_t, body_deck_t, contact_deck_t
+  public :: fix_t, load_t, mesh_spec_t, material_t, thermal_t, body_deck_t, contact_deck_t, adapt_deck_t
   public :: solver_deck_t, output_deck_t, deck_t, curve_t, curve_factor, rigid_deck_t, rigid_load_t
   public :: load_traction, load_pressure
 
@@ -76,6 +76,18 @@ module deck_types
     real(dp) :: e3 = 0, nu13 = 0, nu23 = 0      !< out-of-plane; defaults E3=E2, nu13=nu23=nu12
     integer :: line = 0                         !< line of the MATERIAL statement (0: none)
   end type material_t
+
+  !> ADAPT target= [quantity=] [max_steps=] [max_dofs=]: solve, re-mesh
+  !> every body with gmsh from the error indicators, solve again, until the
+  !> estimate is below target or a limit is hit.
+  type :: adapt_deck_t
+    logical :: on = .false.
+    real(dp) :: target = 0                      !< relative error sought, 0 < target < 1
+    character(len=:), allocatable :: quantity   !< 'energy' (default) or 'pressure'
+    integer :: max_steps = 10                   !< meshes solved, the deck's first one included
+    integer :: max_dofs = 2000000               !< no mesh beyond this many dofs
+    integer :: line = 0                         !< line of the ADAPT statement (0: none)
+  end type adapt_deck_t
 
   !> One BODY ... END block.
   !> THERMAL alpha= dT= [region=]: a uniform temperature change dT (from the
@@ -194,6 +206,8 @@ module deck_types
     integer :: steps = 1                        !< STEPS n: load steps, 1 <= n <= max_steps
     integer :: steps_line = 0                   !< line of the STEPS statement (0: none)
     logical :: estimate = .true.                !< ESTIMATE [on|off]: the a posteriori error estimate
+    integer :: estimate_line = 0                !< line of the ESTIMATE statement (0: none)
+    type(adapt_deck_t) :: adapt                 !< ADAPT (adapt%on false when none)
     type(contact_deck_t), allocatable :: contacts(:)   !< (ncontact), always allocated
     type(rigid_deck_t), allocatable :: rigids(:) !< (nrigid) RIGID blocks, always allocated
     type(solver_deck_t) :: solver

@@ -13,10 +13,13 @@
 !>
 !> Programming interface
 !>   type(gmsh_options_t)    trust_geo, timeout (seconds)
-!>   mesh_geo_file(geo_path, order, names, values, opts, read_folder, msh_path, log_path, err)
+!>   mesh_geo_file(geo_path, order, names, values, opts, read_folder, msh_path, log_path, err
+!>                 [, background, size_range])
 !>        gmsh -2 -order ORDER -format msh41 -v 2 [-setnumber NAME VALUE]... GEO -o MSH,
 !>        its output to LOG (which must not exist); err unless gmsh exits 0 and wrote
-!>        MSH, its message saying why (gmsh's first error lines, the time limit)
+!>        MSH, its message saying why (gmsh's first error lines, the time limit).
+!>        With a background (a .pos view in MSH's folder): the sizes are the view's
+!>        alone, within size_range (an adaptive re-mesh, module size_field)
 module gmsh_runner
   use, intrinsic :: iso_c_binding, only: c_int, c_double, c_null_char
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
@@ -60,13 +63,22 @@ contains
   !>   log_path    (in)  where gmsh's output goes (made here: must not exist)
   !>   err         (out) unallocated when gmsh exited with status 0 and wrote msh_path;
   !>                     else its message says what went wrong (status 2)
-  subroutine mesh_geo_file(geo_path, order, names, values, opts, read_folder, msh_path, log_path, err)
+  !>   background  (in, optional) a gmsh view of the sizes wanted (gmsh -bgm), in
+  !>                     msh_path's folder; the .geo's own sizes (points, boundary,
+  !>                     curvature) are turned off, so that the view may coarsen too
+  !>   size_range  (in, optional) (2) the smallest and largest size (-clmin, -clmax):
+  !>                     a point of a curved boundary just outside the view's
+  !>                     polygon gets no size of its own
+  subroutine mesh_geo_file(geo_path, order, names, values, opts, read_folder, msh_path, log_path, err, &
+                           background, size_range)
     character(len=*), intent(in) :: geo_path, read_folder, msh_path, log_path
     integer, intent(in) :: order
     character(len=*), intent(in) :: names(:)
     real(dp), intent(in) :: values(:)
     type(gmsh_options_t), intent(in) :: opts
     type(error_t), allocatable, intent(out) :: err
+    character(len=*), intent(in), optional :: background
+    real(dp), intent(in), optional :: size_range(2)
     character(len=:), allocatable :: gmsh, bwrap, geo, out_folder, message
     type(argv_t) :: argv
     integer(c_int) :: how, status
@@ -124,6 +136,18 @@ contains
       call push(argv, trim(names(i)))
       call push(argv, real_to_text(values(i)))
     end do
+    if (present(background)) then
+      call push(argv, '-string')
+      call push(argv, 'Mesh.MeshSizeFromPoints=0;Mesh.MeshSizeExtendFromBoundary=0;Mesh.MeshSizeFromCurvature=0;')
+      call push(argv, '-bgm')
+      call push(argv, background)
+    end if
+    if (present(size_range)) then
+      call push(argv, '-clmin')
+      call push(argv, real_to_text(size_range(1)))
+      call push(argv, '-clmax')
+      call push(argv, real_to_text(size_range(2)))
+    end if
     call push(argv, geo)
     call push(argv, '-o')
     call push(argv, out_folder // '/' // msh_path(index(msh_path, '/', back=.true.) + 1:))

@@ -15,16 +15,20 @@
 !>
 !> Programming interface
 !>   make_rect_mesh(x0, y0, x1, y1, nx, ny, elem, diag, mesh, err)
+!>   write_rect_geo(x0, y0, x1, y1, elem, name, path, err)
+!>        the same rectangle as a gmsh .geo (its boundaries Physical Curves of the
+!>        same names, its elements of the same kind), for a mesh gmsh makes again
+!>        (ADAPT); the element order to ask of gmsh is that of elem
 !>
 !> The arrays scale with nx*ny (1e8 cells are accepted): an allocation that
 !> fails is an out-of-memory error with the mesh's size, not a runtime abort.
 module mesh_rect
   use kinds, only: dp, i8
   use mesh, only: mesh_t
-  use errors, only: error_t, set_out_of_memory
+  use errors, only: error_t, set_out_of_memory, set_error
   implicit none
   private
-  public :: make_rect_mesh
+  public :: make_rect_mesh, write_rect_geo
 
 contains
 
@@ -159,5 +163,42 @@ contains
       if (ii <= gx .and. jj <= gy) node = jj * (gx + 1) + ii + 1
     end function node
   end subroutine make_rect_mesh
+
+  !> The rectangle of MESH rect as a .geo: the four sides the Physical Curves
+  !> bottom, right, top, left, the surface the Physical Surface NAME;
+  !> quadrilaterals recombined from gmsh's triangles (quad4, quad8, quad9),
+  !> quad8 without its centre nodes.  Sizes are left to the mesh gmsh is given
+  !> (a background mesh).
+  !>   x0, y0, x1, y1 (in) corners;  elem (in) as make_rect_mesh's
+  !>   name (in) the body (the surface's name);  path (in) the .geo to write
+  !>   err  (out) allocated when the file cannot be written
+  subroutine write_rect_geo(x0, y0, x1, y1, elem, name, path, err)
+    real(dp), intent(in) :: x0, y0, x1, y1
+    character(len=*), intent(in) :: elem, name, path
+    type(error_t), allocatable, intent(out) :: err
+    integer :: u, ios
+    character(len=*), parameter :: fp = '(a,i0,a,es24.16e3,a,es24.16e3,a)'
+    open(newunit=u, file=path, status='replace', action='write', iostat=ios)
+    if (ios == 0) write(u, fp, iostat=ios) 'Point(', 1, ') = {', x0, ', ', y0, ', 0};'
+    if (ios == 0) write(u, fp, iostat=ios) 'Point(', 2, ') = {', x1, ', ', y0, ', 0};'
+    if (ios == 0) write(u, fp, iostat=ios) 'Point(', 3, ') = {', x1, ', ', y1, ', 0};'
+    if (ios == 0) write(u, fp, iostat=ios) 'Point(', 4, ') = {', x0, ', ', y1, ', 0};'
+    if (ios == 0) write(u, '(a)', iostat=ios) 'Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 1};'
+    if (ios == 0) write(u, '(a)', iostat=ios) 'Curve Loop(1) = {1, 2, 3, 4}; Plane Surface(1) = {1};'
+    if (ios == 0) write(u, '(a)', iostat=ios) 'Physical Curve("bottom") = {1}; Physical Curve("right") = {2};'
+    if (ios == 0) write(u, '(a)', iostat=ios) 'Physical Curve("top") = {3}; Physical Curve("left") = {4};'
+    if (ios == 0) write(u, '(a)', iostat=ios) 'Physical Surface("' // name // '") = {1};'
+    if (elem(1:min(4, len(elem))) == 'quad') then
+      ! gmsh's default algorithm: 4.8's Frontal-Delaunay for quads (Algorithm 8) crashes on a background mesh
+      if (ios == 0) write(u, '(a)', iostat=ios) 'Recombine Surface{1};'
+    end if
+    if (elem == 'quad8' .and. ios == 0) write(u, '(a)', iostat=ios) 'Mesh.SecondOrderIncomplete = 1;'
+    if (ios == 0) then
+      close(u, iostat=ios)
+    else
+      close(u)
+    end if
+    if (ios /= 0) call set_error(err, 'cannot write "' // path // '"', 1)
+  end subroutine write_rect_geo
 
 end module mesh_rect

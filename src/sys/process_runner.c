@@ -47,6 +47,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/prctl.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/syscall.h>
 #include <sys/types.h>
@@ -410,4 +411,16 @@ void c2d_kill_running(void)
     int saved = errno;
     end_run(NULL);
     errno = saved;
+}
+
+double c2d_cpu_seconds(void)
+{
+    struct rusage self, children;
+    double t = 0.0;
+    if (getrusage(RUSAGE_SELF, &self) == 0)
+        t += self.ru_utime.tv_sec + 1e-6 * self.ru_utime.tv_usec + self.ru_stime.tv_sec + 1e-6 * self.ru_stime.tv_usec;
+    if (getrusage(RUSAGE_CHILDREN, &children) == 0)
+        t += children.ru_utime.tv_sec + 1e-6 * children.ru_utime.tv_usec + children.ru_stime.tv_sec +
+             1e-6 * children.ru_stime.tv_usec;
+    return t;
 }

@@ -9,7 +9,7 @@ module system_binding
   private
   public :: c2d_file_kind, c2d_open_input, c2d_close, c2d_make_folders, c2d_private_folder, &
             c2d_create_temporary, c2d_forget_temporary, c2d_lock_folder, c2d_unlock_folder, c2d_real_path, &
-            c2d_find_program, c2d_run_program, c_unlink, c_rename
+            c2d_find_program, c2d_run_program, c2d_cpu_seconds, c_unlink, c_rename
   public :: c2d_regular, c2d_missing, c2d_fifo, c2d_device, c2d_folder, c2d_socket, c2d_unreadable
   public :: c2d_run_exited, c2d_run_signaled, c2d_run_timeout, c2d_run_not_started
 
@@ -91,6 +91,10 @@ module system_binding
       real(c_double), value :: timeout
       integer(c_int), intent(out) :: how, status
     end function c2d_run_program
+
+    real(c_double) function c2d_cpu_seconds() bind(c, name='c2d_cpu_seconds')
+      import :: c_double
+    end function c2d_cpu_seconds
 
     integer(c_int) function c_unlink(path) bind(c, name='unlink')
       import :: c_int, c_char

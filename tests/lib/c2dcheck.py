@@ -38,6 +38,8 @@ def summary(path):
                 continue
             if w[0] == "reaction":
                 d["reaction"][w[1]] = (float(w[2]), float(w[3]))
+            elif w[0] == "estimate" and len(w) > 1:    # estimate energy, pressure (the last pair's), cost_to_halve
+                d["estimate " + w[1]] = w[2:]
             else:
                 d[w[0]] = w[1:]
     return d

@@ -69,4 +69,4 @@ def read(path):
 def untimed(summary_bytes):
     """The summary without its timing and memory lines (they differ run to run)."""
     return b"".join(l for l in summary_bytes.splitlines(True)
-                    if not l.startswith((b"time_", b"memory_peak", b"factor_memory")))
+                    if not l.startswith((b"time_", b"cpu_total", b"estimate cost_to_halve", b"memory_peak", b"factor_memory")))

@@ -1,0 +1,126 @@
+#!/bin/sh
+# bench/adapt.sh [REPEATS]: what ADAPT and `estimate cost_to_halve` deliver
+# (doc/accuracy-cost.md, "Adaptive meshes").  Medians of REPEATS runs
+# (default 3) of cpu_total, the run's CPU seconds with gmsh's included.
+#  1. Hertz (input/hertz.deck, its .geo: size hc near the contact, hf away):
+#     the uniform P2 meshes around 1 % true pressure error (hc = 0.005 reaches
+#     it, hc = 0.002 is 2.5 times finer) against ADAPT from hc = 0.05 to a 1 %
+#     pressure estimate; P1 uniform at hc = 0.005 and 0.0025 against ADAPT to
+#     2 % and 1 %; the true error against
+#     tests/estimate/hertz/reference_contact.csv (tests/lib/pressure_error.py).
+#  2. The flat punch (tests/rigid/punch/punch.deck, a force P on a rigid die):
+#     uniform P1 and P2 series against ADAPT to 4 % and 2 % in energy, each
+#     with its estimate and its true energy error, sqrt(|U_ref - U_h| / U_ref)
+#     from the strain energies (a force-driven problem whose contact zone is the
+#     die's whole face: the energy error is the energies' difference), U_ref
+#     from ADAPT to 0.2 % in energy on P2 (the die's corners are singular: a
+#     uniform mesh fine enough for a reference would have millions of dofs).
+#  3. cost_to_halve: three runs' predicted CPU time and dofs against those of
+#     the mesh ADAPT reaches at half their energy error (the last `adapt` line).
+set -eu
+top=$(cd "$(dirname "$0")/.." && pwd)
+. "$top/bench/common.sh"
+prog=${CONTACT2D:-$top/bin/contact2d}
+reps=${1:-3}
+work=${BENCH_OUT:-$top/bench/out/adapt}
+ref=$top/tests/estimate/hertz/reference_contact.csv
+mkdir -p "$work"
+cp "$top/input/hertz_block.geo" "$top/input/hertz_disk.geo" "$work/"
+
+key() { awk -v k="$2" '$1 == k {print $2; exit}' "$1"; }
+last_adapt() { awk '$1 == "adapt" {d = $4} END {print d}' "$1"; }
+# run NAME: REPEATS runs of $work/NAME.deck; NAME.cpu holds the median cpu_total
+run() {
+  rm -f "$work/$1.t"
+  i=0
+  while [ "$i" -lt "$reps" ]; do
+    "$prog" -q -o "$work/out" "$work/$1.deck"
+    key "$work/out/$1.summary" cpu_total >> "$work/$1.t"
+    i=$((i + 1))
+  done
+  median < "$work/$1.t" > "$work/$1.cpu"
+}
+hertz() {   # hertz NAME HC ORDER [STATEMENT]
+  sed -e "s/hc=0.01 hf=0.5/hc=$2 hf=0.5 order=$3/" "$top/input/hertz.deck" > "$work/$1.deck"
+  [ -z "${4:-}" ] || echo "$4" >> "$work/$1.deck"
+}
+punch() {   # punch NAME HC ORDER [STATEMENT]
+  sed -e "s|file=../../../input/hertz_block.geo hc=0.01 hf=0.5|file=hertz_block.geo hc=$2 hf=0.5 order=$3|" \
+    "$top/tests/rigid/punch/punch.deck" > "$work/$1.deck"
+  [ -z "${4:-}" ] || echo "$4" >> "$work/$1.deck"
+}
+
+echo "1. Hertz, contact pressure (true error against the fine P2 reference)"
+printf '%-22s %9s %11s %12s %10s\n' run dofs estimate% true% cpu_s
+hertz uniform_p2_0.005 0.005 2
+hertz uniform_p2_0.002 0.002 2
+hertz adapt_p2_1 0.05 2 "ADAPT target=0.01 quantity=pressure"
+hertz uniform_p1_0.005 0.005 1
+hertz uniform_p1_0.0025 0.0025 1
+hertz adapt_p1_2 0.05 1 "ADAPT target=0.02 quantity=pressure"
+hertz adapt_p1_1 0.05 1 "ADAPT target=0.01 quantity=pressure"
+for name in uniform_p2_0.005 uniform_p2_0.002 adapt_p2_1 uniform_p1_0.005 uniform_p1_0.0025 adapt_p1_2 adapt_p1_1; do
+  run "$name"
+  s=$work/out/$name.summary
+  printf '%-22s %9s %11.4f %12s %10.3f\n' "$name" "$(key "$s" dofs)" \
+    "$(awk '$1 == "estimate" && $2 == "pressure" {print 100 * $4}' "$s")" \
+    "$(python3 "$top/tests/lib/pressure_error.py" "$ref" "$work/out/${name}_contact.csv")" "$(cat "$work/$name.cpu")"
+done
+awk 'NR == FNR {u = $1; next} {printf "P2 at 1 %%: adaptive CPU / uniform (hc = 0.005) CPU = %.3f\n", $1 / u}' \
+  "$work/uniform_p2_0.005.cpu" "$work/adapt_p2_1.cpu"
+awk 'NR == FNR && $1 == "dofs" {u = $2; next} $1 == "dofs" {printf "P2 at 1 %%: adaptive dofs / uniform dofs = %.3f\n", $2 / u}' \
+  "$work/out/uniform_p2_0.005.summary" "$work/out/adapt_p2_1.summary"
+
+echo
+echo "2. Flat punch, energy norm (true error from the strain energies)"
+punch punch_ref 0.05 2 "ADAPT target=0.002"
+"$prog" -q -o "$work/out" "$work/punch_ref.deck"
+uref=$(key "$work/out/punch_ref.summary" energy)
+printf '%-22s %9s %11s %12s %12s %10s\n' run dofs estimate% true% effectivity cpu_s
+series="punch_p1_0.04:0.04:1 punch_p1_0.02:0.02:1 punch_p1_0.01:0.01:1 punch_p1_0.005:0.005:1 \
+punch_p2_0.04:0.04:2 punch_p2_0.02:0.02:2 punch_p2_0.01:0.01:2 punch_p2_0.005:0.005:2"
+for item in $series; do
+  name=${item%%:*}; rest=${item#*:}
+  punch "$name" "${rest%%:*}" "${rest#*:}"
+done
+punch punch_adapt_p1_4 0.05 1 "ADAPT target=0.04"
+punch punch_adapt_p1_2 0.05 1 "ADAPT target=0.02"
+punch punch_adapt_p2_2 0.05 2 "ADAPT target=0.02"
+punch punch_adapt_p2_1 0.05 2 "ADAPT target=0.01"
+for item in $series punch_adapt_p1_4 punch_adapt_p1_2 punch_adapt_p2_2 punch_adapt_p2_1; do
+  name=${item%%:*}
+  run "$name"
+  s=$work/out/$name.summary
+  est=$(awk '$1 == "estimate" && $2 == "energy" {print 100 * $3}' "$s")
+  true=$(awk -v r="$uref" '$1 == "energy" {d = r - $2; if (d < 0) d = -d; print 100 * sqrt(d / r)}' "$s")
+  printf '%-22s %9s %11.4f %12.4f %12.3f %10.3f\n' "$name" "$(key "$s" dofs)" "$est" "$true" \
+    "$(echo "$est $true" | awk '{print $1 / $2}')" "$(cat "$work/$name.cpu")"
+done
+
+echo
+echo "3. cost_to_halve: predicted against the mesh ADAPT reaches at half the energy error"
+printf '%-14s %12s %10s %12s %10s %10s %10s\n' problem pred_cpu cpu pred_dofs dofs cpu_ratio dofs_ratio
+hertz c_hertz_p1 0.02 1
+hertz c_hertz_p2 0.05 2
+punch c_punch_p1 0.02 1
+for name in c_hertz_p1 c_hertz_p2 c_punch_p1; do
+  rm -f "$work/$name.p" "$work/$name.m"
+  i=0
+  while [ "$i" -lt "$reps" ]; do
+    "$prog" -q -o "$work/out" "$work/$name.deck"
+    awk '$1 == "estimate" && $2 == "cost_to_halve" {print $3, $4}' "$work/out/$name.summary" >> "$work/$name.p"
+    i=$((i + 1))
+  done
+  half=$(awk '$1 == "estimate" && $2 == "energy" {print $3 / 2}' "$work/out/$name.summary")
+  { cat "$work/$name.deck"; echo "ADAPT target=$half"; } > "$work/${name}_half.deck"
+  i=0
+  while [ "$i" -lt "$reps" ]; do
+    "$prog" -q -o "$work/out" "$work/${name}_half.deck"
+    awk '$1 == "adapt" {c = $8; d = $4} END {print c, d}' "$work/out/${name}_half.summary" >> "$work/$name.m"
+    i=$((i + 1))
+  done
+  pc=$(awk '{print $1}' "$work/$name.p" | median); pd=$(awk '{print $2}' "$work/$name.p" | median)
+  mc=$(awk '{print $1}' "$work/$name.m" | median); md=$(awk '{print $2}' "$work/$name.m" | median)
+  printf '%-14s %12.3f %10.3f %12.0f %10.0f %10.3f %10.3f\n' "$name" "$pc" "$mc" "$pd" "$md" \
+    "$(echo "$mc $pc" | awk '{print $1 / $2}')" "$(echo "$md $pd" | awk '{print $1 / $2}')"
+done

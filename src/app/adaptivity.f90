@@ -1,0 +1,354 @@
+!> adaptivity: ADAPT, the adaptive loop around a run's solve.
+!>
+!> After the solve of a mesh and its error estimate, the loop records the
+!> step (`adapt STEP dofs N estimate REL cpu SECONDS`) and stops when the
+!> estimate of the chosen quantity is below the target, or a limit is hit
+!> (max_steps, max_dofs, an estimate that no longer falls, gmsh failing):
+!> the outputs are then this last mesh's.  Otherwise every body is meshed
+!> again by gmsh from its .geo, with the sizes of the optimal mesh for the
+!> target (module size_field) as a background mesh (gmsh -bgm), and the run
+!> starts again from the scene on the new meshes.
+!>
+!> What it aims at.  quantity=energy: the energy error target, times 0.85
+!> so that one step usually suffices.  quantity=pressure: no indicator of the
+!> pressure error alone spreads over the bodies, so the loop asks the energy
+!> indicators (which carry the contact terms) for the energy error cut in
+!> the ratio target / estimate_pressure (times 0.85): on a contact the two
+!> errors fall together, the pressure's from the zone's elements, and the
+!> loop corrects the ratio from step to step.  The rates are the elements'
+!> orders, or the rate observed between the last two meshes when lower (a
+!> singularity's).  One step refines an element at most 8 times and
+!> coarsens it at most 4 times.
+!>
+!> The load history.  Each mesh is solved with the deck's whole history
+!> (every load step): with friction the final state depends on it, and
+!> without, a deck's STEPS are its own choice.  A deck that wants a cheaper
+!> loop gives the adaptive run one step and re-runs the history on the final
+!> mesh, which is kept for that (NAME_BODY.msh next to the outputs).
+!>
+!> Why it exists: the program reads "solve, estimate, adapt again"; the
+!> bookkeeping of the loop (restarting the run on new meshes, what survives
+!> from one mesh to the next, the meshes kept) is here.  Who may use it: the
+!> program.
+!>
+!> Programming interface
+!>   check_adaptable(run)   with ADAPT, every body's mesh is one gmsh can make again:
+!>                          a .geo, or an .msh with its .geo beside it (else exit 2)
+!>   adapt_mesh(run)        after a solve and its estimate: .true. when the bodies were
+!>                          meshed again and the run must solve again
+!>   keep_meshes(run)       the final meshes next to the outputs, NAME_BODY.msh
+module adaptivity
+  use kinds, only: dp
+  use strings, only: int_to_str, real_to_str
+  use errors, only: error_t, add_error
+  use exits, only: stop_input_errors, exit_program, fail_numerical
+  use run_state, only: run_t
+  use run_report, only: say, add_warning
+  use run_estimate, only: element_rates
+  use run_phase, only: enter_phase
+  use deck_types, only: mesh_spec_t
+  use mesh, only: is_quadratic
+  use mesh_rect, only: write_rect_geo
+  use geo_screen, only: screen_geo
+  use gmsh_runner, only: mesh_geo_file
+  use size_field, only: optimal_scales, element_count, element_size, write_background
+  use sparse_cholesky, only: free_factor
+  use safe_files, only: file_kind, c2d_regular, private_folder, real_path, read_file, temporary_t, create_temporary, &
+                        close_temporary, commit_temporaries, discard_temporaries
+  use system_binding, only: c2d_cpu_seconds
+  use, intrinsic :: iso_fortran_env, only: error_unit
+  implicit none
+  private
+  public :: check_adaptable, adapt_mesh, keep_meshes
+
+  real(dp), parameter :: aim = 0.85_dp                 !< the fraction of the target one step aims at
+  real(dp), parameter :: finest = 0.125_dp, coarsest = 4.0_dp   !< one step's bounds on the size's change
+  real(dp), parameter :: stall = 0.95_dp               !< an estimate above stall times the last one: no progress
+
+contains
+
+  !> With ADAPT, the mesh of every body as gmsh makes it again: its .geo
+  !> (MESH rect is refused by the deck's checks), or for an .msh the .geo of
+  !> the same name beside it; else exit 2 at the MESH line.
+  !>   run (inout) the deck on entry; run%adapt%geo on exit
+  subroutine check_adaptable(run)
+    type(run_t), intent(inout) :: run
+    character(len=:), allocatable :: geo, work
+    type(error_t), allocatable :: err
+    integer :: b
+    if (.not. run%deck%adapt%on) return
+    allocate(run%adapt%geo(size(run%deck%bodies)))
+    do b = 1, size(run%deck%bodies)
+      associate (ms => run%deck%bodies(b)%mesh)
+        run%adapt%geo(b) = ms
+        if (ms%is_geo) cycle
+        if (ms%kind == 'rect') then           ! the rectangle as a .geo of the run's own
+          call private_folder(work, err)
+          if (.not. allocated(err)) call write_rect_geo(ms%x0, ms%y0, ms%x1, ms%y1, ms%elem, &
+            run%deck%bodies(b)%name, work // '/rect_' // run%deck%bodies(b)%name // '.geo', err)
+          if (allocated(err)) call fail_numerical('ADAPT: ' // err%message)
+          run%adapt%geo(b)%kind = 'gmsh'
+          run%adapt%geo(b)%path = work // '/rect_' // run%deck%bodies(b)%name // '.geo'
+          run%adapt%geo(b)%is_geo = .true.
+          run%adapt%geo(b)%order = merge(2, 1, ms%elem == 'tri6' .or. ms%elem == 'quad8' .or. ms%elem == 'quad9')
+          run%adapt%geo(b)%set_names = [character(len=64) ::]
+          run%adapt%geo(b)%set_values = [real(dp) ::]
+          call say(run, 'adapt    body ' // run%deck%bodies(b)%name // ': MESH rect re-meshed by gmsh (' // &
+                   ms%elem // ', unstructured) from the second mesh on')
+          cycle
+        end if
+        geo = ms%path(1:len(ms%path) - 4) // '.geo'
+        if (file_kind(geo) == c2d_regular) then
+          run%adapt%geo(b)%path = geo
+          run%adapt%geo(b)%is_geo = .true.
+          call say(run, 'adapt    body ' // run%deck%bodies(b)%name // ': re-meshed from ' // &
+                   ms%file(1:len(ms%file) - 4) // '.geo, beside its mesh ' // ms%file)
+        else
+          call add_error(run%diag, run%deck%file, ms%line, 'ADAPT re-meshes every body with gmsh, and body "' // &
+            run%deck%bodies(b)%name // '" has the mesh "' // ms%file // '" without its .geo (expected ' // &
+            ms%file(1:len(ms%file) - 4) // '.geo beside it, or MESH gmsh file=NAME.geo)')
+        end if
+      end associate
+    end do
+    call stop_input_errors(run%diag)
+    run%adapt%cpu0 = 0.0_dp                    ! the first mesh's step: from the program's start
+  end subroutine check_adaptable
+
+  !> After the solve of a mesh and its estimate: record the step, stop (the
+  !> outputs are this mesh's) or mesh every body again and start the run
+  !> over (module header).
+  !>   run (inout) the results and the estimate on entry; a fresh run on the
+  !>               new meshes when the result is .true.
+  logical function adapt_mesh(run) result(again)
+    type(run_t), intent(inout) :: run
+    real(dp) :: est, cpu, dofs
+    again = .false.
+    if (.not. run%deck%adapt%on) return
+    associate (a => run%adapt, ad => run%deck%adapt)
+      a%step = a%step + 1
+      est = quantity_estimate(run)
+      cpu = c2d_cpu_seconds() - a%cpu0
+      dofs = real(run%sc%ndof, dp)
+      call record_step(run, dofs, est, cpu)
+      if (est < 0.0_dp) then
+        call finish(run, 'stopped no_estimate', 'ADAPT quantity=pressure: no pair has a zone in contact, ' // &
+                    'no pressure error to adapt to; the results are those of the deck''s mesh')
+      else if (est <= ad%target) then
+        call finish(run, 'reached', '')
+      else if (a%capped) then
+        call finish(run, 'stopped max_dofs', 'ADAPT stopped at max_dofs=' // int_to_str(ad%max_dofs) // &
+          ': the target ' // real_to_str(ad%target, 3) // ' needs more dofs; the estimate reached is ' // &
+          real_to_str(est, 3) // ' (the outputs are this last mesh''s, kept next to them)')
+      else if (a%step >= ad%max_steps) then
+        call finish(run, 'stopped max_steps', 'ADAPT stopped after max_steps=' // int_to_str(ad%max_steps) // &
+          ' meshes above the target ' // real_to_str(ad%target, 3) // ': the estimate reached is ' // &
+          real_to_str(est, 3) // ' (the outputs are this last mesh''s)')
+      else if (a%step > 1 .and. est > stall * run%res%adapt(2, a%step - 1)) then
+        call finish(run, 'stopped no_progress', 'ADAPT stopped: the estimate ' // real_to_str(est, 3) // &
+          ' fell by less than 5 % from the last mesh''s ' // real_to_str(run%res%adapt(2, a%step - 1), 3) // &
+          ' (the outputs are this last mesh''s)')
+      else
+        again = remesh(run, est)
+      end if
+    end associate
+  end function adapt_mesh
+
+  !> The estimate ADAPT watches: the energy error, or the largest pressure
+  !> error over the pairs in contact (< 0 when none is).
+  real(dp) function quantity_estimate(run) result(est)
+    type(run_t), intent(in) :: run
+    if (run%deck%adapt%quantity == 'pressure') then
+      est = -1.0_dp
+      if (allocated(run%res%estimate_pressure)) then
+        if (size(run%res%estimate_pressure) > 0) est = maxval(run%res%estimate_pressure)
+      end if
+    else
+      est = run%res%estimate_energy
+    end if
+  end function quantity_estimate
+
+  !> One `adapt` line: the summary's (res%adapt) and the run log's.
+  subroutine record_step(run, dofs, est, cpu)
+    type(run_t), intent(inout) :: run
+    real(dp), intent(in) :: dofs, est, cpu
+    real(dp), allocatable :: rows(:,:)
+    integer :: n
+    n = 0
+    if (allocated(run%res%adapt)) n = size(run%res%adapt, 2)
+    allocate(rows(3, n + 1))
+    if (n > 0) rows(:, 1:n) = run%res%adapt
+    rows(:, n + 1) = [dofs, est, cpu]
+    call move_alloc(rows, run%res%adapt)
+    call say(run, 'adapt    mesh ' // int_to_str(run%adapt%step) // ': ' // int_to_str(nint(dofs)) // ' dofs, ' // &
+             run%deck%adapt%quantity // ' error estimate ' // real_to_str(100 * est, 4) // ' %, ' // &
+             real_to_str(cpu, 3) // ' s CPU (gmsh''s included)')
+  end subroutine record_step
+
+  !> The loop ends here: adapt_result, and a warning unless the target was reached.
+  subroutine finish(run, result, warning)
+    type(run_t), intent(inout) :: run
+    character(len=*), intent(in) :: result, warning
+    run%res%adapt_result = result
+    call say(run, 'adapt    ' // result // ' (target ' // real_to_str(run%deck%adapt%target, 3) // ', ' // &
+             run%deck%adapt%quantity // ')')
+    if (len(warning) > 0) call add_warning(run, 'adapt_stopped', warning)
+  end subroutine finish
+
+  !> Mesh every body again for the target (module header) and start the run
+  !> over on the new meshes; .false. (and the loop ends, these results kept)
+  !> when gmsh cannot.
+  logical function remesh(run, est) result(done)
+    type(run_t), intent(inout) :: run
+    real(dp), intent(in) :: est
+    type(error_t), allocatable :: err
+    real(dp), allocatable :: rate(:), s(:), h(:)
+    character(len=:), allocatable :: work, stem, deck_folder
+    real(dp) :: goal, predicted, hmin, hmax
+    integer :: b, e, e0
+    logical :: found
+    done = .false.
+    call enter_phase('re-meshing (ADAPT)')
+    associate (a => run%adapt, ad => run%deck%adapt)
+      a%cpu0 = c2d_cpu_seconds()                  ! gmsh's re-meshing is the next mesh's cost
+      a%time0 = run%res%cpu
+      goal = aim * ad%target
+      if (ad%quantity == 'pressure') goal = aim * run%res%estimate_energy * ad%target / est
+      rate = element_rates(run)
+      allocate(s(run%sc%nelem))
+      call optimal_scales(run%res%error_indicator**2, rate, goal**2, finest, coarsest, s)
+      predicted = run%sc%ndof * element_count(s) / run%sc%nelem
+      if (predicted > ad%max_dofs) then           ! as fine as max_dofs allows, and the loop's last mesh
+        s = s * sqrt(predicted / ad%max_dofs)
+        a%capped = .true.
+        call say(run, 'adapt    the target asks for about ' // int_to_str(nint(predicted)) // ' dofs: the next ' // &
+                 'mesh is made coarser, within max_dofs=' // int_to_str(ad%max_dofs))
+      end if
+      a%energy_prev = run%res%estimate_energy
+      a%dofs_prev = real(run%sc%ndof, dp)
+      call private_folder(work, err)
+      call real_path(run%deck%dir, deck_folder, found)
+      if (.not. found) deck_folder = run%deck%dir
+      do b = 1, size(run%sc%bodies)
+        if (allocated(err)) exit
+        associate (bd => run%sc%bodies(b), g => a%geo(b), bdeck => run%deck%bodies(b))
+          if (.not. g%is_geo) cycle
+          e0 = bd%elem0
+          h = [(s(e0 + e) * element_size(bd%mesh, e), e = 1, bd%mesh%nelem)]
+          stem = work // '/adapt' // int_to_str(a%step + 1) // '_' // bdeck%name
+          call write_background(bd%mesh, bdeck%dx, bdeck%dy, h, stem // '.pos', hmin, hmax, err)
+          if (allocated(err)) exit
+          if (.not. run%gmsh%trust_geo .and. bdeck%mesh%kind == 'gmsh' .and. .not. bdeck%mesh%is_geo .and. &
+              a%step == 1) then
+            call screen_geo(g%path, deck_folder, run%diag)     ! the .geo found beside an .msh: screened once
+            call stop_input_errors(run%diag)
+          end if
+          call mesh_geo_file(g%path, merge(2, 1, is_quadratic(bd%mesh)), g%set_names, g%set_values, run%gmsh, &
+                             deck_folder, stem // '.msh', stem // '.log', err, background=stem // '.pos', &
+                             size_range=[0.5_dp * hmin, hmax])
+          if (allocated(err)) then
+            err%message = 'gmsh could not mesh body "' // bdeck%name // '" again: ' // err%message
+            exit
+          end if
+          bdeck%mesh%kind = 'gmsh'
+          bdeck%mesh%file = stem // '.msh'
+          bdeck%mesh%path = stem // '.msh'
+          bdeck%mesh%is_geo = .false.
+        end associate
+      end do
+    end associate
+    if (allocated(err)) then
+      call finish(run, 'stopped remesh_failed', 'ADAPT stopped: ' // err%message // ' (the outputs are this ' // &
+                  'last mesh''s)')
+      return
+    end if
+    call restart(run)
+    done = .true.
+  end function remesh
+
+  !> A fresh run on the deck's new meshes: what the command line set, the
+  !> deck, the clock (phases add up over the meshes), the loop's state.
+  subroutine restart(run)
+    type(run_t), intent(inout) :: run
+    type(run_t) :: next
+    call free_factor(run%factor)
+    next%deck_path = run%deck_path
+    next%outdir = run%outdir
+    next%check_only = run%check_only
+    next%quiet = run%quiet
+    next%gmsh = run%gmsh
+    next%overrides = run%overrides
+    next%cases_path = run%cases_path
+    next%case_number = run%case_number
+    next%jobs = run%jobs
+    next%thread_note = run%thread_note
+    next%diag = run%diag
+    next%deck = run%deck
+    next%adapt = run%adapt
+    next%t_start = run%t_start
+    next%t_phase = run%t_phase
+    next%c_phase = run%c_phase
+    next%res%time = run%res%time
+    next%res%cpu = run%res%cpu
+    call move_alloc(run%res%adapt, next%res%adapt)
+    run = next
+  end subroutine restart
+
+  !> The final meshes next to the outputs, NAME_BODY.msh, when ADAPT made
+  !> them (the deck's own meshes are the user's already): a new run can take
+  !> them with MESH gmsh file=.  Written and committed like the outputs.
+  !>   run (inout) the deck's meshes on entry; run%wrote gets a line
+  subroutine keep_meshes(run)
+    type(run_t), intent(inout) :: run
+    type(temporary_t), allocatable :: tmp(:)
+    type(error_t), allocatable :: err
+    character(len=:), allocatable :: buf, names, line
+    integer :: b, n, status, u, ios
+    if (.not. run%deck%adapt%on .or. run%adapt%step <= 1) return
+    allocate(tmp(size(run%deck%bodies)))
+    n = 0
+    names = ''
+    do b = 1, size(run%deck%bodies)
+      associate (ms => run%deck%bodies(b)%mesh)
+        if (ms%is_geo .or. .not. run%adapt%geo(b)%is_geo) cycle
+        call read_file(ms%path, buf, status)
+        if (status /= 0) then
+          call fail_write(run, tmp(1:n))
+          return
+        end if
+        n = n + 1
+        call create_temporary(run%outdir, run%deck%name // '_' // run%deck%bodies(b)%name // '.msh', tmp(n), err)
+        if (allocated(err)) then
+          call fail_write(run, tmp(1:n))
+          return
+        end if
+        open(newunit=u, file=tmp(n)%io_path, access='stream', form='unformatted', status='replace', iostat=ios)
+        if (ios == 0) write(u, iostat=ios) buf
+        if (ios == 0) close(u, iostat=ios)
+        call close_temporary(tmp(n))
+        if (ios /= 0) then
+          call fail_write(run, tmp(1:n))
+          return
+        end if
+        names = names // merge(', ', '  ', len(names) > 0) // run%deck%name // '_' // run%deck%bodies(b)%name // '.msh'
+      end associate
+    end do
+    call commit_temporaries(run%outdir, tmp(1:n), err)
+    if (allocated(err)) then
+      call fail_write(run, tmp(1:n))
+      return
+    end if
+    line = 'wrote    ' // trim(adjustl(names)) // ' (the adapted meshes)'
+    if (n > 0) run%wrote = [character(len=max(len(run%wrote), len(line))) :: run%wrote, line]
+  end subroutine keep_meshes
+
+  !> The meshes could not be written: the same message and exit as the outputs'.
+  subroutine fail_write(run, tmp)
+    type(run_t), intent(in) :: run
+    type(temporary_t), intent(inout) :: tmp(:)
+    call discard_temporaries(tmp)
+    write(error_unit, '(a)') 'contact2d: error: ' // run%outdir // ': cannot write the output files ' // &
+      '(a writable folder expected)'
+    call exit_program(2)
+  end subroutine fail_write
+
+end module adaptivity

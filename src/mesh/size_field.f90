@@ -1,0 +1,171 @@
+!> size_field: the element sizes an adaptive re-mesh asks of gmsh, from the
+!> error indicators, and the background mesh that carries them to gmsh.
+!>
+!> The optimal mesh (doc/theory.md, "Adaptive meshes").  Element K, with
+!> relative indicator eta_K (sum_K eta_K^2 = estimate^2), re-meshed with
+!> elements of s_K times its size, leaves an error eta_K^2 s_K^(2 p_K) there
+!> (p_K the rate of the energy error in h: the element's order on a smooth
+!> solution) and puts about s_K^-2 elements in its place.  The fewest
+!> elements for a total error T^2 are (Lagrange)
+!>     s_K = (mu / eta_K^2)^(1 / (2 p_K + 2)),   mu such that sum_K eta_K^2 s_K^(2 p_K) = T^2,
+!> and mu is found by bisection on log mu, since that sum grows with mu
+!> (also with the bounds smin <= s_K <= smax of one step, and with orders
+!> that differ from body to body, where no closed form is left).
+!>
+!> Why it exists: the adaptive loop (app/adaptivity) and the prediction of
+!> the cost of the next digit (app/run_estimate) ask the same question, how
+!> many elements a given error needs; gmsh answers where to put them.  Who
+!> may use it: the app layer.
+!>
+!> Programming interface
+!>   optimal_scales(eta2, rate, target2, smin, smax, s)   s_K of the fewest elements for the error target2
+!>   element_count(s)                                    sum_K s_K^-2, the new mesh's elements
+!>   element_size(mesh, e)                               mean length of element e's straight corner edges
+!>   write_background(mesh, dx, dy, h, path, hmin, hmax, err)
+!>        a gmsh post-processing view (.pos) of the nodal sizes of the element sizes h on the mesh
+!>        shifted by -(dx, dy); hmin, hmax the smallest and largest size written
+module size_field
+  use kinds, only: dp
+  use strings, only: int_to_str
+  use errors, only: error_t, set_error
+  use mesh, only: mesh_t
+  use elements, only: corner_count
+  implicit none
+  private
+  public :: optimal_scales, element_count, element_size, write_background
+
+contains
+
+  !> The scales s_K of the mesh with the fewest elements whose error is
+  !> target2 (module header), within [smin, smax].  When even smin
+  !> everywhere leaves more error than target2, s = smin; when smax
+  !> everywhere leaves less, s = smax.
+  !>   eta2    (in)  (nelem) the relative indicators squared
+  !>   rate    (in)  (nelem) the energy error's rate in h of each element (its order; > 0)
+  !>   target2 (in)  the total relative error sought, squared (> 0)
+  !>   smin, smax (in) bounds of one step, 0 < smin <= 1 <= smax
+  !>   s       (out) (nelem) the scales
+  pure subroutine optimal_scales(eta2, rate, target2, smin, smax, s)
+    real(dp), intent(in) :: eta2(:), rate(:), target2, smin, smax
+    real(dp), intent(out) :: s(:)
+    real(dp) :: lo, hi, mid
+    integer :: it
+    ! log mu spans what the indicators and the bounds can ask for
+    lo = log(tiny(1.0_dp)) / 2
+    hi = -lo
+    if (error_at(lo) >= target2) then
+      s = smin
+      return
+    end if
+    if (error_at(hi) <= target2) then
+      s = smax
+      return
+    end if
+    do it = 1, 200                          ! to the resolution of log mu, far below any mesh size's
+      mid = 0.5_dp * (lo + hi)
+      if (error_at(mid) > target2) then
+        hi = mid
+      else
+        lo = mid
+      end if
+      if (hi - lo < 1.0e-12_dp) exit
+    end do
+    call scales(lo, s)
+  contains
+    pure subroutine scales(log_mu, sk)
+      real(dp), intent(in) :: log_mu
+      real(dp), intent(out) :: sk(:)
+      integer :: k
+      do k = 1, size(eta2)
+        if (eta2(k) > 0.0_dp) then
+          sk(k) = min(smax, max(smin, exp((log_mu - log(eta2(k))) / (2 * rate(k) + 2))))
+        else
+          sk(k) = smax                      ! no error there: as coarse as one step allows
+        end if
+      end do
+    end subroutine scales
+    pure real(dp) function error_at(log_mu) result(e2)
+      real(dp), intent(in) :: log_mu
+      real(dp) :: sk(size(eta2))
+      call scales(log_mu, sk)
+      e2 = sum(eta2 * sk**(2 * rate))
+    end function error_at
+  end subroutine optimal_scales
+
+  !> The elements of the mesh the scales ask for: sum_K s_K^-2.
+  pure real(dp) function element_count(s) result(n)
+    real(dp), intent(in) :: s(:)
+    n = sum(1.0_dp / s**2)
+  end function element_count
+
+  !> The size of element e: the mean length of its corner-to-corner edges
+  !> (what gmsh's mesh size means: the length of the edges it makes).
+  pure real(dp) function element_size(m, e) result(h)
+    type(mesh_t), intent(in) :: m
+    integer, intent(in) :: e
+    integer :: nc, a
+    nc = corner_count(m%nen(e))
+    h = 0.0_dp
+    do a = 1, nc
+      h = h + norm2(m%x(:, m%conn(mod(a, nc) + 1, e)) - m%x(:, m%conn(a, e)))
+    end do
+    h = h / nc
+  end function element_size
+
+  !> The background mesh gmsh meshes to (gmsh -bgm): a list-based
+  !> post-processing view of scalar triangles (ST), the mesh's elements
+  !> (quadrilaterals as two triangles, corners only), with the size at each
+  !> corner the mean of the sizes asked of the elements around it (a size
+  !> field continuous across elements, as gmsh interpolates it).
+  !>   m      (in)  the mesh (in the solver's coordinates)
+  !>   dx, dy (in)  the body's OFFSET: the view is in the .geo's coordinates, x - (dx, dy)
+  !>   h      (in)  (nelem) the size asked of each element
+  !>   path   (in)  the .pos file to write
+  !>   hmin, hmax (out) the smallest and largest nodal size written
+  !>   err    (out) allocated when the file cannot be written
+  subroutine write_background(m, dx, dy, h, path, hmin, hmax, err)
+    type(mesh_t), intent(in) :: m
+    real(dp), intent(in) :: dx, dy, h(:)
+    character(len=*), intent(in) :: path
+    real(dp), intent(out) :: hmin, hmax
+    type(error_t), allocatable, intent(out) :: err
+    real(dp), allocatable :: hsum(:), count(:)
+    integer :: e, a, nc, u, ios
+    integer, parameter :: split(3, 2) = reshape([1, 2, 3, 1, 3, 4], [3, 2])
+    allocate(hsum(m%nnode), count(m%nnode), source=0.0_dp)
+    do e = 1, m%nelem
+      do a = 1, corner_count(m%nen(e))
+        hsum(m%conn(a, e)) = hsum(m%conn(a, e)) + h(e)
+        count(m%conn(a, e)) = count(m%conn(a, e)) + 1
+      end do
+    end do
+    where (count > 0) hsum = hsum / count
+    hmin = minval(hsum, mask=count > 0)
+    hmax = maxval(hsum, mask=count > 0)
+    open(newunit=u, file=path, status='replace', action='write', iostat=ios)
+    if (ios /= 0) then
+      call set_error(err, 'cannot write the size field "' // path // '"', 1)
+      return
+    end if
+    write(u, '(a)', iostat=ios) 'View "size" {'
+    do e = 1, m%nelem
+      nc = corner_count(m%nen(e))
+      do a = 1, nc - 2
+        if (ios == 0) call write_triangle(m%conn(split(:, a), e))
+      end do
+    end do
+    if (ios == 0) write(u, '(a)', iostat=ios) '};'
+    close(u)
+    if (ios /= 0) call set_error(err, 'cannot write the size field "' // path // '" (error ' // int_to_str(ios) // ')', 1)
+  contains
+    subroutine write_triangle(v)
+      integer, intent(in) :: v(3)
+      write(u, '(a,9(es24.16e3,a),3(es24.16e3,a))', iostat=ios) 'ST(', &
+        m%x(1, v(1)) - dx, ',', m%x(2, v(1)) - dy, ',', 0.0_dp, ',', &
+        m%x(1, v(2)) - dx, ',', m%x(2, v(2)) - dy, ',', 0.0_dp, ',', &
+        m%x(1, v(3)) - dx, ',', m%x(2, v(3)) - dy, ',', 0.0_dp, '){', &
+        hsum(v(1)), ',', hsum(v(2)), ',', hsum(v(3)), '};'
+    end subroutine write_triangle
+  end subroutine write_background
+
+end module size_field
