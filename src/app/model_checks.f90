@@ -2,9 +2,9 @@
 !> final state, each a warning when the answer rests on an assumption it has
 !> broken (doc/theory.md, "The model's assumptions, and the monitors that
 !> guard them"):
-!>   locking         linear elements (3-node triangles, 4-node quadrangles)
-!>                   with nu > 0.45 in plane strain or axisymmetric analysis:
-!>                   fully integrated, they lock as nu -> 1/2
+!>   locking         3-node triangles with nu > 0.45 in plane strain or
+!>                   axisymmetric analysis: they lock as nu -> 1/2 (4-node
+!>                   quadrangles take B-bar then, quadratic elements do not lock)
 !>   large_strain    a principal strain above 0.05 over more than 1 % of a
 !>                   body's area: the strain is the linearized one,
 !>                   eps = (grad u + grad u')/2
@@ -27,15 +27,12 @@ module model_checks
   use run_report, only: add_warning
   use body, only: body_t
   use elements, only: quadrature_rule, shape_at, max_nen
+  use material, only: locking_nu
   use deck_expressions, only: format_number
   implicit none
   private
   public :: check_model
 
-  !> nu above which linear elements lock: lambda / mu = 2 nu / (1 - 2 nu) = 9
-  !> at 0.45, where P1's error from the volumetric constraint becomes of the
-  !> order of its discretization error (doc/theory.md, the monitors' table)
-  real(dp), parameter :: locking_nu = 0.45_dp
   !> strain above which the linearized strain misses its quadratic term
   !> (Green-Lagrange E = eps + grad u' grad u / 2) by more than 2.5 %
   real(dp), parameter :: strain_limit = 0.05_dp
@@ -64,16 +61,19 @@ contains
   end subroutine check_model
 
   !> A `warning locking` per body of isotropic material with nu > 0.45 meshed
-  !> (in part) by 3-node triangles or 4-node quadrangles, in plane strain or
-  !> axisymmetric analysis.  Plane stress: the through-thickness strain takes
-  !> up the volume change, nu causes no locking.  Quadratic elements lock
-  !> much less (their richer displacement space satisfies div u = 0 without
-  !> freezing the mesh) and are not warned about; orthotropic laws are not
-  !> judged (their incompressibility is not one number).
+  !> (in part) by elements that lock and that the scene's B-bar does not cure
+  !> (body, elements' pressure_modes): 3-node triangles, whose strain is
+  !> constant, so that its mean is itself; in plane strain or axisymmetric
+  !> analysis.  4-node quadrangles take the mean dilatation (B-bar), and
+  !> the quadratic elements have enough modes to follow div u = 0 without
+  !> freezing (doc/theory.md, "Nearly incompressible materials").  Plane
+  !> stress: the through-thickness strain takes up the volume change, nu
+  !> causes no locking.  Orthotropic laws are not judged (their
+  !> incompressibility is not one number).
   subroutine check_locking(run)
     type(run_t), intent(inout) :: run
-    integer :: b, ntri, nquad
-    character(len=:), allocatable :: which, model
+    integer :: b, ntri
+    character(len=:), allocatable :: model
     if (run%deck%plane_stress) return
     model = merge('axisymmetric analysis', 'plane strain         ', run%deck%axisymmetric)
     do b = 1, size(run%sc%bodies)
@@ -81,17 +81,12 @@ contains
         if (.not. allocated(mat%kind)) cycle
         if (mat%kind /= 'isotropic' .or. mat%nu <= locking_nu) cycle
         ntri = count(m%nen == 3)
-        nquad = count(m%nen == 4)
-        if (ntri + nquad == 0) cycle
-        which = ''
-        if (ntri > 0) which = int_to_str(ntri) // ' 3-node triangles'
-        if (ntri > 0 .and. nquad > 0) which = which // ' and '
-        if (nquad > 0) which = which // int_to_str(nquad) // ' 4-node quadrangles'
+        if (ntri == 0) cycle
         call add_warning(run, 'locking', run%deck%file // ':' // int_to_str(mat%line) // ': body "' // &
           run%sc%bodies(b)%name // '": nu = ' // format_number(mat%nu) // ' above ' // format_number(locking_nu) // &
-          ' on ' // which // ' in ' // trim(model) // ': linear elements lock as nu -> 1/2 (the displacements ' // &
-          'come out too small, the stresses oscillate); quadratic elements (elem=tri6, quad8, quad9 or ' // &
-          'order=2) lock much less')
+          ' on ' // int_to_str(ntri) // ' 3-node triangles in ' // trim(model) // ': they lock as nu -> 1/2 ' // &
+          '(the displacements come out too small, the stresses oscillate); 4-node quadrangles (B-bar) and ' // &
+          'quadratic elements (elem=tri6, quad8, quad9 or order=2) do not')
       end associate
     end do
   end subroutine check_locking

@@ -14,7 +14,8 @@
 !>   lap(run, ph)                    seconds since the last lap go to phase ph
 !>   split_overlap(run)              the ordering and the assembly ran side by side: charge each
 !>   say_step(run, k, method, it, active)   the line of a load step solved on its own
-!>   report_scene(run)               the scene: model, bodies, RIGIDs, pairs, steps, rigid modes, sizes
+!>   report_scene(run)               the scene: model, bodies (the formulation of a nearly
+!>                                   incompressible one), RIGIDs, pairs, steps, rigid modes, sizes
 !>   report_run(run)                 the results, factor, phases, files written
 !>   friction_law(kind, spec)        how a pair's tangential behaviour reads in the log
 !>   add_warning(run, code, text)    a warning: stderr (unless -q) and the summary's `warning CODE text`
@@ -28,6 +29,8 @@ module run_report
   use rigid_modes, only: mode_name, motion_name
   use rigid_support, only: rigid_direction
   use deck_expressions, only: format_number
+  use material, only: locking_nu
+  use body, only: body_pressure_modes
   use results_writer, only: phase_names, nphase, string_t
   use threads, only: run_threads
   use system_binding, only: c2d_cpu_seconds
@@ -170,6 +173,7 @@ contains
       write(line, '(i0,a,i0,a,i0,a)') run%sc%bodies(b)%mesh%nnode, ' nodes, ', run%sc%bodies(b)%mesh%nelem, &
         ' elements (', count(run%sc%bodies(b)%mesh%nen == 4 .or. run%sc%bodies(b)%mesh%nen >= 8), ' quadrilaterals)'
       call say(run, 'body     ' // run%sc%bodies(b)%name // ': ' // trim(line))
+      call report_formulation(run, b)
     end do
     call report_rigids(run)
     do ip = 1, run%cs%npair
@@ -246,6 +250,47 @@ contains
     if (allocated(run%deck%solver%cut)) call say(run, 'note     SOLVER cut=' // run%deck%solver%cut // &
       ' is ignored: no body is cut any more (doc/performance.md, "A body cut in two: removed")')
   end subroutine report_scene
+
+  !> The run log's line of the formulation of body b when its material is
+  !> nearly incompressible (isotropic, nu > locking_nu): B-bar on the
+  !> element kinds that take it (body, elements' pressure_modes), and why
+  !> the others are left as they are.  Nothing for the other bodies.
+  subroutine report_formulation(run, b)
+    type(run_t), intent(inout) :: run
+    integer, intent(in) :: b
+    character(len=:), allocatable :: text, nu
+    integer :: k, count_k
+    integer, parameter :: kinds_nen(5) = [4, 8, 9, 3, 6]
+    character(len=*), parameter :: kind_name(5) = [character(len=20) :: '4-node quadrangles', '8-node quadrangles', &
+                                                   '9-node quadrangles', '3-node triangles', '6-node triangles']
+    associate (mat => run%deck%bodies(b)%material, bd => run%sc%bodies(b))
+      if (.not. allocated(mat%kind)) return
+      if (mat%kind /= 'isotropic' .or. mat%nu <= locking_nu) return
+      nu = 'nu = ' // format_number(mat%nu) // ' > ' // format_number(locking_nu)
+      if (.not. bd%bbar) then
+        call say(run, 'body     ' // bd%name // ': formulation: displacement, ' // nu // ' in plane stress (the ' // &
+                 'through-thickness strain takes up the change of volume: no locking)')
+        return
+      end if
+      text = ''
+      do k = 1, size(kinds_nen)
+        count_k = count(bd%mesh%nen == kinds_nen(k))
+        if (count_k == 0) cycle
+        if (len(text) > 0) text = text // '; '
+        select case (body_pressure_modes(bd, kinds_nen(k)))
+        case (1)
+          text = text // 'B-bar (mean dilatation) on '
+        case (3)
+          text = text // 'B-bar (linear pressure projection) on '
+        case default
+          text = text // 'displacement on '
+        end select
+        text = text // int_to_str(count_k) // ' ' // trim(kind_name(k))
+        if (kinds_nen(k) == 3) text = text // ' (they lock: warning locking)'
+      end do
+      call say(run, 'body     ' // bd%name // ': formulation: ' // text // ', ' // nu)
+    end associate
+  end subroutine report_formulation
 
   !> The run log's lines of each RIGID: its shape, reference point, which
   !> directions are prescribed and which are free (loaded or not, held by

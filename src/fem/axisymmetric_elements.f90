@@ -18,19 +18,24 @@
 !> unit area on a straight 2-node edge are integrated in closed form
 !> (N_a r is quadratic in the arc length), on a 3-node edge by 3-point Gauss.
 !>
+!> B-bar: with np > 0 pressure modes (elements' pressure_modes) B4 becomes
+!> B4_bar, the volumetric strain err + ezz + ett (the hoop strain included)
+!> replaced by its projection weighted by r (elements' replace_dilatation);
+!> the optional argument np of the kernels selects it.
+!>
 !> Programming interface
 !>   radial_weight(r)                          2 pi r, the measure of the full circle
-!>   axi_element_stiffness(nen, xe, d4, ke)    ke = int B4' D4 B4 2 pi r dA
-!>   axi_element_force(nen, xe, d4, ue, fe)    fe = ke ue, without ke
+!>   axi_element_stiffness(nen, xe, d4, ke [, np])   ke = int B4' D4 B4 2 pi r dA
+!>   axi_element_force(nen, xe, d4, ue, fe [, np])   fe = ke ue, without ke
 !>   axi_element_body_load(nen, xe, b, fe)     fe = int N' b 2 pi r dA (constant b)
 !>   axi_thermal_load(nen, xe, s0, fe)         fe = int B4' s0 2 pi r dA (constant stress s0)
-!>   axi_element_strain(nen, xe, ue, eps4)     (err, ezz, grz, ett) at the element centre
+!>   axi_element_strain(nen, xe, ue, eps4 [, np])    (err, ezz, grz, ett) at the element centre
 !>   axi_edge_load(xa, xb, t, fe)              fe(4) = int N' t 2 pi r ds on the edge xa-xb
 !>   axi_edge_load_quadratic(xe, t, pr, fe)    as elements' edge_load_quadratic, 2 pi r ds
 module axisymmetric_elements
   use kinds, only: dp
   use elements, only: shape_at, stiffness_rule, quadrature_rule, corner_count, max_nen, strain_operator, &
-                      edge_load_quadratic
+                      edge_load_quadratic, max_np, dilatation_projection, replace_dilatation
   implicit none
   private
   public :: radial_weight, axi_element_stiffness, axi_element_force, axi_element_body_load, axi_thermal_load
@@ -67,19 +72,26 @@ contains
   !> Element stiffness ke(1:2 nen, 1:2 nen) = sum_q w_q detJ_q 2 pi r_q B4' D4 B4.
   !>   nen (in) 3, 4, 6, 8 or 9;  xe (in) (2, nen) nodes (r, z);  d4 (in) (4, 4) the law
   !>   ke  (inout) at least (2 nen, 2 nen); the leading block is overwritten
-  pure subroutine axi_element_stiffness(nen, xe, d4, ke)
+  !>   np  (in, optional) > 0: B4_bar with np pressure modes; 0 or absent: B4
+  pure subroutine axi_element_stiffness(nen, xe, d4, ke, np)
     integer, intent(in) :: nen
     real(dp), intent(in) :: xe(2, nen), d4(4, 4)
     real(dp), intent(inout) :: ke(:,:)
+    integer, intent(in), optional :: np
     real(dp) :: xi(2, 9), w(9), n(max_nen), dndx(2, max_nen), detj, b(4, 2 * max_nen), db(4, 2 * max_nen), c, r
-    integer :: q, nq, m, i, j
+    real(dp) :: g(max_np, 2 * max_nen)
+    integer :: q, nq, m, i, j, npr
     m = 2 * nen
+    npr = 0
+    if (present(np)) npr = np
     call stiffness_rule(nen, nq, xi, w)
+    if (npr > 0) call dilatation_projection(nen, xe, npr, .true., g(1:npr, 1:m))
     ke(1:m, 1:m) = 0.0_dp
     do q = 1, nq
       call shape_at(nen, xe, xi(:, q), n(1:nen), dndx(:, 1:nen), detj)
       r = dot_product(n(1:nen), xe(1, :))
       call axi_strain_operator(nen, n(1:nen), dndx(:, 1:nen), r, b(:, 1:m))
+      if (npr > 0) call replace_dilatation(nen, xe, npr, g(1:npr, 1:m), n(1:nen), b(:, 1:m))
       c = w(q) * detj * radial_weight(r)
       do j = 1, m                  ! db = D4 B4, ke += c B4' D4 B4
         db(:, j) = matmul(d4, b(:, j))
@@ -91,28 +103,38 @@ contains
   end subroutine axi_element_stiffness
 
   !> Element forces fe = ke ue = sum_q w_q detJ_q 2 pi r_q B4' D4 B4 ue, without ke.
-  pure subroutine axi_element_force(nen, xe, d4, ue, fe)
+  !>   np (in, optional) as axi_element_stiffness
+  pure subroutine axi_element_force(nen, xe, d4, ue, fe, np)
     integer, intent(in) :: nen
     real(dp), intent(in) :: xe(2, nen), d4(4, 4), ue(2 * nen)
     real(dp), intent(out) :: fe(2 * nen)
-    call stress_forces(nen, xe, d4, ue, [0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp], fe)
+    integer, intent(in), optional :: np
+    integer :: npr
+    npr = 0
+    if (present(np)) npr = np
+    call stress_forces(nen, xe, d4, ue, [0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp], npr, fe)
   end subroutine axi_element_force
 
   !> fe = sum_q w_q detJ_q 2 pi r_q B4' (D4 B4 ue + s0): the nodal forces of the
-  !> stress of ue plus a constant stress s0, on the stiffness rule.
-  pure subroutine stress_forces(nen, xe, d4, ue, s0, fe)
-    integer, intent(in) :: nen
+  !> stress of ue plus a constant stress s0, on the stiffness rule; B4_bar
+  !> with np > 0 pressure modes (a constant s0 gives the same forces with
+  !> either: int (B4_bar - B4) dV s0 = 0, the projection keeps constants).
+  pure subroutine stress_forces(nen, xe, d4, ue, s0, np, fe)
+    integer, intent(in) :: nen, np
     real(dp), intent(in) :: xe(2, nen), d4(4, 4), ue(2 * nen), s0(4)
     real(dp), intent(out) :: fe(2 * nen)
     real(dp) :: xi(2, 9), w(9), n(max_nen), dndx(2, max_nen), detj, b(4, 2 * max_nen), sig(4), r
+    real(dp) :: g(max_np, 2 * max_nen)
     integer :: q, nq, m
     m = 2 * nen
     call stiffness_rule(nen, nq, xi, w)
+    if (np > 0) call dilatation_projection(nen, xe, np, .true., g(1:np, 1:m))
     fe = 0.0_dp
     do q = 1, nq
       call shape_at(nen, xe, xi(:, q), n(1:nen), dndx(:, 1:nen), detj)
       r = dot_product(n(1:nen), xe(1, :))
       call axi_strain_operator(nen, n(1:nen), dndx(:, 1:nen), r, b(:, 1:m))
+      if (np > 0) call replace_dilatation(nen, xe, np, g(1:np, 1:m), n(1:nen), b(:, 1:m))
       sig = matmul(d4, matmul(b(:, 1:m), ue)) + s0
       fe = fe + (w(q) * detj * radial_weight(r)) * matmul(sig, b(:, 1:m))
     end do
@@ -146,16 +168,18 @@ contains
     real(dp) :: ue(2 * max_nen), d0(4, 4)
     ue = 0.0_dp                                      ! no displacement: the stress is s0
     d0 = 0.0_dp
-    call stress_forces(nen, xe, d0, ue(1:2 * nen), s0, fe)
+    call stress_forces(nen, xe, d0, ue(1:2 * nen), s0, 0, fe)
   end subroutine axi_thermal_load
 
   !> Strain (err, ezz, grz, ett) at the element centre (reference centroid),
   !> the element's stress for output.
-  pure subroutine axi_element_strain(nen, xe, ue, eps4)
+  !>   np (in, optional) as axi_element_stiffness: the B4_bar strain
+  pure subroutine axi_element_strain(nen, xe, ue, eps4, np)
     integer, intent(in) :: nen
     real(dp), intent(in) :: xe(2, nen), ue(2 * nen)
     real(dp), intent(out) :: eps4(4)
-    real(dp) :: n(max_nen), dndx(2, max_nen), detj, b(4, 2 * max_nen), xc(2)
+    integer, intent(in), optional :: np
+    real(dp) :: n(max_nen), dndx(2, max_nen), detj, b(4, 2 * max_nen), xc(2), g(max_np, 2 * max_nen)
     if (corner_count(nen) == 3) then
       xc = [1.0_dp, 1.0_dp] / 3.0_dp
     else
@@ -163,6 +187,12 @@ contains
     end if
     call shape_at(nen, xe, xc, n(1:nen), dndx(:, 1:nen), detj)
     call axi_strain_operator(nen, n(1:nen), dndx(:, 1:nen), dot_product(n(1:nen), xe(1, :)), b(:, 1:2 * nen))
+    if (present(np)) then
+      if (np > 0) then
+        call dilatation_projection(nen, xe, np, .true., g(1:np, 1:2 * nen))
+        call replace_dilatation(nen, xe, np, g(1:np, 1:2 * nen), n(1:nen), b(:, 1:2 * nen))
+      end if
+    end if
     eps4 = matmul(b(:, 1:2 * nen), ue)
   end subroutine axi_element_strain
 

@@ -21,6 +21,12 @@
 !> of module axisymmetric_elements (x = r, y = z, the law's D4, integrals
 !> over the full circle); the caller holds u_r = 0 on the axis.
 !>
+!> Nearly incompressible bodies (body%bbar, set by the scene when nu > 0.45
+!> in plane strain or axisymmetry): the kernels' B-bar strain on the element
+!> kinds that lock without it (elements' pressure_modes: the 4-node
+!> quadrangle's mean dilatation), in the stiffness, the forces and the
+!> stresses alike (doc/theory.md, "Nearly incompressible materials").
+!>
 !> Programming interface
 !>   type(body_t)                      one body: name, mesh, law, thickness, dof0
 !>   number_equations(fixed, eq, nfree)
@@ -30,6 +36,7 @@
 !>   element_response(bodies, u, fint [, stress, vm])  both in one element loop (OpenMP, reproducible)
 !>   thermal_loads(bd, f)                           f += int B' D eps0 t dA (THERMAL), x, y axes
 !>   to_global_axes(bodies, v), to_local_axes(bodies, v)   v (ndof) between the solver basis and x, y
+!>   body_pressure_modes(bd, nen)                   the B-bar pressure modes of bd's elements of nen nodes
 !>   node_elements(mesh, ptr, list)                 elements around each node (CSR)
 !>   edge_outward_normal(mesh, eptr, elist, a, b, nrm, owner)  unit normal of edge a-b
 !>        pointing out of its element; owner = that element, 0 when no element has
@@ -42,7 +49,7 @@ module body
   use sorting, only: sort_small
   use material, only: elasticity_t, von_mises
   use elements, only: element_stiffness, element_force, element_strain, quadrature_rule, shape_at, strain_operator, &
-                      max_nen
+                      max_nen, pressure_modes
   use axisymmetric_elements, only: axi_element_stiffness, axi_element_force, axi_element_strain, axi_thermal_load
   use material, only: von_mises_4
   use sparse_matrix, only: csc_t
@@ -50,7 +57,7 @@ module body
   private
   public :: body_t, number_equations, build_pattern, assemble_stiffness, internal_forces
   public :: node_elements, element_dofs, edge_outward_normal, element_response
-  public :: thermal_loads, to_global_axes, to_local_axes, axi_thermal_strain
+  public :: thermal_loads, to_global_axes, to_local_axes, axi_thermal_strain, body_pressure_modes
 
   type :: body_t
     character(len=:), allocatable :: name  !< as in the deck
@@ -58,6 +65,8 @@ module body
     type(elasticity_t) :: law              !< elasticity tensor
     real(dp) :: thick = 1.0_dp             !< thickness (1 in plane strain)
     logical :: axisymmetric = .false.      !< x = r, y = z, solid of revolution (PLANE axisymmetric)
+    logical :: bbar = .false.              !< B-bar strain on the elements of pressure_modes > 0
+                                           !< (nearly incompressible: module header)
     integer :: dof0 = 0                    !< global dof offset
     integer :: elem0 = 0                   !< global element offset (output order)
     real(dp), allocatable :: adt(:)        !< (nelem) alpha dT per element; allocated only
@@ -78,6 +87,15 @@ module body
   end type node_elements_t
 
 contains
+
+  !> The pressure modes of the kernels for bd's elements of nen nodes: those
+  !> of elements' pressure_modes when bd%bbar, else 0 (the strain B u).
+  pure integer function body_pressure_modes(bd, nen) result(np)
+    type(body_t), intent(in) :: bd
+    integer, intent(in) :: nen
+    np = 0
+    if (bd%bbar) np = pressure_modes(nen)
+  end function body_pressure_modes
 
   !> Free equation numbers: eq(dof) = rank among free dofs, 0 for fixed dofs.
   subroutine number_equations(fixed, eq, nfree)
@@ -273,9 +291,10 @@ contains
           nen = m%nen(e)
           call element_coordinates(m, e, xe)
           if (bodies(b)%axisymmetric) then
-            call axi_element_stiffness(nen, xe(:, 1:nen), bodies(b)%law%d4, ke)
+            call axi_element_stiffness(nen, xe(:, 1:nen), bodies(b)%law%d4, ke, body_pressure_modes(bodies(b), nen))
           else
-            call element_stiffness(nen, xe(:, 1:nen), bodies(b)%law%d, bodies(b)%thick, ke)
+            call element_stiffness(nen, xe(:, 1:nen), bodies(b)%law%d, bodies(b)%thick, ke, &
+                                   body_pressure_modes(bodies(b), nen))
           end if
           if (allocated(bodies(b)%axes)) call rotate_element_matrix(bodies(b), e, ke)   ! Q' K Q
           call element_dofs(bodies(b), e, dofs)
@@ -461,9 +480,11 @@ contains
           ue(1:2 * nen) = u(dofs(1:2 * nen))
           if (allocated(bodies(b)%axes)) call rotate_element_vector(bodies(b), e, ue, .true.)    ! Q u
           if (bodies(b)%axisymmetric) then
-            call axi_element_force(nen, xe(:, 1:nen), bodies(b)%law%d4, ue(1:2 * nen), fe(1:2 * nen))
+            call axi_element_force(nen, xe(:, 1:nen), bodies(b)%law%d4, ue(1:2 * nen), fe(1:2 * nen), &
+                                   body_pressure_modes(bodies(b), nen))
           else
-            call element_force(nen, xe(:, 1:nen), bodies(b)%law%d, bodies(b)%thick, ue(1:2 * nen), fe(1:2 * nen))
+            call element_force(nen, xe(:, 1:nen), bodies(b)%law%d, bodies(b)%thick, ue(1:2 * nen), fe(1:2 * nen), &
+                               body_pressure_modes(bodies(b), nen))
           end if
           if (allocated(bodies(b)%axes)) call rotate_element_vector(bodies(b), e, fe, .false.)   ! Q' f
           fint(dofs(1:2 * nen)) = fint(dofs(1:2 * nen)) + fe(1:2 * nen)
@@ -502,6 +523,8 @@ contains
   !> Nodal forces of the thermal strains, f = int B' D eps0 t dA, added to f
   !> (eps0 = alpha dT eth per element; the body must have adt allocated);
   !> axisymmetric: eps0 = alpha dT (1, 1, 0, 1), the hoop strain included.
+  !> With B-bar (bd%bbar) the same: eps0 is constant on the element, and
+  !> int (B_bar - B)' dV D eps0 = 0 since the projection keeps constants.
   subroutine thermal_loads(bd, f)
     type(body_t), intent(in) :: bd
     real(dp), intent(inout) :: f(:)
@@ -560,20 +583,22 @@ contains
           ue(1:2 * nen) = u(dofs(1:2 * nen))
           if (allocated(bd%axes)) call rotate_element_vector(bd, e, ue, .true.)            ! Q u
           if (bd%axisymmetric) then
-            call axi_element_force(nen, xe(:, 1:nen), bd%law%d4, ue(1:2 * nen), fe(1:2 * nen, e))
+            call axi_element_force(nen, xe(:, 1:nen), bd%law%d4, ue(1:2 * nen), fe(1:2 * nen, e), &
+                                   body_pressure_modes(bd, nen))
           else
-            call element_force(nen, xe(:, 1:nen), bd%law%d, bd%thick, ue(1:2 * nen), fe(1:2 * nen, e))
+            call element_force(nen, xe(:, 1:nen), bd%law%d, bd%thick, ue(1:2 * nen), fe(1:2 * nen, e), &
+                               body_pressure_modes(bd, nen))
           end if
           if (allocated(bd%axes)) call rotate_element_vector(bd, e, fe(:, e), .false.)     ! Q' f
           if (.not. present(stress)) cycle
           if (bd%axisymmetric) then                     ! (srr, szz, srz, stt) = D4 (eps - alpha dT eth4)
-            call axi_element_strain(nen, xe(:, 1:nen), ue(1:2 * nen), eps4)
+            call axi_element_strain(nen, xe(:, 1:nen), ue(1:2 * nen), eps4, body_pressure_modes(bd, nen))
             if (allocated(bd%adt)) eps4 = eps4 - bd%adt(e) * axi_thermal_strain
             stress(1:4, ge) = matmul(bd%law%d4, eps4)
             vm(ge) = von_mises_4(stress(1:4, ge))
             cycle
           end if
-          call element_strain(nen, xe(:, 1:nen), ue(1:2 * nen), eps)
+          call element_strain(nen, xe(:, 1:nen), ue(1:2 * nen), eps, body_pressure_modes(bd, nen))
           if (allocated(bd%adt)) then                   ! sigma = D (eps - alpha dT eth)
             stress(:, ge) = matmul(bd%law%d, eps - bd%adt(e) * bd%law%eth)
             vm(ge) = von_mises(bd%law, stress(:, ge), bd%adt(e))

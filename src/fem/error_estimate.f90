@@ -32,8 +32,8 @@
 !> is 3 (sxx, syy, sxy) in the plane, 4 (srr, szz, srz, stt) in axisymmetry.
 module error_estimate
   use kinds, only: dp
-  use body, only: body_t, axi_thermal_strain
-  use elements, only: quadrature_rule, shape_at, max_nen, reference_node
+  use body, only: body_t, axi_thermal_strain, body_pressure_modes
+  use elements, only: quadrature_rule, shape_at, max_nen, reference_node, max_np, dilatation_projection, pressure_basis
   use axisymmetric_elements, only: radial_weight
   use lapack_interfaces, only: dpotrf, dpotri
   implicit none
@@ -65,7 +65,10 @@ contains
   end subroutine make_rules
 
   !> sigma_h(xi) = D (eps(u_h) - alpha dT eps_th) on element e of bd, and
-  !> dv = detJ t (plane) or detJ 2 pi r (axisymmetric) at xi.
+  !> dv = detJ t (plane) or detJ 2 pi r (axisymmetric) at xi.  eps(u_h) is
+  !> the strain the stiffness is made of: B u, or B_bar u on a body with
+  !> B-bar (body%bbar; its volumetric part theta_bar = p(x)' G u, elements'
+  !> dilatation_projection), so that sigma_h is the solution's stress.
   !>   bd  (in)  the body;  e (in) its element
   !>   xe  (in)  (2, nen) the element's nodes;  ue (in) (2, nen) their displacements, x, y
   !>   xi  (in)  (2) reference point
@@ -76,9 +79,10 @@ contains
     integer, intent(in) :: e
     real(dp), intent(in) :: xe(:,:), ue(:,:), xi(2)
     real(dp), intent(out) :: sig(:), dv, n(:)
-    real(dp) :: dndx(2, max_nen), detj, eps(3), eps4(4), r
-    integer :: nen, a
+    real(dp) :: dndx(2, max_nen), detj, eps(3), eps4(4), r, dvol
+    integer :: nen, a, np
     nen = size(xe, 2)
+    np = body_pressure_modes(bd, nen)
     call shape_at(nen, xe, xi, n(1:nen), dndx(:, 1:nen), detj)
     eps = 0.0_dp                                      ! (exx, eyy, gxy) = B u, written out
     do a = 1, nen
@@ -93,15 +97,41 @@ contains
       else
         eps4 = [eps, eps(1)]                          ! on the axis: its limit du_r / dr
       end if
+      if (np > 0) then                                ! B_bar: eps4 += m (theta_bar - theta) / 3
+        dvol = (projected_dilatation(nen, xe, ue, np, .true., n(1:nen)) - (eps4(1) + eps4(2) + eps4(4))) / 3
+        eps4([1, 2, 4]) = eps4([1, 2, 4]) + dvol
+      end if
       if (allocated(bd%adt)) eps4 = eps4 - bd%adt(e) * axi_thermal_strain
       sig(1:4) = matmul(bd%law%d4, eps4)
       dv = detj * radial_weight(r)
     else
+      if (np > 0) then                                ! B_bar: eps += m (theta_bar - theta) / 2
+        dvol = (projected_dilatation(nen, xe, ue, np, .false., n(1:nen)) - (eps(1) + eps(2))) / 2
+        eps(1:2) = eps(1:2) + dvol
+      end if
       if (allocated(bd%adt)) eps = eps - bd%adt(e) * bd%law%eth
       sig(1:3) = matmul(bd%law%d, eps)
       dv = detj * bd%thick
     end if
   end subroutine point_stress
+
+  !> theta_bar = p(x)' G u at the point of shape functions n: the projected
+  !> volumetric strain of B-bar (elements' dilatation_projection).
+  !>   nen, xe (in) the element;  ue (in) (2, nen) its displacements;  np (in) > 0
+  !>   radial (in) axisymmetric;  n (in) (nen) the shape functions at the point
+  pure real(dp) function projected_dilatation(nen, xe, ue, np, radial, n) result(theta)
+    integer, intent(in) :: nen, np
+    real(dp), intent(in) :: xe(2, nen), ue(2, nen), n(nen)
+    logical, intent(in) :: radial
+    real(dp) :: g(max_np, 2 * max_nen), p(max_np)
+    integer :: a
+    call dilatation_projection(nen, xe, np, radial, g(1:np, 1:2 * nen))
+    call pressure_basis(nen, xe, np, [dot_product(n, xe(1, :)), dot_product(n, xe(2, :))], p(1:np))
+    theta = 0.0_dp
+    do a = 1, nen
+      theta = theta + dot_product(p(1:np), g(1:np, 2 * a - 1)) * ue(1, a) + dot_product(p(1:np), g(1:np, 2 * a)) * ue(2, a)
+    end do
+  end function projected_dilatation
 
   !> sigma*(node a) = sum_K |K| sigma_h|_K(x_a) / sum_K |K| over the elements
   !> K of bd around node a, |K| the element's area.

@@ -16,6 +16,8 @@
 !>   von_mises_4(sigma4)              equivalent stress of (sxx, syy, sxy, szz), the four
 !>                                    components of an axisymmetric stress (szz the hoop)
 !>   tensor_condition(mat)            ||D||_F ||D^-1||_F (large: nearly incompressible)
+!>   locking_nu                       0.45, the nu above which fully integrated linear
+!>                                    elements lock (the scene's B-bar, the locking warning)
 !>
 !> Axisymmetric law (PLANE axisymmetric): the material axis 3 is the hoop
 !> direction, and sigma = D4 eps with eps = (err, ezz, grz, ett), D4 the
@@ -32,6 +34,14 @@ module material
   implicit none
   private
   public :: elasticity_t, make_isotropic, make_orthotropic, out_of_plane_stress, von_mises, von_mises_4, tensor_condition
+  public :: locking_nu
+
+  !> nu above which linear elements lock: lambda / mu = 2 nu / (1 - 2 nu) = 9
+  !> at 0.45, where P1's error from the volumetric constraint becomes of the
+  !> order of its discretization error (doc/theory.md, the monitors' table).
+  !> Above it the scene gives the bodies the B-bar strain (body) and the run
+  !> warns of the elements that B-bar does not cure (model_checks).
+  real(dp), parameter :: locking_nu = 0.45_dp
 
   type :: elasticity_t
     real(dp) :: d(3, 3) = 0.0_dp     !< sigma = D eps, global axes, Voigt (xx, yy, xy) with gamma_xy

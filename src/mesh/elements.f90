@@ -13,6 +13,16 @@
 !> Stiffness rules, exact on straight-sided (affine) elements: P1 1 point, Q1
 !> 2x2 Gauss, P2 the 3-point degree-2 rule, Q8 and Q9 3x3 Gauss.
 !>
+!> B-bar (doc/theory.md, "Nearly incompressible materials").  With np > 0
+!> pressure modes (pressure_modes: 1 on Q1, the mean dilatation; 0 on the
+!> others) the kernels take eps = B_bar u in place of B u: the volumetric
+!> strain theta = m' B u (m = (1, 1, 0); in axisymmetry (1, 1, 0, 1), the
+!> hoop strain included) replaced by its L2 projection onto the np
+!> polynomials p(x) = (1, x - x_c, y - y_c) of the element,
+!>     B_bar = B + m (p' G - m' B) / k,  G = M^-1 int p m' B dV,  M = int p p' dV,
+!> k = 2 in the plane (the in-plane trace), 3 in axisymmetry; the deviatoric
+!> strain is kept.  The kernels' optional argument np selects it.
+!>
 !> Programming interface
 !>   quadrature_rule(nen, order, xi, w)    points xi(2, nq) and weights w(nq) on the
 !>        reference element: order 1, the stiffness rule, or 2, a richer rule
@@ -23,11 +33,15 @@
 !>   stiffness_rule(nen, nq, xi, w)        the order-1 rule in fixed-size arrays
 !>   shape_at(nen, xe, xi, n, dndx, detj)  shape functions, their x-y gradients
 !>        and the Jacobian determinant at a reference point
-!>   element_stiffness(nen, xe, d, thick, ke)    ke = int B' D B t dA
-!>   element_force(nen, xe, d, thick, ue, fe)    fe = ke ue, without ke
+!>   element_stiffness(nen, xe, d, thick, ke [, np])   ke = int B' D B t dA (B_bar with np > 0)
+!>   element_force(nen, xe, d, thick, ue, fe [, np])   fe = ke ue, without ke
 !>   element_body_load(nen, xe, b, thick, fe)    fe = int N' b t dA (constant b)
-!>   element_strain(nen, xe, ue, eps)            strain at the element centre
+!>   element_strain(nen, xe, ue, eps [, np])     strain at the element centre
 !>        (reference centroid (1/3, 1/3) or (0, 0)): the element's stress for output
+!>   pressure_modes(nen)                   the B-bar pressure modes of an element kind
+!>   dilatation_projection(nen, xe, np, radial, g)   G (np, 2 nen): theta_bar = p(x)' G u
+!>   replace_dilatation(nen, xe, np, g, n, b)        B -> B_bar at one point
+!>   pressure_basis(nen, xe, np, x, p)               p(x) (np) of the element
 !>   edge_load(xa, xb, t, thick, fe)             fe(4) = int N' t t_h ds, constant
 !>        traction t on the straight edge xa-xb
 !>   edge_load_quadratic(xe, t, pr, thick, fe)   fe(6) = int N' (t + pr n_r) t_h ds
@@ -40,12 +54,16 @@ module elements
   private
   public :: quadrature_rule, shape_at, element_stiffness, element_force, element_body_load, element_strain
   public :: edge_load, edge_load_quadratic, strain_operator, corner_count, max_nen, stiffness_rule, reference_node
+  public :: pressure_modes, dilatation_projection, replace_dilatation, pressure_basis, max_np
 
   !> The most nodes of an element (Q9).  The kernels run once per element:
   !> their work arrays have this fixed size, not nen, because gfortran puts
   !> arrays of run-time size on the heap (a malloc and free per call, and
   !> a lock shared with every thread that allocates meanwhile).
   integer, parameter :: max_nen = 9
+
+  !> The most pressure modes of the B-bar kernels: a linear pressure (1, x, y).
+  integer, parameter :: max_np = 3
 
 contains
 
@@ -280,18 +298,24 @@ contains
   !> Element stiffness ke = sum_q w_q detJ_q t B_q' D B_q (stiffness_rule: exact
   !> on straight-sided elements), in ke(1:2 nen, 1:2 nen) (ke may be larger:
   !> 2 max_nen x 2 max_nen for any element).
-  pure subroutine element_stiffness(nen, xe, d, thick, ke)
+  !>   np (in, optional) > 0: B_bar with np pressure modes (module header); 0 or absent: B
+  pure subroutine element_stiffness(nen, xe, d, thick, ke, np)
     integer, intent(in) :: nen
     real(dp), intent(in) :: xe(2, nen), d(3, 3), thick
     real(dp), intent(inout) :: ke(:,:)
+    integer, intent(in), optional :: np
     real(dp) :: xi(2, 9), w(9), n(max_nen), dndx(2, max_nen), detj, b(3, 2 * max_nen), db(3, 2 * max_nen), c
-    integer :: q, nq, m, i, j
+    real(dp) :: g(max_np, 2 * max_nen)
+    integer :: q, nq, m, i, j, npr
     m = 2 * nen
+    npr = modes(np)
     call stiffness_rule(nen, nq, xi, w)
+    if (npr > 0) call dilatation_projection(nen, xe, npr, .false., g(1:npr, 1:m))
     ke(1:m, 1:m) = 0.0_dp
     do q = 1, nq
       call shape_at(nen, xe, xi(:, q), n, dndx, detj)
       call strain_operator(nen, dndx, b)
+      if (npr > 0) call replace_dilatation(nen, xe, npr, g(1:npr, 1:m), n(1:nen), b(:, 1:m))
       c = w(q) * detj * thick
       do j = 1, m                  ! db = D B, ke += c B' D B (no temporary: see max_nen)
         db(:, j) = d(:, 1) * b(1, j) + d(:, 2) * b(2, j) + d(:, 3) * b(3, j)
@@ -304,17 +328,23 @@ contains
 
   !> Element forces fe = ke ue = sum_q w_q detJ_q t B_q' (D (B_q ue)), without
   !> forming ke (the same rule as element_stiffness).
-  pure subroutine element_force(nen, xe, d, thick, ue, fe)
+  !>   np (in, optional) as element_stiffness
+  pure subroutine element_force(nen, xe, d, thick, ue, fe, np)
     integer, intent(in) :: nen
     real(dp), intent(in) :: xe(2, nen), d(3, 3), thick, ue(2 * nen)
     real(dp), intent(out) :: fe(2 * nen)
+    integer, intent(in), optional :: np
     real(dp) :: xi(2, 9), w(9), n(max_nen), dndx(2, max_nen), detj, b(3, 2 * max_nen), eps(3), sig(3), c
-    integer :: q, nq, j
+    real(dp) :: g(max_np, 2 * max_nen)
+    integer :: q, nq, j, npr
+    npr = modes(np)
     call stiffness_rule(nen, nq, xi, w)
+    if (npr > 0) call dilatation_projection(nen, xe, npr, .false., g(1:npr, 1:2 * nen))
     fe = 0.0_dp
     do q = 1, nq
       call shape_at(nen, xe, xi(:, q), n, dndx, detj)
       call strain_operator(nen, dndx, b)
+      if (npr > 0) call replace_dilatation(nen, xe, npr, g(1:npr, 1:2 * nen), n(1:nen), b(:, 1:2 * nen))
       eps = 0.0_dp
       do j = 1, 2 * nen
         eps = eps + b(:, j) * ue(j)
@@ -347,12 +377,15 @@ contains
 
   !> Strain at the element centre, the reference centroid (exact for P1; the
   !> centre value for the others: the element's stress in the output).
-  pure subroutine element_strain(nen, xe, ue, eps)
+  !>   np (in, optional) as element_stiffness: the B_bar strain, the one the
+  !>        stiffness is made of
+  pure subroutine element_strain(nen, xe, ue, eps, np)
     integer, intent(in) :: nen
     real(dp), intent(in) :: xe(2, nen), ue(2 * nen)
     real(dp), intent(out) :: eps(3)
-    real(dp) :: n(max_nen), dndx(2, max_nen), detj, b(3, 2 * max_nen), xc(2)
-    integer :: j
+    integer, intent(in), optional :: np
+    real(dp) :: n(max_nen), dndx(2, max_nen), detj, b(3, 2 * max_nen), xc(2), g(max_np, 2 * max_nen)
+    integer :: j, npr
     if (corner_count(nen) == 3) then
       xc = [1.0_dp, 1.0_dp] / 3.0_dp
     else
@@ -360,11 +393,142 @@ contains
     end if
     call shape_at(nen, xe, xc, n, dndx, detj)
     call strain_operator(nen, dndx, b)
+    npr = modes(np)
+    if (npr > 0) then
+      call dilatation_projection(nen, xe, npr, .false., g(1:npr, 1:2 * nen))
+      call replace_dilatation(nen, xe, npr, g(1:npr, 1:2 * nen), n(1:nen), b(:, 1:2 * nen))
+    end if
     eps = 0.0_dp
     do j = 1, 2 * nen
       eps = eps + b(:, j) * ue(j)
     end do
   end subroutine element_strain
+
+  !> np when present, else 0: the kernels' optional pressure modes.
+  pure integer function modes(np)
+    integer, intent(in), optional :: np
+    modes = 0
+    if (present(np)) modes = np
+  end function modes
+
+  !> The pressure modes of the B-bar formulation of an element kind: 1 (the
+  !> mean dilatation) on the 4-node quadrangle, which locks without it; 0 on
+  !> the others.  The 3-node triangle's strain is constant: its mean is
+  !> itself, B-bar changes nothing, and it locks still.  The quadratic
+  !> elements have enough displacement modes to follow div u = 0 (within
+  !> 1 % of Lame's cylinder at nu = 0.4999, doc/theory.md).
+  pure integer function pressure_modes(nen) result(np)
+    integer, intent(in) :: nen
+    np = merge(1, 0, nen == 4) + merge(3, 0, nen >= 8)
+  end function pressure_modes
+
+  !> p(x) = (1, (x - x_c) / h, (y - y_c) / h)(1:np): the pressure modes of an
+  !> element at the point x, x_c the mean of its corners and h the larger side
+  !> of their bounding box (the scale keeps M well conditioned).
+  !>   nen (in) 3..9;  xe (in) (2, nen) its nodes;  np (in) 1..max_np
+  !>   x   (in) (2) the point;  p (out) (np)
+  pure subroutine pressure_basis(nen, xe, np, x, p)
+    integer, intent(in) :: nen, np
+    real(dp), intent(in) :: xe(2, nen), x(2)
+    real(dp), intent(out) :: p(np)
+    real(dp) :: xc(2), h
+    integer :: nc
+    p(1) = 1.0_dp
+    if (np == 1) return
+    nc = corner_count(nen)
+    xc = sum(xe(:, 1:nc), dim=2) / nc
+    h = max(maxval(xe(1, 1:nc)) - minval(xe(1, 1:nc)), maxval(xe(2, 1:nc)) - minval(xe(2, 1:nc)))
+    p(2:3) = (x - xc) / h
+  end subroutine pressure_basis
+
+  !> G (np, 2 nen) = M^-1 int p m' B dV, M = int p p' dV, on the stiffness
+  !> rule: theta_bar(x) = p(x)' G u is the L2 projection of the volumetric
+  !> strain onto the element's pressure modes (1: its mean, the mean
+  !> dilatation).  dV = dA in the plane (the thickness cancels); radial:
+  !> dV = r dA and theta includes the hoop strain u_r / r (axisymmetric_elements).
+  !>   nen (in) 3..9;  xe (in) (2, nen) (r, z when radial);  np (in) 1..max_np
+  !>   radial (in) axisymmetric;  g (out) (np, 2 nen)
+  pure subroutine dilatation_projection(nen, xe, np, radial, g)
+    integer, intent(in) :: nen, np
+    real(dp), intent(in) :: xe(2, nen)
+    logical, intent(in) :: radial
+    real(dp), intent(out) :: g(np, 2 * nen)
+    real(dp) :: xi(2, 9), w(9), n(max_nen), dndx(2, max_nen), detj, p(max_np), mm(max_np, max_np), c, r
+    real(dp) :: bv(2 * max_nen)
+    integer :: q, nq, a, i, j
+    call stiffness_rule(nen, nq, xi, w)
+    mm = 0.0_dp
+    g = 0.0_dp
+    do q = 1, nq
+      call shape_at(nen, xe, xi(:, q), n, dndx, detj)
+      c = w(q) * detj
+      do a = 1, nen                              ! bv = m' B: theta = bv u
+        bv(2 * a - 1) = dndx(1, a)
+        bv(2 * a) = dndx(2, a)
+      end do
+      if (radial) then
+        r = dot_product(n(1:nen), xe(1, :))
+        do a = 1, nen
+          bv(2 * a - 1) = bv(2 * a - 1) + n(a) / r   ! the hoop strain u_r / r
+        end do
+        c = c * r
+      end if
+      call pressure_basis(nen, xe, np, [dot_product(n(1:nen), xe(1, :)), dot_product(n(1:nen), xe(2, :))], p(1:np))
+      do j = 1, np
+        mm(1:np, j) = mm(1:np, j) + c * p(1:np) * p(j)
+        g(j, :) = g(j, :) + (c * p(j)) * bv(1:2 * nen)
+      end do
+    end do
+    ! G = M^-1 G by Cholesky, M (np <= 3) symmetric positive definite on a valid element
+    do j = 1, np
+      mm(j, j) = sqrt(mm(j, j) - dot_product(mm(j, 1:j - 1), mm(j, 1:j - 1)))
+      do i = j + 1, np
+        mm(i, j) = (mm(i, j) - dot_product(mm(i, 1:j - 1), mm(j, 1:j - 1))) / mm(j, j)
+      end do
+    end do
+    do j = 1, np                                 ! L y = g
+      do i = 1, j - 1
+        g(j, :) = g(j, :) - mm(j, i) * g(i, :)
+      end do
+      g(j, :) = g(j, :) / mm(j, j)
+    end do
+    do j = np, 1, -1                             ! L' x = y
+      do i = j + 1, np
+        g(j, :) = g(j, :) - mm(i, j) * g(i, :)
+      end do
+      g(j, :) = g(j, :) / mm(j, j)
+    end do
+  end subroutine dilatation_projection
+
+  !> B -> B_bar = B + m (p(x)' G - m' B) / k at one point (module header):
+  !> the volumetric strain m' B u replaced by theta_bar(x), the deviatoric
+  !> strain kept.  b has 3 rows (exx, eyy, gxy; m = (1, 1, 0), k = 2) or 4
+  !> (axisymmetric, ett last; m = (1, 1, 0, 1), k = 3).
+  !>   nen (in);  xe (in) (2, nen);  np (in) 1..max_np;  g (in) (np, 2 nen) from dilatation_projection
+  !>   n   (in) (nen) the shape functions at the point
+  !>   b   (inout) (3 or 4, 2 nen) B on entry, B_bar on exit
+  pure subroutine replace_dilatation(nen, xe, np, g, n, b)
+    integer, intent(in) :: nen, np
+    real(dp), intent(in) :: xe(2, nen), g(np, 2 * nen), n(nen)
+    real(dp), intent(inout) :: b(:,:)
+    real(dp) :: p(max_np), dv
+    integer :: j
+    call pressure_basis(nen, xe, np, [dot_product(n, xe(1, :)), dot_product(n, xe(2, :))], p(1:np))
+    if (size(b, 1) == 4) then
+      do j = 1, 2 * nen
+        dv = (dot_product(p(1:np), g(:, j)) - (b(1, j) + b(2, j) + b(4, j))) / 3.0_dp
+        b(1, j) = b(1, j) + dv
+        b(2, j) = b(2, j) + dv
+        b(4, j) = b(4, j) + dv
+      end do
+    else
+      do j = 1, 2 * nen
+        dv = (dot_product(p(1:np), g(:, j)) - (b(1, j) + b(2, j))) / 2.0_dp
+        b(1, j) = b(1, j) + dv
+        b(2, j) = b(2, j) + dv
+      end do
+    end if
+  end subroutine replace_dilatation
 
   !> Nodal forces of a constant traction t on the straight edge xa-xb (2-node
   !> line, linear shape functions): half of t |xb - xa| thick to each node.

@@ -1,8 +1,9 @@
 !> fix_dofs: the Dirichlet dofs of a body's FIX statements.  FIX ux= uy=
 !> holds a node along x and y; FIX un= ut= along the boundary's nodal normal
-!> n and tangent t = (-n_y, n_x), and puts the node in those local axes
-!> (body%axes: its dofs become u.n, u.t; local_axes turns the contact rows,
-!> body the forces).  FIX statements that share a node must hold it along
+!> n and tangent t = (-n_y, n_x) (on a quadratic mesh the mid-side nodes
+!> too, each with the normal of its curved edge), and puts the node in those
+!> local axes (body%axes: its dofs become u.n, u.t; local_axes turns the
+!> contact rows, body the forces).  FIX statements that share a node must hold it along
 !> the same or perpendicular directions, with equal values.  A part of scene:
 !> errors are reported at the FIX's deck line.
 !>
@@ -28,7 +29,7 @@ contains
   !> fixes the displacement along a direction d: e_x, e_y (ux=, uy=), or the
   !> boundary's nodal normal n and t = (-n_y, n_x) (un=, ut=; n the
   !> normalized sum of the outward normals of the boundary's edges at the
-  !> node).  A node keeps one pair of axes: those of the first FIX in local
+  !> node, nodal_normals).  A node keeps one pair of axes: those of the first FIX in local
   !> axes that reaches it while none of its dofs is fixed, else x, y; a later
   !> FIX must hold it along one of those axes (up to sign: a rectangle's
   !> corner), else an error.
@@ -139,8 +140,15 @@ contains
   end function direction
 
   !> Unit normal at each node of boundary ib: the normalized sum of the outward
-  !> unit normals of the boundary's edges at the node.
-  !>   nodes (in) the boundary's nodes;  nn (out) (2, size(nodes))
+  !> unit normals of the boundary's edges at the node.  On a 3-node edge
+  !> (quadratic mesh, boundary_t%mid) each node takes the normal of the
+  !> edge's own curve x(s) = sum_a N_a(s) x_a at it (s = -1, 1 at the ends,
+  !> 0 at the middle): the mid-side node the normal of the curve there, the
+  !> corners the sum over their two edges as on a linear mesh; on a straight
+  !> edge every one is the chord's normal.  The side, outward, is the chord's
+  !> (edge_outward_normal).
+  !>   nodes (in) the boundary's nodes (boundary_nodes: mid-side ones included)
+  !>   nn    (out) (2, size(nodes))
   !>   bad   (out) an edge not on the body's outer boundary, or a zero sum
   subroutine nodal_normals(bd, ib, nodes, nn, bad)
     type(body_t), intent(in) :: bd
@@ -148,8 +156,11 @@ contains
     real(dp), allocatable, intent(out) :: nn(:,:)
     logical, intent(out) :: bad
     integer, allocatable :: eptr(:), elist(:), slot(:)
-    integer :: s, na, nb, owner, i
-    real(dp) :: nrm(2)
+    integer :: s, na, nb, owner, i, k, nodes3(3)
+    real(dp) :: nrm(2), xe(2, 3), tang(2), nk(2)
+    ! dN/ds of the 3-node edge (ends -1, 1, middle 0) at s = -1, 1, 0: the tangent at each node
+    real(dp), parameter :: dn(3, 3) = reshape([-1.5_dp, -0.5_dp, 2.0_dp, 0.5_dp, 1.5_dp, -2.0_dp, &
+                                               -0.5_dp, 0.5_dp, 0.0_dp], [3, 3])
     call node_elements(bd%mesh, eptr, elist)
     allocate(nn(2, size(nodes)), source=0.0_dp)
     allocate(slot(bd%mesh%nnode), source=0)
@@ -165,8 +176,19 @@ contains
         bad = .true.
         return
       end if
-      nn(:, slot(na)) = nn(:, slot(na)) + nrm
-      nn(:, slot(nb)) = nn(:, slot(nb)) + nrm
+      if (.not. allocated(bd%mesh%bnd(ib)%mid)) then
+        nn(:, slot(na)) = nn(:, slot(na)) + nrm
+        nn(:, slot(nb)) = nn(:, slot(nb)) + nrm
+        cycle
+      end if
+      nodes3 = [na, nb, bd%mesh%bnd(ib)%mid(s)]
+      xe = bd%mesh%x(:, nodes3)
+      do k = 1, 3
+        tang = matmul(xe, dn(:, k))                     ! dx/ds at node k
+        nk = [tang(2), -tang(1)] / norm2(tang)
+        if (dot_product(nk, nrm) < 0.0_dp) nk = -nk     ! outward, as the chord's normal
+        nn(:, slot(nodes3(k))) = nn(:, slot(nodes3(k))) + nk
+      end do
     end do
     do i = 1, size(nodes)
       if (norm2(nn(:, i)) < 1.0e-8_dp) then

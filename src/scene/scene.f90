@@ -37,7 +37,7 @@ module scene
   use gmsh_runner, only: gmsh_options_t, mesh_geo_file
   use geo_screen, only: screen_geo
   use safe_files, only: private_folder, real_path
-  use material, only: make_isotropic, make_orthotropic
+  use material, only: make_isotropic, make_orthotropic, locking_nu
   use elements, only: element_body_load, edge_load, edge_load_quadratic, max_nen
   use axisymmetric_elements, only: axi_element_body_load, axi_edge_load, axi_edge_load_quadratic
   use body, only: body_t, node_elements, edge_outward_normal, element_dofs, thermal_loads, to_local_axes
@@ -390,6 +390,11 @@ contains
     bd%thick = 1.0_dp
     if (deck%plane_stress) bd%thick = deck%thickness
     bd%axisymmetric = deck%axisymmetric
+    ! nearly incompressible: the B-bar strain where the elements would lock
+    ! (body, doc/theory.md "Nearly incompressible materials"); in plane
+    ! stress the through-thickness strain takes up the change of volume
+    bd%bbar = .not. deck%plane_stress .and. deck%bodies(ib)%material%kind == 'isotropic' .and. &
+              deck%bodies(ib)%material%nu > locking_nu
     if (bd%axisymmetric .and. bd%mesh%nnode > 0) call check_radius(deck, deck%bodies(ib), bd, diag)
   end subroutine make_body
 
