@@ -13,9 +13,10 @@
 !> so that one step usually suffices.  quantity=pressure: no indicator of the
 !> pressure error alone spreads over the bodies, so the loop asks the energy
 !> indicators (which carry the contact terms) for the energy error cut in
-!> the ratio target / estimate_pressure (times 0.85): on a contact the two
-!> errors fall together, the pressure's from the zone's elements, and the
-!> loop corrects the ratio from step to step.  The rates are the elements'
+!> the ratio (target / estimate_pressure)^(1 / kappa) (the target times
+!> 0.85), kappa how fast the pressure error falls against the energy error:
+!> observed between the last two meshes, else 3/2 on linear elements (L2
+!> of the pressure ~ h^(3/2), energy ~ h) and 1 on quadratic ones.  The rates are the elements'
 !> orders, or the rate observed between the last two meshes when lower (a
 !> singularity's).  One step refines an element at most 8 times and
 !> coarsens it at most 4 times.
@@ -212,7 +213,7 @@ contains
       a%cpu0 = c2d_cpu_seconds()                  ! gmsh's re-meshing is the next mesh's cost
       a%time0 = run%res%cpu
       goal = aim * ad%target
-      if (ad%quantity == 'pressure') goal = aim * run%res%estimate_energy * ad%target / est
+      if (ad%quantity == 'pressure') goal = run%res%estimate_energy * (aim * ad%target / est)**(1 / pressure_rate(run, est))
       rate = element_rates(run)
       allocate(s(run%sc%nelem))
       call optimal_scales(run%res%error_indicator**2, rate, goal**2, finest, coarsest, s)
@@ -224,6 +225,7 @@ contains
                  'mesh is made coarser, within max_dofs=' // int_to_str(ad%max_dofs))
       end if
       a%energy_prev = run%res%estimate_energy
+      a%pressure_prev = est
       a%dofs_prev = real(run%sc%ndof, dp)
       call private_folder(work, err)
       call real_path(run%deck%dir, deck_folder, found)
@@ -264,6 +266,27 @@ contains
     call restart(run)
     done = .true.
   end function remesh
+
+  !> How fast the pressure error falls against the energy error, kappa in
+  !> e_p ~ e_E^kappa (module header): observed between the last two meshes,
+  !> within 1/2 .. 3; before that 3/2 when every element is linear (the
+  !> pressure's L2 error goes as h^(3/2), the energy's as h) and 1 otherwise.
+  real(dp) function pressure_rate(run, est) result(kappa)
+    type(run_t), intent(in) :: run
+    real(dp), intent(in) :: est
+    integer :: b
+    kappa = 1.5_dp
+    do b = 1, size(run%sc%bodies)
+      if (is_quadratic(run%sc%bodies(b)%mesh)) kappa = 1.0_dp
+    end do
+    associate (a => run%adapt)
+      if (a%pressure_prev > 0.0_dp .and. a%energy_prev > 0.0_dp .and. est > 0.0_dp .and. &
+          run%res%estimate_energy > 0.0_dp) then
+        if (abs(log(a%energy_prev / run%res%estimate_energy)) > 0.1_dp) &
+          kappa = min(3.0_dp, max(0.5_dp, log(a%pressure_prev / est) / log(a%energy_prev / run%res%estimate_energy)))
+      end if
+    end associate
+  end function pressure_rate
 
   !> A fresh run on the deck's new meshes: what the command line set, the
   !> deck, the clock (phases add up over the meshes), the loop's state.

@@ -45,6 +45,7 @@ module run_state
     real(dp) :: cpu0 = 0                           !< CPU seconds (gmsh's included) when this mesh's step began
     real(dp), allocatable :: time0(:)              !< (nphase) res%cpu when this mesh's step began
     real(dp) :: energy_prev = -1, dofs_prev = -1   !< the previous mesh's energy estimate and dofs (< 0: none)
+    real(dp) :: pressure_prev = -1                 !< and its estimate of the ADAPT quantity (< 0: none)
     logical :: capped = .false.                    !< this mesh was made coarser than asked, to keep within max_dofs
     type(mesh_spec_t), allocatable :: geo(:)       !< (nbody) each body's mesh as the deck gives it: what gmsh re-meshes
   end type adapt_state_t
