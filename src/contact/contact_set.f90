@@ -664,6 +664,9 @@ contains
   !> The node's pressure is the sum of their multipliers over the sum of their
   !> weights, int (phi_a + phi_i) over the covered part: the mean pressure
   !> on the support of the multiplier basis function psi of the end segment.
+  !> On a quadratic trace the cut element's mid-side node reports its two zone
+  !> points' rows, and a corner on the axis (whose hat weighs nothing) its own
+  !> and its mid-side neighbour's.
   pure subroutine node_rows(cs, ip, i, rows, nr)
     type(contact_set_t), intent(in) :: cs
     integer, intent(in) :: ip, i

@@ -39,11 +39,16 @@
 !> 4. Projection, eq. (8) of the linear case carried over: for a master trace phi,
 !>       (pi phi)(x_0) = phi(y_0),  (pi phi)(x_Z) = phi(y_Z),
 !>       int_cov (phi - pi phi) psi_k = 0,  k = 1..Z-1,
-!>    y_0 (y_Z) the master point paired with the start (end) of the zone's cover:
-!>    where the master ends inside a zone-end element, its end point, i.e. the
-!>    master trace extended by its end value over the uncovered part (the linear
-!>    operator's rule for slivers; its cut zone ends are not carried over, so
-!>    that end's row is exact only while it stays open).
+!>    y_0 (y_Z) the master point paired with the start (end) of the zone's cover.
+!>    Where the master ends inside a zone-end element (at s = c, more than
+!>    tol_sliver from its node), the zone's mesh is the slave's cut there, as in
+!>    the linear operator: the end element is the part [c, 1] (or [0, c]) of the
+!>    slave element, its zone nodes the points at s = c, (1 + c)/2, 1 (or 0, c/2,
+!>    c), on which the slave trace is the element's own quadratic (nothing is
+!>    approximated: mortar_operator's zone_node_terms gives them), the zone's
+!>    shape functions those of the part, and y_0 the master's end point.  A
+!>    shorter uncovered sliver is below what the mesh resolves: the end node
+!>    stays, the master's end value extended over it.
 !>    D v = C H - E_0 c_0 - E_Z c_Z with D = C G (interior columns), G_ml = int phi_m
 !>    phi_l, H_mj = int phi_m chi_j, C the coefficients of psi on phi; D is banded
 !>    (p + 1 off-diagonals) and solved by LAPACK dgbsv for all master columns.
@@ -55,13 +60,29 @@
 !> 6. Rows (contact_set): B_i u = n_i.u1(x_i) - n_i.sum_j P_ij u2(y_j) <= gap0_i at
 !>    every zone node i, corners and mid-side nodes (the nodal condition), with
 !>    gap0_i = n_i.((P y)_i - x_i) from the curved geometry and n_i the unit normal
-!>    of the curve at x_i (the mean of the two elements' at a corner).
-!>
+!>    of the curve at x_i (the mean of the two elements' at a corner).  A
+!>    frictional pair (quadratic_common_normals) pairs the points along the
+!>    common normals n_c = w n1 - (1 - w) n2 (mortar_geometry's pairing_weight),
+!>    interpolated over each slave element by its shape functions: the master's
+!>    points in 1. and 2. are where the line x(s) + tau n_c(s) meets it, and the
+!>    normal rows and the tangential rows T_i (t_i = n_c turned a quarter turn)
+!>    take n_c at each zone node.
+!> 7. Axisymmetric pairs (x = r): every integral of 2.-4. and the weights carry
+!>    2 pi r(s), r(s) the slave point's radius: on a straight edge the
+!>    integrands become of degree 5, within the 4-point rule's 7.  A zone end on
+!>    the axis is a point inside the contact surface (mortar_operator, 8.): no
+!>    end condition, the end element keeps its full degree, the axis is the
+!>    node's normal; a quadratic corner hat there weighs nothing,
+!>    int (1 - s)(1 - 2s) s ds = 0, and its multiplier is read with the
+!>    mid-side node's (contact_set: node_rows).
+
 !> Programming interface
-!>   build_mortar_quadratic(xs, ps, sn_out, xm, pm, mn_out, gap_zero, mortar, mcov, err)
-!>         the operator in a mortar_t (cut = [0, 1]: the zone's ends are slave
-!>         nodes; inter is left empty), mcov(j) = int_cov chi_j, and which zone
-!>         end has the master's end value extended over part of an element
+!>   build_mortar_quadratic(xs, ps, sn_out, xm, pm, mn_out, gap_zero, mortar, mcov, err
+!>                          [, pairing] [, axisymmetric])
+!>         the operator in a mortar_t (cut: where the zone ends inside an element;
+!>         degree = ps; inter is left empty) and mcov(j) = int_cov chi_j
+!>   quadratic_common_normals(xs, ps, sn_out, xm, pm, mn_out, nc, w)
+!>         a frictional pair's pairing directions at the slave trace's nodes
 !>   trace_point(x, p, e, s, y, dy)   point and derivative of element e at s
 module mortar_quadratic
   use kinds, only: dp
