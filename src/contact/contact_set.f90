@@ -32,7 +32,7 @@ module contact_set
   implicit none
   private
   public :: contact_set_t, pair_spec_t, contact_pair_t
-  public :: build_contact_set, row_of_node, node_rows, node_traction, has_friction
+  public :: build_contact_set, row_of_node, state_row_of_node, node_rows, node_traction, has_friction
 
   !> What a CONTACT statement says, resolved to indices.
   type :: pair_spec_t
@@ -710,6 +710,19 @@ contains
     p = 0.0_dp
     if (nr > 0) p = sum(force(rows(1:nr))) / sum(cs%weight(rows(1:nr)))
   end function node_traction
+
+  !> The normal row whose slip and friction state slave node i of pair ip
+  !> reports: its own (row_of_node), or on a quadratic trace's node on the
+  !> axis, whose hat weighs nothing (no friction bound of its own), the
+  !> mid-side neighbour's, with which it reports its tractions (node_rows).
+  pure integer function state_row_of_node(cs, ip, i) result(r)
+    type(contact_set_t), intent(in) :: cs
+    integer, intent(in) :: ip, i
+    r = row_of_node(cs, ip, i)
+    if (r == 0) return
+    if (cs%pair(ip)%axis_fold(1) .and. i == cs%pair(ip)%mortar%first) r = row_of_node(cs, ip, i + 1)
+    if (cs%pair(ip)%axis_fold(2) .and. i == cs%pair(ip)%mortar%last) r = row_of_node(cs, ip, i - 1)
+  end function state_row_of_node
 
   !> Constraint row of slave node i of pair ip, 0 when it has none or when
   !> it is a cut zone end reported on its neighbour (node_rows).
