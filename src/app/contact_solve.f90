@@ -32,6 +32,7 @@ module contact_solve
   use friction_lcp, only: solve_friction_lcp, friction_state, friction_problem_t, friction_problem
   use friction_modes, only: solve_friction_floating, no_equilibrium
   use contact_lcp, only: contact_solution_t, solve_contact
+  use contact_set, only: node_traction
   use rigid_modes, only: mode_name, motion_name, describe_motion, remove_motions
   use mode_support, only: mode_split_t, split_free_modes
   use rigid_support, only: split_rigid_modes, rigid_direction, pulled_rigid
@@ -234,11 +235,11 @@ contains
     type(lcp_options_t) :: opts
     type(lcp_report_t) :: rep
     character(len=:), allocatable :: method
-    real(dp), allocatable :: z(:), cu(:), qn(:), qt(:), sprev(:), fk(:), ubk(:)
+    real(dp), allocatable :: z(:), cu(:), qn(:), qt(:), sprev(:), fk(:), ubk(:), tforce(:)
     real(dp), allocatable :: hh(:,:), eg(:,:), eh(:), alpha(:), unbalanced(:), body_alpha(:), rigid_alpha(:)
     integer, allocatable :: fstate(:)
     character(len=:), allocatable :: cause
-    integer :: n, nt, kstep, g, r, iterations
+    integer :: n, nt, kstep, g, r, k, iterations
     logical :: floating
     type(results_t) :: step, none
     character(len=200) :: line
@@ -347,9 +348,16 @@ contains
     run%res%slip = sprev
     allocate(run%res%shear(nt), run%res%tan_of_row(n))
     run%res%tan_of_row = 0
+    allocate(tforce(n), source=0.0_dp)
+    tforce(run%cs%tan_row) = -run%res%tau                 ! the force on the slave is -tau t
     do r = 1, nt
-      run%res%tan_of_row(run%cs%tan_row(r)) = r
-      run%res%shear(r) = -run%res%tau(r) / run%cs%weight(run%cs%tan_row(r))    ! the force on the slave is -tau t
+      k = run%cs%tan_row(r)
+      run%res%tan_of_row(k) = r
+      if (run%cs%weight(k) > 0.0_dp) then
+        run%res%shear(r) = tforce(k) / run%cs%weight(k)
+      else                    ! a hat without weight (a quadratic trace's node on the axis): with its neighbour's
+        run%res%shear(r) = node_traction(run%cs, run%cs%row_pair(k), run%cs%row_node(k), tforce)
+      end if
     end do
     run%res%stick_nodes = count(run%res%fstate == 1)
     run%res%slip_nodes = count(run%res%fstate == 2)

@@ -24,11 +24,9 @@
 !>   check_finite_results(run, res)  exit 1 when a result to be written is not finite
 module post_processing
   use kinds, only: dp
-  use strings, only: int_to_str
   use exits, only: fail_numerical
   use run_state, only: run_t
   use results_writer, only: results_t
-  use run_report, only: add_warning
   use body, only: element_response, to_global_axes
   use contact_set, only: row_of_node, node_rows, node_traction
   use contact_condensation, only: contact_forces
@@ -75,31 +73,8 @@ contains
     call post_process(run, run%sc%fext, run%res)
     call rigid_results(run, run%res)
     call nodal_contact_fields(run, run%res)
-    call warn_master_end(run)
     call check_finite_results(run, run%res)
   end subroutine compute_results
-
-  !> warning master_end: a quadratic pair whose master ends inside a slave
-  !> element, where the final contact reaches the node whose row uses the
-  !> master's end value extended (mortar_quadratic).
-  !>   run (inout) res%status of the final state on entry; the warning on exit
-  subroutine warn_master_end(run)
-    type(run_t), intent(inout) :: run
-    integer :: ip, r, node, nr
-    if (.not. allocated(run%res%status)) return
-    do ip = 1, run%cs%npair
-      do r = 1, 2
-        if (.not. run%cs%pair(ip)%extended(r)) cycle
-        node = merge(run%cs%pair(ip)%mortar%first, run%cs%pair(ip)%mortar%last, r == 1)
-        nr = row_of_node(run%cs, ip, node)
-        if (nr == 0) cycle
-        if (run%res%status(nr) == 1) call add_warning(run, 'master_end', run%deck%file // ':' // &
-          int_to_str(run%deck%contacts(ip)%line) // ': the contact reaches the slave node ' // int_to_str(node) // &
-          ' where the master ends inside a quadratic slave element: its row uses the master''s end value ' // &
-          '(refine the slave there or swap slave and master)')
-      end do
-    end do
-  end subroutine warn_master_end
 
   !> res%contact_force: per pair, the resultant of the contact forces on its
   !> slave body, the sum over the slave dofs of -C' z restricted to the
@@ -216,7 +191,11 @@ contains
     do r = 1, run%cs%nrow
       ip = run%cs%row_pair(r)
       node = run%cs%row_node(r)
-      res%pressure(r) = res%mu(r) / run%cs%weight(r)      ! p = mu / int(phi_i)
+      if (run%cs%weight(r) > 0.0_dp) then
+        res%pressure(r) = res%mu(r) / run%cs%weight(r)    ! p = mu / int(phi_i)
+      else                                                ! a hat without weight (a quadratic trace's
+        res%pressure(r) = node_traction(run%cs, ip, node, res%mu)   ! node on the axis): with its neighbour's
+      end if
       pmax = max(pmax, abs(res%pressure(r)))
     end do
     do r = 1, run%cs%nrow

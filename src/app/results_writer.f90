@@ -17,7 +17,7 @@ module results_writer
   use kinds, only: dp, i8
   use body, only: body_t
   use mesh, only: file_item, node_in_file
-  use contact_set, only: contact_set_t, row_of_node, node_rows, node_traction
+  use contact_set, only: contact_set_t, row_of_node, state_row_of_node, node_rows, node_traction
   use strings, only: int_to_str, i8_to_str
   use errors, only: error_t, set_error
   use text_scan, only: string_t
@@ -374,7 +374,7 @@ contains
           if (friction) then
             extra = ',0,,0'                    ! no tangential row: no shear, no slip, open
             if (row > 0) then
-              t = r%tan_of_row(row)
+              t = r%tan_of_row(state_row_of_node(cs, ip, i))
               if (t > 0) extra = ',' // num(node_traction(cs, ip, i, tforce)) // ',' // num(r%slip(t)) // ',' // &
                                  int_to_str(r%fstate(t))
             end if

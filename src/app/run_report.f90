@@ -198,11 +198,6 @@ contains
             call say(run, trim(line))
             write(line, '(a,i0,a,i0,a)') 'contact  pair ' // int_to_str(ip) // ': quadratic mortar, slave degree ', &
               pr%degree(1), ', master degree ', pr%degree(2), ': non-penetration at every trace node'
-            if (any(pr%extended)) then
-              call say(run, trim(line))
-              line = 'contact  pair ' // int_to_str(ip) // ': the master ends inside a zone-end slave element: ' // &
-                     'its end value extended over the rest'
-            end if
           end if
           if (has_friction(pr%spec)) then
             ! the assumption the frictional rows rest on (doc/theory.md, "Friction on curved surfaces")

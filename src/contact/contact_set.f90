@@ -28,11 +28,11 @@ module contact_set
   use mortar_operator, only: mortar_t, build_mortar, zone_node_terms, zone_point, segment_rule
   use mortar_geometry, only: intersection_t, intersect_segments, common_normals
   use rigid_obstacle, only: rigid_shape_t, build_rigid_mortar, orient_shape, rigid_terms
-  use mortar_quadratic, only: build_mortar_quadratic
+  use mortar_quadratic, only: build_mortar_quadratic, quadratic_common_normals
   implicit none
   private
   public :: contact_set_t, pair_spec_t, contact_pair_t
-  public :: build_contact_set, row_of_node, node_rows, node_traction, has_friction
+  public :: build_contact_set, row_of_node, state_row_of_node, node_rows, node_traction, has_friction
 
   !> What a CONTACT statement says, resolved to indices.
   type :: pair_spec_t
@@ -61,11 +61,12 @@ module contact_set
     logical :: quadratic = .false.         !< either trace is quadratic (mortar_quadratic): snode and mnode
                                            !< list the mid-side nodes too, between their corners
     integer :: degree(2) = 1               !< degree of the slave (1) and master (2) traces
-    logical :: extended(2) = .false.       !< quadratic: the master ends inside the zone's first (1) /
-                                           !< last (2) slave element; its end value is extended there
     real(dp) :: slave_weight = 1.0_dp      !< friction: the slave normal's weight in the common normal
     logical :: fold(2) = .false.           !< the row of a cut zone start (1) / end (2) is reported on
                                            !< the node next to it: the end node has no master opposite
+    logical :: axis_fold(2) = .false.      !< quadratic slave trace, zone start (1) / end (2) on the axis:
+                                           !< that node's hat has no weight, its pressure is read with the
+                                           !< mid-side node's row (node_rows)
     real(dp), allocatable :: mcov(:)       !< (nm) int of each master hat over the covered part
   end type contact_pair_t
 
@@ -165,7 +166,14 @@ contains
           xm = bodies(sp%master_body)%mesh%x(:, mnodes)
           pr%mnode = mnodes
           pr%degree = [ps, pm]
-          call build_mortar_quadratic(pr%xs, ps, nsl, xm, pm, nms, sp%gap_zero, pr%mortar, mcov_q, pr%extended, merr)
+          if (has_friction(sp)) then      ! rows along the common normal, as below
+            call quadratic_common_normals(pr%xs, ps, nsl, xm, pm, nms, pairing, pr%slave_weight)
+            call build_mortar_quadratic(pr%xs, ps, nsl, xm, pm, nms, sp%gap_zero, pr%mortar, mcov_q, merr, &
+                                        pairing=pairing, axisymmetric=bodies(sp%slave_body)%axisymmetric)
+          else
+            call build_mortar_quadratic(pr%xs, ps, nsl, xm, pm, nms, sp%gap_zero, pr%mortar, mcov_q, merr, &
+                                        axisymmetric=bodies(sp%slave_body)%axisymmetric)
+          end if
         else if (has_friction(sp)) then
           ! friction: the pair's rows along the common normal, which pairs the
           ! points that meet and leaves the normal approach out of the slip
@@ -202,6 +210,7 @@ contains
         pr%single = pr%mortar%first > 0 .and. pr%mortar%last == pr%mortar%first + 1 .and. .not. pr%quadratic
         if (pr%single) pr%nrow = 1
         pr%fold = [pr%mortar%cut(1) > 0.0_dp, pr%mortar%cut(2) < 1.0_dp] .and. .not. pr%single
+        pr%axis_fold = pr%mortar%axis_end .and. pr%mortar%degree == 2
         ! the projection lives on in the rows of B and T: the dense (ns, nm)
         ! matrix P is not kept (5 MB for 852 x 741 nodes)
         if (pr%mortar%first > 0 .and. .not. pr%single) call projection_rows(pr%mortar, prj(ip))
@@ -316,8 +325,8 @@ contains
     !> count their entries in nnz.
     subroutine mark_pair_dofs(tangent)
       logical, intent(in) :: tangent
-      real(dp) :: v(2), sc(2)
-      integer :: sn(2), nt
+      real(dp) :: v(2), sc(3)
+      integer :: sn(3), nt
       associate(pr => cs%pair(ip), mo => cs%pair(ip)%mortar)
         if (pr%nrow == 0) return
         d0s = bodies(pr%spec%slave_body)%dof0
@@ -369,8 +378,8 @@ contains
     !> gaps and weights, or tangential rows.
     subroutine fill_pair_rows(tangent)
       logical, intent(in) :: tangent
-      real(dp) :: v(2), sc(2)
-      integer :: sn(2), nt, t
+      real(dp) :: v(2), sc(3)
+      integer :: sn(3), nt, t
       associate(pr => cs%pair(ip), mo => cs%pair(ip)%mortar)
         d0s = bodies(pr%spec%slave_body)%dof0
         if (pr%spec%rigid > 0) then
@@ -655,6 +664,9 @@ contains
   !> The node's pressure is the sum of their multipliers over the sum of their
   !> weights, int (phi_a + phi_i) over the covered part: the mean pressure
   !> on the support of the multiplier basis function psi of the end segment.
+  !> On a quadratic trace the cut element's mid-side node reports its two zone
+  !> points' rows, and a corner on the axis (whose hat weighs nothing) its own
+  !> and its mid-side neighbour's.
   pure subroutine node_rows(cs, ip, i, rows, nr)
     type(contact_set_t), intent(in) :: cs
     integer, intent(in) :: ip, i
@@ -673,6 +685,16 @@ contains
         nr = nr + 1
         rows(nr) = pr%row0 + pr%nrow
       end if
+      ! the node on the axis of a quadratic trace: its hat weighs int phi 2 pi r ds = 0,
+      ! its multiplier is read with the mid-side node's next to it
+      if (pr%axis_fold(1) .and. i == pr%mortar%first) then
+        nr = nr + 1
+        rows(nr) = row_of_node(cs, ip, i + 1)
+      end if
+      if (pr%axis_fold(2) .and. i == pr%mortar%last) then
+        nr = nr + 1
+        rows(nr) = row_of_node(cs, ip, i - 1)
+      end if
     end associate
   end subroutine node_rows
 
@@ -688,6 +710,19 @@ contains
     p = 0.0_dp
     if (nr > 0) p = sum(force(rows(1:nr))) / sum(cs%weight(rows(1:nr)))
   end function node_traction
+
+  !> The normal row whose slip and friction state slave node i of pair ip
+  !> reports: its own (row_of_node), or on a quadratic trace's node on the
+  !> axis, whose hat weighs nothing (no friction bound of its own), the
+  !> mid-side neighbour's, with which it reports its tractions (node_rows).
+  pure integer function state_row_of_node(cs, ip, i) result(r)
+    type(contact_set_t), intent(in) :: cs
+    integer, intent(in) :: ip, i
+    r = row_of_node(cs, ip, i)
+    if (r == 0) return
+    if (cs%pair(ip)%axis_fold(1) .and. i == cs%pair(ip)%mortar%first) r = row_of_node(cs, ip, i + 1)
+    if (cs%pair(ip)%axis_fold(2) .and. i == cs%pair(ip)%mortar%last) r = row_of_node(cs, ip, i - 1)
+  end function state_row_of_node
 
   !> Constraint row of slave node i of pair ip, 0 when it has none or when
   !> it is a cut zone end reported on its neighbour (node_rows).

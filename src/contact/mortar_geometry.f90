@@ -25,6 +25,7 @@
 !>   ray_hit(a, n, xm, nm_out, f, r)     nearest hit of a line on the facing master
 !>   common_normals(xs, ns_out, xm, nm_out, nc, w)   a frictional pair's pairing directions
 !>   mean_curvature(x, nrm, seg)         mean curvature of the marked segments of a polyline (convex > 0)
+!>   pairing_weight(k1, k2)              the slave normal's weight in the common normal
 !>   tol_overlap, tol_piece, tol_sliver  the tolerances of the cover, relative to a slave
 !>                         segment (element): shared by the linear and quadratic operators
 !>   arc_digits            significant digits of an arc length in the operators' messages
@@ -36,7 +37,7 @@ module mortar_geometry
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
   private
-  public :: intersection_t, intersect_segments, check_polyline, ray_hit, common_normals, mean_curvature
+  public :: intersection_t, intersect_segments, check_polyline, ray_hit, common_normals, mean_curvature, pairing_weight
   public :: tol_overlap, tol_piece, tol_sliver, arc_digits
 
   !> Sub-segments of the intersection of the slave and master 1D meshes, ordered by
@@ -89,7 +90,6 @@ contains
     real(dp), intent(in) :: xs(:,:), ns_out(:,:), xm(:,:), nm_out(:,:)
     real(dp), allocatable, intent(out) :: nc(:,:)
     real(dp), intent(out) :: w
-    real(dp), parameter :: tol_curv = 5.0e-2_dp
     type(intersection_t) :: inter
     real(dp), allocatable :: n1(:,:), n2(:,:)
     logical, allocatable :: sface(:), mface(:)
@@ -109,15 +109,7 @@ contains
     mface(inter%master_seg(1:inter%nsub)) = .true.
     k1 = mean_curvature(xs, ns_out, sface)
     k2 = mean_curvature(xm, nm_out, mface)
-    if (abs(k1 - k2) <= tol_curv * 0.5_dp * (abs(k1) + abs(k2)) .or. .not. k1 + k2 > 0.0_dp) then
-      w = 0.5_dp
-    else if (abs(k1) <= tol_curv * abs(k2)) then
-      w = 1.0_dp
-    else if (abs(k2) <= tol_curv * abs(k1)) then
-      w = 0.0_dp
-    else
-      w = min(1.0_dp, max(0.0_dp, k2 / (k1 + k2)))
-    end if
+    w = pairing_weight(k1, k2)
     do i = 1, ns
       if (.not. (any(sface(max(1, i - 1):min(ns - 1, i))))) cycle
       ! the master point on the ray along the current estimate, a few times:
@@ -135,6 +127,26 @@ contains
       end do
     end do
   end subroutine common_normals
+
+  !> The weight w of the slave normal in the common normal w n1 - (1 - w) n2
+  !> (common_normals) from the mean curvatures k1 (slave) and k2 (master),
+  !> convex > 0: k2 / (k1 + k2), 1/2 when they agree to tol_curv (a polygon's
+  !> curvature is no better; mirror images then pair exactly), when k1 + k2 is
+  !> not positive or both are flat; 1 or 0 when one side is flat to tol_curv
+  !> of the other.  Shared by the linear and quadratic operators.
+  pure real(dp) function pairing_weight(k1, k2) result(w)
+    real(dp), intent(in) :: k1, k2
+    real(dp), parameter :: tol_curv = 5.0e-2_dp
+    if (abs(k1 - k2) <= tol_curv * 0.5_dp * (abs(k1) + abs(k2)) .or. .not. k1 + k2 > 0.0_dp) then
+      w = 0.5_dp
+    else if (abs(k1) <= tol_curv * abs(k2)) then
+      w = 1.0_dp
+    else if (abs(k2) <= tol_curv * abs(k1)) then
+      w = 0.0_dp
+    else
+      w = min(1.0_dp, max(0.0_dp, k2 / (k1 + k2)))
+    end if
+  end function pairing_weight
 
   !> Unit nodal normals of a polyline: the normalized sum of the two segment
   !> normals at a node, the segment's own at an end (a closed curve has none).

@@ -111,6 +111,8 @@ module mortar_operator
                                               !< a slave segment (the master stops there)
     real(dp), allocatable :: arc(:)           !< (ns) arc length along the slave polyline from node 1
     logical, allocatable :: constrained(:)    !< (ns) true for first..last
+    integer :: degree = 1                     !< degree of the slave trace: 1, or 2 (mortar_quadratic), whose
+                                              !< cut end elements have their zone nodes at s = cut + k (hi - lo) / 2
     logical :: axisymmetric = .false.         !< integrals weighted by 2 pi r (module header, 8.)
     logical :: axis_end(2) = .false.          !< the zone's first / last node is on the axis (8.)
     type(intersection_t) :: inter             !< the sub-segments used for the integrals
@@ -615,41 +617,65 @@ contains
   end subroutine add_hat_integrals
 
   !> The point of zone node i (first..last): the slave node, or for a cut end
-  !> the point of its segment where the zone ends.
+  !> the point of its segment (element) where the zone ends.
   pure function zone_point(mo, xs, i) result(x)
     type(mortar_t), intent(in) :: mo
     real(dp), intent(in) :: xs(:,:)
     integer, intent(in) :: i
     real(dp) :: x(2)
-    integer :: node(2), nt
-    real(dp) :: coef(2)
+    integer :: node(3), nt, t
+    real(dp) :: coef(3)
     call zone_node_terms(mo, i, node, coef, nt)
-    x = coef(1) * xs(:, node(1))
-    if (nt == 2) x = x + coef(2) * xs(:, node(2))
+    x = 0.0_dp
+    do t = 1, nt
+      x = x + coef(t) * xs(:, node(t))
+    end do
   end function zone_point
 
   !> The slave nodes and coefficients that give the slave trace at zone node
-  !> i: the node itself (nt = 1), or for a cut end the two ends of its segment
-  !> with the linear interpolation weights (nt = 2).
+  !> i: the node itself (nt = 1), or, for a zone node of a cut end segment,
+  !> the two ends of its segment with the linear interpolation weights
+  !> (nt = 2); on a quadratic trace (degree 2) the zone nodes of a cut end
+  !> element are its points at s = lo, (lo + hi) / 2, hi (lo = cut(1) on the
+  !> zone's first element, hi = cut(2) on its last), each the element's three
+  !> nodes with the quadratic shape functions at s (nt = 3).
   !>   mo   (in)  the operator
   !>   i    (in)  zone node, first..last
-  !>   node (out) (nt) slave polyline indices;  coef (out) (nt) their weights;  nt (out) 1 or 2
+  !>   node (out) (nt) slave trace indices;  coef (out) (nt) their weights;  nt (out) 1, 2 or 3
   pure subroutine zone_node_terms(mo, i, node, coef, nt)
     type(mortar_t), intent(in) :: mo
     integer, intent(in) :: i
-    integer, intent(out) :: node(2), nt
-    real(dp), intent(out) :: coef(2)
+    integer, intent(out) :: node(3), nt
+    real(dp), intent(out) :: coef(3)
+    integer :: i0
+    real(dp) :: lo, hi, s
     nt = 1
     node = i
-    coef = [1.0_dp, 0.0_dp]
-    if (i == mo%first .and. mo%cut(1) > 0.0_dp) then
+    coef = [1.0_dp, 0.0_dp, 0.0_dp]
+    if (mo%degree == 2) then
+      if (mo%cut(1) > 0.0_dp .and. i - mo%first < 2) then
+        i0 = mo%first                              ! the zone's first element, trace nodes i0..i0+2
+      else if (mo%cut(2) < 1.0_dp .and. mo%last - i < 2) then
+        i0 = mo%last - 2
+      else
+        return
+      end if
+      lo = 0.0_dp
+      hi = 1.0_dp
+      if (i0 == mo%first) lo = mo%cut(1)
+      if (i0 + 2 == mo%last) hi = mo%cut(2)
+      s = lo + 0.5_dp * real(i - i0, dp) * (hi - lo)
+      nt = 3
+      node = [i0, i0 + 1, i0 + 2]
+      coef = [(1.0_dp - s) * (1.0_dp - 2.0_dp * s), 4.0_dp * s * (1.0_dp - s), s * (2.0_dp * s - 1.0_dp)]
+    else if (i == mo%first .and. mo%cut(1) > 0.0_dp) then
       nt = 2
-      node = [i, i + 1]
-      coef = [1.0_dp - mo%cut(1), mo%cut(1)]
+      node(1:2) = [i, i + 1]
+      coef(1:2) = [1.0_dp - mo%cut(1), mo%cut(1)]
     else if (i == mo%last .and. mo%cut(2) < 1.0_dp) then
       nt = 2
-      node = [i - 1, i]
-      coef = [1.0_dp - mo%cut(2), mo%cut(2)]
+      node(1:2) = [i - 1, i]
+      coef(1:2) = [1.0_dp - mo%cut(2), mo%cut(2)]
     end if
   end subroutine zone_node_terms
 

@@ -39,11 +39,16 @@
 !> 4. Projection, eq. (8) of the linear case carried over: for a master trace phi,
 !>       (pi phi)(x_0) = phi(y_0),  (pi phi)(x_Z) = phi(y_Z),
 !>       int_cov (phi - pi phi) psi_k = 0,  k = 1..Z-1,
-!>    y_0 (y_Z) the master point paired with the start (end) of the zone's cover:
-!>    where the master ends inside a zone-end element, its end point, i.e. the
-!>    master trace extended by its end value over the uncovered part (the linear
-!>    operator's rule for slivers; its cut zone ends are not carried over, so
-!>    that end's row is exact only while it stays open).
+!>    y_0 (y_Z) the master point paired with the start (end) of the zone's cover.
+!>    Where the master ends inside a zone-end element (at s = c, more than
+!>    tol_sliver from its node), the zone's mesh is the slave's cut there, as in
+!>    the linear operator: the end element is the part [c, 1] (or [0, c]) of the
+!>    slave element, its zone nodes the points at s = c, (1 + c)/2, 1 (or 0, c/2,
+!>    c), on which the slave trace is the element's own quadratic (nothing is
+!>    approximated: mortar_operator's zone_node_terms gives them), the zone's
+!>    shape functions those of the part, and y_0 the master's end point.  A
+!>    shorter uncovered sliver is below what the mesh resolves: the end node
+!>    stays, the master's end value extended over it.
 !>    D v = C H - E_0 c_0 - E_Z c_Z with D = C G (interior columns), G_ml = int phi_m
 !>    phi_l, H_mj = int phi_m chi_j, C the coefficients of psi on phi; D is banded
 !>    (p + 1 off-diagonals) and solved by LAPACK dgbsv for all master columns.
@@ -55,13 +60,29 @@
 !> 6. Rows (contact_set): B_i u = n_i.u1(x_i) - n_i.sum_j P_ij u2(y_j) <= gap0_i at
 !>    every zone node i, corners and mid-side nodes (the nodal condition), with
 !>    gap0_i = n_i.((P y)_i - x_i) from the curved geometry and n_i the unit normal
-!>    of the curve at x_i (the mean of the two elements' at a corner).
-!>
+!>    of the curve at x_i (the mean of the two elements' at a corner).  A
+!>    frictional pair (quadratic_common_normals) pairs the points along the
+!>    common normals n_c = w n1 - (1 - w) n2 (mortar_geometry's pairing_weight),
+!>    interpolated over each slave element by its shape functions: the master's
+!>    points in 1. and 2. are where the line x(s) + tau n_c(s) meets it, and the
+!>    normal rows and the tangential rows T_i (t_i = n_c turned a quarter turn)
+!>    take n_c at each zone node.
+!> 7. Axisymmetric pairs (x = r): every integral of 2.-4. and the weights carry
+!>    2 pi r(s), r(s) the slave point's radius: on a straight edge the
+!>    integrands become of degree 5, within the 4-point rule's 7.  A zone end on
+!>    the axis is a point inside the contact surface (mortar_operator, 8.): no
+!>    end condition, the end element keeps its full degree, the axis is the
+!>    node's normal; a quadratic corner hat there weighs nothing,
+!>    int (1 - s)(1 - 2s) s ds = 0, and its multiplier is read with the
+!>    mid-side node's (contact_set: node_rows).
+
 !> Programming interface
-!>   build_mortar_quadratic(xs, ps, sn_out, xm, pm, mn_out, gap_zero, mortar, mcov, err)
-!>         the operator in a mortar_t (cut = [0, 1]: the zone's ends are slave
-!>         nodes; inter is left empty), mcov(j) = int_cov chi_j, and which zone
-!>         end has the master's end value extended over part of an element
+!>   build_mortar_quadratic(xs, ps, sn_out, xm, pm, mn_out, gap_zero, mortar, mcov, err
+!>                          [, pairing] [, axisymmetric])
+!>         the operator in a mortar_t (cut: where the zone ends inside an element;
+!>         degree = ps; inter is left empty) and mcov(j) = int_cov chi_j
+!>   quadratic_common_normals(xs, ps, sn_out, xm, pm, mn_out, nc, w)
+!>         a frictional pair's pairing directions at the slave trace's nodes
 !>   trace_point(x, p, e, s, y, dy)   point and derivative of element e at s
 module mortar_quadratic
   use kinds, only: dp
@@ -69,13 +90,15 @@ module mortar_quadratic
   use strings, only: int_to_str, real_to_str
   use errors, only: error_t, set_error
   use sorting, only: sort_by_key
-  use mortar_geometry, only: tol_overlap, tol_piece, tol_sliver, arc_digits
+  use mortar_geometry, only: tol_overlap, tol_piece, tol_sliver, arc_digits, mean_curvature, pairing_weight
   use mortar_operator, only: mortar_t, start_mortar, start_periodic, set_initial_gaps
+  use axisymmetric_elements, only: radial_weight
   implicit none
   private
-  public :: build_mortar_quadratic, trace_point, gauss4
+  public :: build_mortar_quadratic, quadratic_common_normals, trace_point, gauss4
 
   real(dp), parameter :: min_facing = 0.2_dp       ! -n_master.n_slave of the chords above which they face
+  real(dp), parameter :: tol_ray = 1.0e-10_dp      ! slack on the master coordinate of a ray hit
 
   !> 4-point Gauss-Legendre on [0, 1]: points and weights.
   real(dp), parameter :: gauss4(2, 4) = reshape([ &
@@ -83,6 +106,16 @@ module mortar_quadratic
     0.5_dp - 0.5_dp * 0.33998104358485626480_dp, 0.5_dp * 0.65214515486254614263_dp, &
     0.5_dp + 0.5_dp * 0.33998104358485626480_dp, 0.5_dp * 0.65214515486254614263_dp, &
     0.5_dp + 0.5_dp * 0.86113631159405257522_dp, 0.5_dp * 0.34785484513745385737_dp], [2, 4])
+
+  !> The two traces of a pair and how their points are paired.
+  type :: traces_t
+    real(dp), allocatable :: xs(:,:), xm(:,:)  !< (2, ns), (2, nm) trace nodes
+    real(dp), allocatable :: sn(:,:), mn(:,:)  !< outward unit chord normals of their elements
+    integer :: ps = 1, pm = 1                  !< degrees
+    real(dp), allocatable :: pairing(:,:)      !< (2, ns) a frictional pair's common normals; not
+                                               !< allocated: pairing along the slave curve's normal
+    logical :: axisymmetric = .false.          !< integrals weighted by 2 pi r (module header, 7.)
+  end type traces_t
 
   !> One overlap of a slave element e with a master element f.
   type :: overlap_t
@@ -99,59 +132,53 @@ contains
   !>   xm     (in)  (2, nm) master trace nodes;  pm (in) its degree
   !>   mn_out (in)  (2, (nm-1)/pm) outward unit chord normals of the master elements
   !>   gap_zero (in) .true.: gap0 = 0 (the boundaries coincide)
-  !>   mortar (out) the operator (fields as mortar_operator's mortar_t)
+  !>   mortar (out) the operator (fields as mortar_operator's mortar_t; cut(1) > 0 or
+  !>                cut(2) < 1 where the zone ends inside its first or last element)
   !>   mcov   (out) (nm) int over the covered zone of each master shape function
-  !>   extended (out) (2) the master ends inside the zone's first (1) / last (2)
-  !>                element by more than a sliver: its end value is extended there
   !>   err    (out) status 2 for a master that folds or leaves a hole; 1 when
   !>                LAPACK finds D singular
-  subroutine build_mortar_quadratic(xs, ps, sn_out, xm, pm, mn_out, gap_zero, mortar, mcov, extended, err)
+  !>   pairing (in, optional) (2, ns) a frictional pair's common normals
+  !>                (quadratic_common_normals): points paired and rows along them (6.)
+  !>   axisymmetric (in, optional) x is the radius: integrals weighted by 2 pi r (7.)
+  subroutine build_mortar_quadratic(xs, ps, sn_out, xm, pm, mn_out, gap_zero, mortar, mcov, err, &
+                                    pairing, axisymmetric)
     real(dp), intent(in) :: xs(:,:), sn_out(:,:), xm(:,:), mn_out(:,:)
     integer, intent(in) :: ps, pm
     logical, intent(in) :: gap_zero
     type(mortar_t), intent(out) :: mortar
     real(dp), allocatable, intent(out) :: mcov(:)
-    logical, intent(out) :: extended(2)
     type(error_t), allocatable, intent(out) :: err
+    real(dp), intent(in), optional :: pairing(:,:)
+    logical, intent(in), optional :: axisymmetric
+    type(traces_t) :: t
     type(overlap_t), allocatable :: ov(:)
-    integer :: ns, nm, nes, e, k, nov, efirst, elast, i0, i
+    integer :: ns, nm, nes, e, k, nov, efirst, elast, i0
     integer, allocatable :: ncover(:)
     logical :: closed
-    real(dp) :: sigma, y(2), dy(2), nrm(2)
-    real(dp), allocatable :: selen(:)
+    real(dp) :: lo, hi
 
+    t = traces_t(xs, xm, sn_out, mn_out, ps, pm)
+    if (present(pairing)) t%pairing = pairing
+    if (present(axisymmetric)) t%axisymmetric = axisymmetric
     ns = size(xs, 2)
     nm = size(xm, 2)
     nes = (ns - 1) / ps
     call start_mortar(mortar, ns, nm)
+    mortar%degree = ps
+    mortar%axisymmetric = t%axisymmetric
     allocate(mcov(nm), source=0.0_dp)
     closed = all(xs(:, 1) == xs(:, ns))
-    extended = .false.
 
-    ! Arc length, element lengths and nodal normals of the slave curve.
-    allocate(selen(nes))
+    ! Arc length and nodal normals of the slave curve (a frictional pair: its common normals).
     mortar%arc(1) = 0.0_dp
-    mortar%normal = 0.0_dp
     do e = 1, nes
-      sigma = side(xs, ps, e, sn_out(:, e))
-      selen(e) = curve_length(xs, ps, e, 0.0_dp, 1.0_dp)
       if (ps == 2) mortar%arc(2 * e) = mortar%arc(2 * e - 1) + curve_length(xs, ps, e, 0.0_dp, 0.5_dp)
-      mortar%arc(ps * e + 1) = mortar%arc(ps * (e - 1) + 1) + selen(e)
-      do k = 0, ps
-        call trace_point(xs, ps, e, real(k, dp) / ps, y, dy)
-        nrm = sigma * [dy(2), -dy(1)] / norm2(dy)
-        mortar%normal(:, ps * (e - 1) + 1 + k) = mortar%normal(:, ps * (e - 1) + 1 + k) + nrm
-      end do
+      mortar%arc(ps * e + 1) = mortar%arc(ps * (e - 1) + 1) + curve_length(xs, ps, e, 0.0_dp, 1.0_dp)
     end do
-    if (closed) then
-      mortar%normal(:, 1) = mortar%normal(:, 1) + mortar%normal(:, ns)
-      mortar%normal(:, ns) = mortar%normal(:, 1)
-    end if
-    do i = 1, ns
-      mortar%normal(:, i) = mortar%normal(:, i) / norm2(mortar%normal(:, i))
-    end do
+    call trace_normals(xs, ps, sn_out, mortar%normal)
+    if (allocated(t%pairing)) mortar%normal = t%pairing
 
-    call intersect_traces(xs, ps, sn_out, xm, pm, mn_out, ov, nov)
+    call intersect_traces(t, ov, nov)
     if (nov == 0) return
 
     ! Coverage per slave element: folds and holes.
@@ -168,7 +195,7 @@ contains
       end if
     end do
     if (closed .and. all(ncover > 0)) then
-      call build_periodic_quadratic(mortar, xs, ps, xm, pm, ov(1:nov), err)
+      call build_periodic_quadratic(mortar, t, ov(1:nov), err)
       if (allocated(err)) return
     else
       efirst = ov(1)%e
@@ -192,23 +219,37 @@ contains
         nov = size(ov)
         elast = elast - 1
       end if
-      ! a master that stops inside a zone-end element: its end value is
-      ! extended over the uncovered part (module header, 4.); the row of that
-      ! end is exact while it stays open (the caller says so when it closes)
-      extended = [ov(1)%lo > tol_sliver, ov(nov)%hi < 1.0_dp - tol_sliver]
-      call build_open_quadratic(mortar, xs, ps, xm, pm, ov(1:nov), efirst, elast, err)
+      ! a master that stops inside a zone-end element: the zone's mesh is the
+      ! slave's cut there (module header, 4.); a cover short of the end node
+      ! by less than tol_sliver reaches it, the master's end value extended
+      mortar%cut = [ov(1)%lo, ov(nov)%hi]
+      if (mortar%cut(1) <= tol_sliver) mortar%cut(1) = 0.0_dp
+      if (mortar%cut(2) >= 1.0_dp - tol_sliver) mortar%cut(2) = 1.0_dp
+      ! the rows of a cut element's zone nodes act at points inside it: the
+      ! direction field there (the curve's normal, or the interpolated pairing)
+      do k = 0, ps
+        if (mortar%cut(1) > 0.0_dp .and. k < ps) then
+          call zone_part(mortar, efirst, efirst, elast, lo, hi)
+          mortar%normal(:, ps * (efirst - 1) + 1 + k) = slave_direction(t, efirst, lo + k * (hi - lo) / ps)
+        end if
+        if (mortar%cut(2) < 1.0_dp .and. k > 0) then
+          call zone_part(mortar, elast, efirst, elast, lo, hi)
+          mortar%normal(:, ps * (elast - 1) + 1 + k) = slave_direction(t, elast, lo + k * (hi - lo) / ps)
+        end if
+      end do
+      call build_open_quadratic(mortar, t, ov(1:nov), efirst, elast, err)
       if (allocated(err)) return
     end if
 
     ! master integrals over the cover (the single-row and resolution checks of contact_set)
     do k = 1, nov
-      call add_master_integrals(xs, ps, xm, pm, ov(k), mcov)
+      call add_master_integrals(t, ov(k), mcov)
     end do
     ! weights over the full zone elements
     do e = 1, nes
       i0 = ps * (e - 1) + 1
       if (.not. all(mortar%constrained(i0:i0 + ps))) cycle
-      call add_shape_integrals(xs, ps, e, mortar%weight(i0:i0 + ps))
+      call add_shape_integrals(t, e, mortar%weight(i0:i0 + ps))
     end do
     if (closed .and. mortar%first == 1 .and. mortar%last == ns) then
       mortar%weight(1) = mortar%weight(1) + mortar%weight(ns)
@@ -219,18 +260,76 @@ contains
     if (.not. gap_zero) call set_initial_gaps(mortar, xs, xm, mortar%first, mortar%last, 1, nm)
   end subroutine build_mortar_quadratic
 
+  !> The common normals of a frictional pair on quadratic traces (module
+  !> header, 6.; mortar_geometry's common_normals on polylines):
+  !>    n_c = normalize(w n1 - (1 - w) n2),   w = pairing_weight(k1, k2),
+  !> n1 the slave curve's nodal normal, n2 the master's nodal normals
+  !> interpolated at the point the line x_i + tau n_c meets (re-cast a few
+  !> times), k1 and k2 the
+  !> mean curvatures of the parts of the two traces that face each other.
+  !>   xs, ps, sn_out, xm, pm, mn_out (in) the traces, as build_mortar_quadratic
+  !>   nc (out) (2, ns) unit common normals; the slave normal where no master faces
+  !>   w  (out) the weight of the slave normal
+  subroutine quadratic_common_normals(xs, ps, sn_out, xm, pm, mn_out, nc, w)
+    real(dp), intent(in) :: xs(:,:), sn_out(:,:), xm(:,:), mn_out(:,:)
+    integer, intent(in) :: ps, pm
+    real(dp), allocatable, intent(out) :: nc(:,:)
+    real(dp), intent(out) :: w
+    type(traces_t) :: t
+    type(overlap_t), allocatable :: ov(:)
+    real(dp), allocatable :: n1(:,:), n2(:,:)
+    logical, allocatable :: sface(:), mface(:)
+    real(dp) :: k1, k2, m(2), y(2), r, nn(3)
+    integer :: nov, i, e, f, iter, ns
+
+    t = traces_t(xs, xm, sn_out, mn_out, ps, pm)
+    ns = size(xs, 2)
+    call trace_normals(xs, ps, sn_out, n1)
+    call trace_normals(xm, pm, mn_out, n2)
+    nc = n1
+    w = 0.5_dp
+    call intersect_traces(t, ov, nov)
+    if (nov == 0) return
+    allocate(sface(size(sn_out, 2)), mface(size(mn_out, 2)), source=.false.)
+    sface(ov(1:nov)%e) = .true.
+    mface(ov(1:nov)%f) = .true.
+    k1 = trace_curvature(xs, ps, sn_out, sface)
+    k2 = trace_curvature(xm, pm, mn_out, mface)
+    w = pairing_weight(k1, k2)
+    do i = 1, ns
+      e = (i - 1) / ps + 1                        ! the elements that hold node i: e, and e - 1 at a corner
+      if (.not. (sface(min(e, size(sface))) .or. (mod(i - 1, ps) == 0 .and. sface(max(e - 1, 1))))) cycle
+      do iter = 1, 4
+        call ray_on_trace(xm, pm, mn_out, xs(:, i), nc(:, i), f, r)
+        if (f == 0) exit
+        ! the master's nodal normals interpolated: continuous across its corners
+        ! (the curve's own normal kinks there), a node's own on a node
+        if (r < 1.0e-8_dp) r = 0.0_dp
+        if (r > 1.0_dp - 1.0e-8_dp) r = 1.0_dp
+        call master_shape(pm, r, nn)
+        m = matmul(n2(:, pm * (f - 1) + 1:pm * f + 1), nn(1:pm + 1))
+        m = m / norm2(m)
+        y = w * n1(:, i) - (1.0_dp - w) * m
+        if (.not. norm2(y) > 0.0_dp) exit
+        nc(:, i) = y / norm2(y)
+      end do
+    end do
+  end subroutine quadratic_common_normals
+
   !> The operator on an open zone, slave elements efirst..elast (module header, 3.-4.).
-  subroutine build_open_quadratic(mortar, xs, ps, xm, pm, ov, efirst, elast, err)
+  subroutine build_open_quadratic(mortar, t, ov, efirst, elast, err)
     type(mortar_t), intent(inout) :: mortar
-    real(dp), intent(in) :: xs(:,:), xm(:,:)
-    integer, intent(in) :: ps, pm, efirst, elast
+    type(traces_t), intent(in) :: t
     type(overlap_t), intent(in) :: ov(:)
+    integer, intent(in) :: efirst, elast
     type(error_t), allocatable, intent(out) :: err
     real(dp), allocatable :: g(:,:), h(:,:), c(:,:), ab(:,:), rhs(:,:)
     integer, allocatable :: ipiv(:)
-    integer :: z, i0, nz, k, m, l, kl, ldab, info, jlo, jhi, nc
-    real(dp) :: nr(3)
+    integer :: z, i0, nz, k, m, l, kl, ldab, info, jlo, jhi, nc, klo, khi, ps, pm
+    real(dp) :: nr(3), lo, hi
 
+    ps = t%ps
+    pm = t%pm
     i0 = ps * (efirst - 1) + 1                  ! trace index of zone node 0
     z = ps * (elast - efirst + 1)
     mortar%first = i0
@@ -239,37 +338,62 @@ contains
     jlo = minval(pm * (ov%f - 1) + 1)
     jhi = maxval(pm * ov%f + 1)
     nc = jhi - jlo + 1
-    ! G (z+1, z+1) and H (z+1, nc) over the covered parts, zone numbering 0..z
+    ! G (z+1, z+1) and H (z+1, nc) over the covered parts with the zone's shape
+    ! functions (a cut end element's on its zone part), zone numbering 0..z
     allocate(g(0:z, 0:z), h(0:z, nc), source=0.0_dp)
     do k = 1, size(ov)
-      call add_mass(xs, ps, xm, pm, ov(k), ps * (ov(k)%e - efirst), jlo, g, h)
+      call zone_part(mortar, ov(k)%e, efirst, elast, lo, hi)
+      call add_mass(t, ov(k), lo, hi, ps * (ov(k)%e - efirst), jlo, g, h)
     end do
     do m = 0, z
       mortar%covered_weight(i0 + m) = sum(g(m, :))
     end do
     mortar%zone_weight(i0:i0 + z) = mortar%covered_weight(i0:i0 + z)
+    ! a zone end on the axis (7.) is a point inside the contact surface: no end
+    ! condition, the end element keeps its full degree, the normal is the axis'
+    if (t%axisymmetric .and. elast > efirst) then
+      mortar%axis_end = [t%xs(1, i0) == 0.0_dp .and. mortar%cut(1) == 0.0_dp, &
+                         t%xs(1, i0 + z) == 0.0_dp .and. mortar%cut(2) == 1.0_dp]
+      if (mortar%axis_end(1)) mortar%normal(:, i0) = [0.0_dp, sign(1.0_dp, mortar%normal(2, i0))]
+      if (mortar%axis_end(2)) mortar%normal(:, i0 + z) = [0.0_dp, sign(1.0_dp, mortar%normal(2, i0 + z))]
+      ! a quadratic corner function on the axis has no weight: int (1-s)(1-2s) s ds = 0
+      ! (its pressure is read with the mid-side node's, contact_set: node_rows)
+      if (ps == 2) then
+        if (mortar%axis_end(1)) mortar%zone_weight(i0) = 0.0_dp
+        if (mortar%axis_end(2)) mortar%zone_weight(i0 + z) = 0.0_dp
+        mortar%covered_weight(i0:i0 + z) = mortar%zone_weight(i0:i0 + z)
+      end if
+    end if
     ! end rows: the master trace at the points paired with the cover's two ends
-    call master_shape(pm, ov(1)%rlo, nr)
-    mortar%P(i0, pm * (ov(1)%f - 1) + 1:pm * ov(1)%f + 1) = nr(1:pm + 1)
+    ! (where the zone is cut, the master's end point: exact)
+    if (.not. mortar%axis_end(1)) then
+      call master_shape(pm, ov(1)%rlo, nr)
+      mortar%P(i0, pm * (ov(1)%f - 1) + 1:pm * ov(1)%f + 1) = nr(1:pm + 1)
+    end if
     k = size(ov)
-    call master_shape(pm, ov(k)%rhi, nr)
-    mortar%P(i0 + z, pm * (ov(k)%f - 1) + 1:pm * ov(k)%f + 1) = &
-      mortar%P(i0 + z, pm * (ov(k)%f - 1) + 1:pm * ov(k)%f + 1) + nr(1:pm + 1)
-    nz = z - 1
+    if (.not. mortar%axis_end(2)) then
+      call master_shape(pm, ov(k)%rhi, nr)
+      mortar%P(i0 + z, pm * (ov(k)%f - 1) + 1:pm * ov(k)%f + 1) = &
+        mortar%P(i0 + z, pm * (ov(k)%f - 1) + 1:pm * ov(k)%f + 1) + nr(1:pm + 1)
+    end if
+    ! the unknown nodal values klo..khi: the interior nodes, and a zone end on the axis
+    klo = merge(0, 1, mortar%axis_end(1))
+    khi = merge(z, z - 1, mortar%axis_end(2))
+    nz = khi - klo + 1
     if (nz < 1) return
-    call multiplier_coefficients(ps, z, .false., c)
-    ! D = C G (interior columns), right-hand sides C H - E_0 P_0 - E_Z P_Z
+    call multiplier_coefficients(ps, z, mortar%axis_end, c)
+    ! D = C G (the unknowns' columns), right-hand sides C H - E_0 P_0 - E_Z P_Z
     kl = ps + 1
     ldab = 3 * kl + 1
     allocate(ab(ldab, nz), source=0.0_dp)
     allocate(rhs(nz, nc))
-    rhs = matmul(c(1:nz, 0:z), h)
+    rhs = matmul(c(klo:khi, 0:z), h)
     do k = 1, nz
       do l = max(1, k - kl), min(nz, k + kl)
-        ab(2 * kl + 1 + k - l, l) = dot_product(c(k, 0:z), g(0:z, l))
+        ab(2 * kl + 1 + k - l, l) = dot_product(c(klo + k - 1, 0:z), g(0:z, klo + l - 1))
       end do
-      rhs(k, :) = rhs(k, :) - dot_product(c(k, 0:z), g(0:z, 0)) * mortar%P(i0, jlo:jhi) &
-                            - dot_product(c(k, 0:z), g(0:z, z)) * mortar%P(i0 + z, jlo:jhi)
+      if (klo == 1) rhs(k, :) = rhs(k, :) - dot_product(c(klo + k - 1, 0:z), g(0:z, 0)) * mortar%P(i0, jlo:jhi)
+      if (khi == z - 1) rhs(k, :) = rhs(k, :) - dot_product(c(klo + k - 1, 0:z), g(0:z, z)) * mortar%P(i0 + z, jlo:jhi)
     end do
     allocate(ipiv(nz))
     call dgbsv(nz, kl, kl, nc, ab, ldab, ipiv, rhs, nz, info)
@@ -278,21 +402,22 @@ contains
         int_to_str(info) // ')', 1)
       return
     end if
-    mortar%P(i0 + 1:i0 + nz, jlo:jhi) = rhs
+    mortar%P(i0 + klo:i0 + khi, jlo:jhi) = rhs
   end subroutine build_open_quadratic
 
   !> The operator on a closed slave curve covered all round (module header, 5.):
   !> zone nodes 0..Z-1 = trace nodes 1..Z, node Z = node 0.
-  subroutine build_periodic_quadratic(mortar, xs, ps, xm, pm, ov, err)
+  subroutine build_periodic_quadratic(mortar, t, ov, err)
     type(mortar_t), intent(inout) :: mortar
-    real(dp), intent(in) :: xs(:,:), xm(:,:)
-    integer, intent(in) :: ps, pm
+    type(traces_t), intent(in) :: t
     type(overlap_t), intent(in) :: ov(:)
     type(error_t), allocatable, intent(out) :: err
     real(dp), allocatable :: g(:,:), h(:,:), ab(:,:), rhs(:,:), s(:,:), dab(:,:), dba(:,:)
     integer, allocatable :: ipiv(:)
-    integer :: z, na, nb, k, l, kl, ldab, info, jlo, jhi, nc, m
+    integer :: z, na, nb, k, l, kl, ldab, info, jlo, jhi, nc, m, ps, pm
 
+    ps = t%ps
+    pm = t%pm
     z = mortar%ns - 1
     call start_periodic(mortar, z / ps, 'element', err)
     if (allocated(err)) return
@@ -301,7 +426,7 @@ contains
     nc = jhi - jlo + 1
     allocate(g(0:z, 0:z), h(0:z, nc), source=0.0_dp)
     do k = 1, size(ov)
-      call add_mass(xs, ps, xm, pm, ov(k), ps * (ov(k)%e - 1), jlo, g, h)
+      call add_mass(t, ov(k), 0.0_dp, 1.0_dp, ps * (ov(k)%e - 1), jlo, g, h)
     end do
     ! fold node z onto node 0 (periodic)
     g(0, :) = g(0, :) + g(z, :)
@@ -346,51 +471,70 @@ contains
   end subroutine build_periodic_quadratic
 
   !> Coefficients C(k, m) of the multiplier basis psi_k = sum_m C(k, m) phi_m,
-  !> k = 1..z-1, m = 0..z (module header, 3.).
-  subroutine multiplier_coefficients(ps, z, periodic, c)
+  !> k = 0..z (the rows of the unknowns are used: 1..z-1, and a zone end on the
+  !> axis), m = 0..z (module header, 3.): degree p - 1 on an end element that
+  !> is an edge of the zone, the constants on a one-element zone.
+  subroutine multiplier_coefficients(ps, z, axis_end, c)
     integer, intent(in) :: ps, z
-    logical, intent(in) :: periodic
+    logical, intent(in) :: axis_end(2)
     real(dp), allocatable, intent(out) :: c(:,:)
     integer :: k
-    allocate(c(1:max(z - 1, 1), 0:z), source=0.0_dp)
-    do k = 1, z - 1
+    allocate(c(0:z, 0:z), source=0.0_dp)
+    do k = 0, z
       c(k, k) = 1.0_dp
     end do
-    if (periodic) return
-    if (z == ps) then                           ! one element: the constants
+    if (z == ps .and. .not. any(axis_end)) then  ! one element: the constants
       c(1, :) = 1.0_dp
     else if (ps == 1) then
-      c(1, 0) = 1.0_dp
-      c(z - 1, z) = 1.0_dp
-    else                                        ! degree 1 on the two end elements
-      c(1, 0) = 1.0_dp
-      c(1, 1) = 0.5_dp
-      c(2, 1) = c(2, 1) + 0.5_dp
-      c(z - 1, z) = 1.0_dp
-      c(z - 1, z - 1) = 0.5_dp
-      c(z - 2, z - 1) = c(z - 2, z - 1) + 0.5_dp
+      if (.not. axis_end(1)) c(1, 0) = 1.0_dp
+      if (.not. axis_end(2)) c(z - 1, z) = 1.0_dp
+    else                                        ! degree 1 on the end elements
+      if (.not. axis_end(1)) then
+        c(1, 0) = 1.0_dp
+        c(1, 1) = 0.5_dp
+        c(2, 1) = c(2, 1) + 0.5_dp
+      end if
+      if (.not. axis_end(2)) then
+        c(z - 1, z) = 1.0_dp
+        c(z - 1, z - 1) = 0.5_dp
+        c(z - 2, z - 1) = c(z - 2, z - 1) + 0.5_dp
+      end if
     end if
   end subroutine multiplier_coefficients
 
-  !> Add the integrals of one overlap to G (slave x slave) and H (slave x master).
+  !> The zone's part [lo, hi] of slave element e (zone elements efirst..elast):
+  !> [cut(1), 1] on the first, [0, cut(2)] on the last, [0, 1] elsewhere.
+  pure subroutine zone_part(mortar, e, efirst, elast, lo, hi)
+    type(mortar_t), intent(in) :: mortar
+    integer, intent(in) :: e, efirst, elast
+    real(dp), intent(out) :: lo, hi
+    lo = 0.0_dp
+    hi = 1.0_dp
+    if (e == efirst) lo = mortar%cut(1)
+    if (e == elast) hi = mortar%cut(2)
+  end subroutine zone_part
+
+  !> Add the integrals of one overlap to G (slave x slave) and H (slave x
+  !> master), with the zone's shape functions of the element's part [lo, hi].
   !>   m0 (in) zone index of the slave element's first node;  jlo (in) master index of H's column 1
-  subroutine add_mass(xs, ps, xm, pm, o, m0, jlo, g, h)
-    real(dp), intent(in) :: xs(:,:), xm(:,:)
-    integer, intent(in) :: ps, pm, m0, jlo
+  subroutine add_mass(t, o, lo, hi, m0, jlo, g, h)
+    type(traces_t), intent(in) :: t
     type(overlap_t), intent(in) :: o
+    real(dp), intent(in) :: lo, hi
+    integer, intent(in) :: m0, jlo
     real(dp), intent(inout) :: g(0:, 0:), h(0:, :)
     real(dp) :: s, r, w, ns(3), nr(3)
     integer :: q, a, b, j0
-    j0 = pm * (o%f - 1) + 1 - jlo + 1
+    j0 = t%pm * (o%f - 1) + 1 - jlo + 1
     do q = 1, size(gauss4, 2)
-      call pair_point(xs, ps, xm, pm, o, q, s, r, w)
-      call master_shape(ps, s, ns)
-      call master_shape(pm, r, nr)
-      do a = 1, ps + 1
-        do b = 1, ps + 1
+      call pair_point(t, o, q, s, r, w)
+      call master_shape(t%ps, (s - lo) / (hi - lo), ns)
+      call master_shape(t%pm, r, nr)
+      do a = 1, t%ps + 1
+        do b = 1, t%ps + 1
           g(m0 + a - 1, m0 + b - 1) = g(m0 + a - 1, m0 + b - 1) + w * ns(a) * ns(b)
         end do
-        do b = 1, pm + 1
+        do b = 1, t%pm + 1
           h(m0 + a - 1, j0 + b - 1) = h(m0 + a - 1, j0 + b - 1) + w * ns(a) * nr(b)
         end do
       end do
@@ -398,56 +542,78 @@ contains
   end subroutine add_mass
 
   !> mcov(j) += int over the overlap of chi_j.
-  subroutine add_master_integrals(xs, ps, xm, pm, o, mcov)
-    real(dp), intent(in) :: xs(:,:), xm(:,:)
-    integer, intent(in) :: ps, pm
+  subroutine add_master_integrals(t, o, mcov)
+    type(traces_t), intent(in) :: t
     type(overlap_t), intent(in) :: o
     real(dp), intent(inout) :: mcov(:)
     real(dp) :: s, r, w, nr(3)
     integer :: q, j0
-    j0 = pm * (o%f - 1) + 1
+    j0 = t%pm * (o%f - 1) + 1
     do q = 1, size(gauss4, 2)
-      call pair_point(xs, ps, xm, pm, o, q, s, r, w)
-      call master_shape(pm, r, nr)
-      mcov(j0:j0 + pm) = mcov(j0:j0 + pm) + w * nr(1:pm + 1)
+      call pair_point(t, o, q, s, r, w)
+      call master_shape(t%pm, r, nr)
+      mcov(j0:j0 + t%pm) = mcov(j0:j0 + t%pm) + w * nr(1:t%pm + 1)
     end do
   end subroutine add_master_integrals
 
-  !> w(0:p) += int over slave element e of its shape functions.
-  subroutine add_shape_integrals(x, p, e, w)
-    real(dp), intent(in) :: x(:,:)
-    integer, intent(in) :: p, e
+  !> w(0:p) += int over slave element e of its shape functions (ds, or 2 pi r ds).
+  subroutine add_shape_integrals(t, e, w)
+    type(traces_t), intent(in) :: t
+    integer, intent(in) :: e
     real(dp), intent(inout) :: w(:)
-    real(dp) :: y(2), dy(2), nn(3)
+    real(dp) :: y(2), dy(2), nn(3), wq
     integer :: q
     do q = 1, size(gauss4, 2)
-      call trace_point(x, p, e, gauss4(1, q), y, dy)
-      call master_shape(p, gauss4(1, q), nn)
-      w(1:p + 1) = w(1:p + 1) + gauss4(2, q) * norm2(dy) * nn(1:p + 1)
+      call trace_point(t%xs, t%ps, e, gauss4(1, q), y, dy)
+      call master_shape(t%ps, gauss4(1, q), nn)
+      wq = gauss4(2, q) * norm2(dy)
+      if (t%axisymmetric) wq = radial_weight(wq * y(1))
+      w(1:t%ps + 1) = w(1:t%ps + 1) + wq * nn(1:t%ps + 1)
     end do
   end subroutine add_shape_integrals
 
   !> Gauss point q of an overlap: the slave coordinate s, the paired master
-  !> coordinate r (where the line x(s) + tau n(s) meets master element f) and
-  !> the quadrature weight w = w_q (hi - lo) |x'(s)|.
-  subroutine pair_point(xs, ps, xm, pm, o, q, s, r, w)
-    real(dp), intent(in) :: xs(:,:), xm(:,:)
-    integer, intent(in) :: ps, pm, q
+  !> coordinate r (where the line x(s) + tau d(s) meets master element f, d
+  !> the slave direction field) and the quadrature weight
+  !> w = w_q (hi - lo) |x'(s)|, times 2 pi r(s) when axisymmetric.
+  subroutine pair_point(t, o, q, s, r, w)
+    type(traces_t), intent(in) :: t
     type(overlap_t), intent(in) :: o
+    integer, intent(in) :: q
     real(dp), intent(out) :: s, r, w
     real(dp) :: x(2), dx(2)
     s = o%lo + gauss4(1, q) * (o%hi - o%lo)
-    call trace_point(xs, ps, o%e, s, x, dx)
+    call trace_point(t%xs, t%ps, o%e, s, x, dx)
     r = o%rlo + gauss4(1, q) * (o%rhi - o%rlo)
-    call ray_on_element(xm, pm, o%f, x, [dx(2), -dx(1)], r)
+    call ray_on_element(t%xm, t%pm, o%f, x, slave_direction(t, o%e, s), r)
     w = gauss4(2, q) * (o%hi - o%lo) * norm2(dx)
+    if (t%axisymmetric) w = radial_weight(w * x(1))
   end subroutine pair_point
+
+  !> The unit pairing direction at the point s of slave element e: the
+  !> curve's outward normal, or for a frictional pair the common normals of
+  !> the element's nodes interpolated by its shape functions.
+  function slave_direction(t, e, s) result(d)
+    type(traces_t), intent(in) :: t
+    integer, intent(in) :: e
+    real(dp), intent(in) :: s
+    real(dp) :: d(2), x(2), dx(2), nn(3)
+    integer :: i0
+    if (allocated(t%pairing)) then
+      i0 = t%ps * (e - 1) + 1
+      call master_shape(t%ps, s, nn)
+      d = matmul(t%pairing(:, i0:i0 + t%ps), nn(1:t%ps + 1))
+    else
+      call trace_point(t%xs, t%ps, e, s, x, dx)
+      d = side(t%xs, t%ps, e, t%sn(:, e)) * [dx(2), -dx(1)]
+    end if
+    d = d / norm2(d)
+  end function slave_direction
 
   !> Intersect the slave and master traces (module header, 1.): the overlaps,
   !> ordered by slave element and increasing lo.
-  subroutine intersect_traces(xs, ps, sn_out, xm, pm, mn_out, ov, nov)
-    real(dp), intent(in) :: xs(:,:), sn_out(:,:), xm(:,:), mn_out(:,:)
-    integer, intent(in) :: ps, pm
+  subroutine intersect_traces(t, ov, nov)
+    type(traces_t), intent(in) :: t
     type(overlap_t), allocatable, intent(out) :: ov(:)
     integer, intent(out) :: nov
     type(overlap_t), allocatable :: tmp(:)
@@ -457,17 +623,17 @@ contains
     real(dp), allocatable :: sv(:)
     integer, allocatable :: order(:)
 
-    nes = (size(xs, 2) - 1) / ps
-    nem = (size(xm, 2) - 1) / pm
+    nes = (size(t%xs, 2) - 1) / t%ps
+    nem = (size(t%xm, 2) - 1) / t%pm
     allocate(ov(max(16, nes + nem)), sv(nem + 1))
     nov = 0
     do e = 1, nes
       do f = 1, nem + 1                         ! each master corner's slave coordinate on e
-        sv(f) = project_on_element(xs, ps, e, xm(:, pm * (f - 1) + 1))
+        sv(f) = project_on_element(t, e, t%xm(:, t%pm * (f - 1) + 1))
       end do
       n0 = nov
       do f = 1, nem
-        if (dot_product(mn_out(:, f), sn_out(:, e)) >= -min_facing) cycle
+        if (dot_product(t%mn(:, f), t%sn(:, e)) >= -min_facing) cycle
         sa = sv(f)
         sb = sv(f + 1)
         o%lo = max(0.0_dp, min(sa, sb))
@@ -478,10 +644,10 @@ contains
         ! master coordinates at the overlap's ends: along the rays from x(lo), x(hi)
         o%rlo = min(1.0_dp, max(0.0_dp, (o%lo - sa) / (sb - sa)))
         o%rhi = min(1.0_dp, max(0.0_dp, (o%hi - sa) / (sb - sa)))
-        call trace_point(xs, ps, e, o%lo, x, dx)
-        call ray_on_element(xm, pm, f, x, [dx(2), -dx(1)], o%rlo)
-        call trace_point(xs, ps, e, o%hi, x, dx)
-        call ray_on_element(xm, pm, f, x, [dx(2), -dx(1)], o%rhi)
+        call trace_point(t%xs, t%ps, e, o%lo, x, dx)
+        call ray_on_element(t%xm, t%pm, f, x, slave_direction(t, e, o%lo), o%rlo)
+        call trace_point(t%xs, t%ps, e, o%hi, x, dx)
+        call ray_on_element(t%xm, t%pm, f, x, slave_direction(t, e, o%hi), o%rhi)
         o%rlo = min(1.0_dp, max(0.0_dp, o%rlo))
         o%rhi = min(1.0_dp, max(0.0_dp, o%rhi))
         if (nov == size(ov)) then
@@ -500,23 +666,42 @@ contains
     end do
   end subroutine intersect_traces
 
-  !> The slave coordinate s of element e whose normal line passes through y:
-  !> (y - x(s)).x'(s) = 0, Newton from the chord's projection (exact in one
-  !> step on a straight element); may lie outside [0, 1].
-  real(dp) function project_on_element(x, p, e, y) result(s)
-    real(dp), intent(in) :: x(:,:), y(2)
-    integer, intent(in) :: p, e
-    real(dp) :: xa(2), xb(2), pt(2), d1(2), d2(2), f, df
-    integer :: it
-    xa = x(:, p * (e - 1) + 1)
-    xb = x(:, p * e + 1)
+  !> The slave coordinate s of element e whose pairing line passes through y:
+  !> cross(y - x(s), d(s)) = 0, d the direction field (the normal [x'_2, -x'_1],
+  !> i.e. (y - x(s)).x'(s) = 0, or the interpolated common normals); Newton from
+  !> the chord's projection (exact in one step on a straight element without
+  !> pairing); may lie outside [0, 1], and is the chord's projection where
+  !> that is more than an element beyond it.
+  real(dp) function project_on_element(t, e, y) result(s)
+    type(traces_t), intent(in) :: t
+    integer, intent(in) :: e
+    real(dp), intent(in) :: y(2)
+    real(dp) :: xa(2), xb(2), pt(2), d1(2), d2(2), dir(2), ddir(2), f, df, nn(3), dn(3)
+    integer :: it, i0, p
+    p = t%ps
+    i0 = p * (e - 1) + 1
+    xa = t%xs(:, i0)
+    xb = t%xs(:, i0 + p)
     s = dot_product(y - xa, xb - xa) / dot_product(xb - xa, xb - xa)
-    if (p == 1) return
+    if (p == 1 .and. .not. allocated(t%pairing)) return
+    ! a point far beyond the element stays there: Newton on the extrapolated
+    ! curve (and pairing field) could find a spurious root inside it
+    if (s < -1.0_dp .or. s > 2.0_dp) return
     do it = 1, 20
-      call trace_point(x, p, e, s, pt, d1)
-      d2 = 4.0_dp * (x(:, p * (e - 1) + 1) - 2.0_dp * x(:, p * (e - 1) + 2) + x(:, p * e + 1))
-      f = dot_product(y - pt, d1)
-      df = -dot_product(d1, d1) + dot_product(y - pt, d2)
+      call trace_point(t%xs, p, e, s, pt, d1)
+      d2 = 0.0_dp
+      if (p == 2) d2 = 4.0_dp * (t%xs(:, i0) - 2.0_dp * t%xs(:, i0 + 1) + t%xs(:, i0 + 2))
+      if (allocated(t%pairing)) then
+        call master_shape(p, s, nn)
+        call shape_derivative(p, s, dn)
+        dir = matmul(t%pairing(:, i0:i0 + p), nn(1:p + 1))
+        ddir = matmul(t%pairing(:, i0:i0 + p), dn(1:p + 1))
+      else
+        dir = [d1(2), -d1(1)]
+        ddir = [d2(2), -d2(1)]
+      end if
+      f = cross(y - pt, dir)
+      df = -cross(d1, dir) + cross(y - pt, ddir)
       if (df == 0.0_dp) exit
       s = s - f / df
       if (abs(f / df) < 1.0e-15_dp) exit
@@ -541,6 +726,91 @@ contains
       if (abs(g / dg) < 1.0e-15_dp) exit
     end do
   end subroutine ray_on_element
+
+  !> The nearest hit of the line a + tau d on a master element facing d
+  !> (f = 0 when it misses the master): the quadratic counterpart of
+  !> mortar_geometry's ray_hit.
+  !>   f (out) the master element;  r (out) its coordinate in [0, 1]
+  subroutine ray_on_trace(xm, pm, mn_out, a, d, f, r)
+    real(dp), intent(in) :: xm(:,:), mn_out(:,:), a(2), d(2)
+    integer, intent(in) :: pm
+    integer, intent(out) :: f
+    real(dp), intent(out) :: r
+    real(dp) :: ya(2), yb(2), y(2), dy(2), den, rr, best, tau
+    integer :: g
+    f = 0
+    r = 0.0_dp
+    best = huge(1.0_dp)
+    do g = 1, size(mn_out, 2)
+      if (dot_product(mn_out(:, g), d) >= 0.0_dp) cycle
+      ya = xm(:, pm * (g - 1) + 1)
+      yb = xm(:, pm * g + 1)
+      den = cross(d, yb - ya)
+      if (abs(den) <= 1.0e-12_dp * norm2(yb - ya)) cycle      ! element along the line
+      rr = -cross(d, ya - a) / den                           ! the chord's hit, a start for Newton
+      if (rr < -0.5_dp .or. rr > 1.5_dp) cycle
+      call ray_on_element(xm, pm, g, a, d, rr)
+      if (rr < -tol_ray .or. rr > 1.0_dp + tol_ray) cycle
+      call trace_point(xm, pm, g, rr, y, dy)
+      tau = dot_product(y - a, d)
+      if (abs(tau) < best) then
+        best = abs(tau)
+        f = g
+        r = min(1.0_dp, max(0.0_dp, rr))
+      end if
+    end do
+  end subroutine ray_on_trace
+
+  !> Unit outward nodal normals of a trace: the curve's normal at each node,
+  !> the mean of its two elements' at a corner (a closed trace's first node
+  !> is its last).
+  subroutine trace_normals(x, p, nout, n)
+    real(dp), intent(in) :: x(:,:), nout(:,:)
+    integer, intent(in) :: p
+    real(dp), allocatable, intent(out) :: n(:,:)
+    real(dp) :: sigma, y(2), dy(2)
+    integer :: np, e, k, i
+    np = size(x, 2)
+    allocate(n(2, np), source=0.0_dp)
+    do e = 1, (np - 1) / p
+      sigma = side(x, p, e, nout(:, e))
+      do k = 0, p
+        call trace_point(x, p, e, real(k, dp) / p, y, dy)
+        n(:, p * (e - 1) + 1 + k) = n(:, p * (e - 1) + 1 + k) + sigma * [dy(2), -dy(1)] / norm2(dy)
+      end do
+    end do
+    if (all(x(:, 1) == x(:, np))) then
+      n(:, 1) = n(:, 1) + n(:, np)
+      n(:, np) = n(:, 1)
+    end if
+    do i = 1, np
+      n(:, i) = n(:, i) / norm2(n(:, i))
+    end do
+  end subroutine trace_normals
+
+  !> Mean curvature (convex > 0) of the marked elements of a trace: mortar_geometry's
+  !> mean_curvature on the polygon of its nodes (mid-side nodes included).
+  real(dp) function trace_curvature(x, p, nout, marked) result(k)
+    real(dp), intent(in) :: x(:,:), nout(:,:)
+    integer, intent(in) :: p
+    logical, intent(in) :: marked(:)
+    real(dp), allocatable :: nseg(:,:)
+    logical, allocatable :: seg(:)
+    real(dp) :: c(2), sigma
+    integer :: np, e, j, i
+    np = size(x, 2)
+    allocate(nseg(2, np - 1), seg(np - 1))
+    do e = 1, (np - 1) / p
+      sigma = side(x, p, e, nout(:, e))
+      do j = 1, p
+        i = p * (e - 1) + j
+        c = x(:, i + 1) - x(:, i)
+        nseg(:, i) = sigma * [c(2), -c(1)] / norm2(c)
+        seg(i) = marked(e)
+      end do
+    end do
+    k = mean_curvature(x, nseg, seg)
+  end function trace_curvature
 
   !> Point y and derivative dy = dx/ds of element e of a trace of degree p at s.
   pure subroutine trace_point(x, p, e, s, y, dy)
@@ -571,6 +841,25 @@ contains
       n = [(1.0_dp - s) * (1.0_dp - 2.0_dp * s), 4.0_dp * s * (1.0_dp - s), s * (2.0_dp * s - 1.0_dp)]
     end if
   end subroutine master_shape
+
+  !> Derivatives of the shape functions of a trace element of degree p at s.
+  pure subroutine shape_derivative(p, s, dn)
+    integer, intent(in) :: p
+    real(dp), intent(in) :: s
+    real(dp), intent(out) :: dn(3)
+    dn = 0.0_dp
+    if (p == 1) then
+      dn(1:2) = [-1.0_dp, 1.0_dp]
+    else
+      dn = [4.0_dp * s - 3.0_dp, 4.0_dp - 8.0_dp * s, 4.0_dp * s - 1.0_dp]
+    end if
+  end subroutine shape_derivative
+
+  !> z-component of the cross product of two plane vectors.
+  pure real(dp) function cross(u, v)
+    real(dp), intent(in) :: u(2), v(2)
+    cross = u(1) * v(2) - u(2) * v(1)
+  end function cross
 
   !> +1 or -1: the side of [x'_2, -x'_1] on which the element's outward chord normal lies.
   real(dp) function side(x, p, e, nout)

@@ -203,16 +203,6 @@ contains
         end if
         sc%specs(ip)%master_bnd = boundary_index(deck, c%line, sc%bodies(c%master_body), c%master_boundary, &
                                                  'CONTACT master', .true., diag)
-        ! quadratic traces (mortar_quadratic): frictionless only, the common normal is not carried over
-        if ((is_quadratic(sc%bodies(c%slave_body)%mesh) .or. is_quadratic(sc%bodies(c%master_body)%mesh)) &
-            .and. (sc%specs(ip)%mu > 0.0_dp .or. sc%specs(ip)%tresca > 0.0_dp)) &
-          call add_error(diag, deck%file, c%line, 'friction on quadratic elements is not available ' // &
-                         '(a frictionless CONTACT, or P1/Q1 boundaries, expected)')
-        ! mortar_quadratic's integrals carry no radial weight yet (segment_rule would give it)
-        if ((is_quadratic(sc%bodies(c%slave_body)%mesh) .or. is_quadratic(sc%bodies(c%master_body)%mesh)) &
-            .and. deck%axisymmetric) &
-          call add_error(diag, deck%file, c%line, 'contact on quadratic elements is not available in PLANE ' // &
-                         'axisymmetric (line ' // int_to_str(deck%plane_line) // ') (P1/Q1 boundaries expected)')
         if (c%slave_body == c%master_body .and. c%slave_boundary == c%master_boundary) then
           call add_error(diag, deck%file, c%line, 'slave and master are the same boundary (two different boundaries expected)')
         end if

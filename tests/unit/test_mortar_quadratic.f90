@@ -7,7 +7,7 @@
 program test_mortar_quadratic
   use kinds, only: dp
   use errors, only: error_t
-  use mortar_operator, only: mortar_t
+  use mortar_operator, only: mortar_t, zone_point
   use mortar_quadratic, only: build_mortar_quadratic, trace_point, gauss4
   use testing, only: check, check_close, check_small, finish_tests, tol_round
   implicit none
@@ -17,6 +17,11 @@ program test_mortar_quadratic
   call test_straight(2, 2)
   call test_straight(1, 2)
   call test_straight(2, 1)
+  call test_cut(2, 2)
+  call test_cut(1, 2)
+  call test_cut(2, 1)
+  call test_axisymmetric(2, 2)
+  call test_axisymmetric(1, 2)
   call test_curved_quadrature()
   call test_periodic()
   call finish_tests()
@@ -61,17 +66,17 @@ contains
     real(dp), allocatable :: xs(:,:), xm(:,:), mcov(:), c(:), v(:)
     type(mortar_t) :: mo
     type(error_t), allocatable :: err
-    logical :: extended(2)
     character(len=16) :: tag
     integer :: deg
     xs = flat_trace(ps, 7, 0.0_dp, 0.2_dp)
     xm = flat_trace(pm, 5, 0.1_dp, -0.25_dp)
     write(tag, '(a,i0,a,i0,a)') '(', ps, ' on ', pm, ')'
     call build_mortar_quadratic(xs, ps, constant_normals(7, [0.0_dp, 1.0_dp]), xm, pm, &
-                                constant_normals(5, [0.0_dp, -1.0_dp]), .false., mo, mcov, extended, err)
+                                constant_normals(5, [0.0_dp, -1.0_dp]), .false., mo, mcov, err)
     call check(.not. allocated(err), 'straight ' // trim(tag) // ': built')
     if (allocated(err)) return
-    call check(mo%first == 1 .and. mo%last == size(xs, 2) .and. .not. any(extended), &
+    call check(mo%first == 1 .and. mo%last == size(xs, 2) &
+               .and. all(mo%cut == [0.0_dp, 1.0_dp]), &
                'straight ' // trim(tag) // ': the zone is the whole slave')
     call check_small(maxval(abs(sum(mo%P, dim=2) - 1.0_dp)), tol_round(64), 'straight ' // trim(tag) // ': pi 1 = 1')
     deg = min(ps, pm)
@@ -127,6 +132,95 @@ contains
   !> 64 panels per element.  The largest relative errors are printed for
   !> nel = 4, 8, 16; below 2e-9 at 8, and falling as h^6 (measured ratio 63
   !> per halving; the rule is exact to degree 7, the relative error h^6).
+  !> A master (degree pm, 5 elements over [0.13, 0.87], y = 0.1) that ends
+  !> inside the first and last elements of the slave (degree ps, 7 elements
+  !> over [0, 1], y = 0): the zone is the slave cut at the master's ends
+  !> (module header, 4.).  The cut ends' zone points are x = 0.13 and 0.87,
+  !> pi reproduces the polynomials of degree min(ps, pm) at every zone point,
+  !> pi 1 = 1, int pi phi = int phi with the zone's weights, the gap is 0.1.
+  subroutine test_cut(ps, pm)
+    integer, intent(in) :: ps, pm
+    real(dp), allocatable :: xs(:,:), xm(:,:), mcov(:), c(:), v(:), xz(:)
+    type(mortar_t) :: mo
+    type(error_t), allocatable :: err
+    character(len=16) :: tag
+    integer :: deg, i
+    real(dp) :: pt(2)
+    xs = flat_trace(ps, 7, 0.0_dp, 0.0_dp)
+    xm = flat_trace(pm, 5, 0.1_dp, -0.25_dp)
+    xm(1, :) = 0.13_dp + 0.74_dp * xm(1, :)
+    write(tag, '(a,i0,a,i0,a)') '(', ps, ' on ', pm, ')'
+    call build_mortar_quadratic(xs, ps, constant_normals(7, [0.0_dp, 1.0_dp]), xm, pm, &
+                                constant_normals(5, [0.0_dp, -1.0_dp]), .false., mo, mcov, err)
+    call check(.not. allocated(err), 'cut ' // trim(tag) // ': built')
+    if (allocated(err)) return
+    call check(mo%first == 1 .and. mo%last == size(xs, 2), 'cut ' // trim(tag) // ': the zone spans the slave''s elements')
+    call check_small(norm2(zone_point(mo, xs, mo%first) - [0.13_dp, 0.0_dp]) + &
+                     norm2(zone_point(mo, xs, mo%last) - [0.87_dp, 0.0_dp]), tol_round(16), &
+                     'cut ' // trim(tag) // ': the zone ends where the master ends')
+    allocate(xz(mo%first:mo%last))
+    do i = mo%first, mo%last
+      pt = zone_point(mo, xs, i)
+      xz(i) = pt(1)
+    end do
+    call check_small(maxval(abs(sum(mo%P, dim=2) - 1.0_dp)), tol_round(64), 'cut ' // trim(tag) // ': pi 1 = 1')
+    deg = min(ps, pm)
+    c = poly(xm(1, :), deg)
+    v = matmul(mo%P, c)
+    call check_small(maxval(abs(v - poly(xz, deg))), tol_round(64), &
+                     'cut ' // trim(tag) // ': pi reproduces the polynomials of the common degree at the zone points')
+    call check_close(dot_product(mo%zone_weight, v), dot_product(mcov, c), tol_round(64), &
+                     'cut ' // trim(tag) // ': int pi phi = int phi (the zone''s weights)')
+    call check_close(sum(mo%zone_weight), 0.74_dp, tol_round(16), 'cut ' // trim(tag) // ': the zone is 0.74 long')
+    call check_small(maxval(abs(mo%gap0 - 0.1_dp)), tol_round(16), 'cut ' // trim(tag) // ': gap0 = 0.1')
+  end subroutine test_cut
+
+  !> Axisymmetric (x the radius): the slave (degree ps, 7 elements over
+  !> r in [0, 1], z = 0) under the master (degree pm, 5 elements, z = 0.1).
+  !> The weights int phi_i 2 pi r ds against Simpson's rule, exact for the
+  !> cubic phi_i r (corner 2 pi L r / 6, mid-side node 2 pi L 4 r_m / 6 on a
+  !> quadratic element); pi 1 = 1 and int pi phi 2 pi r = int phi 2 pi r
+  !> (exact quadrature, degree 5 <= 7); the zone's first node on the axis
+  !> gets the axis as its normal (module header, 7.).
+  subroutine test_axisymmetric(ps, pm)
+    integer, intent(in) :: ps, pm
+    real(dp), allocatable :: xs(:,:), xm(:,:), mcov(:), c(:), v(:), w(:)
+    type(mortar_t) :: mo
+    type(error_t), allocatable :: err
+    character(len=16) :: tag
+    integer :: deg, e, i0
+    real(dp) :: l
+    xs = flat_trace(ps, 7, 0.0_dp, 0.2_dp)
+    xm = flat_trace(pm, 5, 0.1_dp, -0.25_dp)
+    write(tag, '(a,i0,a,i0,a)') '(', ps, ' on ', pm, ')'
+    call build_mortar_quadratic(xs, ps, constant_normals(7, [0.0_dp, 1.0_dp]), xm, pm, &
+                                constant_normals(5, [0.0_dp, -1.0_dp]), .false., mo, mcov, err, axisymmetric=.true.)
+    call check(.not. allocated(err), 'axisymmetric ' // trim(tag) // ': built')
+    if (allocated(err)) return
+    allocate(w(size(xs, 2)), source=0.0_dp)
+    do e = 1, 7
+      i0 = ps * (e - 1) + 1
+      l = xs(1, i0 + ps) - xs(1, i0)
+      if (ps == 1) then                         ! int phi r over a segment: L (2 r_a + r_b) / 6
+        w(i0) = w(i0) + 2 * pi * l * (2 * xs(1, i0) + xs(1, i0 + 1)) / 6
+        w(i0 + 1) = w(i0 + 1) + 2 * pi * l * (xs(1, i0) + 2 * xs(1, i0 + 1)) / 6
+      else
+        w(i0:i0 + 2) = w(i0:i0 + 2) + 2 * pi * l * [xs(1, i0), 4 * xs(1, i0 + 1), xs(1, i0 + 2)] / 6
+      end if
+    end do
+    call check_small(maxval(abs(mo%weight - w)) / pi, tol_round(64), &
+                     'axisymmetric ' // trim(tag) // ': weights int phi_i 2 pi r ds (Simpson, exact)')
+    call check_close(sum(mo%zone_weight), pi, tol_round(16), 'axisymmetric ' // trim(tag) // ': the zone''s area is pi')
+    call check_small(maxval(abs(sum(mo%P, dim=2) - 1.0_dp)), tol_round(64), 'axisymmetric ' // trim(tag) // ': pi 1 = 1')
+    deg = min(ps, pm)
+    c = poly(xm(1, :), deg)
+    v = matmul(mo%P, c)
+    call check_close(dot_product(mo%zone_weight, v), dot_product(mcov, c), tol_round(64), &
+                     'axisymmetric ' // trim(tag) // ': int pi phi 2 pi r = int phi 2 pi r')
+    call check(mo%axis_end(1) .and. .not. mo%axis_end(2) .and. all(mo%normal(:, 1) == [0.0_dp, 1.0_dp]), &
+               'axisymmetric ' // trim(tag) // ': the zone''s end on the axis has no end condition, the axis as normal')
+  end subroutine test_axisymmetric
+
   !> The covered weights are compared at the nodes off the two end elements,
   !> whose cover starts a hair inside them (the arcs' normals at the ends are
   !> those of their interpolants, not exactly radial).
@@ -135,7 +229,6 @@ contains
     real(dp), allocatable :: xs(:,:), xm(:,:), mcov(:), w(:)
     type(mortar_t) :: mo
     type(error_t), allocatable :: err
-    logical :: extended(2)
     real(dp) :: errw(3), errc(3), y(2), dy(2), s, nn(3)
     integer :: l, nel, e, k, q, n
     do l = 1, 3
@@ -143,7 +236,7 @@ contains
       xs = arc_trace(1.001_dp, 0.0_dp, 0.5_dp * pi, nel)
       xm = arc_trace(1.0_dp, 0.0_dp, 0.5_dp * pi, 17)
       call build_mortar_quadratic(xs, 2, chord_normals(xs, 1.0_dp), xm, 2, chord_normals(xm, -1.0_dp), &
-                                  .false., mo, mcov, extended, err)
+                                  .false., mo, mcov, err)
       call check(.not. allocated(err), 'curved: built')
       if (allocated(err)) return
       n = size(xs, 2)
@@ -179,14 +272,13 @@ contains
     real(dp), allocatable :: xs(:,:), xm(:,:), mcov(:), c(:)
     type(mortar_t) :: mo
     type(error_t), allocatable :: err
-    logical :: extended(2)
     real(dp) :: dev
     xs = arc_trace(1.001_dp, 0.0_dp, 2.0_dp * pi, 24)
     xm = arc_trace(1.0_dp, 0.1_dp, 0.1_dp + 2.0_dp * pi, 19)
     xs(:, size(xs, 2)) = xs(:, 1)
     xm(:, size(xm, 2)) = xm(:, 1)
     call build_mortar_quadratic(xs, 2, chord_normals(xs, 1.0_dp), xm, 2, chord_normals(xm, -1.0_dp), &
-                                .false., mo, mcov, extended, err)
+                                .false., mo, mcov, err)
     call check(.not. allocated(err), 'periodic: built')
     if (allocated(err)) return
     call check(mo%first == 1 .and. mo%last == size(xs, 2), 'periodic: every slave node in the zone')
