@@ -324,7 +324,7 @@ contains
   end subroutine assemble_stiffness
 
   !> Spring element i of bd: its matrix in the solver basis (Q' K Q at the
-  !> nodes in local axes) and its dofs, 2 nodes(i) of each.
+  !> nodes in local axes) and its dofs, two per node.
   !>   ke   (out) (2 max_nen, 2 max_nen), ke(1:2 nen, 1:2 nen) set
   !>   dofs (out) (2 max_nen), dofs(1:2 nen) set
   pure subroutine spring_matrix(bd, i, ke, dofs)
