@@ -218,6 +218,9 @@ contains
       '    BODYFORCE fx= fy= [ramp=k0:k1|curve=NAME]', &
       '    THERMAL alpha= dT= [region=NAME] [curve=NAME]  (uniform temperature change; per physical surface)', &
       '    OFFSET dx= dy=                    (rigid shift of the body''s geometry)', &
+      '    FORCE point [fx=] [fy=] [ramp=k0:k1|curve=NAME]  (at each node of a point set: a gmsh Physical Point)', &
+      '    SPRING boundary kn= [kt=0]        (elastic foundation, per unit length (area axisymmetric), n and t)', &
+      '    SPRING point [kx=] [ky=]          (a spring to the ground at each node of a point set)', &
       '  GRAVITY gx= gy= [ramp=k0:k1|curve=NAME]', &
       '  CONTACT slave=body:boundary master=body:boundary [gap=geometry|zero] [mu=C | tresca=S]', &
       '          [interference=allow|reject]  (a boundary may be a closed curve; an initial penetration', &

@@ -401,9 +401,14 @@ contains
       do ip = 1, size(run%sc%specs)
         if (run%sc%specs(ip)%slave_body == b .or. run%sc%specs(ip)%master_body == b) in_contact = .true.
       end do
-      if (.not. in_contact) call add_error(run%diag, run%deck%file, run%deck%bodies(b)%line, 'body "' // run%sc%bodies(b)%name // &
+      if (.not. in_contact .and. size(run%deck%bodies(b)%springs) == 0) call add_error(run%diag, run%deck%file, &
+        run%deck%bodies(b)%line, 'body "' // run%sc%bodies(b)%name // &
         '": its FIX statements leave a rigid-body mode free (' // mode_name(run%fl, j) // ') and no CONTACT holds ' // &
         'the body (a FIX that blocks it, or a CONTACT, expected)')
+      if (.not. in_contact .and. size(run%deck%bodies(b)%springs) > 0) call add_error(run%diag, run%deck%file, &
+        run%deck%bodies(b)%line, 'body "' // run%sc%bodies(b)%name // &
+        '": its FIX and SPRING statements leave a rigid-body mode free (' // mode_name(run%fl, j) // ') and no ' // &
+        'CONTACT holds the body (a FIX or a SPRING that resists it, or a CONTACT, expected)')
     end do
     call stop_input_errors(run%diag)
   end subroutine check_floating_bodies

@@ -1,6 +1,7 @@
 !> post_processing: what the files report, computed from the displacement and
 !> the contact multipliers: stresses, energy and the reaction of each FIX
-!> (R = K u - f_ext - f_contact on its fixed dofs), the contact resultant of
+!> (R = K u - f_ext - f_contact on its fixed dofs) and of each SPRING
+!> (-K_s u over its springs), the contact resultant of
 !> each pair, each RIGID's motion and the force on it, the contact measures
 !> (pressures p = mu / int(phi_i), status, counts, complementarity) and the
 !> nodal contact fields of the VTK file; last, the check that every number
@@ -27,7 +28,8 @@ module post_processing
   use exits, only: fail_numerical
   use run_state, only: run_t
   use results_writer, only: results_t
-  use body, only: element_response, to_global_axes
+  use run_report, only: add_warning
+  use body, only: element_response, to_global_axes, spring_reactions
   use contact_set, only: row_of_node, node_rows, node_traction
   use contact_condensation, only: contact_forces
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
@@ -40,14 +42,23 @@ module post_processing
 contains
 
   !> The names of the summary's rows, which the load steps do not change:
-  !> each FIX's BODY:BOUNDARY (its reaction), each RIGID's name.
-  !>   run (inout) the scene on entry; res%fix_label, res%rigid_name on exit
+  !> each FIX's BODY:BOUNDARY (its reaction), each SPRING's BODY:NAME, each
+  !> RIGID's name.
+  !>   run (inout) the scene on entry; res%fix_label, res%spring_label, res%rigid_name on exit
   subroutine name_results(run)
     type(run_t), intent(inout) :: run
-    integer :: j
+    integer :: j, b, n
     allocate(run%res%fix_label(size(run%sc%fixes)), run%res%rigid_name(size(run%sc%rigids)))
     do j = 1, size(run%sc%fixes)
       run%res%fix_label(j)%s = run%sc%fixes(j)%label
+    end do
+    allocate(run%res%spring_label(sum([(size(run%deck%bodies(b)%springs), b = 1, size(run%deck%bodies))])))
+    n = 0
+    do b = 1, size(run%deck%bodies)
+      do j = 1, size(run%deck%bodies(b)%springs)
+        n = n + 1
+        run%res%spring_label(n)%s = run%deck%bodies(b)%name // ':' // run%deck%bodies(b)%springs(j)%boundary
+      end do
     end do
     do j = 1, size(run%sc%rigids)
       run%res%rigid_name(j)%s = run%sc%rigids(j)%name
@@ -121,7 +132,7 @@ contains
     type(run_t), intent(in) :: run
     real(dp), intent(in) :: fext(:)
     type(results_t), intent(inout) :: res
-    integer :: j, b, a
+    integer :: j, b, a, n, ns
     real(dp), allocatable :: axis(:,:), fint(:)
     if (allocated(res%stress)) deallocate(res%stress, res%vm)
     if (allocated(res%reaction)) deallocate(res%reaction)
@@ -153,6 +164,15 @@ contains
           r = r + (fint(j) - fext(j) - run%fc(j)) * axis(:, j)
         end associate
       end if
+    end do
+    ! each SPRING's force on its body, -K_s u (u still in the solver basis)
+    if (allocated(res%spring_force)) deallocate(res%spring_force)
+    allocate(res%spring_force(2, sum([(size(run%deck%bodies(b)%springs), b = 1, size(run%deck%bodies))])), source=0.0_dp)
+    n = 0
+    do b = 1, size(run%sc%bodies)
+      ns = size(run%deck%bodies(b)%springs)
+      if (ns > 0) call spring_reactions(run%sc%bodies(b), res%u, res%spring_force(:, n + 1:n + ns))
+      n = n + ns
     end do
     call to_global_axes(run%sc%bodies, res%u)
   end subroutine post_process
@@ -259,7 +279,7 @@ contains
     type(run_t), intent(in) :: run
     type(results_t), intent(inout) :: res
     logical :: ok
-    ok = ieee_is_finite(res%energy) .and. all(ieee_is_finite(res%reaction)) .and. &
+    ok = ieee_is_finite(res%energy) .and. all(ieee_is_finite(res%reaction)) .and. all(ieee_is_finite(res%spring_force)) .and. &
          ieee_is_finite(res%complementarity)
     if (run%deck%output%fields(4) .or. run%deck%output%fields(5)) &
       ok = ok .and. all(ieee_is_finite(res%stress)) .and. all(ieee_is_finite(res%vm))

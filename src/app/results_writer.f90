@@ -68,6 +68,8 @@ module results_writer
     real(dp), allocatable :: contact_force(:,:)  !< (2, npair) resultant of the contact forces on each
                                                  !< pair's slave body, -sum_i (mu_i n_i + tau_i t_i)
     type(string_t), allocatable :: fix_label(:) !< (nfix) BODY:BOUNDARY
+    type(string_t), allocatable :: spring_label(:) !< (nspring) BODY:NAME of each SPRING statement
+    real(dp), allocatable :: spring_force(:,:)   !< (2, nspring) force of each SPRING on its body, x, y
     type(string_t), allocatable :: rigid_name(:) !< (nrigid) the RIGID obstacles
     real(dp), allocatable :: rigid(:,:)          !< (6, nrigid) ux uy rz of the reference point, fx fy m the
                                                  !< contact force on the obstacle (summary rigid)
@@ -465,6 +467,12 @@ contains
     do k = 1, size(r%fix_label)
       write(u, '(a)') 'reaction ' // r%fix_label(k)%s // ' ' // num(r%reaction(1, k)) // ' ' // num(r%reaction(2, k))
     end do
+    if (allocated(r%spring_label) .and. allocated(r%spring_force)) then
+      do k = 1, size(r%spring_label)
+        write(u, '(a)') 'spring ' // r%spring_label(k)%s // ' ' // num(r%spring_force(1, k)) // ' ' // &
+                        num(r%spring_force(2, k))
+      end do
+    end if
     if (allocated(r%contact_force)) then
       do k = 1, size(r%contact_force, 2)
         write(u, '(a,i0,a)') 'contact_force ', k, ' ' // num(r%contact_force(1, k)) // ' ' // num(r%contact_force(2, k))

@@ -23,7 +23,8 @@ module run_report
   use kinds, only: dp, i8
   use strings, only: int_to_str
   use run_state, only: run_t, ph_total, ph_factor, ph_assemble, ph_lcp
-  use mesh, only: is_quadratic
+  use mesh, only: is_quadratic, find_name, boundary_nodes
+  use deck_reader, only: load_point
   use contact_set, only: pair_spec_t, has_friction
   use contact_condensation, only: condensed_report
   use rigid_modes, only: mode_name, motion_name
@@ -175,6 +176,7 @@ contains
       call say(run, 'body     ' // run%sc%bodies(b)%name // ': ' // trim(line))
       call report_formulation(run, b)
     end do
+    call report_supports(run)
     call report_rigids(run)
     do ip = 1, run%cs%npair
       write(line, '(a,i0,a,i0,a,i0,a,i0,a)') 'contact  pair ', ip, ': ', size(run%cs%pair(ip)%snode), &
@@ -286,6 +288,44 @@ contains
       call say(run, 'body     ' // bd%name // ': formulation: ' // text // ', ' // nu)
     end associate
   end subroutine report_formulation
+
+  !> The run log's lines of each point FORCE and each SPRING of the bodies:
+  !> the point set or boundary, the values and the nodes or edges they reach.
+  subroutine report_supports(run)
+    type(run_t), intent(inout) :: run
+    integer :: b, k, ib, nk
+    integer, allocatable :: nodes(:)
+    character(len=:), allocatable :: unit
+    unit = 'per unit length'
+    if (run%deck%axisymmetric) unit = 'per unit area'
+    do b = 1, size(run%sc%bodies)
+      associate (bd => run%sc%bodies(b), bdeck => run%deck%bodies(b))
+        do k = 1, size(bdeck%loads)
+          if (bdeck%loads(k)%kind /= load_point) cycle
+          ib = find_name(bd%mesh%bnd, bdeck%loads(k)%boundary)
+          call boundary_nodes(bd%mesh%bnd(ib), nodes)
+          call say(run, 'force    ' // bd%name // ':' // bdeck%loads(k)%boundary // ': point force (fx, fy) = (' // &
+            trim(format_number(bdeck%loads(k)%tx)) // ', ' // trim(format_number(bdeck%loads(k)%ty)) // ') at ' // &
+            int_to_str(size(nodes)) // ' node(s)')
+        end do
+        do k = 1, size(bdeck%springs)
+          associate (sp => bdeck%springs(k))
+            nk = 0                                  ! its spring elements
+            if (bd%springs%n > 0) nk = count(bd%springs%owner(1:bd%springs%n) == k)
+            if (sp%point) then
+              call say(run, 'spring   ' // bd%name // ':' // sp%boundary // ': to the ground, kx = ' // &
+                trim(format_number(sp%kx)) // ', ky = ' // trim(format_number(sp%ky)) // ' at ' // &
+                int_to_str(nk) // ' node(s)')
+            else
+              call say(run, 'spring   ' // bd%name // ':' // sp%boundary // ': elastic foundation, kn = ' // &
+                trim(format_number(sp%kn)) // ', kt = ' // trim(format_number(sp%kt)) // ' ' // unit // ' on ' // &
+                int_to_str(nk) // ' edges')
+            end if
+          end associate
+        end do
+      end associate
+    end do
+  end subroutine report_supports
 
   !> The run log's lines of each RIGID: its shape, reference point, which
   !> directions are prescribed and which are free (loaded or not, held by

@@ -13,7 +13,14 @@
 !> The modes of body b: the three rigid motions (two translations, a rotation
 !> about the centroid scaled by the body's size), restricted to the fixed dofs
 !> as C (nfixed x 3); the right singular vectors of C with zero singular value
-!> span the free modes.  The pinned dofs are the first k pivots of a QR
+!> span the free modes.  A body's springs (SPRING) are in K too: a rigid
+!> motion r3 c that strains a spring is no null vector of K, and since the
+!> springs' matrix K_s is positive semi-definite, K_s r3 c = 0 exactly when
+!> c' G c = 0, G = r3' K_s r3 (3 x 3).  G, scaled to a largest entry of 1,
+!> joins C's rows: a mode any spring resists is held (a body on springs
+!> alone floats in no direction they reach; a point spring kx holds one
+!> combination of the translation x and the rotation, and contact or FIX the
+!> others).  The pinned dofs are the first k pivots of a QR
 !> factorization with column pivoting (dgeqp3) of R_b' over the free dofs, so
 !> R_b(pinned, :) is well conditioned.
 !>
@@ -29,6 +36,7 @@ module rigid_modes
   use kinds, only: dp
   use lapack_interfaces, only: dgeqp3, dgesvd, dsysv
   use body, only: body_t
+  use foundation, only: spring_set_t
   implicit none
   private
   public :: floating_t, find_floating_modes, mode_name, describe_motion, motion_name, remove_motions
@@ -98,7 +106,7 @@ contains
     integer, allocatable, intent(out) :: pins(:)
     real(dp), intent(out) :: xc(2), size_b
     real(dp), allocatable :: r3(:,:), cmat(:,:), a(:,:), tau(:), work(:)
-    real(dp) :: s(3), u(1, 1), vt(3, 3), wq(1)
+    real(dp) :: s(3), u(1, 1), vt(3, 3), wq(1), g(3, 3)
     integer :: n, nd, a_, i, nfix, m, info, kb, j, lwork
     integer, allocatable :: fdofs(:), free(:), jpvt(:)
 
@@ -121,7 +129,8 @@ contains
     ! null space of C = r3(fixed dofs, :); a solid of revolution (x = r) has
     ! one rigid motion, the translation along the axis: its C also holds the
     ! r translation and the rotation (rows e_1', e_3'), which strain the hoop
-    if (nfix == 0 .and. .not. bd%axisymmetric) then
+    g = spring_modes(bd%springs, bd%mesh%x, xc, size_b)
+    if (nfix == 0 .and. .not. bd%axisymmetric .and. all(g == 0.0_dp)) then
       vt = reshape([1.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 1.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 1.0_dp], [3, 3])
       s = 0.0_dp
       kb = 3
@@ -131,6 +140,11 @@ contains
       if (bd%axisymmetric) then
         m = nfix + 2
         cmat = reshape([cmat(:, 1), 1.0_dp, 0.0_dp, cmat(:, 2), 0.0_dp, 0.0_dp, cmat(:, 3), 0.0_dp, 1.0_dp], [m, 3])
+      end if
+      if (any(g /= 0.0_dp)) then                  ! the springs' rows: G / max |G|
+        g = g / maxval(abs(g))
+        cmat = reshape([cmat(:, 1), g(:, 1), cmat(:, 2), g(:, 2), cmat(:, 3), g(:, 3)], [m + 3, 3])
+        m = m + 3
       end if
       call dgesvd('N', 'A', m, 3, cmat, m, s, u, 1, vt, 3, wq, -1, info)
       lwork = int(wq(1))
@@ -162,6 +176,28 @@ contains
     call dgeqp3(kb, size(free), a, kb, jpvt, tau, work, lwork, info)
     pins = free(jpvt(1:kb))
   end subroutine body_modes
+
+  !> G = r3' K_s r3 (3 x 3): the springs' stiffness against the three rigid
+  !> motions of body_modes (in x, y components, as the springs' matrices).
+  !>   springs (in) the body's springs;  x (in) (2, nnode) its nodes
+  !>   xc, size_b (in) the rotation's centre and scale (body_modes')
+  pure function spring_modes(springs, x, xc, size_b) result(g)
+    type(spring_set_t), intent(in) :: springs
+    real(dp), intent(in) :: x(:,:), xc(2), size_b
+    real(dp) :: g(3, 3)
+    real(dp) :: re(6, 3)
+    integer :: i, a, n, node
+    g = 0.0_dp
+    do i = 1, springs%n
+      n = springs%nen(i)
+      do a = 1, n
+        node = springs%nodes(a, i)
+        re(2 * a - 1, :) = [1.0_dp, 0.0_dp, -(x(2, node) - xc(2)) / size_b]
+        re(2 * a, :) = [0.0_dp, 1.0_dp, (x(1, node) - xc(1)) / size_b]
+      end do
+      g = g + matmul(transpose(re(1:2 * n, :)), matmul(springs%k(1:2 * n, 1:2 * n, i), re(1:2 * n, :)))
+    end do
+  end function spring_modes
 
   !> A readable name of mode j from its coefficients.
   function mode_name(fl, j) result(name)

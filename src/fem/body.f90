@@ -17,6 +17,12 @@
 !> eliminated like ux.  to_global_axes turns a solver-basis vector (a
 !> displacement, a nodal force) into x, y components, to_local_axes back.
 !>
+!> Springs (SPRING, module foundation): each body's spring elements join K
+!> beside its elements, in assemble_stiffness, internal_forces and
+!> element_response alike (their matrices in x, y turned to a node's local
+!> axes as the elements' are), so that K u, the reactions and the energy
+!> count them; spring_reactions gives each SPRING statement's force on the body.
+!>
 !> Axisymmetric bodies (body%axisymmetric): the same routines on the kernels
 !> of module axisymmetric_elements (x = r, y = z, the law's D4, integrals
 !> over the full circle); the caller holds u_r = 0 on the axis.
@@ -35,6 +41,7 @@
 !>   internal_forces(bodies, u, fint)               fint = K u (all dofs, element by element)
 !>   element_response(bodies, u, fint [, stress, vm])  both in one element loop (OpenMP, reproducible)
 !>   thermal_loads(bd, f)                           f += int B' D eps0 t dA (THERMAL), x, y axes
+!>   spring_reactions(bd, u, r)                     r(:, j) = force of SPRING j of bd on it, x, y
 !>   to_global_axes(bodies, v), to_local_axes(bodies, v)   v (ndof) between the solver basis and x, y
 !>   body_pressure_modes(bd, nen)                   the B-bar pressure modes of bd's elements of nen nodes
 !>   node_elements(mesh, ptr, list)                 elements around each node (CSR)
@@ -53,11 +60,12 @@ module body
   use axisymmetric_elements, only: axi_element_stiffness, axi_element_force, axi_element_strain, axi_thermal_load
   use material, only: von_mises_4
   use sparse_matrix, only: csc_t
+  use foundation, only: spring_set_t
   implicit none
   private
   public :: body_t, number_equations, build_pattern, assemble_stiffness, internal_forces
   public :: node_elements, element_dofs, edge_outward_normal, element_response
-  public :: thermal_loads, to_global_axes, to_local_axes, axi_thermal_strain, body_pressure_modes
+  public :: thermal_loads, to_global_axes, to_local_axes, axi_thermal_strain, body_pressure_modes, spring_reactions
 
   type :: body_t
     character(len=:), allocatable :: name  !< as in the deck
@@ -74,6 +82,7 @@ module body
     real(dp), allocatable :: axes(:,:)     !< (2, nnode) unit normal n of a node whose dofs are
                                            !< (u.n, u.t), [0, 0] in x, y; allocated only when a
                                            !< FIX un=/ut= holds some node of the body
+    type(spring_set_t) :: springs          !< its springs to the ground (SPRING); n = 0 when none
   end type body_t
 
 
@@ -298,28 +307,101 @@ contains
           end if
           if (allocated(bodies(b)%axes)) call rotate_element_matrix(bodies(b), e, ke)   ! Q' K Q
           call element_dofs(bodies(b), e, dofs)
-          do q = 1, 2 * nen
-            eq_q = eq(dofs(q))
-            do p = 1, 2 * nen
-              ep = eq(dofs(p))
-              if (ep == 0) cycle
-              if (eq_q == 0) then
-                call in_range(ke(p, q), ubar(dofs(q)), rhs(ep), term, ok)
-                if (ok) then
-                  rhs(ep) = rhs(ep) - term                          ! f_f -= K_fd ubar_d
-                else if (present(overflow)) then
-                  if (overflow == 0) overflow = b
-                end if
-              else if (ep <= eq_q) then
-                pos = find_row(k, ep, eq_q)
-                k%val(pos) = k%val(pos) + ke(p, q)
-              end if
-            end do
-          end do
+          call scatter
+        end do
+        ! the springs: their nodes share an element (an edge's) or are one node,
+        ! so that their entries are in the elements' pattern
+        do e = 1, bodies(b)%springs%n
+          nen = bodies(b)%springs%nen(e)
+          call spring_matrix(bodies(b), e, ke, dofs)
+          call scatter
         end do
       end associate
     end do
+  contains
+    !> ke (2 nen) into k on the free dofs, f_f -= K_fd ubar_d for the fixed ones.
+    subroutine scatter
+      do q = 1, 2 * nen
+        eq_q = eq(dofs(q))
+        do p = 1, 2 * nen
+          ep = eq(dofs(p))
+          if (ep == 0) cycle
+          if (eq_q == 0) then
+            call in_range(ke(p, q), ubar(dofs(q)), rhs(ep), term, ok)
+            if (ok) then
+              rhs(ep) = rhs(ep) - term                          ! f_f -= K_fd ubar_d
+            else if (present(overflow)) then
+              if (overflow == 0) overflow = b
+            end if
+          else if (ep <= eq_q) then
+            pos = find_row(k, ep, eq_q)
+            k%val(pos) = k%val(pos) + ke(p, q)
+          end if
+        end do
+      end do
+    end subroutine scatter
   end subroutine assemble_stiffness
+
+  !> Spring element i of bd: its matrix in the solver basis (Q' K Q at the
+  !> nodes in local axes) and its dofs, two per node.
+  !>   ke   (out) (2 max_nen, 2 max_nen), ke(1:2 nen, 1:2 nen) set
+  !>   dofs (out) (2 max_nen), dofs(1:2 nen) set
+  pure subroutine spring_matrix(bd, i, ke, dofs)
+    type(body_t), intent(in) :: bd
+    integer, intent(in) :: i
+    real(dp), intent(out) :: ke(:,:)
+    integer, intent(out) :: dofs(:)
+    integer :: a, nen
+    nen = bd%springs%nen(i)
+    ke(1:2 * nen, 1:2 * nen) = bd%springs%k(1:2 * nen, 1:2 * nen, i)
+    if (allocated(bd%axes)) call rotate_node_matrix(bd, bd%springs%nodes(1:nen, i), ke)
+    do a = 1, nen
+      dofs(2 * a - 1) = bd%dof0 + 2 * (bd%springs%nodes(a, i) - 1) + 1
+      dofs(2 * a) = dofs(2 * a - 1) + 1
+    end do
+  end subroutine spring_matrix
+
+  !> f += K_s u over the springs of bd (solver basis).
+  pure subroutine add_spring_forces(bd, u, f)
+    type(body_t), intent(in) :: bd
+    real(dp), intent(in) :: u(:)
+    real(dp), intent(inout) :: f(:)
+    real(dp) :: ke(2 * max_nen, 2 * max_nen)
+    integer :: dofs(2 * max_nen), i, n
+    do i = 1, bd%springs%n
+      n = 2 * bd%springs%nen(i)
+      call spring_matrix(bd, i, ke, dofs)
+      f(dofs(1:n)) = f(dofs(1:n)) + matmul(ke(1:n, 1:n), u(dofs(1:n)))
+    end do
+  end subroutine add_spring_forces
+
+  !> The force of each SPRING statement of bd on the body, -K_s u summed over
+  !> its spring elements, in x, y components (the force of a foundation that
+  !> holds the body up is positive along y, as a FIX's reaction).
+  !>   u (in)  (ndof) displacement, solver basis
+  !>   r (out) (2, nspring) one column per SPRING statement of the body
+  subroutine spring_reactions(bd, u, r)
+    type(body_t), intent(in) :: bd
+    real(dp), intent(in) :: u(:)
+    real(dp), intent(out) :: r(:,:)
+    real(dp) :: ue(6), fe(6), q(2, 2)
+    integer :: i, a, n, d
+    logical :: local
+    r = 0.0_dp
+    do i = 1, bd%springs%n
+      n = bd%springs%nen(i)
+      do a = 1, n
+        d = bd%dof0 + 2 * (bd%springs%nodes(a, i) - 1)
+        ue(2 * a - 1:2 * a) = u(d + 1:d + 2)
+        call axes_of_node(bd, bd%springs%nodes(a, i), q, local)
+        if (local) ue(2 * a - 1:2 * a) = matmul(q, ue(2 * a - 1:2 * a))      ! Q u: x, y components
+      end do
+      fe(1:2 * n) = matmul(bd%springs%k(1:2 * n, 1:2 * n, i), ue(1:2 * n))
+      do a = 1, n
+        r(:, bd%springs%owner(i)) = r(:, bd%springs%owner(i)) - fe(2 * a - 1:2 * a)
+      end do
+    end do
+  end subroutine spring_reactions
 
   !> ok = .true. with term = a * x when both a * x and s - a * x are finite,
   !> tested without computing an overflowing value.
@@ -354,18 +436,26 @@ contains
     type(body_t), intent(in) :: bd
     integer, intent(in) :: e
     real(dp), intent(inout) :: ke(:,:)
+    call rotate_node_matrix(bd, bd%mesh%conn(1:bd%mesh%nen(e), e), ke)
+  end subroutine rotate_element_matrix
+
+  !> ke = Q' ke Q for the matrix on the nodes given (dofs 2a-1, 2a of node a).
+  pure subroutine rotate_node_matrix(bd, nodes, ke)
+    type(body_t), intent(in) :: bd
+    integer, intent(in) :: nodes(:)
+    real(dp), intent(inout) :: ke(:,:)
     integer :: a, i, n
     real(dp) :: q(2, 2)
     logical :: local
-    n = 2 * bd%mesh%nen(e)
-    do a = 1, bd%mesh%nen(e)
-      call axes_of_node(bd, bd%mesh%conn(a, e), q, local)
+    n = 2 * size(nodes)
+    do a = 1, size(nodes)
+      call axes_of_node(bd, nodes(a), q, local)
       if (.not. local) cycle
       i = 2 * a - 1
       ke(i:i + 1, 1:n) = matmul(transpose(q), ke(i:i + 1, 1:n))
       ke(1:n, i:i + 1) = matmul(ke(1:n, i:i + 1), q)
     end do
-  end subroutine rotate_element_matrix
+  end subroutine rotate_node_matrix
 
   !> v = Q v (to_global) or v = Q' v on the nodes of element e in local axes.
   pure subroutine rotate_element_vector(bd, e, v, to_global)
@@ -462,7 +552,8 @@ contains
     pos = lo
   end function find_row
 
-  !> fint = K u over all dofs, element by element (reactions, energy).
+  !> fint = K u over all dofs, element by element and spring by spring
+  !> (reactions, energy).
   subroutine internal_forces(bodies, u, fint)
     type(body_t), intent(in) :: bodies(:)
     real(dp), intent(in) :: u(:)
@@ -489,6 +580,7 @@ contains
           if (allocated(bodies(b)%axes)) call rotate_element_vector(bodies(b), e, fe, .false.)   ! Q' f
           fint(dofs(1:2 * nen)) = fint(dofs(1:2 * nen)) + fe(1:2 * nen)
         end do
+        call add_spring_forces(bodies(b), u, fint)
       end associate
     end do
   end subroutine internal_forces
@@ -613,6 +705,7 @@ contains
           call element_dofs(bd, e, dofs)
           fint(dofs(1:2 * nen)) = fint(dofs(1:2 * nen)) + fe(1:2 * nen, e)
         end do
+        call add_spring_forces(bd, u, fint)
         deallocate(fe)
       end associate
     end do

@@ -5,18 +5,21 @@
 !>   BODY name                      opens the block (deck%bodies grows by one)
 !>   MESH rect ... | MESH gmsh ...  one row per form; the form-less row reports a missing or unknown kind
 !>   MATERIAL isotropic | orthotropic, DENSITY, FIX, TRACTION, PRESSURE,
-!>   BODYFORCE, THERMAL, OFFSET     see deck_reader's header for their keys
+!>   BODYFORCE, THERMAL, OFFSET,
+!>   FORCE (a point force), SPRING  see deck_reader's header for their keys
 !>   GRAVITY                        a top-level statement, read as BODYFORCE is
 !>
 !> Programming interface (statement handlers, deck_syntax's statement_handler)
 !>   do_body, do_mesh, do_mesh_rect, do_mesh_gmsh, do_material (its three rows), do_density,
-!>   do_fix, do_load (TRACTION, PRESSURE), do_thermal, do_vector (BODYFORCE, OFFSET, GRAVITY)
+!>   do_fix, do_load (TRACTION, PRESSURE), do_thermal, do_vector (BODYFORCE, OFFSET, GRAVITY),
+!>   do_point_force (FORCE in a BODY), do_spring
 !>   plane_compliance_ok, strain_compliance_ok   orthotropic compliance positive definite
 module deck_body_statements
   use kinds, only: dp
   use strings, only: int_to_str
   use safe_files, only: file_kind, kind_name, c2d_regular, c2d_missing, c2d_unreadable
-  use deck_types, only: deck_t, body_deck_t, fix_t, load_t, material_t, thermal_t, load_traction, load_pressure
+  use deck_types, only: deck_t, body_deck_t, fix_t, load_t, material_t, thermal_t, load_traction, load_pressure, &
+                        load_point, spring_deck_t
   use deck_syntax, only: state_t, stmt_t, key_values_t, report, read_keys, check_extra_words, check_no_pairs, &
                          check_name, form_word, cut, quoted, shown
   use text_scan, only: parse_real, lower, is_identifier, is_printable, ends_with_ci
@@ -24,7 +27,7 @@ module deck_body_statements
   implicit none
   private
   public :: do_body, do_mesh, do_mesh_rect, do_mesh_gmsh, do_material, do_density, do_fix, do_load
-  public :: do_thermal, do_vector, plane_compliance_ok, strain_compliance_ok
+  public :: do_thermal, do_vector, do_point_force, do_spring, plane_compliance_ok, strain_compliance_ok
 
 contains
 
@@ -39,7 +42,7 @@ contains
 
     body%line = st%line
     body%name = ''
-    allocate(body%fixes(0), body%loads(0), body%thermals(0))
+    allocate(body%fixes(0), body%loads(0), body%thermals(0), body%springs(0))
     if (st%nword == 0) then
       call report(s, st%line, 'missing body name (expected ' // st%usage // ')')
     else
@@ -328,17 +331,23 @@ contains
     end associate
   end subroutine do_density
 
-  !> The boundary a FIX, TRACTION or PRESSURE names (its first word); '' when bad.
-  subroutine read_boundary(s, st, boundary)
+  !> The boundary a FIX, TRACTION, PRESSURE, SPRING (or the point a FORCE)
+  !> names (its first word); '' when bad.
+  !>   what (in, optional) what the name is, for messages (default 'boundary')
+  subroutine read_boundary(s, st, boundary, what)
     type(state_t), intent(inout) :: s
     type(stmt_t), intent(in) :: st
     character(len=:), allocatable, intent(out) :: boundary
+    character(len=*), intent(in), optional :: what
+    character(len=:), allocatable :: named
     logical :: ok
     boundary = ''
+    named = 'boundary'
+    if (present(what)) named = what
     if (st%nword == 0) then
-      call report(s, st%line, 'missing boundary name (expected ' // st%usage // ')')
+      call report(s, st%line, 'missing ' // named // ' name (expected ' // st%usage // ')')
     else
-      call check_name(s, st, st%word(1)%s, 'boundary', ok)
+      call check_name(s, st, st%word(1)%s, named, ok)
       if (ok) boundary = st%word(1)%s
     end if
   end subroutine read_boundary
@@ -431,6 +440,61 @@ contains
     load%curve_name = v%curve
     if (s%nerr == nerr0) call append_load(deck%bodies(s%cur), load)
   end subroutine do_load
+
+  !> FORCE point [fx=] [fy=] [ramp=|curve=] in a BODY: a force on the node(s)
+  !> of a point set, kept with the body's loads (load_point); whether the name
+  !> is a point set is known with the mesh (scene).
+  subroutine do_point_force(s, deck, st)
+    type(state_t), intent(inout) :: s
+    type(deck_t), intent(inout) :: deck
+    type(stmt_t), intent(in) :: st
+    type(load_t) :: load
+    type(key_values_t) :: v
+    integer :: nerr0
+
+    nerr0 = s%nerr
+    load%line = st%line
+    load%kind = load_point
+    call read_boundary(s, st, load%boundary, 'point')
+    call read_keys(s, st, v)
+    if (.not. (v%seen(1) .or. v%seen(2))) call report(s, st%line, 'FORCE without a component (expected ' // &
+                                                      st%usage // ')')
+    if (v%ok(1)) load%tx = v%x(1)
+    if (v%ok(2)) load%ty = v%x(2)
+    load%ramp = v%ramp
+    load%curve_name = v%curve
+    if (s%nerr == nerr0) call append_load(deck%bodies(s%cur), load)
+  end subroutine do_point_force
+
+  !> SPRING boundary kn= [kt=] | SPRING point [kx=] [ky=]: the keys say which
+  !> (kn, kt: a foundation on a boundary's edges; kx, ky: a spring at the
+  !> node(s) of a point set), not both.
+  subroutine do_spring(s, deck, st)
+    type(state_t), intent(inout) :: s
+    type(deck_t), intent(inout) :: deck
+    type(stmt_t), intent(in) :: st
+    type(spring_deck_t) :: spring
+    type(key_values_t) :: v
+
+    spring%line = st%line
+    call read_boundary(s, st, spring%boundary)
+    call read_keys(s, st, v)
+    spring%point = v%seen(3) .or. v%seen(4)
+    if ((v%seen(1) .or. v%seen(2)) .and. spring%point) then
+      call report(s, st%line, 'kn=/kt= and kx=/ky= together (expected kn= [kt=] for a foundation on a boundary, ' // &
+                  'or kx= ky= for a spring at a point, not both)')
+    else if (.not. (spring%point .or. v%seen(1))) then
+      call report(s, st%line, 'missing kn= (expected ' // st%usage // ')')
+    end if
+    if (v%ok(1)) spring%kn = v%x(1)
+    if (v%ok(2)) spring%kt = v%x(2)
+    if (v%ok(3)) spring%kx = v%x(3)
+    if (v%ok(4)) spring%ky = v%x(4)
+    ! kept when bad too: the body has a SPRING, and the whole-deck checks
+    ! (a body held by nothing) should not say otherwise; a deck with errors
+    ! is never solved
+    deck%bodies(s%cur)%springs = [deck%bodies(s%cur)%springs, spring]
+  end subroutine do_spring
 
   !> Append a load to the body's list; the capacity doubles, as for FIX.
   subroutine append_load(body, load)

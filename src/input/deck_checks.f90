@@ -55,6 +55,9 @@ contains
         do i = 1, size(body%loads)
           call check_statement(body, body%loads(i)%boundary, body%loads(i)%ramp, body%loads(i)%line)
         end do
+        do i = 1, size(body%springs)
+          if (rect) call check_rect_boundary(s, body, body%springs(i)%boundary, body%springs(i)%line)
+        end do
         if (.not. is_name(body%name)) cycle
         ! a body block with an unknown keyword: that statement is most likely its
         ! misspelt MESH or MATERIAL, already reported at its own line; "has no
@@ -346,10 +349,10 @@ contains
     end do
     do b = 1, s%nbody
       if (.not. is_name(deck%bodies(b)%name)) cycle
-      if (size(deck%bodies(b)%fixes) > 0) cycle
+      if (size(deck%bodies(b)%fixes) + size(deck%bodies(b)%springs) > 0) cycle
       if (.not. in_contact(b)) then
         call report(s, deck%bodies(b)%line, 'body ' // quoted(deck%bodies(b)%name) // ' has no FIX and is in no ' // &
-                    'CONTACT (rigid-body modes: expected FIX on a boundary, or a CONTACT that holds the body)')
+                    'CONTACT (rigid-body modes: expected FIX on a boundary, a SPRING, or a CONTACT that holds the body)')
         cycle
       end if
       g = group(b)
@@ -359,7 +362,7 @@ contains
       nmem = 0
       do a = 1, s%nbody
         if (group(a) /= g) cycle
-        if (size(deck%bodies(a)%fixes) > 0 .or. on_rigid(a)) held = .true.
+        if (size(deck%bodies(a)%fixes) + size(deck%bodies(a)%springs) > 0 .or. on_rigid(a)) held = .true.
         nmem = nmem + 1
         if (nmem > 1) members = members // ', '
         members = members // quoted(deck%bodies(a)%name)
@@ -540,6 +543,7 @@ contains
         if (.not. allocated(body%fixes)) allocate(body%fixes(0))
         if (.not. allocated(body%loads)) allocate(body%loads(0))
         if (.not. allocated(body%thermals)) allocate(body%thermals(0))
+        if (.not. allocated(body%springs)) allocate(body%springs(0))
         do i = 1, size(body%fixes)
           if (.not. allocated(body%fixes(i)%boundary)) body%fixes(i)%boundary = ''
           if (body%fixes(i)%ramp(2) == ramp_unset(2)) body%fixes(i)%ramp = [0, deck%steps]

@@ -31,6 +31,9 @@
 !>     BODYFORCE [fx=0] [fy=0] [ramp=0:STEPS]      (at least one of fx, fy)
 !>     THERMAL alpha= dT= [region=NAME] [curve=NAME]
 !>     OFFSET [dx=0] [dy=0]              (at least one)
+!>     FORCE point [fx=0] [fy=0] [ramp=0:STEPS]    (at least one of fx, fy; point: a point set)
+!>     SPRING boundary kn= [kt=0]        (an elastic foundation, kn, kt >= 0)
+!>     SPRING point [kx=0] [ky=0]        (a spring to the ground, at least one of kx, ky >= 0)
 !>   GRAVITY [gx=0] [gy=0] [ramp=0:STEPS]          (at least one of gx, gy)
 !>   CONTACT slave=body:boundary master=body:boundary [gap=geometry|zero]
 !>           [mu=number | tresca=number]           (default frictionless)
@@ -43,7 +46,7 @@
 !>                                      extension; '.vtk' is appended to vtk= if missing)
 !> TITLE, PLANE, GRAVITY, SOLVER, STEPS, OUTPUT: at most once each, outside BODY blocks.
 !> MESH, MATERIAL, DENSITY, BODYFORCE, OFFSET: at most once per body; FIX, TRACTION,
-!> PRESSURE, THERMAL: any number.  Statements may come in any order (CONTACT before the
+!> PRESSURE, THERMAL, FORCE, SPRING: any number.  Statements may come in any order (CONTACT before the
 !> BODY it names, STEPS after the ramps it bounds).
 !>
 !> Grammar.  Each statement is a row of a table (deck_statements), with the
@@ -68,15 +71,15 @@
 !> compliance positive definite, in plane strain with the out-of-plane terms too,
 !> x1 > x0, nx, ny positive integers, 0 < omega < 2, ...); one MESH and one MATERIAL per
 !> body; block structure; gmsh files exist; boundary names of rect meshes; CONTACT
-!> bodies exist and the two sides differ; every body is held by a FIX, directly or
-!> through CONTACT with a held body; every ramp ends at step STEPS at the latest;
+!> bodies exist and the two sides differ; every body is held by a FIX or a SPRING,
+!> directly or through CONTACT with a held body; every ramp ends at step STEPS at the latest;
 !> lcp=pdas only without friction (no CONTACT with mu > 0 or tresca > 0).  Errors are
 !> collected (at most max_errors), sorted by line and handed to diag as
 !> `FILE:LINE: what is wrong (what was expected)` with the line echoed.
 !>
 !> Programming interface
 !>   the types of deck_types (deck_t and its parts), load_traction, load_pressure,
-!>   curve_factor, re-exported: the reader's callers use deck_reader alone
+!>   load_point, curve_factor, re-exported: the reader's callers use deck_reader alone
 !>   read_deck(path, deck, diag [, overrides])   parse and check the deck file `path`
 !>   path_too_long(path, reserve)   '' or why a path cannot name a file (deck_checks)
 module deck_reader
@@ -85,7 +88,7 @@ module deck_reader
   use safe_files, only: open_input, kind_name, folder_of, c2d_regular, c2d_missing, c2d_unreadable
   use deck_types, only: fix_t, load_t, mesh_spec_t, material_t, body_deck_t, contact_deck_t, solver_deck_t, &
                         output_deck_t, deck_t, curve_t, curve_factor, rigid_deck_t, rigid_load_t, &
-                        load_traction, load_pressure
+                        load_traction, load_pressure, load_point, spring_deck_t
   use deck_expressions, only: parameter_set_t, substitute
   use deck_syntax, only: state_t, stmt_t, statement_t, string_t, report, hand_over, store_echo, split_words, &
                          join_equals, classify_words, find_statement, quoted, max_line_len
@@ -97,7 +100,7 @@ module deck_reader
   private
   public :: fix_t, load_t, mesh_spec_t, material_t, body_deck_t, contact_deck_t
   public :: solver_deck_t, output_deck_t, deck_t, curve_t, read_deck, curve_factor, rigid_deck_t, rigid_load_t
-  public :: load_traction, load_pressure, path_too_long
+  public :: load_traction, load_pressure, load_point, spring_deck_t, path_too_long
 
 contains
 

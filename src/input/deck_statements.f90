@@ -21,7 +21,7 @@ module deck_statements
                          check_extra_words, check_no_pairs, check_name, form_word, find_key, join_list, cut, quoted, max_mu, &
                          max_steps
   use deck_body_statements, only: do_body, do_mesh, do_mesh_rect, do_mesh_gmsh, do_material, do_density, &
-                                  do_fix, do_load, do_thermal, do_vector
+                                  do_fix, do_load, do_thermal, do_vector, do_point_force, do_spring
   use deck_rigid_statements, only: do_rigid, do_rigid_shape, do_rigid_ref, do_rigid_load
   use text_scan, only: parse_real, parse_integer, lower, is_name, ends_with_ci
   implicit none
@@ -99,6 +99,13 @@ contains
                        name_key('region', 'region'), curve_key()])
     call add_row(table, 'OFFSET', 'BODY', do_vector, once=.true., words=0, usage='OFFSET dx=number dy=number', &
                  keys=[real_key('dx'), real_key('dy')])
+    call add_row(table, 'FORCE', 'BODY', do_point_force, words=1, &
+                 usage='FORCE point [fx=number] [fy=number]' // ramp_curve, &
+                 keys=[real_key('fx'), real_key('fy'), ramp_key(), curve_key()])
+    call add_row(table, 'SPRING', 'BODY', do_spring, words=1, &
+                 usage='SPRING boundary kn=number [kt=number] | SPRING point [kx=number] [ky=number]', &
+                 keys=[real_key('kn', ge=zero, note=', a stiffness'), real_key('kt', ge=zero, note=', a stiffness'), &
+                       real_key('kx', ge=zero, note=', a stiffness'), real_key('ky', ge=zero, note=', a stiffness')])
     call add_row(table, 'END', '*')
     call add_row(table, 'GRAVITY', '', do_vector, once=.true., words=0, &
                  usage='GRAVITY gx=number gy=number' // ramp_curve, &

@@ -14,7 +14,8 @@
 !>   types fix_t, load_t, mesh_spec_t, material_t, thermal_t, body_deck_t,
 !>         rigid_load_t, rigid_deck_t, contact_deck_t, solver_deck_t,
 !>         output_deck_t, curve_t, deck_t
-!>   load_traction, load_pressure   values of load_t%kind
+!>   spring_deck_t                  a SPRING statement
+!>   load_traction, load_pressure, load_point   values of load_t%kind
 !>   curve_factor(c, k)             load factor of CURVE c at step k
 module deck_types
   use kinds, only: dp
@@ -23,10 +24,11 @@ module deck_types
   private
   public :: fix_t, load_t, mesh_spec_t, material_t, thermal_t, body_deck_t, contact_deck_t, adapt_deck_t
   public :: solver_deck_t, output_deck_t, deck_t, curve_t, curve_factor, rigid_deck_t, rigid_load_t
-  public :: load_traction, load_pressure
+  public :: load_traction, load_pressure, load_point, spring_deck_t
 
   integer, parameter :: load_traction = 1   !< load_t%kind of TRACTION
   integer, parameter :: load_pressure = 2   !< load_t%kind of PRESSURE
+  integer, parameter :: load_point = 3      !< load_t%kind of FORCE in a BODY: tx, ty hold fx, fy
 
   !> FIX boundary [ux=] [uy=] [ramp=k0:k1]
   type :: fix_t
@@ -40,17 +42,29 @@ module deck_types
     integer :: line = 0                         !< deck line
   end type fix_t
 
-  !> TRACTION or PRESSURE on a boundary
+  !> TRACTION or PRESSURE on a boundary, or FORCE on the node(s) of a point set
   type :: load_t
-    integer :: kind = 0                         !< load_traction or load_pressure
-    character(len=:), allocatable :: boundary
-    real(dp) :: tx = 0, ty = 0, p = 0           !< force per unit length; pressure
+    integer :: kind = 0                         !< load_traction, load_pressure or load_point
+    character(len=:), allocatable :: boundary   !< boundary (point set for FORCE) name
+    real(dp) :: tx = 0, ty = 0, p = 0           !< force per unit length (FORCE: the force); pressure
     logical :: local = .false.                  !< TRACTION tn= tt=: tx holds tn, ty holds tt (boundary axes)
     integer :: ramp(2) = [0, 1]                 !< load steps k0, k1 of the ramp; default [0, steps]
     integer :: curve = 0                        !< curve=NAME: index into deck%curves (0: the ramp)
     character(len=:), allocatable :: curve_name !< curve=NAME as written ('' when absent)
     integer :: line = 0
   end type load_t
+
+  !> SPRING boundary kn= [kt=] (an elastic foundation, stiffness per unit
+  !> length, per unit area axisymmetric, along the boundary's outward normal
+  !> and its tangent) or SPRING point [kx=] [ky=] (a spring to the ground at
+  !> the node(s) of a point set).  A stiffness, not a load: no ramp, no curve.
+  type :: spring_deck_t
+    character(len=:), allocatable :: boundary   !< boundary or point-set name
+    logical :: point = .false.                  !< kx=/ky= given: a point spring; else kn=/kt=
+    real(dp) :: kn = 0, kt = 0                  !< foundation moduli, >= 0
+    real(dp) :: kx = 0, ky = 0                  !< point spring stiffnesses, >= 0
+    integer :: line = 0
+  end type spring_deck_t
 
   !> MESH rect ... or MESH gmsh file=...
   type :: mesh_spec_t
@@ -116,6 +130,7 @@ module deck_types
     integer :: bodyforce_curve = 0              !< BODYFORCE curve=: index into deck%curves (0: the ramp)
     character(len=:), allocatable :: bodyforce_curve_name
     type(thermal_t), allocatable :: thermals(:) !< (nthermal), always allocated
+    type(spring_deck_t), allocatable :: springs(:) !< (nspring) SPRING statements, always allocated
     logical :: has_offset = .false.; real(dp) :: dx = 0, dy = 0; integer :: offset_line = 0
   end type body_deck_t
 

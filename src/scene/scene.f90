@@ -1,8 +1,8 @@
 !> scene: from the deck to the physics.  The one module that knows both
 !> deck_t and the bodies: it makes each body's mesh (MESH rect, a .msh file or a
 !> .geo file meshed by gmsh), its elasticity tensor, its Dirichlet data (FIX),
-!> its loads (TRACTION, PRESSURE, BODYFORCE, GRAVITY, THERMAL) and resolves the
-!> CONTACT pairs.  Every name that needs a mesh to check (boundaries) is checked
+!> its loads (TRACTION, PRESSURE, BODYFORCE, GRAVITY, THERMAL, FORCE), its
+!> springs (SPRING) and resolves the CONTACT pairs.  Every name that needs a mesh to check (boundaries) is checked
 !> here or in its parts, and reported at the deck line of the statement that
 !> uses it.
 !>
@@ -14,7 +14,8 @@
 !> scene_t extends load_groups_t, and fext, ubar are the last step's,
 !> step_loads), fix_dofs (the FIX statements' dofs, and the nodes' local axes
 !> of FIX un=/ut=, to which the groups' forces are turned here) and
-!> deck_boundaries (the boundary a statement names).
+!> deck_boundaries (the boundary a statement names), point_supports (FORCE
+!> and SPRING on a body).
 !>
 !> PLANE axisymmetric: the bodies' kernels on the full circle (body), every
 !> node at r >= 0 (check_radius), u_r = 0 on the axis (apply_axis).
@@ -29,7 +30,7 @@ module scene
   use kinds, only: dp
   use strings, only: int_to_str, real_to_str
   use errors, only: diag_t, add_error, has_errors, error_t
-  use deck_reader, only: deck_t, body_deck_t, LOAD_TRACTION, LOAD_PRESSURE, rigid_deck_t
+  use deck_reader, only: deck_t, body_deck_t, LOAD_TRACTION, LOAD_PRESSURE, LOAD_POINT, rigid_deck_t
   use mesh, only: mesh_t, is_quadratic, finalize_mesh, find_name, order_for_locality, name_list, node_in_file, &
                   locality_min_nodes
   use mesh_rect, only: make_rect_mesh
@@ -45,6 +46,7 @@ module scene
   use load_groups, only: load_groups_t, collect_groups, ramp_group, group_factors
   use deck_boundaries, only: boundary_index
   use fix_dofs, only: apply_fixes
+  use point_supports, only: apply_point_forces, apply_springs
   use rigid_obstacle, only: rigid_shape_t, shape_line, shape_circle, shape_polyline
   implicit none
   private
@@ -94,6 +96,7 @@ contains
     type(error_t), allocatable, intent(out) :: err
     integer :: b, nb, nfix, ifix, ndof, ip, naxis, k
     logical :: has_traction, has_pressure, has_bforce, has_gravity, has_dirichlet, has_thermal, has_offset, has_axis
+    logical :: has_force
 
     ! The bodies are read one after the other: gfortran 12 keeps the length of
     ! a deferred-length character function result (int_to_str, the reader's
@@ -151,6 +154,7 @@ contains
     has_traction = .false.; has_pressure = .false.; has_bforce = .false.; has_gravity = .false.
     has_thermal = .false.
     has_axis = .false.
+    has_force = .false.
     do b = 1, nb
       associate(fixes => deck%bodies(b)%fixes)
         do k = 1, size(fixes)
@@ -166,6 +170,8 @@ contains
         has_axis = has_axis .or. naxis > 0
       end if
       call apply_loads(deck, deck%bodies(b), sc, b, diag, has_traction, has_pressure, has_bforce, has_gravity)
+      call apply_point_forces(deck, deck%bodies(b), sc%bodies(b), sc%load_groups_t, diag, has_force)
+      call apply_springs(deck, deck%bodies(b), sc%bodies(b), diag)
       if (size(deck%bodies(b)%thermals) > 0) then
         call apply_thermal(deck, deck%bodies(b), sc, b, diag)
         has_thermal = .true.
@@ -217,6 +223,8 @@ contains
     if (has_pressure) sc%effects = sc%effects // ' pressure'
     if (has_bforce) sc%effects = sc%effects // ' body_force'
     if (has_gravity) sc%effects = sc%effects // ' gravity'
+    if (has_force) sc%effects = sc%effects // ' point_force'
+    if (any([(sc%bodies(b)%springs%n > 0, b = 1, nb)])) sc%effects = sc%effects // ' spring'
     if (has_thermal) sc%effects = sc%effects // ' thermal'
     if (has_offset) sc%effects = sc%effects // ' offset'
     if (size(sc%specs) > 0) sc%effects = sc%effects // ' contact'
@@ -509,7 +517,8 @@ contains
     end associate
   end subroutine apply_thermal
 
-  !> External nodal forces of body b: TRACTION, PRESSURE, BODYFORCE, GRAVITY.
+  !> External nodal forces of body b: TRACTION, PRESSURE, BODYFORCE, GRAVITY
+  !> (FORCE: point_supports).
   subroutine apply_loads(deck, bdeck, sc, b, diag, has_traction, has_pressure, has_bforce, has_gravity)
     type(deck_t), intent(in) :: deck
     type(body_deck_t), intent(in) :: bdeck
@@ -527,6 +536,7 @@ contains
     associate(bd => sc%bodies(b), m => sc%bodies(b)%mesh)
       do k = 1, size(bdeck%loads)
         associate(ld => bdeck%loads(k))
+          if (ld%kind == LOAD_POINT) cycle                 ! FORCE: point_supports
           ib = boundary_index(deck, ld%line, bd, ld%boundary, merge('TRACTION', 'PRESSURE', ld%kind == LOAD_TRACTION), &
                               .true., diag)
           if (ib == 0) cycle

@@ -10,6 +10,9 @@
 !> - CURVE and curve=: points as written, names resolved on every statement that
 !>   takes one, curve_factor before, between and after the points; FIX un=/ut= and
 !>   TRACTION tn=/tt= flagged local; OUTPUT steps=all.
+!> - FORCE and SPRING in a BODY: values as written, the point force kept with
+!>   the loads (load_point), the spring's form from its keys; the errors of
+!>   their keys; a body held by a SPRING alone passes the whole-deck check.
 !> - STEPS, ramp= and CONTACT friction (mu=, tresca=): values as written, every ramp
 !>   resolved to [k0, k1] (default [0, STEPS]), the end-of-deck checks.
 !> - robustness: missing file, empty file, a 1 MB line, binary bytes, the error cap,
@@ -18,7 +21,7 @@
 program test_deck_reader
   use kinds, only: dp
   use errors, only: diag_t
-  use deck_reader, only: deck_t, read_deck, load_traction, load_pressure, curve_factor
+  use deck_reader, only: deck_t, read_deck, load_traction, load_pressure, load_point, curve_factor
   use testing, only: check, check_close, finish_tests, unit_roundoff
   implicit none
 
@@ -30,6 +33,7 @@ program test_deck_reader
   call test_steps_and_ramps()
   call test_curves()
   call test_friction()
+  call test_supports()
   call test_robustness()
   call finish_tests()
 
@@ -502,6 +506,46 @@ contains
     call expect_error(two // pair // ' friction=0.3' // nl, 11, 'unknown key "friction" for CONTACT (expected ' // &
                       'slave, master, gap, mu, tresca, interference, sliding)', 'friction: unknown key lists mu, tresca')
   end subroutine test_friction
+
+  !> FORCE point ... and SPRING ... in a BODY block.
+  subroutine test_supports()
+    character(len=*), parameter :: nl = achar(10)
+    character(len=*), parameter :: head = 'BODY b' // nl // ' MESH rect nx=2 ny=2' // nl // &
+                                          ' MATERIAL isotropic E=1 nu=0' // nl
+    type(deck_t) :: d
+    type(diag_t) :: g
+
+    ! (rect bodies name no point sets: the reader checks the name, the scene its kind)
+
+    call read_text_deck(head // ' SPRING bottom kn=3 kt=0.5' // nl // ' SPRING left kx=2' // nl // &
+                        ' FORCE top fy=-7 ramp=1:2' // nl // 'END' // nl // 'STEPS 2' // nl, d, g)
+    call check(g%count == 0, 'supports: deck read without error (held by its SPRING alone)')
+    if (g%count /= 0) return
+    associate (b => d%bodies(1))
+      call check(size(b%springs) == 2, 'supports: two SPRING statements')
+      call check(.not. b%springs(1)%point .and. b%springs(1)%kn == 3.0_dp .and. b%springs(1)%kt == 0.5_dp .and. &
+                 b%springs(1)%boundary == 'bottom' .and. b%springs(1)%line == 4, 'supports: foundation kn, kt, name, line')
+      call check(b%springs(2)%point .and. b%springs(2)%kx == 2.0_dp .and. b%springs(2)%ky == 0.0_dp .and. &
+                 b%springs(2)%boundary == 'left', 'supports: point spring kx, ky = 0 by default')
+      call check(size(b%loads) == 1, 'supports: FORCE kept with the loads')
+      call check(b%loads(1)%kind == load_point .and. b%loads(1)%tx == 0.0_dp .and. b%loads(1)%ty == -7.0_dp .and. &
+                 b%loads(1)%boundary == 'top' .and. all(b%loads(1)%ramp == [1, 2]), 'supports: FORCE fx, fy, point, ramp')
+    end associate
+    call expect_error(head // ' SPRING bottom kt=1' // nl // 'END' // nl, 4, 'missing kn= (expected SPRING', &
+                      'supports: kt= without kn=')
+    call expect_error(head // ' SPRING bottom kn=1 ky=2' // nl // 'END' // nl, 4, 'kn=/kt= and kx=/ky= together', &
+                      'supports: kn= with ky=')
+    call expect_error(head // ' SPRING bottom kn=-1' // nl // 'END' // nl, 4, 'bad value kn=-1 (expected kn >= 0', &
+                      'supports: negative kn')
+    call expect_error(head // ' SPRING left kx=1 ky=-2' // nl // 'END' // nl, 4, 'bad value ky=-2 (expected ky >= 0', &
+                      'supports: negative ky')
+    call expect_error(head // ' FIX bottom' // nl // ' FORCE top ramp=0:1' // nl // 'END' // nl, 5, &
+                      'FORCE without a component', 'supports: FORCE without fx, fy')
+    call expect_error(head // ' FIX bottom' // nl // ' FORCE fx=1' // nl // 'END' // nl, 5, 'missing point name', &
+                      'supports: FORCE without a point')
+    call expect_error(head // ' FIX bottom' // nl // ' FORCE top fy=1 m=1' // nl // 'END' // nl, 5, 'unknown key "m"', &
+                      'supports: FORCE on a body takes no moment')
+  end subroutine test_supports
 
   !> Read text as a deck: exactly one error, at `line`, whose text after 'FILE:LINE: '
   !> starts with `start`.
