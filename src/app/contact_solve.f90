@@ -29,8 +29,9 @@ module contact_solve
   use load_groups, only: group_factor
   use contact_condensation, only: constraint_values
   use lcp_solvers, only: lcp_options_t, lcp_report_t, solve_lcp_lemke
-  use friction_lcp, only: solve_friction_lcp, friction_state, friction_problem_t, friction_problem, &
-                          friction_attempt_t, solve_friction_auto
+  use friction_lcp, only: solve_friction_lcp, friction_state, friction_problem_t, friction_problem
+  use friction_auto, only: friction_attempt_t, solve_friction_auto
+  use friction_newton, only: solve_friction_newton
   use friction_modes, only: solve_friction_floating, no_equilibrium
   use contact_lcp, only: contact_solution_t, solve_contact
   use rigid_modes, only: mode_name, motion_name, describe_motion, remove_motions
@@ -49,10 +50,6 @@ module contact_solve
   private
   public :: solve_contact_lcp, check_floating_bodies, check_floating_friction_solver, check_unheld_loads, &
             check_unheld_rigid_loads
-
-  !> lcp=auto with friction: Lemke up to this many unknowns of its LCP
-  !> (n + 3 nt), PGS above (bench/friction.sh, doc/performance.md)
-  integer, parameter :: auto_lemke_unknowns = 400
 
 contains
 
@@ -259,12 +256,14 @@ contains
     opts%maxit = run%deck%solver%maxit
     opts%omega = run%deck%solver%omega
     method = run%deck%solver%lcp
-    ! lcp=auto: Lemke on the friction LCP (n + 3 nt unknowns) while its dense
-    ! tableau is small, the block Gauss-Seidel above; either falls back on the
-    ! other methods when it fails (solve_friction_auto), so that the default
-    ! fails only where every method does
+    ! lcp=auto: the primal-dual active set method first, the fastest at every
+    ! size measured (bench/friction.sh, doc/performance.md, "The friction
+    ! solvers": 3 to 20 times Lemke from 68 to 516 unknowns of Lemke's LCP,
+    ! and PGS stalls on a plate sheared with mu = 1), then Lemke and PGS when
+    ! it fails (solve_friction_auto): the default fails only where every
+    ! method does
     auto = method == 'auto'
-    if (auto) method = trim(merge('lemke', 'pgs  ', n + 3 * nt <= auto_lemke_unknowns))
+    if (auto) method = 'pdas'
     first = method
     ! bodies held only by contact: the amplitudes of the held combinations of
     ! their modes are unknowns of the friction LCP (friction_modes), against
@@ -319,6 +318,8 @@ contains
         call solve_friction_auto(run%w, fp, first, opts, z, rep, attempts)
         method = attempts(size(attempts))%method
         call report_fallbacks(run, kstep, attempts)
+      else if (method == 'pdas') then
+        call solve_friction_newton(run%w, fp, opts, z, rep)
       else
         call solve_friction_lcp(run%w, fp, method, opts, z, rep)
       end if
@@ -387,12 +388,14 @@ contains
         select case (trim(a%stopped))
         case ('stagnated', 'diverged')
           why = trim(a%stopped) // ' at sweep ' // int_to_str(a%iterations)
-        case ('sweep limit', 'pivot limit')
+        case ('sweep limit', 'pivot limit', 'step limit')
           why = 'reached its ' // trim(a%stopped) // ' (' // int_to_str(a%iterations) // ')'
         case ('ray')
           why = 'ended on a ray after ' // int_to_str(a%iterations) // ' pivots (Coulomb: no proof that there is no solution)'
         case ('inaccurate')
           why = 'ended with a residual above tol'
+        case ('singular')
+          why = 'met a singular system at step ' // int_to_str(a%iterations)
         case default
           why = 'failed'
           if (a%no_memory) why = 'ran out of memory'
@@ -412,6 +415,7 @@ contains
       type(friction_attempt_t), intent(in) :: a
       character(len=:), allocatable :: t
       t = 'Lemke'
+      if (a%method == 'pdas') t = 'PDAS (semismooth Newton)'
       if (a%method == 'pgs') t = 'PGS (omega ' // format_number(a%omega) // ')'
     end function method_label
     function method_word(a) result(t)

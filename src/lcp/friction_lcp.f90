@@ -123,7 +123,7 @@ module friction_lcp
   private
   public :: friction_problem_t, friction_problem, check_friction_problem, state_open, state_stick, state_slip
   public :: solve_friction_lcp, friction_residual, friction_state, friction_lcp_system, friction_forces
-  public :: friction_attempt_t, solve_friction_auto, fallback_omega
+  public :: measure_friction
 
   integer, parameter :: state_open = 0    !< not in contact, no friction force available
   integer, parameter :: state_stick = 1   !< no slip: ds = 0, |tau| <= b
@@ -162,17 +162,6 @@ module friction_lcp
   end type scaled_friction_t
 
   real(dp), parameter :: state_tol = 1.0e-8_dp             ! friction_state: relative tolerance
-  !> The relaxation of solve_friction_auto's second PGS run: on the plate
-  !> sheared on a rigid plane with mu = 1 (bench/friction.sh) PGS stalls at
-  !> omega = 1, 0.7 and 0.5 and converges at 0.3 in about 400 sweeps.
-  real(dp), parameter :: fallback_omega = 0.3_dp
-
-  !> One method tried by solve_friction_auto, and its outcome.
-  type :: friction_attempt_t
-    character(len=:), allocatable :: method        !< 'lemke' or 'pgs'
-    real(dp) :: omega = 1.0_dp                     !< the PGS relaxation it ran with
-    type(lcp_report_t) :: rep                      !< its report
-  end type friction_attempt_t
 
 
 contains
@@ -327,84 +316,6 @@ contains
     end if
   end subroutine solve_friction_lcp
 
-  !> lcp=auto: one load step by a first method and, when it fails without
-  !> proving that there is no solution, by the others in turn, so that the
-  !> default fails only where every method does.  After PGS: PGS again with
-  !> the smaller relaxation fallback_omega (Coulomb PGS with a large mu often
-  !> stalls at omega = 1 and converges under-relaxed), then Lemke.  After
-  !> Lemke: PGS at the caller's omega, then at fallback_omega.  A failure
-  !> that proves that there is no solution ends the sequence: a zero normal
-  !> row of G with a negative gap (either method) and Lemke's ray
-  !> termination on a Tresca problem (M positive semi-definite); so do an
-  !> argument error and PGS out of memory (Lemke needs more).  Each PGS run
-  !> starts from the lam given on entry.
-  !>   g, prob (in)    the problem, as in solve_friction_lcp
-  !>   first   (in)    'lemke' or 'pgs': the method tried first
-  !>   opts    (in)    tol, maxit, omega (the first PGS run's relaxation; the
-  !>                   second runs at min(omega, fallback_omega), and not at
-  !>                   all when that is omega again)
-  !>   lam     (inout) as in solve_friction_lcp: the solution of the method that
-  !>                   solved the step, else the last method's iterate
-  !>   rep     (out)   the report of the method that solved the step (info 0),
-  !>                   or of the last one tried, its message then naming every
-  !>                   attempt's failure in turn
-  !>   attempts (out)  the methods tried, in order, with their reports; the
-  !>                   last is the one whose lam is returned
-  subroutine solve_friction_auto(g, prob, first, opts, lam, rep, attempts)
-    real(dp), intent(in) :: g(:, :)
-    type(friction_problem_t), intent(in) :: prob
-    character(len=*), intent(in) :: first
-    type(lcp_options_t), intent(in) :: opts
-    real(dp), intent(inout) :: lam(:)
-    type(lcp_report_t), intent(out) :: rep
-    type(friction_attempt_t), allocatable, intent(out) :: attempts(:)
-    character(len=5) :: order(3)
-    real(dp) :: omegas(3)
-    real(dp), allocatable :: lam0(:)
-    type(lcp_options_t) :: o
-    character(len=:), allocatable :: failures
-    integer :: k
-
-    if (first == 'lemke') then
-      order = ['lemke', 'pgs  ', 'pgs  ']
-      omegas = [opts%omega, opts%omega, min(opts%omega, fallback_omega)]
-    else
-      order = ['pgs  ', 'pgs  ', 'lemke']
-      omegas = [opts%omega, min(opts%omega, fallback_omega), opts%omega]
-    end if
-    lam0 = lam
-    allocate(attempts(0))
-    do k = 1, 3
-      ! the same relaxation twice over would fail twice over
-      if (k > 1 .and. order(k) == order(k - 1) .and. omegas(k) == omegas(k - 1)) cycle
-      o = opts
-      o%omega = omegas(k)
-      if (order(k) == 'pgs') lam = lam0
-      call solve_friction_lcp(g, prob, trim(order(k)), o, lam, rep)
-      attempts = [attempts, friction_attempt_t(trim(order(k)), omegas(k), rep)]
-      if (rep%info <= 0 .or. proves_no_solution(prob, trim(order(k)), rep)) exit
-      if (order(k) == 'pgs' .and. rep%no_memory) exit
-    end do
-    if (rep%info > 0 .and. size(attempts) > 1) then
-      ! every method failed: the message names each failure in turn
-      failures = ''
-      do k = 1, size(attempts) - 1
-        if (allocated(attempts(k)%rep%message)) failures = failures // attempts(k)%rep%message // '; then '
-      end do
-      if (allocated(rep%message)) rep%message = failures // rep%message
-    end if
-  end subroutine solve_friction_auto
-
-  !> .true. when a failed report of method on prob shows that the step has no
-  !> solution (solve_friction_auto): info 1 from PGS (a zero normal row with a
-  !> negative gap) or from Lemke on a Tresca problem.  Lemke's ray on a
-  !> Coulomb problem with such a row goes on to PGS, which finds the row at once.
-  logical function proves_no_solution(prob, method, rep)
-    type(friction_problem_t), intent(in) :: prob
-    character(len=*), intent(in) :: method
-    type(lcp_report_t), intent(in) :: rep
-    proves_no_solution = rep%info == 1 .and. (method == 'pgs' .or. all(prob%cmu == 0.0_dp))
-  end function proves_no_solution
 
   !> Scale-free natural residual r (module header) of a candidate lam.
   !> r = 0 exactly when lam solves the frictional contact problem.
@@ -430,6 +341,27 @@ contains
     call lcp_gaps(p%gs, p%qs, s, v)                    ! v = qs + Gs s
     r = scaled_residual(p, s, v)
   end function friction_residual
+
+  !> The residual r and the complementarity measure (module header) of a
+  !> candidate lam into rep, for a method of another module (friction_newton).
+  !>   g, prob  (in)    the problem, as in solve_friction_lcp
+  !>   lam      (in)    (n+nt) candidate, finite
+  !>   rep      (inout) residual and complementarity set (huge(1.0_dp) when the
+  !>                    sizes are invalid or the scaled copy of g does not fit)
+  subroutine measure_friction(g, prob, lam, rep)
+    real(dp), intent(in) :: g(:, :)
+    type(friction_problem_t), intent(in) :: prob
+    real(dp), intent(in) :: lam(:)
+    type(lcp_report_t), intent(inout) :: rep
+    type(scaled_friction_t) :: p
+    integer :: info
+    rep%residual = huge(1.0_dp)
+    rep%complementarity = huge(1.0_dp)
+    if (.not. valid_problem(g, prob, size(lam))) return
+    call scale_friction(g, prob, p, info)
+    if (info /= 0) return
+    call measure_scaled(p, lam / p%d, rep)
+  end subroutine measure_friction
 
   !> Stick / slip state of each tangential row of a (solved) lam, decided with
   !> the relative tolerance state_tol = 1e-8 (module header).
