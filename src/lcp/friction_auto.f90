@@ -99,7 +99,11 @@ contains
     lam0 = lam
     do k = 1, 4
       ! the same relaxation twice over would fail twice over
-      if (k > 1 .and. order(k) == 'pgs' .and. order(k - 1) == 'pgs' .and. omegas(k) == omegas(k - 1)) cycle
+      if (size(attempts) > 0) then
+        associate (last => attempts(size(attempts)))
+          if (order(k) == 'pgs' .and. last%method == 'pgs' .and. last%omega == omegas(k)) cycle
+        end associate
+      end if
       o = opts
       o%omega = omegas(k)
       lam = lam0
