@@ -39,7 +39,8 @@
 !>               satisfies every condition above, and r is scale-free: unchanged
 !>               when lengths, forces or single rows of C are rescaled;
 !>     complementarity  max( max_i |s_i v_i|, max_k |bs_k |v_{n+k}| + s_{n+k} v_{n+k}| )
-!>               / (max_j |s_j| qscale), 0 when the numerator is 0; the tangential
+!>               / (max(max_j |s_j|, max_k bound_k / d_{n+k}) qscale), 0 when the
+!>               numerator is 0; the tangential
 !>               term is b |ds| - tau ds (zero when the friction force opposes
 !>               the slip at full strength) in scaled units.
 !>
@@ -105,6 +106,8 @@
 !>       4 Lemke terminated with r > tol; -k argument k invalid.  With nt = 0
 !>       the call is solve_lcp_lemke or solve_lcp_pgs on (g, qn), unchanged.
 !>   friction_residual(g, prob, lam)        the residual r
+!>   measure_friction(g, prob, lam, rep)    r and the complementarity measure into rep
+!>                                          (for friction_newton, the PDAS of these steps)
 !>   friction_state(g, prob, lam, state, err)
 !>       state(nt): state_open (0), state_stick (1) or state_slip (2)
 !>   friction_lcp_system(g, prob, m, q, d)  Lemke's LCP (M, q) and its scaling d
@@ -608,7 +611,10 @@ contains
       bk = max(0.0_dp, p%bs0(k) + p%mus(k) * s(p%trow(k)))
       prod = max(prod, abs(bk * abs(v(j)) + s(j) * v(j)))           ! b |ds| - tau ds
     end do
+    ! the force scale: max |s|, or the largest Tresca bound when every force
+    ! is zero (lam = 0 with a bound left unused against a slip: prod > 0)
     smax = maxval(abs(s))
+    if (p%nt > 0) smax = max(smax, maxval(p%bs0))
     if (prod > 0.0_dp) c = prod / (smax * p%qscale)
   end function scaled_complementarity
 

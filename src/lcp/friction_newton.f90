@@ -14,18 +14,30 @@
 !> SIAM J. Sci. Comput. 30 (2008) 572-596, in 2D):
 !>     A      normal rows in contact (s_i - c v_i > 0):       v_i = 0
 !>     I      the other normal rows:                           s_i = 0
-!>     St     sticking tangential rows (|s_j - c v_j| < bs_k): v_j = 0
-!>     Sl     slipping rows, sign sg_k = sign(s_j - c v_j):    s_j = sg_k bs_k
-!> (a tangential row of a node in I whose bound vanishes, Coulomb's open
-!> node, is in Sl with tau = 0).  The step solves these m = n + nt linear
-!> equations: s_I = 0 and s_Sl = sg (bound/d + mus s_trow) are substituted,
-!> which leaves the rows A u St of Gs on the unknowns s_A, s_St, a dense
+!>     St     sticking tangential rows:                        v_j = 0
+!>     Sl     slipping rows, with a sign sg_k:                 s_j = sg_k bs_k
+!> (a tangential row whose bound vanishes, Coulomb's open node, is in Sl
+!> with tau = 0).  The step solves these m = n + nt linear equations:
+!> s_I = 0 and s_Sl = sg (bound/d + mus s_trow) are substituted, which
+!> leaves the rows A u St of Gs on the unknowns s_A, s_St, a dense
 !> non-symmetric system (the slip columns add mus Gs(:, j) sg to the
 !> columns of their normal rows) solved by LU (dgesv), O(|A u St|^3) per
-!> step.  The next partition is read off the new (s, v).  The iteration
-!> stops when the partition repeats and the residual of friction_lcp is
-!> below tol.  Starting from the caller's lam (the previous load step's
-!> solution) it needs a few steps where PGS needs thousands of sweeps.
+!> step.  The next partition is read off the new (s, v): A from s_i - c v_i,
+!> the bound b from the predicted normal force max(0, s_i - c v_i); a
+!> sticking row whose force exceeds b slips with the sign of its force, a
+!> slipping row whose slip turns against its force (sg v_j > 0, ds = -v_j)
+!> sticks.  This is the tangential rule above in the limit c -> 0: with
+!> c = 1 a slipping row whose slip came out against its force went straight
+!> to the opposite slip, and on a plate sheared with mu = 1 (bench/friction.sh)
+!> sixty rows flipped sign at every step, a cycle of two partitions.  The
+!> start takes the rows at their bound (|s_j| >= b (1 - 1e-9), b > 0) as
+!> slipping, the others as sticking: from the previous step's solution, the
+!> partition of that solution (a step of its own when its slipping rows were
+!> taken at their bound to round-off only: 3 or 4 steps in place of 1 on
+!> random Coulomb problems).  The iteration stops when the partition repeats and
+!> the residual of friction_lcp is below tol.  Starting from the caller's lam
+!> (the previous load step's solution) it needs 4 to 14 steps on that plate
+!> where PGS needs hundreds of sweeps or stalls.
 !>
 !> Convergence is local for Coulomb friction (and not proved for large mu):
 !> the method stops with info 2 after maxit steps (a cycle of partitions,
@@ -34,11 +46,12 @@
 !>
 !> Programming interface
 !>   solve_friction_newton(g, prob, opts, lam, rep)
-!>     g, prob as friction_lcp's solve_friction_lcp (checked there: call it
-!>     through friction_auto or after check_friction_problem); opts%tol on
+!>     g, prob as friction_lcp's solve_friction_lcp (check_friction_problem
+!>     first: info -1, -2 with its message); opts%tol on
 !>     friction_lcp's residual, opts%maxit the step limit (0: 50); lam in:
 !>     the starting point, out: the solution or the last iterate; rep: info
-!>     0 solved, 2 step limit, 3 singular partition or out of memory,
+!>     0 solved, 2 step limit, 3 singular partition or out of memory, < 0
+!>     g, prob or lam invalid,
 !>     iterations = Newton steps, residual and complementarity of lam.
 !> No routine prints anything.
 module friction_newton
@@ -46,13 +59,17 @@ module friction_newton
   use lapack_interfaces, only: dgesv
   use strings, only: int_to_str, real_to_str
   use lcp_scaling, only: lcp_options_t, lcp_report_t, scaling_vector, lcp_gaps, report_out_of_memory, set_report
-  use friction_lcp, only: friction_problem_t, measure_friction
+  use friction_lcp, only: friction_problem_t, measure_friction, check_friction_problem
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
   private
   public :: solve_friction_newton
 
   integer, parameter :: default_steps = 50     ! step limit when opts%maxit = 0
+  !> At the start a row within this relative distance of its bound is taken
+  !> as slipping: from the previous step's solution its force is at its bound
+  !> only to round-off.
+  real(dp), parameter :: start_tol = 1.0e-9_dp
   integer, parameter :: row_inactive = 0, row_active = 1       ! normal rows: I, A
   integer, parameter :: row_stick = 2, row_slip = 3            ! tangential rows: St, Sl
 
@@ -64,7 +81,9 @@ contains
   !>   opts  (in)    tol (> 0), maxit (>= 0; 0: 50 steps)
   !>   lam   (inout) (n+nt) starting point (negative lambda taken as 0);
   !>                 the solution when rep%info = 0, else the last iterate
-  !>   rep   (out)   info 0 solved, 2 step limit, 3 singular or out of memory;
+  !>   rep   (out)   info 0 solved, 2 step limit, 3 singular or out of memory,
+  !>                 -1 / -2 g or prob invalid (check_friction_problem), -4
+  !>                 lam of the wrong size;
   !>                 iterations (steps), residual, complementarity, message
   subroutine solve_friction_newton(g, prob, opts, lam, rep)
     real(dp), intent(in) :: g(:, :)
@@ -77,6 +96,13 @@ contains
     integer :: n, nt, m, i, j, k, step, maxit, nu, st, info
     logical :: same
 
+    call check_friction_problem(g, prob, rep)
+    if (rep%info < 0) return
+    if (size(lam) /= prob%n + prob%nt) then
+      call set_report(rep, -4, 'friction Newton: lam has ' // int_to_str(size(lam)) // ' entries (expected n + nt = ' // &
+        int_to_str(prob%n + prob%nt) // ')')
+      return
+    end if
     n = prob%n
     nt = prob%nt
     m = n + nt
@@ -222,7 +248,8 @@ contains
           ! a slipping row sticks when its slip turns against its force
           ! (ds = -v_j, sg ds < 0), and never flips sign in one step
           if (real(sg(k), dp) * v(j) > 0.0_dp) kind(j) = row_stick
-        else if (abs(s(j)) >= b .and. (.not. first .or. s(j) /= 0.0_dp)) then
+        else if (abs(s(j)) >= b * (1.0_dp - merge(start_tol, 0.0_dp, first)) .and. &
+                 (.not. first .or. s(j) /= 0.0_dp)) then
           kind(j) = row_slip                           ! a sticking row beyond its bound slips
           sg(k) = int(sign(1.0_dp, s(j)))
         else
