@@ -20,7 +20,7 @@
 !>   check_unheld_rigid_loads(run)  no load along a RIGID's direction nothing holds (exit 1)
 module contact_solve
   use kinds, only: dp
-  use strings, only: int_to_str
+  use strings, only: int_to_str, real_to_str
   use errors, only: error_t, add_error
   use exits, only: stop_input_errors, fail_numerical
   use run_state, only: run_t, ph_lcp
@@ -30,13 +30,16 @@ module contact_solve
   use contact_condensation, only: constraint_values
   use lcp_solvers, only: lcp_options_t, lcp_report_t, solve_lcp_lemke
   use friction_lcp, only: solve_friction_lcp, friction_state, friction_problem_t, friction_problem
+  use friction_auto, only: friction_attempt_t, solve_friction_auto
+  use friction_newton, only: solve_friction_newton
   use friction_modes, only: solve_friction_floating, no_equilibrium
   use contact_lcp, only: contact_solution_t, solve_contact
   use contact_set, only: node_traction
   use rigid_modes, only: mode_name, motion_name, describe_motion, remove_motions
   use mode_support, only: mode_split_t, split_free_modes
   use rigid_support, only: split_rigid_modes, rigid_direction, pulled_rigid
-  use results_writer, only: results_t
+  use results_writer, only: results_t, string_t
+  use deck_expressions, only: format_number
   use linear_system, only: solve_loads
   use post_processing, only: pair_resultants, post_process, contact_measures, nodal_contact_fields, &
                              check_finite_results
@@ -234,7 +237,7 @@ contains
     type(run_t), intent(inout) :: run
     type(lcp_options_t) :: opts
     type(lcp_report_t) :: rep
-    character(len=:), allocatable :: method
+    character(len=:), allocatable :: method, first
     real(dp), allocatable :: z(:), cu(:), qn(:), qt(:), sprev(:), fk(:), ubk(:), tforce(:)
     real(dp), allocatable :: hh(:,:), eg(:,:), eh(:), alpha(:), unbalanced(:), body_alpha(:), rigid_alpha(:)
     integer, allocatable :: fstate(:)
@@ -245,6 +248,8 @@ contains
     character(len=200) :: line
     type(error_t), allocatable :: err
     type(friction_problem_t) :: fp
+    type(friction_attempt_t), allocatable :: attempts(:)
+    logical :: auto
 
     n = run%cs%nrow
     nt = run%cs%ntan
@@ -252,10 +257,15 @@ contains
     opts%maxit = run%deck%solver%maxit
     opts%omega = run%deck%solver%omega
     method = run%deck%solver%lcp
-    ! lcp=auto: Lemke on the friction LCP (n + 3 nt unknowns) while its dense
-    ! tableau is small, the block Gauss-Seidel above
-    if (method == 'auto') method = merge('lemke', 'pgs  ', n + 3 * nt <= 400)
-    method = trim(method)
+    ! lcp=auto: the primal-dual active set method first, the fastest at every
+    ! size measured (bench/friction.sh, doc/performance.md, "The friction
+    ! solvers": 3 to 20 times Lemke from 68 to 516 unknowns of Lemke's LCP,
+    ! and PGS stalls on a plate sheared with mu = 1), then Lemke and PGS when
+    ! it fails (solve_friction_auto): the default fails only where every
+    ! method does
+    auto = method == 'auto'
+    if (auto) method = 'pdas'
+    first = method
     ! bodies held only by contact: the amplitudes of the held combinations of
     ! their modes are unknowns of the friction LCP (friction_modes), against
     ! H = C R V and the load e = V'R'f of each ramp
@@ -305,6 +315,12 @@ contains
         fp = friction_problem(qn, qt, run%cs%tan_row, run%cs%tan_mu, run%cs%tan_bound)
         body_alpha = matmul(run%split%held, alpha(1:size(run%split%held, 2)))
         rigid_alpha = matmul(run%rsplit%held, alpha(size(run%split%held, 2) + 1:))
+      else if (auto) then
+        call solve_friction_auto(run%w, fp, first, opts, z, rep, attempts)
+        method = attempts(size(attempts))%method
+        call report_fallbacks(run, kstep, attempts)
+      else if (method == 'pdas') then
+        call solve_friction_newton(run%w, fp, opts, z, rep)
       else
         call solve_friction_lcp(run%w, fp, method, opts, z, rep)
       end if
@@ -362,6 +378,61 @@ contains
     run%res%stick_nodes = count(run%res%fstate == 1)
     run%res%slip_nodes = count(run%res%fstate == 2)
   end subroutine solve_friction_steps
+
+  !> lcp=auto's fallbacks in a load step (solve_friction_auto): a log line
+  !> for each method that failed, saying why and what comes next, and a
+  !> summary line `lcp_fallback STEP FROM TO` for each.
+  !>   kstep    (in) the step
+  !>   attempts (in) the methods tried, in order
+  subroutine report_fallbacks(run, kstep, attempts)
+    type(run_t), intent(inout) :: run
+    integer, intent(in) :: kstep
+    type(friction_attempt_t), intent(in) :: attempts(:)
+    type(string_t), allocatable :: lines(:)
+    character(len=:), allocatable :: why
+    integer :: k
+    do k = 1, size(attempts) - 1
+      associate (a => attempts(k)%rep)
+        select case (trim(a%stopped))
+        case ('stagnated', 'diverged')
+          why = trim(a%stopped) // ' at sweep ' // int_to_str(a%iterations)
+        case ('sweep limit', 'pivot limit', 'step limit')
+          why = 'reached its ' // trim(a%stopped) // ' (' // int_to_str(a%iterations) // ')'
+        case ('ray')
+          why = 'ended on a ray after ' // int_to_str(a%iterations) // ' pivots (Coulomb: no proof that there is no solution)'
+        case ('inaccurate')
+          why = 'ended with a residual above tol'
+        case ('singular')
+          why = 'met a singular system at step ' // int_to_str(a%iterations)
+        case default
+          why = 'failed'
+          if (a%no_memory) why = 'ran out of memory'
+        end select
+      end associate
+      call say(run, 'lcp      step ' // int_to_str(kstep) // '/' // int_to_str(run%sc%steps) // ': ' // &
+        method_label(attempts(k)) // ' ' // why // ', residual ' // real_to_str(attempts(k)%rep%residual) // &
+        ', falling back to ' // method_label(attempts(k + 1)))
+      if (.not. allocated(run%res%lcp_fallback)) allocate(run%res%lcp_fallback(0))
+      allocate(lines(size(run%res%lcp_fallback) + 1))
+      lines(1:size(run%res%lcp_fallback)) = run%res%lcp_fallback
+      lines(size(lines))%s = int_to_str(kstep) // ' ' // method_word(attempts(k)) // ' ' // method_word(attempts(k + 1))
+      call move_alloc(lines, run%res%lcp_fallback)
+    end do
+  contains
+    function method_label(a) result(t)
+      type(friction_attempt_t), intent(in) :: a
+      character(len=:), allocatable :: t
+      t = 'Lemke'
+      if (a%method == 'pdas') t = 'PDAS (semismooth Newton)'
+      if (a%method == 'pgs') t = 'PGS (omega ' // format_number(a%omega) // ')'
+    end function method_label
+    function method_word(a) result(t)
+      type(friction_attempt_t), intent(in) :: a
+      character(len=:), allocatable :: t
+      t = a%method
+      if (a%method == 'pgs') t = 'pgs(omega=' // format_number(a%omega) // ')'
+    end function method_word
+  end subroutine report_fallbacks
 
   !> One step's displacement from its multipliers z, its post-processing,
   !> VTK file and table row, all on the step's own results.

@@ -92,6 +92,7 @@ module results_writer
     character(len=:), allocatable :: lcp_method
     integer :: lcp_iterations = 0
     real(dp) :: lcp_residual = 0
+    type(string_t), allocatable :: lcp_fallback(:) !< 'STEP FROM TO' of each lcp=auto fallback (contact_solve)
     real(dp) :: complementarity = 0, min_gap = 0, min_pressure = 0
     integer :: contact_nodes = 0, active_nodes = 0, redundant = 0
     integer(i8) :: factor_nnz = 0
@@ -439,6 +440,11 @@ contains
     write(u, '(a)') 'lcp_method ' // r%lcp_method
     write(u, '(a,i0)') 'lcp_iterations ', r%lcp_iterations
     write(u, '(a,a)') 'lcp_residual ', num(r%lcp_residual)
+    if (allocated(r%lcp_fallback)) then
+      do k = 1, size(r%lcp_fallback)
+        write(u, '(a)') 'lcp_fallback ' // r%lcp_fallback(k)%s
+      end do
+    end if
     write(u, '(a,a)') 'complementarity ', num(r%complementarity)
     write(u, '(a,a)') 'min_gap ', num(r%min_gap)
     write(u, '(a,a)') 'min_pressure ', num(r%min_pressure)

@@ -84,7 +84,6 @@ contains
     call check_ramps(s, deck)
     call resolve_curves(s, deck)
     call check_rigids(s, deck)
-    call check_friction_solver(s, deck)
     call check_output_names(s, deck)
     if (deck%axisymmetric) call check_axisymmetric(s, deck)
     if (deck%adapt%on) call check_adapt(s, deck)
@@ -179,24 +178,6 @@ contains
       call report(s, line, text // ' (expected k1 <= 1, as STEPS defaults to 1 when absent)')
     end if
   end subroutine check_ramp_end
-
-  !> lcp=pdas solves the frictionless LCP only: refuse it when some CONTACT has a
-  !> friction bound that is not identically zero (mu=0 and tresca=0 are frictionless).
-  subroutine check_friction_solver(s, deck)
-    type(state_t), intent(inout) :: s
-    type(deck_t), intent(in) :: deck
-    integer :: i
-
-    if (.not. allocated(deck%solver%lcp)) return
-    if (deck%solver%lcp /= 'pdas') return
-    do i = 1, s%ncontact
-      if (deck%contacts(i)%mu > 0 .or. deck%contacts(i)%tresca > 0) then
-        call report(s, deck%solver%line, 'lcp=pdas solves frictionless contact only (expected lcp=auto, ' // &
-                    'lemke or pgs with friction)')
-        return
-      end if
-    end do
-  end subroutine check_friction_solver
 
   !> A rect mesh names its boundaries left, right, bottom, top.
   subroutine check_rect_boundary(s, body, name, line)

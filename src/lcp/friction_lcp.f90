@@ -39,7 +39,8 @@
 !>               satisfies every condition above, and r is scale-free: unchanged
 !>               when lengths, forces or single rows of C are rescaled;
 !>     complementarity  max( max_i |s_i v_i|, max_k |bs_k |v_{n+k}| + s_{n+k} v_{n+k}| )
-!>               / (max_j |s_j| qscale), 0 when the numerator is 0; the tangential
+!>               / (max(max_j |s_j|, max_k bound_k / d_{n+k}) qscale), 0 when the
+!>               numerator is 0; the tangential
 !>               term is b |ds| - tau ds (zero when the friction force opposes
 !>               the slip at full strength) in scaled units.
 !>
@@ -105,6 +106,8 @@
 !>       4 Lemke terminated with r > tol; -k argument k invalid.  With nt = 0
 !>       the call is solve_lcp_lemke or solve_lcp_pgs on (g, qn), unchanged.
 !>   friction_residual(g, prob, lam)        the residual r
+!>   measure_friction(g, prob, lam, rep)    r and the complementarity measure into rep
+!>                                          (for friction_newton, the PDAS of these steps)
 !>   friction_state(g, prob, lam, state, err)
 !>       state(nt): state_open (0), state_stick (1) or state_slip (2)
 !>   friction_lcp_system(g, prob, m, q, d)  Lemke's LCP (M, q) and its scaling d
@@ -123,6 +126,7 @@ module friction_lcp
   private
   public :: friction_problem_t, friction_problem, check_friction_problem, state_open, state_stick, state_slip
   public :: solve_friction_lcp, friction_residual, friction_state, friction_lcp_system, friction_forces
+  public :: measure_friction
 
   integer, parameter :: state_open = 0    !< not in contact, no friction force available
   integer, parameter :: state_stick = 1   !< no slip: ds = 0, |tau| <= b
@@ -315,6 +319,7 @@ contains
     end if
   end subroutine solve_friction_lcp
 
+
   !> Scale-free natural residual r (module header) of a candidate lam.
   !> r = 0 exactly when lam solves the frictional contact problem.
   !>   g, prob  (in) the problem, as in solve_friction_lcp
@@ -339,6 +344,27 @@ contains
     call lcp_gaps(p%gs, p%qs, s, v)                    ! v = qs + Gs s
     r = scaled_residual(p, s, v)
   end function friction_residual
+
+  !> The residual r and the complementarity measure (module header) of a
+  !> candidate lam into rep, for a method of another module (friction_newton).
+  !>   g, prob  (in)    the problem, as in solve_friction_lcp
+  !>   lam      (in)    (n+nt) candidate, finite
+  !>   rep      (inout) residual and complementarity set (huge(1.0_dp) when the
+  !>                    sizes are invalid or the scaled copy of g does not fit)
+  subroutine measure_friction(g, prob, lam, rep)
+    real(dp), intent(in) :: g(:, :)
+    type(friction_problem_t), intent(in) :: prob
+    real(dp), intent(in) :: lam(:)
+    type(lcp_report_t), intent(inout) :: rep
+    type(scaled_friction_t) :: p
+    integer :: info
+    rep%residual = huge(1.0_dp)
+    rep%complementarity = huge(1.0_dp)
+    if (.not. valid_problem(g, prob, size(lam))) return
+    call scale_friction(g, prob, p, info)
+    if (info /= 0) return
+    call measure_scaled(p, lam / p%d, rep)
+  end subroutine measure_friction
 
   !> Stick / slip state of each tangential row of a (solved) lam, decided with
   !> the relative tolerance state_tol = 1e-8 (module header).
@@ -585,7 +611,10 @@ contains
       bk = max(0.0_dp, p%bs0(k) + p%mus(k) * s(p%trow(k)))
       prod = max(prod, abs(bk * abs(v(j)) + s(j) * v(j)))           ! b |ds| - tau ds
     end do
+    ! the force scale: max |s|, or the largest Tresca bound when every force
+    ! is zero (lam = 0 with a bound left unused against a slip: prod > 0)
     smax = maxval(abs(s))
+    if (p%nt > 0) smax = max(smax, maxval(p%bs0))
     if (prod > 0.0_dp) c = prod / (smax * p%qscale)
   end function scaled_complementarity
 
@@ -640,6 +669,7 @@ contains
         int_to_str(rep%iterations) // ' pivots', 'G ill-conditioned')
     case (1)
       rep%info = 1
+      rep%stopped = 'ray'
       rep%message = 'friction Lemke: ray termination after ' // int_to_str(rep%iterations) // ' pivots: '
       ! Name the obvious cause when there is one: a zero normal row of G
       ! (w_i = qn_i whatever lam) with a negative gap.
@@ -656,6 +686,7 @@ contains
       end if
     case default
       rep%info = lrep%info
+      rep%stopped = lrep%stopped
       ! out of memory keeps the program's wording (`out of memory while ...`)
       if (lrep%no_memory) then
         rep%message = lrep%message

@@ -129,8 +129,25 @@ contains
       if (rep_b%info /= 0) return
       r = e - matmul(transpose(h), z)
       if (norm2(r) <= reach_tol * norm2(e)) then           ! there is: Lemke's failure stands
-        if (any(prob%cmu /= 0.0_dp)) rep%message = rep%message // '; the loads can be balanced by contact forces ' // &
-          'within the friction cone, so this does not prove that no equilibrium exists'
+        if (any(prob%cmu /= 0.0_dp)) then
+          rep%message = rep%message // '; the loads can be balanced by contact forces ' // &
+            'within the friction cone, so this does not prove that no equilibrium exists'
+        else
+          ! Tresca: the step is a convex QP whose feasible set (a balance in
+          ! the cone) is not empty, and whose objective is bounded below on it
+          ! when G is definite on the normal rows: it has a solution, and the
+          ! ray is round-off's.  It happens when
+          ! the balance needs huge amplitudes (a couple on a ring around a
+          ! shaft, balanced only through the faceting of the two circles):
+          ! one rounding of G gives the ray, another a solution that turns
+          ! the ring by thousands of radians.
+          rep%message = 'friction Lemke with rigid-mode amplitudes: ray termination after ' // &
+            int_to_str(rep%iterations) // ' pivots, although the loads can be balanced by contact forces ' // &
+            'within the friction bounds (Tresca: the step is then a feasible convex problem, so the ray most ' // &
+            'likely comes from round-off; ' // &
+            'the equilibrium is at the edge of what the contacts can hold, e.g. a moment balanced only ' // &
+            'through the faceting of a curved contact)'
+        end if
         return
       end if
       ! the motion that friction fails to hold keeps the loaded contacts closed

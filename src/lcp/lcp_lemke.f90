@@ -225,6 +225,7 @@ contains
     do
       if (npiv >= maxit) then
         rep%info = 2
+        rep%stopped = 'pivot limit'
         rep%message = 'Lemke: pivot limit ' // int_to_str(maxit) // &
           ' reached without a solution (degenerate or ill-conditioned W)'
         exit
@@ -232,6 +233,7 @@ contains
       call lexicographic_ratio_test(t, m, entering, basis, maxval(abs(p%qs)), r)
       if (r == 0) then
         rep%info = 1
+        rep%stopped = 'ray'
         rep%message = 'Lemke: ray termination at pivot ' // int_to_str(npiv + 1) // &
           ' (the LCP has no solution: no z >= 0 gives q + W z >= 0 when W is positive' // &
           ' semi-definite; entering ' // variable_name(entering, m, p%rows) // ')'

@@ -134,7 +134,7 @@ contains
   !>   tol     (in)    the residual target
   !>   label   (in)    the method's name in the message ('PGS')
   !>   iterate (in)    the name of the returned iterate ('z')
-  !>   problem (in)    what may have no solution ('LCP')
+  !>   problem (in)    what is solved ('LCP', 'problem'), for the message
   !>   rep     (inout) iterations and residual set on entry; info, message set
   subroutine pgs_outcome(reason, maxit, window, tol, label, iterate, problem, rep)
     integer, intent(in) :: reason, maxit, window
@@ -148,19 +148,34 @@ contains
         real_to_str(rep%residual)
     case (2)
       rep%info = 2
+      rep%stopped = 'sweep limit'
       rep%message = label // ': sweep limit ' // int_to_str(maxit) // ' reached, residual ' // &
         real_to_str(rep%residual) // ' > tol ' // real_to_str(tol) // '; ' // iterate // ' is the best iterate'
     case (3)
       rep%info = 3
-      rep%message = label // ': divergence at sweep ' // int_to_str(rep%iterations) // ' (the ' // problem // &
-        ' may have no solution); ' // iterate // ' is the best iterate, residual ' // real_to_str(rep%residual)
+      rep%stopped = 'diverged'
+      rep%message = label // ': divergence at sweep ' // int_to_str(rep%iterations) // '; ' // iterate // &
+        ' is the best iterate, residual ' // real_to_str(rep%residual) // not_a_proof(problem)
     case default
       rep%info = 3
+      rep%stopped = 'stagnated'
       rep%message = label // ': stagnation at sweep ' // int_to_str(rep%iterations) // ', residual ' // &
-        real_to_str(rep%residual) // ' not decreasing over ' // int_to_str(window) // ' sweeps (the ' // &
-        problem // ' may have no solution); ' // iterate // ' is the best iterate'
+        real_to_str(rep%residual) // ' not decreasing over ' // int_to_str(window) // ' sweeps; ' // iterate // &
+        ' is the best iterate' // not_a_proof(problem)
     end select
   end subroutine pgs_outcome
+
+  !> The tail of a divergence or stagnation message: PGS that does not
+  !> converge proves nothing about the problem (with Coulomb friction and a
+  !> large mu it stalls on problems that Lemke solves), so the message says
+  !> so and what to try instead.
+  !>   problem (in) what is being solved ('LCP', 'problem')
+  function not_a_proof(problem) result(t)
+    character(len=*), intent(in) :: problem
+    character(len=:), allocatable :: t
+    t = ' (PGS does not converge on this ' // problem // ', which does not show that it has no solution: ' // &
+      'try lcp=lemke, or PGS with a smaller omega)'
+  end function not_a_proof
 
   !> The sweep limit and the stagnation window of a PGS run on m unknowns.
   !>   maxit_opt (in)  the caller's limit, >= 0; 0 selects

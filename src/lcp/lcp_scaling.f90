@@ -67,6 +67,8 @@ module lcp_scaling
     real(dp) :: complementarity = 0.0_dp     !< scaled complementarity of the returned z
     character(len=:), allocatable :: message !< one-line summary or diagnostic
     logical :: no_memory = .false.           !< info 3 because an allocation failed (message: out of memory while ...)
+    character(len=16) :: stopped = ''        !< why an unsolved run stopped, for a log line: 'stagnated',
+                                             !< 'diverged', 'sweep limit', 'ray', 'pivot limit', 'inaccurate'
   end type lcp_report_t
 
   !> The scaled problem restricted to the rows with a positive diagonal.
@@ -253,6 +255,7 @@ contains
       rep%message = solved // ', residual ' // real_to_str(rep%residual)
     else
       rep%info = 4
+      rep%stopped = 'inaccurate'
       rep%message = stopped // ' but the residual ' // real_to_str(rep%residual) // ' exceeds tol ' // &
         real_to_str(tol) // ' (' // cause // ')'
     end if

@@ -219,7 +219,7 @@ contains
 
   !> Each bad deck: at least one error; first message line as in its .expect file.
   subroutine test_bad_decks()
-    character(len=*), parameter :: names(92) = [character(len=32) :: &
+    character(len=*), parameter :: names(91) = [character(len=32) :: &
       'deck_bad_name', 'deck_bad_number', 'deck_binary', 'deck_blank_equals_missing', 'deck_body_in_body', &
       'deck_body_no_name', 'deck_boundary_case', 'deck_contact_alone', 'deck_contact_duplicate', &
       'deck_contact_same_boundary', 'deck_contact_syntax', 'deck_contact_unknown_body', 'deck_density_alone', &
@@ -237,7 +237,7 @@ contains
       'deck_traction_missing', 'deck_trailing_garbage', 'deck_unknown_gap', 'deck_unknown_key', &
       'deck_unknown_keyword', 'deck_steps_value', 'deck_steps_missing', 'deck_second_steps', 'deck_ramp_syntax', &
       'deck_ramp_order', 'deck_ramp_steps', 'deck_ramp_no_steps', 'deck_friction_both', 'deck_friction_mu_range', &
-      'deck_friction_tresca_negative', 'deck_friction_pdas', 'deck_curve_unknown', 'deck_curve_order', &
+      'deck_friction_tresca_negative', 'deck_curve_unknown', 'deck_curve_order', &
       'deck_curve_point', 'deck_curve_ramp', 'deck_curve_empty', 'deck_curve_duplicate', 'deck_output_steps', &
       'deck_output_steps_clash', 'deck_traction_mixed', 'deck_fix_axes_mixed']
     type(deck_t) :: d
@@ -487,10 +487,10 @@ contains
     call check(g%count == 0 .and. d%solver%cut == 'off', 'solver: cut=off read (key and value in any case)')
     call read_text_deck(two // pair // nl // 'SOLVER lcp=pdas' // nl // 'STEPS 5' // nl, d, g)
     call check(g%count == 0, 'friction: STEPS without friction with lcp=pdas accepted')
-    call expect_error(two // pair // ' mu=0.2' // nl // 'SOLVER lcp=pdas' // nl, 12, 'lcp=pdas solves ' // &
-                      'frictionless contact only (expected lcp=auto, lemke or pgs with friction)', 'friction: pdas refused')
-    call expect_error(two // 'SOLVER lcp=PDAS' // nl // pair // ' tresca=1' // nl, 11, 'lcp=pdas solves ', &
-                      'friction: pdas refused, SOLVER before CONTACT')
+    call read_text_deck(two // pair // ' mu=0.2' // nl // 'SOLVER lcp=pdas' // nl, d, g)
+    call check(g%count == 0 .and. d%solver%lcp == 'pdas', 'friction: lcp=pdas accepted with Coulomb friction')
+    call read_text_deck(two // 'SOLVER lcp=PDAS' // nl // pair // ' tresca=1' // nl, d, g)
+    call check(g%count == 0 .and. d%solver%lcp == 'pdas', 'friction: lcp=pdas accepted with Tresca friction')
     call expect_error(two // pair // ' tresca=1 mu=0.1' // nl, 11, 'mu= and tresca= together (expected one ' // &
                       'friction law per CONTACT)', 'friction: both laws refused')
     call expect_error(two // pair // ' mu=1000.5' // nl, 11, 'bad value mu=1000.5 (expected 0 <= mu <= 1000)', &

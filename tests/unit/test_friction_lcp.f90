@@ -3,7 +3,10 @@
 !> and PGS must agree) and Coulomb on random SPD Delassus matrices, checked by
 !> an independent test of every contact condition written here (no scaling,
 !> no call to the module's own residual), the frictionless limits mu = 0 and
-!> nt = 0 against lcp_solvers, and the failures that must be reported.
+!> nt = 0 against lcp_solvers, and the failures that must be reported.  The
+!> primal-dual active set method of friction_newton on the same random
+!> problems (Tresca: Lemke's unique answer; Coulomb: every condition), and
+!> friction_auto's order (a singular system hands the step to Lemke).
 program test_friction_lcp
   use kinds, only: dp, i8
   use errors, only: error_t
@@ -11,6 +14,8 @@ program test_friction_lcp
   use lcp_solvers, only: lcp_options_t, lcp_report_t, solve_lcp_lemke, solve_lcp_pgs, solve_lcp_lemke_scaled
   use friction_lcp, only: friction_problem_t, friction_problem, solve_friction_lcp, friction_residual, &
     friction_state, state_open, state_stick, state_slip
+  use friction_newton, only: solve_friction_newton
+  use friction_auto, only: friction_attempt_t, solve_friction_auto
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
 
@@ -36,6 +41,12 @@ program test_friction_lcp
   call test_coulomb_random(10, 0.2_dp, 'n10 coupled')
   call test_coulomb_random(25, 0.2_dp, 'n25 coupled')
   call test_coulomb_random(25, 0.0_dp, 'n25 decoupled')
+  call test_pdas_random(12, 12, 1.0_dp, 0.0_dp, 'tresca n12')
+  call test_pdas_random(30, 20, 1.0_dp, 0.0_dp, 'tresca n30 nt20')
+  call test_pdas_random(25, 25, 0.2_dp, 0.3_dp, 'coulomb n25 mu 0.3')
+  call test_pdas_random(25, 25, 0.2_dp, 0.8_dp, 'coulomb n25 mu 0.8')
+  call test_pdas_random(25, 25, 0.0_dp, 0.8_dp, 'coulomb n25 decoupled mu 0.8')
+  call test_auto_order()
   call test_zero_tangential_row()
   call test_frictionless_limits(15)
   call test_failures()
@@ -415,6 +426,134 @@ contains
       end if
     end do
   end subroutine test_coulomb_random
+
+  !> friction_newton on a random problem (coupling t, Coulomb mu, or Tresca
+  !> when mu = 0): it solves it (info 0, every condition of check_conditions
+  !> to round-off times cond(G)), in a few steps; with Tresca or t = 0 the
+  !> answer is unique and equals Lemke's; from the solution it stops after
+  !> one step; with maxit = 1 from zero it reports the step limit (info 2)
+  !> without claiming that there is no solution.
+  subroutine test_pdas_random(n, nt, t, mu, tag)
+    integer, intent(in) :: n, nt
+    real(dp), intent(in) :: t, mu
+    character(len=*), intent(in) :: tag
+    real(dp), allocatable :: g(:, :), qn(:), qt(:), cmu(:), bound(:), lam(:), lam_l(:)
+    integer, allocatable :: trow(:)
+    type(friction_problem_t) :: prob
+    type(lcp_options_t) :: opts
+    type(lcp_report_t) :: rep
+    integer :: k
+    character(len=:), allocatable :: name
+
+    name = 'pdas ' // tag
+    call random_delassus(n, nt, t, seed, g)
+    allocate(qn(n), qt(nt), bound(nt), lam(n + nt), lam_l(n + nt))
+    call random_vector(seed, -1.0_dp, 1.0_dp, qn)
+    call random_vector(seed, -1.0_dp, 1.0_dp, qt)
+    if (mu > 0.0_dp) then
+      bound = 0.0_dp
+      cmu = [(mu, k = 1, nt)]
+    else
+      call random_vector(seed, 0.05_dp, 0.5_dp, bound)
+      cmu = [(0.0_dp, k = 1, nt)]
+    end if
+    trow = [(k + (n - nt) / 2, k = 1, nt)]
+    prob = friction_problem(qn, qt, trow, cmu, bound)
+
+    lam = 0.0_dp
+    call solve_friction_newton(g, prob, opts, lam, rep)
+    call check(rep%info == 0, name // ': info 0')
+    call check(rep%iterations > 0 .and. rep%iterations <= 20, name // ': a few Newton steps')
+    call check_small(rep%residual, opts%tol, name // ': reported residual <= tol')
+    call check_close(rep%residual, friction_residual(g, prob, lam), tol_round(16), &
+      name // ': reported residual is that of lam', floor=unit_roundoff)
+    call check_conditions(g, prob, lam, tol_direct, name)
+    if (mu == 0.0_dp .or. t == 0.0_dp) then
+      call solve_friction_lcp(g, prob, 'lemke', opts, lam_l, rep)
+      call check_small(rel_diff(lam, lam_l), tol_direct, name // ': = Lemke (unique)')
+    end if
+
+    ! warm start from the solution: the partition repeats after one step
+    call solve_friction_newton(g, prob, opts, lam, rep)
+    call check(rep%info == 0 .and. rep%iterations == 1, name // ' warm start: one step')
+
+    opts%maxit = 1
+    lam = 0.0_dp
+    call solve_friction_newton(g, prob, opts, lam, rep)
+    call check(rep%info == 2 .and. trim(rep%stopped) == 'step limit' .and. all(ieee_is_finite(lam)) .and. &
+      index(rep%message, 'does not show that there is none') > 0, name // ' maxit 1: step limit, no claim')
+  end subroutine test_pdas_random
+
+  !> friction_auto: first 'pdas' on a problem with two identical normal rows
+  !> (G singular: two pairs over the same node) meets a singular system and
+  !> hands the step to Lemke, which solves it; first 'pgs' with maxit = 1
+  !> fails PGS at omega 1 and 0.3, PDAS and Lemke in that order, the message
+  !> naming each; a zero normal row with a negative gap ends the sequence at
+  !> once (a proof); an explicit omega of 0.3 is not run twice.
+  subroutine test_auto_order()
+    real(dp), allocatable :: g(:, :), g2(:, :), lam(:), lam_l(:)
+    type(friction_problem_t) :: prob
+    type(lcp_options_t) :: opts
+    type(lcp_report_t) :: rep
+    type(friction_attempt_t), allocatable :: att(:)
+    integer :: i, j, n, nt, m
+
+    ! rows 1 and 2 the same normal row (a duplicate), each with its tangential row
+    n = 3
+    nt = 3
+    m = n + nt
+    call random_spd(m, seed, g2)
+    allocate(g(m, m))
+    g = g2
+    g(2, :) = g(1, :)
+    g(:, 2) = g(:, 1)
+    g(5, :) = g(4, :)
+    g(:, 5) = g(:, 4)
+    prob = friction_problem([-0.5_dp, -0.5_dp, 0.3_dp], [0.2_dp, 0.2_dp, -0.1_dp], [1, 2, 3], &
+                            [0.3_dp, 0.3_dp, 0.3_dp], [0.0_dp, 0.0_dp, 0.0_dp])
+    allocate(lam(m), lam_l(m))
+    lam = 0.0_dp
+    call solve_friction_auto(g, prob, 'pdas', opts, lam, rep, att)
+    call check(size(att) == 2, 'auto singular: two attempts')
+    if (size(att) == 2) then
+      call check(att(1)%method == 'pdas' .and. att(1)%rep%info == 3 .and. trim(att(1)%rep%stopped) == 'singular', &
+        'auto singular: pdas met a singular system')
+      call check(att(2)%method == 'lemke' .and. att(2)%rep%info == 0 .and. rep%info == 0, &
+        'auto singular: Lemke solved the step')
+    end if
+    call check_conditions(g, prob, lam, tol_direct, 'auto singular')
+
+    ! every method fails: the order and the message
+    call random_spd(m, seed, g)
+    prob = friction_problem([-0.5_dp, -0.4_dp, -0.3_dp], [0.2_dp, -0.3_dp, 0.1_dp], [1, 2, 3], &
+                            [0.5_dp, 0.5_dp, 0.5_dp], [0.0_dp, 0.0_dp, 0.0_dp])
+    opts%maxit = 1
+    lam = 0.0_dp
+    call solve_friction_auto(g, prob, 'pgs', opts, lam, rep, att)
+    call check(size(att) == 4, 'auto maxit 1: four attempts')
+    if (size(att) == 4) then
+      call check(att(1)%method == 'pgs' .and. att(1)%omega == 1.0_dp .and. att(2)%method == 'pgs' .and. &
+        att(2)%omega == 0.3_dp .and. att(3)%method == 'pdas' .and. att(4)%method == 'lemke', &
+        'auto maxit 1: pgs (1), pgs (0.3), pdas, lemke')
+      call check(all([(att(i)%rep%info > 0, i = 1, 4)]) .and. rep%info > 0, 'auto maxit 1: every method failed')
+      i = index(rep%message, 'friction PGS: sweep limit')
+      j = index(rep%message, 'then friction Lemke')
+      call check(i == 1 .and. j > i .and. index(rep%message, 'then friction Newton') > i, &
+        'auto maxit 1: the message names each failure in turn')
+    end if
+    opts%omega = 0.3_dp
+    call solve_friction_auto(g, prob, 'pdas', opts, lam, rep, att)
+    call check(size(att) == 3, 'auto omega 0.3: PGS at 0.3 run once')
+
+    ! a zero normal row with a negative gap: no solution, shown at once
+    g = g2
+    g(1, :) = 0.0_dp
+    g(:, 1) = 0.0_dp
+    opts = lcp_options_t()
+    call solve_friction_auto(g, friction_problem([-0.5_dp, -0.4_dp, -0.3_dp], [0.2_dp, -0.3_dp, 0.1_dp], [1, 2, 3], &
+      [0.0_dp, 0.0_dp, 0.0_dp], [0.1_dp, 0.1_dp, 0.1_dp]), 'pgs', opts, lam, rep, att)
+    call check(size(att) == 1 .and. rep%info == 1, 'auto zero row: PGS shows there is no solution, nothing more tried')
+  end subroutine test_auto_order
 
   !> A tangential row with a zero row/column in G (ds_k = -qt_k whatever lam):
   !> with qt_k = -0.2 the node slips, tau_k = +b_k.
