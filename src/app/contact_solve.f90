@@ -40,6 +40,7 @@ module contact_solve
   use post_processing, only: pair_resultants, post_process, contact_measures, nodal_contact_fields, &
                              check_finite_results
   use run_outputs, only: write_step
+  use run_estimate, only: estimate_results
   use contact_checks, only: check_step_sliding
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use run_phase, only: enter_phase
@@ -238,7 +239,7 @@ contains
     real(dp), allocatable :: hh(:,:), eg(:,:), eh(:), alpha(:), unbalanced(:), body_alpha(:), rigid_alpha(:)
     integer, allocatable :: fstate(:)
     character(len=:), allocatable :: cause
-    integer :: n, nt, kstep, g, r, iterations
+    integer :: n, nt, kstep, g, iterations
     logical :: floating
     type(results_t) :: step, none
     character(len=200) :: line
@@ -328,6 +329,9 @@ contains
         step%tau = z(n + 1:)
         step%gap = qn + matmul(run%w(1:n, :), z)
         step%alpha = body_alpha
+        step%slip = sprev
+        step%fstate = fstate
+        call friction_results(run, step)
         call contact_measures(run, step)
         call step_loads(run%sc, kstep, fk, ubk)
         call record_step(run, kstep, fk, ubk, z, rigid_alpha, step)
@@ -345,15 +349,25 @@ contains
     run%res%tau = z(n + 1:)
     run%res%gap = qn + matmul(run%w(1:n, :), z)
     run%res%slip = sprev
-    allocate(run%res%shear(nt), run%res%tan_of_row(n))
-    run%res%tan_of_row = 0
-    do r = 1, nt
-      run%res%tan_of_row(run%cs%tan_row(r)) = r
-      run%res%shear(r) = -run%res%tau(r) / run%cs%weight(run%cs%tan_row(r))    ! the force on the slave is -tau t
-    end do
-    run%res%stick_nodes = count(run%res%fstate == 1)
-    run%res%slip_nodes = count(run%res%fstate == 2)
+    call friction_results(run, run%res)
   end subroutine solve_friction_steps
+
+  !> A step's friction results from its tangential multipliers and states:
+  !> the shear traction and tangential row of each row, the stick and slip counts.
+  !>   res (inout) tau, fstate on entry; shear, tan_of_row, stick_nodes, slip_nodes on exit
+  subroutine friction_results(run, res)
+    type(run_t), intent(in) :: run
+    type(results_t), intent(inout) :: res
+    integer :: r
+    allocate(res%shear(run%cs%ntan), res%tan_of_row(run%cs%nrow))
+    res%tan_of_row = 0
+    do r = 1, run%cs%ntan
+      res%tan_of_row(run%cs%tan_row(r)) = r
+      res%shear(r) = -res%tau(r) / run%cs%weight(run%cs%tan_row(r))    ! the force on the slave is -tau t
+    end do
+    res%stick_nodes = count(res%fstate == 1)
+    res%slip_nodes = count(res%fstate == 2)
+  end subroutine friction_results
 
   !> One step's displacement from its multipliers z, its post-processing,
   !> VTK file and table row, all on the step's own results.
@@ -377,6 +391,7 @@ contains
     call pair_resultants(run, z, res)
     call post_process(run, fk, res)
     call nodal_contact_fields(run, res)
+    call estimate_results(run, res)                        ! the step's error_indicator
     call check_finite_results(run, res)
     call check_step_sliding(run, res, kstep)                ! the slide against small sliding (exit 1 beyond)
     call write_step(run, kstep, res)
