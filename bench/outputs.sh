@@ -5,7 +5,8 @@
 # steps=all).  Prints the bytes of the per-step VTK files, the binary size
 # they hold uncompressed (the sum of the blocks' sizes their headers give),
 # the per-step contact tables and the run's seconds (time_output, time_total,
-# the run log's total).  With OLD_PROGRAM (a build from before the XML files,
+# the run log's total), and the seconds of the same run with steps=last (the
+# same steps solved, no file per step: what the files cost).  With OLD_PROGRAM (a build from before the XML files,
 # which wrote a legacy ASCII NAME_NNNN.vtk per step) the same for it, and the
 # ratio of the sizes.  Figures in doc/outputs.md ("Sizes of a load history").
 set -eu
@@ -39,10 +40,10 @@ bytes() { find "$1" -maxdepth 1 -name "$2" -printf '%s\n' | awk '{s += $1} END {
 count() { find "$1" -maxdepth 1 -name "$2" | wc -l; }
 mb() { awk -v b="$1" 'BEGIN {printf "%.1f", b / 1e6}'; }
 
-one() {  # one() LABEL PROGRAM
+one() {  # one() LABEL PROGRAM [DECK]
   out=$work/$1
   rm -rf "$out"
-  "$2" -o "$out" "$deck" > "$work/$1.log"
+  "$2" -o "$out" "${3:-$deck}" > "$work/$1.log"
   nodes=$(awk '$1 == "dofs" {print $2 / 2}' "$out/cycle.summary")
   vtk=$(bytes "$out" 'cycle_[0-9]*.vtk'); vtu=$(bytes "$out" 'cycle_[0-9]*.vtu')
   csv=$(bytes "$out" 'cycle_contact_[0-9]*.csv')
@@ -77,6 +78,9 @@ PY
 }
 
 one new "$prog"
+mkdir -p "$work/lastdeck"
+grep -v '^OUTPUT' "$deck" > "$work/lastdeck/cycle.deck"       # the same name: cycle.summary
+one last "$prog" "$work/lastdeck/cycle.deck"
 if [ -n "$old" ]; then
   one old "$old"
   awk -v a="$(cat "$work/old.bytes")" -v b="$(cat "$work/new.bytes")" \
