@@ -33,7 +33,9 @@ struct temporary_table {                    /* the run's output temporaries not 
 };
 static struct temporary_table temporaries;
 static int cleanup_installed = 0;
-static int deferring = 0;                   /* a commit is under way: signals wait for its end */
+static int deferring = 0;                   /* > 0: a commit, or a temporary being made and recorded,
+                                               is under way: signals wait for its end (a depth: the
+                                               commit makes temporaries) */
 static int dying = 0;                       /* a signal's cleanup has begun */
 static int pending_signal = 0;              /* the signal that arrived while deferring */
 static const int guarded_signals[] = {SIGINT, SIGTERM, SIGHUP};
@@ -98,12 +100,35 @@ static void die_of(int sig)
 
 static void on_signal(int sig)
 {
-    __atomic_store_n(&dying, 1, __ATOMIC_SEQ_CST);
-    if (__atomic_load_n(&deferring, __ATOMIC_SEQ_CST)) {
+    /* the pending signal before `dying`: whoever sees dying without a pending
+     * signal knows a cleanup runs that ends the process (begin_deferral) */
+    if (__atomic_load_n(&deferring, __ATOMIC_SEQ_CST) > 0) {
         __atomic_store_n(&pending_signal, sig, __ATOMIC_SEQ_CST);
+        __atomic_store_n(&dying, 1, __ATOMIC_SEQ_CST);
         return;
     }
+    __atomic_store_n(&dying, 1, __ATOMIC_SEQ_CST);
     die_of(sig);
+}
+
+/* From here to end_deferral a signal waits (on_signal records it); when a
+ * signal's cleanup already runs, wait for it to end the process. */
+static void begin_deferral(void)
+{
+    __atomic_add_fetch(&deferring, 1, __ATOMIC_SEQ_CST);
+    if (__atomic_load_n(&dying, __ATOMIC_SEQ_CST) && __atomic_load_n(&pending_signal, __ATOMIC_SEQ_CST) == 0) {
+        __atomic_sub_fetch(&deferring, 1, __ATOMIC_SEQ_CST);
+        for (;;) pause();
+    }
+}
+
+/* The end of the outermost deferral acts on a signal that came meanwhile. */
+static void end_deferral(void)
+{
+    int sig;
+    if (__atomic_sub_fetch(&deferring, 1, __ATOMIC_SEQ_CST) > 0) return;
+    sig = __atomic_exchange_n(&pending_signal, 0, __ATOMIC_SEQ_CST);
+    if (sig != 0) die_of(sig);
 }
 
 static void on_exit_cleanup(void)
@@ -258,10 +283,12 @@ int c2d_create_temporary(const char *dir, const char *name, char *path, int len,
     strcat(t, "/.");
     strcat(t, name);
     strcat(t, "~XXXXXX");
+    begin_deferral();                               /* a signal between the file and its record waits */
     *fd = mkostemp(t, O_CLOEXEC);                   /* O_CREAT|O_EXCL: a link at the name is not followed */
     if (*fd < 0) {
         int e = errno;
         free(t);
+        end_deferral();
         return e;
     }
     if (fchmod(*fd, file_mode()) != 0) {            /* mkostemp makes 0600: give the mode of a plain file */
@@ -270,10 +297,12 @@ int c2d_create_temporary(const char *dir, const char *name, char *path, int len,
         unlink(t);
         free(t);
         *fd = -1;
+        end_deferral();
         return e;
     }
     strcpy(path, t);
     __atomic_store_n(slot, t, __ATOMIC_SEQ_CST);
+    end_deferral();
     return 0;
 }
 
@@ -304,22 +333,15 @@ int c2d_lock_folder(const char *dir)
             return -e;
         }
     }
-    __atomic_store_n(&deferring, 1, __ATOMIC_SEQ_CST);
-    if (__atomic_load_n(&dying, __ATOMIC_SEQ_CST)) {      /* a signal's cleanup runs: commit nothing */
-        __atomic_store_n(&deferring, 0, __ATOMIC_SEQ_CST);
-        for (;;) pause();
-    }
+    begin_deferral();                               /* a signal's cleanup runs: commit nothing */
     return fd;
 }
 
 void c2d_unlock_folder(int fd)
 {
-    int sig;
     flock(fd, LOCK_UN);
     close(fd);
-    __atomic_store_n(&deferring, 0, __ATOMIC_SEQ_CST);
-    sig = __atomic_exchange_n(&pending_signal, 0, __ATOMIC_SEQ_CST);
-    if (sig != 0) die_of(sig);
+    end_deferral();
 }
 
 int c2d_real_path(const char *path, char *real, int len)
