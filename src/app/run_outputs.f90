@@ -1,9 +1,9 @@
 !> run_outputs: the files of a run (DECK.md, "Outputs"): the output folder,
 !> the VTK file, the contact table and the summary, and with OUTPUT
 !> steps=all per step an XML VTK file (.vtu) and a contact table, the
-!> ParaView collection (.pvd) and the step table.  Every file is written to a temporary of its own and all are
-!> committed together once every one is written (safe_files), so a failed
-!> run leaves no half-written file.
+!> ParaView collection (.pvd) and the step table.  Every file is written to
+!> a temporary of its own and all are committed together once every one is
+!> written (safe_files), so a failed run leaves no half-written file.
 !>
 !> Why it exists: the naming of the files, their temporaries and the step
 !> table are bookkeeping the method does not need to show.  Who may use it:
