@@ -208,6 +208,7 @@ contains
     type(string_t), allocatable :: blob(:)      ! (size(list) + 4) each array's encoded bytes, in file order
     integer(i8), allocatable :: offset(:)       ! (size(list) + 4) its offset in the appended data
     integer :: nnode, nelem, ncon, k, e, j
+    integer :: i_points, i_conn, i_ends, i_types   ! the grid's blobs, after the arrays'
     integer(int64), allocatable :: conn(:), ends(:)
     logical :: zlib
     character(len=:), allocatable :: section
@@ -217,7 +218,12 @@ contains
     call grid_size(bodies, nnode, nelem, ncon)
     call vtk_rows(bodies, nnode, nelem, v)
     call vtk_arrays(r, fields, list)
-    allocate(blob(size(list) + 4), offset(size(list) + 4))
+    ! (indices in variables: gfortran 11 miscompiles blob(size(list) + 1)%s = ...)
+    i_points = size(list) + 1
+    i_conn = size(list) + 2
+    i_ends = size(list) + 3
+    i_types = size(list) + 4
+    allocate(blob(i_types), offset(i_types))
     do k = 1, size(list)
       call array_values(list(k), r, v)
       if (list(k)%integers) then
@@ -230,7 +236,7 @@ contains
     end do
     ! the grid: points (x, y, 0), connectivity, offsets (the end of each cell's points), types
     call point_coordinates(bodies, v)
-    blob(size(list) + 1)%s = encoded(xy0_bytes(v%vals), zlib)
+    blob(i_points)%s = encoded(xy0_bytes(v%vals), zlib)
     allocate(conn(ncon - nelem), ends(nelem))
     j = 0
     do e = 1, nelem
@@ -238,9 +244,9 @@ contains
       j = j + v%cells(0, e)
       ends(e) = j
     end do
-    blob(size(list) + 2)%s = encoded(int64_bytes(conn), zlib)
-    blob(size(list) + 3)%s = encoded(int64_bytes(ends), zlib)
-    blob(size(list) + 4)%s = encoded(int8_bytes([(int(vtk_cell_type(v%cells(0, e)), int8), e = 1, nelem)]), zlib)
+    blob(i_conn)%s = encoded(int64_bytes(conn), zlib)
+    blob(i_ends)%s = encoded(int64_bytes(ends), zlib)
+    blob(i_types)%s = encoded(int8_bytes([(int(vtk_cell_type(v%cells(0, e)), int8), e = 1, nelem)]), zlib)
     offset(1) = 0
     do k = 2, size(blob)
       offset(k) = offset(k - 1) + len(blob(k - 1)%s, kind=i8)
@@ -282,12 +288,12 @@ contains
     end do
     call put_line(tb, '      </' // section // '>')
     call put_line(tb, '      <Points>')
-    call put_line(tb, data_array('Float64', '', 3, offset(size(list) + 1)))
+    call put_line(tb, data_array('Float64', '', 3, offset(i_points)))
     call put_line(tb, '      </Points>')
     call put_line(tb, '      <Cells>')
-    call put_line(tb, data_array('Int64', 'connectivity', 1, offset(size(list) + 2)))
-    call put_line(tb, data_array('Int64', 'offsets', 1, offset(size(list) + 3)))
-    call put_line(tb, data_array('UInt8', 'types', 1, offset(size(list) + 4)))
+    call put_line(tb, data_array('Int64', 'connectivity', 1, offset(i_conn)))
+    call put_line(tb, data_array('Int64', 'offsets', 1, offset(i_ends)))
+    call put_line(tb, data_array('UInt8', 'types', 1, offset(i_types)))
     call put_line(tb, '      </Cells>')
     call put_line(tb, '    </Piece>')
     call put_line(tb, '  </UnstructuredGrid>')
