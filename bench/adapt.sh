@@ -9,7 +9,8 @@
 #     2 % and 1 %; the true error against
 #     tests/estimate/hertz/reference_contact.csv (tests/lib/pressure_error.py).
 #  2. The flat punch (tests/rigid/punch/punch.deck, a force P on a rigid die;
-#     P1, a rigid obstacle takes linear slaves only): a uniform series against
+#     P1, a rigid obstacle takes linear slaves only): a series refined
+#     everywhere (hc near the die, hf = 12.5 hc away from it) against
 #     ADAPT to 8, 4 and 2 % in energy, each with its estimate and its true
 #     energy error, sqrt(|U_ref - U_h| / U_ref) from the strain energies (a
 #     force-driven problem whose contact zone is the die's whole face: the
@@ -47,8 +48,9 @@ hertz() {   # hertz NAME HC ORDER [STATEMENT]
   sed -e "s/hc=0.01 hf=0.5/hc=$2 hf=0.5 order=$3/" "$top/input/hertz.deck" > "$work/$1.deck"
   [ -z "${4:-}" ] || echo "$4" >> "$work/$1.deck"
 }
-punch() {   # punch NAME HC ORDER [STATEMENT]
-  sed -e "s|file=../../../input/hertz_block.geo hc=0.01 hf=0.5|file=hertz_block.geo hc=$2 hf=0.5 order=$3|" \
+punch() {   # punch NAME HC ORDER [STATEMENT]: hf = 12.5 hc (hf = 0.5 at most), the whole block refined with hc
+  hf=$(echo "$2" | awk '{h = 12.5 * $1; print (h > 0.5) ? 0.5 : h}')
+  sed -e "s|file=../../../input/hertz_block.geo hc=0.01 hf=0.5|file=hertz_block.geo hc=$2 hf=$hf order=$3|" \
     -e 's/points=${-a}:0.2,${-a}:0,${a}:0,${a}:0.2/points=${-a-0.2}:0.2,${-a}:0,${a}:0,${a+0.2}:0.2/' \
     "$top/tests/rigid/punch/punch.deck" > "$work/$1.deck"
   [ -z "${4:-}" ] || echo "$4" >> "$work/$1.deck"

@@ -242,7 +242,7 @@ contains
       '  STEPS n                           (load steps; ramp=k0:k1: load 0 at step k0 rising to 1 at k1)', &
       '  CURVE name t0:v0 t1:v1 ...        (load factor v against the step t, piecewise linear: curve=name)', &
       '  OUTPUT [vtk=FILE] [contact=FILE.csv] [summary=FILE] [fields=displacement,contact_pressure,gap,stress,von_mises]', &
-      '         [steps=last|all]  (all: FILE_0001.vtk ... per step, FILE.pvd, FILE_steps.csv)', &
+      '         [steps=last|all]  (all: FILE_0001.vtu and a contact table per step, FILE.pvd, FILE_steps.csv)', &
       '', &
       'exit status: 0 solved, 1 solver failure (diagnostic on stderr), 2 bad input.', &
       'See doc/deck.md for every statement, default and output.'

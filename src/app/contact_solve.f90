@@ -44,6 +44,7 @@ module contact_solve
   use post_processing, only: pair_resultants, post_process, contact_measures, nodal_contact_fields, &
                              check_finite_results
   use run_outputs, only: write_step
+  use run_estimate, only: estimate_results
   use contact_checks, only: check_step_sliding
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use run_phase, only: enter_phase
@@ -238,11 +239,11 @@ contains
     type(lcp_options_t) :: opts
     type(lcp_report_t) :: rep
     character(len=:), allocatable :: method, first
-    real(dp), allocatable :: z(:), cu(:), qn(:), qt(:), sprev(:), fk(:), ubk(:), tforce(:)
+    real(dp), allocatable :: z(:), cu(:), qn(:), qt(:), sprev(:), fk(:), ubk(:)
     real(dp), allocatable :: hh(:,:), eg(:,:), eh(:), alpha(:), unbalanced(:), body_alpha(:), rigid_alpha(:)
     integer, allocatable :: fstate(:)
     character(len=:), allocatable :: cause
-    integer :: n, nt, kstep, g, r, k, iterations
+    integer :: n, nt, kstep, g, iterations
     logical :: floating
     type(results_t) :: step, none
     character(len=200) :: line
@@ -345,6 +346,9 @@ contains
         step%tau = z(n + 1:)
         step%gap = qn + matmul(run%w(1:n, :), z)
         step%alpha = body_alpha
+        step%slip = sprev
+        step%fstate = fstate
+        call friction_results(run, step)
         call contact_measures(run, step)
         call step_loads(run%sc, kstep, fk, ubk)
         call record_step(run, kstep, fk, ubk, z, rigid_alpha, step)
@@ -362,22 +366,33 @@ contains
     run%res%tau = z(n + 1:)
     run%res%gap = qn + matmul(run%w(1:n, :), z)
     run%res%slip = sprev
-    allocate(run%res%shear(nt), run%res%tan_of_row(n))
-    run%res%tan_of_row = 0
-    allocate(tforce(n), source=0.0_dp)
-    tforce(run%cs%tan_row) = -run%res%tau                 ! the force on the slave is -tau t
-    do r = 1, nt
+    call friction_results(run, run%res)
+  end subroutine solve_friction_steps
+
+  !> A step's friction results from its tangential multipliers and states:
+  !> the shear traction and tangential row of each row, the stick and slip counts.
+  !>   res (inout) tau, fstate on entry; shear, tan_of_row, stick_nodes, slip_nodes on exit
+  subroutine friction_results(run, res)
+    type(run_t), intent(in) :: run
+    type(results_t), intent(inout) :: res
+    real(dp), allocatable :: tforce(:)
+    integer :: r, k
+    allocate(res%shear(run%cs%ntan), res%tan_of_row(run%cs%nrow))
+    res%tan_of_row = 0
+    allocate(tforce(run%cs%nrow), source=0.0_dp)
+    tforce(run%cs%tan_row) = -res%tau                     ! the force on the slave is -tau t
+    do r = 1, run%cs%ntan
       k = run%cs%tan_row(r)
-      run%res%tan_of_row(k) = r
+      res%tan_of_row(k) = r
       if (run%cs%weight(k) > 0.0_dp) then
-        run%res%shear(r) = tforce(k) / run%cs%weight(k)
+        res%shear(r) = tforce(k) / run%cs%weight(k)
       else                    ! a hat without weight (a quadratic trace's node on the axis): with its neighbour's
-        run%res%shear(r) = node_traction(run%cs, run%cs%row_pair(k), run%cs%row_node(k), tforce)
+        res%shear(r) = node_traction(run%cs, run%cs%row_pair(k), run%cs%row_node(k), tforce)
       end if
     end do
-    run%res%stick_nodes = count(run%res%fstate == 1)
-    run%res%slip_nodes = count(run%res%fstate == 2)
-  end subroutine solve_friction_steps
+    res%stick_nodes = count(res%fstate == 1)
+    res%slip_nodes = count(res%fstate == 2)
+  end subroutine friction_results
 
   !> lcp=auto's fallbacks in a load step (solve_friction_auto): a log line
   !> for each method that failed, saying why and what comes next, and a
@@ -456,6 +471,7 @@ contains
     call pair_resultants(run, z, res)
     call post_process(run, fk, res)
     call nodal_contact_fields(run, res)
+    call estimate_results(run, res)                        ! the step's error_indicator
     call check_finite_results(run, res)
     call check_step_sliding(run, res, kstep)                ! the slide against small sliding (exit 1 beyond)
     call write_step(run, kstep, res)

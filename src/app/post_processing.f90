@@ -30,7 +30,7 @@ module post_processing
   use results_writer, only: results_t
   use run_report, only: add_warning
   use body, only: element_response, to_global_axes, spring_reactions
-  use contact_set, only: row_of_node, node_rows, node_traction
+  use contact_set, only: row_of_node, state_row_of_node, node_rows, node_traction
   use contact_condensation, only: contact_forces
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use run_phase, only: enter_phase
@@ -243,18 +243,21 @@ contains
     res%min_pressure = minval(res%pressure)
   end subroutine contact_measures
 
-  !> contact_pressure, gap (and shear) on the nodes, for the VTK file: what
-  !> the contact table reports (node_traction).
+  !> contact_pressure, gap (and with friction shear, friction state and
+  !> slip) on the nodes, for the VTK files: what the contact table reports
+  !> (node_traction; the state and slip of the node's row's tangential row).
   subroutine nodal_contact_fields(run, res)
     type(run_t), intent(in) :: run
     type(results_t), intent(inout) :: res
-    integer :: r, ip, node, gnode, rows(3), nr
+    integer :: r, ip, node, gnode, rows(3), nr, t
     real(dp), allocatable :: tforce(:)
     allocate(res%node_pressure(run%sc%ndof / 2), res%node_gap(run%sc%ndof / 2))
     res%node_pressure = 0.0_dp
     res%node_gap = 0.0_dp
     if (allocated(res%tau)) then
       allocate(res%node_shear(run%sc%ndof / 2), source=0.0_dp)
+      allocate(res%node_fstate(run%sc%ndof / 2), source=0)
+      allocate(res%node_slip(run%sc%ndof / 2), source=0.0_dp)
       allocate(tforce(run%cs%nrow), source=0.0_dp)
       tforce(run%cs%tan_row) = -res%tau                   ! the force on the slave is -tau t
     end if
@@ -266,7 +269,14 @@ contains
         res%node_pressure(gnode) = node_traction(run%cs, ip, node, res%mu)
         call node_rows(run%cs, ip, node, rows, nr)
         res%node_gap(gnode) = minval(res%gap(rows(1:nr)))
-        if (allocated(tforce)) res%node_shear(gnode) = node_traction(run%cs, ip, node, tforce)
+        if (allocated(tforce)) then
+          res%node_shear(gnode) = node_traction(run%cs, ip, node, tforce)
+          t = res%tan_of_row(state_row_of_node(run%cs, ip, node))   ! an axis node's state is its neighbour's
+          if (t > 0) then
+            res%node_fstate(gnode) = res%fstate(t)
+            res%node_slip(gnode) = res%slip(t)
+          end if
+        end if
       end do
     end do
   end subroutine nodal_contact_fields

@@ -1,5 +1,6 @@
-!> results_writer: the output files of DECK.md — the VTK legacy file, the
-!> contact table (CSV) and the summary.  The caller writes each to a
+!> results_writer: the results of a run (results_t) and the output files of
+!> DECK.md but the VTK files (vtk_files): the contact table (CSV), the
+!> summary, the ParaView collection and the step table.  The caller writes each to a
 !> temporary of its own and commits them all only after every one was
 !> written (safe_files), so a failed run never leaves half-written files nor
 !> overwrites the outputs of an earlier successful run.
@@ -7,25 +8,20 @@
 !> Programming interface
 !>   type(results_t)      everything a run computed that the files report
 !>   type(string_t)       one string of any length (text_scan's; results_t's lists of names)
-!>   write_vtk(path, title, bodies, r, fields, err)
 !>   write_contact_csv(path, cs, r, err)
 !>   write_summary(path, r, err)
-!>   write_pvd(path, files, err)           ParaView collection of the per-step VTK files
+!>   write_pvd(path, files, times, err)    ParaView collection of the per-step VTK files
 !>   write_step_table(path, header, table, err)   NAME_steps.csv: one row per load step
 !> Each writer returns err (status 2) when its file cannot be opened or written.
 module results_writer
   use kinds, only: dp, i8
-  use body, only: body_t
-  use mesh, only: file_item, node_in_file
   use contact_set, only: contact_set_t, row_of_node, state_row_of_node, node_rows, node_traction
   use strings, only: int_to_str, i8_to_str
   use errors, only: error_t, set_error
   use text_scan, only: string_t
-  use text_buffer, only: text_buffer_t, open_text, open_memory, put_text, put_line, put_real, put_int, put_newline, &
-                         close_text
   implicit none
   private
-  public :: results_t, string_t, write_vtk, write_contact_csv, write_summary, write_pvd, write_step_table
+  public :: results_t, string_t, write_contact_csv, write_summary, write_pvd, write_step_table
   public :: phase_names, nphase, peak_memory
 
   integer, parameter :: nphase = 9
@@ -62,6 +58,8 @@ module results_writer
     integer, allocatable :: fstate(:)            !< (ntan) 0 open, 1 stick, 2 slip (in the last step)
     integer, allocatable :: tan_of_row(:)        !< (nrow) tangential row of each normal row, 0 if none
     real(dp), allocatable :: node_shear(:)       !< (ndof/2) shear traction at slave nodes (0 elsewhere)
+    integer, allocatable :: node_fstate(:)       !< (ndof/2) fstate at slave nodes (0 elsewhere)
+    real(dp), allocatable :: node_slip(:)        !< (ndof/2) slip at slave nodes (0 elsewhere)
     integer :: steps = 1                         !< load steps solved
     integer :: stick_nodes = 0, slip_nodes = 0   !< friction states at the end
     real(dp), allocatable :: reaction(:,:)       !< (2, nfix)
@@ -109,232 +107,7 @@ module results_writer
                                                  !< beside the ordering (partly inside factor)
   end type results_t
 
-  ! the sections of the VTK file, row by row (put_rows)
-  integer, parameter :: row_point = 1, row_cell = 2, row_cell_type = 3, row_displacement = 4, &
-                        row_values = 5, row_body = 6
-
-  !> The rows of the VTK file, in the mesh files' numbering (each body's
-  !> nodes and elements as its file gives them, the bodies in deck order).
-  type :: vtk_rows_t
-    integer, allocatable :: node_index(:)   !< (nnode) the solver's global node of each point row
-    integer, allocatable :: elem_index(:)   !< (nelem) the solver's global element of each cell row
-    integer, allocatable :: elem_body(:)    !< (nelem) the body of each cell row
-    integer, allocatable :: cells(:,:)      !< (0:4 or 0:9, nelem) node count and 0-based points of each cell row
-    real(dp), allocatable :: vals(:,:)      !< (ncomp, rows) the values of the section being written
-  end type vtk_rows_t
-
 contains
-
-  !> VTK legacy unstructured grid of every body (see DECK.md), ASCII.
-  subroutine write_vtk(path, title, bodies, r, fields, err)
-    character(len=*), intent(in) :: path, title
-    type(body_t), intent(in) :: bodies(:)
-    type(results_t), intent(in) :: r
-    logical, intent(in) :: fields(5)   !< displacement, contact_pressure, gap, stress, von_mises
-    type(error_t), allocatable, intent(out) :: err
-    type(text_buffer_t) :: tb
-    type(vtk_rows_t) :: v
-    integer :: b, nnode, nelem, ncon, i
-    character(len=256) :: head
-
-    nnode = 0; nelem = 0; ncon = 0
-    do b = 1, size(bodies)
-      nnode = nnode + bodies(b)%mesh%nnode
-      nelem = nelem + bodies(b)%mesh%nelem
-      ncon = ncon + bodies(b)%mesh%nelem + sum(bodies(b)%mesh%nen)
-    end do
-    call open_text(tb, path, err)
-    if (allocated(err)) return
-    call vtk_rows(bodies, nnode, nelem, v)
-    head = title
-    if (len_trim(head) == 0) head = 'contact2d'
-    call put_line(tb, '# vtk DataFile Version 3.0')
-    call put_line(tb, trim(head))
-    call put_line(tb, 'ASCII')
-    call put_line(tb, 'DATASET UNSTRUCTURED_GRID')
-    call put_line(tb, 'POINTS ' // int_to_str(nnode) // ' double')
-    allocate(v%vals(2, nnode))
-    nnode = 0
-    do b = 1, size(bodies)
-      associate(m => bodies(b)%mesh)
-        !$omp parallel do if(m%nnode > 4096)
-        do i = 1, m%nnode
-          v%vals(:, nnode + i) = m%x(:, v%node_index(nnode + i) - nnode)
-        end do
-        !$omp end parallel do
-        nnode = nnode + m%nnode
-      end associate
-    end do
-    call put_rows(tb, row_point, nnode, v)
-    call put_line(tb, 'CELLS ' // int_to_str(nelem) // ' ' // int_to_str(ncon))
-    call put_rows(tb, row_cell, nelem, v)
-    call put_line(tb, 'CELL_TYPES ' // int_to_str(nelem))
-    call put_rows(tb, row_cell_type, nelem, v)
-    if (any(fields(1:3))) call put_line(tb, 'POINT_DATA ' // int_to_str(nnode))
-    if (fields(1)) then
-      call put_line(tb, 'VECTORS displacement double')
-      call gather(r%u, 2, v%node_index, v)
-      call put_rows(tb, row_displacement, nnode, v)
-    end if
-    if (fields(2)) call put_scalars(tb, 'contact_pressure', r%node_pressure, v%node_index, v)
-    if (fields(3)) call put_scalars(tb, 'gap', r%node_gap, v%node_index, v)
-    if (fields(2) .and. allocated(r%node_shear)) call put_scalars(tb, 'contact_shear', r%node_shear, v%node_index, v)
-    call put_line(tb, 'CELL_DATA ' // int_to_str(nelem))
-    call put_line(tb, 'SCALARS body int 1')
-    call put_line(tb, 'LOOKUP_TABLE default')
-    call put_rows(tb, row_body, nelem, v)
-    if (fields(4)) then
-      call put_line(tb, 'SCALARS stress double ' // int_to_str(size(r%stress, 1)))
-      call put_line(tb, 'LOOKUP_TABLE default')
-      call gather(r%stress, size(r%stress, 1), v%elem_index, v)
-      call put_rows(tb, row_values, nelem, v)
-    end if
-    if (fields(5)) call put_scalars(tb, 'von_mises', r%vm, v%elem_index, v)
-    if (allocated(r%error_indicator)) call put_scalars(tb, 'error_indicator', r%error_indicator, v%elem_index, v)
-    call close_text(tb, err)
-    if (allocated(err)) call cannot_write(path, err)
-  end subroutine write_vtk
-
-  !> VTK cell type of an element of nen nodes: 5 triangle, 9 quad, 22 quadratic
-  !> triangle, 23 quadratic (8-node) quad, 28 biquadratic (9-node) quad; the
-  !> node orders of gmsh and VTK agree for these.
-  pure function vtk_cell_type(nen) result(t)
-    integer, intent(in) :: nen
-    character(len=3) :: t
-    select case (nen)
-    case (3); t = ' 5'
-    case (6); t = ' 22'
-    case (8); t = ' 23'
-    case (9); t = ' 28'
-    case default; t = ' 9'
-    end select
-  end function vtk_cell_type
-
-  !> The most nodes of an element over all bodies (4 or 9: the width of the cell rows).
-  pure integer function max_cell_nodes(bodies) result(w)
-    type(body_t), intent(in) :: bodies(:)
-    integer :: b
-    w = 4
-    do b = 1, size(bodies)
-      if (bodies(b)%mesh%nelem > 0) w = max(w, maxval(bodies(b)%mesh%nen))
-    end do
-  end function max_cell_nodes
-
-  !> The rows of the VTK file: which of the solver's nodes and elements each
-  !> point and cell row shows, and each cell's points in the files' numbering.
-  subroutine vtk_rows(bodies, nnode, nelem, v)
-    type(body_t), intent(in) :: bodies(:)
-    integer, intent(in) :: nnode, nelem       !< over all bodies
-    type(vtk_rows_t), intent(out) :: v
-    integer :: b, p, e, k, n0, e0
-    allocate(v%node_index(nnode), v%elem_index(nelem), v%elem_body(nelem), v%cells(0:max_cell_nodes(bodies), nelem))
-    n0 = 0; e0 = 0
-    do b = 1, size(bodies)
-      associate(m => bodies(b)%mesh)
-        do p = 1, m%nnode
-          v%node_index(n0 + p) = n0 + file_item(m, p, element=.false.)
-        end do
-        !$omp parallel do private(e, k) if(m%nelem > 4096)
-        do p = 1, m%nelem
-          e = file_item(m, p, element=.true.)
-          v%elem_index(e0 + p) = e0 + e
-          v%elem_body(e0 + p) = b
-          v%cells(:, e0 + p) = 0
-          v%cells(0, e0 + p) = m%nen(e)
-          do k = 1, m%nen(e)
-            v%cells(k, e0 + p) = n0 + node_in_file(m, m%conn(k, e)) - 1
-          end do
-        end do
-        !$omp end parallel do
-        n0 = n0 + m%nnode
-        e0 = e0 + m%nelem
-      end associate
-    end do
-  end subroutine vtk_rows
-
-  !> v%vals(:, i) = src(:, index(i)): a section's values in the order of its rows.
-  !> src is (ncomp, *): ncomp values per node or element, in the solver's order.
-  subroutine gather(src, ncomp, index, v)
-    integer, intent(in) :: ncomp
-    real(dp), intent(in) :: src(ncomp, *)
-    integer, intent(in) :: index(:)
-    type(vtk_rows_t), intent(inout) :: v
-    integer :: i
-    if (allocated(v%vals)) deallocate(v%vals)
-    allocate(v%vals(ncomp, size(index)))
-    !$omp parallel do if(size(index) > 4096)
-    do i = 1, size(index)
-      v%vals(:, i) = src(:, index(i))
-    end do
-    !$omp end parallel do
-  end subroutine gather
-
-  !> One SCALARS array, a value per line; index: the rows' nodes or elements.
-  subroutine put_scalars(tb, name, values, index, v)
-    type(text_buffer_t), intent(inout) :: tb
-    character(len=*), intent(in) :: name
-    real(dp), intent(in) :: values(:)
-    integer, intent(in) :: index(:)
-    type(vtk_rows_t), intent(inout) :: v
-    call put_line(tb, 'SCALARS ' // name // ' double 1')
-    call put_line(tb, 'LOOKUP_TABLE default')
-    call gather(values, 1, index, v)
-    ! a row per point or cell: a node array (ndof / 2) runs past the points when RIGIDs add dofs
-    call put_rows(tb, row_values, size(index), v)
-  end subroutine put_scalars
-
-  !> Rows 1..n of one section of the VTK file (kind: row_*), formatted in
-  !> chunks on the run's threads and written in order: the text is the same as
-  !> one thread's, the formatting (most of the output time) is shared.
-  subroutine put_rows(tb, kind, n, v)
-    type(text_buffer_t), intent(inout) :: tb
-    integer, intent(in) :: kind, n
-    type(vtk_rows_t), intent(in) :: v
-    integer, parameter :: chunk = 4096
-    type(text_buffer_t) :: part
-    integer :: c, i
-    !$omp parallel do ordered schedule(static, 1) private(part, i) &
-    !$omp if(n > chunk)
-    do c = 0, (n - 1) / chunk
-      call open_memory(part)
-      do i = c * chunk + 1, min((c + 1) * chunk, n)
-        call put_row(part, kind, i, v)
-      end do
-      !$omp ordered
-      call put_text(tb, part%buf(1:part%used))
-      !$omp end ordered
-    end do
-    !$omp end parallel do
-  end subroutine put_rows
-
-  !> Row i of a section of the VTK file.
-  subroutine put_row(tb, kind, i, v)
-    type(text_buffer_t), intent(inout) :: tb
-    integer, intent(in) :: kind, i
-    type(vtk_rows_t), intent(in) :: v
-    integer :: k
-    select case (kind)
-    case (row_point, row_displacement)
-      call put_real(tb, v%vals(1, i))
-      call put_real(tb, v%vals(2, i))
-      call put_line(tb, ' 0')
-    case (row_cell)
-      do k = 0, v%cells(0, i)
-        call put_int(tb, v%cells(k, i))
-      end do
-      call put_newline(tb)
-    case (row_cell_type)
-      call put_line(tb, trim(vtk_cell_type(v%cells(0, i))))
-    case (row_values)                            ! SCALARS rows: the section's components
-      do k = 1, size(v%vals, 1)
-        call put_real(tb, v%vals(k, i))
-      end do
-      call put_newline(tb)
-    case (row_body)
-      call put_int(tb, v%elem_body(i))
-      call put_newline(tb)
-    end select
-  end subroutine put_row
 
   !> Contact table: one row per slave node of each pair, along the boundary.
   !> Slave nodes with no master opposite (no constraint row) have empty gap0
@@ -526,12 +299,15 @@ contains
   end subroutine write_summary
 
   !> A ParaView collection (.pvd) of the per-step VTK files: the dataset of
-  !> step k is files(k), at timestep k.
-  !>   path  (in)  file to write;  files (in) (nstep) names relative to the .pvd's folder
+  !> step k is files(k), at time times(k).
+  !>   path  (in)  file to write
+  !>   files (in)  (nstep) names relative to the .pvd's folder
+  !>   times (in)  (nstep) each step's time, increasing (ParaView sorts and merges equal ones)
   !>   err   (out) allocated when not written completely
-  subroutine write_pvd(path, files, err)
+  subroutine write_pvd(path, files, times, err)
     character(len=*), intent(in) :: path
     character(len=*), intent(in) :: files(:)
+    real(dp), intent(in) :: times(:)
     type(error_t), allocatable, intent(out) :: err
     integer :: u, ios, k
     logical :: ok
@@ -544,7 +320,7 @@ contains
     write(u, '(a)', iostat=ios) '<VTKFile type="Collection" version="0.1">'
     write(u, '(a)', iostat=ios) '  <Collection>'
     do k = 1, size(files)
-      write(u, '(a,i0,a)', iostat=ios) '    <DataSet timestep="', k, '" file="' // trim(files(k)) // '"/>'
+      write(u, '(a)', iostat=ios) '    <DataSet timestep="' // num(times(k)) // '" file="' // trim(files(k)) // '"/>'
     end do
     write(u, '(a)', iostat=ios) '  </Collection>'
     write(u, '(a)', iostat=ios) '</VTKFile>'

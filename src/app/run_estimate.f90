@@ -41,22 +41,25 @@
 !> gmsh's start, the deck).
 !>
 !> Programming interface
-!>   estimate_error(run)   res%estimated, res%estimate_energy, res%error_indicator,
-!>                         res%estimate_pressure (res%u in x, y)
-!>   predict_cost(run)     res%cost_seconds, res%cost_dofs, from the indicators and
-!>                         the phases' times so far (called when only the summary is left)
+!>   estimate_error(run)        res%estimated, res%estimate_energy, res%error_indicator,
+!>                              res%estimate_pressure (res%u in x, y), timed as phase estimate
+!>   estimate_results(run, res) the same of one load step's results (OUTPUT steps=all)
+!>   predict_cost(run)          res%cost_seconds, res%cost_dofs, from the indicators and
+!>                              the phases' times so far (called when only the summary is left)
+!>   element_rates(run)         the rate in h of each element's energy error (ADAPT, predict_cost)
 module run_estimate
   use kinds, only: dp
   use run_state, only: run_t, ph_output, ph_estimate
   use size_field, only: optimal_scales, element_count
   use run_report, only: lap
   use run_phase, only: enter_phase
+  use results_writer, only: results_t
   use error_estimate, only: recover_stress, energy_indicators
   use body, only: node_elements
   use axisymmetric_elements, only: radial_weight
   implicit none
   private
-  public :: estimate_error, predict_cost, element_rates
+  public :: estimate_error, estimate_results, predict_cost, element_rates
 
   !> how each phase's time grows with the dofs (module header): r^growth
   real(dp), parameter :: growth(ph_output) = [1.0_dp, 1.0_dp, 1.5_dp, 1.5_dp, 1.5_dp, 1.0_dp, 1.0_dp, 1.0_dp]
@@ -73,15 +76,27 @@ contains
   !>               estimate and the indicators on exit, when deck%estimate
   subroutine estimate_error(run)
     type(run_t), intent(inout) :: run
+    call lap(run, ph_output)                     ! the results computed so far: output, as before
+    if (run%deck%estimate) call enter_phase('estimating the error')
+    call estimate_results(run, run%res)
+    if (run%res%estimated) call lap(run, ph_estimate)
+  end subroutine estimate_error
+
+  !> The error estimate of one state's results: the final state's, or a
+  !> load step's (its VTK file shows error_indicator too).
+  !>   res (inout) u in x, y components and node_pressure on entry; estimated,
+  !>               estimate_energy, error_indicator and estimate_pressure on exit,
+  !>               when deck%estimate (else estimated false, no indicators)
+  subroutine estimate_results(run, res)
+    type(run_t), intent(in) :: run
+    type(results_t), intent(inout) :: res
     type(recovered_t), allocatable :: rec(:)
     real(dp), allocatable :: u(:,:), eta2(:)
     real(dp) :: energy2, body_energy2, total
     integer :: b, nn, d0, e0, ne
-    call lap(run, ph_output)                     ! the results computed so far: output, as before
-    run%res%estimated = .false.
-    if (allocated(run%res%error_indicator)) deallocate(run%res%error_indicator)
+    res%estimated = .false.
+    if (allocated(res%error_indicator)) deallocate(res%error_indicator)
     if (.not. run%deck%estimate) return
-    call enter_phase('estimating the error')
     allocate(eta2(run%sc%nelem), source=0.0_dp)
     allocate(rec(size(run%sc%bodies)))
     energy2 = 0.0_dp
@@ -91,27 +106,26 @@ contains
         ne = bd%mesh%nelem
         d0 = bd%dof0
         e0 = bd%elem0
-        u = reshape(run%res%u(d0 + 1:d0 + 2 * nn), [2, nn])
+        u = reshape(res%u(d0 + 1:d0 + 2 * nn), [2, nn])
         call recover_stress(bd, u, rec(b)%s)
         call energy_indicators(bd, u, rec(b)%s, eta2(e0 + 1:e0 + ne), body_energy2)
         energy2 = energy2 + body_energy2
       end associate
     end do
-    call pressure_estimates(run, rec, eta2)
+    call pressure_estimates(run, res, rec, eta2)
     ! the norm is the whole system's, u'Ku = 2 energy, springs included: on a
     ! body that rides on its springs the elements' own energy is round-off,
     ! and an error relative to it would be noise
-    total = max(energy2, 2 * run%res%energy) + sum(eta2)
+    total = max(energy2, 2 * res%energy) + sum(eta2)
     if (total > 0.0_dp) then
-      run%res%estimate_energy = sqrt(sum(eta2) / total)
-      allocate(run%res%error_indicator, source=sqrt(eta2 / total))
+      res%estimate_energy = sqrt(sum(eta2) / total)
+      allocate(res%error_indicator, source=sqrt(eta2 / total))
     else                                          ! no deformation at all: nothing to be wrong about
-      run%res%estimate_energy = 0.0_dp
-      allocate(run%res%error_indicator(run%sc%nelem), source=0.0_dp)
+      res%estimate_energy = 0.0_dp
+      allocate(res%error_indicator(run%sc%nelem), source=0.0_dp)
     end if
-    run%res%estimated = .true.
-    call lap(run, ph_estimate)
-  end subroutine estimate_error
+    res%estimated = .true.
+  end subroutine estimate_results
 
   !> estimate cost_to_halve (module header): res%cost_dofs and
   !> res%cost_seconds, from the indicators, the elements' orders (or ADAPT's
@@ -167,26 +181,28 @@ contains
 
   !> res%estimate_pressure of every pair, and the contact terms added to the
   !> slave elements' eta2 (module header).
-  !>   run  (inout) the contact set, res%node_pressure on entry; res%estimate_pressure on exit
+  !>   run  (in)    the contact set
+  !>   res  (inout) node_pressure on entry; estimate_pressure on exit
   !>   rec  (in)    (nbody) the recovered stresses
   !>   eta2 (inout) (nelem) the element indicators squared
-  subroutine pressure_estimates(run, rec, eta2)
-    type(run_t), intent(inout) :: run
+  subroutine pressure_estimates(run, res, rec, eta2)
+    type(run_t), intent(in) :: run
+    type(results_t), intent(inout) :: res
     type(recovered_t), intent(in) :: rec(:)
     real(dp), intent(inout) :: eta2(:)
     real(dp), allocatable :: ph(:), pstar(:)
     integer, allocatable :: eptr(:), elist(:)
     real(dp) :: d2, p2, seg_d2, seg_p2, len, dv, sn(2)
     integer :: ip, k, ns, sb, owner
-    if (allocated(run%res%estimate_pressure)) deallocate(run%res%estimate_pressure)
-    allocate(run%res%estimate_pressure(run%cs%npair), source=-1.0_dp)
+    if (allocated(res%estimate_pressure)) deallocate(res%estimate_pressure)
+    allocate(res%estimate_pressure(run%cs%npair), source=-1.0_dp)
     do ip = 1, run%cs%npair
       associate (pr => run%cs%pair(ip), bd => run%sc%bodies(run%cs%pair(ip)%spec%slave_body))
         sb = pr%spec%slave_body
         ns = size(pr%snode)
         allocate(ph(ns), pstar(ns))
         do k = 1, ns                        ! p_h and p* = max(0, -n.sigma* n) at the slave nodes
-          ph(k) = run%res%node_pressure(bd%dof0 / 2 + pr%snode(k))
+          ph(k) = res%node_pressure(bd%dof0 / 2 + pr%snode(k))
           associate (s => rec(sb)%s(:, pr%snode(k)), n => pr%mortar%normal(:, k))
             sn = [s(1) * n(1) + s(3) * n(2), s(3) * n(1) + s(2) * n(2)]      ! sigma* n, in-plane
             pstar(k) = max(0.0_dp, -dot_product(n, sn))
@@ -208,7 +224,7 @@ contains
           if (owner > 0 .and. bd%law%emax > 0.0_dp) &
             eta2(bd%elem0 + owner) = eta2(bd%elem0 + owner) + len / bd%law%emax * seg_d2
         end do
-        if (p2 > 0.0_dp) run%res%estimate_pressure(ip) = sqrt(d2 / p2)
+        if (p2 > 0.0_dp) res%estimate_pressure(ip) = sqrt(d2 / p2)
         deallocate(ph, pstar)
       end associate
     end do

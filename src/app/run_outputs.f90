@@ -1,9 +1,9 @@
 !> run_outputs: the files of a run (DECK.md, "Outputs"): the output folder,
 !> the VTK file, the contact table and the summary, and with OUTPUT
-!> steps=all a VTK file per step, the ParaView collection and the step
-!> table.  Every file is written to a temporary of its own and all are
-!> committed together once every one is written (safe_files), so a failed
-!> run leaves no half-written file.
+!> steps=all per step an XML VTK file (.vtu) and a contact table, the
+!> ParaView collection (.pvd) and the step table.  Every file is written to
+!> a temporary of its own and all are committed together once every one is
+!> written (safe_files), so a failed run leaves no half-written file.
 !>
 !> Why it exists: the naming of the files, their temporaries and the step
 !> table are bookkeeping the method does not need to show.  Who may use it:
@@ -12,11 +12,12 @@
 !>
 !> Programming interface
 !>   make_folder(path, diag)     create the output folder and its parents (an input error when it cannot)
-!>   write_step(run, k, res)     step k's table row and VTK file from its results (OUTPUT steps=all)
+!>   write_step(run, k, res)     step k's table row, .vtu and contact table from its results (OUTPUT steps=all)
 !>   write_outputs(run)          every file of the run, committed together; run%wrote for the log
 module run_outputs
   use kinds, only: dp
   use strings, only: int_to_str
+  use text_scan, only: ends_with_ci
   use errors, only: diag_t, add_error, error_t
   use exits, only: exit_program
   use run_state, only: run_t, ph_output
@@ -24,7 +25,8 @@ module run_outputs
   use deck_reader, only: path_too_long
   use load_groups, only: group_factor, group_name
   use post_processing, only: rigid_results
-  use results_writer, only: results_t, write_vtk, write_contact_csv, write_summary, write_pvd, write_step_table, peak_memory
+  use results_writer, only: results_t, write_contact_csv, write_summary, write_pvd, write_step_table, peak_memory
+  use vtk_files, only: write_vtk, write_vtu
   use safe_files, only: make_folders, temporary_t, create_temporary, close_temporary, commit_temporaries, &
                         discard_temporaries
   use, intrinsic :: iso_fortran_env, only: error_unit
@@ -50,9 +52,10 @@ contains
     if (allocated(err)) call add_error(d, path, 0, 'cannot create the output folder (a writable path expected)')
   end subroutine make_folder
 
-  !> Step k's row of NAME_steps.csv and its VTK file STEM_000k.vtk (a
-  !> temporary, committed with the run's other files by write_outputs).
-  !>   run   (inout) step_table's row k, step_tmp(k) on exit
+  !> Step k's row of NAME_steps.csv, its VTK file STEM_000k.vtu and its
+  !> contact table CSTEM_000k.csv (temporaries, committed with the run's
+  !> other files by write_outputs).
+  !>   run   (inout) step_table's row k, step_tmp(:, k) on exit
   !>   kstep (in)    the step, 1 .. steps - 1
   !>   res   (inout) the step's results (res%rigid set here)
   subroutine write_step(run, kstep, res)
@@ -61,10 +64,7 @@ contains
     type(results_t), intent(inout) :: res
     type(error_t), allocatable :: err
     call add_step_row(run, kstep, res)
-    call create_step_file(run, kstep, err)
-    if (.not. allocated(err)) call write_vtk(run%step_tmp(kstep)%io_path, run%deck%title, run%sc%bodies, res, &
-                                             run%deck%output%fields, err)
-    call close_temporary(run%step_tmp(kstep))
+    call write_step_files(run, kstep, res, err)
     if (allocated(err)) call output_failure(run)
   end subroutine write_step
 
@@ -77,11 +77,12 @@ contains
     type(temporary_t), allocatable :: tmp(:)
     type(error_t), allocatable :: err
     character(len=:), allocatable :: names(:)
+    real(dp), allocatable :: times(:)
     integer :: kstep, nl, i
     character(len=:), allocatable :: line1, line2
     call enter_phase('writing the outputs')
     ! the run's three files, then with steps=all the .pvd, the step table and
-    ! the per-step VTK files (all but the last one written as they were solved)
+    ! the per-step files (all but the last step's written as they were solved)
     if (run%deck%output%steps_all) call add_step_row(run, run%sc%steps, run%res)
     allocate(tmp(3))
     ! each call below runs only while no error has come (err is the first)
@@ -93,17 +94,17 @@ contains
       call write_vtk(tmp(1)%io_path, run%deck%title, run%sc%bodies, run%res, run%deck%output%fields, err)
     if (.not. allocated(err) .and. run%cs%npair > 0) call write_contact_csv(tmp(2)%io_path, run%cs, run%res, err)
     if (.not. allocated(err) .and. run%deck%output%steps_all) then
-      call create_step_file(run, run%sc%steps, err)
-      if (.not. allocated(err)) call write_vtk(run%step_tmp(run%sc%steps)%io_path, run%deck%title, run%sc%bodies, &
-                                               run%res, run%deck%output%fields, err)
+      call write_step_files(run, run%sc%steps, run%res, err)
       nl = len(step_file(run, run%sc%steps))
       allocate(character(len=nl) :: names(run%sc%steps))
+      allocate(times(run%sc%steps))
       do kstep = 1, run%sc%steps
         names(kstep) = step_file(run, kstep)
+        times(kstep) = real(kstep, dp) / real(run%sc%steps, dp)    ! the default ramp 0:STEPS
       end do
-      tmp = [tmp, temporary_t(), temporary_t(), run%step_tmp]
+      tmp = [tmp, temporary_t(), temporary_t(), reshape(run%step_tmp, [size(run%step_tmp)])]
       if (.not. allocated(err)) call create_temporary(run%outdir, output_stem(run) // '.pvd', tmp(4), err)
-      if (.not. allocated(err)) call write_pvd(tmp(4)%io_path, names, err)
+      if (.not. allocated(err)) call write_pvd(tmp(4)%io_path, names, times, err)
       if (.not. allocated(err)) call create_temporary(run%outdir, output_stem(run) // '_steps.csv', tmp(5), err)
       if (.not. allocated(err)) call write_step_table(tmp(5)%io_path, step_header(run), run%step_table, err)
     end if
@@ -133,30 +134,63 @@ contains
     if (run%deck%output%steps_all) then
       line2 = 'wrote    ' // step_file(run, 1) // ' .. ' // step_file(run, run%sc%steps) // ', ' // &
               output_stem(run) // '.pvd, ' // output_stem(run) // '_steps.csv'
+      if (run%cs%npair > 0) line2 = line2 // ', ' // step_contact_file(run, 1) // ' .. ' // &
+                                    step_contact_file(run, run%sc%steps)
       run%wrote = [character(len=max(len(line1), len(line2))) :: line1, line2]
     else
       run%wrote = [line1]
     end if
   end subroutine write_outputs
 
-  !> The temporary of step k's VTK file (STEM_000k.vtk).
-  subroutine create_step_file(run, kstep, err)
+  !> Step k's .vtu and contact table, each to a temporary of its own
+  !> (run%step_tmp(:, k)), from the step's results.
+  !>   err (out) allocated when a file could not be made or written
+  subroutine write_step_files(run, kstep, res, err)
     type(run_t), intent(inout) :: run
     integer, intent(in) :: kstep
+    type(results_t), intent(in) :: res
     type(error_t), allocatable, intent(out) :: err
-    if (.not. allocated(run%step_tmp)) allocate(run%step_tmp(run%sc%steps))
-    call create_temporary(run%outdir, step_file(run, kstep), run%step_tmp(kstep), err)
-  end subroutine create_step_file
+    if (.not. allocated(run%step_tmp)) allocate(run%step_tmp(2, run%sc%steps))
+    call create_temporary(run%outdir, step_file(run, kstep), run%step_tmp(1, kstep), err)
+    if (.not. allocated(err)) call write_vtu(run%step_tmp(1, kstep)%io_path, run%sc%bodies, res, run%deck%output%fields, err)
+    call close_temporary(run%step_tmp(1, kstep))
+    if (allocated(err) .or. run%cs%npair == 0) return
+    call create_temporary(run%outdir, step_contact_file(run, kstep), run%step_tmp(2, kstep), err)
+    if (.not. allocated(err)) call write_contact_csv(run%step_tmp(2, kstep)%io_path, run%cs, res, err)
+    call close_temporary(run%step_tmp(2, kstep))
+  end subroutine write_step_files
 
-  !> STEM_000k.vtk, STEM the vtk= name without .vtk.
+  !> STEM_000k.vtu, STEM the vtk= name without .vtk.
   function step_file(run, kstep) result(name)
     type(run_t), intent(in) :: run
     integer, intent(in) :: kstep
     character(len=:), allocatable :: name
+    name = output_stem(run) // '_' // step_number(kstep) // '.vtu'
+  end function step_file
+
+  !> Step k's contact table: the contact= name with _000k before its .csv
+  !> (NAME_contact_000k.csv by default), or after it when it has none.
+  function step_contact_file(run, kstep) result(name)
+    type(run_t), intent(in) :: run
+    integer, intent(in) :: kstep
+    character(len=:), allocatable :: name
+    integer :: n
+    n = len(run%deck%output%contact)
+    if (ends_with_ci(run%deck%output%contact, '.csv') .and. n > 4) then
+      name = run%deck%output%contact(1:n - 4) // '_' // step_number(kstep) // run%deck%output%contact(n - 3:)
+    else
+      name = run%deck%output%contact // '_' // step_number(kstep) // '.csv'
+    end if
+  end function step_contact_file
+
+  !> k with at least four digits: 0001, ..., 9999, 10000.
+  function step_number(kstep) result(s)
+    integer, intent(in) :: kstep
+    character(len=:), allocatable :: s
     character(len=16) :: buf
     write(buf, '(i4.4)') kstep
-    name = output_stem(run) // '_' // trim(buf) // '.vtk'
-  end function step_file
+    s = trim(buf)
+  end function step_number
 
   function output_stem(run) result(stem)
     type(run_t), intent(in) :: run
@@ -214,7 +248,12 @@ contains
 
   subroutine output_failure(run)
     type(run_t), intent(inout) :: run
-    if (allocated(run%step_tmp)) call discard_temporaries(run%step_tmp)
+    integer :: k
+    if (allocated(run%step_tmp)) then
+      do k = 1, size(run%step_tmp, 2)
+        call discard_temporaries(run%step_tmp(:, k))
+      end do
+    end if
     write(error_unit, '(a)') 'contact2d: error: ' // run%outdir // ': cannot write the output files (a writable folder expected)'
     call exit_program(2)
   end subroutine output_failure

@@ -96,7 +96,7 @@ module run_state
     real(dp), allocatable :: rigid_alpha(:)        !< (rsplit%k) the RIGIDs' free motion, from the contact problem
 
     ! --- OUTPUT steps=all (contact_solve, run_outputs) --------------------
-    type(temporary_t), allocatable :: step_tmp(:)  !< (steps) the per-step VTK files' temporaries
+    type(temporary_t), allocatable :: step_tmp(:,:) !< (2, steps) the temporaries of each step's .vtu and contact table
     real(dp), allocatable :: step_table(:,:)       !< (ncol, steps) the rows of NAME_steps.csv
     integer :: step_iterations = 0                 !< LCP iterations of the step being recorded
     character(len=:), allocatable :: step_note     !< 'load step k of n: ' in messages while steps are solved

@@ -3,7 +3,10 @@
  *
  * What the exit and signal cleanup removes is recorded here, in storage the
  * handler reads without allocating: the private folder's path and the
- * temporaries' paths (each allocated before it is published). */
+ * temporaries' paths (each allocated before it is published), in tables of
+ * slots chained as a run needs more (a load history has two files per step),
+ * each table published whole and never freed, so that the handler can walk
+ * them at any moment. */
 #define _GNU_SOURCE
 #include <dirent.h>
 #include <errno.h>
@@ -20,13 +23,19 @@
 #include "file_guard.h"
 #include "process_runner.h"
 
-#define MAX_TEMPORARIES 64
+#define TABLE_SLOTS 64
 #define MAX_DEPTH 32                        /* folders gmsh may have made inside the private folder */
 
 static char private_path[PATH_MAX];         /* "" until made */
-static char *temporaries[MAX_TEMPORARIES];  /* the run's output temporaries not yet committed */
+struct temporary_table {                    /* the run's output temporaries not yet committed */
+    char *slot[TABLE_SLOTS];                /* a path, or NULL */
+    struct temporary_table *next;           /* the next table, NULL until one is needed */
+};
+static struct temporary_table temporaries;
 static int cleanup_installed = 0;
-static int deferring = 0;                   /* a commit is under way: signals wait for its end */
+static int deferring = 0;                   /* > 0: a commit, or a temporary being made and recorded,
+                                               is under way: signals wait for its end (a depth: the
+                                               commit makes temporaries) */
 static int dying = 0;                       /* a signal's cleanup has begun */
 static int pending_signal = 0;              /* the signal that arrived while deferring */
 static const int guarded_signals[] = {SIGINT, SIGTERM, SIGHUP};
@@ -63,12 +72,15 @@ static void remove_tree(int at, const char *name, int depth)
 static void clean_up(int may_free)
 {
     int i;
+    struct temporary_table *table;
     c2d_kill_running();
-    for (i = 0; i < MAX_TEMPORARIES; i++) {
-        char *t = __atomic_exchange_n(&temporaries[i], NULL, __ATOMIC_SEQ_CST);
-        if (t != NULL) {
-            unlink(t);
-            if (may_free) free(t);          /* a signal handler may not call free */
+    for (table = &temporaries; table != NULL; table = __atomic_load_n(&table->next, __ATOMIC_SEQ_CST)) {
+        for (i = 0; i < TABLE_SLOTS; i++) {
+            char *t = __atomic_exchange_n(&table->slot[i], NULL, __ATOMIC_SEQ_CST);
+            if (t != NULL) {
+                unlink(t);
+                if (may_free) free(t);      /* a signal handler may not call free */
+            }
         }
     }
     if (private_path[0] != '\0') {
@@ -88,12 +100,35 @@ static void die_of(int sig)
 
 static void on_signal(int sig)
 {
-    __atomic_store_n(&dying, 1, __ATOMIC_SEQ_CST);
-    if (__atomic_load_n(&deferring, __ATOMIC_SEQ_CST)) {
+    /* the pending signal before `dying`: whoever sees dying without a pending
+     * signal knows a cleanup runs that ends the process (begin_deferral) */
+    if (__atomic_load_n(&deferring, __ATOMIC_SEQ_CST) > 0) {
         __atomic_store_n(&pending_signal, sig, __ATOMIC_SEQ_CST);
+        __atomic_store_n(&dying, 1, __ATOMIC_SEQ_CST);
         return;
     }
+    __atomic_store_n(&dying, 1, __ATOMIC_SEQ_CST);
     die_of(sig);
+}
+
+/* From here to end_deferral a signal waits (on_signal records it); when a
+ * signal's cleanup already runs, wait for it to end the process. */
+static void begin_deferral(void)
+{
+    __atomic_add_fetch(&deferring, 1, __ATOMIC_SEQ_CST);
+    if (__atomic_load_n(&dying, __ATOMIC_SEQ_CST) && __atomic_load_n(&pending_signal, __ATOMIC_SEQ_CST) == 0) {
+        __atomic_sub_fetch(&deferring, 1, __ATOMIC_SEQ_CST);
+        for (;;) pause();
+    }
+}
+
+/* The end of the outermost deferral acts on a signal that came meanwhile. */
+static void end_deferral(void)
+{
+    int sig;
+    if (__atomic_sub_fetch(&deferring, 1, __ATOMIC_SEQ_CST) > 0) return;
+    sig = __atomic_exchange_n(&pending_signal, 0, __ATOMIC_SEQ_CST);
+    if (sig != 0) die_of(sig);
 }
 
 static void on_exit_cleanup(void)
@@ -213,28 +248,47 @@ static mode_t file_mode(void)
     return mode;
 }
 
+/* An empty slot of the temporaries' tables, a new table chained when all
+ * are full; NULL when no memory is left for one. */
+static char **free_slot(void)
+{
+    struct temporary_table *table = &temporaries, *more;
+    int i;
+    for (;;) {
+        for (i = 0; i < TABLE_SLOTS; i++) {
+            if (__atomic_load_n(&table->slot[i], __ATOMIC_SEQ_CST) == NULL) return &table->slot[i];
+        }
+        more = __atomic_load_n(&table->next, __ATOMIC_SEQ_CST);
+        if (more == NULL) {
+            more = calloc(1, sizeof *more);             /* every slot NULL before the handler can see it */
+            if (more == NULL) return NULL;
+            __atomic_store_n(&table->next, more, __ATOMIC_SEQ_CST);
+        }
+        table = more;
+    }
+}
+
 int c2d_create_temporary(const char *dir, const char *name, char *path, int len, int *fd)
 {
     size_t n = strlen(dir) + strlen(name) + 10;
     char *t;
-    int i, slot = -1;
+    char **slot = free_slot();
     *fd = -1;
     if ((int)n >= len) return ENAMETOOLONG;
     install_cleanup();
-    for (i = 0; i < MAX_TEMPORARIES && slot < 0; i++) {
-        if (temporaries[i] == NULL) slot = i;
-    }
-    if (slot < 0) return EMFILE;
+    if (slot == NULL) return ENOMEM;
     t = malloc(n);
     if (t == NULL) return ENOMEM;
     strcpy(t, dir);
     strcat(t, "/.");
     strcat(t, name);
     strcat(t, "~XXXXXX");
+    begin_deferral();                               /* a signal between the file and its record waits */
     *fd = mkostemp(t, O_CLOEXEC);                   /* O_CREAT|O_EXCL: a link at the name is not followed */
     if (*fd < 0) {
         int e = errno;
         free(t);
+        end_deferral();
         return e;
     }
     if (fchmod(*fd, file_mode()) != 0) {            /* mkostemp makes 0600: give the mode of a plain file */
@@ -243,21 +297,27 @@ int c2d_create_temporary(const char *dir, const char *name, char *path, int len,
         unlink(t);
         free(t);
         *fd = -1;
+        end_deferral();
         return e;
     }
     strcpy(path, t);
-    __atomic_store_n(&temporaries[slot], t, __ATOMIC_SEQ_CST);
+    __atomic_store_n(slot, t, __ATOMIC_SEQ_CST);
+    end_deferral();
     return 0;
 }
 
 void c2d_forget_temporary(const char *path)
 {
     int i;
-    for (i = 0; i < MAX_TEMPORARIES; i++) {
-        char *t = __atomic_load_n(&temporaries[i], __ATOMIC_SEQ_CST);
-        if (t != NULL && strcmp(t, path) == 0) {
-            if (__atomic_compare_exchange_n(&temporaries[i], &t, NULL, 0, __ATOMIC_SEQ_CST, __ATOMIC_SEQ_CST)) free(t);
-            return;
+    struct temporary_table *table;
+    for (table = &temporaries; table != NULL; table = __atomic_load_n(&table->next, __ATOMIC_SEQ_CST)) {
+        for (i = 0; i < TABLE_SLOTS; i++) {
+            char *t = __atomic_load_n(&table->slot[i], __ATOMIC_SEQ_CST);
+            if (t != NULL && strcmp(t, path) == 0) {
+                if (__atomic_compare_exchange_n(&table->slot[i], &t, NULL, 0, __ATOMIC_SEQ_CST, __ATOMIC_SEQ_CST))
+                    free(t);
+                return;
+            }
         }
     }
 }
@@ -273,22 +333,15 @@ int c2d_lock_folder(const char *dir)
             return -e;
         }
     }
-    __atomic_store_n(&deferring, 1, __ATOMIC_SEQ_CST);
-    if (__atomic_load_n(&dying, __ATOMIC_SEQ_CST)) {      /* a signal's cleanup runs: commit nothing */
-        __atomic_store_n(&deferring, 0, __ATOMIC_SEQ_CST);
-        for (;;) pause();
-    }
+    begin_deferral();                               /* a signal's cleanup runs: commit nothing */
     return fd;
 }
 
 void c2d_unlock_folder(int fd)
 {
-    int sig;
     flock(fd, LOCK_UN);
     close(fd);
-    __atomic_store_n(&deferring, 0, __ATOMIC_SEQ_CST);
-    sig = __atomic_exchange_n(&pending_signal, 0, __ATOMIC_SEQ_CST);
-    if (sig != 0) die_of(sig);
+    end_deferral();
 }
 
 int c2d_real_path(const char *path, char *real, int len)

@@ -8,8 +8,10 @@ import mmap
 import re
 import os
 import shutil
+import struct
 import subprocess
 import sys
+import zlib
 
 PROGRAM = os.environ.get("CONTACT2D", "contact2d")
 failures = 0
@@ -106,6 +108,56 @@ def vtk(path):
             # every value belongs to a section of the size its header says:
             # a stray one means a section has more rows than points or cells
             raise ValueError(f"{path}: unexpected {w!r} after the values of a section")
+    return out
+
+
+def vtu(path):
+    """Points, cells and the named point and cell arrays of a VTK XML
+    UnstructuredGrid with raw appended data (UInt64 headers, zlib blocks or
+    none), as vtk() returns them for a legacy file; read after VTK's file
+    format description, independently of contact2d's writer."""
+    import xml.etree.ElementTree as ET
+    with open(path, "rb") as f:
+        data = f.read()
+    start = data.index(b"<AppendedData")
+    start = data.index(b"_", start) + 1
+    head = data[:data.index(b"<AppendedData")].decode() + "</VTKFile>"
+    root = ET.fromstring(head)
+    assert root.get("header_type") == "UInt64" and root.get("byte_order") == "LittleEndian"
+    zipped = root.get("compressor") == "vtkZLibDataCompressor"
+    kinds = {"Float64": "d", "Int32": "i", "Int64": "q", "UInt8": "B"}
+
+    def values(el):
+        at = start + int(el.get("offset"))
+        if zipped:
+            nblock, block, last = struct.unpack_from("<3Q", data, at)
+            sizes = struct.unpack_from(f"<{nblock}Q", data, at + 24)
+            at += 24 + 8 * nblock
+            raw = b""
+            for k, c in enumerate(sizes):
+                part = zlib.decompress(data[at:at + c])
+                want = last if (k == nblock - 1 and last) else block
+                assert len(part) == want, f"{path}: block {k} inflates to {len(part)} bytes, {want} expected"
+                raw += part
+                at += c
+        else:
+            (n,) = struct.unpack_from("<Q", data, at)
+            raw = data[at + 8:at + 8 + n]
+        t = kinds[el.get("type")]
+        vals = struct.unpack(f"<{len(raw) // struct.calcsize(t)}{t}", raw)
+        m = int(el.get("NumberOfComponents", "1"))
+        return [list(vals[k * m:(k + 1) * m]) for k in range(len(vals) // m)]
+
+    piece = root.find("./UnstructuredGrid/Piece")
+    out = {"point": {}, "cell": {}}
+    for sec, key in (("PointData", "point"), ("CellData", "cell")):
+        for el in piece.findall(f"./{sec}/DataArray"):
+            out[key][el.get("Name")] = values(el)
+    out["points"] = [tuple(p[:2]) for p in values(piece.find("./Points/DataArray"))]
+    cells = {el.get("Name"): [v[0] for v in values(el)] for el in piece.findall("./Cells/DataArray")}
+    begin = [0] + cells["offsets"][:-1]
+    out["cells"] = [cells["connectivity"][a:b] for a, b in zip(begin, cells["offsets"])]
+    out["types"] = cells["types"]
     return out
 
 
