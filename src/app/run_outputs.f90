@@ -13,7 +13,8 @@
 !> Programming interface
 !>   make_folder(path, diag)     create the output folder and its parents (an input error when it cannot)
 !>   write_step(run, k, res)     step k's table row and VTK file from its results (OUTPUT steps=all)
-!>   write_outputs(run)          every file of the run, committed together; run%wrote for the log
+!>   write_outputs(run)          every file of the run, committed together; run%wrote for the log;
+!>                               then the meshes gmsh made go to the mesh cache
 module run_outputs
   use kinds, only: dp
   use strings, only: int_to_str
@@ -29,6 +30,7 @@ module run_outputs
                         discard_temporaries
   use, intrinsic :: iso_fortran_env, only: error_unit
   use run_phase, only: enter_phase
+  use mesh_cache, only: keep_mesh
   implicit none
   private
   public :: make_folder, write_step, write_outputs
@@ -127,6 +129,7 @@ contains
         '(a writable folder expected)'
       call exit_program(2)
     end if
+    call keep_new_meshes(run)
     if (run%cs%npair > 0) then
       line1 = 'wrote    ' // run%outdir // '/' // run%deck%output%vtk // ', ' // run%deck%output%contact // ', ' // &
               run%deck%output%summary
@@ -141,6 +144,19 @@ contains
       run%wrote = [line1]
     end if
   end subroutine write_outputs
+
+  !> The meshes gmsh made for this run go to the mesh cache (mesh_cache), now
+  !> that the run has succeeded: a failed run leaves nothing in its folder.
+  !> One that cannot be kept costs the next run a run of gmsh, nothing else.
+  subroutine keep_new_meshes(run)
+    type(run_t), intent(in) :: run
+    type(error_t), allocatable :: err
+    integer :: i
+    if (.not. allocated(run%gmsh%cache) .or. .not. allocated(run%sc%new_meshes)) return
+    do i = 1, size(run%sc%new_meshes)
+      call keep_mesh(run%gmsh%cache, run%sc%new_meshes(i)%key, run%sc%new_meshes(i)%msh_path, err)
+    end do
+  end subroutine keep_new_meshes
 
   !> The temporary of step k's VTK file (STEM_000k.vtk).
   subroutine create_step_file(run, kstep, err)

@@ -150,6 +150,8 @@ contains
         ' elements (', count(run%sc%bodies(b)%mesh%nen == 4 .or. run%sc%bodies(b)%mesh%nen >= 8), ' quadrilaterals)'
       call say(run, 'body     ' // run%sc%bodies(b)%name // ': ' // trim(line))
     end do
+    if (run%sc%reused_meshes > 0) call say(run, 'mesh     ' // int_to_str(run%sc%reused_meshes) // ' .geo mesh(es) ' // &
+      'read from the mesh cache ' // run%gmsh%cache // ' (the same .geo, parameters and gmsh; --no-mesh-cache: mesh again)')
     call report_rigids(run)
     do ip = 1, run%cs%npair
       write(line, '(a,i0,a,i0,a,i0,a,i0,a)') 'contact  pair ', ip, ': ', size(run%cs%pair(ip)%snode), &
