@@ -185,11 +185,11 @@ contains
           else
             fm = max(f(m), 0.0_dp); fp = max(f(prv), 0.0_dp)
           end if
-          slope = (fm**2 - fp**2) / abs(s(m) - s(prv))
           h = abs(s(nxt) - s(m))
-          if (slope >= 0.0_dp .or. h <= 0.0_dp) then
+          if (fm >= fp .or. h <= 0.0_dp .or. abs(s(m) - s(prv)) <= 0.0_dp) then
             t = 0.0_dp                              ! not falling toward the end: a corner
           else
+            slope = (fm**2 - fp**2) / abs(s(m) - s(prv))
             t = min(1.0_dp, fm**2 / (-slope) / h)
           end if
         end if
