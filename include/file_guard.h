@@ -58,6 +58,11 @@ int c2d_lock_folder(const char *dir);
  * acted on now. */
 void c2d_unlock_folder(int fd);
 
+/* Size and modification time (nanoseconds since the epoch) of path, links
+ * followed: a stamp that changes when the file is replaced (a program
+ * upgraded).  0, or errno. */
+int c2d_file_stamp(const char *path, long long *size, long long *mtime_ns);
+
 /* realpath(3): 0 and the path, or errno. */
 int c2d_real_path(const char *path, char *real, int len);
 

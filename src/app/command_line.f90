@@ -32,7 +32,9 @@ contains
     integer, intent(out) :: jobs            !< -j N; 0 when not given
     integer :: n, j, length, ios
     character(len=:), allocatable :: arg
+    logical :: keep_meshes
     check_only = .false.
+    keep_meshes = .true.
     quiet = .false.
     jobs = 0
     outdir = '.'
@@ -59,6 +61,8 @@ contains
         quiet = .true.
       case ('--trust-geo')
         gmsh%trust_geo = .true.
+      case ('--no-mesh-cache')
+        keep_meshes = .false.
       case ('--gmsh-timeout')
         call option_value(j, n, arg, 'option --gmsh-timeout needs a number of seconds (--gmsh-timeout SECONDS)')
         ios = 1
@@ -101,7 +105,8 @@ contains
         if (len(arg) > 0) then
           if (arg(1:1) == '-') call usage_error('unknown option "' // arg // '" (expected -o DIR, -j N, --check, -q, ' // &
                                                 '-D name=value, --cases FILE.csv, --case N, ' // &
-                                                '--trust-geo, --gmsh-timeout SECONDS, --version, -h)')
+                                                '--trust-geo, --gmsh-timeout SECONDS, --no-mesh-cache, ' // &
+                                                '--version, -h)')
         end if
         if (len(deck_path) > 0) call usage_error('more than one deck given ("' // deck_path // '" and "' // arg // &
                                                   '"; one DECK expected)')
@@ -110,6 +115,10 @@ contains
       deallocate(arg)
     end do
     if (len(deck_path) == 0) call usage_error('no deck given (usage: contact2d [options] DECK)')
+    ! the meshes gmsh makes are kept in the output folder given, which the
+    ! cases of a sweep share (each case's outputs go to DIR/case_N below it)
+    gmsh%cache = ''
+    if (keep_meshes) gmsh%cache = outdir // '/.mesh_cache'
     if (case_number > 0 .and. len(cases_path) == 0) &
       call usage_error('option --case N needs --cases FILE.csv (the table the case is a row of)')
   end subroutine parse_command_line
@@ -171,9 +180,11 @@ contains
       'usage: contact2d [options] DECK', &
       '', &
       'Unilateral (Signorini) contact between elastic bodies in 2D by the mortar', &
-      'finite element method (P1/Q1 plane elasticity, frictionless contact,', &
-      'condensed LCP solved by Lemke, projected Gauss-Seidel or a primal-dual', &
-      'active set (semismooth Newton) method).', &
+      'finite element method: plane strain, plane stress or axisymmetric elasticity', &
+      'on linear (tri3, quad4) and quadratic (tri6, quad8, quad9) elements; contact', &
+      'between bodies and against rigid obstacles, frictionless or with Coulomb or', &
+      'Tresca friction in load steps; the condensed LCP solved by Lemke, projected', &
+      'Gauss-Seidel or a primal-dual active set (semismooth Newton) method.', &
       '', &
       'options:', &
       '  -o DIR       write all outputs into DIR (created if missing; default .)', &
@@ -186,6 +197,9 @@ contains
       '               files or reads outside the deck''s folder is refused (exit 2)', &
       '  --gmsh-timeout SECONDS', &
       '               time limit of gmsh on each .geo (default 600); gmsh is then stopped', &
+      '  --no-mesh-cache  mesh every .geo with gmsh; by default the meshes gmsh makes are', &
+      '               kept in DIR/.mesh_cache and reused by the runs (the cases of a sweep,', &
+      '               re-runs) with the same .geo, parameters, order and gmsh', &
       '  -D name=value  replace the default of the deck''s PARAMETER name (repeatable; value a', &
       '               number or an expression of numbers); an undeclared name is an error', &
       '  --cases FILE.csv  a sweep: header row = parameter names, one row per case; runs every', &
@@ -223,12 +237,15 @@ contains
       '    SPRING point [kx=] [ky=]          (a spring to the ground at each node of a point set)', &
       '  GRAVITY gx= gy= [ramp=k0:k1|curve=NAME]', &
       '  CONTACT slave=body:boundary master=body:boundary [gap=geometry|zero] [mu=C | tresca=S]', &
-      '          [interference=allow|reject]  (a boundary may be a closed curve; an initial penetration', &
-      '                                    deeper than a slave element is refused unless allowed)', &
-      '                                    (frictionless unless mu= (Coulomb) or tresca= (slip bound))', &
-      '                                    (P1/Q1 bodies only: contact on quadratic elements is refused)', &
+      '          [interference=allow|reject] [sliding=small]  (a boundary may be a closed curve; an', &
+      '                                    initial penetration deeper than a slave element is refused', &
+      '                                    unless allowed; sliding=small, the pairing and normals of the', &
+      '                                    initial configuration, is the only kinematics: finite is refused)', &
+      '                                    (frictionless unless mu= (Coulomb) or tresca= (slip bound);', &
+      '                                    quadratic elements: frictionless, and not in PLANE axisymmetric)', &
       '  CONTACT slave=body:boundary master=RIGIDNAME [mu=C | tresca=S]   (against a RIGID''s exact shape)', &
-      '  RIGID name ... END                (a rigid obstacle: its dofs ux, uy, rz of the reference point)', &
+      '  RIGID name ... END                (a rigid obstacle: its dofs ux, uy, rz of the reference point;', &
+      '                                    not in PLANE axisymmetric)', &
       '    SHAPE line x0= y0= x1= y1=  |  SHAPE circle xc= yc= r= [solid=inside|outside]', &
       '    SHAPE polyline points=x1:y1,x2:y2,...   (solid on the side the slave faces)', &
       '    REF x= y=                         (default: the circle''s centre, the first point)', &
@@ -241,8 +258,16 @@ contains
       '         [cut=auto|off]  (accepted and ignored: no body is cut)', &
       '  STEPS n                           (load steps; ramp=k0:k1: load 0 at step k0 rising to 1 at k1)', &
       '  CURVE name t0:v0 t1:v1 ...        (load factor v against the step t, piecewise linear: curve=name)', &
+      '  ESTIMATE [on|off]                 (the run''s own error estimate, on by default)', &
       '  OUTPUT [vtk=FILE] [contact=FILE.csv] [summary=FILE] [fields=displacement,contact_pressure,gap,stress,von_mises]', &
       '         [steps=last|all]  (all: FILE_0001.vtu and a contact table per step, FILE.pvd, FILE_steps.csv)', &
+      '', &
+      'outputs (doc/outputs.md): DECK.vtk (ParaView), DECK_contact.csv (a row per slave node),', &
+      'DECK.summary (key value lines: energy, reactions and mean displacement of each FIX boundary,', &
+      'per pair the contact force, the contact zone''s ends and length, the peak pressure and where', &
+      'it is, the centre of pressure, the stick zone with friction; the error estimate, timings);', &
+      'with steps=all DECK_steps.csv, a row per step, columns named reaction_BODY:BOUNDARY_fx,', &
+      'displacement_BODY:BOUNDARY_ux, contact_force_PAIR_fx, contact_zone_PAIR_x0, rigid_NAME_ux, ...', &
       '', &
       'exit status: 0 solved, 1 solver failure (diagnostic on stderr), 2 bad input.', &
       'See doc/deck.md for every statement, default and output.'

@@ -344,6 +344,7 @@ contains
         step = none
         step%mu = z(1:n)
         step%tau = z(n + 1:)
+        step%fstate = fstate
         step%gap = qn + matmul(run%w(1:n, :), z)
         step%alpha = body_alpha
         step%slip = sprev

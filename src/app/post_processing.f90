@@ -22,6 +22,9 @@
 !>   rigid_results(run, res)      each RIGID's motion and the contact force on it
 !>   contact_measures(run, res)   pressures, status, counts, complementarity (mu, gap set)
 !>   nodal_contact_fields(run, res)  contact pressure, gap, shear on the nodes (VTK)
+!>   engineering_results(run, res)   each pair's zones, peak and centre of pressure (contact_zones),
+!>                                   each FIX boundary's mean displacement
+!>   fix_boundaries(run, labels, of_fix)   the distinct BODY:BOUNDARY of the FIXes, each FIX's among them
 !>   check_finite_results(run, res)  exit 1 when a result to be written is not finite
 module post_processing
   use kinds, only: dp
@@ -32,12 +35,15 @@ module post_processing
   use body, only: element_response, to_global_axes, spring_reactions
   use contact_set, only: row_of_node, state_row_of_node, node_rows, node_traction
   use contact_condensation, only: contact_forces
+  use contact_zones, only: pair_zones
+  use mesh, only: find_name, boundary_nodes
+  use text_scan, only: string_t
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use run_phase, only: enter_phase
   implicit none
   private
   public :: name_results, compute_results, pair_resultants, post_process, rigid_results, contact_measures, nodal_contact_fields
-  public :: check_finite_results
+  public :: check_finite_results, engineering_results, fix_boundaries
 
 contains
 
@@ -84,6 +90,7 @@ contains
     call post_process(run, run%sc%fext, run%res)
     call rigid_results(run, run%res)
     call nodal_contact_fields(run, run%res)
+    call engineering_results(run, run%res)
     call check_finite_results(run, run%res)
   end subroutine compute_results
 
@@ -280,6 +287,76 @@ contains
       end do
     end do
   end subroutine nodal_contact_fields
+
+  !> What an engineer reads first: each pair's contact zone (its ends, length,
+  !> count), peak pressure and centre of pressure, and with friction its stick
+  !> zone (contact_zones, doc/outputs.md); each FIX boundary's displacement,
+  !> the mean of u over its nodes.
+  !>   res (inout) u (x, y components), mu, status (tau, fstate) on entry;
+  !>               zones, fix_boundary, boundary_u on exit
+  subroutine engineering_results(run, res)
+    type(run_t), intent(in) :: run
+    type(results_t), intent(inout) :: res
+    integer :: ip, j, b, ib, k
+    integer, allocatable :: of_fix(:), nodes(:)
+    real(dp), allocatable :: none(:)
+    integer, allocatable :: no_state(:)
+    if (allocated(res%zones)) deallocate(res%zones)
+    allocate(res%zones(run%cs%npair), none(0), no_state(0))
+    do ip = 1, run%cs%npair
+      if (.not. (allocated(res%mu) .and. allocated(res%status))) cycle
+      if (allocated(res%tau) .and. allocated(res%fstate)) then
+        call pair_zones(run%cs, ip, res%mu, res%status, res%tau, res%fstate, res%zones(ip))
+      else
+        call pair_zones(run%cs, ip, res%mu, res%status, none, no_state, res%zones(ip))
+      end if
+    end do
+    call fix_boundaries(run, res%fix_boundary, of_fix)
+    if (allocated(res%boundary_u)) deallocate(res%boundary_u)
+    allocate(res%boundary_u(2, size(res%fix_boundary)), source=0.0_dp)
+    do k = 1, size(res%fix_boundary)
+      j = findloc(of_fix, k, dim=1)                 ! the first FIX on it: its body and boundary name
+      b = run%sc%fixes(j)%body
+      ib = find_name(run%sc%bodies(b)%mesh%bnd, res%fix_boundary(k)%s(len(run%sc%bodies(b)%name) + 2:))
+      if (ib == 0) cycle
+      call boundary_nodes(run%sc%bodies(b)%mesh%bnd(ib), nodes)
+      if (size(nodes) == 0) cycle
+      res%boundary_u(1, k) = sum(res%u(run%sc%bodies(b)%dof0 + 2 * nodes - 1)) / size(nodes)
+      res%boundary_u(2, k) = sum(res%u(run%sc%bodies(b)%dof0 + 2 * nodes)) / size(nodes)
+    end do
+  end subroutine engineering_results
+
+  !> The distinct boundaries the FIX statements hold, BODY:BOUNDARY in the
+  !> order of their first FIX: two FIX statements on one boundary (ux in one
+  !> load path, uy in another) are one boundary, its reaction their sum.
+  !>   labels (out) (nfb) the distinct labels
+  !>   of_fix (out) (nfix) each FIX's index in labels
+  subroutine fix_boundaries(run, labels, of_fix)
+    type(run_t), intent(in) :: run
+    type(string_t), allocatable, intent(out) :: labels(:)
+    integer, allocatable, intent(out) :: of_fix(:)
+    type(string_t), allocatable :: seen(:)
+    integer :: j, k, n
+    allocate(of_fix(size(run%sc%fixes)), seen(size(run%sc%fixes)))
+    n = 0
+    do j = 1, size(run%sc%fixes)
+      of_fix(j) = 0
+      do k = 1, n
+        if (seen(k)%s == run%sc%fixes(j)%label) then
+          of_fix(j) = k
+          exit
+        end if
+      end do
+      if (of_fix(j) > 0) cycle
+      n = n + 1
+      seen(n)%s = run%sc%fixes(j)%label
+      of_fix(j) = n
+    end do
+    allocate(labels(n))
+    do k = 1, n
+      call move_alloc(seen(k)%s, labels(k)%s)
+    end do
+  end subroutine fix_boundaries
 
   !> Every number about to be written must be finite: loads near the top of
   !> the accepted range can overflow in the post-processing (energy, stresses)

@@ -11,7 +11,7 @@
 !>   write_contact_csv(path, cs, r, err)
 !>   write_summary(path, r, err)
 !>   write_pvd(path, files, times, err)    ParaView collection of the per-step VTK files
-!>   write_step_table(path, header, table, err)   NAME_steps.csv: one row per load step
+!>   write_step_table(path, header, table, whole, err)   NAME_steps.csv: one row per load step
 !> Each writer returns err (status 2) when its file cannot be opened or written.
 module results_writer
   use kinds, only: dp, i8
@@ -19,6 +19,7 @@ module results_writer
   use strings, only: int_to_str, i8_to_str
   use errors, only: error_t, set_error
   use text_scan, only: string_t
+  use contact_zones, only: pair_zones_t, zone_t
   implicit none
   private
   public :: results_t, string_t, write_contact_csv, write_summary, write_pvd, write_step_table
@@ -68,6 +69,10 @@ module results_writer
     type(string_t), allocatable :: fix_label(:) !< (nfix) BODY:BOUNDARY
     type(string_t), allocatable :: spring_label(:) !< (nspring) BODY:NAME of each SPRING statement
     real(dp), allocatable :: spring_force(:,:)   !< (2, nspring) force of each SPRING on its body, x, y
+    type(string_t), allocatable :: fix_boundary(:) !< (nfb) the distinct BODY:BOUNDARY of the FIXes, deck order
+    real(dp), allocatable :: boundary_u(:,:)     !< (2, nfb) mean ux, uy of each one's nodes (summary displacement)
+    type(pair_zones_t), allocatable :: zones(:)  !< (npair) contact zone, peak pressure, centre of pressure,
+                                                 !< stick zone of each pair (contact_zones)
     type(string_t), allocatable :: rigid_name(:) !< (nrigid) the RIGID obstacles
     real(dp), allocatable :: rigid(:,:)          !< (6, nrigid) ux uy rz of the reference point, fx fy m the
                                                  !< contact force on the obstacle (summary rigid)
@@ -257,6 +262,24 @@ contains
         write(u, '(a,i0,a)') 'contact_force ', k, ' ' // num(r%contact_force(1, k)) // ' ' // num(r%contact_force(2, k))
       end do
     end if
+    if (allocated(r%boundary_u)) then
+      do k = 1, size(r%fix_boundary)
+        write(u, '(a)') 'displacement ' // r%fix_boundary(k)%s // ' ' // num(r%boundary_u(1, k)) // ' ' // &
+          num(r%boundary_u(2, k))
+      end do
+    end if
+    if (allocated(r%zones)) then
+      do k = 1, size(r%zones)
+        call write_zone(u, 'contact', k, r%zones(k)%contact)
+        if (r%zones(k)%contact%count > 0) then
+          write(u, '(a,i0,a)') 'peak_pressure ', k, ' ' // num(r%zones(k)%peak(1)) // ' ' // num(r%zones(k)%peak(2)) // &
+            ' ' // num(r%zones(k)%peak(3))
+          write(u, '(a,i0,a)') 'center_of_pressure ', k, ' ' // num(r%zones(k)%centre(1)) // ' ' // &
+            num(r%zones(k)%centre(2))
+        end if
+        if (r%zones(k)%friction) call write_zone(u, 'stick', k, r%zones(k)%stick)
+      end do
+    end if
     if (allocated(r%rigid_name)) then
       do k = 1, size(r%rigid_name)
         write(u, '(a)') 'rigid ' // r%rigid_name(k)%s // ' ' // num(r%rigid(1, k)) // ' ' // num(r%rigid(2, k)) // &
@@ -298,6 +321,17 @@ contains
     if (ios /= 0) call cannot_write(path, err)
   end subroutine write_summary
 
+  !> A zone's summary lines: `KIND_zone PAIR x0 y0 x1 y1 LENGTH` when any node
+  !> is in it, and always `KIND_zones PAIR COUNT TOTAL` (doc/outputs.md).
+  subroutine write_zone(u, kind, k, z)
+    integer, intent(in) :: u, k
+    character(len=*), intent(in) :: kind
+    type(zone_t), intent(in) :: z
+    if (z%count > 0) write(u, '(a,i0,a)') kind // '_zone ', k, ' ' // num(z%x0(1)) // ' ' // num(z%x0(2)) // ' ' // &
+      num(z%x1(1)) // ' ' // num(z%x1(2)) // ' ' // num(z%length)
+    write(u, '(a,i0,a,i0,a)') kind // '_zones ', k, ' ', z%count, ' ' // num(z%total)
+  end subroutine write_zone
+
   !> A ParaView collection (.pvd) of the per-step VTK files: the dataset of
   !> step k is files(k), at time times(k).
   !>   path  (in)  file to write
@@ -330,12 +364,13 @@ contains
   end subroutine write_pvd
 
   !> The table of the load steps (CSV): the header line, then one row per
-  !> step; the first column (the step) and the last two (active nodes, LCP
-  !> iterations) are integers.
+  !> step; the columns marked whole (the step, counts) are written as integers.
   !>   header (in) the header line;  table (in) (ncol, nstep) the rows
-  subroutine write_step_table(path, header, table, err)
+  !>   whole  (in) (ncol) the column holds integers
+  subroutine write_step_table(path, header, table, whole, err)
     character(len=*), intent(in) :: path, header
     real(dp), intent(in) :: table(:,:)
+    logical, intent(in) :: whole(:)
     type(error_t), allocatable, intent(out) :: err
     integer :: u, ios, k, c, nc
     logical :: ok
@@ -348,12 +383,13 @@ contains
     write(u, '(a)', iostat=ios) header
     nc = size(table, 1)
     do k = 1, size(table, 2)
-      line = int_to_str(nint(table(1, k)))
-      do c = 2, nc
-        if (c >= nc - 1) then
-          line = line // ',' // int_to_str(nint(table(c, k)))
+      line = ''
+      do c = 1, nc
+        if (c > 1) line = line // ','
+        if (whole(c)) then
+          line = line // int_to_str(nint(table(c, k)))
         else
-          line = line // ',' // num(table(c, k))
+          line = line // num(table(c, k))
         end if
       end do
       write(u, '(a)', iostat=ios) line

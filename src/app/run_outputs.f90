@@ -13,7 +13,8 @@
 !> Programming interface
 !>   make_folder(path, diag)     create the output folder and its parents (an input error when it cannot)
 !>   write_step(run, k, res)     step k's table row, .vtu and contact table from its results (OUTPUT steps=all)
-!>   write_outputs(run)          every file of the run, committed together; run%wrote for the log
+!>   write_outputs(run)          every file of the run, committed together; run%wrote for the log;
+!>                               then the meshes gmsh made go to the mesh cache
 module run_outputs
   use kinds, only: dp
   use strings, only: int_to_str
@@ -23,8 +24,8 @@ module run_outputs
   use run_state, only: run_t, ph_output
   use run_report, only: lap
   use deck_reader, only: path_too_long
-  use load_groups, only: group_factor, group_name
-  use post_processing, only: rigid_results
+  use post_processing, only: rigid_results, engineering_results
+  use step_table, only: step_columns
   use results_writer, only: results_t, write_contact_csv, write_summary, write_pvd, write_step_table, peak_memory
   use vtk_files, only: write_vtk, write_vtu
   use safe_files, only: make_folders, temporary_t, create_temporary, close_temporary, commit_temporaries, &
@@ -32,6 +33,7 @@ module run_outputs
   use, intrinsic :: iso_fortran_env, only: error_unit
   use run_phase, only: enter_phase
   use run_estimate, only: predict_cost
+  use mesh_cache, only: keep_mesh
   implicit none
   private
   public :: make_folder, write_step, write_outputs
@@ -79,7 +81,9 @@ contains
     character(len=:), allocatable :: names(:)
     real(dp), allocatable :: times(:)
     integer :: kstep, nl, i
-    character(len=:), allocatable :: line1, line2
+    character(len=:), allocatable :: line1, line2, header
+    real(dp), allocatable :: row(:)
+    logical, allocatable :: whole(:)
     call enter_phase('writing the outputs')
     ! the run's three files, then with steps=all the .pvd, the step table and
     ! the per-step files (all but the last step's written as they were solved)
@@ -106,7 +110,10 @@ contains
       if (.not. allocated(err)) call create_temporary(run%outdir, output_stem(run) // '.pvd', tmp(4), err)
       if (.not. allocated(err)) call write_pvd(tmp(4)%io_path, names, times, err)
       if (.not. allocated(err)) call create_temporary(run%outdir, output_stem(run) // '_steps.csv', tmp(5), err)
-      if (.not. allocated(err)) call write_step_table(tmp(5)%io_path, step_header(run), run%step_table, err)
+      if (.not. allocated(err)) then
+        call step_columns(run, run%sc%steps, run%res, header, row, whole)
+        call write_step_table(tmp(5)%io_path, header, run%step_table, whole, err)
+      end if
     end if
     if (.not. allocated(err)) then
       call lap(run, ph_output)
@@ -125,6 +132,7 @@ contains
         '(a writable folder expected)'
       call exit_program(2)
     end if
+    call keep_new_meshes(run)
     if (run%cs%npair > 0) then
       line1 = 'wrote    ' // run%outdir // '/' // run%deck%output%vtk // ', ' // run%deck%output%contact // ', ' // &
               run%deck%output%summary
@@ -141,6 +149,19 @@ contains
       run%wrote = [line1]
     end if
   end subroutine write_outputs
+
+  !> The meshes gmsh made for this run go to the mesh cache (mesh_cache), now
+  !> that the run has succeeded: a failed run leaves nothing in its folder.
+  !> One that cannot be kept costs the next run a run of gmsh, nothing else.
+  subroutine keep_new_meshes(run)
+    type(run_t), intent(in) :: run
+    type(error_t), allocatable :: err
+    integer :: i
+    if (.not. allocated(run%gmsh%cache) .or. .not. allocated(run%sc%new_meshes)) return
+    do i = 1, size(run%sc%new_meshes)
+      call keep_mesh(run%gmsh%cache, run%sc%new_meshes(i)%key, run%sc%new_meshes(i)%msh_path, err)
+    end do
+  end subroutine keep_new_meshes
 
   !> Step k's .vtu and contact table, each to a temporary of its own
   !> (run%step_tmp(:, k)), from the step's results.
@@ -198,53 +219,23 @@ contains
     stem = run%deck%output%vtk(1:len(run%deck%output%vtk) - 4)
   end function output_stem
 
-  !> Row k of NAME_steps.csv from the step's results res: step, the load
-  !> factor of each load path, the reactions of every FIX, the contact
-  !> resultant of every pair, active nodes, LCP iterations.
+  !> Row k of NAME_steps.csv from the step's results res (step_columns: the
+  !> load factors, the reactions and mean displacement of every FIX boundary,
+  !> each pair's resultant, zones, peak and centre of pressure, the RIGIDs,
+  !> active nodes, LCP iterations).
   subroutine add_step_row(run, kstep, res)
     type(run_t), intent(inout) :: run
     integer, intent(in) :: kstep
     type(results_t), intent(inout) :: res
-    integer :: ng, nc, g, c
-    ng = size(run%sc%ramp, 2)
-    nc = 1 + ng + 2 * size(run%sc%fixes) + 2 * run%cs%npair + 6 * size(run%sc%rigids) + 2
+    character(len=:), allocatable :: header
+    real(dp), allocatable :: row(:)
+    logical, allocatable :: whole(:)
     call rigid_results(run, res)
-    if (.not. allocated(run%step_table)) allocate(run%step_table(nc, run%sc%steps), source=0.0_dp)
-    run%step_table(1, kstep) = kstep
-    do g = 1, ng
-      run%step_table(1 + g, kstep) = group_factor(run%sc, g, kstep)
-    end do
-    c = 1 + ng
-    run%step_table(c + 1:c + 2 * size(run%sc%fixes), kstep) = reshape(res%reaction, [2 * size(run%sc%fixes)])
-    c = c + 2 * size(run%sc%fixes)
-    run%step_table(c + 1:c + 2 * run%cs%npair, kstep) = reshape(res%contact_force, [2 * run%cs%npair])
-    c = c + 2 * run%cs%npair
-    run%step_table(c + 1:c + 6 * size(run%sc%rigids), kstep) = reshape(res%rigid, [6 * size(run%sc%rigids)])
-    run%step_table(nc - 1, kstep) = res%active_nodes
-    run%step_table(nc, kstep) = run%step_iterations
+    call engineering_results(run, res)
+    call step_columns(run, kstep, res, header, row, whole)
+    if (.not. allocated(run%step_table)) allocate(run%step_table(size(row), run%sc%steps), source=0.0_dp)
+    run%step_table(:, kstep) = row
   end subroutine add_step_row
-
-  !> The header line of NAME_steps.csv.
-  function step_header(run) result(h)
-    type(run_t), intent(in) :: run
-    character(len=:), allocatable :: h
-    integer :: g, j
-    h = 'step'
-    do g = 1, size(run%sc%ramp, 2)
-      h = h // ',factor_' // group_name(run%sc, g)
-    end do
-    do j = 1, size(run%sc%fixes)
-      h = h // ',' // run%sc%fixes(j)%label // '_Fx,' // run%sc%fixes(j)%label // '_Fy'
-    end do
-    do j = 1, run%cs%npair
-      h = h // ',contact_' // int_to_str(j) // '_Fx,contact_' // int_to_str(j) // '_Fy'
-    end do
-    do j = 1, size(run%sc%rigids)
-      h = h // ',' // run%sc%rigids(j)%name // '_ux,' // run%sc%rigids(j)%name // '_uy,' // run%sc%rigids(j)%name // '_rz,' // &
-        run%sc%rigids(j)%name // '_fx,' // run%sc%rigids(j)%name // '_fy,' // run%sc%rigids(j)%name // '_m'
-    end do
-    h = h // ',active_nodes,lcp_iterations'
-  end function step_header
 
   subroutine output_failure(run)
     type(run_t), intent(inout) :: run

@@ -16,7 +16,8 @@
 !>   say_step(run, k, method, it, active)   the line of a load step solved on its own
 !>   report_scene(run)               the scene: model, bodies (the formulation of a nearly
 !>                                   incompressible one), RIGIDs, pairs, steps, rigid modes, sizes
-!>   report_run(run)                 the results, factor, phases, files written
+!>   report_run(run)                 the results (each pair's zone, peak pressure, stick zone), factor,
+!>                                   phases, files written
 !>   friction_law(kind, spec)        how a pair's tangential behaviour reads in the log
 !>   add_warning(run, code, text)    a warning: stderr (unless -q) and the summary's `warning CODE text`
 module run_report
@@ -177,6 +178,8 @@ contains
       call report_formulation(run, b)
     end do
     call report_supports(run)
+    if (run%sc%reused_meshes > 0) call say(run, 'mesh     ' // int_to_str(run%sc%reused_meshes) // ' .geo mesh(es) ' // &
+      'read from the mesh cache ' // run%gmsh%cache // ' (the same .geo, parameters and gmsh; --no-mesh-cache: mesh again)')
     call report_rigids(run)
     do ip = 1, run%cs%npair
       write(line, '(a,i0,a,i0,a,i0,a,i0,a)') 'contact  pair ', ip, ': ', size(run%cs%pair(ip)%snode), &
@@ -413,6 +416,7 @@ contains
       call say(run, trim(line))
       write(line, '(a,es12.4,a,es12.4)') 'contact  min gap ', run%res%min_gap, ', min pressure ', run%res%min_pressure
       call say(run, trim(line))
+      call report_zones(run)
     end if
     do p = 1, size(run%sc%rigids)
       write(line, '(a,3es12.4,a,3es12.4)') ': motion (ux, uy, rz) =', run%res%rigid(1:3, p), &
@@ -466,6 +470,41 @@ contains
       call say(run, trim(run%wrote(p)))          ! the files run_outputs wrote
     end do
   end subroutine report_run
+
+  !> Per pair, the summary's contact_zone, peak_pressure and stick_zone in
+  !> words: `contact  pair 1: in contact from (x0, y0) to (x1, y1), length L,
+  !> peak pressure P at (x, y)`, and `stick from ... to ..., length L`.
+  subroutine report_zones(run)
+    type(run_t), intent(in) :: run
+    character(len=240) :: line
+    integer :: p
+    if (.not. allocated(run%res%zones)) return
+    do p = 1, size(run%res%zones)
+      associate(z => run%res%zones(p))
+        if (z%contact%count == 0) then
+          call say(run, 'contact  pair ' // int_to_str(p) // ': no node in contact')
+          cycle
+        end if
+        write(line, '(a,2(a,es11.4,a,es11.4,a),a,es11.4)') 'contact  pair ' // int_to_str(p) // ': in contact', &
+          ' from (', z%contact%x0(1), ', ', z%contact%x0(2), ')', ' to (', z%contact%x1(1), ', ', z%contact%x1(2), ')', &
+          ', length', z%contact%length
+        if (z%contact%count > 1) line = trim(line) // ' (' // int_to_str(z%contact%count) // ' zones)'
+        write(line(len_trim(line) + 1:), '(a,es11.4,a,es11.4,a,es11.4,a)') ', peak pressure', z%peak(1), ' at (', &
+          z%peak(2), ', ', z%peak(3), ')'
+        call say(run, trim(line))
+        if (.not. z%friction) cycle
+        if (z%stick%count == 0) then
+          call say(run, 'contact  pair ' // int_to_str(p) // ': no node sticks')
+          cycle
+        end if
+        write(line, '(a,2(a,es11.4,a,es11.4,a),a,es11.4)') 'contact  pair ' // int_to_str(p) // ': stick', &
+          ' from (', z%stick%x0(1), ', ', z%stick%x0(2), ')', ' to (', z%stick%x1(1), ', ', z%stick%x1(2), ')', &
+          ', length', z%stick%length
+        if (z%stick%count > 1) line = trim(line) // ' (' // int_to_str(z%stick%count) // ' zones)'
+        call say(run, trim(line))
+      end associate
+    end do
+  end subroutine report_zones
 
   !> How a pair's tangential behaviour is described in the log.
   function friction_law(kind, spec) result(t)

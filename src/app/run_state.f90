@@ -8,7 +8,7 @@
 !> every step's signature short and every piece of state visible in one
 !> place, with no module variables.  Who may use it: the program and its
 !> step modules (problem_setup, linear_system, contact_solve,
-!> post_processing, run_outputs, run_report, case_selection); no library
+!> post_processing, run_outputs, step_table, run_report, case_selection); no library
 !> module below them knows it.
 !>
 !> Programming interface

@@ -12,10 +12,11 @@
 !> before, sandbox or not, and is what refuses such a .geo with FILE:LINE.
 !>
 !> Programming interface
-!>   type(gmsh_options_t)    trust_geo, timeout (seconds)
+!>   type(gmsh_options_t)    trust_geo, timeout (seconds), the mesh cache's folder
+!>   gmsh_identity(identity, found)   'PATH SIZE MTIME' of the gmsh on PATH (mesh_cache's key)
 !>   mesh_geo_file(geo_path, order, names, values, opts, read_folder, msh_path, log_path, err
 !>                 [, background, size_range])
-!>        gmsh -2 -order ORDER -format msh41 -v 2 [-setnumber NAME VALUE]... GEO -o MSH,
+!>        gmsh -2 -format msh41 -v 2 -order ORDER [-setnumber NAME VALUE]... GEO -o MSH,
 !>        its output to LOG (which must not exist); err unless gmsh exits 0 and wrote
 !>        MSH, its message saying why (gmsh's first error lines, the time limit).
 !>        With a background (a .pos view in MSH's folder): the sizes are the view's
@@ -28,15 +29,21 @@ module gmsh_runner
   use errors, only: error_t, set_error
   use system_binding, only: c2d_find_program, c2d_run_program, c_unlink, c2d_run_exited, c2d_run_signaled, &
                             c2d_run_timeout
-  use safe_files, only: read_file, real_path, folder_of, file_kind, c2d_regular
+  use safe_files, only: read_file, real_path, folder_of, file_kind, c2d_regular, file_stamp
   implicit none
   private
-  public :: gmsh_options_t, mesh_geo_file
+  public :: gmsh_options_t, mesh_geo_file, gmsh_identity, gmsh_arguments, real_to_text
 
   type :: gmsh_options_t
     logical :: trust_geo = .false.       !< run gmsh as it is: no screen, no sandbox (--trust-geo)
     real(dp) :: timeout = 600.0_dp       !< seconds gmsh may take per .geo (--gmsh-timeout)
+    character(len=:), allocatable :: cache   !< folder of the mesh cache (mesh_cache); unallocated or
+                                             !< '' when meshes are not kept (--no-mesh-cache)
   end type gmsh_options_t
+
+  !> the options of every gmsh run besides -order and -setnumber (a mesh
+  !> depends on them: they are part of mesh_cache's key)
+  character(len=7), parameter :: gmsh_arguments(5) = [character(len=7) :: '-2', '-format', 'msh41', '-v', '2']
 
   !> an argument vector: NUL-terminated strings one after the other
   type :: argv_t
@@ -124,13 +131,11 @@ contains
       if (found) call sandbox_arguments(bwrap, gmsh, read_folder, geo, out_folder, argv)
     end if
     call push(argv, gmsh)
-    call push(argv, '-2')
+    do i = 1, size(gmsh_arguments)
+      call push(argv, trim(gmsh_arguments(i)))
+    end do
     call push(argv, '-order')
     call push(argv, int_to_str(order))
-    call push(argv, '-format')
-    call push(argv, 'msh41')
-    call push(argv, '-v')
-    call push(argv, '2')
     do i = 1, size(names)
       call push(argv, '-setnumber')
       call push(argv, trim(names(i)))
@@ -177,6 +182,24 @@ contains
     end if
     call set_error(err, message, 2)
   end subroutine mesh_geo_file
+
+  !> The gmsh that mesh_geo_file runs, as a stamp: its real path, size and
+  !> modification time ('PATH SIZE MTIME_NS'), which change when gmsh is
+  !> upgraded or replaced.  Not its --version: starting gmsh to ask costs
+  !> a third of a second, a good part of meshing a small .geo.
+  !>   identity (out) the stamp ('' when not found)
+  !>   found    (out) gmsh is on PATH
+  subroutine gmsh_identity(identity, found)
+    character(len=:), allocatable, intent(out) :: identity
+    logical, intent(out) :: found
+    character(len=:), allocatable :: gmsh, real, stamp
+    identity = ''
+    call find_program('gmsh', gmsh, found)
+    if (.not. found) return
+    call real_path(gmsh, real, found)
+    if (found) call file_stamp(real, stamp, found)
+    if (found) identity = real // ' ' // stamp
+  end subroutine gmsh_identity
 
   !> The path of a program on PATH.
   subroutine find_program(name, path, found)

@@ -36,6 +36,7 @@ module scene
   use mesh_rect, only: make_rect_mesh
   use gmsh_reader, only: read_gmsh_file
   use gmsh_runner, only: gmsh_options_t, mesh_geo_file
+  use mesh_cache, only: mesh_entry_t, geo_key, find_cached_mesh
   use geo_screen, only: screen_geo
   use safe_files, only: private_folder, real_path
   use material, only: make_isotropic, make_orthotropic, locking_nu
@@ -78,6 +79,9 @@ module scene
     type(rigid_shape_t), allocatable :: rigids(:)  !< (nrigid) RIGID obstacles; dofs after the bodies'
     character(len=:), allocatable :: effects  !< space-separated effects simulated
     type(thermal_path_t), allocatable :: thermal(:)  !< (nbody) alpha dT at factor 1 and its group
+    type(mesh_entry_t), allocatable :: new_meshes(:) !< the .geo meshes gmsh made, for the mesh cache
+                                                     !< once the run has succeeded (mesh_cache)
+    integer :: reused_meshes = 0              !< .geo meshes read from the mesh cache
   end type scene_t
 
 contains
@@ -103,9 +107,9 @@ contains
     ! names and messages) in a static variable of the caller, so two threads
     ! reading meshes garble each other's strings (doc/robustness.md)
     nb = size(deck%bodies)
-    allocate(sc%bodies(nb))
+    allocate(sc%bodies(nb), sc%new_meshes(0))
     do b = 1, nb
-      call make_mesh(deck, b, gmsh, sc%bodies(b)%mesh, diag, err)
+      call make_mesh(deck, b, gmsh, sc, sc%bodies(b)%mesh, diag, err)
       if (allocated(err)) return
       call make_body(deck, b, sc%bodies(b), diag)
     end do
@@ -310,20 +314,24 @@ contains
 
   !> The mesh of body ib: its MESH rect generated, its .msh file read, or its
   !> .geo file meshed by gmsh into the run's private folder, after the screen
-  !> of what the .geo may do (unless trusted), and read.
+  !> of what the .geo may do (unless trusted), and read.  A .geo mesh of the
+  !> same key in the mesh cache (gmsh%cache, mesh_cache) is read from there
+  !> instead; one gmsh made joins sc%new_meshes.
   !>   deck (in)    the deck;  ib (in) the body
-  !>   gmsh (in)    how .geo files are meshed: trusted or screened, time limit
+  !>   gmsh (in)    how .geo files are meshed: trusted or screened, time limit, cache
+  !>   sc   (inout) new_meshes, reused_meshes
   !>   mesh (out)   the mesh, finalized (incomplete when diag has new errors)
   !>   diag (inout) errors at the deck's MESH line or in the mesh file
   !>   err  (out)   allocated when the memory ran out
-  subroutine make_mesh(deck, ib, gmsh, mesh, diag, err)
+  subroutine make_mesh(deck, ib, gmsh, sc, mesh, diag, err)
     type(deck_t), intent(in) :: deck
     integer, intent(in) :: ib
     type(gmsh_options_t), intent(in) :: gmsh
+    type(scene_t), intent(inout) :: sc
     type(mesh_t), intent(out) :: mesh
     type(diag_t), intent(inout) :: diag
     type(error_t), allocatable, intent(out) :: err
-    character(len=:), allocatable :: path, work, deck_folder, log
+    character(len=:), allocatable :: path, work, deck_folder, log, key
     type(error_t), allocatable :: step_err
     logical :: found
     integer :: n0
@@ -341,18 +349,29 @@ contains
         if (.not. found) deck_folder = deck%dir
         if (.not. gmsh%trust_geo) call screen_geo(ms%path, deck_folder, diag)
         if (diag%count > n0) return
-        call private_folder(work, step_err)
-        if (allocated(step_err)) then
-          call add_error(diag, deck%file, ms%line, 'cannot make a private folder for gmsh''s files in $TMPDIR ' // &
-                         '(or /tmp) (a writable folder expected)')
-          return
+        key = ''
+        found = .false.
+        if (allocated(gmsh%cache)) then
+          if (len(gmsh%cache) > 0) call geo_key(ms%path, ms%order, ms%set_names, ms%set_values, key)
+          if (len(key) > 0) call find_cached_mesh(gmsh%cache, key, path, found)
         end if
-        path = work // '/body' // int_to_str(ib) // '.msh'
-        log = work // '/body' // int_to_str(ib) // '.log'
-        call mesh_geo_file(ms%path, ms%order, ms%set_names, ms%set_values, gmsh, deck_folder, path, log, step_err)
-        if (allocated(step_err)) then
-          call add_error(diag, deck%file, ms%line, 'gmsh could not mesh "' // ms%file // '": ' // step_err%message)
-          return
+        if (found) then
+          sc%reused_meshes = sc%reused_meshes + 1
+        else
+          call private_folder(work, step_err)
+          if (allocated(step_err)) then
+            call add_error(diag, deck%file, ms%line, 'cannot make a private folder for gmsh''s files in $TMPDIR ' // &
+                           '(or /tmp) (a writable folder expected)')
+            return
+          end if
+          path = work // '/body' // int_to_str(ib) // '.msh'
+          log = work // '/body' // int_to_str(ib) // '.log'
+          call mesh_geo_file(ms%path, ms%order, ms%set_names, ms%set_values, gmsh, deck_folder, path, log, step_err)
+          if (allocated(step_err)) then
+            call add_error(diag, deck%file, ms%line, 'gmsh could not mesh "' // ms%file // '": ' // step_err%message)
+            return
+          end if
+          if (len(key) > 0) sc%new_meshes = [sc%new_meshes, mesh_entry_t(key, path)]
         end if
       end if
       call read_gmsh_file(path, mesh, diag, err)

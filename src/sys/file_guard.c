@@ -344,6 +344,15 @@ void c2d_unlock_folder(int fd)
     end_deferral();
 }
 
+int c2d_file_stamp(const char *path, long long *size, long long *mtime_ns)
+{
+    struct stat st;
+    if (stat(path, &st) != 0) return errno;
+    *size = (long long)st.st_size;
+    *mtime_ns = (long long)st.st_mtim.tv_sec * 1000000000LL + (long long)st.st_mtim.tv_nsec;
+    return 0;
+}
+
 int c2d_real_path(const char *path, char *real, int len)
 {
     char *r = realpath(path, NULL);

@@ -25,6 +25,7 @@
 !>   make_folders(path, err)               mkdir -p, without a shell
 !>   private_folder(path, err)             the run's private folder (made once)
 !>   real_path(path, real, found)          realpath(3); found: the path exists
+!>   file_stamp(path, stamp, found)        'SIZE MTIME_NS' of a file (stat): changes when it is replaced
 !>   folder_of(path)                       the folder part of path ('.' when none)
 !>   type(temporary_t)                     an output temporary and its final name
 !>   create_temporary(dir, name, t, err)   a temporary for the output dir/name
@@ -35,16 +36,16 @@
 !> the files); the callers say which folder the user should look at.
 !>   discard_temporaries(t)                remove them
 module safe_files
-  use, intrinsic :: iso_c_binding, only: c_int, c_null_char
+  use, intrinsic :: iso_c_binding, only: c_int, c_long_long, c_null_char
   use kinds, only: i8
   use errors, only: error_t, set_error
   use system_binding, only: c2d_file_kind, c2d_open_input, c2d_close, c2d_make_folders, c2d_private_folder, &
                             c2d_create_temporary, c2d_forget_temporary, c2d_lock_folder, c2d_unlock_folder, &
-                            c2d_real_path, c_unlink, c_rename, c2d_regular, c2d_missing, c2d_fifo, c2d_device, &
+                            c2d_real_path, c2d_file_stamp, c_unlink, c_rename, c2d_regular, c2d_missing, c2d_fifo, c2d_device, &
                             c2d_folder, c2d_socket, c2d_unreadable
   implicit none
   private
-  public :: file_kind, kind_name, open_input, read_file, make_folders, private_folder, real_path, folder_of
+  public :: file_kind, kind_name, open_input, read_file, make_folders, private_folder, real_path, folder_of, file_stamp
   public :: temporary_t, create_temporary, close_temporary, commit_temporaries, discard_temporaries
   public :: c2d_regular, c2d_missing, c2d_fifo, c2d_device, c2d_folder, c2d_socket, c2d_unreadable
 
@@ -181,6 +182,22 @@ contains
     real = ''
     if (found) real = buf(1:index(buf, c_null_char) - 1)
   end subroutine real_path
+
+  !> A stamp of the file at path: its size and modification time in
+  !> nanoseconds, 'SIZE MTIME_NS' (stat, links followed), which changes when
+  !> the file is replaced; found = path exists.
+  subroutine file_stamp(path, stamp, found)
+    character(len=*), intent(in) :: path
+    character(len=:), allocatable, intent(out) :: stamp
+    logical, intent(out) :: found
+    integer(c_long_long) :: size, mtime
+    character(len=48) :: buf
+    found = c2d_file_stamp(path // c_null_char, size, mtime) == 0
+    stamp = ''
+    if (.not. found) return
+    write(buf, '(i0,1x,i0)') size, mtime
+    stamp = trim(buf)
+  end subroutine file_stamp
 
   !> The folder part of path: 'a/b' for 'a/b/c', '/' for '/c', '.' for 'c'.
   pure function folder_of(path) result(dir)

@@ -4,12 +4,12 @@
 !> paths come back in caller buffers, NUL-terminated.  The Fortran-facing
 !> API is in safe_files and gmsh_runner.
 module system_binding
-  use, intrinsic :: iso_c_binding, only: c_int, c_char, c_double
+  use, intrinsic :: iso_c_binding, only: c_int, c_char, c_double, c_long_long
   implicit none
   private
   public :: c2d_file_kind, c2d_open_input, c2d_close, c2d_make_folders, c2d_private_folder, &
             c2d_create_temporary, c2d_forget_temporary, c2d_lock_folder, c2d_unlock_folder, c2d_real_path, &
-            c2d_find_program, c2d_run_program, c2d_cpu_seconds, c_unlink, c_rename
+            c2d_file_stamp, c2d_find_program, c2d_run_program, c2d_cpu_seconds, c_unlink, c_rename
   public :: c2d_regular, c2d_missing, c2d_fifo, c2d_device, c2d_folder, c2d_socket, c2d_unreadable
   public :: c2d_run_exited, c2d_run_signaled, c2d_run_timeout, c2d_run_not_started
 
@@ -76,6 +76,12 @@ module system_binding
       character(kind=c_char), intent(out) :: real(*)
       integer(c_int), value :: length
     end function c2d_real_path
+
+    integer(c_int) function c2d_file_stamp(path, size, mtime_ns) bind(c, name='c2d_file_stamp')
+      import :: c_int, c_char, c_long_long
+      character(kind=c_char), intent(in) :: path(*)
+      integer(c_long_long), intent(out) :: size, mtime_ns
+    end function c2d_file_stamp
 
     integer(c_int) function c2d_find_program(name, path, length) bind(c, name='c2d_find_program')
       import :: c_int, c_char

@@ -1,0 +1,121 @@
+!> step_table: the columns of NAME_steps.csv, a load step's row and the
+!> header that names it, built by one routine so that the two cannot drift
+!> apart.  Every column name is unique and says what it holds (doc/outputs.md,
+!> "Step table"): KEY_LABEL_COMPONENT after the summary line it matches,
+!> reaction_BODY:BOUNDARY_fx for `reaction BODY:BOUNDARY Fx Fy`,
+!> contact_force_PAIR_fx for `contact_force PAIR Fx Fy`, rigid_NAME_ux for
+!> `rigid NAME ux uy rz fx fy m`.  Two FIX statements on one boundary give it
+!> one pair of reaction columns, their sum (the force the boundary takes).
+!>
+!> Why it exists: run_outputs names and commits files; what a step's row holds
+!> is a list of its own that grows with the results.  Who may use it:
+!> run_outputs (run_state's list).
+!>
+!> Programming interface
+!>   step_columns(run, kstep, res, header, values, whole)
+!>        step kstep's row from its results res (engineering_results done), the
+!>        header line and which columns are integers
+module step_table
+  use kinds, only: dp
+  use strings, only: int_to_str
+  use run_state, only: run_t
+  use results_writer, only: results_t, string_t
+  use load_groups, only: group_factor, group_name
+  use post_processing, only: fix_boundaries
+  use contact_zones, only: zone_t
+  use contact_set, only: has_friction
+  implicit none
+  private
+  public :: step_columns
+
+contains
+
+  !> Step kstep's row of NAME_steps.csv and its header.
+  !>   run    (in)  the scene and contact set; step_iterations of the step
+  !>   kstep  (in)  the step, 1 .. steps
+  !>   res    (in)  the step's results: reactions, contact forces, rigid results, zones, boundary_u
+  !>   header (out) the header line (the same for every step)
+  !>   values (out) (ncol) the row
+  !>   whole  (out) (ncol) the column holds integers (step, counts)
+  subroutine step_columns(run, kstep, res, header, values, whole)
+    type(run_t), intent(in) :: run
+    integer, intent(in) :: kstep
+    type(results_t), intent(in) :: res
+    character(len=:), allocatable, intent(out) :: header
+    real(dp), allocatable, intent(out) :: values(:)
+    logical, allocatable, intent(out) :: whole(:)
+    type(string_t), allocatable :: labels(:)
+    integer, allocatable :: of_fix(:)
+    integer :: g, j, ip, n
+    character(len=:), allocatable :: p, name
+    real(dp), allocatable :: reaction(:,:)
+    character(len=2), parameter :: rigid_part(6) = ['ux', 'uy', 'rz', 'fx', 'fy', 'm ']
+
+    header = ''
+    allocate(values(0), whole(0))
+    call add('step', real(kstep, dp), .true.)
+    do g = 1, size(run%sc%ramp, 2)
+      call add('factor_' // group_name(run%sc, g), group_factor(run%sc, g, kstep), .false.)
+    end do
+    call fix_boundaries(run, labels, of_fix)
+    allocate(reaction(2, size(labels)), source=0.0_dp)
+    do j = 1, size(of_fix)
+      reaction(:, of_fix(j)) = reaction(:, of_fix(j)) + res%reaction(:, j)
+    end do
+    do j = 1, size(labels)
+      call add('reaction_' // labels(j)%s // '_fx', reaction(1, j), .false.)
+      call add('reaction_' // labels(j)%s // '_fy', reaction(2, j), .false.)
+    end do
+    do j = 1, size(labels)
+      call add('displacement_' // labels(j)%s // '_ux', res%boundary_u(1, j), .false.)
+      call add('displacement_' // labels(j)%s // '_uy', res%boundary_u(2, j), .false.)
+    end do
+    do ip = 1, run%cs%npair
+      p = int_to_str(ip)
+      call add('contact_force_' // p // '_fx', res%contact_force(1, ip), .false.)
+      call add('contact_force_' // p // '_fy', res%contact_force(2, ip), .false.)
+      call add_zone('contact', p, res%zones(ip)%contact)
+      call add('peak_pressure_' // p // '_p', res%zones(ip)%peak(1), .false.)
+      call add('peak_pressure_' // p // '_x', res%zones(ip)%peak(2), .false.)
+      call add('peak_pressure_' // p // '_y', res%zones(ip)%peak(3), .false.)
+      call add('center_of_pressure_' // p // '_x', res%zones(ip)%centre(1), .false.)
+      call add('center_of_pressure_' // p // '_y', res%zones(ip)%centre(2), .false.)
+      if (has_friction(run%cs%pair(ip)%spec)) call add_zone('stick', p, res%zones(ip)%stick)
+    end do
+    do j = 1, size(run%sc%rigids)
+      name = run%sc%rigids(j)%name
+      do n = 1, 6
+        call add('rigid_' // name // '_' // trim(rigid_part(n)), res%rigid(n, j), .false.)
+      end do
+    end do
+    call add('active_nodes', real(res%active_nodes, dp), .true.)
+    call add('lcp_iterations', real(run%step_iterations, dp), .true.)
+
+  contains
+
+    subroutine add(column, value, integral)
+      character(len=*), intent(in) :: column
+      real(dp), intent(in) :: value
+      logical, intent(in) :: integral
+      if (size(values) > 0) header = header // ','
+      header = header // column
+      values = [values, value]
+      whole = [whole, integral]
+    end subroutine add
+
+    !> A zone's columns: KIND_zone_P_x0 .. _length, KIND_zones_P_count, _length.
+    subroutine add_zone(kind, pair, z)
+      character(len=*), intent(in) :: kind, pair
+      type(zone_t), intent(in) :: z
+      call add(kind // '_zone_' // pair // '_x0', z%x0(1), .false.)
+      call add(kind // '_zone_' // pair // '_y0', z%x0(2), .false.)
+      call add(kind // '_zone_' // pair // '_x1', z%x1(1), .false.)
+      call add(kind // '_zone_' // pair // '_y1', z%x1(2), .false.)
+      call add(kind // '_zone_' // pair // '_length', z%length, .false.)
+      call add(kind // '_zones_' // pair // '_count', real(z%count, dp), .true.)
+      call add(kind // '_zones_' // pair // '_length', z%total, .false.)
+    end subroutine add_zone
+
+  end subroutine step_columns
+
+end module step_table
