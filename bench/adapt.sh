@@ -1,7 +1,9 @@
 #!/bin/sh
 # bench/adapt.sh [REPEATS]: what ADAPT and `estimate cost_to_halve` deliver
 # (doc/accuracy-cost.md, "Adaptive meshes").  Medians of REPEATS runs
-# (default 3) of cpu_total, the run's CPU seconds with gmsh's included.
+# (default 3) of cpu_total, the run's CPU seconds with gmsh's included
+# (--no-mesh-cache: every run meshes its .geo, as the first run of a deck
+# does; a repeated run would read the mesh cache).
 #  1. Hertz (input/hertz.deck, its .geo: size hc near the contact, hf away):
 #     the uniform P2 meshes around 1 % true pressure error (hc = 0.005 reaches
 #     it, hc = 0.002 is 2.5 times finer) against ADAPT from hc = 0.05 to a 1 %
@@ -38,7 +40,7 @@ run() {
   rm -f "$work/$1.t"
   i=0
   while [ "$i" -lt "$reps" ]; do
-    "$prog" -q -o "$work/out" "$work/$1.deck"
+    "$prog" -q --no-mesh-cache -o "$work/out" "$work/$1.deck"
     key "$work/out/$1.summary" cpu_total >> "$work/$1.t"
     i=$((i + 1))
   done
@@ -111,7 +113,7 @@ for name in c_hertz_p1 c_hertz_p2 c_punch_p1; do
   rm -f "$work/$name.p" "$work/$name.m"
   i=0
   while [ "$i" -lt "$reps" ]; do
-    "$prog" -q -o "$work/out" "$work/$name.deck"
+    "$prog" -q --no-mesh-cache -o "$work/out" "$work/$name.deck"
     awk '$1 == "estimate" && $2 == "cost_to_halve" {print $3, $4}' "$work/out/$name.summary" >> "$work/$name.p"
     i=$((i + 1))
   done
@@ -119,7 +121,7 @@ for name in c_hertz_p1 c_hertz_p2 c_punch_p1; do
   { cat "$work/$name.deck"; echo "ADAPT target=$half"; } > "$work/${name}_half.deck"
   i=0
   while [ "$i" -lt "$reps" ]; do
-    "$prog" -q -o "$work/out" "$work/${name}_half.deck"
+    "$prog" -q --no-mesh-cache -o "$work/out" "$work/${name}_half.deck"
     awk '$1 == "adapt" {c = $8; d = $4} END {print c, d}' "$work/out/${name}_half.summary" >> "$work/$name.m"
     i=$((i + 1))
   done
