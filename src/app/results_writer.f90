@@ -22,7 +22,7 @@ module results_writer
   use contact_zones, only: pair_zones_t, zone_t
   implicit none
   private
-  public :: results_t, string_t, write_contact_csv, write_summary, write_pvd, write_step_table
+  public :: results_t, string_t, write_contact_csv, write_summary, write_pvd, write_step_table, cannot_write
   public :: phase_names, nphase, peak_memory
 
   integer, parameter :: nphase = 9

@@ -25,13 +25,13 @@ module vtk_files
   use, intrinsic :: iso_fortran_env, only: int8, int32, int64
   use body, only: body_t
   use mesh, only: file_item, node_in_file
-  use strings, only: int_to_str
+  use strings, only: int_to_str, i8_to_str
   use errors, only: error_t, set_error
   use text_scan, only: string_t
   use text_buffer, only: text_buffer_t, open_text, open_memory, put_text, put_line, put_real, put_int, put_newline, &
                          close_text
   use compression, only: zlib_available, compress_blocks
-  use results_writer, only: results_t
+  use results_writer, only: results_t, cannot_write
   implicit none
   private
   public :: write_vtk, write_vtu
@@ -319,7 +319,7 @@ contains
     line = '        <DataArray type="' // type // '"'
     if (len(name) > 0) line = line // ' Name="' // name // '"'
     if (ncomp > 1) line = line // ' NumberOfComponents="' // int_to_str(ncomp) // '"'
-    line = line // ' format="appended" offset="' // i8_text(offset) // '"/>'
+    line = line // ' format="appended" offset="' // i8_to_str(offset) // '"/>'
   end function data_array
 
   !> An array's bytes as the appended data holds them: raw behind its UInt64
@@ -393,15 +393,6 @@ contains
     allocate(character(len=size(x, kind=i8)) :: b)
     if (size(x) > 0) b = transfer(x, b)
   end function int8_bytes
-
-  !> The decimal digits of a 64-bit count.
-  function i8_text(n) result(s)
-    integer(i8), intent(in) :: n
-    character(len=:), allocatable :: s
-    character(len=24) :: buf
-    write(buf, '(i0)') n
-    s = trim(buf)
-  end function i8_text
 
   !> Points, cells and connectivity entries (a count per cell and its points) over every body.
   pure subroutine grid_size(bodies, nnode, nelem, ncon)
@@ -562,12 +553,5 @@ contains
       call put_newline(tb)
     end select
   end subroutine put_row
-
-  !> err: path cannot be written (status 2).
-  subroutine cannot_write(path, err)
-    character(len=*), intent(in) :: path
-    type(error_t), allocatable, intent(out) :: err
-    call set_error(err, path // ': cannot write the file', 2)
-  end subroutine cannot_write
 
 end module vtk_files
