@@ -261,6 +261,7 @@ contains
       '  ESTIMATE [on|off]                 (the run''s own error estimate, on by default)', &
       '  OUTPUT [vtk=FILE] [contact=FILE.csv] [summary=FILE] [fields=displacement,contact_pressure,gap,stress,von_mises]', &
       '         [steps=last|all]  (all: FILE_0001.vtu and a contact table per step, FILE.pvd, FILE_steps.csv)', &
+      '         [plot=none|png]  (png: FILE_pressure.png, with steps=all FILE_steps.png, drawn by gnuplot)', &
       '', &
       'outputs (doc/outputs.md): DECK.vtk (ParaView), DECK_contact.csv (a row per slave node),', &
       'DECK.summary (key value lines: energy, reactions and mean displacement of each FIX boundary,', &

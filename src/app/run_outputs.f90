@@ -13,8 +13,9 @@
 !> Programming interface
 !>   make_folder(path, diag)     create the output folder and its parents (an input error when it cannot)
 !>   write_step(run, k, res)     step k's table row, .vtu and contact table from its results (OUTPUT steps=all)
-!>   write_outputs(run)          every file of the run, committed together; run%wrote for the log;
-!>                               then the meshes gmsh made go to the mesh cache
+!>   write_outputs(run)          every file of the run, committed together (with OUTPUT plot=png the
+!>                               pictures run_plots draws); run%wrote for the log; then the meshes
+!>                               gmsh made go to the mesh cache
 module run_outputs
   use kinds, only: dp
   use strings, only: int_to_str
@@ -34,6 +35,7 @@ module run_outputs
   use run_phase, only: enter_phase
   use run_estimate, only: predict_cost
   use mesh_cache, only: keep_mesh
+  use run_plots, only: draw_plots
   implicit none
   private
   public :: make_folder, write_step, write_outputs
@@ -81,7 +83,7 @@ contains
     character(len=:), allocatable :: names(:)
     real(dp), allocatable :: times(:)
     integer :: kstep, nl, i
-    character(len=:), allocatable :: line1, line2, header
+    character(len=:), allocatable :: line1, line2, line3, header, plots, contact_path, steps_path
     real(dp), allocatable :: row(:)
     logical, allocatable :: whole(:)
     call enter_phase('writing the outputs')
@@ -115,6 +117,15 @@ contains
         call write_step_table(tmp(5)%io_path, header, run%step_table, whole, err)
       end if
     end if
+    ! the pictures, from the tables just written (their temporaries)
+    plots = ''
+    if (.not. allocated(err) .and. run%deck%output%plot) then
+      contact_path = ''
+      if (run%cs%npair > 0) contact_path = tmp(2)%path
+      steps_path = ''
+      if (run%deck%output%steps_all) steps_path = tmp(5)%path
+      call draw_plots(run, contact_path, steps_path, tmp, plots)
+    end if
     if (.not. allocated(err)) then
       call lap(run, ph_output)
       run%res%memory_peak = peak_memory()
@@ -139,12 +150,22 @@ contains
     else
       line1 = 'wrote    ' // run%outdir // '/' // run%deck%output%vtk // ', ' // run%deck%output%summary
     end if
+    line2 = ''
     if (run%deck%output%steps_all) then
       line2 = 'wrote    ' // step_file(run, 1) // ' .. ' // step_file(run, run%sc%steps) // ', ' // &
               output_stem(run) // '.pvd, ' // output_stem(run) // '_steps.csv'
       if (run%cs%npair > 0) line2 = line2 // ', ' // step_contact_file(run, 1) // ' .. ' // &
                                     step_contact_file(run, run%sc%steps)
-      run%wrote = [character(len=max(len(line1), len(line2))) :: line1, line2]
+    end if
+    line3 = ''
+    if (len(plots) > 0) line3 = 'wrote    ' // run%outdir // '/' // plots
+    nl = max(len(line1), len(line2), len(line3))
+    if (len(line2) > 0 .and. len(line3) > 0) then
+      run%wrote = [character(len=nl) :: line1, line2, line3]
+    else if (len(line2) > 0) then
+      run%wrote = [character(len=nl) :: line1, line2]
+    else if (len(line3) > 0) then
+      run%wrote = [character(len=nl) :: line1, line3]
     else
       run%wrote = [line1]
     end if

@@ -358,7 +358,7 @@ contains
   subroutine check_output_names(s, deck)
     type(state_t), intent(inout) :: s
     type(deck_t), intent(inout) :: deck
-    character(len=:), allocatable :: v, c, m
+    character(len=:), allocatable :: v, c, m, stem
     integer :: line
     call fill_defaults(deck)
     v = deck%output%vtk
@@ -377,6 +377,14 @@ contains
       if (c == v // '.pvd' .or. m == v // '.pvd' .or. c == v // '_steps.csv' .or. m == v // '_steps.csv') &
         call report(s, line, 'OUTPUT files must differ (steps=all writes ' // quoted(v // '.pvd') // ' and ' // &
                     quoted(v // '_steps.csv') // ', which contact= or summary= names too)')
+    end if
+    if (deck%output%plot) then
+      ! plot=png adds STEM_pressure.png and STEM_steps.png
+      stem = deck%output%vtk(1:len(deck%output%vtk) - 4)
+      if (c == stem // '_pressure.png' .or. m == stem // '_pressure.png' .or. c == stem // '_steps.png' .or. &
+          m == stem // '_steps.png') &
+        call report(s, line, 'OUTPUT files must differ (plot=png writes ' // quoted(stem // '_pressure.png') // &
+                    ' and ' // quoted(stem // '_steps.png') // ', which contact= or summary= names too)')
     end if
     ! each is written as NAME.part first, then renamed: 5 bytes kept for that
     if (len(path_too_long(v, 5)) > 0) call report(s, line, 'OUTPUT vtk: ' // path_too_long(v, 5))

@@ -42,6 +42,7 @@
 !>   STEPS n                             default 1; 1 <= n <= 100000
 !>   CURVE name t0:v0 t1:v1 ...          load factor v against the step t (t increasing)
 !>   OUTPUT [vtk=NAME.vtk] [contact=NAME_contact.csv] [summary=NAME.summary] [steps=last|all]
+!>          [plot=none|png]
 !>                                      (NAME: deck file name without folder and
 !>                                      extension; '.vtk' is appended to vtk= if missing)
 !> TITLE, PLANE, GRAVITY, SOLVER, STEPS, OUTPUT: at most once each, outside BODY blocks.

@@ -130,9 +130,10 @@ contains
     call add_row(table, 'CURVE', '', do_curve, &
                  usage='CURVE name t0:v0 t1:v1 ... with step numbers t0 < t1 < ... and load factors v')
     call add_row(table, 'OUTPUT', '', do_output, once=.true., words=0, &
-                 usage='OUTPUT [vtk=NAME] [contact=NAME] [summary=NAME] [fields=LIST] [steps=last|all]', &
+                 usage='OUTPUT [vtk=NAME] [contact=NAME] [summary=NAME] [fields=LIST] [steps=last|all] ' // &
+                       '[plot=none|png]', &
                  keys=[text_key('vtk', 'NAME'), text_key('contact', 'NAME'), text_key('summary', 'NAME'), &
-                       text_key('fields', 'LIST'), text_key('steps', 'last|all')])
+                       text_key('fields', 'LIST'), text_key('steps', 'last|all'), choice_key('plot', 'none|png')])
     call add_row(table, 'PARAMETER', '*', do_parameter)
     call add_row(table, 'RIGID', '', do_rigid, opens='RIGID', usage='RIGID name')
     call add_row(table, 'SHAPE', 'RIGID', do_rigid_shape, once=.true., expected='one SHAPE per RIGID', words=1, &
@@ -432,7 +433,7 @@ contains
     deck%curves = [deck%curves, c]
   end subroutine do_curve
 
-  !> OUTPUT [vtk=] [contact=] [summary=]
+  !> OUTPUT [vtk=] [contact=] [summary=] [fields=] [steps=] [plot=]
   subroutine do_output(s, deck, st)
     type(state_t), intent(inout) :: s
     type(deck_t), intent(inout) :: deck
@@ -445,6 +446,7 @@ contains
 
     deck%output%line = st%line
     call read_keys(s, st, v)
+    if (v%ok(6)) deck%output%plot = v%text(6)%s == 'png'
     if (allocated(v%text(5)%s)) then
       select case (lower(v%text(5)%s))
       case ('last')
