@@ -53,6 +53,25 @@ module friction_auto
 
 contains
 
+  !> One attempt more at the end of the list.  (Not attempts = [attempts,
+  !> friction_attempt_t(...)]: gfortran leaks the constructor's temporary of
+  !> a type with allocatable components.)
+  subroutine add_attempt(attempts, method, omega, rep)
+    type(friction_attempt_t), allocatable, intent(inout) :: attempts(:)
+    character(len=*), intent(in) :: method
+    real(dp), intent(in) :: omega
+    type(lcp_report_t), intent(in) :: rep
+    type(friction_attempt_t), allocatable :: grown(:)
+    integer :: n
+    n = size(attempts)
+    allocate(grown(n + 1))
+    grown(1:n) = attempts
+    grown(n + 1)%method = method
+    grown(n + 1)%omega = omega
+    grown(n + 1)%rep = rep
+    call move_alloc(grown, attempts)
+  end subroutine add_attempt
+
   !> One load step by the first method, then the others (module header).
   !>   g, prob (in)    the problem, as in friction_lcp's solve_friction_lcp
   !>   first   (in)    'lemke', 'pdas' or 'pgs': the method tried first
@@ -112,7 +131,7 @@ contains
       else
         call solve_friction_lcp(g, prob, trim(order(k)), o, lam, rep)
       end if
-      attempts = [attempts, friction_attempt_t(trim(order(k)), omegas(k), rep)]
+      call add_attempt(attempts, trim(order(k)), omegas(k), rep)
       if (rep%info <= 0 .or. proves_no_solution(prob, trim(order(k)), rep)) exit
     end do
     if (rep%info > 0 .and. size(attempts) > 1) then

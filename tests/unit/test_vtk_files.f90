@@ -64,6 +64,8 @@ program test_vtk_files
   end if
   call remove(plain)
   call remove(zipped)
+  if (allocated(a)) deallocate(a)       ! the main program's own: freed before finish_tests stops it
+  if (allocated(z)) deallocate(z)
   call finish_tests()
 
 contains
