@@ -19,7 +19,7 @@
 !>   check_unheld_loads(run)     no load along a rigid mode nothing holds (exit 1)
 !>   check_unheld_rigid_loads(run)  no load along a RIGID's direction nothing holds (exit 1)
 module contact_solve
-  use kinds, only: dp
+  use kinds, only: dp, i8
   use strings, only: int_to_str, real_to_str
   use errors, only: error_t, add_error
   use exits, only: stop_input_errors, fail_numerical
@@ -27,14 +27,14 @@ module contact_solve
   use run_report, only: say, say_step, lap
   use scene, only: step_loads
   use load_groups, only: group_factor
-  use contact_condensation, only: constraint_values
+  use contact_condensation, only: constraint_values, condense
   use lcp_solvers, only: lcp_options_t, lcp_report_t, solve_lcp_lemke
   use friction_lcp, only: solve_friction_lcp, friction_state, friction_problem_t, friction_problem
   use friction_auto, only: friction_attempt_t, solve_friction_auto
   use friction_newton, only: solve_friction_newton
   use friction_modes, only: solve_friction_floating, no_equilibrium
   use contact_lcp, only: contact_solution_t, solve_contact
-  use contact_set, only: node_traction
+  use contact_set, only: node_traction, build_moved_contact_set, contact_set_t
   use rigid_modes, only: mode_name, motion_name, describe_motion, remove_motions
   use mode_support, only: mode_split_t, split_free_modes
   use rigid_support, only: split_rigid_modes, rigid_direction, pulled_rigid
@@ -75,6 +75,15 @@ contains
     if (run%cs%ntan > 0) then
       call enter_phase('solving the friction LCP')
       call solve_friction_steps(run)
+    else if (any(run%sc%specs%finite)) then
+      call solve_finite_steps(run, final, rigid_alpha)     ! sliding=finite: every step, in order
+      call keep_solution(final, rigid_alpha, run)
+      run%step_iterations = run%res%lcp_iterations
+      if (run%deck%output%steps_all) then
+        call contact_measures(run, run%res)
+        call say_step(run, run%sc%steps, run%res%lcp_method, run%step_iterations, run%res%active_nodes)
+        deallocate(run%res%pressure, run%res%status)
+      end if
     else
       if (run%deck%output%steps_all) call solve_earlier_steps(run)
       call solve_contact_problem(run, final, rigid_alpha)
@@ -226,6 +235,124 @@ contains
     run%step_note = 'load step ' // int_to_str(run%sc%steps) // ' of ' // int_to_str(run%sc%steps) // ': '
     call step_loads(run%sc, run%sc%steps, fk, ubk)         ! the bodies' thermal strains of the final step
   end subroutine solve_earlier_steps
+
+  !> CONTACT sliding=finite (frictionless, RIGID masters): the load steps in
+  !> order, each solved in the configuration the contact has reached.  In
+  !> step k, from the current displacement u_c (the last step's, the step's
+  !> prescribed values on the fixed dofs), the pairing, normals and gaps are
+  !> rebuilt at x + u_c (build_moved_contact_set: B_c, g = g(u_c) + B_c u_c),
+  !> W = B_c K^-1 B_c' is condensed again on the same factor (the contact
+  !> dofs do not change: every slave node keeps both dofs), q = g - B_c u0_k,
+  !> the LCP solved and u_c = K^-1 (f_k - B_c' mu) + the free motions.  The
+  !> fixed point stops when the active set is that of the previous update
+  !> and the contact forces changed by less than finite_tol of their largest
+  !> (doc/theory.md, "Finite sliding"); after finite_updates updates the
+  !> step is too large for the zone to be found again: exit 1 asking for
+  !> more STEPS.  Earlier steps are recorded with OUTPUT steps=all.
+  !>   run         (inout) the factor, y, u0 on entry; cs, w, q, cd, the splits of the final step on exit
+  !>   sol         (out)   the final step's results, as solve_contact_problem
+  !>   rigid_alpha (out)   the final step's RIGID free motion
+  subroutine solve_finite_steps(run, sol, rigid_alpha)
+    type(run_t), intent(inout) :: run
+    type(results_t), intent(out) :: sol
+    real(dp), allocatable, intent(out) :: rigid_alpha(:)
+    integer, parameter :: finite_updates = 30
+    real(dp), parameter :: finite_tol = 1.0e-8_dp
+    type(results_t) :: step, none
+    type(contact_set_t) :: moved
+    type(error_t), allocatable :: err
+    real(dp), allocatable :: fk(:), ubk(:), u0k(:), cq(:), uc(:), mu_prev(:)
+    logical, allocatable :: active_prev(:)
+    integer :: kstep, it, updates
+    integer(i8) :: t0, t1, rate
+    real(dp) :: change, t_geometry, t_condense, t_lcp
+    logical :: same
+    allocate(fk(run%sc%ndof), ubk(run%sc%ndof), u0k(run%sc%ndof), uc(run%sc%ndof), source=0.0_dp)
+    t_geometry = 0
+    t_condense = 0
+    t_lcp = 0
+    updates = 0
+    do kstep = 1, run%sc%steps
+      run%step_note = 'load step ' // int_to_str(kstep) // ' of ' // int_to_str(run%sc%steps) // ': '
+      call step_loads(run%sc, kstep, fk, ubk)
+      call solve_loads(run, fk, ubk, [real(dp) ::], u0k)
+      where (run%sc%fixed) uc = ubk                      ! the prescribed motion of the step, at once
+      do it = 1, finite_updates
+        call system_clock(t0, rate)
+        call build_moved_contact_set(run%sc%bodies, run%sc%specs, uc, moved, err)
+        if (allocated(err)) call fail_numerical(run%step_note // 'sliding=finite: the contact geometry cannot be ' // &
+          'rebuilt: ' // err%message)
+        if (moved%nrow /= run%cs%nrow .or. moved%ncdof /= run%cs%ncdof) call fail_numerical(run%step_note // &
+          'sliding=finite: the rebuilt contact rows do not match the factorization''s contact dofs')
+        if (any(moved%cdof /= run%cs%cdof)) call fail_numerical(run%step_note // &
+          'sliding=finite: the rebuilt contact rows do not match the factorization''s contact dofs')
+        call move_alloc_set(moved, run%cs)
+        call system_clock(t1)
+        t_geometry = t_geometry + real(t1 - t0, dp) / real(rate, dp)
+        ! W = B K^-1 B' on the factor of K (q from the final loads is replaced)
+        call condense(run%cs, run%eq, run%factor, run%y, run%u0, run%w, run%q, run%cd, err, run%deck%solver%condense)
+        if (allocated(err)) call fail_numerical(err%message)
+        allocate(cq(run%cs%nrow))
+        call constraint_values(run%cs, u0k, cq)
+        run%q = run%cs%g - cq                                 ! gaps without contact forces
+        deallocate(cq)
+        if (run%fl%k > 0) then
+          call split_free_modes(run%cs, run%sc%bodies, run%fl, fk, run%split)
+          call check_unheld_loads(run)
+        end if
+        if (run%rsplit%k > 0) then
+          call split_rigid_modes(run%cs, run%sc%rigids, run%sc%fixed, fk, run%rsplit)
+          call check_unheld_rigid_loads(run)
+        end if
+        call system_clock(t0)
+        t_condense = t_condense + real(t0 - t1, dp) / real(rate, dp)
+        step = none
+        call solve_contact_problem(run, step, rigid_alpha)
+        call system_clock(t1)
+        t_lcp = t_lcp + real(t1 - t0, dp) / real(rate, dp)
+        updates = updates + 1
+        ! the displacement of this update: the next configuration
+        call solve_loads(run, fk, ubk, step%mu, uc)
+        if (run%fl%k > 0) uc = uc + matmul(run%fl%r, step%alpha)
+        call remove_motions(run%fl, run%split%unheld, uc)
+        if (allocated(rigid_alpha)) uc(run%rsplit%dof) = rigid_alpha
+        if (.not. all(ieee_is_finite(uc))) call fail_numerical(run%step_note // 'the displacement is not finite')
+        same = .false.
+        change = huge(1.0_dp)
+        if (allocated(mu_prev)) then
+          same = all((step%mu > 0.0_dp) .eqv. active_prev)
+          change = maxval(abs(step%mu - mu_prev)) / max(maxval(abs(step%mu)), tiny(1.0_dp))
+        end if
+        mu_prev = step%mu
+        active_prev = step%mu > 0.0_dp
+        if (same .and. change <= finite_tol) exit
+      end do
+      if (.not. (same .and. change <= finite_tol)) call fail_numerical(run%step_note // 'sliding=finite: the contact ' // &
+        'zone was not found again: after ' // int_to_str(finite_updates) // ' updates of the contact geometry the ' // &
+        merge('contact forces still change by ' // real_to_str(change) // ' of their largest', &
+              'active set still changes                                  ', same) // &
+        ' (the step moves the contact too far for the geometry of its start; expected more STEPS)')
+      call say(run, 'finite   ' // run%step_note // int_to_str(it) // ' updates of the contact geometry')
+      deallocate(mu_prev, active_prev)
+      if (kstep < run%sc%steps .and. run%deck%output%steps_all) then
+        call contact_measures(run, step)
+        run%step_iterations = step%lcp_iterations
+        call record_step(run, kstep, fk, ubk, step%mu, rigid_alpha, step)
+        call say_step(run, kstep, step%lcp_method, run%step_iterations, step%active_nodes)
+      end if
+    end do
+    call say(run, 'finite   ' // int_to_str(updates) // ' geometry updates in ' // int_to_str(run%sc%steps) // &
+      ' steps: rebuild ' // real_to_str(t_geometry) // ' s, condensation ' // real_to_str(t_condense) // ' s, LCP ' // &
+      real_to_str(t_lcp) // ' s')
+    sol = step
+  contains
+    !> cs <- moved (moved is left empty)
+    subroutine move_alloc_set(from, to)
+      type(contact_set_t), intent(inout) :: from
+      type(contact_set_t), intent(inout) :: to
+      to = from
+    end subroutine move_alloc_set
+  end subroutine solve_finite_steps
 
   !> Frictional contact in load steps: at step k the loads are the ramps'
   !> factors times their loads, the slip of the step is measured from the

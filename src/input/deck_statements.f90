@@ -228,12 +228,14 @@ contains
     c%gap_zero = v%ok(3) .and. v%text(3)%s == 'zero'
     ! an initial penetration deeper than a slave element is an input error unless allowed
     c%interference = v%ok(6) .and. v%text(6)%s == 'allow'
-    ! small sliding (the default) is the only kinematics solved: pairing, gaps and normals of the
-    ! initial configuration, with a run that slides beyond it ending in exit 1 (contact_checks)
-    if (v%ok(7)) then
-      if (v%text(7)%s == 'finite') call report(s, st%line, 'sliding=finite is not available yet (expected ' // &
-        'sliding=small, the default: pairing, gaps and normals of the initial configuration)')
-    end if
+    ! small sliding (the default): pairing, gaps and normals of the initial configuration, a
+    ! run that slides beyond it ending in exit 1 (contact_checks); finite sliding rebuilds them
+    ! from the current configuration (contact_solve), so far frictionless against a RIGID only
+    c%finite = v%ok(7) .and. v%text(7)%s == 'finite'
+    if (c%finite .and. .not. rigid_master) call report(s, st%line, 'sliding=finite against a deformable master ' // &
+      'is not available yet (expected master=RIGIDNAME, or sliding=small)')
+    if (c%finite .and. (v%seen(4) .or. v%seen(5))) call report(s, st%line, 'sliding=finite with friction is not ' // &
+      'available yet (expected a frictionless CONTACT, or sliding=small)')
     ! friction (beyond the paper): |tau| <= mu p (Coulomb) or |tau| <= tresca
     c%friction = 'none'
     if (v%seen(4) .and. v%seen(5)) &

@@ -168,6 +168,7 @@ module deck_types
     character(len=:), allocatable :: slave_boundary, master_boundary
     logical :: gap_zero = .false.               !< gap=zero; default gap=geometry
     logical :: interference = .false.           !< interference=allow: any initial penetration accepted
+    logical :: finite = .false.                 !< sliding=finite: the geometry follows the bodies
     character(len=:), allocatable :: friction   !< 'none' (default), 'coulomb' (mu=) or 'tresca' (tresca=)
     real(dp) :: mu = 0                          !< Coulomb coefficient, 0 <= mu <= 1000
     real(dp) :: tresca = 0                      !< Tresca slip bound (a shear stress), >= 0
