@@ -246,7 +246,7 @@ contains
   !> the LCP solved and u_c = K^-1 (f_k - B_c' mu) + the free motions.  The
   !> fixed point stops when the active set is that of the previous update
   !> and the contact forces changed by less than finite_tol of their largest
-  !> (doc/theory.md, "Finite sliding"); after finite_updates updates the
+  !> (doc/theory.md, "Finite sliding"); after SOLVER updates= updates the
   !> step is too large for the zone to be found again: exit 1 asking for
   !> more STEPS.  Earlier steps are recorded with OUTPUT steps=all.
   !>   run         (inout) the factor, y, u0 on entry; cs, w, q, cd, the splits of the final step on exit
@@ -256,7 +256,6 @@ contains
     type(run_t), intent(inout) :: run
     type(results_t), intent(out) :: sol
     real(dp), allocatable, intent(out) :: rigid_alpha(:)
-    integer, parameter :: finite_updates = 30
     real(dp), parameter :: finite_tol = 1.0e-8_dp
     type(results_t) :: step, none
     type(contact_set_t) :: moved
@@ -267,6 +266,9 @@ contains
     integer(i8) :: t0, t1, rate
     real(dp) :: change, t_geometry, t_condense, t_lcp
     logical :: same
+    integer :: finite_updates
+    character(len=:), allocatable :: cause
+    finite_updates = run%deck%solver%updates
     allocate(fk(run%sc%ndof), ubk(run%sc%ndof), u0k(run%sc%ndof), uc(run%sc%ndof), source=0.0_dp)
     t_geometry = 0
     t_condense = 0
@@ -327,11 +329,16 @@ contains
         active_prev = step%mu > 0.0_dp
         if (same .and. change <= finite_tol) exit
       end do
-      if (.not. (same .and. change <= finite_tol)) call fail_numerical(run%step_note // 'sliding=finite: the contact ' // &
-        'zone was not found again: after ' // int_to_str(finite_updates) // ' updates of the contact geometry the ' // &
-        merge('contact forces still change by ' // real_to_str(change) // ' of their largest', &
-              'active set still changes                                  ', same) // &
-        ' (the step moves the contact too far for the geometry of its start; expected more STEPS)')
+      if (.not. (same .and. change <= finite_tol)) then
+        if (same) then
+          cause = 'the contact forces still change by ' // real_to_str(change) // ' of their largest'
+        else
+          cause = 'the active set still changes'
+        end if
+        call fail_numerical(run%step_note // 'sliding=finite: the contact zone was not found again: after ' // &
+          int_to_str(finite_updates) // ' updates of the contact geometry ' // cause // ' (the step moves the ' // &
+          'contact too far for the geometry of its start to find it; expected more STEPS, or more SOLVER updates=)')
+      end if
       call say(run, 'finite   ' // run%step_note // int_to_str(it) // ' updates of the contact geometry')
       deallocate(mu_prev, active_prev)
       if (kstep < run%sc%steps .and. run%deck%output%steps_all) then

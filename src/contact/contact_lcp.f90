@@ -107,7 +107,7 @@ contains
     rho = 10.0_dp * wdiag / max(hnorm, tiny(1.0_dp))
     wr = w + rho * matmul(hh, transpose(hh))
     total = 0
-    do it = 1, 100
+    do it = 1, 1000
       qr = q - matmul(hh, lam + rho * eh)
       call run_solver(method, wr, qr, opts, sol%mu, rep)
       total = total + rep%iterations

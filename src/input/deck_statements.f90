@@ -48,7 +48,7 @@ contains
                                                    '[interference=allow|reject] [sliding=small|finite]'
     character(len=*), parameter :: solver_usage = 'SOLVER [lcp=auto|lemke|pgs|pdas] [tol=number] [maxit=integer] ' // &
                                                   '[omega=number] [ordering=auto|metis|amd] ' // &
-                                                  '[condense=auto|solve|inverse] [cut=auto|off]'
+                                                  '[condense=auto|solve|inverse] [cut=auto|off] [updates=integer]'
     character(len=*), parameter :: shape_usage = 'SHAPE line x0= y0= x1= y1= | SHAPE circle xc= yc= r= ' // &
                                                  '[solid=inside|outside] | SHAPE polyline points=x1:y1,x2:y2,...'
     real(dp), parameter :: zero = 0.0_dp
@@ -119,7 +119,7 @@ contains
                  keys=[choice_key('lcp', 'auto|lemke|pgs|pdas'), real_key('tol', gt=zero), &
                        integer_key('maxit', at_least=0), real_key('omega', gt=zero, lt=2.0_dp), &
                        choice_key('ordering', 'auto|metis|amd'), choice_key('condense', 'auto|solve|inverse'), &
-                       choice_key('cut', 'auto|off')])
+                       choice_key('cut', 'auto|off'), integer_key('updates', at_least=1)])
     call add_row(table, 'STEPS', '', do_steps, once=.true., usage='STEPS n with an integer 1 <= n <= 100000')
     call add_row(table, 'ESTIMATE', '', do_estimate, once=.true., usage='ESTIMATE [on|off]')
     call add_row(table, 'ADAPT', '', do_adapt, once=.true., words=0, &
@@ -292,7 +292,7 @@ contains
                               '=body:boundary, names made of letters, digits, _ . -)')
   end subroutine split_side
 
-  !> SOLVER [lcp=] [tol=] [maxit=] [omega=] [ordering=] [condense=] [cut=]
+  !> SOLVER [lcp=] [tol=] [maxit=] [omega=] [ordering=] [condense=] [cut=] [updates=]
   subroutine do_solver(s, deck, st)
     type(state_t), intent(inout) :: s
     type(deck_t), intent(inout) :: deck
@@ -308,6 +308,7 @@ contains
     if (v%ok(2)) deck%solver%tol = v%x(2)
     if (v%ok(3)) deck%solver%maxit = v%k(3)
     if (v%ok(4)) deck%solver%omega = v%x(4)
+    if (v%ok(8)) deck%solver%updates = v%k(8)
   end subroutine do_solver
 
   !> STEPS n: the number of load steps (the ramps run over steps 0..n)

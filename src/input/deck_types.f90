@@ -184,6 +184,7 @@ module deck_types
     real(dp) :: tol = 1.0e-10_dp
     integer :: maxit = 0                        !< 0: the solver's default
     real(dp) :: omega = 1.0_dp
+    integer :: updates = 30                     !< sliding=finite: geometry updates allowed per load step
     integer :: line = 0
   end type solver_deck_t
 
