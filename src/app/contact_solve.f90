@@ -269,6 +269,15 @@ contains
     integer :: finite_updates
     character(len=:), allocatable :: cause
     finite_updates = run%deck%solver%updates
+    ! a slave node in local axes (FIX un=/ut=) has its displacement and rows in
+    ! those axes; the rebuild places the nodes by global displacements
+    do kstep = 1, size(run%sc%specs)
+      if (.not. run%sc%specs(kstep)%finite) cycle
+      if (allocated(run%sc%bodies(run%sc%specs(kstep)%slave_body)%axes)) call add_error(run%diag, run%deck%file, &
+        run%deck%contacts(kstep)%line, 'sliding=finite on a slave body with FIX un= or ut= is not available yet ' // &
+        '(expected FIX ux=/uy= on body "' // run%sc%bodies(run%sc%specs(kstep)%slave_body)%name // '", or sliding=small)')
+    end do
+    call stop_input_errors(run%diag)
     allocate(fk(run%sc%ndof), ubk(run%sc%ndof), u0k(run%sc%ndof), uc(run%sc%ndof), source=0.0_dp)
     t_geometry = 0
     t_condense = 0

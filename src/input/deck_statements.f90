@@ -236,6 +236,11 @@ contains
       'is not available yet (expected master=RIGIDNAME, or sliding=small)')
     if (c%finite .and. (v%seen(4) .or. v%seen(5))) call report(s, st%line, 'sliding=finite with friction is not ' // &
       'available yet (expected a frictionless CONTACT, or sliding=small)')
+    ! gap=zero sets the gaps of the initial configuration; finite sliding measures them at every step
+    if (c%finite .and. v%ok(3)) then
+      if (v%text(3)%s == 'zero') call report(s, st%line, 'sliding=finite with gap=zero (expected gap=geometry: ' // &
+        'finite sliding measures the gaps in the current configuration)')
+    end if
     ! friction (beyond the paper): |tau| <= mu p (Coulomb) or |tau| <= tresca
     c%friction = 'none'
     if (v%seen(4) .and. v%seen(5)) &
