@@ -72,7 +72,10 @@ contains
       if (run%deck%output%steps_all) call solve_earlier_steps(run)
       return
     end if
-    if (run%cs%ntan > 0) then
+    if (run%cs%ntan > 0 .and. any(run%sc%specs%finite)) then
+      call enter_phase('solving the friction LCP')
+      call solve_finite_friction_steps(run)             ! sliding=finite with friction: every step, in order
+    else if (run%cs%ntan > 0) then
       call enter_phase('solving the friction LCP')
       call solve_friction_steps(run)
     else if (any(run%sc%specs%finite)) then
@@ -369,6 +372,173 @@ contains
       to = from
     end subroutine move_alloc_set
   end subroutine solve_finite_steps
+
+  !> CONTACT sliding=finite with friction (RIGID masters): the load steps in
+  !> order, each by the fixed point of solve_finite_steps on the friction
+  !> LCP.  At every update the rows C_c = [B_c; T_c] are rebuilt at x + u_c
+  !> and the slip of the step is measured along the current tangents from
+  !> the last step's displacement u_{k-1}: qt = T_c u_{k-1} - T_c u0_k, so
+  !> that the stick/slip history follows the moving pairing (the tangential
+  !> force of a node is carried by its row, the node's own).  Bodies and
+  !> RIGIDs held only by contact: their held amplitudes are unknowns of the
+  !> friction LCP (friction_modes, Lemke), H and e formed again at every
+  !> update.  The results of the final step fill res as solve_friction_steps.
+  subroutine solve_finite_friction_steps(run)
+    type(run_t), intent(inout) :: run
+    real(dp), parameter :: finite_tol = 1.0e-8_dp
+    type(lcp_options_t) :: opts
+    type(lcp_report_t) :: rep
+    type(friction_problem_t) :: fp
+    type(contact_set_t) :: moved
+    type(error_t), allocatable :: err
+    type(results_t) :: step, none
+    real(dp), allocatable :: fk(:), ubk(:), u0k(:), uc(:), uprev(:), cu(:), cp(:), qn(:), qt(:), z(:), zprev(:)
+    real(dp), allocatable :: hh(:,:), eh(:), alpha(:), unbalanced(:), body_alpha(:), rigid_alpha(:), tforce(:)
+    integer, allocatable :: fstate(:)
+    logical, allocatable :: active_prev(:)
+    character(len=:), allocatable :: cause, method
+    integer :: n, nt, kstep, it, iterations, kb, kr, r, k
+    real(dp) :: change
+    logical :: same, floating
+    character(len=200) :: line
+
+    opts%tol = run%deck%solver%tol
+    opts%maxit = run%deck%solver%maxit
+    opts%omega = run%deck%solver%omega
+    method = run%deck%solver%lcp
+    if (method == 'auto') method = 'pdas'
+    n = run%cs%nrow
+    nt = run%cs%ntan
+    floating = size(run%split%held, 2) + size(run%rsplit%held, 2) > 0
+    if (floating) method = 'lemke'
+    allocate(fk(run%sc%ndof), ubk(run%sc%ndof), u0k(run%sc%ndof), uc(run%sc%ndof), uprev(run%sc%ndof), source=0.0_dp)
+    allocate(cu(n + nt), cp(n + nt), z(n + nt), fstate(nt), body_alpha(run%fl%k))
+    z = 0.0_dp
+    body_alpha = 0.0_dp
+    iterations = 0
+    do kstep = 1, run%sc%steps
+      run%step_note = 'load step ' // int_to_str(kstep) // ' of ' // int_to_str(run%sc%steps) // ': '
+      call step_loads(run%sc, kstep, fk, ubk)
+      call solve_loads(run, fk, ubk, [real(dp) ::], u0k)
+      where (run%sc%fixed) uc = ubk
+      do it = 1, run%deck%solver%updates
+        call build_moved_contact_set(run%sc%bodies, run%sc%specs, uc, moved, err)
+        if (allocated(err)) call fail_numerical(run%step_note // 'sliding=finite: the contact geometry cannot be ' // &
+          'rebuilt: ' // err%message)
+        if (moved%nrow /= n .or. moved%ntan /= nt .or. moved%ncdof /= run%cs%ncdof) call fail_numerical(run%step_note // &
+          'sliding=finite: the rebuilt contact rows do not match the factorization''s contact dofs')
+        if (any(moved%cdof /= run%cs%cdof)) call fail_numerical(run%step_note // &
+          'sliding=finite: the rebuilt contact rows do not match the factorization''s contact dofs')
+        run%cs = moved
+        call condense(run%cs, run%eq, run%factor, run%y, run%u0, run%w, run%q, run%cd, err, run%deck%solver%condense)
+        if (allocated(err)) call fail_numerical(err%message)
+        call constraint_values(run%cs, u0k, cu)
+        call constraint_values(run%cs, uprev, cp)
+        qn = run%cs%g - cu(1:n)                          ! gaps without contact forces
+        qt = cp(n + 1:) - cu(n + 1:)                     ! minus the step's slip without contact forces, current tangents
+        fp = friction_problem(qn, qt, run%cs%tan_row, run%cs%tan_mu, run%cs%tan_bound)
+        if (allocated(zprev)) then
+          zprev = z
+        else
+          allocate(zprev, source=z)
+        end if
+        if (floating) then
+          if (run%fl%k > 0) call split_free_modes(run%cs, run%sc%bodies, run%fl, fk, run%split)
+          if (run%rsplit%k > 0) call split_rigid_modes(run%cs, run%sc%rigids, run%sc%fixed, fk, run%rsplit)
+          kb = size(run%split%held, 2)
+          kr = size(run%rsplit%held, 2)
+          hh = reshape([matmul(run%split%h, run%split%held), matmul(run%rsplit%h, run%rsplit%held)], [n + nt, kb + kr])
+          eh = [matmul(transpose(run%split%held), run%split%e), matmul(transpose(run%rsplit%held), run%rsplit%e)]
+          if (allocated(alpha)) deallocate(alpha)
+          allocate(alpha(kb + kr))
+          call solve_friction_floating(run%w, fp, hh, eh, opts, z, alpha, rep, unbalanced, cause)
+          if (rep%info == no_equilibrium) call fail_numerical('friction, ' // run%step_note // &
+            floating_no_equilibrium(run, unbalanced, cause))
+          if (rep%info /= 0 .and. .not. rep%no_memory) call fail_numerical('friction, ' // run%step_note // &
+            'no equilibrium found for the bodies held only by contact (' // floating_names(run) // '): ' // rep%message)
+          body_alpha = matmul(run%split%held, alpha(1:kb))
+          rigid_alpha = matmul(run%rsplit%held, alpha(kb + 1:))
+          fp%qn = fp%qn - matmul(hh(1:n, :), alpha)      ! the step's rigid motion in the gaps and slips
+          fp%qt = fp%qt - matmul(hh(n + 1:, :), alpha)
+        else if (method == 'pdas') then
+          call solve_friction_newton(run%w, fp, opts, z, rep)
+        else
+          call solve_friction_lcp(run%w, fp, method, opts, z, rep)
+        end if
+        iterations = iterations + rep%iterations
+        if (rep%info /= 0 .and. rep%no_memory) call fail_numerical(rep%message)
+        if (rep%info /= 0) call fail_numerical('friction, ' // run%step_note // 'contact problem not solved: ' // rep%message)
+        if (.not. all(ieee_is_finite(z))) call fail_numerical('friction, ' // run%step_note // &
+          'the contact multipliers are not finite')
+        call solve_loads(run, fk, ubk, z, uc)
+        if (run%fl%k > 0) uc = uc + matmul(run%fl%r, body_alpha)
+        call remove_motions(run%fl, run%split%unheld, uc)
+        if (allocated(rigid_alpha)) uc(run%rsplit%dof) = rigid_alpha
+        same = .false.
+        change = huge(1.0_dp)
+        if (allocated(active_prev)) then
+          same = all((z(1:n) > 0.0_dp) .eqv. active_prev)
+          change = maxval(abs(z - zprev)) / max(maxval(abs(z)), tiny(1.0_dp))
+        end if
+        active_prev = z(1:n) > 0.0_dp
+        if (same .and. change <= finite_tol) exit
+      end do
+      if (.not. (same .and. change <= finite_tol)) then
+        if (same) then
+          cause = 'the contact forces still change by ' // real_to_str(change) // ' of their largest'
+        else
+          cause = 'the active set still changes'
+        end if
+        call fail_numerical(run%step_note // 'sliding=finite: the contact zone was not found again: after ' // &
+          int_to_str(run%deck%solver%updates) // ' updates of the contact geometry ' // cause // ' (the step ' // &
+          'moves the contact too far for the geometry of its start to find it; expected more STEPS, or more ' // &
+          'SOLVER updates=)')
+      end if
+      deallocate(active_prev)
+      call friction_state(run%w, fp, z, fstate, err)
+      if (allocated(err)) call fail_numerical(err%message)
+      call say(run, 'finite   ' // run%step_note // int_to_str(it) // ' updates of the contact geometry')
+      write(line, '(a,i0,a,i0,a,i0,a,i0,a,i0,a,es9.2)') 'step     ', kstep, '/', run%sc%steps, ': ' // method // ' ', &
+        rep%iterations, ' iterations, ', count(z(1:n) > 0.0_dp), ' active, ', count(fstate == 2), &
+        ' slipping, residual ', rep%residual
+      call say(run, trim(line))
+      run%step_iterations = rep%iterations
+      if (run%deck%output%steps_all .and. kstep < run%sc%steps) then
+        step = none
+        step%mu = z(1:n)
+        step%tau = z(n + 1:)
+        step%gap = fp%qn + matmul(run%w(1:n, :), z)
+        step%alpha = body_alpha
+        call contact_measures(run, step)
+        call record_step(run, kstep, fk, ubk, z, rigid_alpha, step)
+      end if
+      uprev = uc
+    end do
+    run%step_note = 'load step ' // int_to_str(run%sc%steps) // ' of ' // int_to_str(run%sc%steps) // ': '
+    call move_alloc(body_alpha, run%res%alpha)
+    call move_alloc(fstate, run%res%fstate)
+    if (floating) call move_alloc(rigid_alpha, run%rigid_alpha)
+    run%res%lcp_method = method
+    run%res%lcp_iterations = iterations
+    run%res%lcp_residual = rep%residual
+    run%res%steps = run%sc%steps
+    run%res%mu = z(1:n)
+    run%res%tau = z(n + 1:)
+    run%res%gap = fp%qn + matmul(run%w(1:n, :), z)
+    call constraint_values(run%cs, uc, cu)
+    run%res%slip = cu(n + 1:)                             ! T u along the final tangents
+    allocate(run%res%shear(nt), run%res%tan_of_row(n))
+    run%res%tan_of_row = 0
+    allocate(tforce(n), source=0.0_dp)
+    tforce(run%cs%tan_row) = -run%res%tau
+    do r = 1, nt
+      k = run%cs%tan_row(r)
+      run%res%tan_of_row(k) = r
+      run%res%shear(r) = tforce(k) / max(run%cs%weight(k), tiny(1.0_dp))
+    end do
+    run%res%stick_nodes = count(run%res%fstate == 1)
+    run%res%slip_nodes = count(run%res%fstate == 2)
+  end subroutine solve_finite_friction_steps
 
   !> Frictional contact in load steps: at step k the loads are the ramps'
   !> factors times their loads, the slip of the step is measured from the
