@@ -74,6 +74,7 @@ contains
     integer :: ip
     if (allocated(run%res%u) .and. allocated(run%res%mu)) then
       do ip = 1, run%cs%npair
+        if (run%cs%pair(ip)%spec%finite) cycle      ! sliding=finite: the geometry follows the slide
         if (run%cs%pair(ip)%nrow > 0) call check_sliding(run, run%res%u, run%res%mu, ip, step)
       end do
     end if
@@ -94,6 +95,7 @@ contains
     integer :: ip
     if (.not. allocated(res%u) .or. .not. allocated(res%mu)) return
     do ip = 1, run%cs%npair
+      if (run%cs%pair(ip)%spec%finite) cycle
       if (run%cs%pair(ip)%nrow > 0) call check_sliding(run, res%u, res%mu, ip, step)
     end do
   end subroutine check_step_sliding
@@ -232,7 +234,7 @@ contains
     if (run%cs%pair(ip)%spec%mu > 0.0_dp .or. run%cs%pair(ip)%spec%tresca > 0.0_dp) t = t // &
       ' (with friction: gross slip, an equilibrium that may exist only because the geometry is frozen, e.g. ' // &
       'a body pushed beyond what friction holds)'
-    t = t // ' (expected a slide within small sliding, or CONTACT ... sliding=finite, which is not available yet)'
+    t = t // ' (expected a slide within small sliding, or CONTACT ... sliding=finite)'
   end function sliding_text
 
   !> The two slave nodes around node i for its tangent (a closed chain wraps).

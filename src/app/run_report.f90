@@ -218,6 +218,9 @@ contains
     end do
     if (run%sc%steps > 1 .and. run%cs%ntan > 0) then
       call say(run, 'steps    ' // int_to_str(run%sc%steps) // ' load steps (friction: the answer depends on the load path)')
+    else if (run%sc%steps > 1 .and. any(run%sc%specs%finite)) then
+      call say(run, 'steps    ' // int_to_str(run%sc%steps) // ' load steps in order (sliding=finite: each step ' // &
+               'in the contact geometry it reaches; one factorization for all)')
     else if (run%sc%steps > 1 .and. run%deck%output%steps_all) then
       call say(run, 'steps    ' // int_to_str(run%sc%steps) // ' load steps, each solved at its load factors (without ' // &
                'friction the steps are independent; one factorization for all)')

@@ -53,11 +53,13 @@ contains
   !>   method (in) 'lemke', 'pgs' or 'pdas'
   !>   opts   (in) tolerances
   !>   sol    (out) the solution; sol%rep%info /= 0 on failure with a message
-  subroutine solve_contact(w, q, h, e, held, method, opts, sol)
+  !>   outer_limit (in, optional) multiplier iterations allowed (default 100)
+  subroutine solve_contact(w, q, h, e, held, method, opts, sol, outer_limit)
     real(dp), intent(in) :: w(:,:), q(:), h(:,:), e(:), held(:,:)
     character(len=*), intent(in) :: method
     type(lcp_options_t), intent(in) :: opts
     type(contact_solution_t), intent(out) :: sol
+    integer, intent(in), optional :: outer_limit
     integer :: nc, k, kh, j, it
     real(dp), allocatable :: hh(:,:), eh(:), lam(:), wr(:,:), qr(:), r(:)
     real(dp) :: rho, res, wdiag, hnorm
@@ -107,7 +109,7 @@ contains
     rho = 10.0_dp * wdiag / max(hnorm, tiny(1.0_dp))
     wr = w + rho * matmul(hh, transpose(hh))
     total = 0
-    do it = 1, 100
+    do it = 1, merge(outer_limit, 100, present(outer_limit))
       qr = q - matmul(hh, lam + rho * eh)
       call run_solver(method, wr, qr, opts, sol%mu, rep)
       total = total + rep%iterations

@@ -18,6 +18,8 @@
 !> Programming interface
 !>   type(contact_set_t)   pairs, rows, B in CSR over contact dofs, g
 !>   build_contact_set(bodies, specs, cs, err)   all pairs -> rows of B, g
+!>   build_moved_contact_set(bodies, specs, u, cs, err)  the same in the configuration x + u
+!>                                               (sliding=finite), g the current gaps
 module contact_set
   use kinds, only: dp
   use strings, only: int_to_str
@@ -32,7 +34,7 @@ module contact_set
   implicit none
   private
   public :: contact_set_t, pair_spec_t, contact_pair_t
-  public :: build_contact_set, row_of_node, state_row_of_node, node_rows, node_traction, has_friction
+  public :: build_contact_set, build_moved_contact_set, row_of_node, state_row_of_node, node_rows, node_traction, has_friction
 
   !> What a CONTACT statement says, resolved to indices.
   type :: pair_spec_t
@@ -40,6 +42,8 @@ module contact_set
     integer :: master_body = 0, master_bnd = 0
     logical :: gap_zero = .false.
     logical :: interference = .false.         !< initial penetrations deeper than a slave element accepted
+    logical :: finite = .false.               !< sliding=finite: rebuilt from the current configuration;
+                                              !< both dofs of every slave node are contact dofs
     real(dp) :: mu = 0.0_dp                   !< Coulomb coefficient (0: none)
     real(dp) :: tresca = 0.0_dp               !< Tresca slip bound, a shear stress (0: none)
     integer :: rigid = 0                      !< master=RIGID: its index (master_body 0), else 0
@@ -100,6 +104,77 @@ module contact_set
   end type projection_rows_t
 
 contains
+
+  !> The contact set of the configuration x + u (CONTACT sliding=finite): the
+  !> slave bodies of finite-sliding pairs at x + u, their RIGIDs moved by
+  !> their motion (translation, small rotation about the reference point,
+  !> which moves along), then build_contact_set.  B is then the linearization
+  !> at u of the current gaps g(u): g(v) ~ g(u) - B (v - u), so the rows keep
+  !> the form B v <= g of the initial configuration with g = g(u) + B u.  The
+  !> pairs with small sliding keep the initial geometry (their bodies are not
+  !> moved unless a finite pair moves them too).
+  !>   bodies (in)  the bodies at their initial configuration, dof0 set
+  !>   specs  (in)  (npair) the CONTACT statements, resolved (shapes at rest)
+  !>   u      (in)  (ndof) the current displacement, global axes
+  !>   cs     (out) the contact set at x + u, g = g(u) + B u
+  !>   err    (out) as build_contact_set
+  subroutine build_moved_contact_set(bodies, specs, u, cs, err)
+    type(body_t), intent(in) :: bodies(:)
+    type(pair_spec_t), intent(in) :: specs(:)
+    real(dp), intent(in) :: u(:)
+    type(contact_set_t), intent(out) :: cs
+    type(error_t), allocatable, intent(out) :: err
+    type(body_t), allocatable :: moved(:)
+    type(pair_spec_t), allocatable :: mspecs(:)
+    logical, allocatable :: done(:)
+    integer :: ip, b, a, r, k
+    real(dp) :: du(3), bu
+    moved = bodies
+    mspecs = specs
+    allocate(done(size(bodies)), source=.false.)
+    do ip = 1, size(specs)
+      if (.not. specs(ip)%finite) cycle
+      ! an overlap of the current configuration is the linearization's, of the
+      ! order of the step's slide squared: the fixed point decides, not the entry check
+      mspecs(ip)%interference = .true.
+      b = specs(ip)%slave_body
+      if (.not. done(b)) then
+        do a = 1, moved(b)%mesh%nnode
+          moved(b)%mesh%x(:, a) = bodies(b)%mesh%x(:, a) + u(bodies(b)%dof0 + 2 * a - 1:bodies(b)%dof0 + 2 * a)
+        end do
+        done(b) = .true.
+      end if
+      if (specs(ip)%rigid > 0) then
+        associate(sh => mspecs(ip)%shape)
+          du = u(sh%dof0 + 1:sh%dof0 + 3)
+          if (allocated(sh%pt)) then
+            do k = 1, size(sh%pt, 2)
+              sh%pt(:, k) = sh%pt(:, k) + rigid_motion(sh, sh%pt(:, k), du)
+            end do
+          end if
+          sh%centre = sh%centre + rigid_motion(sh, sh%centre, du)
+          sh%ref = sh%ref + du(1:2)
+        end associate
+      end if
+    end do
+    call build_contact_set(moved, mspecs, cs, err)
+    if (allocated(err)) return
+    do r = 1, cs%nrow                                  ! g = g(u) + B u
+      bu = 0.0_dp
+      do k = cs%bptr(r), cs%bptr(r + 1) - 1
+        bu = bu + cs%bval(k) * u(cs%cdof(cs%bcol(k)))
+      end do
+      cs%g(r) = cs%g(r) + bu
+    end do
+  contains
+    !> U(x) of the rigid motion du = (u_x, u_y, theta) (small rotation)
+    pure function rigid_motion(sh, x, du) result(v)
+      type(rigid_shape_t), intent(in) :: sh
+      real(dp), intent(in) :: x(2), du(3)
+      real(dp) :: v(2)
+      v = [du(1) - du(3) * (x(2) - sh%ref(2)), du(2) + du(3) * (x(1) - sh%ref(1))]
+    end function rigid_motion
+  end subroutine build_moved_contact_set
 
   !> Build the constraint rows of every pair.
   !>   bodies (in)  the bodies, dof0 set
@@ -335,7 +410,8 @@ contains
             if (.not. pr%row(i)) cycle
             v = row_direction(mo, i, tangent)
             do c = 1, 2
-              if (v(c) == 0.0_dp) cycle
+              ! finite sliding keeps both: the normals turn, the factor's contact dofs stay
+              if (v(c) == 0.0_dp .and. .not. pr%spec%finite) cycle
               touched(d0s + 2 * (pr%snode(i) - 1) + c) = .true.
               nnz = nnz + 1
             end do
@@ -428,7 +504,7 @@ contains
           if (.not. tangent .and. pr%spec%gap_zero) cs%g(r) = 0.0_dp
           v = row_direction(mo, i, tangent)
           do c = 1, 2
-            if (v(c) == 0.0_dp) cycle
+            if (v(c) == 0.0_dp .and. .not. pr%spec%finite) cycle
             k = k + 1
             cs%bcol(k) = colmap(d0s + 2 * (pr%snode(i) - 1) + c)
             cs%bval(k) = v(c)

@@ -48,7 +48,7 @@ contains
                                                    '[interference=allow|reject] [sliding=small|finite]'
     character(len=*), parameter :: solver_usage = 'SOLVER [lcp=auto|lemke|pgs|pdas] [tol=number] [maxit=integer] ' // &
                                                   '[omega=number] [ordering=auto|metis|amd] ' // &
-                                                  '[condense=auto|solve|inverse] [cut=auto|off]'
+                                                  '[condense=auto|solve|inverse] [cut=auto|off] [updates=integer]'
     character(len=*), parameter :: shape_usage = 'SHAPE line x0= y0= x1= y1= | SHAPE circle xc= yc= r= ' // &
                                                  '[solid=inside|outside] | SHAPE polyline points=x1:y1,x2:y2,...'
     real(dp), parameter :: zero = 0.0_dp
@@ -119,7 +119,7 @@ contains
                  keys=[choice_key('lcp', 'auto|lemke|pgs|pdas'), real_key('tol', gt=zero), &
                        integer_key('maxit', at_least=0), real_key('omega', gt=zero, lt=2.0_dp), &
                        choice_key('ordering', 'auto|metis|amd'), choice_key('condense', 'auto|solve|inverse'), &
-                       choice_key('cut', 'auto|off')])
+                       choice_key('cut', 'auto|off'), integer_key('updates', at_least=1)])
     call add_row(table, 'STEPS', '', do_steps, once=.true., usage='STEPS n with an integer 1 <= n <= 100000')
     call add_row(table, 'ESTIMATE', '', do_estimate, once=.true., usage='ESTIMATE [on|off]')
     call add_row(table, 'ADAPT', '', do_adapt, once=.true., words=0, &
@@ -229,11 +229,16 @@ contains
     c%gap_zero = v%ok(3) .and. v%text(3)%s == 'zero'
     ! an initial penetration deeper than a slave element is an input error unless allowed
     c%interference = v%ok(6) .and. v%text(6)%s == 'allow'
-    ! small sliding (the default) is the only kinematics solved: pairing, gaps and normals of the
-    ! initial configuration, with a run that slides beyond it ending in exit 1 (contact_checks)
-    if (v%ok(7)) then
-      if (v%text(7)%s == 'finite') call report(s, st%line, 'sliding=finite is not available yet (expected ' // &
-        'sliding=small, the default: pairing, gaps and normals of the initial configuration)')
+    ! small sliding (the default): pairing, gaps and normals of the initial configuration, a
+    ! run that slides beyond it ending in exit 1 (contact_checks); finite sliding rebuilds them
+    ! from the current configuration (contact_solve), so far against a RIGID only
+    c%finite = v%ok(7) .and. v%text(7)%s == 'finite'
+    if (c%finite .and. .not. rigid_master) call report(s, st%line, 'sliding=finite against a deformable master ' // &
+      'is not available yet (expected master=RIGIDNAME, or sliding=small)')
+    ! gap=zero sets the gaps of the initial configuration; finite sliding measures them at every step
+    if (c%finite .and. v%ok(3)) then
+      if (v%text(3)%s == 'zero') call report(s, st%line, 'sliding=finite with gap=zero (expected gap=geometry: ' // &
+        'finite sliding measures the gaps in the current configuration)')
     end if
     ! friction (beyond the paper): |tau| <= mu p (Coulomb) or |tau| <= tresca
     c%friction = 'none'
@@ -291,7 +296,7 @@ contains
                               '=body:boundary, names made of letters, digits, _ . -)')
   end subroutine split_side
 
-  !> SOLVER [lcp=] [tol=] [maxit=] [omega=] [ordering=] [condense=] [cut=]
+  !> SOLVER [lcp=] [tol=] [maxit=] [omega=] [ordering=] [condense=] [cut=] [updates=]
   subroutine do_solver(s, deck, st)
     type(state_t), intent(inout) :: s
     type(deck_t), intent(inout) :: deck
@@ -307,6 +312,7 @@ contains
     if (v%ok(2)) deck%solver%tol = v%x(2)
     if (v%ok(3)) deck%solver%maxit = v%k(3)
     if (v%ok(4)) deck%solver%omega = v%x(4)
+    if (v%ok(8)) deck%solver%updates = v%k(8)
   end subroutine do_solver
 
   !> STEPS n: the number of load steps (the ramps run over steps 0..n)

@@ -168,6 +168,7 @@ module deck_types
     character(len=:), allocatable :: slave_boundary, master_boundary
     logical :: gap_zero = .false.               !< gap=zero; default gap=geometry
     logical :: interference = .false.           !< interference=allow: any initial penetration accepted
+    logical :: finite = .false.                 !< sliding=finite: the geometry follows the bodies
     character(len=:), allocatable :: friction   !< 'none' (default), 'coulomb' (mu=) or 'tresca' (tresca=)
     real(dp) :: mu = 0                          !< Coulomb coefficient, 0 <= mu <= 1000
     real(dp) :: tresca = 0                      !< Tresca slip bound (a shear stress), >= 0
@@ -183,6 +184,7 @@ module deck_types
     real(dp) :: tol = 1.0e-10_dp
     integer :: maxit = 0                        !< 0: the solver's default
     real(dp) :: omega = 1.0_dp
+    integer :: updates = 30                     !< sliding=finite: geometry updates allowed per load step
     integer :: line = 0
   end type solver_deck_t
 

@@ -200,6 +200,7 @@ contains
         sc%specs(ip)%master_body = c%master_body
         sc%specs(ip)%gap_zero = c%gap_zero
         sc%specs(ip)%interference = c%interference
+        sc%specs(ip)%finite = c%finite
         if (c%friction == 'coulomb') sc%specs(ip)%mu = c%mu
         if (c%friction == 'tresca') sc%specs(ip)%tresca = c%tresca
         sc%specs(ip)%slave_bnd = boundary_index(deck, c%line, sc%bodies(c%slave_body), c%slave_boundary, 'CONTACT slave', &
