@@ -398,11 +398,11 @@ contains
     type(error_t), allocatable :: err
     type(results_t) :: step, none
     real(dp), allocatable :: fk(:), ubk(:), u0k(:), uc(:), uprev(:), cu(:), cp(:), qn(:), qt(:), z(:), zprev(:)
-    real(dp), allocatable :: hh(:,:), eh(:), alpha(:), unbalanced(:), body_alpha(:), rigid_alpha(:), tforce(:)
+    real(dp), allocatable :: hh(:,:), eh(:), alpha(:), unbalanced(:), body_alpha(:), rigid_alpha(:)
     integer, allocatable :: fstate(:)
     logical, allocatable :: active_prev(:)
     character(len=:), allocatable :: cause, method
-    integer :: n, nt, kstep, it, iterations, kb, kr, r, k
+    integer :: n, nt, kstep, it, iterations, kb, kr
     real(dp) :: change
     logical :: same, floating
     character(len=200) :: line
@@ -514,6 +514,10 @@ contains
         step%tau = z(n + 1:)
         step%gap = fp%qn + matmul(run%w(1:n, :), z)
         step%alpha = body_alpha
+        step%fstate = fstate
+        call constraint_values(run%cs, uc, cu)
+        step%slip = cu(n + 1:)                               ! T u along the step's tangents
+        call friction_results(run, step)
         call contact_measures(run, step)
         call record_step(run, kstep, fk, ubk, z, rigid_alpha, step)
       end if
@@ -532,17 +536,7 @@ contains
     run%res%gap = fp%qn + matmul(run%w(1:n, :), z)
     call constraint_values(run%cs, uc, cu)
     run%res%slip = cu(n + 1:)                             ! T u along the final tangents
-    allocate(run%res%shear(nt), run%res%tan_of_row(n))
-    run%res%tan_of_row = 0
-    allocate(tforce(n), source=0.0_dp)
-    tforce(run%cs%tan_row) = -run%res%tau
-    do r = 1, nt
-      k = run%cs%tan_row(r)
-      run%res%tan_of_row(k) = r
-      run%res%shear(r) = tforce(k) / max(run%cs%weight(k), tiny(1.0_dp))
-    end do
-    run%res%stick_nodes = count(run%res%fstate == 1)
-    run%res%slip_nodes = count(run%res%fstate == 2)
+    call friction_results(run, run%res)
   end subroutine solve_finite_friction_steps
 
   !> Frictional contact in load steps: at step k the loads are the ramps'
