@@ -60,7 +60,7 @@ contains
     type(lcp_options_t), intent(in) :: opts
     type(contact_solution_t), intent(out) :: sol
     integer, intent(in), optional :: outer_limit
-    integer :: nc, k, kh, j, it
+    integer :: nc, k, kh, j, it, limit
     real(dp), allocatable :: hh(:,:), eh(:), lam(:), wr(:,:), qr(:), r(:)
     real(dp) :: rho, res, wdiag, hnorm
     type(lcp_report_t) :: rep
@@ -109,7 +109,9 @@ contains
     rho = 10.0_dp * wdiag / max(hnorm, tiny(1.0_dp))
     wr = w + rho * matmul(hh, transpose(hh))
     total = 0
-    do it = 1, merge(outer_limit, 100, present(outer_limit))
+    limit = 100                        ! (not merge(outer_limit, 100, ...): merge reads an absent argument)
+    if (present(outer_limit)) limit = outer_limit
+    do it = 1, limit
       qr = q - matmul(hh, lam + rho * eh)
       call run_solver(method, wr, qr, opts, sol%mu, rep)
       total = total + rep%iterations
