@@ -28,9 +28,9 @@ module run_plots
   use kinds, only: dp, i8
   use strings, only: int_to_str, real_to_str, printable
   use errors, only: error_t
-  use system_binding, only: c2d_find_program, c2d_run_program, c_unlink, c2d_run_exited, c2d_run_signaled, &
+  use system_binding, only: c2d_run_program, c_unlink, c2d_run_exited, c2d_run_signaled, &
                             c2d_run_timeout
-  use safe_files, only: read_file, private_folder, file_kind, c2d_regular, temporary_t, create_temporary, &
+  use safe_files, only: find_program, read_file, private_folder, file_kind, c2d_regular, temporary_t, create_temporary, &
                         close_temporary, discard_temporaries
   use run_state, only: run_t
   use run_report, only: add_warning
@@ -417,16 +417,6 @@ contains
     if (len_trim(buf) == 0) return
     text = ': ' // trim(printable(buf(1:min(len(buf), 200))))
   end function first_line
-
-  subroutine find_program(name, path, found)
-    character(len=*), intent(in) :: name
-    character(len=:), allocatable, intent(out) :: path
-    logical, intent(out) :: found
-    character(len=4096) :: buf
-    found = c2d_find_program(name // c_null_char, buf, int(len(buf), c_int)) == 0
-    path = ''
-    if (found) path = buf(1:index(buf, c_null_char) - 1)
-  end subroutine find_program
 
   pure logical function starts_with(s, prefix)
     character(len=*), intent(in) :: s, prefix

@@ -27,9 +27,9 @@ module gmsh_runner
   use kinds, only: dp, i8
   use strings, only: int_to_str, real_to_str, printable
   use errors, only: error_t, set_error
-  use system_binding, only: c2d_find_program, c2d_run_program, c_unlink, c2d_run_exited, c2d_run_signaled, &
+  use system_binding, only: c2d_run_program, c_unlink, c2d_run_exited, c2d_run_signaled, &
                             c2d_run_timeout
-  use safe_files, only: read_file, real_path, folder_of, file_kind, c2d_regular, file_stamp
+  use safe_files, only: find_program, read_file, real_path, folder_of, file_kind, c2d_regular, file_stamp
   implicit none
   private
   public :: gmsh_options_t, mesh_geo_file, gmsh_identity, gmsh_arguments, real_to_text
@@ -200,17 +200,6 @@ contains
     if (found) call file_stamp(real, stamp, found)
     if (found) identity = real // ' ' // stamp
   end subroutine gmsh_identity
-
-  !> The path of a program on PATH.
-  subroutine find_program(name, path, found)
-    character(len=*), intent(in) :: name
-    character(len=:), allocatable, intent(out) :: path
-    logical, intent(out) :: found
-    character(len=4096) :: buf
-    found = c2d_find_program(name // c_null_char, buf, int(len(buf), c_int)) == 0
-    path = ''
-    if (found) path = buf(1:index(buf, c_null_char) - 1)
-  end subroutine find_program
 
   !> bubblewrap can make its namespaces here (not in every container).
   logical function sandbox_works(bwrap, log_path)

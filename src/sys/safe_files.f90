@@ -39,12 +39,13 @@ module safe_files
   use, intrinsic :: iso_c_binding, only: c_int, c_long_long, c_null_char
   use kinds, only: i8
   use errors, only: error_t, set_error
-  use system_binding, only: c2d_file_kind, c2d_open_input, c2d_close, c2d_make_folders, c2d_private_folder, &
+  use system_binding, only: c2d_find_program, c2d_file_kind, c2d_open_input, c2d_close, c2d_make_folders, c2d_private_folder, &
                             c2d_create_temporary, c2d_forget_temporary, c2d_lock_folder, c2d_unlock_folder, &
                             c2d_real_path, c2d_file_stamp, c_unlink, c_rename, c2d_regular, c2d_missing, c2d_fifo, c2d_device, &
                             c2d_folder, c2d_socket, c2d_unreadable
   implicit none
   private
+  public :: find_program
   public :: file_kind, kind_name, open_input, read_file, make_folders, private_folder, real_path, folder_of, file_stamp
   public :: temporary_t, create_temporary, close_temporary, commit_temporaries, discard_temporaries
   public :: c2d_regular, c2d_missing, c2d_fifo, c2d_device, c2d_folder, c2d_socket, c2d_unreadable
@@ -350,5 +351,16 @@ contains
     write(buf, '(i0)') fd
     p = '/proc/self/fd/' // trim(buf)
   end function fd_path
+
+  !> The path of a program on PATH.
+  subroutine find_program(name, path, found)
+    character(len=*), intent(in) :: name
+    character(len=:), allocatable, intent(out) :: path
+    logical, intent(out) :: found
+    character(len=4096) :: buf
+    found = c2d_find_program(name // c_null_char, buf, int(len(buf), c_int)) == 0
+    path = ''
+    if (found) path = buf(1:index(buf, c_null_char) - 1)
+  end subroutine find_program
 
 end module safe_files
