@@ -34,7 +34,7 @@ module contact_solve
   use friction_newton, only: solve_friction_newton
   use friction_modes, only: solve_friction_floating, no_equilibrium
   use contact_lcp, only: contact_solution_t, solve_contact
-  use contact_set, only: node_traction, build_moved_contact_set, contact_set_t
+  use contact_set, only: row_keys, node_traction, build_moved_contact_set, contact_set_t
   use rigid_modes, only: mode_name, motion_name, describe_motion, remove_motions
   use mode_support, only: mode_split_t, split_free_modes
   use rigid_support, only: split_rigid_modes, rigid_direction, pulled_rigid
@@ -48,6 +48,7 @@ module contact_solve
   use contact_checks, only: check_step_sliding
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use run_phase, only: enter_phase
+  use local_axes, only: rotate_constraint_rows
   implicit none
   private
   public :: solve_contact_lcp, check_floating_bodies, check_floating_friction_solver, check_unheld_loads, &
@@ -244,15 +245,16 @@ contains
     call step_loads(run%sc, run%sc%steps, fk, ubk)         ! the bodies' thermal strains of the final step
   end subroutine solve_earlier_steps
 
-  !> CONTACT sliding=finite (frictionless, RIGID masters): the load steps in
+  !> CONTACT sliding=finite (frictionless): the load steps in
   !> order, each solved in the configuration the contact has reached.  In
-  !> step k, from the current displacement u_c (the last step's, the step's
-  !> prescribed values on the fixed dofs), the pairing, normals and gaps are
+  !> step k, from the current displacement u_c (step k's loads on the last
+  !> step's contact forces and geometry), the pairing, normals and gaps are
   !> rebuilt at x + u_c (build_moved_contact_set: B_c, g = g(u_c) + B_c u_c),
   !> W = B_c K^-1 B_c' is condensed again on the same factor (the contact
-  !> dofs do not change: every slave node keeps both dofs), q = g - B_c u0_k,
-  !> the LCP solved and u_c = K^-1 (f_k - B_c' mu) + the free motions.  The
-  !> fixed point stops when the active set is that of the previous update
+  !> dofs do not change: every node of a finite pair's boundaries is one),
+  !> q = g - B_c u0_k, the LCP solved and u_c = K^-1 (f_k - B_c' mu) + the
+  !> free motions.  The fixed point stops when the rows (row_keys) and the
+  !> active set are those of the previous update
   !> and the contact forces changed by less than finite_tol of their largest
   !> (doc/theory.md, "Finite sliding"); after SOLVER updates= updates the
   !> step is too large for the zone to be found again: exit 1 asking for
@@ -270,6 +272,7 @@ contains
     type(error_t), allocatable :: err
     real(dp), allocatable :: fk(:), ubk(:), u0k(:), cq(:), uc(:), mu_prev(:)
     logical, allocatable :: active_prev(:)
+    integer(i8), allocatable :: keys(:), keys_prev(:)
     integer :: kstep, it, updates
     integer(i8) :: t0, t1, rate
     real(dp) :: change, t_geometry, t_condense, t_lcp
@@ -277,15 +280,6 @@ contains
     integer :: finite_updates
     character(len=:), allocatable :: cause
     finite_updates = run%deck%solver%updates
-    ! a slave node in local axes (FIX un=/ut=) has its displacement and rows in
-    ! those axes; the rebuild places the nodes by global displacements
-    do kstep = 1, size(run%sc%specs)
-      if (.not. run%sc%specs(kstep)%finite) cycle
-      if (allocated(run%sc%bodies(run%sc%specs(kstep)%slave_body)%axes)) call add_error(run%diag, run%deck%file, &
-        run%deck%contacts(kstep)%line, 'sliding=finite on a slave body with FIX un= or ut= is not available yet ' // &
-        '(expected FIX ux=/uy= on body "' // run%sc%bodies(run%sc%specs(kstep)%slave_body)%name // '", or sliding=small)')
-    end do
-    call stop_input_errors(run%diag)
     allocate(fk(run%sc%ndof), ubk(run%sc%ndof), u0k(run%sc%ndof), uc(run%sc%ndof), source=0.0_dp)
     t_geometry = 0
     t_condense = 0
@@ -295,16 +289,24 @@ contains
       run%step_note = 'load step ' // int_to_str(kstep) // ' of ' // int_to_str(run%sc%steps) // ': '
       call step_loads(run%sc, kstep, fk, ubk)
       call solve_loads(run, fk, ubk, [real(dp) ::], u0k)
-      where (run%sc%fixed) uc = ubk                      ! the prescribed motion of the step, at once
+      if (kstep > 1) then
+        ! the first configuration of the step: its loads and prescribed motion
+        ! on the last step's contact forces, so that the bodies move with what
+        ! drives them (a carriage moved alone would drag its body's edge)
+        call solve_loads(run, fk, ubk, step%mu, uc)
+        if (run%fl%k > 0) uc = uc + matmul(run%fl%r, step%alpha)
+        call remove_motions(run%fl, run%split%unheld, uc)
+        if (allocated(rigid_alpha)) uc(run%rsplit%dof) = rigid_alpha
+      else
+        uc = u0k                                         ! the step's loads and motion without contact
+      end if
       do it = 1, finite_updates
         call system_clock(t0, rate)
         call build_moved_contact_set(run%sc%bodies, run%sc%specs, uc, moved, err)
         if (allocated(err)) call fail_numerical(run%step_note // 'sliding=finite: the contact geometry cannot be ' // &
           'rebuilt: ' // err%message)
-        if (moved%nrow /= run%cs%nrow .or. moved%ncdof /= run%cs%ncdof) call fail_numerical(run%step_note // &
-          'sliding=finite: the rebuilt contact rows do not match the factorization''s contact dofs')
-        if (any(moved%cdof /= run%cs%cdof)) call fail_numerical(run%step_note // &
-          'sliding=finite: the rebuilt contact rows do not match the factorization''s contact dofs')
+        call rotate_constraint_rows(moved, run%sc%bodies)     ! nodes in local axes (FIX un=/ut=)
+        call check_contact_dofs(run, moved)
         call move_alloc_set(moved, run%cs)
         call system_clock(t1)
         t_geometry = t_geometry + real(t1 - t0, dp) / real(rate, dp)
@@ -338,12 +340,14 @@ contains
         if (.not. all(ieee_is_finite(uc))) call fail_numerical(run%step_note // 'the displacement is not finite')
         same = .false.
         change = huge(1.0_dp)
-        if (allocated(mu_prev)) then
+        keys = row_keys(run%cs)
+        if (same_rows(keys, keys_prev)) then
           same = all((step%mu > 0.0_dp) .eqv. active_prev)
           change = maxval(abs(step%mu - mu_prev)) / max(maxval(abs(step%mu)), tiny(1.0_dp))
         end if
         mu_prev = step%mu
         active_prev = step%mu > 0.0_dp
+        call move_alloc(keys, keys_prev)
         if (same .and. change <= finite_tol) exit
       end do
       if (.not. (same .and. change <= finite_tol)) then
@@ -357,7 +361,7 @@ contains
           'contact too far for the geometry of its start to find it; expected more STEPS, or more SOLVER updates=)')
       end if
       call say(run, 'finite   ' // run%step_note // int_to_str(it) // ' updates of the contact geometry')
-      deallocate(mu_prev, active_prev)
+      deallocate(mu_prev, active_prev, keys_prev)
       if (kstep < run%sc%steps .and. run%deck%output%steps_all) then
         call contact_measures(run, step)
         run%step_iterations = step%lcp_iterations
@@ -378,7 +382,30 @@ contains
     end subroutine move_alloc_set
   end subroutine solve_finite_steps
 
-  !> CONTACT sliding=finite with friction (RIGID masters): the load steps in
+  !> Rows of two rebuilds that are the same rows, in the same order
+  pure logical function same_rows(keys, keys_prev)
+    integer(i8), intent(in) :: keys(:)
+    integer(i8), allocatable, intent(in) :: keys_prev(:)
+    same_rows = .false.
+    if (.not. allocated(keys_prev)) return
+    if (size(keys) /= size(keys_prev)) return
+    same_rows = all(keys == keys_prev)
+  end function same_rows
+
+  !> A rebuilt contact set must touch the dofs the factorization put last
+  !> (contact_set marks every node of a finite pair's boundaries): else the
+  !> condensation would read the wrong block of the factor.
+  subroutine check_contact_dofs(run, moved)
+    type(run_t), intent(in) :: run
+    type(contact_set_t), intent(in) :: moved
+    logical :: ok
+    ok = moved%ncdof == run%cs%ncdof
+    if (ok) ok = all(moved%cdof == run%cs%cdof)
+    if (.not. ok) call fail_numerical(run%step_note // &
+      'sliding=finite: the rebuilt contact rows do not match the factorization''s contact dofs')
+  end subroutine check_contact_dofs
+
+  !> CONTACT sliding=finite with friction: the load steps in
   !> order, each by the fixed point of solve_finite_steps on the friction
   !> LCP.  At every update the rows C_c = [B_c; T_c] are rebuilt at x + u_c
   !> and the slip of the step is measured along the current tangents from
@@ -401,6 +428,8 @@ contains
     real(dp), allocatable :: hh(:,:), eh(:), alpha(:), unbalanced(:), body_alpha(:), rigid_alpha(:)
     integer, allocatable :: fstate(:)
     logical, allocatable :: active_prev(:)
+    integer(i8), allocatable :: keys(:), keys_prev(:)
+    logical :: rows_held
     character(len=:), allocatable :: cause, method
     integer :: n, nt, kstep, it, iterations, kb, kr
     real(dp) :: change
@@ -425,16 +454,34 @@ contains
       run%step_note = 'load step ' // int_to_str(kstep) // ' of ' // int_to_str(run%sc%steps) // ': '
       call step_loads(run%sc, kstep, fk, ubk)
       call solve_loads(run, fk, ubk, [real(dp) ::], u0k)
-      where (run%sc%fixed) uc = ubk
+      if (kstep > 1) then                                ! as solve_finite_steps: the last step's forces
+        call solve_loads(run, fk, ubk, z, uc)
+        if (run%fl%k > 0) uc = uc + matmul(run%fl%r, body_alpha)
+        call remove_motions(run%fl, run%split%unheld, uc)
+        if (allocated(rigid_alpha)) uc(run%rsplit%dof) = rigid_alpha
+      else
+        uc = u0k
+      end if
       do it = 1, run%deck%solver%updates
         call build_moved_contact_set(run%sc%bodies, run%sc%specs, uc, moved, err)
         if (allocated(err)) call fail_numerical(run%step_note // 'sliding=finite: the contact geometry cannot be ' // &
           'rebuilt: ' // err%message)
-        if (moved%nrow /= n .or. moved%ntan /= nt .or. moved%ncdof /= run%cs%ncdof) call fail_numerical(run%step_note // &
-          'sliding=finite: the rebuilt contact rows do not match the factorization''s contact dofs')
-        if (any(moved%cdof /= run%cs%cdof)) call fail_numerical(run%step_note // &
-          'sliding=finite: the rebuilt contact rows do not match the factorization''s contact dofs')
+        call rotate_constraint_rows(moved, run%sc%bodies)     ! nodes in local axes (FIX un=/ut=)
+        call check_contact_dofs(run, moved)
         run%cs = moved
+        keys = row_keys(run%cs)
+        rows_held = same_rows(keys, keys_prev)
+        if (.not. rows_held) then
+          ! the zone gained or lost rows: their unknowns start again from 0
+          n = run%cs%nrow
+          nt = run%cs%ntan
+          deallocate(cu, cp, z, fstate)
+          allocate(cu(n + nt), cp(n + nt), z(n + nt), fstate(nt))
+          z = 0.0_dp
+          if (allocated(zprev)) deallocate(zprev)
+          if (allocated(active_prev)) deallocate(active_prev)
+        end if
+        call move_alloc(keys, keys_prev)
         call condense(run%cs, run%eq, run%factor, run%y, run%u0, run%w, run%q, run%cd, err, run%deck%solver%condense)
         if (allocated(err)) call fail_numerical(err%message)
         call constraint_values(run%cs, u0k, cu)

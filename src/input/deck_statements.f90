@@ -231,10 +231,8 @@ contains
     c%interference = v%ok(6) .and. v%text(6)%s == 'allow'
     ! small sliding (the default): pairing, gaps and normals of the initial configuration, a
     ! run that slides beyond it ending in exit 1 (contact_checks); finite sliding rebuilds them
-    ! from the current configuration (contact_solve), so far against a RIGID only
+    ! from the current configuration (contact_solve)
     c%finite = v%ok(7) .and. v%text(7)%s == 'finite'
-    if (c%finite .and. .not. rigid_master) call report(s, st%line, 'sliding=finite against a deformable master ' // &
-      'is not available yet (expected master=RIGIDNAME, or sliding=small)')
     ! gap=zero sets the gaps of the initial configuration; finite sliding measures them at every step
     if (c%finite .and. v%ok(3)) then
       if (v%text(3)%s == 'zero') call report(s, st%line, 'sliding=finite with gap=zero (expected gap=geometry: ' // &
