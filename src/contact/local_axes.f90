@@ -37,6 +37,10 @@ contains
     do b = 1, size(bodies)
       ndof = max(ndof, bodies(b)%dof0 + 2 * bodies(b)%mesh%nnode)
     end do
+    ! a RIGID's three dofs follow the bodies' and may be contact dofs: they
+    ! are in x, y (their "nodes" below have no normal)
+    if (cs%ncdof > 0) ndof = max(ndof, maxval(cs%cdof))
+    ndof = ndof + mod(ndof, 2)
     allocate(nrm(2, ndof / 2), source=0.0_dp)          ! the normal of each global node, 0: x, y
     do b = 1, size(bodies)
       if (.not. allocated(bodies(b)%axes)) cycle
