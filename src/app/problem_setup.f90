@@ -29,8 +29,8 @@ module problem_setup
   use mode_support, only: split_free_modes
   use rigid_support, only: split_rigid_modes
   use post_processing, only: name_results
-  use contact_solve, only: check_floating_bodies, check_floating_friction_solver, check_unheld_loads, &
-                           check_unheld_rigid_loads
+  use held_by_contact, only: check_floating_bodies, check_floating_friction_solver, check_unheld_loads, &
+                             check_unheld_rigid_loads
   implicit none
   private
   public :: read_input, build_problem

@@ -7,9 +7,9 @@
 !> condensed problem and the results; holding them in one `run_t` keeps
 !> every step's signature short and every piece of state visible in one
 !> place, with no module variables.  Who may use it: the program and its
-!> step modules (problem_setup, linear_system, contact_solve,
-!> post_processing, run_outputs, step_table, run_report, case_selection); no library
-!> module below them knows it.
+!> step modules (problem_setup, linear_system, contact_solve, contact_step,
+!> finite_sliding, held_by_contact, post_processing, run_outputs, step_table,
+!> run_report, case_selection); no library module below them knows it.
 !>
 !> Programming interface
 !>   type(run_t)               the run: options, deck, scene, factor, condensed problem, results
