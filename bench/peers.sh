@@ -3,7 +3,10 @@
 # contact2d (P1, and quadratic when it takes contact on quadratic elements)
 # against GetFEM 5.4 (Debian python3-getfem, nodal contact brick, P1 and P2)
 # and CalculiX 2.20 (Debian calculix-ccx, surface-to-surface penalty, CPE3
-# and CPE6), on even meshes and on meshes graded toward the zone's ends.
+# and CPE6), on even meshes and on meshes graded toward the zone's ends, and
+# contact2d's ADAPT quantity=pressure (P1 and P2, from the coarsest even mesh,
+# one run per target: 3 %, 1 %, 0.3 %, 0.1 %; its time the whole adaptive
+# run's, gmsh's re-meshings included).
 # Error = pressure L2 error along the contact line and energy (H1) error near
 # the zone, both against a reference of the same finite problem (a much finer
 # contact2d solve on graded meshes, its own convergence printed); time =
@@ -19,7 +22,9 @@
 # size (levels 4, 2, 1 x it), PEERS_THREADS the threads per process (1),
 # PEERS_TIMEOUT the wall-time limit of one run (s, default 300),
 # PEERS_SERIES_STOP the CPU time (s, default 30) after which a series runs no
-# finer point, PEERS_A the zone's half-width (default: located).
+# finer point, PEERS_A the zone's half-width (default: located),
+# PEERS_ADAPT_TARGETS the adaptive series' targets (comma-separated relative
+# pressure errors), PEERS_ADAPT_MAX_DOFS their ADAPT max_dofs (500000).
 # PEERS_DOC=doc/accuracy-cost.md puts the tables (printed in markdown) into
 # that page between its "bench/peers.sh" markers.
 set -eu
@@ -32,7 +37,7 @@ py=/usr/bin/python3
 [ -x "$prog" ] || make -C "$top" >/dev/null
 [ -x "$py" ] || { echo "peers: $py not found" >&2; exit 1; }
 command -v gmsh >/dev/null || { echo "peers: gmsh not found" >&2; exit 1; }
-series=${PEERS_SERIES:-contact2d:p1,contact2d:p1g,contact2d:p2,contact2d:p2g,getfem:p1,getfem:p1g,getfem:p2,getfem:p2g,ccx:p1,ccx:p1g,ccx:p2,ccx:p2g}
+series=${PEERS_SERIES:-contact2d:p1,contact2d:p1g,contact2d:p2,contact2d:p2g,contact2d:adapt1,contact2d:adapt2,getfem:p1,getfem:p1g,getfem:p2,getfem:p2g,ccx:p1,ccx:p1g,ccx:p2,ccx:p2g}
 keep=
 for s in $(echo "$series" | tr , ' '); do
   case $s in
@@ -50,5 +55,7 @@ set -- --prog "$prog" --out "$out" --series "$keep" --reps "$reps" --threads "${
 [ -z "${PEERS_A:-}" ] || set -- "$@" --a "$PEERS_A"
 [ -z "${PEERS_SERIES_STOP:-}" ] || set -- "$@" --series-stop "$PEERS_SERIES_STOP"
 [ -z "${PEERS_TIMEOUT:-}" ] || set -- "$@" --timeout "$PEERS_TIMEOUT"
+[ -z "${PEERS_ADAPT_TARGETS:-}" ] || set -- "$@" --adapt-targets "$PEERS_ADAPT_TARGETS"
+[ -z "${PEERS_ADAPT_MAX_DOFS:-}" ] || set -- "$@" --adapt-max-dofs "$PEERS_ADAPT_MAX_DOFS"
 [ -z "${PEERS_DOC:-}" ] || set -- "$@" --doc "$(cd "$(dirname "$PEERS_DOC")" && pwd)/$(basename "$PEERS_DOC")"
 exec "$py" "$top/bench/peers/driver.py" "$@"

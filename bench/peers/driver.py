@@ -5,6 +5,7 @@ a reference solution of the same finite problem.
 
     driver.py --prog CONTACT2D --out DIR [--series code:kind,...] [--hc 0.08,...]
               [--reps 3] [--ref-hc 0.005] [--timeout 300] [--series-stop 30] [--a A]
+              [--adapt-targets 0.03,0.01,0.003,0.001] [--adapt-max-dofs 500000]
 
 kind: p1 / p2 = linear / quadratic elements on the even meshes of
 input/hertz_*.geo (size hc around the zone, hf = min(0.5, 12.5 hc) far away); p1g / p2g =
@@ -12,6 +13,12 @@ the same graded toward the zone's ends (geo/hertz_*_graded.geo, grading(): size
 hc^2/4 at the ends, growing at min(0.2, 5 hc) times the distance, capped by hc).
 contact2d's slave is the block's "contact" curve (|x| <= 0.3 of its top),
 which the disk's arc covers whole (quadratic traces need it).
+adapt1 / adapt2 (contact2d only): ADAPT quantity=pressure on P1 / P2 elements,
+from the even mesh of the sweep's coarsest hc, one point per target of
+--adapt-targets (coarse to fine: the larger target first), each mesh at most
+--adapt-max-dofs; the start meshes are the sweep's .msh files with the .geo
+that made them beside them (ADAPT re-meshes from it), so, as for every other
+point, making the start mesh is not timed, while every re-meshing by gmsh is.
 
 1. Locate: a contact2d P1 run at hc = 0.005 gives a first half-width a of the
    finite problem (zone_end: p^2 extrapolated to 0 from the nodes before the
@@ -27,17 +34,24 @@ which the disk's arc covers whole (quadratic traces need it).
    after a point that took more than --series-stop CPU seconds (or timed
    out) a series runs no finer point.
    Time = median user+sys CPU time of the solver process (getrusage of the
-   child, its children included), wall time next to it.
+   child, its children included), wall time next to it.  An adaptive point's
+   time is that of its whole run, every mesh's solve and every gmsh
+   re-meshing (gmsh is contact2d's child); the summary's cpu_total, which
+   counts the same, is recorded beside it.
 4. Errors of each point (ref_err.py, h1_err.py):
    pressure: || p_h - p_ref ||_L2 / || p_ref ||_L2 along the block top, by
    quadrature exact for the piecewise polynomials (no node sampling);
    H1: the energy-norm error || u_ref - u_h ||_E / || u_ref ||_E over the
    window |x| <= 0.3, -0.3 <= y <= 0.3 around the zone (P1 and P2 fields).
+   An adaptive point's errors are those of its final mesh's outputs, measured
+   the same way; contact2d's own pressure estimate (the summary's `estimate
+   pressure`) is set against the measured pressure error (effectivity).
 5. Matched error e: along a series (coarse to fine), the first mesh from
    which every finer mesh stays at or below e, the CPU time interpolated
    log-log (error against time) between it and the mesh before it: a time
-   read off the sweep's curve, not one lucky mesh.  The speedup is the faster
-   peer's matched time over contact2d's.
+   read off the sweep's curve, not one lucky mesh (an adaptive series: its
+   targets in place of the meshes).  The speedup is the faster peer's matched
+   time over the faster contact2d series' (adaptive series included).
 Prints the sweep, the reference's convergence and the matched tables; writes
 DIR/runs.csv and DIR/results.md.
 """
@@ -67,6 +81,7 @@ PY = "/usr/bin/python3"
 NAMES = {"contact2d": "contact2d", "getfem": "GetFEM", "ccx": "CalculiX"}
 WINDOW = (-0.3, 0.3, -0.3, 0.3)
 PRESSURE_TARGETS = (0.01, 0.003, 0.001)
+KIND_NAMES = {"adapt1": "P1 ADAPT", "adapt2": "P2 ADAPT"}
 H1_TARGETS = (0.05, 0.02, 0.01, 0.005)
 DECK = """PLANE strain
 BODY block
@@ -82,6 +97,7 @@ END
 CONTACT slave=block:contact master=disk:arc gap=geometry
 SOLVER lcp=auto tol=1e-10
 """
+ADAPT_LINE = "ADAPT target={t!r} quantity=pressure max_dofs={n}\n"
 
 
 def timed(cmd, cwd, log, timeout, env):
@@ -108,10 +124,17 @@ class Point:
         self.status = "ok"          # ok | not converged | failed | timeout | refused
         self.note = ""
         self.vtk = None
+        self.target = None          # adaptive points: the ADAPT target
+        self.est = None             # contact2d: the summary's pressure estimate
+        self.meshes = self.result = self.cpu_total = None     # adaptive points: the summary's adapt lines
 
     @property
     def degree(self):
-        return 2 if self.kind.startswith("p2") else 1
+        return 2 if self.kind.startswith("p2") or self.kind == "adapt2" else 1
+
+    @property
+    def adaptive(self):
+        return is_adaptive(self.kind)
 
     def cpu(self):
         return statistics.median(self.cpus) if self.cpus else None
@@ -121,6 +144,16 @@ class Point:
 
     def usable(self):
         return self.status == "ok" and self.perr is not None
+
+
+def is_adaptive(kind):
+    return kind.startswith("adapt")
+
+
+def levels(kind, args):
+    """A series' points, coarse to fine: the sweep's sizes hc, or an adaptive series' targets (both
+    decreasing)."""
+    return args.adapt_targets if is_adaptive(kind) else args.hcs
 
 
 def far_size(hc):
@@ -163,9 +196,34 @@ def mesh(args, body, hc, kind):
     return path
 
 
+def start_geo(top, body, hc):
+    """The .geo that makes the start mesh of an adaptive point (the even mesh of mesh(): input/hertz_*.geo
+    with its hc and hf, the block with its "contact" curve), self-contained: ADAPT re-meshes from it, and a
+    .geo beside an .msh is screened, which refuses an Include outside the deck's folder."""
+    src = open(os.path.join(top, "input", f"hertz_{body}.geo")).read()
+    line = "DefineConstant[ hc = 0.02, hf = 0.5 ];"
+    if line not in src:
+        sys.exit(f"peers: input/hertz_{body}.geo: no '{line}' line to set the start mesh's sizes in")
+    src = src.replace(line, f"DefineConstant[ hc = {hc!r}, hf = {far_size(hc)!r} ];")
+    if body == "block":
+        src += 'Physical Curve("contact") = {4};\n'
+    return src
+
+
 def prepare(pt, args):
     """Mesh and write the input of a point."""
     os.makedirs(pt.wdir, exist_ok=True)
+    if pt.adaptive:
+        # the sweep's even mesh at the start size, with the .geo that made it beside it
+        kind = "p2" if pt.degree == 2 else "p1"
+        for body in ("block", "disk"):
+            shutil.copy(mesh(args, body, pt.hc, kind), os.path.join(pt.wdir, body + ".msh"))
+            with open(os.path.join(pt.wdir, body + ".geo"), "w") as f:
+                f.write(start_geo(args.top, body, pt.hc))
+        pt.block, pt.disk = os.path.join(pt.wdir, "block.msh"), os.path.join(pt.wdir, "disk.msh")
+        with open(os.path.join(pt.wdir, "hertz.deck"), "w") as f:
+            f.write(DECK.format(b="block.msh", d="disk.msh") + ADAPT_LINE.format(t=pt.target, n=args.adapt_max_dofs))
+        return
     # GetFEM's quadratic runs use the straight-edged meshes (see getfem_hertz.py)
     mkind = pt.kind.replace("p2", "p2s") if pt.code == "getfem" else pt.kind
     pt.block, pt.disk = mesh(args, "block", pt.hc, mkind), mesh(args, "disk", pt.hc, mkind)
@@ -182,7 +240,9 @@ def run_once(pt, args, env):
     prof = os.path.join(w, "profile.txt")
     vtk = os.path.join(w, "field.vtk")
     if pt.code == "contact2d":
-        cmd = [args.prog, "-q", "-o", os.path.join(w, "o"), os.path.join(w, "hertz.deck")]
+        # an adaptive run meshes as a first run does (no mesh cache read or written)
+        cmd = [args.prog, "-q"] + (["--no-mesh-cache"] if pt.adaptive else []) + \
+            ["-o", os.path.join(w, "o"), os.path.join(w, "hertz.deck")]
     elif pt.code == "getfem":
         cmd = [PY, os.path.join(HERE, "getfem_hertz.py"), pt.block, pt.disk, prof, "1e-5", "50", str(pt.degree)]
         if vtk and not pt.times:
@@ -207,6 +267,7 @@ def run_once(pt, args, env):
                     raise RuntimeError(f"exit status {rc}")
                 c2d_profile(os.path.join(w, "o", "hertz_contact.csv"), os.path.join(w, "o", "hertz.summary"),
                             prof, pt.degree)
+                read_estimate(pt, os.path.join(w, "o", "hertz.summary"))
                 if vtk:
                     shutil.copy(os.path.join(w, "o", "hertz.vtk"), vtk)
             elif pt.code == "ccx":
@@ -229,6 +290,25 @@ def run_once(pt, args, env):
             pt.status, pt.note = "failed", str(e).splitlines()[0][:80]
     pt.times.append(t)
     pt.cpus.append(cpu)
+
+
+def read_estimate(pt, summary):
+    """The summary's pressure estimate of the pair, and for ADAPT the number of meshes, the result and
+    cpu_total."""
+    steps = 0
+    for line in open(summary):
+        w = line.split()
+        if len(w) >= 4 and w[:2] == ["estimate", "pressure"]:
+            pt.est = float(w[3])
+        elif w and w[0] == "adapt":
+            steps += 1
+        elif len(w) >= 2 and w[0] == "adapt_result":
+            pt.result = " ".join(w[1:])
+        elif len(w) >= 2 and w[0] == "cpu_total":
+            pt.cpu_total = float(w[1])
+    if pt.adaptive:
+        pt.meshes = steps
+        pt.note = f"target {pt.target * 100:g} %: {steps} meshes, {pt.result}"
 
 
 def locate_a(args, env):
@@ -350,7 +430,19 @@ def versions(args, codes):
 
 
 def label(code, kind):
-    return f"{NAMES[code]} {kind.upper()}"
+    return f"{NAMES[code]} {KIND_NAMES.get(kind, kind.upper())}"
+
+
+def fit_rate_dofs(series, attr):
+    """The rate of an adaptive series: least-squares slope of log(error) against log(dofs^(-1/2)) (an
+    even mesh's size in 2D goes as dofs^(-1/2)), None if fewer than 3 usable points."""
+    good = [(-0.5 * math.log(p.dofs), math.log(getattr(p, attr))) for p in series
+            if p.usable() and getattr(p, attr) is not None and getattr(p, attr) > 0.0 and p.dofs]
+    if len(good) < 3:
+        return None
+    mx = sum(x for x, _ in good) / len(good)
+    my = sum(y for _, y in good) / len(good)
+    return sum((x - mx) * (y - my) for x, y in good) / sum((x - mx) ** 2 for x, _ in good)
 
 
 def fit_rate(series, attr):
@@ -433,37 +525,81 @@ def report(args, series, hcs, pts, refs, conv, pref, codes, ver, load0, load1, t
     W("**The sweep.** p err = || p_h - p_ref ||_L2 / || p_ref ||_L2 along the block top (quadrature exact for "
       "the piecewise polynomials, no node sampled); H1 = energy-norm error over the window |x|, |y| <= 0.3 "
       "relative to the reference's energy norm there (`h1_err.py`, P1 and P2 fields); CPU = median "
-      "user+sys time of n runs of the whole process (s), wall = median wall time (s).")
+      "user+sys time of n runs of the whole process (s), wall = median wall time (s).  The adaptive series "
+      "(P1 ADAPT, P2 ADAPT: `ADAPT target=T quantity=pressure "
+      f"max_dofs={args.adapt_max_dofs}`, one run per target T) start from the even mesh at hc = "
+      f"{args.hcs[0]:g} (the hc column, with the target T); their dofs and errors are the final mesh's, their CPU time the "
+      "whole run's, every mesh's solve and gmsh's re-meshings included.")
     W("")
     W("| series | hc | dofs | p err (%) | H1 (%) | CPU (s) | wall (s) | n | note |")
     W("| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- |")
     for code, kind in series:
-        for hc in hcs:
-            p = pts[code, kind, hc]
-            if p.status == "refused" and hc != hcs[0]:
+        for i, lev in enumerate(levels(kind, args)):
+            p = pts[code, kind, lev]
+            hc = p.hc
+            if p.status == "refused" and i > 0:
                 continue
             pe = f"{p.perr * 100:.4f}" if p.perr is not None else "-"
             he = f"{p.herr * 100:.3f}" if p.herr is not None else "-"
             mark = {"ok": "", "not converged": " (not converged: not matched)", "failed": " FAILED",
                     "timeout": " TIMEOUT", "refused": " REFUSED", "skipped": " (not run)"}[p.status]
-            W(f"| {label(code, kind)} | {hc:g} | {p.dofs or 0} | {pe} | {he} | {p.cpu() or 0:.3f} | "
+            at = f"{hc:g} (T = {p.target * 100:g}%)" if p.adaptive else f"{hc:g}"
+            W(f"| {label(code, kind)} | {at} | {p.dofs or 0} | {pe} | {he} | {p.cpu() or 0:.3f} | "
               f"{p.wall() or 0:.3f} | {len(p.cpus)} | {p.note}{mark} |")
     W("")
-    W("Observed rates (least-squares slope of log error against log hc over the sweep):")
+    W("Observed rates (least-squares slope of log error against log hc over the sweep; an adaptive series "
+      "against log dofs^(-1/2), which an even mesh's hc follows in 2D):")
     W("")
     W("| series | pressure L2 | H1 |")
     W("| --- | ---: | ---: |")
     for code, kind in series:
-        sp = [pts[code, kind, h] for h in hcs]
-        rp, rh = fit_rate(sp, "perr"), fit_rate(sp, "herr")
+        sp = [pts[code, kind, h] for h in levels(kind, args)]
+        fit = fit_rate_dofs if is_adaptive(kind) else fit_rate
+        rp, rh = fit(sp, "perr"), fit(sp, "herr")
         W(f"| {label(code, kind)} | {'-' if rp is None else format(rp, '.2f')} | "
           f"{'-' if rh is None else format(rh, '.2f')} |")
+    c2d = [(c, k) for c, k in series if c == "contact2d"]
+    if c2d:
+        W("")
+        W("**contact2d's pressure estimate against the error**: the summary's `estimate pressure` (the final "
+          "mesh's for ADAPT) over the measured p err, at each point of the series, coarse to fine:")
+        W("")
+        W("| series | effectivity (estimate / p err) |")
+        W("| --- | --- |")
+        for code, kind in c2d:
+            eff = [f"{p.est / p.perr:.2f}" if p.usable() and p.est is not None and p.perr else "-"
+                   for p in (pts[code, kind, h] for h in levels(kind, args))]
+            W(f"| {label(code, kind)} | {', '.join(eff)} |")
+    adapt = [(c, k) for c, k in series if is_adaptive(k)]
+    if adapt:
+        W("")
+        W("**The adaptive runs**: meshes solved, the result (`adapt_result`), the final mesh's dofs, the "
+          "estimate and the measured errors, and the CPU time (s) as the bench measures it (getrusage of the "
+          "process and its children) beside the summary's `cpu_total` (the same run's own count):")
+        W("")
+        W("| series | target | meshes | result | dofs | estimate (%) | p err (%) | effectivity | H1 (%) | CPU (s) "
+          "| cpu_total (s) |")
+        W("| --- | ---: | ---: | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
+        for code, kind in adapt:
+            for t in levels(kind, args):
+                p = pts[code, kind, t]
+                if not p.usable():
+                    W(f"| {label(code, kind)} | {t * 100:g}% | - | {p.status} {p.note} | - | - | - | - | - | - | - |")
+                    continue
+                est = f"{p.est * 100:.4f}" if p.est is not None else "-"
+                eff = f"{p.est / p.perr:.2f}" if p.est is not None and p.perr else "-"
+                he = f"{p.herr * 100:.3f}" if p.herr is not None else "-"
+                W(f"| {label(code, kind)} | {t * 100:g}% | {p.meshes} | {p.result} | {p.dofs} | {est} | "
+                  f"{p.perr * 100:.4f} | {eff} | {he} | {p.cpu():.3f} | "
+                  f"{'-' if p.cpu_total is None else format(p.cpu_total, '.3f')} |")
     for what, attr, targets in (("pressure L2 error", "perr", PRESSURE_TARGETS),
                                 ("H1 (energy) error", "herr", H1_TARGETS)):
         W("")
         W(f"**CPU time (s) at matched {what}**: along each series the first mesh from which every finer one "
           "stays at or below the target, the time interpolated log-log against the mesh before it (`=`: the "
-          "coarsest mesh is already below); dofs interpolated the same way in brackets.")
+          "coarsest mesh is already below; an adaptive series: its targets in place of the meshes); dofs "
+          "interpolated the same way in brackets.  The last column sets the faster peer against the faster "
+          "contact2d series, adaptive ones included.")
         W("")
         W("| target | " + " | ".join(label(c, k) for c, k in series) + " | contact2d / faster peer |")
         W("| ---: | " + " | ".join("---:" for _ in series) + " | --- |")
@@ -473,21 +609,22 @@ def report(args, series, hcs, pts, refs, conv, pref, codes, ver, load0, load1, t
             row = f"| {e * 100:g}%{' (not resolved: reference error ~' + format(ref_est[3] * 100, '.2g') + '%)' if unresolved and ref_est else ''} |"
             res = {}
             for code, kind in series:
-                m = match([pts[code, kind, h] for h in hcs], e, attr)
+                m = match([pts[code, kind, h] for h in levels(kind, args)], e, attr)
                 res[code, kind] = m
                 row += " - |" if m is None else f" {m[0]:.3f}{'=' if m[2] else ''} ({m[1]:.0f}) |"
-            mine = [(m[0], k) for (c, k), m in res.items() if c == "contact2d" and m is not None]
+            mine = [(m[0], KIND_NAMES.get(k, k.upper())) for (c, k), m in res.items()
+                    if c == "contact2d" and m is not None]
             peers = [(m[0], label(c, k)) for (c, k), m in res.items() if c != "contact2d" and m is not None]
             if not mine:
                 row += " contact2d does not reach it |"
             elif not peers:
-                row += f" contact2d {min(mine)[1].upper()} reaches it, no peer does |"
+                row += f" contact2d {min(mine)[1]} reaches it, no peer does |"
             else:
                 tm, km = min(mine)
                 tp, name = min(peers)
-                row += f" **{tp / tm:.1f}x** (contact2d {km.upper()} vs {name}) |"
+                row += f" **{tp / tm:.1f}x** (contact2d {km} vs {name}) |"
             W(row)
-    best = match([pts["contact2d", "p2g", h] for h in hcs], 0.001, "perr") if ("contact2d", "p2g") in series else None
+    best = match([pts["contact2d", "p2g", h] for h in levels("p2g", args)], 0.001, "perr") if ("contact2d", "p2g") in series else None
     W("")
     if best is None:
         W("**The goal** (quadratic contact2d at 0.1 % pressure error in under 1 s of CPU time): not reached in "
@@ -517,7 +654,7 @@ def main():
     ap.add_argument("--top", default=os.path.dirname(os.path.dirname(HERE)))
     ap.add_argument("--out", required=True)
     ap.add_argument("--series", default="contact2d:p1,contact2d:p1g,contact2d:p2,contact2d:p2g,"
-                    "getfem:p1,getfem:p1g,getfem:p2,getfem:p2g,ccx:p1,ccx:p1g,ccx:p2,ccx:p2g")
+                    "contact2d:adapt1,contact2d:adapt2,getfem:p1,getfem:p1g,getfem:p2,getfem:p2g,ccx:p1,ccx:p1g,ccx:p2,ccx:p2g")
     ap.add_argument("--hc", default="0.08,0.056,0.04,0.028,0.02,0.014,0.01")
     ap.add_argument("--reps", type=int, default=3)
     ap.add_argument("--point-budget", type=float, default=60.0)
@@ -528,11 +665,18 @@ def main():
     ap.add_argument("--timeout", type=float, default=300.0)
     ap.add_argument("--threads", default="1")
     ap.add_argument("--doc", default="")
+    ap.add_argument("--adapt-targets", default="0.03,0.01,0.003,0.001",
+                    help="the ADAPT targets (relative pressure errors) of the adaptive series")
+    ap.add_argument("--adapt-max-dofs", type=int, default=500000, help="ADAPT max_dofs of the adaptive series")
     args = ap.parse_args()
     args.located = args.a is None
     series = [tuple(s.split(":")) for s in args.series.split(",") if s]
     codes = sorted({c for c, _ in series}, key=list(NAMES).index)
     hcs = sorted((float(h) for h in args.hc.split(",")), reverse=True)
+    args.hcs = hcs
+    args.adapt_targets = sorted((float(t) for t in args.adapt_targets.split(",")), reverse=True)
+    if any(c != "contact2d" for c, k in series if is_adaptive(k)):
+        sys.exit("peers: only contact2d has the adaptive series (adapt1, adapt2)")
     os.makedirs(args.out, exist_ok=True)
     # one binary for the whole run, even if bin/ is rebuilt meanwhile
     os.makedirs(os.path.join(args.out, "bin"), exist_ok=True)
@@ -571,35 +715,42 @@ def main():
     # 3. the sweep
     pts = {}
     for code, kind in series:
-        for hc in hcs:
-            pt = Point(code, kind, hc, os.path.join(args.out, code, f"{kind}_hc{hc:g}"))
+        for lev in levels(kind, args):
+            if is_adaptive(kind):
+                pt = Point(code, kind, hcs[0], os.path.join(args.out, code, f"{kind}_t{lev:g}"))
+                pt.target = lev
+            else:
+                pt = Point(code, kind, lev, os.path.join(args.out, code, f"{kind}_hc{lev:g}"))
             prepare(pt, args)
-            pts[code, kind, hc] = pt
+            pts[code, kind, lev] = pt
     ver = versions(args, codes)
-    for hc in hcs:
-        for code, kind in series:
-            pt = pts[code, kind, hc]
-            before = [p for (c, k, h), p in pts.items() if (c, k) == (code, kind) and h > hc]
-            if any(p.status == "refused" for p in before):
-                pt.status, pt.note = "refused", "see the coarsest mesh"
-                continue
-            slow = [p for p in before if p.status in ("timeout", "skipped") or (p.cpus and p.cpus[0] > args.series_stop)]
-            if slow:
-                pt.status, pt.note = "skipped", f"a coarser point took over {args.series_stop:g} s"
-                continue
-            run_once(pt, args, env)
-            log(f"  {label(code, kind):16s} hc={hc:<7g} cpu {pt.cpus[-1] if pt.cpus else float('nan'):8.3f} s  "
-                f"{pt.status} {pt.note}")
+    # round robin: the coarsest point of every series, then the next one of each, ...
+    order = [(code, kind, levels(kind, args)[i]) for i in range(max(len(hcs), len(args.adapt_targets)))
+             for code, kind in series if i < len(levels(kind, args))]
+    for code, kind, lev in order:
+        pt = pts[code, kind, lev]
+        # a larger hc or target: a coarser point of the same series
+        before = [p for (c, k, h), p in pts.items() if (c, k) == (code, kind) and h > lev]
+        if any(p.status == "refused" for p in before):
+            pt.status, pt.note = "refused", "see the coarsest mesh"
+            continue
+        slow = [p for p in before if p.status in ("timeout", "skipped") or (p.cpus and p.cpus[0] > args.series_stop)]
+        if slow:
+            pt.status, pt.note = "skipped", f"a {'larger target' if pt.adaptive else 'coarser point'} took over " \
+                f"{args.series_stop:g} s"
+            continue
+        run_once(pt, args, env)
+        log(f"  {label(code, kind):18s} {'target' if pt.adaptive else 'hc'}={lev:<7g} "
+            f"cpu {pt.cpus[-1] if pt.cpus else float('nan'):8.3f} s  {pt.status} {pt.note}")
     for pt in pts.values():
         t1 = pt.cpus[0] if pt.cpus else math.inf
         pt.want = 0 if pt.status not in ("ok", "not converged") else \
             min(args.reps, max(1, int(args.point_budget // t1) if t1 > 0 else args.reps))
     for r in range(2, args.reps + 1):
-        for hc in hcs:
-            for key in series:
-                pt = pts[key + (hc,)]
-                if pt.want >= r and pt.status in ("ok", "not converged"):
-                    run_once(pt, args, env)
+        for key in order:
+            pt = pts[key]
+            if pt.want >= r and pt.status in ("ok", "not converged"):
+                run_once(pt, args, env)
         log(f"  repeat {r} done ({time.time() - start:.0f} s)")
     load1 = os.getloadavg()
 
@@ -620,11 +771,12 @@ def main():
         splice(args.doc, text)
     with open(os.path.join(args.out, "runs.csv"), "w", newline="") as f:
         wr = csv.writer(f)
-        wr.writerow(["code", "kind", "hc", "dofs", "P", "perr", "herr", "status", "note", "cpu_s", "wall_s"])
+        wr.writerow(["code", "kind", "hc", "target", "dofs", "P", "perr", "herr", "estimate", "status", "note",
+                     "cpu_s", "wall_s", "cpu_total_s"])
         for p in list(refs.values()) + list(pts.values()):
-            wr.writerow([p.code if p not in refs.values() else "reference", p.kind, p.hc, p.dofs, p.P, p.perr,
-                         p.herr, p.status, p.note, " ".join(f"{t:.4f}" for t in p.cpus),
-                         " ".join(f"{t:.4f}" for t in p.times)])
+            wr.writerow([p.code if p not in refs.values() else "reference", p.kind, p.hc, p.target, p.dofs, p.P,
+                         p.perr, p.herr, p.est, p.status, p.note, " ".join(f"{t:.4f}" for t in p.cpus),
+                         " ".join(f"{t:.4f}" for t in p.times), p.cpu_total])
     return 0
 
 
