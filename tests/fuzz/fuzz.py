@@ -441,8 +441,18 @@ def m_deck_file(rng, lines, ctx):
 
 
 def m_deck_block(rng, lines, ctx):
-    """Break the BODY ... END structure or insert a statement from another seed."""
-    op = rng.randrange(5)
+    """Break the BODY ... END structure, put a body's boundary in local axes, or insert a statement from
+    another seed."""
+    op = rng.randrange(6)
+    if op == 5:
+        # local axes (FIX un=/ut=) inside a body: they rotate the contact rows of every kind of pair (a
+        # RIGID's dofs among them once overran local_axes' arrays)
+        bodies = [i for i, l in enumerate(lines) if l.strip().upper().startswith("BODY")]
+        if bodies:
+            i = rng.choice(bodies) + 1
+            lines.insert(i, "  " + rng.choice(["FIX top ut=0", "FIX top un=0", "FIX bottom un=0 ut=0", "FIX left ut=0",
+                                               "FIX right un=0", "FIX top ut=0 ramp=0:1"]))
+            return f"insert a FIX in local axes at {i + 1}"
     if op == 0:
         ends = [i for i, l in enumerate(lines) if l.strip().upper().startswith("END")]
         if ends:
