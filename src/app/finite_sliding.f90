@@ -76,7 +76,6 @@ contains
     real(dp) :: change, t_geometry, t_condense, t_lcp
     logical :: same
     integer :: finite_updates
-    character(len=:), allocatable :: cause
     finite_updates = run%deck%solver%updates
     allocate(fk(run%sc%ndof), ubk(run%sc%ndof), u0k(run%sc%ndof), uc(run%sc%ndof), source=0.0_dp)
     t_geometry = 0
@@ -148,16 +147,7 @@ contains
         call move_alloc(keys, keys_prev)
         if (same .and. change <= finite_tol) exit
       end do
-      if (.not. (same .and. change <= finite_tol)) then
-        if (same) then
-          cause = 'the contact forces still change by ' // real_to_str(change) // ' of their largest'
-        else
-          cause = 'the active set still changes'
-        end if
-        call fail_numerical(run%step_note // 'sliding=finite: the contact zone was not found again: after ' // &
-          int_to_str(finite_updates) // ' updates of the contact geometry ' // cause // ' (the step moves the ' // &
-          'contact too far for the geometry of its start to find it; expected more STEPS, or more SOLVER updates=)')
-      end if
+      if (.not. (same .and. change <= finite_tol)) call fail_unsettled(run, same, change)
       call say(run, 'finite   ' // run%step_note // int_to_str(it) // ' updates of the contact geometry')
       deallocate(mu_prev, active_prev, keys_prev)
       if (kstep < run%sc%steps .and. run%deck%output%steps_all) then
@@ -179,6 +169,25 @@ contains
       to = from
     end subroutine move_alloc_set
   end subroutine solve_finite_steps
+
+  !> A step whose fixed point did not settle in SOLVER updates= updates:
+  !> exit 1 saying why and asking for more STEPS.
+  !>   same   (in) the last two updates had the same rows and active set
+  !>   change (in) the contact forces' last relative change
+  subroutine fail_unsettled(run, same, change)
+    type(run_t), intent(in) :: run
+    logical, intent(in) :: same
+    real(dp), intent(in) :: change
+    character(len=:), allocatable :: cause
+    if (same) then
+      cause = 'the contact forces still change by ' // real_to_str(change) // ' of their largest'
+    else
+      cause = 'the active set still changes'
+    end if
+    call fail_numerical(run%step_note // 'sliding=finite: the contact zone was not found again: after ' // &
+      int_to_str(run%deck%solver%updates) // ' updates of the contact geometry ' // cause // ' (the step moves the ' // &
+      'contact too far for the geometry of its start to find it; expected more STEPS, or more SOLVER updates=)')
+  end subroutine fail_unsettled
 
   !> Rows of two rebuilds that are the same rows, in the same order
   pure logical function same_rows(keys, keys_prev)
@@ -333,17 +342,7 @@ contains
         active_prev = z(1:n) > 0.0_dp
         if (same .and. change <= finite_tol) exit
       end do
-      if (.not. (same .and. change <= finite_tol)) then
-        if (same) then
-          cause = 'the contact forces still change by ' // real_to_str(change) // ' of their largest'
-        else
-          cause = 'the active set still changes'
-        end if
-        call fail_numerical(run%step_note // 'sliding=finite: the contact zone was not found again: after ' // &
-          int_to_str(run%deck%solver%updates) // ' updates of the contact geometry ' // cause // ' (the step ' // &
-          'moves the contact too far for the geometry of its start to find it; expected more STEPS, or more ' // &
-          'SOLVER updates=)')
-      end if
+      if (.not. (same .and. change <= finite_tol)) call fail_unsettled(run, same, change)
       deallocate(active_prev)
       call friction_state(run%w, fp, z, fstate, err)
       if (allocated(err)) call fail_numerical(err%message)
