@@ -441,18 +441,8 @@ def m_deck_file(rng, lines, ctx):
 
 
 def m_deck_block(rng, lines, ctx):
-    """Break the BODY ... END structure, put a body's boundary in local axes, or insert a statement from
-    another seed."""
-    op = rng.randrange(6)
-    if op == 5:
-        # local axes (FIX un=/ut=) inside a body: they rotate the contact rows of every kind of pair (a
-        # RIGID's dofs among them once overran local_axes' arrays)
-        bodies = [i for i, l in enumerate(lines) if l.strip().upper().startswith("BODY")]
-        if bodies:
-            i = rng.choice(bodies) + 1
-            lines.insert(i, "  " + rng.choice(["FIX top ut=0", "FIX top un=0", "FIX bottom un=0 ut=0", "FIX left ut=0",
-                                               "FIX right un=0", "FIX top ut=0 ramp=0:1"]))
-            return f"insert a FIX in local axes at {i + 1}"
+    """Break the BODY ... END structure or insert a statement from another seed."""
+    op = rng.randrange(5)
     if op == 0:
         ends = [i for i, l in enumerate(lines) if l.strip().upper().startswith("END")]
         if ends:
@@ -478,6 +468,33 @@ def m_deck_block(rng, lines, ctx):
         i = rng.randrange(len(lines) + 1)
         lines.insert(i, line)
         return f"insert line {line[:30]!r} at {i + 1}"
+
+
+def m_local_axes(rng, lines, ctx):
+    """Put a boundary of a body in local axes: a FIX un=/ut= on a name the body's own statements or the
+    CONTACT lines use, right after its BODY line.  Local axes rotate the contact rows of every kind of pair
+    (a RIGID's dofs among them once overran local_axes' arrays)."""
+    bodies = [i for i, l in enumerate(lines) if l.strip().upper().startswith("BODY") and len(l.split()) > 1]
+    if not bodies:
+        return None
+    i = rng.choice(bodies)
+    body = lines[i].split()[1]
+    end = next((k for k in range(i, len(lines)) if lines[k].strip().upper().startswith("END")), len(lines))
+    names = set()
+    for l in lines[i + 1:end]:
+        w = l.split()
+        if len(w) > 1 and w[0].upper() in ("FIX", "TRACTION", "PRESSURE", "SPRING") and "=" not in w[1]:
+            names.add(w[1])
+    for l in lines:
+        for tok in l.split():
+            if tok.startswith(("slave=", "master=")) and tok.split("=", 1)[1].startswith(body + ":"):
+                names.add(tok.split(":", 1)[1])
+    if not names:
+        return None
+    name = rng.choice(sorted(names))
+    fix = rng.choice([f"FIX {name} ut=0", f"FIX {name} un=0", f"FIX {name} un=0 ut=0", f"FIX {name} ut=0 ramp=0:1"])
+    lines.insert(i + 1, "  " + fix)
+    return f"insert {fix!r} at {i + 2}"
 
 
 # ---- MSH-specific
@@ -664,7 +681,7 @@ GENERIC = [(m_drop_token, 3), (m_dup_token, 2), (m_swap_tokens, 2), (m_bad_numbe
            (m_drop_line, 2), (m_dup_line, 2), (m_swap_lines, 2), (m_binary, 1), (m_long_line, 0.3),
            (m_crlf, 0.3), (m_blank_words, 1)]
 DECK_OPS = GENERIC + [(m_deck_key, 3), (m_deck_keyword, 2), (m_deck_word, 3), (m_deck_file, 1),
-                      (m_deck_block, 2)]
+                      (m_deck_block, 2), (m_local_axes, 2)]
 MSH_OPS = GENERIC + [(m_msh_version, 2), (m_msh_node_id, 4), (m_msh_physical, 3), (m_msh_count, 3),
                      (m_msh_type, 2), (m_msh_coordinate, 3), (m_msh_section, 3), (m_msh_element_degenerate, 2)]
 
