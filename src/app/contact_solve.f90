@@ -42,7 +42,7 @@ module contact_solve
   use run_phase, only: enter_phase
   use held_by_contact, only: check_unheld_loads, check_unheld_rigid_loads, floating_no_equilibrium, &
                              floating_names
-  use contact_step, only: solve_contact_problem, friction_results, record_step
+  use contact_step, only: solve_contact_problem, friction_results, record_step, keep_friction_solution
   use finite_sliding, only: solve_finite_steps, solve_finite_friction_steps
   implicit none
   private
@@ -293,18 +293,7 @@ contains
         call step_loads(run%sc, run%sc%steps, fk, ubk)
       end if
     end do
-    call move_alloc(body_alpha, run%res%alpha)
-    call move_alloc(fstate, run%res%fstate)
-    if (floating) call move_alloc(rigid_alpha, run%rigid_alpha)
-    run%res%lcp_method = method
-    run%res%lcp_iterations = iterations
-    run%res%lcp_residual = rep%residual
-    run%res%steps = run%sc%steps
-    run%res%mu = z(1:n)
-    run%res%tau = z(n + 1:)
-    run%res%gap = qn + matmul(run%w(1:n, :), z)
-    run%res%slip = sprev
-    call friction_results(run, run%res)
+    call keep_friction_solution(run, method, iterations, rep, z, qn, sprev, body_alpha, fstate, rigid_alpha, floating)
   end subroutine solve_friction_steps
 
   !> lcp=auto's fallbacks in a load step (solve_friction_auto): a log line

@@ -10,6 +10,7 @@
 !> Programming interface
 !>   solve_contact_problem(run, sol, rigid_alpha)  LCP(W, q) of the step, the free motions
 !>   friction_results(run, res)   a friction step's states, slip and shear into res
+!>   keep_friction_solution(run, ...)  the final friction step's solution and report into res
 !>   record_step(run, kstep, fk, ubk, z, rigid_alpha, res)  an earlier step's outputs
 module contact_step
   use kinds, only: dp
@@ -17,7 +18,7 @@ module contact_step
   use exits, only: fail_numerical
   use run_state, only: run_t
   use run_report, only: say
-  use lcp_solvers, only: lcp_options_t
+  use lcp_solvers, only: lcp_options_t, lcp_report_t
   use contact_lcp, only: contact_solution_t, solve_contact
   use contact_set, only: node_traction
   use rigid_modes, only: motion_name, remove_motions
@@ -31,7 +32,7 @@ module contact_step
   use held_by_contact, only: diagnose_pulled_rigid, diagnose_pulled_body, unheld_summary, step_prefix
   implicit none
   private
-  public :: solve_contact_problem, friction_results, record_step
+  public :: solve_contact_problem, friction_results, record_step, keep_friction_solution
 
 contains
 
@@ -143,6 +144,40 @@ contains
     res%stick_nodes = count(res%fstate == 1)
     res%slip_nodes = count(res%fstate == 2)
   end subroutine friction_results
+
+  !> The final friction step's solution into the run's results: the
+  !> multipliers, gaps and slips, the free motions, the states and the
+  !> method's report, then friction_results.
+  !>   method, iterations, rep (in) the friction solver, its iterations over all steps, its last report
+  !>   z    (in)    (n + nt) normal then tangential multipliers, n = run%cs%nrow
+  !>   qn   (in)    (n) the gaps without contact forces, the free motions' part included
+  !>   slip (in)    (nt) T u of the final step along its tangents
+  !>   body_alpha, fstate, rigid_alpha (inout) moved out (empty on exit; rigid_alpha only when floating)
+  subroutine keep_friction_solution(run, method, iterations, rep, z, qn, slip, body_alpha, fstate, rigid_alpha, &
+                                    floating)
+    type(run_t), intent(inout) :: run
+    character(len=*), intent(in) :: method
+    integer, intent(in) :: iterations
+    type(lcp_report_t), intent(in) :: rep
+    real(dp), intent(in) :: z(:), qn(:), slip(:)
+    real(dp), allocatable, intent(inout) :: body_alpha(:), rigid_alpha(:)
+    integer, allocatable, intent(inout) :: fstate(:)
+    logical, intent(in) :: floating
+    integer :: n
+    n = run%cs%nrow
+    call move_alloc(body_alpha, run%res%alpha)
+    call move_alloc(fstate, run%res%fstate)
+    if (floating) call move_alloc(rigid_alpha, run%rigid_alpha)
+    run%res%lcp_method = method
+    run%res%lcp_iterations = iterations
+    run%res%lcp_residual = rep%residual
+    run%res%steps = run%sc%steps
+    run%res%mu = z(1:n)
+    run%res%tau = z(n + 1:)
+    run%res%gap = qn + matmul(run%w(1:n, :), z)
+    run%res%slip = slip
+    call friction_results(run, run%res)
+  end subroutine keep_friction_solution
 
   !> One step's displacement from its multipliers z, its post-processing,
   !> VTK file and table row, all on the step's own results.

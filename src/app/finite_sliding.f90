@@ -36,7 +36,7 @@ module finite_sliding
   use local_axes, only: rotate_constraint_rows
   use held_by_contact, only: check_unheld_loads, check_unheld_rigid_loads, floating_no_equilibrium, &
                              floating_names
-  use contact_step, only: solve_contact_problem, friction_results, record_step
+  use contact_step, only: solve_contact_problem, friction_results, record_step, keep_friction_solution
   implicit none
   private
   public :: solve_finite_steps, solve_finite_friction_steps
@@ -368,18 +368,8 @@ contains
       uprev = uc
     end do
     run%step_note = 'load step ' // int_to_str(run%sc%steps) // ' of ' // int_to_str(run%sc%steps) // ': '
-    call move_alloc(body_alpha, run%res%alpha)
-    call move_alloc(fstate, run%res%fstate)
-    if (floating) call move_alloc(rigid_alpha, run%rigid_alpha)
-    run%res%lcp_method = method
-    run%res%lcp_iterations = iterations
-    run%res%lcp_residual = rep%residual
-    run%res%steps = run%sc%steps
-    run%res%mu = z(1:n)
-    run%res%tau = z(n + 1:)
-    run%res%gap = fp%qn + matmul(run%w(1:n, :), z)
-    call constraint_values(run%cs, uc, cu)
-    run%res%slip = cu(n + 1:)                             ! T u along the final tangents
-    call friction_results(run, run%res)
+    call constraint_values(run%cs, uc, cu)               ! T u along the final tangents
+    call keep_friction_solution(run, method, iterations, rep, z, fp%qn, cu(n + 1:), body_alpha, fstate, rigid_alpha, &
+                                floating)
   end subroutine solve_finite_friction_steps
 end module finite_sliding
