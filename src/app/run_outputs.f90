@@ -29,8 +29,8 @@ module run_outputs
   use step_table, only: step_columns
   use results_writer, only: results_t, write_contact_csv, write_summary, write_pvd, write_step_table, peak_memory
   use vtk_files, only: write_vtk, write_vtu
-  use safe_files, only: make_folders, temporary_t, create_temporary, close_temporary, commit_temporaries, &
-                        discard_temporaries
+  use safe_files, only: make_folders, temporary_t, create_temporary, grow_temporaries, close_temporary, &
+                        commit_temporaries, discard_temporaries
   use, intrinsic :: iso_fortran_env, only: error_unit
   use run_phase, only: enter_phase
   use run_estimate, only: predict_cost
@@ -82,7 +82,7 @@ contains
     type(error_t), allocatable :: err
     character(len=:), allocatable :: names(:)
     real(dp), allocatable :: times(:)
-    integer :: kstep, nl, i
+    integer :: kstep, nl, i, j, k
     character(len=:), allocatable :: line1, line2, line3, header, plots, contact_path, steps_path
     real(dp), allocatable :: row(:)
     logical, allocatable :: whole(:)
@@ -108,7 +108,16 @@ contains
         names(kstep) = step_file(run, kstep)
         times(kstep) = real(kstep, dp) / real(run%sc%steps, dp)    ! the default ramp 0:STEPS
       end do
-      tmp = [tmp, temporary_t(), temporary_t(), reshape(run%step_tmp, [size(run%step_tmp)])]
+      ! then the .pvd, the step table and every step's files (not by an array
+      ! constructor: grow_temporaries says why)
+      call grow_temporaries(tmp, 2 + size(run%step_tmp))
+      k = 5
+      do j = 1, size(run%step_tmp, 2)
+        do i = 1, size(run%step_tmp, 1)
+          k = k + 1
+          tmp(k) = run%step_tmp(i, j)
+        end do
+      end do
       if (.not. allocated(err)) call create_temporary(run%outdir, output_stem(run) // '.pvd', tmp(4), err)
       if (.not. allocated(err)) call write_pvd(tmp(4)%io_path, names, times, err)
       if (.not. allocated(err)) call create_temporary(run%outdir, output_stem(run) // '_steps.csv', tmp(5), err)

@@ -31,7 +31,7 @@ module run_plots
   use system_binding, only: c2d_run_program, c_unlink, c2d_run_exited, c2d_run_signaled, &
                             c2d_run_timeout
   use safe_files, only: find_program, read_file, private_folder, file_kind, c2d_regular, temporary_t, create_temporary, &
-                        close_temporary, discard_temporaries
+                        close_temporary, discard_temporaries, grow_temporaries
   use run_state, only: run_t
   use run_report, only: add_warning
   implicit none
@@ -149,7 +149,8 @@ contains
       call discard_temporaries(t)
       return
     end if
-    tmp = [tmp, t]
+    call grow_temporaries(tmp, 1)
+    tmp(size(tmp)) = t(1)
     if (len(names) > 0) names = names // ', '
     names = names // base // '.png'
   end subroutine draw

@@ -29,6 +29,7 @@
 !>   folder_of(path)                       the folder part of path ('.' when none)
 !>   type(temporary_t)                     an output temporary and its final name
 !>   create_temporary(dir, name, t, err)   a temporary for the output dir/name
+!>   grow_temporaries(t, n)                n blank temporaries added at the end of t
 !>   close_temporary(t)                    done writing it (its descriptor closed)
 !>   commit_temporaries(dir, t, err)       rename each into place, all or none, under
 !>                                         the folder's lock
@@ -47,7 +48,7 @@ module safe_files
   private
   public :: find_program
   public :: file_kind, kind_name, open_input, read_file, make_folders, private_folder, real_path, folder_of, file_stamp
-  public :: temporary_t, create_temporary, close_temporary, commit_temporaries, discard_temporaries
+  public :: temporary_t, create_temporary, grow_temporaries, close_temporary, commit_temporaries, discard_temporaries
   public :: c2d_regular, c2d_missing, c2d_fifo, c2d_device, c2d_folder, c2d_socket, c2d_unreadable
 
   integer, parameter :: path_max = 4096          !< longest path C hands back (PATH_MAX)
@@ -214,6 +215,21 @@ contains
       dir = path(1:k - 1)
     end if
   end function folder_of
+
+  !> t grown by n blank temporaries at its end.  An array constructor
+  !> (t = [t, ...]) would do it in one line, but gfortran leaks the strings of
+  !> the constructor's own temporary when the type has allocatable components.
+  subroutine grow_temporaries(t, n)
+    type(temporary_t), allocatable, intent(inout) :: t(:)
+    integer, intent(in) :: n
+    type(temporary_t), allocatable :: grown(:)
+    integer :: i
+    allocate(grown(size(t) + n))
+    do i = 1, size(t)
+      grown(i) = t(i)
+    end do
+    call move_alloc(grown, t)
+  end subroutine grow_temporaries
 
   !> A new temporary in folder dir for the output named name.
   !>   dir  (in)  the output folder (exists)
