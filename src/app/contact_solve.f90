@@ -40,7 +40,7 @@ module contact_solve
   use post_processing, only: contact_measures
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use run_phase, only: enter_phase
-  use held_by_contact, only: check_unheld_loads, check_unheld_rigid_loads, floating_no_equilibrium, &
+  use held_by_contact, only: split_step_modes, floating_no_equilibrium, &
                              floating_names
   use contact_step, only: solve_contact_problem, friction_results, record_step, keep_friction_solution
   use finite_sliding, only: solve_finite_steps, solve_finite_friction_steps
@@ -140,14 +140,7 @@ contains
       if (run%with_contact) then
         call constraint_values(run%cs, u0k, cq)
         run%q = run%cs%g - cq(1:run%cs%nrow)                   ! gaps without contact forces
-        if (run%fl%k > 0) then
-          call split_free_modes(run%cs, run%sc%bodies, run%fl, fk, run%split)
-          call check_unheld_loads(run)
-        end if
-        if (run%rsplit%k > 0) then
-          call split_rigid_modes(run%cs, run%sc%rigids, run%sc%fixed, fk, run%rsplit)
-          call check_unheld_rigid_loads(run)
-        end if
+        call split_step_modes(run, fk)
         call solve_contact_problem(run, step, rigid_alpha)
         call contact_measures(run, step)
         run%step_iterations = step%lcp_iterations

@@ -34,7 +34,7 @@ module finite_sliding
   use post_processing, only: contact_measures
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use local_axes, only: rotate_constraint_rows
-  use held_by_contact, only: check_unheld_loads, check_unheld_rigid_loads, floating_no_equilibrium, &
+  use held_by_contact, only: split_step_modes, floating_no_equilibrium, &
                              floating_names
   use contact_step, only: solve_contact_problem, friction_results, record_step, keep_friction_solution
   implicit none
@@ -114,14 +114,7 @@ contains
         call constraint_values(run%cs, u0k, cq)
         run%q = run%cs%g - cq                                 ! gaps without contact forces
         deallocate(cq)
-        if (run%fl%k > 0) then
-          call split_free_modes(run%cs, run%sc%bodies, run%fl, fk, run%split)
-          call check_unheld_loads(run)
-        end if
-        if (run%rsplit%k > 0) then
-          call split_rigid_modes(run%cs, run%sc%rigids, run%sc%fixed, fk, run%rsplit)
-          call check_unheld_rigid_loads(run)
-        end if
+        call split_step_modes(run, fk)
         call system_clock(t0)
         t_condense = t_condense + real(t0 - t1, dp) / real(rate, dp)
         step = none

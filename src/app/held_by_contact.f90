@@ -15,6 +15,8 @@
 !>   check_floating_friction_solver(run)  lcp=pgs refused for friction on bodies held only by contact (exit 2)
 !>   check_unheld_loads(run)     no load along a rigid mode nothing holds (exit 1)
 !>   check_unheld_rigid_loads(run)  no load along a RIGID's direction nothing holds (exit 1)
+!>   split_step_modes(run, fk)   a step's splits of the free modes (bodies, RIGIDs) under its loads fk,
+!>                               each checked for loads along what nothing holds
 !>   diagnose_pulled_rigid(run), diagnose_pulled_body(run)  exit 1 naming what pulls off its contacts
 !>   floating_no_equilibrium(run, unbalanced, cause)  the text of a friction step without equilibrium
 !>   floating_names(run)         the bodies and RIGIDs held only by contact, for messages
@@ -27,10 +29,11 @@ module held_by_contact
   use run_state, only: run_t
   use lcp_solvers, only: lcp_options_t, lcp_report_t, solve_lcp_lemke
   use rigid_modes, only: mode_name, motion_name, describe_motion
-  use rigid_support, only: rigid_direction, pulled_rigid
+  use rigid_support, only: rigid_direction, pulled_rigid, split_rigid_modes
+  use mode_support, only: split_free_modes
   implicit none
   private
-  public :: check_floating_bodies, check_floating_friction_solver, check_unheld_loads, &
+  public :: check_floating_bodies, check_floating_friction_solver, check_unheld_loads, split_step_modes, &
             check_unheld_rigid_loads, diagnose_pulled_rigid, diagnose_pulled_body, floating_no_equilibrium, &
             floating_names, unheld_summary, step_prefix
 
@@ -77,6 +80,22 @@ contains
       '(expected lcp=lemke or lcp=auto, which solve it by Lemke''s method)')
     call stop_input_errors(run%diag)
   end subroutine check_floating_friction_solver
+
+  !> A load step's splits of the free modes, the bodies' (H = B R, their
+  !> held and unheld combinations) and the RIGIDs', for the step's loads fk
+  !> and the current rows, each checked: no load along what nothing holds.
+  subroutine split_step_modes(run, fk)
+    type(run_t), intent(inout) :: run
+    real(dp), intent(in) :: fk(:)
+    if (run%fl%k > 0) then
+      call split_free_modes(run%cs, run%sc%bodies, run%fl, fk, run%split)
+      call check_unheld_loads(run)
+    end if
+    if (run%rsplit%k > 0) then
+      call split_rigid_modes(run%cs, run%sc%rigids, run%sc%fixed, fk, run%rsplit)
+      call check_unheld_rigid_loads(run)
+    end if
+  end subroutine split_step_modes
 
   !> A rigid motion that neither FIX nor contact holds must carry no load:
   !> else no static equilibrium exists (exit 1, naming the body and motion).
