@@ -25,7 +25,8 @@ module finite_sliding
   use friction_lcp, only: solve_friction_lcp, friction_state, friction_problem_t, friction_problem
   use friction_newton, only: solve_friction_newton
   use friction_modes, only: solve_friction_floating, no_equilibrium
-  use contact_set, only: row_keys, build_moved_contact_set, contact_set_t
+  use contact_set, only: contact_set_t
+  use moved_contact, only: row_keys, build_moved_contact_set
   use rigid_modes, only: remove_motions
   use mode_support, only: split_free_modes
   use rigid_support, only: split_rigid_modes
