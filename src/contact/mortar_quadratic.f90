@@ -5,6 +5,10 @@
 !> Math. 41 (2002) 401-421, with the nodal non-penetration condition (doc/theory.md,
 !> "Quadratic traces").  It fills the same mortar_t as mortar_operator, so that the
 !> rows B u <= g, the condensation and the LCP are the ones of the linear case.
+!> It is one module, long as it is, because its four steps below (intersection,
+!> quadrature, multipliers, projection) share one parametrization of the curved
+!> traces and its Newton pairings; the linear operator (mortar_operator) stays
+!> apart, exact with straight segments and the seed paper's own construction.
 !>
 !> Traces.  A trace of degree p (1 or 2) is the chain of its nodes x_1..x_n in order
 !>    along the boundary, element e holding the nodes p(e-1)+1 .. pe+1 (for p = 2:

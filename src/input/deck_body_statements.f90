@@ -11,8 +11,8 @@
 !>
 !> Programming interface (statement handlers, deck_syntax's statement_handler)
 !>   do_body, do_mesh, do_mesh_rect, do_mesh_gmsh, do_material (its three rows), do_density,
-!>   do_fix, do_load (TRACTION, PRESSURE), do_thermal, do_vector (BODYFORCE, OFFSET, GRAVITY),
-!>   do_point_force (FORCE in a BODY), do_spring
+!>   do_fix, do_load (TRACTION, PRESSURE, FORCE in a BODY), do_thermal, do_vector (BODYFORCE, OFFSET,
+!>   GRAVITY), do_spring
 !>   plane_compliance_ok, strain_compliance_ok   orthotropic compliance positive definite
 module deck_body_statements
   use kinds, only: dp
@@ -27,7 +27,7 @@ module deck_body_statements
   implicit none
   private
   public :: do_body, do_mesh, do_mesh_rect, do_mesh_gmsh, do_material, do_density, do_fix, do_load
-  public :: do_thermal, do_vector, do_point_force, do_spring, plane_compliance_ok, strain_compliance_ok
+  public :: do_thermal, do_vector, do_spring, plane_compliance_ok, strain_compliance_ok
 
 contains
 
@@ -415,7 +415,11 @@ contains
     end associate
   end subroutine do_fix
 
-  !> TRACTION boundary tx= ty= | tn= tt= [ramp=|curve=] or PRESSURE boundary p= [ramp=|curve=]
+  !> TRACTION boundary tx= ty= | tn= tt= [ramp=|curve=], PRESSURE boundary p=
+  !> [ramp=|curve=], or FORCE point [fx=] [fy=] [ramp=|curve=] in a BODY: a
+  !> force on the node(s) of a point set, kept with the body's loads
+  !> (load_point); whether the name is a point set is known with the mesh
+  !> (scene).
   subroutine do_load(s, deck, st)
     type(state_t), intent(inout) :: s
     type(deck_t), intent(inout) :: deck
@@ -426,45 +430,31 @@ contains
 
     nerr0 = s%nerr
     load%line = st%line
-    call read_boundary(s, st, load%boundary)
+    if (st%what == 'FORCE') then
+      call read_boundary(s, st, load%boundary, 'point')
+    else
+      call read_boundary(s, st, load%boundary)
+    end if
     call read_keys(s, st, v)
-    if (st%what == 'TRACTION') then
+    select case (st%what)
+    case ('TRACTION')
       load%kind = load_traction
       if (.not. any(v%seen([1, 2, 5, 6]))) call report(s, st%line, 'missing tx= and ty= (expected ' // st%usage // ')')
       call read_component_pair(s, st, v, load%local, load%tx, load%ty)
-    else
+    case ('FORCE')
+      load%kind = load_point
+      if (.not. (v%seen(1) .or. v%seen(2))) call report(s, st%line, 'FORCE without a component (expected ' // &
+                                                        st%usage // ')')
+      if (v%ok(1)) load%tx = v%x(1)
+      if (v%ok(2)) load%ty = v%x(2)
+    case default
       load%kind = load_pressure
       load%p = v%x(1)
-    end if
+    end select
     load%ramp = v%ramp
     load%curve_name = v%curve
     if (s%nerr == nerr0) call append_load(deck%bodies(s%cur), load)
   end subroutine do_load
-
-  !> FORCE point [fx=] [fy=] [ramp=|curve=] in a BODY: a force on the node(s)
-  !> of a point set, kept with the body's loads (load_point); whether the name
-  !> is a point set is known with the mesh (scene).
-  subroutine do_point_force(s, deck, st)
-    type(state_t), intent(inout) :: s
-    type(deck_t), intent(inout) :: deck
-    type(stmt_t), intent(in) :: st
-    type(load_t) :: load
-    type(key_values_t) :: v
-    integer :: nerr0
-
-    nerr0 = s%nerr
-    load%line = st%line
-    load%kind = load_point
-    call read_boundary(s, st, load%boundary, 'point')
-    call read_keys(s, st, v)
-    if (.not. (v%seen(1) .or. v%seen(2))) call report(s, st%line, 'FORCE without a component (expected ' // &
-                                                      st%usage // ')')
-    if (v%ok(1)) load%tx = v%x(1)
-    if (v%ok(2)) load%ty = v%x(2)
-    load%ramp = v%ramp
-    load%curve_name = v%curve
-    if (s%nerr == nerr0) call append_load(deck%bodies(s%cur), load)
-  end subroutine do_point_force
 
   !> SPRING boundary kn= [kt=] | SPRING point [kx=] [ky=]: the keys say which
   !> (kn, kt: a foundation on a boundary's edges; kx, ky: a spring at the

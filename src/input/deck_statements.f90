@@ -21,7 +21,7 @@ module deck_statements
                          check_extra_words, check_no_pairs, check_name, form_word, find_key, join_list, cut, quoted, max_mu, &
                          max_steps
   use deck_body_statements, only: do_body, do_mesh, do_mesh_rect, do_mesh_gmsh, do_material, do_density, &
-                                  do_fix, do_load, do_thermal, do_vector, do_point_force, do_spring
+                                  do_fix, do_load, do_thermal, do_vector, do_spring
   use deck_rigid_statements, only: do_rigid, do_rigid_shape, do_rigid_ref, do_rigid_load
   use text_scan, only: parse_real, parse_integer, lower, is_name, ends_with_ci
   implicit none
@@ -99,7 +99,7 @@ contains
                        name_key('region', 'region'), curve_key()])
     call add_row(table, 'OFFSET', 'BODY', do_vector, once=.true., words=0, usage='OFFSET dx=number dy=number', &
                  keys=[real_key('dx'), real_key('dy')])
-    call add_row(table, 'FORCE', 'BODY', do_point_force, words=1, &
+    call add_row(table, 'FORCE', 'BODY', do_load, words=1, &
                  usage='FORCE point [fx=number] [fy=number]' // ramp_curve, &
                  keys=[real_key('fx'), real_key('fy'), ramp_key(), curve_key()])
     call add_row(table, 'SPRING', 'BODY', do_spring, words=1, &
