@@ -37,14 +37,16 @@
 !>                          a .geo, or an .msh with its .geo beside it (else exit 2)
 !>   adapt_mesh(run)        after a solve and its estimate: .true. when the bodies were
 !>                          meshed again and the run must solve again
+!>   fall_back(run, err)    a mesh failed: with ADAPT, back to the last mesh that solved (its
+!>                          outputs, a warning); else, and on the first mesh, the run ends
 !>   keep_meshes(run)       the final meshes next to the outputs, NAME_BODY.msh
 module adaptivity
   use kinds, only: dp
   use strings, only: int_to_str, real_to_str
   use errors, only: error_t, add_error
-  use exits, only: stop_input_errors, exit_program, fail_numerical
-  use run_state, only: run_t
-  use run_report, only: say, add_warning
+  use exits, only: stop_input_errors, exit_program, fail_numerical, stop_on
+  use run_state, only: run_t, kept_mesh_t
+  use run_log, only: say, add_warning
   use run_estimate, only: element_rates
   use run_phase, only: enter_phase
   use deck_types, only: mesh_spec_t
@@ -60,7 +62,7 @@ module adaptivity
   use, intrinsic :: iso_fortran_env, only: error_unit
   implicit none
   private
-  public :: check_adaptable, adapt_mesh, keep_meshes
+  public :: check_adaptable, adapt_mesh, fall_back, keep_meshes
 
   real(dp), parameter :: aim = 0.85_dp                 !< the fraction of the target one step aims at
   real(dp), parameter :: finest = 0.125_dp, coarsest = 4.0_dp   !< one step's bounds on the size's change
@@ -80,24 +82,24 @@ contains
     character(len=:), allocatable :: geo, work
     type(error_t), allocatable :: err
     integer :: b
-    if (.not. run%deck%adapt%on) return
-    allocate(run%adapt%geo(size(run%deck%bodies)))
-    do b = 1, size(run%deck%bodies)
-      associate (ms => run%deck%bodies(b)%mesh)
+    if (.not. run%prob%deck%adapt%on) return
+    allocate(run%adapt%geo(size(run%prob%deck%bodies)))
+    do b = 1, size(run%prob%deck%bodies)
+      associate (ms => run%prob%deck%bodies(b)%mesh)
         run%adapt%geo(b) = ms
         if (ms%is_geo) cycle
         if (ms%kind == 'rect') then           ! the rectangle as a .geo of the run's own
           call private_folder(work, err)
           if (.not. allocated(err)) call write_rect_geo(ms%x0, ms%y0, ms%x1, ms%y1, ms%elem, &
-            run%deck%bodies(b)%name, work // '/rect_' // run%deck%bodies(b)%name // '.geo', err)
+            run%prob%deck%bodies(b)%name, work // '/rect_' // run%prob%deck%bodies(b)%name // '.geo', err)
           if (allocated(err)) call fail_numerical('ADAPT: ' // err%message)
           run%adapt%geo(b)%kind = 'gmsh'
-          run%adapt%geo(b)%path = work // '/rect_' // run%deck%bodies(b)%name // '.geo'
+          run%adapt%geo(b)%path = work // '/rect_' // run%prob%deck%bodies(b)%name // '.geo'
           run%adapt%geo(b)%is_geo = .true.
           run%adapt%geo(b)%order = merge(2, 1, ms%elem == 'tri6' .or. ms%elem == 'quad8' .or. ms%elem == 'quad9')
           run%adapt%geo(b)%set_names = [character(len=64) ::]
           run%adapt%geo(b)%set_values = [real(dp) ::]
-          call say(run, 'adapt    body ' // run%deck%bodies(b)%name // ': MESH rect re-meshed by gmsh (' // &
+          call say(run%log, 'adapt    body ' // run%prob%deck%bodies(b)%name // ': MESH rect re-meshed by gmsh (' // &
                    ms%elem // ', unstructured) from the second mesh on')
           cycle
         end if
@@ -105,11 +107,11 @@ contains
         if (file_kind(geo) == c2d_regular) then
           run%adapt%geo(b)%path = geo
           run%adapt%geo(b)%is_geo = .true.
-          call say(run, 'adapt    body ' // run%deck%bodies(b)%name // ': re-meshed from ' // &
+          call say(run%log, 'adapt    body ' // run%prob%deck%bodies(b)%name // ': re-meshed from ' // &
                    ms%file(1:len(ms%file) - 4) // '.geo, beside its mesh ' // ms%file)
         else
-          call add_error(run%diag, run%deck%file, ms%line, 'ADAPT re-meshes every body with gmsh, and body "' // &
-            run%deck%bodies(b)%name // '" has the mesh "' // ms%file // '" without its .geo (expected ' // &
+          call add_error(run%diag, run%prob%deck%file, ms%line, 'ADAPT re-meshes every body with gmsh, and body "' // &
+            run%prob%deck%bodies(b)%name // '" has the mesh "' // ms%file // '" without its .geo (expected ' // &
             ms%file(1:len(ms%file) - 4) // '.geo beside it, or MESH gmsh file=NAME.geo)')
         end if
       end associate
@@ -127,12 +129,12 @@ contains
     type(run_t), intent(inout) :: run
     real(dp) :: est, cpu, dofs
     again = .false.
-    if (.not. run%deck%adapt%on) return
-    associate (a => run%adapt, ad => run%deck%adapt)
+    if (.not. run%prob%deck%adapt%on) return
+    associate (a => run%adapt, ad => run%prob%deck%adapt)
       a%step = a%step + 1
       est = quantity_estimate(run)
       cpu = c2d_cpu_seconds() - a%cpu0
-      dofs = real(run%sc%ndof, dp)
+      dofs = real(run%prob%sc%ndof, dp)
       call record_step(run, dofs, est, cpu)
       if (est < 0.0_dp) then
         call finish(run, 'stopped no_estimate', 'ADAPT quantity=pressure: no pair has a zone in contact, ' // &
@@ -161,7 +163,7 @@ contains
   !> error over the pairs in contact (< 0 when none is).
   real(dp) function quantity_estimate(run) result(est)
     type(run_t), intent(in) :: run
-    if (run%deck%adapt%quantity == 'pressure') then
+    if (run%prob%deck%adapt%quantity == 'pressure') then
       est = -1.0_dp
       if (allocated(run%res%estimate_pressure)) then
         if (size(run%res%estimate_pressure) > 0) est = maxval(run%res%estimate_pressure)
@@ -183,8 +185,8 @@ contains
     if (n > 0) rows(:, 1:n) = run%res%adapt
     rows(:, n + 1) = [dofs, est, cpu]
     call move_alloc(rows, run%res%adapt)
-    call say(run, 'adapt    mesh ' // int_to_str(run%adapt%step) // ': ' // int_to_str(nint(dofs)) // ' dofs, ' // &
-             run%deck%adapt%quantity // ' error estimate ' // real_to_str(100 * est, 4) // ' %, ' // &
+    call say(run%log, 'adapt    mesh ' // int_to_str(run%adapt%step) // ': ' // int_to_str(nint(dofs)) // ' dofs, ' // &
+             run%prob%deck%adapt%quantity // ' error estimate ' // real_to_str(100 * est, 4) // ' %, ' // &
              real_to_str(cpu, 3) // ' s CPU (gmsh''s included)')
   end subroutine record_step
 
@@ -193,9 +195,9 @@ contains
     type(run_t), intent(inout) :: run
     character(len=*), intent(in) :: result, warning
     run%res%adapt_result = result
-    call say(run, 'adapt    ' // result // ' (target ' // real_to_str(run%deck%adapt%target, 3) // ', ' // &
-             run%deck%adapt%quantity // ')')
-    if (len(warning) > 0) call add_warning(run, 'adapt_stopped', warning)
+    call say(run%log, 'adapt    ' // result // ' (target ' // real_to_str(run%prob%deck%adapt%target, 3) // ', ' // &
+             run%prob%deck%adapt%quantity // ')')
+    if (len(warning) > 0) call add_warning(run%log, 'adapt_stopped', warning)
   end subroutine finish
 
   !> Mesh every body again for the target (module header) and start the run
@@ -212,42 +214,42 @@ contains
     logical :: found
     done = .false.
     call enter_phase('re-meshing (ADAPT)')
-    associate (a => run%adapt, ad => run%deck%adapt)
+    associate (a => run%adapt, ad => run%prob%deck%adapt)
       a%cpu0 = c2d_cpu_seconds()                  ! gmsh's re-meshing is the next mesh's cost
-      a%time0 = run%res%cpu
+      a%time0 = run%log%cpu
       goal = aim * ad%target
       if (ad%quantity == 'pressure') goal = run%res%estimate_energy * (aim * ad%target / est)**(1 / pressure_rate(run, est))
-      rate = element_rates(run)
-      allocate(s(run%sc%nelem))
+      rate = element_rates(run%prob, run%res%estimate_energy, a%energy_prev, a%dofs_prev)
+      allocate(s(run%prob%sc%nelem))
       call optimal_scales(run%res%error_indicator**2, rate, goal**2, finest, coarsest, s)
-      predicted = run%sc%ndof * element_count(s) / run%sc%nelem
+      predicted = run%prob%sc%ndof * element_count(s) / run%prob%sc%nelem
       if (predicted > dofs_margin * ad%max_dofs) then   ! as fine as max_dofs allows, and the loop's last mesh
         s = s * sqrt(predicted / (dofs_margin * ad%max_dofs))
         a%capped = .true.
-        call say(run, 'adapt    the target asks for about ' // int_to_str(nint(predicted)) // ' dofs: the next ' // &
+        call say(run%log, 'adapt    the target asks for about ' // int_to_str(nint(predicted)) // ' dofs: the next ' // &
                  'mesh is made coarser, within max_dofs=' // int_to_str(ad%max_dofs))
       end if
       a%energy_prev = run%res%estimate_energy
       a%pressure_prev = est
-      a%dofs_prev = real(run%sc%ndof, dp)
+      a%dofs_prev = real(run%prob%sc%ndof, dp)
       call private_folder(work, err)
-      call real_path(run%deck%dir, deck_folder, found)
-      if (.not. found) deck_folder = run%deck%dir
-      do b = 1, size(run%sc%bodies)
+      call real_path(run%prob%deck%dir, deck_folder, found)
+      if (.not. found) deck_folder = run%prob%deck%dir
+      do b = 1, size(run%prob%sc%bodies)
         if (allocated(err)) exit
-        associate (bd => run%sc%bodies(b), g => a%geo(b), bdeck => run%deck%bodies(b))
+        associate (bd => run%prob%sc%bodies(b), g => a%geo(b), bdeck => run%prob%deck%bodies(b))
           if (.not. g%is_geo) cycle
           e0 = bd%elem0
           h = [(s(e0 + e) * element_size(bd%mesh, e), e = 1, bd%mesh%nelem)]
           stem = work // '/adapt' // int_to_str(a%step + 1) // '_' // bdeck%name
           call write_background(bd%mesh, bdeck%dx, bdeck%dy, h, stem // '.pos', hmin, hmax, err)
           if (allocated(err)) exit
-          if (.not. run%gmsh%trust_geo .and. bdeck%mesh%kind == 'gmsh' .and. .not. bdeck%mesh%is_geo .and. &
+          if (.not. run%opts%gmsh%trust_geo .and. bdeck%mesh%kind == 'gmsh' .and. .not. bdeck%mesh%is_geo .and. &
               a%step == 1) then
             call screen_geo(g%path, deck_folder, run%diag)     ! the .geo found beside an .msh: screened once
             call stop_input_errors(run%diag)
           end if
-          call mesh_geo_file(g%path, merge(2, 1, is_quadratic(bd%mesh)), g%set_names, g%set_values, run%gmsh, &
+          call mesh_geo_file(g%path, merge(2, 1, is_quadratic(bd%mesh)), g%set_names, g%set_values, run%opts%gmsh, &
                              deck_folder, stem // '.msh', stem // '.log', err, background=stem // '.pos', &
                              size_range=[0.5_dp * hmin, hmax])
           if (allocated(err)) then
@@ -279,8 +281,8 @@ contains
     real(dp), intent(in) :: est
     integer :: b
     kappa = 1.5_dp
-    do b = 1, size(run%sc%bodies)
-      if (is_quadratic(run%sc%bodies(b)%mesh)) kappa = 1.0_dp
+    do b = 1, size(run%prob%sc%bodies)
+      if (is_quadratic(run%prob%sc%bodies(b)%mesh)) kappa = 1.0_dp
     end do
     associate (a => run%adapt)
       if (a%pressure_prev > 0.0_dp .and. a%energy_prev > 0.0_dp .and. est > 0.0_dp .and. &
@@ -291,50 +293,94 @@ contains
     end associate
   end function pressure_rate
 
-  !> A fresh run on the deck's new meshes: what the command line set, the
-  !> deck, the clock (phases add up over the meshes), the loop's state.
+  !> A fresh run on the deck's new meshes: the options of the command line
+  !> and the deck as they were, the log (its clock: phases add up over the
+  !> meshes; the warnings are the last mesh's own), the loop's state, ADAPT's
+  !> lines of the summary.  The mesh just solved is kept (adapt%kept) until
+  !> the next one has solved.
   subroutine restart(run)
     type(run_t), intent(inout) :: run
     type(run_t) :: next
-    call free_factor(run%factor)
-    next%deck_path = run%deck_path
-    next%outdir = run%outdir
-    next%check_only = run%check_only
-    next%quiet = run%quiet
-    next%gmsh = run%gmsh
-    next%overrides = run%overrides
-    next%cases_path = run%cases_path
-    next%case_number = run%case_number
-    next%jobs = run%jobs
-    next%thread_note = run%thread_note
+    type(kept_mesh_t), allocatable :: kept
+    call free_factor(run%sys%factor)
+    next%opts = run%opts
     next%diag = run%diag
-    next%deck = run%deck
+    next%log = run%log
+    if (allocated(next%log%warning)) deallocate(next%log%warning)
+    next%prob%deck = run%prob%deck
+    call move_alloc(run%adapt%kept, kept)
     next%adapt = run%adapt
-    next%t_start = run%t_start
-    next%t_phase = run%t_phase
-    next%c_phase = run%c_phase
-    next%res%time = run%res%time
-    next%res%cpu = run%res%cpu
-    call move_alloc(run%res%adapt, next%res%adapt)
+    if (.not. allocated(kept)) allocate(kept)
+    call keep_mesh_state(run, kept)
+    call move_alloc(kept%res%adapt, next%res%adapt)
+    call move_alloc(kept, next%adapt%kept)
     run = next
   end subroutine restart
+
+  !> What the outputs of a mesh that solved need, moved into kept.
+  subroutine keep_mesh_state(run, kept)
+    type(run_t), intent(inout) :: run
+    type(kept_mesh_t), intent(inout) :: kept
+    kept%prob = run%prob
+    call move_alloc(run%out%step_tmp, kept%out%step_tmp)
+    call move_alloc(run%out%step_table, kept%out%step_table)
+    kept%sol = run%sol
+    kept%res = run%res
+    if (allocated(kept%warning)) deallocate(kept%warning)
+    if (allocated(run%log%warning)) kept%warning = run%log%warning
+  end subroutine keep_mesh_state
+
+  !> A mesh failed (err): without ADAPT, or on its first mesh, the run ends
+  !> (exit by err's category).  Otherwise the run goes back to the last mesh
+  !> that solved, whose outputs are then written, with `adapt_result stopped
+  !> solve_failed` and a warning naming the failure: a finer mesh that a
+  !> solver cannot take does not lose the answer already had.
+  !>   run (inout) the failed mesh's state on entry; the kept mesh's on exit
+  !>   err (in)    the failure
+  subroutine fall_back(run, err)
+    type(run_t), intent(inout) :: run
+    type(error_t), allocatable, intent(in) :: err
+    integer :: k
+    if (.not. allocated(run%adapt%kept)) call stop_on(err)
+    if (allocated(run%out%step_tmp)) then         ! the failed mesh's step files go
+      do k = 1, size(run%out%step_tmp, 2)
+        call discard_temporaries(run%out%step_tmp(:, k))
+      end do
+      deallocate(run%out%step_tmp)
+    end if
+    associate (kept => run%adapt%kept)
+      run%prob = kept%prob
+      run%sol = kept%sol
+      call move_alloc(run%res%adapt, kept%res%adapt)
+      run%res = kept%res
+      if (allocated(kept%out%step_tmp)) call move_alloc(kept%out%step_tmp, run%out%step_tmp)
+      if (allocated(kept%out%step_table)) call move_alloc(kept%out%step_table, run%out%step_table)
+      if (allocated(run%log%warning)) deallocate(run%log%warning)
+      if (allocated(kept%warning)) run%log%warning = kept%warning
+    end associate
+    deallocate(run%adapt%kept)
+    call say(run%log, 'adapt    mesh ' // int_to_str(run%adapt%step + 1) // ' failed: ' // err%message)
+    call finish(run, 'stopped solve_failed', 'ADAPT stopped: mesh ' // int_to_str(run%adapt%step + 1) // &
+      ' could not be solved (' // err%message // '); the outputs are those of mesh ' // int_to_str(run%adapt%step) // &
+      ', the last that solved')
+  end subroutine fall_back
 
   !> The final meshes next to the outputs, NAME_BODY.msh, when ADAPT made
   !> them (the deck's own meshes are the user's already): a new run can take
   !> them with MESH gmsh file=.  Written and committed like the outputs.
-  !>   run (inout) the deck's meshes on entry; run%wrote gets a line
+  !>   run (inout) the deck's meshes on entry; run%out%wrote gets a line
   subroutine keep_meshes(run)
     type(run_t), intent(inout) :: run
     type(temporary_t), allocatable :: tmp(:)
     type(error_t), allocatable :: err
     character(len=:), allocatable :: buf, names, line
     integer :: b, n, status, u, ios
-    if (.not. run%deck%adapt%on .or. run%adapt%step <= 1) return
-    allocate(tmp(size(run%deck%bodies)))
+    if (.not. run%prob%deck%adapt%on .or. run%adapt%step <= 1) return
+    allocate(tmp(size(run%prob%deck%bodies)))
     n = 0
     names = ''
-    do b = 1, size(run%deck%bodies)
-      associate (ms => run%deck%bodies(b)%mesh)
+    do b = 1, size(run%prob%deck%bodies)
+      associate (ms => run%prob%deck%bodies(b)%mesh)
         if (ms%is_geo .or. .not. run%adapt%geo(b)%is_geo) cycle
         call read_file(ms%path, buf, status)
         if (status /= 0) then
@@ -342,7 +388,7 @@ contains
           return
         end if
         n = n + 1
-        call create_temporary(run%outdir, run%deck%name // '_' // run%deck%bodies(b)%name // '.msh', tmp(n), err)
+        call create_temporary(run%opts%outdir, run%prob%deck%name // '_' // run%prob%deck%bodies(b)%name // '.msh', tmp(n), err)
         if (allocated(err)) then
           call fail_write(run, tmp(1:n))
           return
@@ -355,16 +401,16 @@ contains
           call fail_write(run, tmp(1:n))
           return
         end if
-        names = names // merge(', ', '  ', len(names) > 0) // run%deck%name // '_' // run%deck%bodies(b)%name // '.msh'
+        names = names // merge(', ', '  ', len(names) > 0) // run%prob%deck%name // '_' // run%prob%deck%bodies(b)%name // '.msh'
       end associate
     end do
-    call commit_temporaries(run%outdir, tmp(1:n), err)
+    call commit_temporaries(run%opts%outdir, tmp(1:n), err)
     if (allocated(err)) then
       call fail_write(run, tmp(1:n))
       return
     end if
     line = 'wrote    ' // trim(adjustl(names)) // ' (the adapted meshes)'
-    if (n > 0) run%wrote = [character(len=max(len(run%wrote), len(line))) :: run%wrote, line]
+    if (n > 0) run%out%wrote = [character(len=max(len(run%out%wrote), len(line))) :: run%out%wrote, line]
   end subroutine keep_meshes
 
   !> The meshes could not be written: the same message and exit as the outputs'.
@@ -372,7 +418,7 @@ contains
     type(run_t), intent(in) :: run
     type(temporary_t), intent(inout) :: tmp(:)
     call discard_temporaries(tmp)
-    write(error_unit, '(a)') 'contact2d: error: ' // run%outdir // ': cannot write the output files ' // &
+    write(error_unit, '(a)') 'contact2d: error: ' // run%opts%outdir // ': cannot write the output files ' // &
       '(a writable folder expected)'
     call exit_program(2)
   end subroutine fail_write

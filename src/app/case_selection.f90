@@ -44,30 +44,32 @@ contains
     type(case_table_t) :: table
     character(len=32) :: task
     integer :: length, status, k
-    call read_case_table(run%cases_path, table, run%diag)
+    call read_case_table(run%opts%cases_path, table, run%diag)
     call stop_input_errors(run%diag)
-    if (run%case_number == 0) then
+    if (run%opts%case_number == 0) then
       call get_environment_variable('SLURM_ARRAY_TASK_ID', task, length, status)
-      if (status == 0 .and. length > 0) run%case_number = case_index(trim(task), 'SLURM_ARRAY_TASK_ID')
+      if (status == 0 .and. length > 0) run%opts%case_number = case_index(trim(task), 'SLURM_ARRAY_TASK_ID')
     end if
-    if (run%case_number == 0) then
+    if (run%opts%case_number == 0) then
       call check_header(run, table)
-      call run_every_case(table%ncase, run%quiet, status)
+      call run_every_case(table%ncase, run%log%quiet, status)
       call exit_program(status)
     end if
-    if (run%case_number > table%ncase) then
-      call add_error(run%diag, run%cases_path, table%header_line, 'case ' // int_to_str(run%case_number) // ' out of range ' // &
+    if (run%opts%case_number > table%ncase) then
+      call add_error(run%diag, run%opts%cases_path, table%header_line, 'case ' // int_to_str(run%opts%case_number) // &
+        ' out of range ' // &
                      '(the table has ' // int_to_str(table%ncase) // ' cases; expected 1 to ' // &
                      int_to_str(table%ncase) // ')')
       call stop_input_errors(run%diag)
     end if
     do k = 1, table%ncol
-      if (find_parameter(run%overrides, trim(table%name(k))) > 0) call add_error(run%diag, run%cases_path, table%header_line, &
+      if (find_parameter(run%opts%overrides, trim(table%name(k))) > 0) call add_error(run%diag, run%opts%cases_path, &
+        table%header_line, &
         'parameter "' // trim(table%name(k)) // '" both in the case table and in -D (expected one of them)')
     end do
     call stop_input_errors(run%diag)
-    call case_parameters(table, run%case_number, run%overrides)
-    run%outdir = run%outdir // '/case_' // int_to_str(run%case_number)
+    call case_parameters(table, run%opts%case_number, run%opts%overrides)
+    run%opts%outdir = run%opts%outdir // '/case_' // int_to_str(run%opts%case_number)
   end subroutine select_case
 
   !> Before every case runs: the table's names must be PARAMETERs of the deck
@@ -78,11 +80,11 @@ contains
     type(case_table_t), intent(in) :: table
     type(diag_t) :: probe_diag
     type(parameter_set_t) :: probe
-    probe = run%overrides
+    probe = run%opts%overrides
     call case_parameters(table, 1, probe)
-    call read_deck(run%deck_path, run%deck, probe_diag, probe)
+    call read_deck(run%opts%deck_path, run%prob%deck, probe_diag, probe)
     if (has_errors(probe_diag)) return
-    run%overrides = probe
+    run%opts%overrides = probe
     call check_overrides(run)
     call stop_input_errors(run%diag)
   end subroutine check_header
@@ -153,19 +155,19 @@ contains
     integer :: k
     character(len=:), allocatable :: known
     known = ''
-    do k = 1, run%deck%params%n
-      known = known // merge(', ', '  ', k > 1) // trim(run%deck%params%name(k))
+    do k = 1, run%prob%deck%params%n
+      known = known // merge(', ', '  ', k > 1) // trim(run%prob%deck%params%name(k))
     end do
     known = adjustl(known)
-    if (run%deck%params%n == 0) known = 'none declared'
-    do k = 1, run%overrides%n
-      if (find_parameter(run%deck%params, trim(run%overrides%name(k))) > 0) cycle
-      if (run%overrides%origin(k) == '-D') then
-        call add_error(run%diag, '-D ' // trim(run%overrides%name(k)), 0, 'the deck ' // run%deck%file // &
+    if (run%prob%deck%params%n == 0) known = 'none declared'
+    do k = 1, run%opts%overrides%n
+      if (find_parameter(run%prob%deck%params, trim(run%opts%overrides%name(k))) > 0) cycle
+      if (run%opts%overrides%origin(k) == '-D') then
+        call add_error(run%diag, '-D ' // trim(run%opts%overrides%name(k)), 0, 'the deck ' // run%prob%deck%file // &
                        ' declares no PARAMETER of this name (expected one of: ' // trim(known) // ')')
       else
-        call add_error(run%diag, run%cases_path, 1, 'unknown parameter "' // trim(run%overrides%name(k)) // &
-                       '" in the header: the deck ' // run%deck%file // ' declares no PARAMETER of this name ' // &
+        call add_error(run%diag, run%opts%cases_path, 1, 'unknown parameter "' // trim(run%opts%overrides%name(k)) // &
+                       '" in the header: the deck ' // run%prob%deck%file // ' declares no PARAMETER of this name ' // &
                        '(expected one of: ' // trim(known) // ')')
       end if
     end do

@@ -4,15 +4,17 @@
 !>
 !> Programming interface
 !>   stop_input_errors(d) print the collected input errors and exit 2 (only when there are any)
+!>   stop_on(err)         print `contact2d: error: MESSAGE` and exit by its category: 2 for
+!>                        input, 1 for the others (only when err is allocated)
 !>   fail_numerical(text) print `contact2d: error: text` and exit 1
 !>   exit_program(status) terminate with the given status, printing nothing
 module exits
-  use errors, only: diag_t, print_errors
+  use errors, only: diag_t, print_errors, error_t, error_input
   use, intrinsic :: iso_c_binding, only: c_int
   use, intrinsic :: iso_fortran_env, only: error_unit
   implicit none
   private
-  public :: stop_input_errors, fail_numerical, exit_program
+  public :: stop_input_errors, stop_on, fail_numerical, exit_program
 
   interface
     subroutine c_exit(status) bind(c, name="exit")
@@ -30,6 +32,18 @@ contains
     call print_errors(d)
     call exit_program(2)
   end subroutine stop_input_errors
+
+  !> An error that came back to the program ends the run: input errors with
+  !> status 2, every other kind (numerical, no equilibrium, unsolved, a
+  !> broken assumption of the model) with status 1.  Nothing when err is
+  !> not allocated.
+  subroutine stop_on(err)
+    type(error_t), allocatable, intent(in) :: err
+    if (.not. allocated(err)) return
+    write(error_unit, '(a)') 'contact2d: error: ' // err%message
+    flush(error_unit)
+    call exit_program(merge(2, 1, err%category == error_input))
+  end subroutine stop_on
 
   !> Numerical failure: print the diagnostic and exit 1.
   subroutine fail_numerical(text)

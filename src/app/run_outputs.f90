@@ -7,14 +7,15 @@
 !>
 !> Why it exists: the naming of the files, their temporaries and the step
 !> table are bookkeeping the method does not need to show.  Who may use it:
-!> the program and its step modules (run_state's list).  A folder that takes
-!> no file ends the run (exit 2), as the program would.
+!> the program and its application modules.  A folder that takes no file
+!> ends the run (exit 2), as the program would.
 !>
 !> Programming interface
 !>   make_folder(path, diag)     create the output folder and its parents (an input error when it cannot)
-!>   write_step(run, k, res)     step k's table row, .vtu and contact table from its results (OUTPUT steps=all)
+!>   write_step(out, outdir, prob, k, res, iterations)   step k's table row, .vtu and contact
+!>                               table from its results (OUTPUT steps=all)
 !>   write_outputs(run)          every file of the run, committed together (with OUTPUT plot=png the
-!>                               pictures run_plots draws); run%wrote for the log; then the meshes
+!>                               pictures run_plots draws); run%out%wrote for the log; then the meshes
 !>                               gmsh made go to the mesh cache
 module run_outputs
   use kinds, only: dp
@@ -22,10 +23,10 @@ module run_outputs
   use text_scan, only: ends_with_ci
   use errors, only: diag_t, add_error, error_t
   use exits, only: exit_program
-  use run_state, only: run_t, ph_output
-  use run_report, only: lap
+  use run_state, only: run_t, outputs_t
+  use run_log, only: lap, ph_output
+  use problem, only: problem_t
   use deck_reader, only: path_too_long
-  use post_processing, only: rigid_results, engineering_results
   use step_table, only: step_columns
   use results_writer, only: results_t, write_contact_csv, write_summary, write_pvd, write_step_table, peak_memory
   use vtk_files, only: write_vtk, write_vtu
@@ -59,21 +60,26 @@ contains
   !> Step k's row of NAME_steps.csv, its VTK file STEM_000k.vtu and its
   !> contact table CSTEM_000k.csv (temporaries, committed with the run's
   !> other files by write_outputs).
-  !>   run   (inout) step_table's row k, step_tmp(:, k) on exit
-  !>   kstep (in)    the step, 1 .. steps - 1
-  !>   res   (inout) the step's results (res%rigid set here)
-  subroutine write_step(run, kstep, res)
-    type(run_t), intent(inout) :: run
-    integer, intent(in) :: kstep
-    type(results_t), intent(inout) :: res
+  !>   out        (inout) step_table's row k, step_tmp(:, k) on exit
+  !>   outdir     (in)    the output folder
+  !>   prob       (in)    the problem, its rows those of the step
+  !>   kstep      (in)    the step, 1 .. steps - 1
+  !>   res        (in)    the step's results
+  !>   iterations (in)    its LCP iterations
+  subroutine write_step(out, outdir, prob, kstep, res, iterations)
+    type(outputs_t), intent(inout) :: out
+    character(len=*), intent(in) :: outdir
+    type(problem_t), intent(in) :: prob
+    integer, intent(in) :: kstep, iterations
+    type(results_t), intent(in) :: res
     type(error_t), allocatable :: err
-    call add_step_row(run, kstep, res)
-    call write_step_files(run, kstep, res, err)
-    if (allocated(err)) call output_failure(run)
+    call add_step_row(out, prob, kstep, res, iterations)
+    call write_step_files(out, outdir, prob, kstep, res, err)
+    if (allocated(err)) call output_failure(out, outdir)
   end subroutine write_step
 
   !> Write every output to a temporary of its own, then commit them all; the
-  !> run log's `wrote` lines are kept in run%wrote.  A folder that takes no
+  !> run log's `wrote` lines are kept in run%out%wrote.  A folder that takes no
   !> file ends the run (exit 2, nothing written).
   !>   run (inout) the results on entry; step_table's last row, res%memory_peak, wrote on exit
   subroutine write_outputs(run)
@@ -89,94 +95,97 @@ contains
     call enter_phase('writing the outputs')
     ! the run's three files, then with steps=all the .pvd, the step table and
     ! the per-step files (all but the last step's written as they were solved)
-    if (run%deck%output%steps_all) call add_step_row(run, run%sc%steps, run%res)
+    if (run%prob%deck%output%steps_all) call add_step_row(run%out, run%prob, run%prob%sc%steps, run%res, run%sol%iterations)
     allocate(tmp(3))
     ! each call below runs only while no error has come (err is the first)
-    call create_temporary(run%outdir, run%deck%output%vtk, tmp(1), err)
-    if (.not. allocated(err) .and. run%cs%npair > 0) &
-      call create_temporary(run%outdir, run%deck%output%contact, tmp(2), err)
-    if (.not. allocated(err)) call create_temporary(run%outdir, run%deck%output%summary, tmp(3), err)
+    call create_temporary(run%opts%outdir, run%prob%deck%output%vtk, tmp(1), err)
+    if (.not. allocated(err) .and. run%prob%cs%npair > 0) &
+      call create_temporary(run%opts%outdir, run%prob%deck%output%contact, tmp(2), err)
+    if (.not. allocated(err)) call create_temporary(run%opts%outdir, run%prob%deck%output%summary, tmp(3), err)
     if (.not. allocated(err)) &
-      call write_vtk(tmp(1)%io_path, run%deck%title, run%sc%bodies, run%res, run%deck%output%fields, err)
-    if (.not. allocated(err) .and. run%cs%npair > 0) call write_contact_csv(tmp(2)%io_path, run%cs, run%res, err)
-    if (.not. allocated(err) .and. run%deck%output%steps_all) then
-      call write_step_files(run, run%sc%steps, run%res, err)
-      nl = len(step_file(run, run%sc%steps))
-      allocate(character(len=nl) :: names(run%sc%steps))
-      allocate(times(run%sc%steps))
-      do kstep = 1, run%sc%steps
-        names(kstep) = step_file(run, kstep)
-        times(kstep) = real(kstep, dp) / real(run%sc%steps, dp)    ! the default ramp 0:STEPS
+      call write_vtk(tmp(1)%io_path, run%prob%deck%title, run%prob%sc%bodies, run%res, run%prob%deck%output%fields, err)
+    if (.not. allocated(err) .and. run%prob%cs%npair > 0) call write_contact_csv(tmp(2)%io_path, run%prob%cs, run%res, err)
+    if (.not. allocated(err) .and. run%prob%deck%output%steps_all) then
+      call write_step_files(run%out, run%opts%outdir, run%prob, run%prob%sc%steps, run%res, err)
+      nl = len(step_file(run%prob, run%prob%sc%steps))
+      allocate(character(len=nl) :: names(run%prob%sc%steps))
+      allocate(times(run%prob%sc%steps))
+      do kstep = 1, run%prob%sc%steps
+        names(kstep) = step_file(run%prob, kstep)
+        times(kstep) = real(kstep, dp) / real(run%prob%sc%steps, dp)    ! the default ramp 0:STEPS
       end do
       ! then the .pvd, the step table and every step's files (not by an array
       ! constructor: grow_temporaries says why)
-      call grow_temporaries(tmp, 2 + size(run%step_tmp))
+      call grow_temporaries(tmp, 2 + size(run%out%step_tmp))
       k = 5
-      do j = 1, size(run%step_tmp, 2)
-        do i = 1, size(run%step_tmp, 1)
+      do j = 1, size(run%out%step_tmp, 2)
+        do i = 1, size(run%out%step_tmp, 1)
           k = k + 1
-          tmp(k) = run%step_tmp(i, j)
+          tmp(k) = run%out%step_tmp(i, j)
         end do
       end do
-      if (.not. allocated(err)) call create_temporary(run%outdir, output_stem(run) // '.pvd', tmp(4), err)
+      if (.not. allocated(err)) call create_temporary(run%opts%outdir, output_stem(run%prob) // '.pvd', tmp(4), err)
       if (.not. allocated(err)) call write_pvd(tmp(4)%io_path, names, times, err)
-      if (.not. allocated(err)) call create_temporary(run%outdir, output_stem(run) // '_steps.csv', tmp(5), err)
+      if (.not. allocated(err)) call create_temporary(run%opts%outdir, output_stem(run%prob) // '_steps.csv', tmp(5), err)
       if (.not. allocated(err)) then
-        call step_columns(run, run%sc%steps, run%res, header, row, whole)
-        call write_step_table(tmp(5)%io_path, header, run%step_table, whole, err)
+        call step_columns(run%prob, run%prob%sc%steps, run%res, run%sol%iterations, header, row, whole)
+        call write_step_table(tmp(5)%io_path, header, run%out%step_table, whole, err)
       end if
     end if
     ! the pictures, from the tables just written (their temporaries)
     plots = ''
-    if (.not. allocated(err) .and. run%deck%output%plot) then
+    if (.not. allocated(err) .and. run%prob%deck%output%plot) then
       contact_path = ''
-      if (run%cs%npair > 0) contact_path = tmp(2)%path
+      if (run%prob%cs%npair > 0) contact_path = tmp(2)%path
       steps_path = ''
-      if (run%deck%output%steps_all) steps_path = tmp(5)%path
+      if (run%prob%deck%output%steps_all) steps_path = tmp(5)%path
       call draw_plots(run, contact_path, steps_path, tmp, plots)
     end if
     if (.not. allocated(err)) then
-      call lap(run, ph_output)
+      call lap(run%log, ph_output)
       run%res%memory_peak = peak_memory()
-      call predict_cost(run)                  ! every phase timed but the summary's own writing
+      call predict_this_cost(run)             ! every phase timed but the summary's own writing
+      run%res%time = run%log%time
+      run%res%cpu = run%log%cpu
+      if (allocated(run%log%warning)) run%res%warning = run%log%warning
       call write_summary(tmp(3)%io_path, run%res, err)
     end if
     do i = 1, size(tmp)
       call close_temporary(tmp(i))
     end do
-    if (.not. allocated(err)) call commit_temporaries(run%outdir, tmp, err)
+    if (.not. allocated(err)) call commit_temporaries(run%opts%outdir, tmp, err)
     ! the message names the output folder, whichever file failed
     if (allocated(err)) then
       call discard_temporaries(tmp)
-      write(error_unit, '(a)') 'contact2d: error: ' // run%outdir // ': cannot write the output files ' // &
+      write(error_unit, '(a)') 'contact2d: error: ' // run%opts%outdir // ': cannot write the output files ' // &
         '(a writable folder expected)'
       call exit_program(2)
     end if
     call keep_new_meshes(run)
-    if (run%cs%npair > 0) then
-      line1 = 'wrote    ' // run%outdir // '/' // run%deck%output%vtk // ', ' // run%deck%output%contact // ', ' // &
-              run%deck%output%summary
+    if (run%prob%cs%npair > 0) then
+      line1 = 'wrote    ' // run%opts%outdir // '/' // run%prob%deck%output%vtk // ', ' // run%prob%deck%output%contact // ', ' // &
+              run%prob%deck%output%summary
     else
-      line1 = 'wrote    ' // run%outdir // '/' // run%deck%output%vtk // ', ' // run%deck%output%summary
+      line1 = 'wrote    ' // run%opts%outdir // '/' // run%prob%deck%output%vtk // ', ' // run%prob%deck%output%summary
     end if
     line2 = ''
-    if (run%deck%output%steps_all) then
-      line2 = 'wrote    ' // step_file(run, 1) // ' .. ' // step_file(run, run%sc%steps) // ', ' // &
-              output_stem(run) // '.pvd, ' // output_stem(run) // '_steps.csv'
-      if (run%cs%npair > 0) line2 = line2 // ', ' // step_contact_file(run, 1) // ' .. ' // &
-                                    step_contact_file(run, run%sc%steps)
+    if (run%prob%deck%output%steps_all) then
+      line2 = 'wrote    ' // step_file(run%prob, 1) // ' .. ' // step_file(run%prob, run%prob%sc%steps) // ', ' // &
+              output_stem(run%prob) // '.pvd, ' // output_stem(run%prob) // '_steps.csv'
+      if (run%prob%cs%npair > 0) line2 = line2 // ', ' // step_contact_file(run%prob, 1) // ' .. ' // &
+                                    step_contact_file(run%prob, run%prob%sc%steps)
     end if
     line3 = ''
-    if (len(plots) > 0) line3 = 'wrote    ' // run%outdir // '/' // plots
+    if (len(plots) > 0) line3 = 'wrote    ' // run%opts%outdir // '/' // plots
     nl = max(len(line1), len(line2), len(line3))
     if (len(line2) > 0 .and. len(line3) > 0) then
-      run%wrote = [character(len=nl) :: line1, line2, line3]
+      run%out%wrote = [character(len=nl) :: line1, line2, line3]
     else if (len(line2) > 0) then
-      run%wrote = [character(len=nl) :: line1, line2]
+      run%out%wrote = [character(len=nl) :: line1, line2]
     else if (len(line3) > 0) then
-      run%wrote = [character(len=nl) :: line1, line3]
+      run%out%wrote = [character(len=nl) :: line1, line3]
     else
-      run%wrote = [line1]
+      run%out%wrote = [line1]
     end if
   end subroutine write_outputs
 
@@ -187,51 +196,66 @@ contains
     type(run_t), intent(in) :: run
     type(error_t), allocatable :: err
     integer :: i
-    if (.not. allocated(run%gmsh%cache) .or. .not. allocated(run%sc%new_meshes)) return
-    do i = 1, size(run%sc%new_meshes)
-      call keep_mesh(run%gmsh%cache, run%sc%new_meshes(i)%key, run%sc%new_meshes(i)%msh_path, err)
+    if (.not. allocated(run%opts%gmsh%cache) .or. .not. allocated(run%prob%sc%new_meshes)) return
+    do i = 1, size(run%prob%sc%new_meshes)
+      call keep_mesh(run%opts%gmsh%cache, run%prob%sc%new_meshes(i)%key, run%prob%sc%new_meshes(i)%msh_path, err)
     end do
   end subroutine keep_new_meshes
 
-  !> Step k's .vtu and contact table, each to a temporary of its own
-  !> (run%step_tmp(:, k)), from the step's results.
-  !>   err (out) allocated when a file could not be made or written
-  subroutine write_step_files(run, kstep, res, err)
+  !> The CPU time and dofs of a run with half this one's energy error
+  !> (estimate cost_to_halve): from this mesh's phases (ADAPT's earlier
+  !> meshes left out) and its indicators.
+  subroutine predict_this_cost(run)
     type(run_t), intent(inout) :: run
+    real(dp) :: spent(ph_output)
+    spent = run%log%cpu(1:ph_output)
+    if (allocated(run%adapt%time0)) spent = spent - run%adapt%time0(1:ph_output)   ! this mesh's step alone
+    call predict_cost(run%prob, run%res, spent, run%adapt%energy_prev, run%adapt%dofs_prev)
+  end subroutine predict_this_cost
+
+  !> Step k's .vtu and contact table, each to a temporary of its own
+  !> (out%step_tmp(:, k)), from the step's results.
+  !>   err (out) allocated when a file could not be made or written
+  subroutine write_step_files(out, outdir, prob, kstep, res, err)
+    type(outputs_t), intent(inout) :: out
+    character(len=*), intent(in) :: outdir
+    type(problem_t), intent(in) :: prob
     integer, intent(in) :: kstep
     type(results_t), intent(in) :: res
     type(error_t), allocatable, intent(out) :: err
-    if (.not. allocated(run%step_tmp)) allocate(run%step_tmp(2, run%sc%steps))
-    call create_temporary(run%outdir, step_file(run, kstep), run%step_tmp(1, kstep), err)
-    if (.not. allocated(err)) call write_vtu(run%step_tmp(1, kstep)%io_path, run%sc%bodies, res, run%deck%output%fields, err)
-    call close_temporary(run%step_tmp(1, kstep))
-    if (allocated(err) .or. run%cs%npair == 0) return
-    call create_temporary(run%outdir, step_contact_file(run, kstep), run%step_tmp(2, kstep), err)
-    if (.not. allocated(err)) call write_contact_csv(run%step_tmp(2, kstep)%io_path, run%cs, res, err)
-    call close_temporary(run%step_tmp(2, kstep))
+    if (.not. allocated(out%step_tmp)) allocate(out%step_tmp(2, prob%sc%steps))
+    call create_temporary(outdir, step_file(prob, kstep), out%step_tmp(1, kstep), err)
+    if (.not. allocated(err)) call write_vtu(out%step_tmp(1, kstep)%io_path, prob%sc%bodies, res, prob%deck%output%fields, err)
+    call close_temporary(out%step_tmp(1, kstep))
+    if (allocated(err) .or. prob%cs%npair == 0) return
+    call create_temporary(outdir, step_contact_file(prob, kstep), out%step_tmp(2, kstep), err)
+    if (.not. allocated(err)) call write_contact_csv(out%step_tmp(2, kstep)%io_path, prob%cs, res, err)
+    call close_temporary(out%step_tmp(2, kstep))
   end subroutine write_step_files
 
   !> STEM_000k.vtu, STEM the vtk= name without .vtk.
-  function step_file(run, kstep) result(name)
-    type(run_t), intent(in) :: run
+  function step_file(prob, kstep) result(name)
+    type(problem_t), intent(in) :: prob
     integer, intent(in) :: kstep
     character(len=:), allocatable :: name
-    name = output_stem(run) // '_' // step_number(kstep) // '.vtu'
+    name = output_stem(prob) // '_' // step_number(kstep) // '.vtu'
   end function step_file
 
   !> Step k's contact table: the contact= name with _000k before its .csv
   !> (NAME_contact_000k.csv by default), or after it when it has none.
-  function step_contact_file(run, kstep) result(name)
-    type(run_t), intent(in) :: run
+  function step_contact_file(prob, kstep) result(name)
+    type(problem_t), intent(in) :: prob
     integer, intent(in) :: kstep
     character(len=:), allocatable :: name
     integer :: n
-    n = len(run%deck%output%contact)
-    if (ends_with_ci(run%deck%output%contact, '.csv') .and. n > 4) then
-      name = run%deck%output%contact(1:n - 4) // '_' // step_number(kstep) // run%deck%output%contact(n - 3:)
-    else
-      name = run%deck%output%contact // '_' // step_number(kstep) // '.csv'
-    end if
+    associate (contact => prob%deck%output%contact)
+      n = len(contact)
+      if (ends_with_ci(contact, '.csv') .and. n > 4) then
+        name = contact(1:n - 4) // '_' // step_number(kstep) // contact(n - 3:)
+      else
+        name = contact // '_' // step_number(kstep) // '.csv'
+      end if
+    end associate
   end function step_contact_file
 
   !> k with at least four digits: 0001, ..., 9999, 10000.
@@ -243,39 +267,41 @@ contains
     s = trim(buf)
   end function step_number
 
-  function output_stem(run) result(stem)
-    type(run_t), intent(in) :: run
+  function output_stem(prob) result(stem)
+    type(problem_t), intent(in) :: prob
     character(len=:), allocatable :: stem
-    stem = run%deck%output%vtk(1:len(run%deck%output%vtk) - 4)
+    stem = prob%deck%output%vtk(1:len(prob%deck%output%vtk) - 4)
   end function output_stem
 
   !> Row k of NAME_steps.csv from the step's results res (step_columns: the
   !> load factors, the reactions and mean displacement of every FIX boundary,
   !> each pair's resultant, zones, peak and centre of pressure, the RIGIDs,
   !> active nodes, LCP iterations).
-  subroutine add_step_row(run, kstep, res)
-    type(run_t), intent(inout) :: run
-    integer, intent(in) :: kstep
-    type(results_t), intent(inout) :: res
+  subroutine add_step_row(out, prob, kstep, res, iterations)
+    type(outputs_t), intent(inout) :: out
+    type(problem_t), intent(in) :: prob
+    integer, intent(in) :: kstep, iterations
+    type(results_t), intent(in) :: res
     character(len=:), allocatable :: header
     real(dp), allocatable :: row(:)
     logical, allocatable :: whole(:)
-    call rigid_results(run, res)
-    call engineering_results(run, res)
-    call step_columns(run, kstep, res, header, row, whole)
-    if (.not. allocated(run%step_table)) allocate(run%step_table(size(row), run%sc%steps), source=0.0_dp)
-    run%step_table(:, kstep) = row
+    call step_columns(prob, kstep, res, iterations, header, row, whole)
+    if (.not. allocated(out%step_table)) allocate(out%step_table(size(row), prob%sc%steps), source=0.0_dp)
+    out%step_table(:, kstep) = row
   end subroutine add_step_row
 
-  subroutine output_failure(run)
-    type(run_t), intent(inout) :: run
+  !> A step's file could not be written: the step files made so far are
+  !> discarded, and the run ends (exit 2) naming the output folder.
+  subroutine output_failure(out, outdir)
+    type(outputs_t), intent(inout) :: out
+    character(len=*), intent(in) :: outdir
     integer :: k
-    if (allocated(run%step_tmp)) then
-      do k = 1, size(run%step_tmp, 2)
-        call discard_temporaries(run%step_tmp(:, k))
+    if (allocated(out%step_tmp)) then
+      do k = 1, size(out%step_tmp, 2)
+        call discard_temporaries(out%step_tmp(:, k))
       end do
     end if
-    write(error_unit, '(a)') 'contact2d: error: ' // run%outdir // ': cannot write the output files (a writable folder expected)'
+    write(error_unit, '(a)') 'contact2d: error: ' // outdir // ': cannot write the output files (a writable folder expected)'
     call exit_program(2)
   end subroutine output_failure
 

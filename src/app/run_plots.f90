@@ -26,14 +26,14 @@
 module run_plots
   use, intrinsic :: iso_c_binding, only: c_int, c_double, c_null_char
   use kinds, only: dp, i8
-  use strings, only: int_to_str, real_to_str, printable
+  use strings, only: int_to_str, real_to_str, printable, exact_to_str
   use errors, only: error_t
   use system_binding, only: c2d_run_program, c_unlink, c2d_run_exited, c2d_run_signaled, &
                             c2d_run_timeout
   use safe_files, only: find_program, read_file, private_folder, file_kind, c2d_regular, temporary_t, create_temporary, &
                         close_temporary, discard_temporaries, grow_temporaries
   use run_state, only: run_t
-  use run_report, only: add_warning
+  use run_log, only: add_warning
   implicit none
   private
   public :: draw_plots
@@ -58,17 +58,17 @@ contains
     type(error_t), allocatable :: err
     logical :: found
 
-    stem = run%deck%output%vtk(1:len(run%deck%output%vtk) - 4)
+    stem = run%prob%deck%output%vtk(1:len(run%prob%deck%output%vtk) - 4)
     if (len(contact_path) == 0 .and. len(steps_path) == 0) return
     call find_program('gnuplot', gnuplot, found)
     if (.not. found) then
-      call add_warning(run, 'plot', 'gnuplot not found on PATH (install the Debian package gnuplot-nox): ' // &
+      call add_warning(run%log, 'plot', 'gnuplot not found on PATH (install the Debian package gnuplot-nox): ' // &
                        'no picture drawn, the other outputs are written')
       return
     end if
     call private_folder(folder, err)
     if (allocated(err)) then
-      call add_warning(run, 'plot', 'cannot make a private folder for gnuplot: no picture drawn')
+      call add_warning(run%log, 'plot', 'cannot make a private folder for gnuplot: no picture drawn')
       return
     end if
     if (len(contact_path) > 0) then
@@ -105,7 +105,7 @@ contains
     if (ios == 0) write(u, '(a)', iostat=ios) script
     if (ios == 0) close(u, iostat=ios)
     if (ios /= 0) then
-      call add_warning(run, 'plot', 'cannot write the gnuplot script ' // gp // ': no ' // base // '.png')
+      call add_warning(run%log, 'plot', 'cannot write the gnuplot script ' // gp // ': no ' // base // '.png')
       return
     end if
     argv = gnuplot // c_null_char // gp // c_null_char
@@ -132,11 +132,11 @@ contains
       end if
     end if
     if (len(why) > 0) then
-      call add_warning(run, 'plot', why // ': no ' // base // '.png (the other outputs are written)')
+      call add_warning(run%log, 'plot', why // ': no ' // base // '.png (the other outputs are written)')
       return
     end if
     ios = 0
-    call create_temporary(run%outdir, base // '.png', t(1), err)
+    call create_temporary(run%opts%outdir, base // '.png', t(1), err)
     if (.not. allocated(err)) then
       open(newunit=u, file=t(1)%io_path, access='stream', form='unformatted', status='replace', action='write', &
            iostat=ios)
@@ -144,7 +144,7 @@ contains
       if (ios == 0) close(u, iostat=ios)
     end if
     if (allocated(err) .or. ios /= 0) then
-      call add_warning(run, 'plot', run%outdir // ': cannot write ' // base // '.png')
+      call add_warning(run%log, 'plot', run%opts%outdir // ': cannot write ' // base // '.png')
       call close_temporary(t(1))
       call discard_temporaries(t)
       return
@@ -172,7 +172,7 @@ contains
     character(len=*), parameter :: nl = achar(10)
 
     script = ''
-    npair = run%cs%npair
+    npair = run%prob%cs%npair
     if (npair <= 0) return
     call read_file(table, buf, st)
     if (st /= 0) return
@@ -230,7 +230,7 @@ contains
       else
         script = script // 'set title ''pair ' // int_to_str(k) // '''' // nl
       end if
-      script = script // 'set xrange [' // number(a) // ':' // number(b) // ']' // nl // &
+      script = script // 'set xrange [' // exact_to_str(a) // ':' // exact_to_str(b) // ']' // nl // &
                'plot ' // gnuplot_string(table) // ' skip 1 using 2:($1 == ' // int_to_str(k) // ' ? $7 : NaN) ' // &
                'with linespoints lw 2 pt 7 ps 0.6 title ''pressure'''
       if (friction) script = script // ', '''' skip 1 using 2:($1 == ' // int_to_str(k) // ' ? $9 : NaN) ' // &
@@ -331,8 +331,8 @@ contains
     character(len=*), intent(in) :: what
     character(len=:), allocatable :: text
     text = what
-    if (allocated(run%deck%title)) then
-      if (len_trim(run%deck%title) > 0) text = trim(run%deck%title) // ': ' // what
+    if (allocated(run%prob%deck%title)) then
+      if (len_trim(run%prob%deck%title) > 0) text = trim(run%prob%deck%title) // ': ' // what
     end if
   end function title_text
 
@@ -393,14 +393,6 @@ contains
     end do
   end function header_column
 
-  !> A real as gnuplot reads it.
-  function number(x) result(s)
-    real(dp), intent(in) :: x
-    character(len=:), allocatable :: s
-    character(len=32) :: buf
-    write(buf, '(es24.16e3)') x
-    s = trim(adjustl(buf))
-  end function number
 
   !> ': ' and the first line of gnuplot's log (printable), '' when empty.
   function first_line(log) result(text)

@@ -29,6 +29,16 @@ module errors
   implicit none
   private
   public :: diag_t, add_error, has_errors, print_errors, error_t, set_error, set_out_of_memory
+  public :: error_numerical, error_input, error_no_equilibrium, error_unsolved, error_model
+
+  !> What kind of failure an error_t is: the application decides what each
+  !> means for the run (exit 2 for input, 1 for the others; a fallback may
+  !> follow an unsolved step, never a proved absence of equilibrium).
+  integer, parameter :: error_numerical = 1       !< a numerical failure (singular K, overflow, ...)
+  integer, parameter :: error_input = 2           !< bad input: the deck, a mesh, an option
+  integer, parameter :: error_no_equilibrium = 3  !< proved: no static equilibrium exists
+  integer, parameter :: error_unsolved = 4        !< a solver failed without proving anything
+  integer, parameter :: error_model = 5           !< the answer leaves the model's assumptions
 
   !> One collected message.
   type :: message_t
@@ -47,6 +57,7 @@ module errors
   type :: error_t
     character(len=:), allocatable :: message  !< text after `contact2d: error: `
     integer :: status = 1                      !< exit status: 1 numerical, 2 input
+    integer :: category = error_numerical      !< error_numerical, error_input, ... (above)
     integer :: equation = 0                    !< the free equation (row of K) it names, 0: none
     integer :: pair = 0                        !< the contact pair (its CONTACT statement, 1-based) it names, 0: none
     integer :: line = 0                        !< the line of the input file it names, 0: the file as a whole
@@ -103,14 +114,15 @@ contains
     flush(error_unit)
   end subroutine print_errors
 
-  !> Fill err with a message and status (2 input, 1 numerical).
-  subroutine set_error(err, message, status)
+  !> Fill err with a message and its category (error_numerical by default).
+  subroutine set_error(err, message, category)
     type(error_t), allocatable, intent(out) :: err
     character(len=*), intent(in) :: message
-    integer, intent(in), optional :: status
+    integer, intent(in), optional :: category
     allocate(err)
     err%message = message
-    if (present(status)) err%status = status
+    if (present(category)) err%category = category
+    err%status = merge(2, 1, err%category == error_input)
   end subroutine set_error
 
   !> Exhausted memory is a diagnosis, not a crash: the run ends with exit 1 and

@@ -6,12 +6,18 @@
 !>   i8_to_str(i)         the same for a 64-bit integer (nnz(L), file tags)
 !>   real_to_str(x [, digits])  scientific, 4 significant digits unless digits
 !>                        says otherwise, any exponent (1.000E-05, 1.000E-300)
+!>   exact_to_str(x)      scientific with 17 significant digits, three-digit
+!>                        exponent (es24.16e3): what files that are read back
+!>                        carry (the summary, tables, gnuplot's data)
+!>   fixed_to_str(x, decimals)  fixed point (f0.d): 73.8 for megabytes
+!>   format_number(x)     the shortest decimal that reads back to x (deck values
+!>                        echoed: 0.25, 1e-7, 200000)
 !>   printable(text)      text with control and non-ASCII bytes replaced by '?'
 module strings
   use kinds, only: dp, i8
   implicit none
   private
-  public :: int_to_str, i8_to_str, real_to_str, printable
+  public :: int_to_str, i8_to_str, real_to_str, exact_to_str, fixed_to_str, format_number, printable
 
 contains
 
@@ -70,5 +76,85 @@ contains
       if (s(k:k) == '0') s = s(1:k - 1) // s(k + 1:)
     end if
   end function real_to_str
+
+  !> x with 17 significant digits and a three-digit exponent, as the
+  !> summary and the tables write every real: read back, it is x exactly.
+  function exact_to_str(x) result(s)
+    real(dp), intent(in) :: x
+    character(len=:), allocatable :: s
+    character(len=32) :: buf
+    write(buf, '(es24.16e3)') x
+    s = trim(adjustl(buf))
+  end function exact_to_str
+
+  !> x in fixed point with the given decimals (f0.d), a zero before the point.
+  function fixed_to_str(x, decimals) result(s)
+    real(dp), intent(in) :: x
+    integer, intent(in) :: decimals
+    character(len=:), allocatable :: s
+    character(len=48) :: buf, form
+    write(form, '(a,i0,a)') '(f0.', max(0, decimals), ')'
+    write(buf, form) x
+    s = trim(adjustl(buf))
+    if (s(1:1) == '.') s = '0' // s
+    if (len(s) > 1) then
+      if (s(1:2) == '-.') s = '-0' // s(2:)
+    end if
+  end function fixed_to_str
+
+  !> The shortest decimal that reads back to x exactly: integers as integers
+  !> (up to 1e15), else up to 17 significant digits, with an exponent outside
+  !> 1e-4 <= |x| < 1e15 ('0.25', '1e-07' style: '1e-7', '2.5e+20' as '2.5e20').
+  function format_number(x) result(s)
+    real(dp), intent(in) :: x
+    character(len=:), allocatable :: s
+    character(len=40) :: buf, fmt
+    character(len=:), allocatable :: digits
+    integer :: d, e, epos, ios, point
+    real(dp) :: y
+
+    if (x == 0.0_dp) then
+      s = '0'
+      return
+    end if
+    if (x == aint(x) .and. abs(x) < 1.0e15_dp) then
+      write(buf, '(i0)') nint(x, kind=selected_int_kind(18))
+      s = trim(buf)
+      return
+    end if
+    ! near huge(x) a shorter form can round up past it: 17 digits only there
+    do d = merge(17, 1, abs(x) >= 1.0e308_dp), 17
+      write(fmt, '(a,i0,a,i0,a)') '(es', d + 10, '.', d - 1, 'e3)'
+      write(buf, fmt) x
+      read(buf, *, iostat=ios) y
+      if (ios == 0 .and. y == x) exit
+    end do
+    buf = adjustl(buf)
+    epos = index(buf, 'E')
+    read(buf(epos + 1:), *) e                       ! x = m.mmm * 10^e
+    digits = ''
+    do point = 1, epos - 1
+      if (index('0123456789', buf(point:point)) > 0) digits = digits // buf(point:point)
+    end do
+    do while (len(digits) > 1 .and. digits(len(digits):len(digits)) == '0')
+      digits = digits(1:len(digits) - 1)
+    end do
+    s = ''
+    if (x < 0.0_dp) s = '-'
+    if (e >= -4 .and. e < 15) then
+      if (e < 0) then
+        s = s // '0.' // repeat('0', -e - 1) // digits
+      else if (len(digits) > e + 1) then
+        s = s // digits(1:e + 1) // '.' // digits(e + 2:)
+      else
+        s = s // digits // repeat('0', e + 1 - len(digits))
+      end if
+    else
+      s = s // digits(1:1)
+      if (len(digits) > 1) s = s // '.' // digits(2:)
+      write(buf, '(i0)') e
+      s = s // 'e' // trim(buf)
+    end if
+  end function format_number
 
 end module strings

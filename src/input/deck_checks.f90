@@ -15,9 +15,8 @@
 !>   path_too_long(path, reserve)   '' or what makes path an impossible file name
 module deck_checks
   use kinds, only: dp
-  use strings, only: int_to_str
+  use strings, only: int_to_str, format_number
   use deck_types, only: deck_t, body_deck_t, contact_deck_t, rigid_load_t
-  use deck_expressions, only: format_number
   use deck_syntax, only: state_t, report, quoted, ramp_unset
   use text_scan, only: is_name
   use deck_body_statements, only: plane_compliance_ok, strain_compliance_ok

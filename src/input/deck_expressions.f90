@@ -12,7 +12,7 @@
 !> domain, overflow, a negative base to a non-integer power are errors, each
 !> returned as a message `what is wrong (what was expected)` for the caller's
 !> FILE:LINE.  Values are printed back in the shortest decimal form that reads
-!> back to the same double (format_number), so a substituted line means
+!> back to the same double (strings' format_number), so a substituted line means
 !> exactly the value computed.
 !>
 !> Programming interface
@@ -22,14 +22,14 @@
 !>   evaluate(text, set, x, message)             the value of an expression; message
 !>                                               allocated on error
 !>   substitute(text, set, out, message)         every ${...} of text replaced
-!>   format_number(x)                            shortest round-trip decimal
 !>   is_parameter_name(name)                     [A-Za-z_][A-Za-z0-9_]*, not reserved
 module deck_expressions
   use kinds, only: dp
   use text_scan, only: parse_real, is_digit, is_letter, lower
+  use strings, only: format_number
   implicit none
   private
-  public :: parameter_set_t, add_parameter, find_parameter, evaluate, substitute, format_number
+  public :: parameter_set_t, add_parameter, find_parameter, evaluate, substitute
   public :: is_parameter_name
 
   integer, parameter :: name_len = 64          !< longest parameter name
@@ -592,62 +592,7 @@ contains
     t = '; declared: ' // t
   end function known_names
 
-  ! ================================================================ numbers
 
-  !> The shortest decimal that reads back to x exactly: integers as integers
-  !> (up to 1e15), else up to 17 significant digits, with an exponent outside
-  !> 1e-4 <= |x| < 1e15 ('0.25', '1e-07' style: '1e-7', '2.5e+20' as '2.5e20').
-  function format_number(x) result(s)
-    real(dp), intent(in) :: x
-    character(len=:), allocatable :: s
-    character(len=40) :: buf, fmt
-    character(len=:), allocatable :: digits
-    integer :: d, e, epos, ios, point
-    real(dp) :: y
-
-    if (x == 0.0_dp) then
-      s = '0'
-      return
-    end if
-    if (x == aint(x) .and. abs(x) < 1.0e15_dp) then
-      write(buf, '(i0)') nint(x, kind=selected_int_kind(18))
-      s = trim(buf)
-      return
-    end if
-    ! near huge(x) a shorter form can round up past it: 17 digits only there
-    do d = merge(17, 1, abs(x) >= 1.0e308_dp), 17
-      write(fmt, '(a,i0,a,i0,a)') '(es', d + 10, '.', d - 1, 'e3)'
-      write(buf, fmt) x
-      read(buf, *, iostat=ios) y
-      if (ios == 0 .and. y == x) exit
-    end do
-    buf = adjustl(buf)
-    epos = index(buf, 'E')
-    read(buf(epos + 1:), *) e                       ! x = m.mmm * 10^e
-    digits = ''
-    do point = 1, epos - 1
-      if (is_digit(buf(point:point))) digits = digits // buf(point:point)
-    end do
-    do while (len(digits) > 1 .and. digits(len(digits):len(digits)) == '0')
-      digits = digits(1:len(digits) - 1)
-    end do
-    s = ''
-    if (x < 0.0_dp) s = '-'
-    if (e >= -4 .and. e < 15) then
-      if (e < 0) then
-        s = s // '0.' // repeat('0', -e - 1) // digits
-      else if (len(digits) > e + 1) then
-        s = s // digits(1:e + 1) // '.' // digits(e + 2:)
-      else
-        s = s // digits // repeat('0', e + 1 - len(digits))
-      end if
-    else
-      s = s // digits(1:1)
-      if (len(digits) > 1) s = s // '.' // digits(2:)
-      write(buf, '(i0)') e
-      s = s // 'e' // trim(buf)
-    end if
-  end function format_number
 
   !> User text for a message: trimmed, control and non-ASCII bytes as '?', cut after 40.
   pure function clip(s) result(t)

@@ -33,10 +33,10 @@
 !>   max_mu, max_steps, max_line_len, ramp_unset               the reader's limits
 module deck_syntax
   use kinds, only: dp, i8
-  use strings, only: int_to_str
+  use strings, only: int_to_str, format_number
   use errors, only: diag_t, add_error
   use deck_types, only: deck_t
-  use deck_expressions, only: parameter_set_t, format_number
+  use deck_expressions, only: parameter_set_t
   use text_scan, only: parse_real, parse_integer, line_items, lower, is_name, string_t
   implicit none
   private

@@ -120,7 +120,7 @@ module friction_lcp
   use lcp_solvers, only: lcp_options_t, lcp_report_t, solve_lcp_lemke, solve_lcp_pgs, pgs_outcome, &
     solve_lcp_lemke_scaled, scale_lcp, set_report, pgs_problem_t, run_pgs, pgs_set_row, pgs_limits, &
     negative_diagonal
-  use lcp_scaling, only: residual_outcome, report_out_of_memory, scaling_vector, lcp_gaps
+  use lcp_scaling, only: residual_outcome, report_out_of_memory, scaling_vector, lcp_gaps, info_no_memory
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
   private
@@ -688,9 +688,8 @@ contains
       rep%info = lrep%info
       rep%stopped = lrep%stopped
       ! out of memory keeps the program's wording (`out of memory while ...`)
-      if (lrep%no_memory) then
+      if (lrep%info == info_no_memory) then
         rep%message = lrep%message
-        rep%no_memory = .true.
       else
         rep%message = 'friction ' // lrep%message
       end if

@@ -65,7 +65,7 @@
 module friction_modes
   use kinds, only: dp
   use lcp_solvers, only: lcp_options_t, lcp_report_t, solve_lcp_lemke, solve_lcp_lemke_scaled, set_report, &
-    scaling_vector
+    scaling_vector, info_no_memory
   use friction_lcp, only: friction_problem_t, check_friction_problem, friction_residual, friction_lcp_system, &
     friction_forces
   use strings, only: int_to_str, real_to_str
@@ -248,8 +248,7 @@ contains
       nx = ny + nt
       allocate(m(nx, nx), q(nx), d(nx), y(nx), stat=k)
       if (k /= 0) then
-        call set_report(rep, 3, 'out of memory in the existence test of the friction equilibrium')
-        rep%no_memory = .true.
+        call set_report(rep, info_no_memory, 'out of memory in the existence test of the friction equilibrium')
         return
       end if
       m = 0.0_dp
@@ -304,9 +303,8 @@ contains
     jb = ja + kh                         ! a-
     allocate(m(nz, nz), q(nz), d(nz), z(nz), stat=st)
     if (st /= 0) then
-      call set_report(rep, 3, 'out of memory: solving the friction LCP with rigid modes by Lemke (' // &
+      call set_report(rep, info_no_memory, 'out of memory: solving the friction LCP with rigid modes by Lemke (' // &
         int_to_str(nz) // ' unknowns)')
-      rep%no_memory = .true.
       return
     end if
     m = 0.0_dp

@@ -58,7 +58,7 @@ module friction_newton
   use kinds, only: dp
   use lapack_interfaces, only: dgesv
   use strings, only: int_to_str, real_to_str
-  use lcp_scaling, only: lcp_options_t, lcp_report_t, scaling_vector, lcp_gaps, report_out_of_memory, set_report
+  use lcp_scaling, only: lcp_options_t, lcp_report_t, scaling_vector, lcp_gaps, report_out_of_memory, set_report, info_no_memory
   use friction_lcp, only: friction_problem_t, measure_friction, check_friction_problem
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
@@ -219,7 +219,7 @@ contains
         real_to_str(rep%residual) // '; the method converges only near a solution with Coulomb friction, ' // &
         'which does not show that there is none)'
     case default
-      if (.not. rep%no_memory) rep%stopped = 'singular'
+      if (rep%info /= info_no_memory) rep%stopped = 'singular'
     end select
 
   contains

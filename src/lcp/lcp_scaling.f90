@@ -37,7 +37,8 @@
 !>   check_lcp_options(opts, info, rep)   the argument checks
 !>   residual_outcome(rep, tol, solved, stopped, cause)   info 0 or 4 and the message from the residual
 !>   set_report(rep, info, message), out_of_memory(phase, bytes)
-!>   report_out_of_memory(rep, phase, bytes)   info 3, no_memory, `out of memory while PHASE (...)`
+!>   report_out_of_memory(rep, phase, bytes)   info info_no_memory, `out of memory while PHASE (...)`
+!>   info_no_memory                  the info of a solve that could not allocate what it needs (6)
 module lcp_scaling
   use kinds, only: dp, i8
   use lapack_interfaces, only: dgemv
@@ -47,6 +48,11 @@ module lcp_scaling
   implicit none
   private
   public :: lcp_options_t, lcp_report_t, scaled_lcp_t
+  public :: info_no_memory
+
+  !> rep%info of a solve that could not allocate what it needs (message:
+  !> `out of memory while ...`); the methods' own outcomes are 0 to 5
+  integer, parameter :: info_no_memory = 6
   public :: prepare_lcp, scale_lcp, scaling_vector, lcp_gaps, measure_solution, lcp_natural_residual
   public :: max_diagonal, negative_diagonal, scale_of
   public :: set_report, out_of_memory, report_out_of_memory, check_lcp_sizes, check_lcp_values, check_lcp_options
@@ -66,7 +72,6 @@ module lcp_scaling
     real(dp) :: residual = 0.0_dp            !< scaled natural residual of the returned z
     real(dp) :: complementarity = 0.0_dp     !< scaled complementarity of the returned z
     character(len=:), allocatable :: message !< one-line summary or diagnostic
-    logical :: no_memory = .false.           !< info 3 because an allocation failed (message: out of memory while ...)
     character(len=16) :: stopped = ''        !< why an unsolved run stopped, for a log line: 'stagnated',
                                              !< 'diverged', 'sweep limit', 'ray', 'pivot limit', 'inaccurate'
   end type lcp_report_t
@@ -419,7 +424,7 @@ contains
   end function scale_of
 
   !> rep%info = info, rep%message = message.
-  !> A solve that could not allocate what it needs: info 3, no_memory set (a
+  !> A solve that could not allocate what it needs: info info_no_memory (a
   !> caller tells it from a failure of the method without reading the text).
   !>   rep   (inout) the report
   !>   phase (in)    what the solver was doing
@@ -428,8 +433,7 @@ contains
     type(lcp_report_t), intent(inout) :: rep
     character(len=*), intent(in) :: phase
     real(dp), intent(in) :: bytes
-    call set_report(rep, 3, out_of_memory(phase, bytes))
-    rep%no_memory = .true.
+    call set_report(rep, info_no_memory, out_of_memory(phase, bytes))
   end subroutine report_out_of_memory
 
   subroutine set_report(rep, info, message)

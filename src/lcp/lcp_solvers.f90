@@ -45,7 +45,7 @@
 !> No routine prints anything; every outcome is in the report.
 module lcp_solvers
   use lcp_scaling, only: lcp_options_t, lcp_report_t, lcp_natural_residual, scale_lcp, scaling_vector, measure_solution, &
-                         set_report, out_of_memory, max_diagonal, negative_diagonal
+                         set_report, out_of_memory, max_diagonal, negative_diagonal, info_no_memory
   use lcp_lemke, only: solve_lcp_lemke, solve_lcp_lemke_scaled
   use lcp_pgs, only: solve_lcp_pgs, pgs_outcome, pgs_problem_t, run_pgs, pgs_set_row, pgs_limits
   implicit none
@@ -54,5 +54,5 @@ module lcp_solvers
   public :: solve_lcp_lemke, solve_lcp_pgs, lcp_natural_residual, scale_lcp, scaling_vector, measure_solution
   public :: solve_lcp_lemke_scaled, pgs_outcome, set_report, out_of_memory
   public :: pgs_problem_t, run_pgs, pgs_set_row, pgs_limits
-  public :: max_diagonal, negative_diagonal
+  public :: max_diagonal, negative_diagonal, info_no_memory
 end module lcp_solvers

@@ -4,7 +4,8 @@
 !> over 600 decades and on the edge values.
 program test_deck_expressions
   use kinds, only: dp, i8
-  use deck_expressions, only: parameter_set_t, add_parameter, evaluate, substitute, format_number
+  use deck_expressions, only: parameter_set_t, add_parameter, evaluate, substitute
+  use strings, only: format_number
   use testing, only: check, check_close, finish_tests, urand, tol_round
   implicit none
   type(parameter_set_t) :: set

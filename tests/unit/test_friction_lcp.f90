@@ -6,7 +6,7 @@
 !> nt = 0 against lcp_solvers, and the failures that must be reported.  The
 !> primal-dual active set method of friction_newton on the same random
 !> problems (Tresca: Lemke's unique answer; Coulomb: every condition), and
-!> friction_auto's order (a singular system hands the step to Lemke).
+!> lcp_auto's order (a singular system hands the step to Lemke).
 program test_friction_lcp
   use kinds, only: dp, i8
   use errors, only: error_t
@@ -15,7 +15,7 @@ program test_friction_lcp
   use friction_lcp, only: friction_problem_t, friction_problem, solve_friction_lcp, friction_residual, &
     friction_state, state_open, state_stick, state_slip
   use friction_newton, only: solve_friction_newton
-  use friction_auto, only: friction_attempt_t, solve_friction_auto
+  use lcp_auto, only: lcp_attempt_t, solve_friction_auto
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
 
@@ -484,7 +484,7 @@ contains
       index(rep%message, 'does not show that there is none') > 0, name // ' maxit 1: step limit, no claim')
   end subroutine test_pdas_random
 
-  !> friction_auto: first 'pdas' on a problem with two identical normal rows
+  !> lcp_auto: first 'pdas' on a problem with two identical normal rows
   !> (G singular: two pairs over the same node) meets a singular system and
   !> hands the step to Lemke, which solves it; first 'pgs' with maxit = 1
   !> fails PGS at omega 1 and 0.3, PDAS and Lemke in that order, the message
@@ -495,7 +495,7 @@ contains
     type(friction_problem_t) :: prob
     type(lcp_options_t) :: opts
     type(lcp_report_t) :: rep
-    type(friction_attempt_t), allocatable :: att(:)
+    type(lcp_attempt_t), allocatable :: att(:)
     integer :: i, j, n, nt, m
 
     ! rows 1 and 2 the same normal row (a duplicate), each with its tangential row

@@ -18,17 +18,17 @@
 !> program (one call, after the results are computed).
 !>
 !> Programming interface
-!>   check_model(run)   the monitors: res%max_strain, res%max_rotation set,
-!>                      a warning (run_report's add_warning) for each one broken
+!>   check_model(prob, res, log)   the monitors: res%max_strain, res%max_rotation set,
+!>                                 a warning (run_log's add_warning) for each one broken
 module model_checks
   use kinds, only: dp
-  use strings, only: int_to_str, real_to_str
-  use run_state, only: run_t
-  use run_report, only: add_warning
+  use strings, only: int_to_str, real_to_str, format_number
+  use problem, only: problem_t
+  use results_writer, only: results_t
+  use run_log, only: log_t, add_warning
   use body, only: body_t
   use elements, only: quadrature_rule, shape_at, max_nen
   use material, only: locking_nu
-  use deck_expressions, only: format_number
   implicit none
   private
   public :: check_model
@@ -50,14 +50,16 @@ module model_checks
 contains
 
   !> The model's monitors on the run's final state (module header).
-  !>   run (inout) scene, deck and res%u (x, y components) on entry;
+  !>   res (inout) u (x, y components) on entry;
   !>               res%max_strain, max_rotation and the warnings on exit
-  subroutine check_model(run)
-    type(run_t), intent(inout) :: run
+  subroutine check_model(prob, res, log)
+    type(problem_t), intent(in) :: prob
+    type(results_t), intent(inout) :: res
+    type(log_t), intent(inout) :: log
     real(dp), allocatable :: over(:,:)
-    call check_locking(run)
-    call measure_deformation(run, over)
-    call check_deformation(run, over)
+    call check_locking(prob, log)
+    call measure_deformation(prob, res, over)
+    call check_deformation(prob, res, over, log)
   end subroutine check_model
 
   !> A `warning locking` per body of isotropic material with nu > 0.45 meshed
@@ -70,20 +72,21 @@ contains
   !> stress: the through-thickness strain takes up the volume change, nu
   !> causes no locking.  Orthotropic laws are not judged (their
   !> incompressibility is not one number).
-  subroutine check_locking(run)
-    type(run_t), intent(inout) :: run
+  subroutine check_locking(prob, log)
+    type(problem_t), intent(in) :: prob
+    type(log_t), intent(inout) :: log
     integer :: b, ntri
     character(len=:), allocatable :: model
-    if (run%deck%plane_stress) return
-    model = merge('axisymmetric analysis', 'plane strain         ', run%deck%axisymmetric)
-    do b = 1, size(run%sc%bodies)
-      associate (mat => run%deck%bodies(b)%material, m => run%sc%bodies(b)%mesh)
+    if (prob%deck%plane_stress) return
+    model = merge('axisymmetric analysis', 'plane strain         ', prob%deck%axisymmetric)
+    do b = 1, size(prob%sc%bodies)
+      associate (mat => prob%deck%bodies(b)%material, m => prob%sc%bodies(b)%mesh)
         if (.not. allocated(mat%kind)) cycle
         if (mat%kind /= 'isotropic' .or. mat%nu <= locking_nu) cycle
         ntri = count(m%nen == 3)
         if (ntri == 0) cycle
-        call add_warning(run, 'locking', run%deck%file // ':' // int_to_str(mat%line) // ': body "' // &
-          run%sc%bodies(b)%name // '": nu = ' // format_number(mat%nu) // ' above ' // format_number(locking_nu) // &
+        call add_warning(log, 'locking', prob%deck%file // ':' // int_to_str(mat%line) // ': body "' // &
+          prob%sc%bodies(b)%name // '": nu = ' // format_number(mat%nu) // ' above ' // format_number(locking_nu) // &
           ' on ' // int_to_str(ntri) // ' 3-node triangles in ' // trim(model) // ': they lock as nu -> 1/2 ' // &
           '(the displacements come out too small, the stresses oscillate); 4-node quadrangles (B-bar) and ' // &
           'quadratic elements (elem=tri6, quad8, quad9 or order=2) do not')
@@ -99,28 +102,29 @@ contains
   !> share of each body's area (of its section, axisymmetric) where each
   !> passes its limit.
   !>   over (out) (2, nbody) that share, strain then rotation
-  subroutine measure_deformation(run, over)
-    type(run_t), intent(inout) :: run
+  subroutine measure_deformation(prob, res, over)
+    type(problem_t), intent(in) :: prob
+    type(results_t), intent(inout) :: res
     real(dp), allocatable, intent(out) :: over(:,:)
     real(dp) :: xe(2, max_nen), ue(2, max_nen), n(max_nen), dndx(2, max_nen), detj
     real(dp) :: g(2, 2), x(2), ur, c, r, strain, omega, da, area
     real(dp), allocatable :: xi(:,:), w(:)
     integer :: b, e, a, k, nen, d, rule_nen
-    allocate(over(2, size(run%sc%bodies)), source=0.0_dp)
-    run%res%max_strain = 0.0_dp
-    run%res%max_rotation = 0.0_dp
-    run%res%max_strain_body = run%sc%bodies(1)%name
-    run%res%max_rotation_body = run%sc%bodies(1)%name
+    allocate(over(2, size(prob%sc%bodies)), source=0.0_dp)
+    res%max_strain = 0.0_dp
+    res%max_rotation = 0.0_dp
+    res%max_strain_body = prob%sc%bodies(1)%name
+    res%max_rotation_body = prob%sc%bodies(1)%name
     rule_nen = 0
-    do b = 1, size(run%sc%bodies)
-      associate (bd => run%sc%bodies(b), m => run%sc%bodies(b)%mesh)
+    do b = 1, size(prob%sc%bodies)
+      associate (bd => prob%sc%bodies(b), m => prob%sc%bodies(b)%mesh)
         area = 0.0_dp
         do e = 1, m%nelem
           nen = m%nen(e)
           do a = 1, nen
             xe(:, a) = m%x(:, m%conn(a, e))
             d = bd%dof0 + 2 * (m%conn(a, e) - 1)
-            ue(:, a) = run%res%u(d + 1:d + 2)
+            ue(:, a) = res%u(d + 1:d + 2)
           end do
           if (nen /= rule_nen) call quadrature_rule(nen, 1, xi, w)   ! once per element kind met
           rule_nen = nen
@@ -140,13 +144,13 @@ contains
             area = area + da
             if (strain > strain_limit) over(1, b) = over(1, b) + da
             if (omega > rotation_limit) over(2, b) = over(2, b) + da
-            if (strain > run%res%max_strain(1)) then
-              run%res%max_strain = [strain, x(1), x(2)]
-              run%res%max_strain_body = bd%name
+            if (strain > res%max_strain(1)) then
+              res%max_strain = [strain, x(1), x(2)]
+              res%max_strain_body = bd%name
             end if
-            if (omega > run%res%max_rotation(1)) then
-              run%res%max_rotation = [omega, x(1), x(2)]
-              run%res%max_rotation_body = bd%name
+            if (omega > res%max_rotation(1)) then
+              res%max_rotation = [omega, x(1), x(2)]
+              res%max_rotation_body = bd%name
             end if
           end do
         end do
@@ -161,8 +165,10 @@ contains
   !> turned by more than the rotation limit too
   !> (its points move by the linearized U(x) = u + theta e_z x (x - x_r)),
   !> unless it is a circle turned about its centre.
-  subroutine check_deformation(run, over)
-    type(run_t), intent(inout) :: run
+  subroutine check_deformation(prob, res, over, log)
+    type(problem_t), intent(in) :: prob
+    type(results_t), intent(in) :: res
+    type(log_t), intent(inout) :: log
     real(dp), intent(in) :: over(:,:)
     integer :: r, bs, bo
     character(len=*), parameter :: why = ': the model is small-deformation linear elasticity (strains and ' // &
@@ -170,26 +176,26 @@ contains
       'trusted there'
     bs = maxloc(over(1, :), dim=1)
     bo = maxloc(over(2, :), dim=1)
-    associate (s => run%res%max_strain, o => run%res%max_rotation)
-      if (over(1, bs) > area_limit) call add_warning(run, 'large_strain', 'the principal strain exceeds ' // &
-        format_number(strain_limit) // ' over ' // percent(over(1, bs)) // ' of body "' // run%sc%bodies(bs)%name // &
-        '" (the largest, ' // real_to_str(s(1)) // ', in body "' // run%res%max_strain_body // '" at (' // &
+    associate (s => res%max_strain, o => res%max_rotation)
+      if (over(1, bs) > area_limit) call add_warning(log, 'large_strain', 'the principal strain exceeds ' // &
+        format_number(strain_limit) // ' over ' // percent(over(1, bs)) // ' of body "' // prob%sc%bodies(bs)%name // &
+        '" (the largest, ' // real_to_str(s(1)) // ', in body "' // res%max_strain_body // '" at (' // &
         real_to_str(s(2)) // ', ' // real_to_str(s(3)) // '))' // why // ' (check the loads and units, and ' // &
         'any initial penetration an interference=allow pair accepts)')
-      if (over(2, bo) > area_limit) call add_warning(run, 'large_rotation', 'the rotation exceeds ' // &
+      if (over(2, bo) > area_limit) call add_warning(log, 'large_rotation', 'the rotation exceeds ' // &
         format_number(rotation_limit) // ' rad over ' // percent(over(2, bo)) // ' of body "' // &
-        run%sc%bodies(bo)%name // '" (the largest, ' // real_to_str(o(1)) // ' rad, in body "' // &
-        run%res%max_rotation_body // '" at (' // real_to_str(o(2)) // ', ' // real_to_str(o(3)) // '))' // why)
+        prob%sc%bodies(bo)%name // '" (the largest, ' // real_to_str(o(1)) // ' rad, in body "' // &
+        res%max_rotation_body // '" at (' // real_to_str(o(2)) // ', ' // real_to_str(o(3)) // '))' // why)
     end associate
-    do r = 1, size(run%sc%rigids)
-      if (abs(run%res%rigid(3, r)) <= rotation_limit) cycle
+    do r = 1, size(prob%sc%rigids)
+      if (abs(res%rigid(3, r)) <= rotation_limit) cycle
       ! a circle turned about its centre moves along itself: its gaps do not
       ! depend on the rotation, linearized or not
-      associate (sh => run%sc%rigids(r))
-        if (run%deck%rigids(r)%shape == 'circle' .and. norm2(sh%ref - sh%centre) <= 1.0e-12_dp * sh%radius) cycle
+      associate (sh => prob%sc%rigids(r))
+        if (prob%deck%rigids(r)%shape == 'circle' .and. norm2(sh%ref - sh%centre) <= 1.0e-12_dp * sh%radius) cycle
       end associate
-      call add_warning(run, 'large_rotation', 'RIGID "' // run%sc%rigids(r)%name // '" turns by ' // &
-        real_to_str(run%res%rigid(3, r)) // ' rad, above ' // format_number(rotation_limit) // ' rad' // why)
+      call add_warning(log, 'large_rotation', 'RIGID "' // prob%sc%rigids(r)%name // '" turns by ' // &
+        real_to_str(res%rigid(3, r)) // ' rad, above ' // format_number(rotation_limit) // ' rad' // why)
     end do
   end subroutine check_deformation
 

@@ -41,25 +41,24 @@
 !> gmsh's start, the deck).
 !>
 !> Programming interface
-!>   estimate_error(run)        res%estimated, res%estimate_energy, res%error_indicator,
-!>                              res%estimate_pressure (res%u in x, y), timed as phase estimate
-!>   estimate_results(run, res) the same of one load step's results (OUTPUT steps=all)
-!>   predict_cost(run)          res%cost_seconds, res%cost_dofs, from the indicators and
-!>                              the phases' times so far (called when only the summary is left)
-!>   element_rates(run)         the rate in h of each element's energy error (ADAPT, predict_cost)
+!>   estimate_results(prob, res)   res%estimated, res%estimate_energy, res%error_indicator,
+!>                                 res%estimate_pressure of a state's results (u in x, y)
+!>   predict_cost(prob, res, spent, energy_prev, dofs_prev)   res%cost_seconds, res%cost_dofs,
+!>                                 from the indicators and this mesh's phase times
+!>   element_rates(prob, estimate, energy_prev, dofs_prev)    the rate in h of each element's
+!>                                 energy error (ADAPT, predict_cost)
 module run_estimate
   use kinds, only: dp
-  use run_state, only: run_t, ph_output, ph_estimate
+  use run_log, only: ph_output
+  use problem, only: problem_t
   use size_field, only: optimal_scales, element_count
-  use run_report, only: lap
-  use run_phase, only: enter_phase
   use results_writer, only: results_t
   use error_estimate, only: recover_stress, energy_indicators
   use body, only: node_elements
   use axisymmetric_elements, only: radial_weight
   implicit none
   private
-  public :: estimate_error, estimate_results, predict_cost, element_rates
+  public :: estimate_results, predict_cost, element_rates
 
   !> how each phase's time grows with the dofs (module header): r^growth
   real(dp), parameter :: growth(ph_output) = [1.0_dp, 1.0_dp, 1.5_dp, 1.5_dp, 1.5_dp, 1.0_dp, 1.0_dp, 1.0_dp]
@@ -71,24 +70,13 @@ module run_estimate
 
 contains
 
-  !> The error estimate of the run's final state, timed as phase estimate.
-  !>   run (inout) res%u in x, y components on entry (post_processing); the
-  !>               estimate and the indicators on exit, when deck%estimate
-  subroutine estimate_error(run)
-    type(run_t), intent(inout) :: run
-    call lap(run, ph_output)                     ! the results computed so far: output, as before
-    if (run%deck%estimate) call enter_phase('estimating the error')
-    call estimate_results(run, run%res)
-    if (run%res%estimated) call lap(run, ph_estimate)
-  end subroutine estimate_error
-
   !> The error estimate of one state's results: the final state's, or a
   !> load step's (its VTK file shows error_indicator too).
   !>   res (inout) u in x, y components and node_pressure on entry; estimated,
   !>               estimate_energy, error_indicator and estimate_pressure on exit,
   !>               when deck%estimate (else estimated false, no indicators)
-  subroutine estimate_results(run, res)
-    type(run_t), intent(in) :: run
+  subroutine estimate_results(prob, res)
+    type(problem_t), intent(in) :: prob
     type(results_t), intent(inout) :: res
     type(recovered_t), allocatable :: rec(:)
     real(dp), allocatable :: u(:,:), eta2(:)
@@ -96,12 +84,12 @@ contains
     integer :: b, nn, d0, e0, ne
     res%estimated = .false.
     if (allocated(res%error_indicator)) deallocate(res%error_indicator)
-    if (.not. run%deck%estimate) return
-    allocate(eta2(run%sc%nelem), source=0.0_dp)
-    allocate(rec(size(run%sc%bodies)))
+    if (.not. prob%deck%estimate) return
+    allocate(eta2(prob%sc%nelem), source=0.0_dp)
+    allocate(rec(size(prob%sc%bodies)))
     energy2 = 0.0_dp
-    do b = 1, size(run%sc%bodies)
-      associate (bd => run%sc%bodies(b))
+    do b = 1, size(prob%sc%bodies)
+      associate (bd => prob%sc%bodies(b))
         nn = bd%mesh%nnode
         ne = bd%mesh%nelem
         d0 = bd%dof0
@@ -112,7 +100,7 @@ contains
         energy2 = energy2 + body_energy2
       end associate
     end do
-    call pressure_estimates(run, res, rec, eta2)
+    call pressure_estimates(prob, res, rec, eta2)
     ! the norm is the whole system's, u'Ku = 2 energy, springs included: on a
     ! body that rides on its springs the elements' own energy is round-off,
     ! and an error relative to it would be noise
@@ -122,7 +110,7 @@ contains
       allocate(res%error_indicator, source=sqrt(eta2 / total))
     else                                          ! no deformation at all: nothing to be wrong about
       res%estimate_energy = 0.0_dp
-      allocate(res%error_indicator(run%sc%nelem), source=0.0_dp)
+      allocate(res%error_indicator(prob%sc%nelem), source=0.0_dp)
     end if
     res%estimated = .true.
   end subroutine estimate_results
@@ -130,63 +118,65 @@ contains
   !> estimate cost_to_halve (module header): res%cost_dofs and
   !> res%cost_seconds, from the indicators, the elements' orders (or ADAPT's
   !> observed rate) and this mesh's phase times.
-  !>   run (inout) res%error_indicator, res%time on entry
-  subroutine predict_cost(run)
-    type(run_t), intent(inout) :: run
-    real(dp), allocatable :: s(:), spent(:)
+  !>   res         (inout) error_indicator, estimate_energy on entry
+  !>   spent       (in)    (ph_output) this mesh's CPU seconds per phase
+  !>   energy_prev, dofs_prev (in) ADAPT's last mesh (< 0: none)
+  subroutine predict_cost(prob, res, spent, energy_prev, dofs_prev)
+    type(problem_t), intent(in) :: prob
+    type(results_t), intent(inout) :: res
+    real(dp), intent(in) :: spent(:), energy_prev, dofs_prev
+    real(dp), allocatable :: s(:)
     real(dp) :: r
-    run%res%cost_dofs = -1
-    run%res%cost_seconds = -1
+    res%cost_dofs = -1
+    res%cost_seconds = -1
     ! an error at round-off (a patch test, a rigid motion on springs) has no next digit to buy
-    if (.not. run%res%estimated .or. .not. run%res%estimate_energy > 1.0e-8_dp) return
-    allocate(s(run%sc%nelem))
-    call optimal_scales(run%res%error_indicator**2, element_rates(run), (run%res%estimate_energy / 2)**2, &
-                        1.0e-3_dp, 8.0_dp, s)
-    r = element_count(s) / run%sc%nelem
-    run%res%cost_dofs = run%sc%ndof * r
-    spent = run%res%cpu(1:ph_output)
-    if (allocated(run%adapt%time0)) spent = spent - run%adapt%time0(1:ph_output)   ! this mesh's step alone
+    if (.not. res%estimated .or. .not. res%estimate_energy > 1.0e-8_dp) return
+    allocate(s(prob%sc%nelem))
+    call optimal_scales(res%error_indicator**2, element_rates(prob, res%estimate_energy, energy_prev, dofs_prev), &
+                        (res%estimate_energy / 2)**2, 1.0e-3_dp, 8.0_dp, s)
+    r = element_count(s) / prob%sc%nelem
+    res%cost_dofs = prob%sc%ndof * r
     ! the mesh phase holds what a coarser mesh does not make cheaper (the
     ! process's and gmsh's start, the deck): it never shrinks below this run's
-    run%res%cost_seconds = sum(max(0.0_dp, spent(2:)) * r**growth(2:)) + max(0.0_dp, spent(1)) * max(1.0_dp, r)**growth(1)
+    res%cost_seconds = sum(max(0.0_dp, spent(2:ph_output)) * r**growth(2:)) + &
+                       max(0.0_dp, spent(1)) * max(1.0_dp, r)**growth(1)
   end subroutine predict_cost
 
   !> The rate in h of each element's energy error: its order (1 for 3- and
   !> 4-node elements, 2 for quadratic ones), or the rate ADAPT observed
   !> between its last two meshes when lower, error ~ dofs^(-p/2) in 2D:
   !> p = 2 log(e_prev / e) / log(dofs / dofs_prev), at least 1/2.
-  !>   run (in) the mesh, res%estimate_energy and ADAPT's last mesh
-  function element_rates(run) result(rate)
-    type(run_t), intent(in) :: run
+  !>   estimate    (in) this mesh's energy estimate
+  !>   energy_prev, dofs_prev (in) ADAPT's last mesh's estimate and dofs (< 0: none)
+  function element_rates(prob, estimate, energy_prev, dofs_prev) result(rate)
+    type(problem_t), intent(in) :: prob
+    real(dp), intent(in) :: estimate, energy_prev, dofs_prev
     real(dp), allocatable :: rate(:)
     real(dp) :: observed, dofs
     integer :: b, e
-    allocate(rate(run%sc%nelem))
-    do b = 1, size(run%sc%bodies)
-      associate (m => run%sc%bodies(b)%mesh, e0 => run%sc%bodies(b)%elem0)
+    allocate(rate(prob%sc%nelem))
+    do b = 1, size(prob%sc%bodies)
+      associate (m => prob%sc%bodies(b)%mesh, e0 => prob%sc%bodies(b)%elem0)
         do e = 1, m%nelem
           rate(e0 + e) = merge(1.0_dp, 2.0_dp, m%nen(e) <= 4)
         end do
       end associate
     end do
-    dofs = real(run%sc%ndof, dp)
-    associate (a => run%adapt)
-      if (a%energy_prev > 0.0_dp .and. a%dofs_prev > 0.0_dp .and. dofs > 1.2_dp * a%dofs_prev .and. &
-          run%res%estimate_energy > 0.0_dp) then
-        observed = 2 * log(a%energy_prev / run%res%estimate_energy) / log(dofs / a%dofs_prev)
-        rate = min(rate, max(0.5_dp, observed))
-      end if
-    end associate
+    dofs = real(prob%sc%ndof, dp)
+    if (energy_prev > 0.0_dp .and. dofs_prev > 0.0_dp .and. dofs > 1.2_dp * dofs_prev .and. estimate > 0.0_dp) then
+      observed = 2 * log(energy_prev / estimate) / log(dofs / dofs_prev)
+      rate = min(rate, max(0.5_dp, observed))
+    end if
   end function element_rates
 
   !> res%estimate_pressure of every pair, and the contact terms added to the
   !> slave elements' eta2 (module header).
-  !>   run  (in)    the contact set
+  !>   prob (in)    the contact set
   !>   res  (inout) node_pressure on entry; estimate_pressure on exit
   !>   rec  (in)    (nbody) the recovered stresses
   !>   eta2 (inout) (nelem) the element indicators squared
-  subroutine pressure_estimates(run, res, rec, eta2)
-    type(run_t), intent(in) :: run
+  subroutine pressure_estimates(prob, res, rec, eta2)
+    type(problem_t), intent(in) :: prob
     type(results_t), intent(inout) :: res
     type(recovered_t), intent(in) :: rec(:)
     real(dp), intent(inout) :: eta2(:)
@@ -195,9 +185,9 @@ contains
     real(dp) :: d2, p2, seg_d2, seg_p2, len, dv, sn(2)
     integer :: ip, k, ns, sb, owner
     if (allocated(res%estimate_pressure)) deallocate(res%estimate_pressure)
-    allocate(res%estimate_pressure(run%cs%npair), source=-1.0_dp)
-    do ip = 1, run%cs%npair
-      associate (pr => run%cs%pair(ip), bd => run%sc%bodies(run%cs%pair(ip)%spec%slave_body))
+    allocate(res%estimate_pressure(prob%cs%npair), source=-1.0_dp)
+    do ip = 1, prob%cs%npair
+      associate (pr => prob%cs%pair(ip), bd => prob%sc%bodies(prob%cs%pair(ip)%spec%slave_body))
         sb = pr%spec%slave_body
         ns = size(pr%snode)
         allocate(ph(ns), pstar(ns))

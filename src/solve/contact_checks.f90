@@ -35,26 +35,26 @@
 !>    over the zone are all of one sign and no larger than twice the coarser
 !>    chain's sagitta gets `warning polygon_gap` naming the remedies.
 !>
-!> Why it exists: the checks read the run's results and end it or add a
-!> warning, so they belong to the application layer; they are called from
-!> one place per solved step.  Warnings go to stderr and to the summary
-!> (`warning CODE text`, results_t%warning).
+!> Why it exists: what a solved step did, measured against what the
+!> small-sliding rows assumed; the caller of each solved step asks once.  A
+!> slide beyond small sliding returns an error_t of category error_model;
+!> the polygon gaps are a warning (run_log).
 !>
 !> Programming interface
-!>   check_contact_model(run, step)   the monitors after load step `step` (the last: also polygon gaps)
+!>   check_contact_model(prob, u, mu, kstep, log, err)  the monitors after load step kstep
+!>                                    (the last: also polygon gaps)
 module contact_checks
   use kinds, only: dp
   use strings, only: int_to_str, real_to_str
-  use exits, only: fail_numerical
-  use run_state, only: run_t
-  use results_writer, only: results_t
-  use run_report, only: add_warning
+  use errors, only: error_t, set_error, error_model
+  use run_log, only: log_t, add_warning
+  use problem, only: problem_t, step_label
   use contact_set, only: row_of_node, contact_pair_t
   use rigid_obstacle, only: rigid_terms, shape_circle
   use mortar_geometry, only: mean_curvature
   implicit none
   private
-  public :: check_contact_model, check_step_sliding
+  public :: check_contact_model
 
   real(dp), parameter :: zone_fraction = 0.25_dp   ! a slide up to a/4 of the zone's half-width
   real(dp), parameter :: edge_on_cos = 0.5_dp      ! a row more than 60 degrees from the slave normal
@@ -63,63 +63,55 @@ module contact_checks
 
 contains
 
-  !> The monitors after load step `step` of the run (res%u in global axes,
-  !> res%mu set): the slide of every pair (exit 1 beyond small sliding);
-  !> after the last step also the polygon gaps (a warning).
-  !>   run  (inout) the run; a warning may be added to res%warning
-  !>   step (in)    the load step just solved (run%sc%steps: the last)
-  subroutine check_contact_model(run, step)
-    type(run_t), intent(inout) :: run
-    integer, intent(in) :: step
+  !> The monitors after load step kstep: the slide of every small-sliding
+  !> pair (error_model beyond it); after the last step also the polygon gaps
+  !> (a warning).
+  !>   u     (in)    (ndof) the step's displacement, global axes (unallocated: none)
+  !>   mu    (in)    (nrow) its normal multipliers (unallocated: none)
+  !>   kstep (in)    the load step just solved (prob%sc%steps: the last)
+  !>   log   (inout) the polygon gaps' warnings
+  !>   err   (out)   a pair slides beyond small sliding
+  subroutine check_contact_model(prob, u, mu, kstep, log, err)
+    type(problem_t), intent(in) :: prob
+    real(dp), allocatable, intent(in) :: u(:), mu(:)
+    integer, intent(in) :: kstep
+    type(log_t), intent(inout) :: log
+    type(error_t), allocatable, intent(out) :: err
     integer :: ip
-    if (allocated(run%res%u) .and. allocated(run%res%mu)) then
-      do ip = 1, run%cs%npair
-        if (run%cs%pair(ip)%spec%finite) cycle      ! sliding=finite: the geometry follows the slide
-        if (run%cs%pair(ip)%nrow > 0) call check_sliding(run, run%res%u, run%res%mu, ip, step)
+    if (allocated(u) .and. allocated(mu)) then
+      do ip = 1, prob%cs%npair
+        if (prob%cs%pair(ip)%spec%finite) cycle      ! sliding=finite: the geometry follows the slide
+        if (prob%cs%pair(ip)%nrow > 0) call check_sliding(prob, u, mu, ip, kstep, err)
+        if (allocated(err)) return
       end do
     end if
-    if (step < run%sc%steps) return
-    do ip = 1, run%cs%npair
-      call check_polygon_gap(run, ip)
+    if (kstep < prob%sc%steps) return
+    do ip = 1, prob%cs%npair
+      call check_polygon_gap(prob, ip, log)
     end do
   end subroutine check_contact_model
-
-  !> The slide of every pair after an earlier load step, whose results res
-  !> are the step's own (OUTPUT steps=all): exit 1 beyond small sliding.
-  !>   run (in) the scene and contact set;  res (in) the step's u (global axes) and mu
-  !>   step (in) the load step
-  subroutine check_step_sliding(run, res, step)
-    type(run_t), intent(in) :: run
-    type(results_t), intent(in) :: res
-    integer, intent(in) :: step
-    integer :: ip
-    if (.not. allocated(res%u) .or. .not. allocated(res%mu)) return
-    do ip = 1, run%cs%npair
-      if (run%cs%pair(ip)%spec%finite) cycle
-      if (run%cs%pair(ip)%nrow > 0) call check_sliding(run, res%u, res%mu, ip, step)
-    end do
-  end subroutine check_step_sliding
 
   !> The slide of the active nodes of pair ip against max(h, a/4), and the
   !> edge-on rows (module header, 1.); exit 1 naming sliding=finite.
   !>   u (in) (ndof) the displacement, global axes;  mu (in) (nrow) the normal multipliers
-  subroutine check_sliding(run, u, mu, ip, step)
-    type(run_t), intent(in) :: run
+  subroutine check_sliding(prob, u, mu, ip, kstep, err)
+    type(problem_t), intent(in) :: prob
     real(dp), intent(in) :: u(:), mu(:)
-    integer, intent(in) :: ip, step
+    integer, intent(in) :: ip, kstep
+    type(error_t), allocatable, intent(out) :: err
     logical, allocatable :: active(:)
     real(dp), allocatable :: arc(:), halfwidth(:)
     real(dp) :: t(2), nu(2), du(2), slide, cap, h, worst, ratio, mumax
     integer :: ns, i, r, a, b, iworst
     logical :: edge_on, worst_edge
-    associate(pr => run%cs%pair(ip))
+    associate(pr => prob%cs%pair(ip))
       ns = size(pr%snode)
       ! active as the outputs' status says: a multiplier above 1e-12 of the largest
       ! (a round-off one far from the zone is no contact)
       mumax = maxval(abs(mu))                  ! this pair has rows: mu is not empty
       allocate(active(ns), source=.false.)
       do i = 1, ns
-        r = row_of_node(run%cs, ip, i)
+        r = row_of_node(prob%cs, ip, i)
         if (r > 0) active(i) = mu(r) > 1.0e-12_dp * mumax
       end do
       if (.not. any(active)) return
@@ -138,7 +130,7 @@ contains
         t = t / norm2(t)
         nu = [-t(2), t(1)]
         h = element_length(pr, i)
-        du = slave_displacement(run, u, pr, i) - master_displacement(run, u, pr, i)
+        du = slave_displacement(prob, u, pr, i) - master_displacement(prob, u, pr, i)
         slide = abs(dot_product(du, t))
         cap = max(h, zone_fraction * halfwidth(i))
         ratio = slide / cap
@@ -158,10 +150,11 @@ contains
       call neighbours(pr, i, a, b)
       t = pr%xs(:, b) - pr%xs(:, a)
       t = t / norm2(t)
-      du = slave_displacement(run, u, pr, i) - master_displacement(run, u, pr, i)
+      du = slave_displacement(prob, u, pr, i) - master_displacement(prob, u, pr, i)
       slide = abs(dot_product(du, t))
       cap = max(h, zone_fraction * halfwidth(i))
-      call fail_numerical(sliding_text(run, ip, step, pr%xs(:, i), slide, h, halfwidth(i), cap, worst_edge))
+      call set_error(err, sliding_text(prob, ip, kstep, pr%xs(:, i), slide, h, halfwidth(i), cap, worst_edge), &
+                     error_model)
     end associate
   end subroutine check_sliding
 
@@ -210,15 +203,14 @@ contains
   end subroutine zone_halfwidths
 
   !> The diagnosis of a pair that slides beyond small sliding.
-  function sliding_text(run, ip, step, x, slide, h, halfwidth, cap, edge_on) result(t)
-    type(run_t), intent(in) :: run
-    integer, intent(in) :: ip, step
+  function sliding_text(prob, ip, kstep, x, slide, h, halfwidth, cap, edge_on) result(t)
+    type(problem_t), intent(in) :: prob
+    integer, intent(in) :: ip, kstep
     real(dp), intent(in) :: x(2), slide, h, halfwidth, cap
     logical, intent(in) :: edge_on
     character(len=:), allocatable :: t
-    t = ''
-    if (step < run%sc%steps) t = 'load step ' // int_to_str(step) // ' of ' // int_to_str(run%sc%steps) // ': '
-    t = t // run%deck%file // ':' // int_to_str(run%deck%contacts(ip)%line) // ': CONTACT pair ' // int_to_str(ip) // &
+    t = prob%deck%file // ':' // int_to_str(prob%deck%contacts(ip)%line) // ': ' // step_label(prob, kstep) // &
+      'CONTACT pair ' // int_to_str(ip) // &
       ' slides beyond small sliding: the slave node at (' // real_to_str(x(1)) // ', ' // real_to_str(x(2)) // ') '
     if (edge_on) then
       t = t // 'touches the master edge-on, along its own surface, a contact that only a slide of ' // &
@@ -231,7 +223,7 @@ contains
     end if
     t = t // '; the pairing, gaps and normals of the initial configuration no longer describe where the bodies ' // &
       'touch'
-    if (run%cs%pair(ip)%spec%mu > 0.0_dp .or. run%cs%pair(ip)%spec%tresca > 0.0_dp) t = t // &
+    if (prob%cs%pair(ip)%spec%mu > 0.0_dp .or. prob%cs%pair(ip)%spec%tresca > 0.0_dp) t = t // &
       ' (with friction: gross slip, an equilibrium that may exist only because the geometry is frozen, e.g. ' // &
       'a body pushed beyond what friction holds)'
     t = t // ' (expected a slide within small sliding, or CONTACT ... sliding=finite)'
@@ -266,22 +258,22 @@ contains
   end function element_length
 
   !> u of slave node i (global axes).
-  function slave_displacement(run, ug, pr, i) result(u)
-    type(run_t), intent(in) :: run
+  function slave_displacement(prob, ug, pr, i) result(u)
+    type(problem_t), intent(in) :: prob
     real(dp), intent(in) :: ug(:)
     type(contact_pair_t), intent(in) :: pr
     integer, intent(in) :: i
     real(dp) :: u(2)
     integer :: d
-    d = run%sc%bodies(pr%spec%slave_body)%dof0 + 2 * (pr%snode(i) - 1)
+    d = prob%sc%bodies(pr%spec%slave_body)%dof0 + 2 * (pr%snode(i) - 1)
     u = ug(d + 1:d + 2)
   end function slave_displacement
 
   !> u of the master at the point paired with slave node i: a RIGID's motion
   !> U(x_i); else the master chain's displacement interpolated at its point
   !> nearest x_i in the initial configuration.
-  function master_displacement(run, ug, pr, i) result(u)
-    type(run_t), intent(in) :: run
+  function master_displacement(prob, ug, pr, i) result(u)
+    type(problem_t), intent(in) :: prob
     real(dp), intent(in) :: ug(:)
     type(contact_pair_t), intent(in) :: pr
     integer, intent(in) :: i
@@ -299,7 +291,7 @@ contains
       u(2) = dot_product(rigid_terms(pr%spec%shape, y, [0.0_dp, 1.0_dp]), ug(d0 + 1:d0 + 3))
       return
     end if
-    associate(x => run%sc%bodies(pr%spec%master_body)%mesh%x)
+    associate(x => prob%sc%bodies(pr%spec%master_body)%mesh%x)
       best = huge(1.0_dp)
       jbest = 1
       sbest = 0.0_dp
@@ -317,7 +309,7 @@ contains
         end if
       end do
     end associate
-    d0 = run%sc%bodies(pr%spec%master_body)%dof0
+    d0 = prob%sc%bodies(pr%spec%master_body)%dof0
     da = d0 + 2 * (pr%mnode(jbest) - 1)
     db = d0 + 2 * (pr%mnode(min(jbest + 1, size(pr%mnode))) - 1)
     u = (1.0_dp - sbest) * ug(da + 1:da + 2) + sbest * ug(db + 1:db + 2)
@@ -325,17 +317,18 @@ contains
 
   !> Polygon gaps of pair ip (module header, 2.): a warning when the two
   !> chains are polygons of one curve and the initial gaps are their sags.
-  subroutine check_polygon_gap(run, ip)
-    type(run_t), intent(inout) :: run
+  subroutine check_polygon_gap(prob, ip, log)
+    type(problem_t), intent(in) :: prob
     integer, intent(in) :: ip
+    type(log_t), intent(inout) :: log
     real(dp), allocatable :: xm(:,:), nm(:,:), ns_seg(:,:), g(:)
     logical, allocatable :: sface(:), mface(:)
     real(dp) :: ks, km, hs, hm, sag, gmax, vote
     integer :: e, f, k, nmn
-    associate(pr => run%cs%pair(ip), mo => run%cs%pair(ip)%mortar)
+    associate(pr => prob%cs%pair(ip), mo => prob%cs%pair(ip)%mortar)
       if (pr%spec%rigid > 0 .or. pr%spec%gap_zero .or. pr%quadratic .or. mo%first == 0) return
       if (mo%inter%nsub == 0) return
-      xm = run%sc%bodies(pr%spec%master_body)%mesh%x(:, pr%mnode)
+      xm = prob%sc%bodies(pr%spec%master_body)%mesh%x(:, pr%mnode)
       nmn = size(pr%mnode)
       ! the segments' unit normals, one turn of the tangent on each chain; the
       ! slave's outward by its nodal normals, the master's facing the slave
@@ -378,7 +371,7 @@ contains
       ! gaps of one sign, of the order of the sagitta, and not zero (matching polygons)
       if (gmax > sag_factor * sag .or. gmax < 0.05_dp * sag) return
       if (any(g > 0.05_dp * gmax) .and. any(g < -0.05_dp * gmax)) return
-      call add_warning(run, 'polygon_gap', run%deck%file // ':' // int_to_str(run%deck%contacts(ip)%line) // &
+      call add_warning(log, 'polygon_gap', prob%deck%file // ':' // int_to_str(prob%deck%contacts(ip)%line) // &
         ': CONTACT pair ' // int_to_str(ip) // ': the two boundaries are polygons of one curve (radius ' // &
         real_to_str(1.0_dp / abs(ks)) // ') and start ' // trim(merge('open       ', 'penetrating', sum(g) > 0.0_dp)) // &
         ' by up to ' // real_to_str(gmax) // ', the chords'' sagitta h^2/(8R) = ' // real_to_str(sag) // &

@@ -7,18 +7,17 @@
 !> `rigid NAME ux uy rz fx fy m`.  Two FIX statements on one boundary give it
 !> one pair of reaction columns, their sum (the force the boundary takes).
 !>
-!> Why it exists: run_outputs names and commits files; what a step's row holds
-!> is a list of its own that grows with the results.  Who may use it:
-!> run_outputs (run_state's list).
+!> Why it exists: the application names and commits files; what a step's
+!> row holds is a list of its own that grows with the results.
 !>
 !> Programming interface
-!>   step_columns(run, kstep, res, header, values, whole)
-!>        step kstep's row from its results res (engineering_results done), the
-!>        header line and which columns are integers
+!>   step_columns(prob, kstep, res, iterations, header, values, whole)
+!>        step kstep's row from its results res (engineering_results done) and
+!>        its LCP iterations, the header line and which columns are integers
 module step_table
   use kinds, only: dp
   use strings, only: int_to_str
-  use run_state, only: run_t
+  use problem, only: problem_t
   use results_writer, only: results_t, string_t
   use load_groups, only: group_factor, group_name
   use post_processing, only: fix_boundaries
@@ -31,15 +30,16 @@ module step_table
 contains
 
   !> Step kstep's row of NAME_steps.csv and its header.
-  !>   run    (in)  the scene and contact set; step_iterations of the step
+  !>   prob   (in)  the scene and contact set
   !>   kstep  (in)  the step, 1 .. steps
   !>   res    (in)  the step's results: reactions, contact forces, rigid results, zones, boundary_u
+  !>   iterations (in) the step's LCP iterations
   !>   header (out) the header line (the same for every step)
   !>   values (out) (ncol) the row
   !>   whole  (out) (ncol) the column holds integers (step, counts)
-  subroutine step_columns(run, kstep, res, header, values, whole)
-    type(run_t), intent(in) :: run
-    integer, intent(in) :: kstep
+  subroutine step_columns(prob, kstep, res, iterations, header, values, whole)
+    type(problem_t), intent(in) :: prob
+    integer, intent(in) :: kstep, iterations
     type(results_t), intent(in) :: res
     character(len=:), allocatable, intent(out) :: header
     real(dp), allocatable, intent(out) :: values(:)
@@ -54,10 +54,10 @@ contains
     header = ''
     allocate(values(0), whole(0))
     call add('step', real(kstep, dp), .true.)
-    do g = 1, size(run%sc%ramp, 2)
-      call add('factor_' // group_name(run%sc, g), group_factor(run%sc, g, kstep), .false.)
+    do g = 1, size(prob%sc%ramp, 2)
+      call add('factor_' // group_name(prob%sc, g), group_factor(prob%sc, g, kstep), .false.)
     end do
-    call fix_boundaries(run, labels, of_fix)
+    call fix_boundaries(prob, labels, of_fix)
     allocate(reaction(2, size(labels)), source=0.0_dp)
     do j = 1, size(of_fix)
       reaction(:, of_fix(j)) = reaction(:, of_fix(j)) + res%reaction(:, j)
@@ -70,7 +70,7 @@ contains
       call add('displacement_' // labels(j)%s // '_ux', res%boundary_u(1, j), .false.)
       call add('displacement_' // labels(j)%s // '_uy', res%boundary_u(2, j), .false.)
     end do
-    do ip = 1, run%cs%npair
+    do ip = 1, prob%cs%npair
       p = int_to_str(ip)
       call add('contact_force_' // p // '_fx', res%contact_force(1, ip), .false.)
       call add('contact_force_' // p // '_fy', res%contact_force(2, ip), .false.)
@@ -80,16 +80,16 @@ contains
       call add('peak_pressure_' // p // '_y', res%zones(ip)%peak(3), .false.)
       call add('center_of_pressure_' // p // '_x', res%zones(ip)%centre(1), .false.)
       call add('center_of_pressure_' // p // '_y', res%zones(ip)%centre(2), .false.)
-      if (has_friction(run%cs%pair(ip)%spec)) call add_zone('stick', p, res%zones(ip)%stick)
+      if (has_friction(prob%cs%pair(ip)%spec)) call add_zone('stick', p, res%zones(ip)%stick)
     end do
-    do j = 1, size(run%sc%rigids)
-      name = run%sc%rigids(j)%name
+    do j = 1, size(prob%sc%rigids)
+      name = prob%sc%rigids(j)%name
       do n = 1, 6
         call add('rigid_' // name // '_' // trim(rigid_part(n)), res%rigid(n, j), .false.)
       end do
     end do
     call add('active_nodes', real(res%active_nodes, dp), .true.)
-    call add('lcp_iterations', real(run%step_iterations, dp), .true.)
+    call add('lcp_iterations', real(iterations, dp), .true.)
 
   contains
 

@@ -16,18 +16,15 @@
 module results_writer
   use kinds, only: dp, i8
   use contact_set, only: contact_set_t, row_of_node, state_row_of_node, node_rows, node_traction
-  use strings, only: int_to_str, i8_to_str
+  use strings, only: int_to_str, i8_to_str, exact_to_str
   use errors, only: error_t, set_error
   use text_scan, only: string_t
   use contact_zones, only: pair_zones_t, zone_t
+  use run_log, only: nphase, phase_names
   implicit none
   private
   public :: results_t, string_t, write_contact_csv, write_summary, write_pvd, write_step_table, cannot_write
-  public :: phase_names, nphase, peak_memory
-
-  integer, parameter :: nphase = 9
-  character(len=8), parameter :: phase_names(nphase) = &
-    [character(len=8) :: 'mesh', 'assemble', 'factor', 'condense', 'lcp', 'recover', 'estimate', 'output', 'total']
+  public :: peak_memory
 
   !> What a run found, for the writers.  Its lists of names and lines are
   !> arrays of string_t, not deferred-length character arrays: gfortran 12's
@@ -95,10 +92,13 @@ module results_writer
     character(len=:), allocatable :: lcp_method
     integer :: lcp_iterations = 0
     real(dp) :: lcp_residual = 0
-    type(string_t), allocatable :: lcp_fallback(:) !< 'STEP FROM TO' of each lcp=auto fallback (contact_solve)
+    type(string_t), allocatable :: lcp_fallback(:) !< 'STEP FROM TO' of each lcp=auto fallback (step_solver)
     real(dp) :: complementarity = 0, min_gap = 0, min_pressure = 0
     integer :: contact_nodes = 0, active_nodes = 0, redundant = 0
     integer(i8) :: factor_nnz = 0
+    integer :: factor_parts = 0                  !< parts of K factorized on their own (the bodies)
+    integer :: factor_threads = 1                !< threads the parts ran on (1: one after the other)
+    character(len=:), allocatable :: condense_text  !< how W was condensed by body (the run log; '' none)
     character(len=:), allocatable :: ordering    !< fill-reducing ordering used, e.g. amd(nodes)+last
     integer, allocatable :: condense_block(:,:)  !< (3, blocks of L_cc reached by rows): dofs, rows,
                                                  !< 1 by its inverse / 0 by triangular solves
@@ -156,15 +156,15 @@ contains
             extra = ',0,,0'                    ! no tangential row: no shear, no slip, open
             if (row > 0) then
               t = r%tan_of_row(state_row_of_node(cs, ip, i))
-              if (t > 0) extra = ',' // num(node_traction(cs, ip, i, tforce)) // ',' // num(r%slip(t)) // ',' // &
+              if (t > 0) extra = ',' // exact_to_str(node_traction(cs, ip, i, tforce)) // ',' // exact_to_str(r%slip(t)) // ',' // &
                                  int_to_str(r%fstate(t))
             end if
           end if
           if (row > 0) then
             call node_rows(cs, ip, i, rows, nr)           ! in contact where any of its rows is
             write(u, '(a,i0,a)') int_to_str(ip) // ',' // trim(adjustl(sx(1))) // ',' // &
-              trim(adjustl(sx(2))) // ',' // trim(adjustl(sx(3))) // ',' // num(mo%gap0(i)) // ',' // &
-              num(minval(r%gap(rows(1:nr)))) // ',' // num(node_traction(cs, ip, i, r%mu)) // ',', &
+              trim(adjustl(sx(2))) // ',' // trim(adjustl(sx(3))) // ',' // exact_to_str(mo%gap0(i)) // ',' // &
+              exact_to_str(minval(r%gap(rows(1:nr)))) // ',' // exact_to_str(node_traction(cs, ip, i, r%mu)) // ',', &
               maxval(r%status(rows(1:nr))), extra
           else
             write(u, '(a)') int_to_str(ip) // ',' // trim(adjustl(sx(1))) // ',' // &
@@ -184,13 +184,6 @@ contains
     call set_error(err, path // ': cannot write the file', 2)
   end subroutine cannot_write
 
-  function num(x) result(s)
-    real(dp), intent(in) :: x
-    character(len=:), allocatable :: s
-    character(len=32) :: buf
-    write(buf, '(es24.16e3)') x
-    s = trim(adjustl(buf))
-  end function num
 
   !> The summary: one `key value...` per line (DECK.md), plus extra keys.
   subroutine write_summary(path, r, err)
@@ -217,73 +210,78 @@ contains
     write(u, '(a,i0)') 'redundant_constraints ', r%redundant
     write(u, '(a)') 'lcp_method ' // r%lcp_method
     write(u, '(a,i0)') 'lcp_iterations ', r%lcp_iterations
-    write(u, '(a,a)') 'lcp_residual ', num(r%lcp_residual)
+    write(u, '(a,a)') 'lcp_residual ', exact_to_str(r%lcp_residual)
     if (allocated(r%lcp_fallback)) then
       do k = 1, size(r%lcp_fallback)
         write(u, '(a)') 'lcp_fallback ' // r%lcp_fallback(k)%s
       end do
     end if
-    write(u, '(a,a)') 'complementarity ', num(r%complementarity)
-    write(u, '(a,a)') 'min_gap ', num(r%min_gap)
-    write(u, '(a,a)') 'min_pressure ', num(r%min_pressure)
+    write(u, '(a,a)') 'complementarity ', exact_to_str(r%complementarity)
+    write(u, '(a,a)') 'min_gap ', exact_to_str(r%min_gap)
+    write(u, '(a,a)') 'min_pressure ', exact_to_str(r%min_pressure)
     if (allocated(r%tau)) then
       write(u, '(a,i0)') 'steps ', r%steps
       write(u, '(a,i0)') 'stick_nodes ', r%stick_nodes
       write(u, '(a,i0)') 'slip_nodes ', r%slip_nodes
     end if
-    write(u, '(a,a)') 'energy ', num(r%energy)
+    write(u, '(a,a)') 'energy ', exact_to_str(r%energy)
     if (r%estimated) then
-      write(u, '(a,a)') 'estimate energy ', num(r%estimate_energy)
+      write(u, '(a,a)') 'estimate energy ', exact_to_str(r%estimate_energy)
       do k = 1, size(r%estimate_pressure)
         if (r%estimate_pressure(k) >= 0.0_dp) &
-          write(u, '(a,i0,a)') 'estimate pressure ', k, ' ' // num(r%estimate_pressure(k))
+          write(u, '(a,i0,a)') 'estimate pressure ', k, ' ' // exact_to_str(r%estimate_pressure(k))
       end do
-      if (r%cost_dofs > 0.0_dp) write(u, '(a)') 'estimate cost_to_halve ' // num(r%cost_seconds) // ' ' // &
+      if (r%cost_dofs > 0.0_dp) write(u, '(a)') 'estimate cost_to_halve ' // exact_to_str(r%cost_seconds) // ' ' // &
         i8_to_str(nint(r%cost_dofs, i8))
     end if
     if (allocated(r%adapt)) then
       do k = 1, size(r%adapt, 2)
         write(u, '(a,i0,a)') 'adapt ', k, ' dofs ' // i8_to_str(nint(r%adapt(1, k), i8)) // ' estimate ' // &
-          num(r%adapt(2, k)) // ' cpu ' // num(r%adapt(3, k))
+          exact_to_str(r%adapt(2, k)) // ' cpu ' // exact_to_str(r%adapt(3, k))
       end do
     end if
     if (allocated(r%adapt_result)) write(u, '(a)') 'adapt_result ' // r%adapt_result
     do k = 1, size(r%fix_label)
-      write(u, '(a)') 'reaction ' // r%fix_label(k)%s // ' ' // num(r%reaction(1, k)) // ' ' // num(r%reaction(2, k))
+      write(u, '(a)') 'reaction ' // r%fix_label(k)%s // ' ' // exact_to_str(r%reaction(1, k)) // ' ' // &
+        exact_to_str(r%reaction(2, k))
     end do
     if (allocated(r%spring_label) .and. allocated(r%spring_force)) then
       do k = 1, size(r%spring_label)
-        write(u, '(a)') 'spring ' // r%spring_label(k)%s // ' ' // num(r%spring_force(1, k)) // ' ' // &
-                        num(r%spring_force(2, k))
+        write(u, '(a)') 'spring ' // r%spring_label(k)%s // ' ' // exact_to_str(r%spring_force(1, k)) // ' ' // &
+                        exact_to_str(r%spring_force(2, k))
       end do
     end if
     if (allocated(r%contact_force)) then
       do k = 1, size(r%contact_force, 2)
-        write(u, '(a,i0,a)') 'contact_force ', k, ' ' // num(r%contact_force(1, k)) // ' ' // num(r%contact_force(2, k))
+        write(u, '(a,i0,a)') 'contact_force ', k, ' ' // exact_to_str(r%contact_force(1, k)) // ' ' // &
+          exact_to_str(r%contact_force(2, k))
       end do
     end if
     if (allocated(r%boundary_u)) then
       do k = 1, size(r%fix_boundary)
-        write(u, '(a)') 'displacement ' // r%fix_boundary(k)%s // ' ' // num(r%boundary_u(1, k)) // ' ' // &
-          num(r%boundary_u(2, k))
+        write(u, '(a)') 'displacement ' // r%fix_boundary(k)%s // ' ' // exact_to_str(r%boundary_u(1, k)) // ' ' // &
+          exact_to_str(r%boundary_u(2, k))
       end do
     end if
     if (allocated(r%zones)) then
       do k = 1, size(r%zones)
         call write_zone(u, 'contact', k, r%zones(k)%contact)
         if (r%zones(k)%contact%count > 0) then
-          write(u, '(a,i0,a)') 'peak_pressure ', k, ' ' // num(r%zones(k)%peak(1)) // ' ' // num(r%zones(k)%peak(2)) // &
-            ' ' // num(r%zones(k)%peak(3))
-          write(u, '(a,i0,a)') 'center_of_pressure ', k, ' ' // num(r%zones(k)%centre(1)) // ' ' // &
-            num(r%zones(k)%centre(2))
+          write(u, '(a,i0,a)') 'peak_pressure ', k, ' ' // exact_to_str(r%zones(k)%peak(1)) // ' ' // &
+            exact_to_str(r%zones(k)%peak(2)) // &
+            ' ' // exact_to_str(r%zones(k)%peak(3))
+          write(u, '(a,i0,a)') 'center_of_pressure ', k, ' ' // exact_to_str(r%zones(k)%centre(1)) // ' ' // &
+            exact_to_str(r%zones(k)%centre(2))
         end if
         if (r%zones(k)%friction) call write_zone(u, 'stick', k, r%zones(k)%stick)
       end do
     end if
     if (allocated(r%rigid_name)) then
       do k = 1, size(r%rigid_name)
-        write(u, '(a)') 'rigid ' // r%rigid_name(k)%s // ' ' // num(r%rigid(1, k)) // ' ' // num(r%rigid(2, k)) // &
-          ' ' // num(r%rigid(3, k)) // ' ' // num(r%rigid(4, k)) // ' ' // num(r%rigid(5, k)) // ' ' // num(r%rigid(6, k))
+        write(u, '(a)') 'rigid ' // r%rigid_name(k)%s // ' ' // exact_to_str(r%rigid(1, k)) // ' ' // exact_to_str(r%rigid(2, &
+          k)) // &
+          ' ' // exact_to_str(r%rigid(3, k)) // ' ' // exact_to_str(r%rigid(4, k)) // ' ' // exact_to_str(r%rigid(5, k)) // &
+            ' ' // exact_to_str(r%rigid(6, k))
       end do
     end if
     if (allocated(r%unheld_mode)) then
@@ -291,10 +289,10 @@ contains
         write(u, '(a)') 'unheld_mode ' // r%unheld_mode(k)%s
       end do
     end if
-    if (allocated(r%max_strain_body)) write(u, '(a)') 'max_strain ' // num(r%max_strain(1)) // ' ' // &
-      r%max_strain_body // ' ' // num(r%max_strain(2)) // ' ' // num(r%max_strain(3))
-    if (allocated(r%max_rotation_body)) write(u, '(a)') 'max_rotation ' // num(r%max_rotation(1)) // ' ' // &
-      r%max_rotation_body // ' ' // num(r%max_rotation(2)) // ' ' // num(r%max_rotation(3))
+    if (allocated(r%max_strain_body)) write(u, '(a)') 'max_strain ' // exact_to_str(r%max_strain(1)) // ' ' // &
+      r%max_strain_body // ' ' // exact_to_str(r%max_strain(2)) // ' ' // exact_to_str(r%max_strain(3))
+    if (allocated(r%max_rotation_body)) write(u, '(a)') 'max_rotation ' // exact_to_str(r%max_rotation(1)) // ' ' // &
+      r%max_rotation_body // ' ' // exact_to_str(r%max_rotation(2)) // ' ' // exact_to_str(r%max_rotation(3))
     if (allocated(r%warning)) then
       do k = 1, size(r%warning)
         write(u, '(a)') 'warning ' // r%warning(k)%s
@@ -308,15 +306,15 @@ contains
           trim(merge('inverse', 'solve  ', r%condense_block(3, k) == 1))
       end do
     end if
-    write(u, '(a,a)') 'memory_peak_mb ', num(r%memory_peak / 1048576.0_dp)
-    write(u, '(a,a)') 'factor_memory_mb ', num(r%factor_memory / 1048576.0_dp)
+    write(u, '(a,a)') 'memory_peak_mb ', exact_to_str(r%memory_peak / 1048576.0_dp)
+    write(u, '(a,a)') 'factor_memory_mb ', exact_to_str(r%factor_memory / 1048576.0_dp)
     do k = 1, nphase
-      write(u, '(a,a)') 'time_' // trim(phase_names(k)) // ' ', num(r%time(k))
+      write(u, '(a,a)') 'time_' // trim(phase_names(k)) // ' ', exact_to_str(r%time(k))
     end do
-    write(u, '(a,a)') 'cpu_total ', num(r%cpu(nphase))
-    write(u, '(a,a)') 'time_solve ', num(r%time_solve)
-    write(u, '(a,a)') 'time_ordering ', num(r%time_ordering)
-    write(u, '(a,a)') 'time_assemble_values ', num(r%time_assemble_values)
+    write(u, '(a,a)') 'cpu_total ', exact_to_str(r%cpu(nphase))
+    write(u, '(a,a)') 'time_solve ', exact_to_str(r%time_solve)
+    write(u, '(a,a)') 'time_ordering ', exact_to_str(r%time_ordering)
+    write(u, '(a,a)') 'time_assemble_values ', exact_to_str(r%time_assemble_values)
     close(u, iostat=ios)
     if (ios /= 0) call cannot_write(path, err)
   end subroutine write_summary
@@ -327,9 +325,10 @@ contains
     integer, intent(in) :: u, k
     character(len=*), intent(in) :: kind
     type(zone_t), intent(in) :: z
-    if (z%count > 0) write(u, '(a,i0,a)') kind // '_zone ', k, ' ' // num(z%x0(1)) // ' ' // num(z%x0(2)) // ' ' // &
-      num(z%x1(1)) // ' ' // num(z%x1(2)) // ' ' // num(z%length)
-    write(u, '(a,i0,a,i0,a)') kind // '_zones ', k, ' ', z%count, ' ' // num(z%total)
+    if (z%count > 0) write(u, '(a,i0,a)') kind // '_zone ', k, ' ' // exact_to_str(z%x0(1)) // ' ' // exact_to_str(z%x0(2)) // &
+      ' ' // &
+      exact_to_str(z%x1(1)) // ' ' // exact_to_str(z%x1(2)) // ' ' // exact_to_str(z%length)
+    write(u, '(a,i0,a,i0,a)') kind // '_zones ', k, ' ', z%count, ' ' // exact_to_str(z%total)
   end subroutine write_zone
 
   !> A ParaView collection (.pvd) of the per-step VTK files: the dataset of
@@ -354,7 +353,7 @@ contains
     write(u, '(a)', iostat=ios) '<VTKFile type="Collection" version="0.1">'
     write(u, '(a)', iostat=ios) '  <Collection>'
     do k = 1, size(files)
-      write(u, '(a)', iostat=ios) '    <DataSet timestep="' // num(times(k)) // '" file="' // trim(files(k)) // '"/>'
+      write(u, '(a)', iostat=ios) '    <DataSet timestep="' // exact_to_str(times(k)) // '" file="' // trim(files(k)) // '"/>'
     end do
     write(u, '(a)', iostat=ios) '  </Collection>'
     write(u, '(a)', iostat=ios) '</VTKFile>'
@@ -389,7 +388,7 @@ contains
         if (whole(c)) then
           line = line // int_to_str(nint(table(c, k)))
         else
-          line = line // num(table(c, k))
+          line = line // exact_to_str(table(c, k))
         end if
       end do
       write(u, '(a)', iostat=ios) line

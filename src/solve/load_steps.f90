@@ -1,0 +1,466 @@
+!> load_steps: the load history of a run, one loop for every kinematics and
+!> law.  Step k has the loads of its ramps' factors (scene's step_loads); its
+!> contact rows are the initial ones (sliding=small) or those of the
+!> configuration the bodies reach (sliding=finite: a fixed point of geometry
+!> updates, doc/theory.md, "Finite sliding"); its contact problem is solved
+!> by step_solver, frictionless or with friction, with the free motions of
+!> what contact alone holds.
+!>
+!> Which steps are solved.  Friction (the answer depends on the path) and
+!> finite sliding (each step starts where the last ended) solve every step in
+!> order; a frictionless small-sliding history solves only its final step,
+!> its answer being independent of the path, unless OUTPUT steps=all asks
+!> for every step (each then solved alone at its load factors, with the
+!> factorization and W of the final step: only the right-hand side changes).
+!>
+!> The gaps of step k without contact forces, g - B u0_k:
+!>   the final loads on the initial rows    q of the condensation itself
+!>   friction on the initial rows           C u0 of each ramp, combined by the
+!>                                          step's factors (no solve)
+!>   otherwise                              u0_k = K^-1 f_k, one solve
+!> With friction the slip of the step is measured from the last step's
+!> tangential displacement T u_{k-1} (the history), along the step's rows.
+!>
+!> Geometry updates (sliding=finite).  From the current displacement u_c
+!> (step k's loads on the last step's contact forces and free motions; step
+!> 1: u0_1) the rows are rebuilt at x + u_c (build_moved_contact_set), W
+!> condensed again on the same factor, the step solved and u_c recovered,
+!> until the rows (row_keys) and the active set are those of the previous
+!> update and the multipliers changed by at most finite_tol of their
+!> largest.  After SOLVER updates= updates the step is too large for the zone
+!> to be found again (error_unsolved asking for more STEPS).  A change of
+!> rows restarts the friction multipliers from 0 (they belong to rows).
+!>
+!> Each solved step other than the final one is handed to the caller's
+!> recorder (OUTPUT steps=all), with its loads and solution, before the next
+!> one is solved; the final step's solution is returned.  Nothing here writes
+!> a file or stops the run.
+!>
+!> Programming interface
+!>   solve_load_steps(prob, sys, log, sol, err, recorder)   every step the history needs
+!>   type(step_recorder_t)          what keeps the other steps: extended by the caller,
+!>                                  its record(kstep, prob, sys, fk, ubk, sol, log, err) deferred
+module load_steps
+  use kinds, only: dp, i8
+  use strings, only: int_to_str, real_to_str
+  use errors, only: error_t, set_error, error_unsolved
+  use run_log, only: log_t, say
+  use problem, only: problem_t, step_label
+  use linear_system, only: system_t, solve_loads, add_free_motions, condense_rows
+  use step_solution, only: step_solution_t, multipliers
+  use step_solver, only: solve_frictionless_step, solve_friction_step
+  use held_by_contact, only: split_step_modes
+  use scene, only: step_loads
+  use load_groups, only: group_factor
+  use contact_set, only: contact_set_t
+  use contact_condensation, only: constraint_values
+  use moved_contact, only: row_keys, build_moved_contact_set
+  use local_axes, only: rotate_constraint_rows
+  use mode_support, only: mode_split_t
+  use rigid_support, only: rigid_split_t
+  use friction_lcp, only: friction_problem_t, friction_problem, friction_state
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+  implicit none
+  private
+  public :: solve_load_steps
+
+  !> the relative change of the multipliers below which a finite step settles
+  real(dp), parameter :: finite_tol = 1.0e-8_dp
+
+  !> What keeps the solved steps other than the final one (OUTPUT
+  !> steps=all): the caller extends it with what it writes them to.
+  type, abstract, public :: step_recorder_t
+  contains
+    procedure(record_step), deferred :: record
+  end type step_recorder_t
+
+  abstract interface
+    !> A solved load step other than the final one, for the caller to keep:
+    !> its loads, its solution on the rows of prob%cs.
+    !>   kstep   (in) the step, 1 .. steps - 1
+    !>   fk, ubk (in) (ndof) its loads and prescribed values
+    !>   sol     (in) its solution (unallocated multipliers: no contact)
+    !>   err     (out) the step could not be kept (the run then ends)
+    subroutine record_step(self, kstep, prob, sys, fk, ubk, sol, log, err)
+      import :: dp, step_recorder_t, problem_t, system_t, step_solution_t, log_t, error_t
+      class(step_recorder_t), intent(inout) :: self
+      integer, intent(in) :: kstep
+      type(problem_t), intent(in) :: prob
+      type(system_t), intent(in) :: sys
+      real(dp), intent(in) :: fk(:), ubk(:)
+      type(step_solution_t), intent(in) :: sol
+      type(log_t), intent(inout) :: log
+      type(error_t), allocatable, intent(out) :: err
+    end subroutine record_step
+  end interface
+
+  !> What a step hands the next: the friction history and the configuration.
+  type :: history_t
+    real(dp), allocatable :: z(:)              !< (n + nt) the last step's multipliers (the start)
+    real(dp), allocatable :: slip(:)           !< (nt) T u of the last step along its rows (small sliding)
+    real(dp), allocatable :: u(:)              !< (ndof) the last step's displacement (finite sliding)
+    integer(i8), allocatable :: keys(:)        !< the last update's rows (finite sliding: row_keys)
+  end type history_t
+
+  !> The seconds of a finite-sliding history, by part.
+  type :: finite_clock_t
+    real(dp) :: geometry = 0, condense = 0, lcp = 0
+    integer :: updates = 0
+  end type finite_clock_t
+
+contains
+
+  !> Every load step the history needs (module header), the final one's
+  !> solution returned.
+  !>   prob   (inout) the contact rows follow the bodies under sliding=finite
+  !>   sys    (inout) W, q, cd of the current rows
+  !>   log    (inout) the steps' lines
+  !>   sol    (out)   the final step's solution: multipliers, gaps, slips and
+  !>                  states, free motions, method, iterations (total), fallbacks
+  !>   err    (out)   the first step that failed, named
+  !>   recorder (inout, optional) the caller's recorder of the other steps
+  !>                  (OUTPUT steps=all); absent: they are not kept
+  subroutine solve_load_steps(prob, sys, log, sol, err, recorder)
+    type(problem_t), intent(inout) :: prob
+    type(system_t), intent(inout) :: sys
+    type(log_t), intent(inout) :: log
+    type(step_solution_t), intent(out) :: sol
+    type(error_t), allocatable, intent(out) :: err
+    class(step_recorder_t), intent(inout), optional :: recorder
+    type(history_t) :: past
+    type(finite_clock_t) :: clock
+    real(dp), allocatable :: fk(:), ubk(:)
+    integer :: kstep, first
+    logical :: finite, friction, steps_all
+
+    finite = any(prob%sc%specs%finite)
+    friction = prob%cs%ntan > 0
+    steps_all = prob%deck%output%steps_all
+    allocate(fk(prob%sc%ndof), ubk(prob%sc%ndof))
+    first = prob%sc%steps                          ! path-independent: the final step alone
+    if (friction) call say_floating(prob, log)
+    if (friction .or. finite .or. steps_all) first = 1
+    do kstep = first, prob%sc%steps
+      call step_loads(prob%sc, kstep, fk, ubk)
+      if (.not. sys%with_contact) then          ! nothing to solve: the loads alone
+        sol%step = kstep
+        sol%method = 'none'
+      else if (finite) then
+        call solve_finite_step(prob, sys, kstep, fk, ubk, past, log, sol, clock, err)
+      else
+        call solve_small_step(prob, sys, kstep, fk, ubk, past, log, sol, err)
+      end if
+      if (allocated(err)) return
+      if (kstep < prob%sc%steps .and. steps_all .and. present(recorder)) then
+        call recorder%record(kstep, prob, sys, fk, ubk, sol, log, err)
+        if (allocated(err)) return
+      end if
+    end do
+    if (finite .and. sys%with_contact) call say(log, 'finite   ' // int_to_str(clock%updates) // &
+      ' geometry updates in ' // int_to_str(prob%sc%steps) // ' steps: rebuild ' // real_to_str(clock%geometry) // &
+      ' s, condensation ' // real_to_str(clock%condense) // ' s, LCP ' // real_to_str(clock%lcp) // ' s')
+  end subroutine solve_load_steps
+
+  !> With friction, what contact alone holds is solved with the contacts:
+  !> the run log says how many amplitudes join each step's friction LCP.
+  subroutine say_floating(prob, log)
+    type(problem_t), intent(in) :: prob
+    type(log_t), intent(inout) :: log
+    integer :: held
+    held = size(prob%split%held, 2) + size(prob%rsplit%held, 2)
+    if (held == 0) return
+    call say(log, 'friction ' // int_to_str(held) // ' rigid-mode amplitudes ' // &
+      'of the bodies and RIGIDs held only by contact are unknowns of each step''s friction LCP, solved by ' // &
+      'Lemke (' // int_to_str(prob%cs%nrow + 3 * prob%cs%ntan + 2 * held) // ' unknowns)')
+  end subroutine say_floating
+
+  !> Step k on the initial rows (sliding=small).
+  !>   past (inout) the friction history: the last step's z and T u; this step's on exit
+  subroutine solve_small_step(prob, sys, kstep, fk, ubk, past, log, sol, err)
+    type(problem_t), intent(in) :: prob
+    type(system_t), intent(in) :: sys
+    integer, intent(in) :: kstep
+    real(dp), intent(in) :: fk(:), ubk(:)
+    type(history_t), intent(inout) :: past
+    type(log_t), intent(inout) :: log
+    type(step_solution_t), intent(inout) :: sol
+    type(error_t), allocatable, intent(out) :: err
+    type(mode_split_t) :: split
+    type(rigid_split_t) :: rsplit
+    type(friction_problem_t) :: fp
+    real(dp), allocatable :: cu(:), shift(:)
+    integer :: n, nt, g
+
+    n = prob%cs%nrow
+    nt = prob%cs%ntan
+    sol%step = kstep
+    ! C u0_k: the final loads' from the condensation; with friction each
+    ! ramp's combined (no solve); else one solve
+    allocate(cu(n + nt))
+    if (allocated(sys%cu0)) then
+      cu = 0.0_dp
+      do g = 1, size(prob%sc%ramp, 2)
+        cu = cu + group_factor(prob%sc, g, kstep) * sys%cu0(:, g)
+      end do
+    else if (kstep < prob%sc%steps) then
+      call free_constraint_values(prob, sys, fk, ubk, cu, err)
+      if (allocated(err)) return
+    end if
+    ! the splits of the free modes: the problem's own are the final loads' on these rows
+    if (kstep < prob%sc%steps) then
+      call split_step_modes(prob, kstep, fk, split, rsplit, err)
+      if (allocated(err)) return
+    else
+      split = prob%split
+      rsplit = prob%rsplit
+    end if
+    if (nt == 0) then
+      if (kstep < prob%sc%steps) then
+        call solve_frictionless_step(prob, sys%w, prob%cs%g - cu(1:n), kstep, split, rsplit, log, sol, err)
+      else
+        call solve_frictionless_step(prob, sys%w, sys%q, kstep, split, rsplit, log, sol, err)
+      end if
+      sol%total_iterations = sol%total_iterations + sol%iterations
+      return
+    end if
+    if (.not. allocated(past%z)) then
+      allocate(past%z(n + nt), source=0.0_dp)
+      allocate(past%slip(nt), source=0.0_dp)
+    end if
+    ! gaps without contact forces; minus the slip of the step without them
+    fp = friction_problem(prob%cs%g - cu(1:n), past%slip - cu(n + 1:), prob%cs%tan_row, prob%cs%tan_mu, &
+                          prob%cs%tan_bound)
+    call solve_friction_step(prob, sys%w, fp, kstep, split, rsplit, log, past%z, sol, shift, err)
+    if (allocated(err)) return
+    sol%total_iterations = sol%total_iterations + sol%iterations
+    cu = cu + shift                                          ! C u0 + C R alpha: the step's rigid motion
+    past%slip = cu(n + 1:) - matmul(sys%w(n + 1:, :), past%z)   ! T u_k = T u0_k - T K^-1 C' z
+    call keep_friction_step(prob, sys%w, fp, kstep, past%z, past%slip, log, sol, err)
+  end subroutine solve_small_step
+
+  !> Step k by the fixed point of geometry updates (sliding=finite, module header).
+  !>   past  (inout) the last step's multipliers and displacement; this step's on exit
+  !>   clock (inout) the seconds by part, the updates
+  subroutine solve_finite_step(prob, sys, kstep, fk, ubk, past, log, sol, clock, err)
+    type(problem_t), intent(inout) :: prob
+    type(system_t), intent(inout) :: sys
+    integer, intent(in) :: kstep
+    real(dp), intent(in) :: fk(:), ubk(:)
+    type(history_t), intent(inout) :: past
+    type(log_t), intent(inout) :: log
+    type(step_solution_t), intent(inout) :: sol
+    type(finite_clock_t), intent(inout) :: clock
+    type(error_t), allocatable, intent(out) :: err
+    type(mode_split_t) :: split
+    type(rigid_split_t) :: rsplit
+    type(friction_problem_t) :: fp
+    real(dp), allocatable :: u0k(:), uc(:), cu(:), cp(:), z_prev(:), shift(:)
+    logical, allocatable :: active_prev(:)
+    integer(i8), allocatable :: keys(:)
+    integer(i8) :: t0, t1, rate
+    integer :: it, n, nt
+    real(dp) :: change
+    logical :: same, friction
+
+    friction = prob%cs%ntan > 0
+    sol%step = kstep
+    allocate(u0k(prob%sc%ndof), uc(prob%sc%ndof))
+    call solve_loads(prob, sys, fk, ubk, [real(dp) ::], u0k, err)
+    if (allocated(err)) return
+    if (kstep > 1) then
+      ! the first configuration of the step: its loads and prescribed motion
+      ! on the last step's contact forces, so that the bodies move with what
+      ! drives them (a carriage moved alone would drag its body's edge)
+      call solve_loads(prob, sys, fk, ubk, multipliers(sol), uc, err)
+      if (allocated(err)) return
+      call add_free_motions(prob, sol, uc)
+    else
+      uc = u0k                                         ! the step's loads and motion without contact
+      allocate(past%u(prob%sc%ndof), source=0.0_dp)
+    end if
+    same = .false.
+    change = huge(1.0_dp)
+    do it = 1, prob%deck%solver%updates
+      call system_clock(t0, rate)
+      call move_rows(prob, uc, kstep, err)
+      if (allocated(err)) return
+      n = prob%cs%nrow
+      nt = prob%cs%ntan
+      keys = row_keys(prob%cs)
+      if (.not. same_rows(keys, past%keys)) then
+        ! the zone gained or lost rows: their unknowns start again from 0
+        if (allocated(past%z)) deallocate(past%z)
+        allocate(past%z(n + nt), source=0.0_dp)
+        if (allocated(active_prev)) deallocate(active_prev)
+      end if
+      call system_clock(t1)
+      clock%geometry = clock%geometry + real(t1 - t0, dp) / real(rate, dp)
+      ! W = C K^-1 C' on the factor of K (q from the final loads is replaced)
+      call condense_rows(prob, sys, err)
+      if (allocated(err)) return
+      allocate(cu(n + nt), cp(n + nt))
+      call constraint_values(prob%cs, u0k, cu)
+      call split_step_modes(prob, kstep, fk, split, rsplit, err)
+      if (allocated(err)) return
+      call system_clock(t0)
+      clock%condense = clock%condense + real(t0 - t1, dp) / real(rate, dp)
+      z_prev = past%z
+      if (friction) then
+        call constraint_values(prob%cs, past%u, cp)
+        ! gaps without contact forces; minus the step's slip without them, current tangents
+        fp = friction_problem(prob%cs%g - cu(1:n), cp(n + 1:) - cu(n + 1:), prob%cs%tan_row, prob%cs%tan_mu, &
+                              prob%cs%tan_bound)
+        call solve_friction_step(prob, sys%w, fp, kstep, split, rsplit, log, past%z, sol, shift, err)
+      else
+        call solve_frictionless_step(prob, sys%w, prob%cs%g - cu(1:n), kstep, split, rsplit, log, sol, err)
+        if (.not. allocated(err)) past%z = sol%mu
+      end if
+      if (allocated(err)) return
+      sol%total_iterations = sol%total_iterations + sol%iterations
+      call system_clock(t1)
+      clock%lcp = clock%lcp + real(t1 - t0, dp) / real(rate, dp)
+      clock%updates = clock%updates + 1
+      ! the displacement of this update: the next configuration
+      if (friction) then
+        sol%mu = past%z(1:n)
+        sol%tau = past%z(n + 1:)
+      end if
+      call solve_loads(prob, sys, fk, ubk, past%z, uc, err)
+      if (allocated(err)) return
+      call add_free_motions(prob, sol, uc)
+      if (.not. all(ieee_is_finite(uc))) then
+        call set_error(err, step_label(prob, kstep) // 'the displacement is not finite')
+        return
+      end if
+      same = .false.
+      change = huge(1.0_dp)
+      if (allocated(active_prev) .and. same_rows(keys, past%keys)) then
+        same = all((past%z(1:n) > 0.0_dp) .eqv. active_prev)
+        change = maxval(abs(past%z - z_prev)) / max(maxval(abs(past%z)), tiny(1.0_dp))
+      end if
+      active_prev = past%z(1:n) > 0.0_dp
+      call move_alloc(keys, past%keys)
+      deallocate(cu, cp)
+      if (same .and. change <= finite_tol) exit
+    end do
+    if (.not. (same .and. change <= finite_tol)) then
+      call unsettled(prob, kstep, same, change, err)
+      return
+    end if
+    sol%updates = min(it, prob%deck%solver%updates)
+    call say(log, 'finite   load step ' // int_to_str(kstep) // ' of ' // int_to_str(prob%sc%steps) // ': ' // &
+             int_to_str(sol%updates) // ' updates of the contact geometry')
+    past%u = uc
+    if (.not. friction) return
+    allocate(cu(n + nt))
+    call constraint_values(prob%cs, uc, cu)
+    call keep_friction_step(prob, sys%w, fp, kstep, past%z, cu(n + 1:), log, sol, err)
+  end subroutine solve_finite_step
+
+  !> The contact rows rebuilt at the configuration x + u (finite sliding),
+  !> nodes in local axes turned, into prob%cs.  The rebuilt rows must touch
+  !> the dofs the factorization put last (contact_set marks every node of a
+  !> finite pair's boundaries): else the condensation would read the wrong
+  !> block of the factor.
+  subroutine move_rows(prob, u, kstep, err)
+    type(problem_t), intent(inout) :: prob
+    real(dp), intent(in) :: u(:)
+    integer, intent(in) :: kstep
+    type(error_t), allocatable, intent(out) :: err
+    type(contact_set_t) :: moved
+    logical :: ok
+    call build_moved_contact_set(prob%sc%bodies, prob%sc%specs, u, moved, err)
+    if (allocated(err)) then
+      err%message = step_label(prob, kstep) // 'sliding=finite: the contact geometry cannot be rebuilt: ' // err%message
+      return
+    end if
+    call rotate_constraint_rows(moved, prob%sc%bodies)     ! nodes in local axes (FIX un=/ut=)
+    ok = moved%ncdof == prob%cs%ncdof
+    if (ok) ok = all(moved%cdof == prob%cs%cdof)
+    if (.not. ok) then
+      call set_error(err, step_label(prob, kstep) // &
+        'sliding=finite: the rebuilt contact rows do not match the factorization''s contact dofs')
+      return
+    end if
+    prob%cs = moved
+  end subroutine move_rows
+
+  !> A step whose fixed point did not settle in SOLVER updates= updates:
+  !> error_unsolved saying why and asking for more STEPS.
+  !>   same   (in) the last two updates had the same rows and active set
+  !>   change (in) the multipliers' last relative change
+  subroutine unsettled(prob, kstep, same, change, err)
+    type(problem_t), intent(in) :: prob
+    integer, intent(in) :: kstep
+    logical, intent(in) :: same
+    real(dp), intent(in) :: change
+    type(error_t), allocatable, intent(out) :: err
+    character(len=:), allocatable :: cause
+    if (same) then
+      cause = 'the contact forces still change by ' // real_to_str(change) // ' of their largest'
+    else
+      cause = 'the active set still changes'
+    end if
+    call set_error(err, step_label(prob, kstep) // 'sliding=finite: the contact zone was not found again: after ' // &
+      int_to_str(prob%deck%solver%updates) // ' updates of the contact geometry ' // cause // ' (the step moves the ' // &
+      'contact too far for the geometry of its start to find it; expected more STEPS, or more SOLVER updates=)', &
+      error_unsolved)
+  end subroutine unsettled
+
+  !> Rows of two rebuilds that are the same rows, in the same order
+  pure logical function same_rows(keys, keys_prev)
+    integer(i8), intent(in) :: keys(:)
+    integer(i8), allocatable, intent(in) :: keys_prev(:)
+    same_rows = .false.
+    if (.not. allocated(keys_prev)) return
+    if (size(keys) /= size(keys_prev)) return
+    same_rows = all(keys == keys_prev)
+  end function same_rows
+
+  !> C u0_k of a step's loads, by one solve: u0_k = K^-1 (f_k - K_fd ubar_k).
+  !>   cu (out) (nrow + ntan)
+  subroutine free_constraint_values(prob, sys, fk, ubk, cu, err)
+    type(problem_t), intent(in) :: prob
+    type(system_t), intent(in) :: sys
+    real(dp), intent(in) :: fk(:), ubk(:)
+    real(dp), intent(out) :: cu(:)
+    type(error_t), allocatable, intent(out) :: err
+    real(dp), allocatable :: u0k(:)
+    allocate(u0k(prob%sc%ndof))
+    call solve_loads(prob, sys, fk, ubk, [real(dp) ::], u0k, err)
+    if (allocated(err)) return
+    call constraint_values(prob%cs, u0k, cu)
+  end subroutine free_constraint_values
+
+  !> A solved friction step into its solution: the multipliers, the gaps,
+  !> the slips and the states of its rows, and its line of the run log.
+  !>   fp   (in) the step's problem, the free motions included
+  !>   z    (in) (n + nt) its multipliers
+  !>   slip (in) (nt) T u of the step along its rows
+  subroutine keep_friction_step(prob, w, fp, kstep, z, slip, log, sol, err)
+    type(problem_t), intent(in) :: prob
+    real(dp), intent(in) :: w(:,:)
+    type(friction_problem_t), intent(in) :: fp
+    integer, intent(in) :: kstep
+    real(dp), intent(in) :: z(:), slip(:)
+    type(log_t), intent(inout) :: log
+    type(step_solution_t), intent(inout) :: sol
+    type(error_t), allocatable, intent(out) :: err
+    character(len=200) :: line
+    integer :: n
+    n = fp%n
+    sol%mu = z(1:n)
+    sol%tau = z(n + 1:)
+    sol%gap = fp%qn + matmul(w(1:n, :), z)
+    sol%slip = slip
+    if (allocated(sol%fstate)) deallocate(sol%fstate)
+    allocate(sol%fstate(fp%nt))
+    call friction_state(w, fp, z, sol%fstate, err)
+    if (allocated(err)) return
+    write(line, '(a,i0,a,i0,a,i0,a,i0,a,i0,a,es9.2)') 'step     ', kstep, '/', prob%sc%steps, ': ' // sol%method // &
+      ' ', sol%iterations, ' iterations, ', count(z(1:n) > 0.0_dp), ' active, ', count(sol%fstate == 2), &
+      ' slipping, residual ', sol%residual
+    call say(log, trim(line))
+  end subroutine keep_friction_step
+
+end module load_steps
