@@ -1,6 +1,7 @@
 !> mortar_geometry: the geometry of a contact pair's two boundary polylines that the
 !> mortar operator is built on (mortar_operator): their checks, the intersection of
-!> the two 1D meshes, nodal normals, rays, and the common normal of a frictional pair.
+!> the two 1D meshes, nodal normals, and the common normal of a frictional pair, on
+!> polylines and on quadratic traces alike (trace_geometry).
 !>
 !> Segment intersection ("1D segment quadrature", `intersect_segments`).  For each slave segment
 !>    [x_a, x_b] (length L, unit tangent t, outward unit normal n) every master segment
@@ -12,18 +13,22 @@
 !>    phi_i chi_j and phi_i phi_l exactly.  A master part counts whatever its distance
 !>    along n (initial gaps may be large); a slave part covered twice (a master that
 !>    folds back in front of the slave) is rejected.
-!> Common normal (`common_normals`, doc/theory.md "Friction on curved surfaces"):
-!>    n_c = normalize(w n1 - (1 - w) n2), w = k2 / (k1 + k2) from the two polylines'
+!> Common normal (`trace_common_normals`, doc/theory.md "Friction on curved surfaces"):
+!>    n_c = normalize(w n1 - (1 - w) n2), w = k2 / (k1 + k2) from the two traces'
 !>    mean curvatures over the parts that face: the direction along which two curved
-!>    surfaces approach, which pairs the points that meet.
+!>    surfaces approach, which pairs the points that meet.  One algorithm for either
+!>    trace degree: the master's normals are interpolated by its shape functions; the
+!>    facing parts are the cover of the pair's operator, given by the caller.
 !>
 !> Programming interface
 !>   type(intersection_t)  the list of sub-segments of the two 1D meshes
 !>   intersect_segments(xs, ns_out, xm, nm_out, inter [, pairing])
 !>                         the sub-segment list (valid polylines assumed)
 !>   check_polyline(x, nrm, side, err)   a polyline and its segment normals usable
-!>   ray_hit(a, n, xm, nm_out, f, r)     nearest hit of a line on the facing master
 !>   common_normals(xs, ns_out, xm, nm_out, nc, w)   a frictional pair's pairing directions
+!>                         on two polylines
+!>   trace_common_normals(xs, ps, sn_out, sface, xm, pm, mn_out, mface, nc, w)
+!>                         the same on traces of degree ps and pm, their facing elements given
 !>   mean_curvature(x, nrm, seg)         mean curvature of the marked segments of a polyline (convex > 0)
 !>   pairing_weight(k1, k2)              the slave normal's weight in the common normal
 !>   tol_overlap, tol_piece, tol_sliver  the tolerances of the cover, relative to a slave
@@ -34,10 +39,12 @@ module mortar_geometry
   use strings, only: int_to_str
   use errors, only: error_t, set_error
   use sorting, only: sort_by_key
+  use trace_geometry, only: trace_shape, chord_side, trace_normals, ray_hit, cross
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
   private
-  public :: intersection_t, intersect_segments, check_polyline, ray_hit, common_normals, mean_curvature, pairing_weight
+  public :: intersection_t, intersect_segments, check_polyline, common_normals, trace_common_normals
+  public :: mean_curvature, pairing_weight
   public :: tol_overlap, tol_piece, tol_sliver, arc_digits
 
   !> Sub-segments of the intersection of the slave and master 1D meshes, ordered by
@@ -53,7 +60,6 @@ module mortar_geometry
   real(dp), parameter :: tol_unit = 1.0e-8_dp      ! |n| = 1 and n.t = 0 up to this
   real(dp), parameter :: tol_length = 1.0e-12_dp   ! zero length, relative to the polyline's extent
   real(dp), parameter :: tol_overlap = 1.0e-10_dp  ! shortest sub-segment / double cover, relative to L
-  real(dp), parameter :: tol_ray = 1.0e-10_dp      ! slack on the master coordinate of a ray hit
   ! The zone's ends (doc/theory.md, "Zone ends"), in both operators (mortar_operator,
   ! mortar_quadratic), relative to the zone-end slave segment or element:
   ! a covered piece shorter than tol_piece is left out of the zone, since the rows
@@ -70,19 +76,9 @@ module mortar_geometry
 
 contains
 
-  !> The common normal of a frictional pair at each slave node (module header,
-  !> 7.): the direction along which the two surfaces approach, which pairs the
-  !> points that meet and is the normal of the slip's tangent plane.  Near the
-  !> first contact of two surfaces of curvatures k1 (slave) and k2 (master),
-  !> their normals at a distance x are tilted by k1 x and -k2 x from it, so
-  !>    n_c = normalize(w n1 - (1 - w) n2),   w = k2 / (k1 + k2)  in [0, 1],
-  !> n1 the slave nodal normal, n2 the master normal at the point its ray
-  !> meets.  k1, k2 are the mean curvatures of the two polylines over the
-  !> part of them that faces the other (convex > 0).  w = 1/2 (the bisector)
-  !> when they agree to tol_curv (a polygon's curvature is no better; mirror
-  !> images then pair exactly), when k1 + k2 is not positive (conforming
-  !> surfaces, whose normals are parallel anyway) and on flat pairs; w = 1 or
-  !> 0 when one side is flat to tol_curv of the other.
+  !> The common normals of a frictional pair on two polylines: the cover of
+  !> the linear operator (intersect_segments) tells which segments face each
+  !> other, trace_common_normals does the rest.
   !>   xs, ns_out, xm, nm_out (in) the polylines and segment normals, as build_mortar
   !>   nc (out) (2, ns) unit common normals; the slave nodal normal where no master faces
   !>   w  (out) the weight of the slave normal
@@ -91,42 +87,121 @@ contains
     real(dp), allocatable, intent(out) :: nc(:,:)
     real(dp), intent(out) :: w
     type(intersection_t) :: inter
-    real(dp), allocatable :: n1(:,:), n2(:,:)
     logical, allocatable :: sface(:), mface(:)
-    real(dp) :: k1, k2, y(2), rr, m(2)
-    integer :: ns, nm, i, f, iter
-
-    ns = size(xs, 2)
-    nm = size(xm, 2)
-    call nodal_normals(xs, ns_out, n1)
-    call nodal_normals(xm, nm_out, n2)
-    nc = n1
-    w = 0.5_dp
     call intersect_segments(xs, ns_out, xm, nm_out, inter)
-    if (inter%nsub == 0) return
-    allocate(sface(ns - 1), mface(nm - 1), source=.false.)
+    allocate(sface(size(ns_out, 2)), mface(size(nm_out, 2)), source=.false.)
     sface(inter%slave_seg(1:inter%nsub)) = .true.
     mface(inter%master_seg(1:inter%nsub)) = .true.
-    k1 = mean_curvature(xs, ns_out, sface)
-    k2 = mean_curvature(xm, nm_out, mface)
+    call trace_common_normals(xs, 1, ns_out, sface, xm, 1, nm_out, mface, nc, w)
+  end subroutine common_normals
+
+  !> The common normal of a frictional pair at each slave node, on traces of
+  !> either degree (doc/theory.md, "Friction on curved surfaces"): the direction
+  !> along which the two surfaces approach, which pairs the points that meet and
+  !> is the normal of the slip's tangent plane.  Near the first contact of two
+  !> surfaces of curvatures k1 (slave) and k2 (master), their normals at a
+  !> distance x are tilted by k1 x and -k2 x from it, so
+  !>    n_c = normalize(w n1 - (1 - w) n2),   w = pairing_weight(k1, k2),
+  !> n1 the slave nodal normal, n2 the master's nodal normals interpolated by
+  !> its shape functions at the point the line x_i + tau n_c meets (re-cast a
+  !> few times: each pass moves it closer to the point the common normal
+  !> meets), k1, k2 the mean curvatures of the elements that face the other
+  !> trace (trace_curvature).  The facing elements are the cover of the pair's
+  !> operator, which the caller computes (common_normals for two polylines,
+  !> mortar_quadratic's quadratic_common_normals otherwise).
+  !>   xs (in) (2, ns) slave trace nodes;  ps (in) its degree, 1 or 2
+  !>   sn_out (in) (2, (ns-1)/ps) outward unit normals of the slave elements' chords
+  !>   sface (in) ((ns-1)/ps) the slave elements the master faces
+  !>   xm, pm, mn_out, mface (in) the same for the master trace
+  !>   nc (out) (2, ns) unit common normals; the slave nodal normal where no master faces
+  !>   w  (out) the weight of the slave normal (1/2 where no master faces)
+  subroutine trace_common_normals(xs, ps, sn_out, sface, xm, pm, mn_out, mface, nc, w)
+    real(dp), intent(in) :: xs(:,:), sn_out(:,:), xm(:,:), mn_out(:,:)
+    integer, intent(in) :: ps, pm
+    logical, intent(in) :: sface(:), mface(:)
+    real(dp), allocatable, intent(out) :: nc(:,:)
+    real(dp), intent(out) :: w
+    real(dp), allocatable :: n1(:,:), n2(:,:)
+    real(dp) :: k1, k2, y(2), r, m(2), nn(3)
+    integer :: i, e, f, k, iter
+
+    call pairing_normals(xs, ps, sn_out, n1)
+    call pairing_normals(xm, pm, mn_out, n2)
+    nc = n1
+    w = 0.5_dp
+    if (.not. any(sface)) return
+    k1 = trace_curvature(xs, ps, sn_out, sface)
+    k2 = trace_curvature(xm, pm, mn_out, mface)
     w = pairing_weight(k1, k2)
-    do i = 1, ns
-      if (.not. (any(sface(max(1, i - 1):min(ns - 1, i))))) cycle
-      ! the master point on the ray along the current estimate, a few times:
-      ! each pass moves it closer to the point the common normal meets
+    do i = 1, size(xs, 2)
+      e = (i - 1) / ps + 1                        ! the elements that hold node i: e, and e - 1 at a corner
+      if (.not. (sface(min(e, size(sface))) .or. (mod(i - 1, ps) == 0 .and. sface(max(e - 1, 1))))) cycle
       do iter = 1, 4
-        call ray_hit(xs(:, i), nc(:, i), xm, nm_out, f, rr)
+        call ray_hit(xm, pm, mn_out, xs(:, i), nc(:, i), f, r)
         if (f == 0) exit
-        if (rr < 1.0e-8_dp) rr = 0.0_dp                    ! on a master node: its normal exactly
-        if (rr > 1.0_dp - 1.0e-8_dp) rr = 1.0_dp
-        m = (1.0_dp - rr) * n2(:, f) + rr * n2(:, f + 1)
+        ! the master's nodal normals interpolated: continuous across its corners
+        ! (a curve's own normal kinks there), a node's own on a node
+        if (r < 1.0e-8_dp) r = 0.0_dp
+        if (r > 1.0_dp - 1.0e-8_dp) r = 1.0_dp
+        call trace_shape(pm, r, nn)
+        m = nn(1) * n2(:, pm * (f - 1) + 1)
+        do k = 2, pm + 1
+          m = m + nn(k) * n2(:, pm * (f - 1) + k)
+        end do
         m = m / norm2(m)
         y = w * n1(:, i) - (1.0_dp - w) * m
         if (.not. norm2(y) > 0.0_dp) exit
         nc(:, i) = y / norm2(y)
       end do
     end do
-  end subroutine common_normals
+  end subroutine trace_common_normals
+
+  !> The nodal normals a trace's common normals start from: on a polyline its
+  !> nodal_normals, from the segment normals as given (trace_normals would
+  !> recompute them from the coordinates, equal but for round-off), on a
+  !> quadratic trace the curve's (trace_normals).
+  subroutine pairing_normals(x, p, nout, n)
+    real(dp), intent(in) :: x(:,:), nout(:,:)
+    integer, intent(in) :: p
+    real(dp), allocatable, intent(out) :: n(:,:)
+    if (p == 1) then
+      call nodal_normals(x, nout, n)
+    else
+      call trace_normals(x, p, nout, n)
+    end if
+  end subroutine pairing_normals
+
+  !> Mean curvature (convex > 0) of the marked elements of a trace of degree p:
+  !> mean_curvature on the polygon of its nodes (mid-side nodes included), the
+  !> segment normals of a polyline as given, those of a quadratic trace's
+  !> polygon on the side of its chord normals.
+  !>   x (in) (2, np) nodes;  p (in) degree;  nout (in) (2, (np-1)/p) outward chord normals
+  !>   marked (in) ((np-1)/p) the elements to average over
+  real(dp) function trace_curvature(x, p, nout, marked) result(k)
+    real(dp), intent(in) :: x(:,:), nout(:,:)
+    integer, intent(in) :: p
+    logical, intent(in) :: marked(:)
+    real(dp), allocatable :: nseg(:,:)
+    logical, allocatable :: seg(:)
+    real(dp) :: c(2), sigma
+    integer :: np, e, j, i
+    if (p == 1) then
+      k = mean_curvature(x, nout, marked)
+      return
+    end if
+    np = size(x, 2)
+    allocate(nseg(2, np - 1), seg(np - 1))
+    do e = 1, (np - 1) / p
+      sigma = chord_side(x, p, e, nout(:, e))
+      do j = 1, p
+        i = p * (e - 1) + j
+        c = x(:, i + 1) - x(:, i)
+        nseg(:, i) = sigma * [c(2), -c(1)] / norm2(c)
+        seg(i) = marked(e)
+      end do
+    end do
+    k = mean_curvature(x, nseg, seg)
+  end function trace_curvature
 
   !> The weight w of the slave normal in the common normal w n1 - (1 - w) n2
   !> (common_normals) from the mean curvatures k1 (slave) and k2 (master),
@@ -190,35 +265,6 @@ contains
     k = 0.0_dp
     if (length > 0.0_dp) k = turn / length
   end function mean_curvature
-
-  !> The nearest hit of the line a + tau n on a master segment facing n.
-  !>   a, n (in) (2) point and unit direction;  xm, nm_out (in) master nodes and segment normals
-  !>   f (out) the master segment, 0 when the line misses the master;  r (out) its coordinate in [0, 1]
-  subroutine ray_hit(a, n, xm, nm_out, f, r)
-    real(dp), intent(in) :: a(2), n(2), xm(:,:), nm_out(:,:)
-    integer, intent(out) :: f
-    real(dp), intent(out) :: r
-    real(dp) :: d(2), w(2), den, tau, rr, best
-    integer :: g
-    f = 0
-    r = 0.0_dp
-    best = huge(1.0_dp)
-    do g = 1, size(xm, 2) - 1
-      if (dot_product(nm_out(:, g), n) >= 0.0_dp) cycle
-      d = xm(:, g + 1) - xm(:, g)
-      w = xm(:, g) - a
-      den = cross(n, d)
-      if (abs(den) <= 1.0e-12_dp * norm2(d)) cycle        ! segment along the ray
-      rr = -cross(n, w) / den                              ! a + tau n = y_g + rr d
-      if (rr < -tol_ray .or. rr > 1.0_dp + tol_ray) cycle
-      tau = cross(w, d) / den
-      if (abs(tau) < best) then
-        best = abs(tau)
-        f = g
-        r = min(1.0_dp, max(0.0_dp, rr))
-      end if
-    end do
-  end subroutine ray_hit
 
   !> Intersect the slave and master 1D meshes: for each slave segment, the master
   !> segments facing it projected along its normal onto its line (module header, 1.).
@@ -374,11 +420,5 @@ contains
     allocate(ra(2, cap)); ra(:, 1:n) = inter%s(:, 1:n); call move_alloc(ra, inter%s)
     allocate(ra(2, cap)); ra(:, 1:n) = inter%r(:, 1:n); call move_alloc(ra, inter%r)
   end subroutine grow_intersection
-
-  !> z-component of the cross product of two plane vectors.
-  pure real(dp) function cross(u, v)
-    real(dp), intent(in) :: u(2), v(2)
-    cross = u(1) * v(2) - u(2) * v(1)
-  end function cross
 
 end module mortar_geometry

@@ -86,8 +86,9 @@ module mortar_operator
   use lapack_interfaces, only: dgtsv
   use strings, only: int_to_str, real_to_str
   use errors, only: error_t, set_error
-  use mortar_geometry, only: intersection_t, intersect_segments, check_polyline, ray_hit, &
+  use mortar_geometry, only: intersection_t, intersect_segments, check_polyline, &
                              tol_overlap, tol_piece, tol_sliver, arc_digits
+  use trace_geometry, only: ray_hit
   use axisymmetric_elements, only: radial_weight
   implicit none
   private
@@ -740,7 +741,7 @@ contains
     real(dp), intent(out) :: r
     integer :: k
 
-    call ray_hit(a, n, xm, nm_out, f, r)
+    call ray_hit(xm, 1, nm_out, a, n, f, r)
     if (f > 0) return
 
     ! Constant extension of the master trace beyond its end: its value at the

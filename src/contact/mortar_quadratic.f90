@@ -5,14 +5,13 @@
 !> Math. 41 (2002) 401-421, with the nodal non-penetration condition (doc/theory.md,
 !> "Quadratic traces").  It fills the same mortar_t as mortar_operator, so that the
 !> rows B u <= g, the condensation and the LCP are the ones of the linear case.
-!> It is one module, long as it is, because its four steps below (intersection,
-!> quadrature, multipliers, projection) share one parametrization of the curved
-!> traces and its Newton pairings; the linear operator (mortar_operator) stays
+!> Its four steps below (intersection, quadrature, multipliers, projection) share
+!> one pairing of the curved traces; the linear operator (mortar_operator) stays
 !> apart, exact with straight segments and the seed paper's own construction.
 !>
-!> Traces.  A trace of degree p (1 or 2) is the chain of its nodes x_1..x_n in order
-!>    along the boundary, element e holding the nodes p(e-1)+1 .. pe+1 (for p = 2:
-!>    corner, mid-side node, corner).  On element e, s in [0, 1]:
+!> Traces (trace_geometry).  A trace of degree p (1 or 2) is the chain of its nodes
+!>    x_1..x_n in order along the boundary, element e holding the nodes p(e-1)+1 .. pe+1
+!>    (for p = 2: corner, mid-side node, corner).  On element e, s in [0, 1]:
 !>       x(s) = sum_k N_k(s) x_k,   p = 1: N = (1-s, s),
 !>       p = 2: N = ((1-s)(1-2s), 4s(1-s), s(2s-1))   (isoparametric: curved edges kept).
 !>    phi_i (slave) and chi_j (master) are these shape functions on the traces.
@@ -66,7 +65,7 @@
 !>    gap0_i = n_i.((P y)_i - x_i) from the curved geometry and n_i the unit normal
 !>    of the curve at x_i (the mean of the two elements' at a corner).  A
 !>    frictional pair (quadratic_common_normals) pairs the points along the
-!>    common normals n_c = w n1 - (1 - w) n2 (mortar_geometry's pairing_weight),
+!>    common normals n_c = w n1 - (1 - w) n2 (mortar_geometry's trace_common_normals),
 !>    interpolated over each slave element by its shape functions: the master's
 !>    points in 1. and 2. are where the line x(s) + tau n_c(s) meets it, and the
 !>    normal rows and the tangential rows T_i (t_i = n_c turned a quarter turn)
@@ -87,22 +86,22 @@
 !>         degree = ps; inter is left empty) and mcov(j) = int_cov chi_j
 !>   quadratic_common_normals(xs, ps, sn_out, xm, pm, mn_out, nc, w)
 !>         a frictional pair's pairing directions at the slave trace's nodes
-!>   trace_point(x, p, e, s, y, dy)   point and derivative of element e at s
+!>   gauss4   the 4-point Gauss-Legendre rule on [0, 1] of its quadrature (2.)
 module mortar_quadratic
   use kinds, only: dp
   use lapack_interfaces, only: dgbsv, dgesv
   use strings, only: int_to_str, real_to_str
   use errors, only: error_t, set_error
   use sorting, only: sort_by_key
-  use mortar_geometry, only: tol_overlap, tol_piece, tol_sliver, arc_digits, mean_curvature, pairing_weight
+  use mortar_geometry, only: tol_overlap, tol_piece, tol_sliver, arc_digits, trace_common_normals
+  use trace_geometry, only: trace_point, trace_shape, chord_side, trace_normals, ray_on_element, cross
   use mortar_operator, only: mortar_t, start_mortar, start_periodic, set_initial_gaps
   use axisymmetric_elements, only: radial_weight
   implicit none
   private
-  public :: build_mortar_quadratic, quadratic_common_normals, trace_point, gauss4
+  public :: build_mortar_quadratic, quadratic_common_normals, gauss4
 
   real(dp), parameter :: min_facing = 0.2_dp       ! -n_master.n_slave of the chords above which they face
-  real(dp), parameter :: tol_ray = 1.0e-10_dp      ! slack on the master coordinate of a ray hit
 
   !> 4-point Gauss-Legendre on [0, 1]: points and weights.
   real(dp), parameter :: gauss4(2, 4) = reshape([ &
@@ -265,12 +264,9 @@ contains
   end subroutine build_mortar_quadratic
 
   !> The common normals of a frictional pair on quadratic traces (module
-  !> header, 6.; mortar_geometry's common_normals on polylines):
-  !>    n_c = normalize(w n1 - (1 - w) n2),   w = pairing_weight(k1, k2),
-  !> n1 the slave curve's nodal normal, n2 the master's nodal normals
-  !> interpolated at the point the line x_i + tau n_c meets (re-cast a few
-  !> times), k1 and k2 the
-  !> mean curvatures of the parts of the two traces that face each other.
+  !> header, 6.): the cover of this operator (intersect_traces) tells which
+  !> elements face each other, mortar_geometry's trace_common_normals does the
+  !> rest, as on polylines.
   !>   xs, ps, sn_out, xm, pm, mn_out (in) the traces, as build_mortar_quadratic
   !>   nc (out) (2, ns) unit common normals; the slave normal where no master faces
   !>   w  (out) the weight of the slave normal
@@ -279,45 +275,14 @@ contains
     integer, intent(in) :: ps, pm
     real(dp), allocatable, intent(out) :: nc(:,:)
     real(dp), intent(out) :: w
-    type(traces_t) :: t
     type(overlap_t), allocatable :: ov(:)
-    real(dp), allocatable :: n1(:,:), n2(:,:)
     logical, allocatable :: sface(:), mface(:)
-    real(dp) :: k1, k2, m(2), y(2), r, nn(3)
-    integer :: nov, i, e, f, iter, ns
-
-    t = traces_t(xs, xm, sn_out, mn_out, ps, pm)
-    ns = size(xs, 2)
-    call trace_normals(xs, ps, sn_out, n1)
-    call trace_normals(xm, pm, mn_out, n2)
-    nc = n1
-    w = 0.5_dp
-    call intersect_traces(t, ov, nov)
-    if (nov == 0) return
+    integer :: nov
+    call intersect_traces(traces_t(xs, xm, sn_out, mn_out, ps, pm), ov, nov)
     allocate(sface(size(sn_out, 2)), mface(size(mn_out, 2)), source=.false.)
     sface(ov(1:nov)%e) = .true.
     mface(ov(1:nov)%f) = .true.
-    k1 = trace_curvature(xs, ps, sn_out, sface)
-    k2 = trace_curvature(xm, pm, mn_out, mface)
-    w = pairing_weight(k1, k2)
-    do i = 1, ns
-      e = (i - 1) / ps + 1                        ! the elements that hold node i: e, and e - 1 at a corner
-      if (.not. (sface(min(e, size(sface))) .or. (mod(i - 1, ps) == 0 .and. sface(max(e - 1, 1))))) cycle
-      do iter = 1, 4
-        call ray_on_trace(xm, pm, mn_out, xs(:, i), nc(:, i), f, r)
-        if (f == 0) exit
-        ! the master's nodal normals interpolated: continuous across its corners
-        ! (the curve's own normal kinks there), a node's own on a node
-        if (r < 1.0e-8_dp) r = 0.0_dp
-        if (r > 1.0_dp - 1.0e-8_dp) r = 1.0_dp
-        call master_shape(pm, r, nn)
-        m = matmul(n2(:, pm * (f - 1) + 1:pm * f + 1), nn(1:pm + 1))
-        m = m / norm2(m)
-        y = w * n1(:, i) - (1.0_dp - w) * m
-        if (.not. norm2(y) > 0.0_dp) exit
-        nc(:, i) = y / norm2(y)
-      end do
-    end do
+    call trace_common_normals(xs, ps, sn_out, sface, xm, pm, mn_out, mface, nc, w)
   end subroutine quadratic_common_normals
 
   !> The operator on an open zone, slave elements efirst..elast (module header, 3.-4.).
@@ -371,12 +336,12 @@ contains
     ! end rows: the master trace at the points paired with the cover's two ends
     ! (where the zone is cut, the master's end point: exact)
     if (.not. mortar%axis_end(1)) then
-      call master_shape(pm, ov(1)%rlo, nr)
+      call trace_shape(pm, ov(1)%rlo, nr)
       mortar%P(i0, pm * (ov(1)%f - 1) + 1:pm * ov(1)%f + 1) = nr(1:pm + 1)
     end if
     k = size(ov)
     if (.not. mortar%axis_end(2)) then
-      call master_shape(pm, ov(k)%rhi, nr)
+      call trace_shape(pm, ov(k)%rhi, nr)
       mortar%P(i0 + z, pm * (ov(k)%f - 1) + 1:pm * ov(k)%f + 1) = &
         mortar%P(i0 + z, pm * (ov(k)%f - 1) + 1:pm * ov(k)%f + 1) + nr(1:pm + 1)
     end if
@@ -532,8 +497,8 @@ contains
     j0 = t%pm * (o%f - 1) + 1 - jlo + 1
     do q = 1, size(gauss4, 2)
       call pair_point(t, o, q, s, r, w)
-      call master_shape(t%ps, (s - lo) / (hi - lo), ns)
-      call master_shape(t%pm, r, nr)
+      call trace_shape(t%ps, (s - lo) / (hi - lo), ns)
+      call trace_shape(t%pm, r, nr)
       do a = 1, t%ps + 1
         do b = 1, t%ps + 1
           g(m0 + a - 1, m0 + b - 1) = g(m0 + a - 1, m0 + b - 1) + w * ns(a) * ns(b)
@@ -555,7 +520,7 @@ contains
     j0 = t%pm * (o%f - 1) + 1
     do q = 1, size(gauss4, 2)
       call pair_point(t, o, q, s, r, w)
-      call master_shape(t%pm, r, nr)
+      call trace_shape(t%pm, r, nr)
       mcov(j0:j0 + t%pm) = mcov(j0:j0 + t%pm) + w * nr(1:t%pm + 1)
     end do
   end subroutine add_master_integrals
@@ -569,7 +534,7 @@ contains
     integer :: q
     do q = 1, size(gauss4, 2)
       call trace_point(t%xs, t%ps, e, gauss4(1, q), y, dy)
-      call master_shape(t%ps, gauss4(1, q), nn)
+      call trace_shape(t%ps, gauss4(1, q), nn)
       wq = gauss4(2, q) * norm2(dy)
       if (t%axisymmetric) wq = radial_weight(wq * y(1))
       w(1:t%ps + 1) = w(1:t%ps + 1) + wq * nn(1:t%ps + 1)
@@ -605,11 +570,11 @@ contains
     integer :: i0
     if (allocated(t%pairing)) then
       i0 = t%ps * (e - 1) + 1
-      call master_shape(t%ps, s, nn)
+      call trace_shape(t%ps, s, nn)
       d = matmul(t%pairing(:, i0:i0 + t%ps), nn(1:t%ps + 1))
     else
       call trace_point(t%xs, t%ps, e, s, x, dx)
-      d = side(t%xs, t%ps, e, t%sn(:, e)) * [dx(2), -dx(1)]
+      d = chord_side(t%xs, t%ps, e, t%sn(:, e)) * [dx(2), -dx(1)]
     end if
     d = d / norm2(d)
   end function slave_direction
@@ -696,8 +661,7 @@ contains
       d2 = 0.0_dp
       if (p == 2) d2 = 4.0_dp * (t%xs(:, i0) - 2.0_dp * t%xs(:, i0 + 1) + t%xs(:, i0 + 2))
       if (allocated(t%pairing)) then
-        call master_shape(p, s, nn)
-        call shape_derivative(p, s, dn)
+        call trace_shape(p, s, nn, dn)
         dir = matmul(t%pairing(:, i0:i0 + p), nn(1:p + 1))
         ddir = matmul(t%pairing(:, i0:i0 + p), dn(1:p + 1))
       else
@@ -711,168 +675,6 @@ contains
       if (abs(f / df) < 1.0e-15_dp) exit
     end do
   end function project_on_element
-
-  !> The master coordinate r of element f where the line a + tau d meets it:
-  !> cross(y(r) - a, d) = 0, Newton from r on entry (exact in one step on a
-  !> straight element).
-  subroutine ray_on_element(x, p, f, a, d, r)
-    real(dp), intent(in) :: x(:,:), a(2), d(2)
-    integer, intent(in) :: p, f
-    real(dp), intent(inout) :: r
-    real(dp) :: y(2), dy(2), g, dg
-    integer :: it
-    do it = 1, 20
-      call trace_point(x, p, f, r, y, dy)
-      g = (y(1) - a(1)) * d(2) - (y(2) - a(2)) * d(1)
-      dg = dy(1) * d(2) - dy(2) * d(1)
-      if (dg == 0.0_dp) exit
-      r = r - g / dg
-      if (abs(g / dg) < 1.0e-15_dp) exit
-    end do
-  end subroutine ray_on_element
-
-  !> The nearest hit of the line a + tau d on a master element facing d
-  !> (f = 0 when it misses the master): the quadratic counterpart of
-  !> mortar_geometry's ray_hit.
-  !>   f (out) the master element;  r (out) its coordinate in [0, 1]
-  subroutine ray_on_trace(xm, pm, mn_out, a, d, f, r)
-    real(dp), intent(in) :: xm(:,:), mn_out(:,:), a(2), d(2)
-    integer, intent(in) :: pm
-    integer, intent(out) :: f
-    real(dp), intent(out) :: r
-    real(dp) :: ya(2), yb(2), y(2), dy(2), den, rr, best, tau
-    integer :: g
-    f = 0
-    r = 0.0_dp
-    best = huge(1.0_dp)
-    do g = 1, size(mn_out, 2)
-      if (dot_product(mn_out(:, g), d) >= 0.0_dp) cycle
-      ya = xm(:, pm * (g - 1) + 1)
-      yb = xm(:, pm * g + 1)
-      den = cross(d, yb - ya)
-      if (abs(den) <= 1.0e-12_dp * norm2(yb - ya)) cycle      ! element along the line
-      rr = -cross(d, ya - a) / den                           ! the chord's hit, a start for Newton
-      if (rr < -0.5_dp .or. rr > 1.5_dp) cycle
-      call ray_on_element(xm, pm, g, a, d, rr)
-      if (rr < -tol_ray .or. rr > 1.0_dp + tol_ray) cycle
-      call trace_point(xm, pm, g, rr, y, dy)
-      tau = dot_product(y - a, d)
-      if (abs(tau) < best) then
-        best = abs(tau)
-        f = g
-        r = min(1.0_dp, max(0.0_dp, rr))
-      end if
-    end do
-  end subroutine ray_on_trace
-
-  !> Unit outward nodal normals of a trace: the curve's normal at each node,
-  !> the mean of its two elements' at a corner (a closed trace's first node
-  !> is its last).
-  subroutine trace_normals(x, p, nout, n)
-    real(dp), intent(in) :: x(:,:), nout(:,:)
-    integer, intent(in) :: p
-    real(dp), allocatable, intent(out) :: n(:,:)
-    real(dp) :: sigma, y(2), dy(2)
-    integer :: np, e, k, i
-    np = size(x, 2)
-    allocate(n(2, np), source=0.0_dp)
-    do e = 1, (np - 1) / p
-      sigma = side(x, p, e, nout(:, e))
-      do k = 0, p
-        call trace_point(x, p, e, real(k, dp) / p, y, dy)
-        n(:, p * (e - 1) + 1 + k) = n(:, p * (e - 1) + 1 + k) + sigma * [dy(2), -dy(1)] / norm2(dy)
-      end do
-    end do
-    if (all(x(:, 1) == x(:, np))) then
-      n(:, 1) = n(:, 1) + n(:, np)
-      n(:, np) = n(:, 1)
-    end if
-    do i = 1, np
-      n(:, i) = n(:, i) / norm2(n(:, i))
-    end do
-  end subroutine trace_normals
-
-  !> Mean curvature (convex > 0) of the marked elements of a trace: mortar_geometry's
-  !> mean_curvature on the polygon of its nodes (mid-side nodes included).
-  real(dp) function trace_curvature(x, p, nout, marked) result(k)
-    real(dp), intent(in) :: x(:,:), nout(:,:)
-    integer, intent(in) :: p
-    logical, intent(in) :: marked(:)
-    real(dp), allocatable :: nseg(:,:)
-    logical, allocatable :: seg(:)
-    real(dp) :: c(2), sigma
-    integer :: np, e, j, i
-    np = size(x, 2)
-    allocate(nseg(2, np - 1), seg(np - 1))
-    do e = 1, (np - 1) / p
-      sigma = side(x, p, e, nout(:, e))
-      do j = 1, p
-        i = p * (e - 1) + j
-        c = x(:, i + 1) - x(:, i)
-        nseg(:, i) = sigma * [c(2), -c(1)] / norm2(c)
-        seg(i) = marked(e)
-      end do
-    end do
-    k = mean_curvature(x, nseg, seg)
-  end function trace_curvature
-
-  !> Point y and derivative dy = dx/ds of element e of a trace of degree p at s.
-  pure subroutine trace_point(x, p, e, s, y, dy)
-    real(dp), intent(in) :: x(:,:), s
-    integer, intent(in) :: p, e
-    real(dp), intent(out) :: y(2), dy(2)
-    integer :: i0
-    i0 = p * (e - 1) + 1
-    if (p == 1) then
-      y = (1.0_dp - s) * x(:, i0) + s * x(:, i0 + 1)
-      dy = x(:, i0 + 1) - x(:, i0)
-    else
-      y = (1.0_dp - s) * (1.0_dp - 2.0_dp * s) * x(:, i0) + 4.0_dp * s * (1.0_dp - s) * x(:, i0 + 1) &
-          + s * (2.0_dp * s - 1.0_dp) * x(:, i0 + 2)
-      dy = (4.0_dp * s - 3.0_dp) * x(:, i0) + (4.0_dp - 8.0_dp * s) * x(:, i0 + 1) + (4.0_dp * s - 1.0_dp) * x(:, i0 + 2)
-    end if
-  end subroutine trace_point
-
-  !> Shape functions of a trace element of degree p at s (p + 1 values).
-  pure subroutine master_shape(p, s, n)
-    integer, intent(in) :: p
-    real(dp), intent(in) :: s
-    real(dp), intent(out) :: n(3)
-    n = 0.0_dp
-    if (p == 1) then
-      n(1:2) = [1.0_dp - s, s]
-    else
-      n = [(1.0_dp - s) * (1.0_dp - 2.0_dp * s), 4.0_dp * s * (1.0_dp - s), s * (2.0_dp * s - 1.0_dp)]
-    end if
-  end subroutine master_shape
-
-  !> Derivatives of the shape functions of a trace element of degree p at s.
-  pure subroutine shape_derivative(p, s, dn)
-    integer, intent(in) :: p
-    real(dp), intent(in) :: s
-    real(dp), intent(out) :: dn(3)
-    dn = 0.0_dp
-    if (p == 1) then
-      dn(1:2) = [-1.0_dp, 1.0_dp]
-    else
-      dn = [4.0_dp * s - 3.0_dp, 4.0_dp - 8.0_dp * s, 4.0_dp * s - 1.0_dp]
-    end if
-  end subroutine shape_derivative
-
-  !> z-component of the cross product of two plane vectors.
-  pure real(dp) function cross(u, v)
-    real(dp), intent(in) :: u(2), v(2)
-    cross = u(1) * v(2) - u(2) * v(1)
-  end function cross
-
-  !> +1 or -1: the side of [x'_2, -x'_1] on which the element's outward chord normal lies.
-  real(dp) function side(x, p, e, nout)
-    real(dp), intent(in) :: x(:,:), nout(2)
-    integer, intent(in) :: p, e
-    real(dp) :: t(2)
-    t = x(:, p * e + 1) - x(:, p * (e - 1) + 1)
-    side = sign(1.0_dp, dot_product([t(2), -t(1)], nout))
-  end function side
 
   !> Length of element e of a trace between s = a and s = b (4-point Gauss).
   real(dp) function curve_length(x, p, e, a, b) result(l)

@@ -8,7 +8,8 @@ program test_mortar_quadratic
   use kinds, only: dp
   use errors, only: error_t
   use mortar_operator, only: mortar_t, zone_point
-  use mortar_quadratic, only: build_mortar_quadratic, trace_point, gauss4
+  use mortar_quadratic, only: build_mortar_quadratic, gauss4
+  use trace_geometry, only: trace_point
   use testing, only: check, check_close, check_small, finish_tests, tol_round
   implicit none
 
