@@ -173,7 +173,7 @@ contains
   !> elements (a region statement overrides the whole-body one there).  Each
   !> statement follows its curve= (else the ramp 0:STEPS): its elements' nodal
   !> forces go to that load group, and alpha dT and the group per element
-  !> are kept for the steps' strains (scene: step_loads).
+  !> are kept for the steps' strains (scene: step_thermal_strains).
   !>   deck  (in)    the deck (STEPS; its file, for the messages)
   !>   bdeck (in)    the body's statements, some THERMAL
   !>   bd    (inout) the body; its adt on exit alpha dT at load factor 1
