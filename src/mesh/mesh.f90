@@ -13,9 +13,14 @@
 !>   type(mesh_t), type(boundary_t), type(region_t)
 !>   finalize_mesh(mesh, file, diag)   drop nodes no element uses (renumbering the
 !>        boundaries), orient every element counter-clockwise when the whole mesh
-!>        is clockwise, and report to diag: no elements, mixed orientation
-!>        (inverted elements), degenerate or non-convex elements, boundary edges
-!>        or points that name nodes outside the mesh
+!>        is clockwise, and report to diag: no elements, linear and quadratic
+!>        mixed, boundary edges or points that name nodes outside the mesh,
+!>        zero-length boundary edges, mixed orientation (inverted elements),
+!>        degenerate, non-convex or folded elements.  Its steps, one routine
+!>        each, in this order: check_element_nodes, check_element_order,
+!>        drop_unused_nodes, check_boundary_edges, check_orientation
+!>        (reverse_orientation), bad_shapes (non-convex, then folded);
+!>        report_elements writes the first five of each kind of bad element
 !>   find_name(mesh%bnd, name)  index of the boundary or point set called name
 !>        (mesh%reg: of the region), 0 when there is none
 !>   name_list(mesh%bnd, none)  the names, 'a, b, c' (none: the text when there is none)
@@ -36,7 +41,7 @@ module mesh
   use strings, only: int_to_str
   use errors, only: diag_t, add_error
   use sorting, only: sort_integers, sort_by_counts
-  use elements, only: corner_count, quadrature_rule, shape_at, max_nen
+  use elements, only: corner_count, quadrature_rule, shape_at, max_nen, reference_node
   implicit none
   private
   public :: mesh_t, named_t, boundary_t, region_t, finalize_mesh, find_name, name_list
@@ -91,7 +96,9 @@ module mesh
 
 contains
 
-  !> Compact, orient and check a mesh just read; see the module header.
+  !> Compact, orient and check a mesh just read; see the module header.  The
+  !> steps run in this order, each only when the ones before found nothing:
+  !> the later ones index nodes and coordinates the earlier ones vouch for.
   !>   mesh (inout) the mesh; on return nodes are 1..nnode all used by elements
   !>   file (in)    name for messages
   !>   diag (inout) receives one message per defect (at most a few of each kind)
@@ -99,12 +106,36 @@ contains
     type(mesh_t), intent(inout) :: mesh
     character(len=*), intent(in) :: file
     type(diag_t), intent(inout) :: diag
-    integer, allocatable :: newid(:)
-    integer :: e, k, n, nneg, npos, nbad, b, nerr0
-    real(dp) :: a, h2, scale
-    real(dp), allocatable :: area(:)
-
+    integer :: nerr0
+    logical :: clockwise
     nerr0 = diag%count
+    call check_element_nodes(mesh, file, diag)
+    if (diag%count > nerr0) return
+    call check_element_order(mesh, file, diag)
+    if (diag%count > nerr0) return
+    call drop_unused_nodes(mesh, file, diag)
+    ! a boundary left with old node numbers (a node of no element) must not be used below
+    if (diag%count > nerr0) return
+    call check_boundary_edges(mesh, file, diag)
+    if (diag%count > nerr0) return
+    call check_orientation(mesh, file, diag, clockwise)
+    if (diag%count > nerr0) return
+    if (clockwise) call reverse_orientation(mesh)
+    call report_elements(mesh, file, bad_shapes(mesh, folded=.false.), 'quadrilateral', ' is not convex (a ' // &
+      'convex quadrilateral with positive corner angles below 180 degrees expected)', diag)
+    if (diag%count > nerr0) return
+    call report_elements(mesh, file, bad_shapes(mesh, folded=.true.), 'element', ' is folded (Jacobian <= 0 ' // &
+      'inside: a mid-side node far from its edge''s middle; mid-side nodes near the middle of their edges expected)', diag)
+  end subroutine finalize_mesh
+
+  !> A mesh with elements, each naming nodes 1..nnode; the first defect is reported.
+  !>   mesh (in)    the mesh as read
+  !>   file (in)    name for messages;  diag (inout) the defect
+  subroutine check_element_nodes(mesh, file, diag)
+    type(mesh_t), intent(in) :: mesh
+    character(len=*), intent(in) :: file
+    type(diag_t), intent(inout) :: diag
+    integer :: e, k
     if (mesh%nelem <= 0) then
       call add_error(diag, file, 0, 'mesh has no 2D elements (triangles or quadrilaterals expected)')
       return
@@ -117,41 +148,58 @@ contains
         end if
       end do
     end do
+  end subroutine check_element_nodes
 
-    ! Quadratic meshes: all elements quadratic (a linear neighbour would not
-    ! conform), every boundary edge with its mid-side node; linear meshes none.
-    if (is_quadratic(mesh)) then
-      if (any(mesh%nen <= 4)) then
-        call add_error(diag, file, 0, 'mesh mixes linear and quadratic elements (all of one order expected)')
-        return
-      end if
+  !> Elements and boundary edges of one order.  Quadratic meshes: all
+  !> elements quadratic (a linear neighbour would not conform), every boundary
+  !> edge with its mid-side node; linear meshes none.  The first defect is reported.
+  !>   mesh (in)    the mesh as read
+  !>   file (in)    name for messages;  diag (inout) the defect
+  subroutine check_element_order(mesh, file, diag)
+    type(mesh_t), intent(in) :: mesh
+    character(len=*), intent(in) :: file
+    type(diag_t), intent(inout) :: diag
+    integer :: b
+    logical :: quadratic, two_node, three_node
+    quadratic = is_quadratic(mesh)
+    if (quadratic .and. any(mesh%nen <= 4)) then
+      call add_error(diag, file, 0, 'mesh mixes linear and quadratic elements (all of one order expected)')
+      return
     end if
-    if (allocated(mesh%bnd)) then
-      do b = 1, size(mesh%bnd)
-        if (mesh%bnd(b)%nseg == 0) cycle
-        if (is_quadratic(mesh) .and. .not. allocated(mesh%bnd(b)%mid)) then
-          n = 0
-        else if (is_quadratic(mesh)) then
-          n = count(mesh%bnd(b)%mid(1:mesh%bnd(b)%nseg) == 0)
-        else
-          n = 0
-          if (allocated(mesh%bnd(b)%mid)) n = count(mesh%bnd(b)%mid(1:mesh%bnd(b)%nseg) /= 0)
-          if (n > 0) then
-            call add_error(diag, file, 0, 'boundary "' // mesh%bnd(b)%name // &
-              '" has 3-node edges on a mesh of linear elements (2-node lines expected)')
-            return
-          end if
-          cycle
-        end if
-        if (n > 0 .or. .not. allocated(mesh%bnd(b)%mid)) then
-          call add_error(diag, file, 0, 'boundary "' // mesh%bnd(b)%name // &
-            '" has 2-node edges on a mesh of quadratic elements (3-node lines expected: mesh with gmsh -order 2)')
+    if (.not. allocated(mesh%bnd)) return
+    do b = 1, size(mesh%bnd)
+      associate(bd => mesh%bnd(b))
+        if (bd%nseg == 0) cycle
+        two_node = .not. allocated(bd%mid)          ! some edge without its mid-side node
+        if (.not. two_node) two_node = any(bd%mid(1:bd%nseg) == 0)
+        three_node = .false.                        ! some edge with one
+        if (allocated(bd%mid)) three_node = any(bd%mid(1:bd%nseg) /= 0)
+        if (quadratic .and. two_node) then
+          call add_error(diag, file, 0, 'boundary "' // bd%name // '" has 2-node edges on a mesh of quadratic ' // &
+            'elements (3-node lines expected: mesh with gmsh -order 2)')
+          return
+        else if (.not. quadratic .and. three_node) then
+          call add_error(diag, file, 0, 'boundary "' // bd%name // &
+            '" has 3-node edges on a mesh of linear elements (2-node lines expected)')
           return
         end if
-      end do
-    end if
+      end associate
+    end do
+  end subroutine check_element_order
 
-    ! New numbering: the used nodes, in their old order.
+  !> Drop the nodes no element uses and number the others 1..nnode in their
+  !> old order, in the elements and the boundaries alike.  A boundary that
+  !> names a node that does not exist or belongs to no element is reported
+  !> (and keeps old numbers: the caller must stop).
+  !>   mesh (inout) elements' nodes 1..nnode (check_element_nodes); on return
+  !>                every node is used by an element
+  !>   file (in)    name for messages;  diag (inout) one defect per boundary at most
+  subroutine drop_unused_nodes(mesh, file, diag)
+    type(mesh_t), intent(inout) :: mesh
+    character(len=*), intent(in) :: file
+    type(diag_t), intent(inout) :: diag
+    integer, allocatable :: newid(:)
+    integer :: e, k, n, b
     allocate(newid(mesh%nnode), source=0)
     do e = 1, mesh%nelem
       newid(mesh%conn(1:mesh%nen(e), e)) = 1
@@ -169,115 +217,204 @@ contains
       do e = 1, mesh%nelem
         mesh%conn(1:mesh%nen(e), e) = newid(mesh%conn(1:mesh%nen(e), e))
       end do
-      if (allocated(mesh%bnd)) then
-        do b = 1, size(mesh%bnd)
-          call renumber_boundary(mesh%bnd(b), newid, mesh%nnode, file, diag)
-        end do
-      end if
-      mesh%nnode = n
-    else if (allocated(mesh%bnd)) then
+    end if
+    if (allocated(mesh%bnd)) then
       do b = 1, size(mesh%bnd)
-        call renumber_boundary(mesh%bnd(b), newid, mesh%nnode, file, diag)
+        call renumber_boundary(mesh%bnd(b), newid, file, diag)
       end do
     end if
-    ! a boundary left with old node numbers (a node of no element) must not be used below
-    if (diag%count > nerr0) return
+    mesh%nnode = n
+  end subroutine drop_unused_nodes
 
-    ! Boundary edges of zero length (two distinct nodes at one point).
-    if (allocated(mesh%bnd)) then
-      scale = maxval(abs(mesh%x(:, 1:mesh%nnode)))
-      do b = 1, size(mesh%bnd)
-        do k = 1, mesh%bnd(b)%nseg
-          if (norm2(mesh%x(:, mesh%bnd(b)%seg(2, k)) - mesh%x(:, mesh%bnd(b)%seg(1, k))) <= 1.0e-12_dp * scale) then
-            n = 0
-            if (allocated(mesh%bnd(b)%seg_line)) n = mesh%bnd(b)%seg_line(k)
-            call add_error(diag, file, n, 'boundary "' // mesh%bnd(b)%name // '" has a zero-length edge (nodes ' // &
-              int_to_str(mesh%bnd(b)%seg(1, k)) // ' and ' // int_to_str(mesh%bnd(b)%seg(2, k)) // &
+  !> The nodes of boundary b in the new numbering: node = newid(node), or
+  !> the first defect reported (then b is left partly renumbered).
+  !>   b     (inout) a boundary or point set of the mesh
+  !>   newid (in)    (old nnode) new number of each old node, 0 for a node of no element
+  !>   file  (in)    name for messages;  diag (inout) the defect
+  subroutine renumber_boundary(b, newid, file, diag)
+    type(boundary_t), intent(inout) :: b
+    integer, intent(in) :: newid(:)
+    character(len=*), intent(in) :: file
+    type(diag_t), intent(inout) :: diag
+    integer :: k, j, nk, edge(3)
+    do k = 1, b%nseg
+      nk = 2
+      edge(1:2) = b%seg(:, k)
+      if (allocated(b%mid)) then          ! the middle of a 3-node edge
+        nk = 3
+        edge(3) = b%mid(k)
+      end if
+      do j = 1, nk
+        select case (new_number(newid, edge(j)))
+        case (-1)
+          call add_error(diag, file, 0, 'boundary "' // b%name // '" refers to a node that does not exist')
+          return
+        case (0)
+          call add_error(diag, file, 0, 'boundary "' // b%name // &
+            '" has an edge whose nodes belong to no element (edges on the body''s boundary expected)')
+          return
+        end select
+      end do
+      b%seg(:, k) = newid(edge(1:2))
+      if (nk == 3) b%mid(k) = newid(edge(3))
+    end do
+    do k = 1, b%npoint
+      select case (new_number(newid, b%points(k)))
+      case (-1)
+        call add_error(diag, file, 0, 'point set "' // b%name // '" refers to a node that does not exist')
+        return
+      case (0)
+        call add_error(diag, file, 0, 'point set "' // b%name // &
+          '" names a node that belongs to no element (a mesh node expected)')
+        return
+      end select
+      b%points(k) = newid(b%points(k))
+    end do
+  end subroutine renumber_boundary
+
+  !> The new number of old node a: newid(a), 0 when it belongs to no element,
+  !> -1 when it does not exist (outside 1..size(newid)).
+  pure integer function new_number(newid, a) result(n)
+    integer, intent(in) :: newid(:), a
+    n = -1
+    if (a >= 1 .and. a <= size(newid)) n = newid(a)
+  end function new_number
+
+  !> No boundary edge of zero length (two distinct nodes at one point: the
+  !> edge would have no normal); the first one is reported at its file line.
+  !>   mesh (in)    the mesh, its boundaries renumbered (drop_unused_nodes)
+  !>   file (in)    name for messages;  diag (inout) the defect
+  subroutine check_boundary_edges(mesh, file, diag)
+    type(mesh_t), intent(in) :: mesh
+    character(len=*), intent(in) :: file
+    type(diag_t), intent(inout) :: diag
+    integer :: b, k, line
+    real(dp) :: scale
+    if (.not. allocated(mesh%bnd)) return
+    scale = maxval(abs(mesh%x(:, 1:mesh%nnode)))
+    do b = 1, size(mesh%bnd)
+      associate(bd => mesh%bnd(b))
+        do k = 1, bd%nseg
+          if (norm2(mesh%x(:, bd%seg(2, k)) - mesh%x(:, bd%seg(1, k))) <= 1.0e-12_dp * scale) then
+            line = 0
+            if (allocated(bd%seg_line)) line = bd%seg_line(k)
+            call add_error(diag, file, line, 'boundary "' // bd%name // '" has a zero-length edge (nodes ' // &
+              int_to_str(bd%seg(1, k)) // ' and ' // int_to_str(bd%seg(2, k)) // &
               ' at the same point; distinct points expected)')
             return
           end if
         end do
-      end do
-    end if
+      end associate
+    end do
+  end subroutine check_boundary_edges
 
-    ! Orientation: the mesh must be consistently oriented; flip it when it is
-    ! clockwise throughout.  Degenerate: |area| below 1e-12 of the element's
-    ! squared longest edge.
-    allocate(area(mesh%nelem))
-    nneg = 0; npos = 0; nbad = 0
+  !> The elements' orientation: every element of nonzero area (|area| above
+  !> 1e-12 of its squared longest edge, else degenerate), all of one sign
+  !> (else the minority is reported as inverted).
+  !>   mesh      (in)    the mesh
+  !>   file      (in)    name for messages;  diag (inout) the defects (report_elements)
+  !>   clockwise (out)   every element is clockwise (the mesh is to be reversed)
+  subroutine check_orientation(mesh, file, diag, clockwise)
+    type(mesh_t), intent(in) :: mesh
+    character(len=*), intent(in) :: file
+    type(diag_t), intent(inout) :: diag
+    logical, intent(out) :: clockwise
+    integer :: e, nneg, npos
+    real(dp), allocatable :: area(:)
+    logical, allocatable :: degenerate(:)
+    clockwise = .false.
+    allocate(area(mesh%nelem), degenerate(mesh%nelem))
     do e = 1, mesh%nelem
       area(e) = element_area(mesh, e)
-      h2 = longest_edge2(mesh, e)
-      if (.not. (abs(area(e)) > 1.0e-12_dp * h2)) then
-        nbad = nbad + 1
-        if (nbad <= 5) call add_error(diag, file, source_line(mesh, e), 'element ' // int_to_str(e) // &
-          ' is degenerate (zero area; distinct, non-collinear nodes expected)')
-      else if (area(e) < 0.0_dp) then
-        nneg = nneg + 1
-      else
-        npos = npos + 1
-      end if
+      degenerate(e) = .not. (abs(area(e)) > 1.0e-12_dp * longest_edge2(mesh, e))
     end do
-    if (nbad > 0) return
-    if (nneg > 0 .and. npos > 0) then
-      ! report the minority as inverted
-      nbad = 0
-      scale = merge(1.0_dp, -1.0_dp, npos >= nneg)
-      do e = 1, mesh%nelem
-        if (area(e) * scale < 0.0_dp) then
-          nbad = nbad + 1
-          if (nbad <= 5) call add_error(diag, file, source_line(mesh, e), 'element ' // int_to_str(e) // &
-            ' is inverted (its orientation is opposite to the rest of the mesh)')
-        end if
-      end do
+    if (any(degenerate)) then
+      call report_elements(mesh, file, degenerate, 'element', &
+        ' is degenerate (zero area; distinct, non-collinear nodes expected)', diag)
       return
     end if
-    if (nneg > 0) then
-      do e = 1, mesh%nelem
-        k = mesh%nen(e)
-        if (k <= 4) then
-          mesh%conn(1:k, e) = mesh%conn(k:1:-1, e)
-        else                            ! corners 1, nc, ..., 2; mid-sides in reverse
-          n = corner_count(k)
-          mesh%conn(2:n, e) = mesh%conn(n:2:-1, e)
-          mesh%conn(n + 1:2 * n, e) = mesh%conn(2 * n:n + 1:-1, e)
-        end if
-      end do
+    nneg = count(area < 0.0_dp)
+    npos = mesh%nelem - nneg
+    if (nneg > 0 .and. npos > 0) then            ! the minority is inverted
+      call report_elements(mesh, file, area * merge(1.0_dp, -1.0_dp, npos >= nneg) < 0.0_dp, 'element', &
+        ' is inverted (its orientation is opposite to the rest of the mesh)', diag)
+      return
     end if
-    ! Quadrilaterals must be strictly convex (positive Jacobian at each corner).
-    nbad = 0
-    do e = 1, mesh%nelem
-      if (corner_count(mesh%nen(e)) /= 4) cycle
-      a = min_corner_cross(mesh, e)
-      if (.not. (a > 1.0e-12_dp * longest_edge2(mesh, e))) then
-        nbad = nbad + 1
-        if (nbad <= 5) call add_error(diag, file, source_line(mesh, e), 'quadrilateral ' // int_to_str(e) // &
-          ' is not convex (a convex quadrilateral with positive corner angles below 180 degrees expected)')
-      end if
-    end do
-    if (nbad > 0) return
-    ! Quadratic elements: a mid-side node far from its edge's middle folds the
-    ! element (Jacobian <= 0 somewhere); checked at the stiffness points and nodes.
-    do e = 1, mesh%nelem
-      if (mesh%nen(e) <= 4) cycle
-      if (.not. (min_jacobian(mesh, e) > 1.0e-12_dp * longest_edge2(mesh, e))) then
-        nbad = nbad + 1
-        if (nbad <= 5) call add_error(diag, file, source_line(mesh, e), 'element ' // int_to_str(e) // &
-          ' is folded (Jacobian <= 0 inside: a mid-side node far from its edge''s middle; ' // &
-          'mid-side nodes near the middle of their edges expected)')
-      end if
-    end do
-  end subroutine finalize_mesh
+    clockwise = nneg > 0
+  end subroutine check_orientation
 
-  !> Smallest Jacobian determinant of element e at its stiffness points and nodes.
+  !> Every element turned the other way round: corners 1, nc, ..., 2 and the
+  !> mid-side nodes in reverse (edge k keeps its mid-side node), the centre kept.
+  !>   mesh (inout) the mesh; conn reversed
+  subroutine reverse_orientation(mesh)
+    type(mesh_t), intent(inout) :: mesh
+    integer :: e, k, n
+    do e = 1, mesh%nelem
+      k = mesh%nen(e)
+      if (k <= 4) then
+        mesh%conn(1:k, e) = mesh%conn(k:1:-1, e)
+      else                            ! corners 1, nc, ..., 2; mid-sides in reverse
+        n = corner_count(k)
+        mesh%conn(2:n, e) = mesh%conn(n:2:-1, e)
+        mesh%conn(n + 1:2 * n, e) = mesh%conn(2 * n:n + 1:-1, e)
+      end if
+    end do
+  end subroutine reverse_orientation
+
+  !> The elements of one shape defect: quadrilaterals not strictly convex (a
+  !> corner's cross product, the Jacobian there, not above 1e-12 of the
+  !> squared longest edge), or quadratic elements folded by a mid-side node
+  !> far from its edge's middle (the Jacobian not above that somewhere: at a
+  !> stiffness point or a node, min_jacobian).  The second is asked only of
+  !> a mesh without the first: a corner's zero Jacobian would divide by zero.
+  !>   mesh   (in)     the mesh, counter-clockwise (reverse_orientation)
+  !>   folded (in)     .false.: the non-convex quadrilaterals; .true.: the folded elements
+  !>   bad    (result) (nelem) .true. at those elements
+  function bad_shapes(mesh, folded) result(bad)
+    type(mesh_t), intent(in) :: mesh
+    logical, intent(in) :: folded
+    logical :: bad(mesh%nelem)
+    integer :: e
+    do e = 1, mesh%nelem
+      bad(e) = .false.
+      if (folded) then
+        if (mesh%nen(e) > 4) bad(e) = .not. (min_jacobian(mesh, e) > 1.0e-12_dp * longest_edge2(mesh, e))
+      else if (corner_count(mesh%nen(e)) == 4) then
+        bad(e) = .not. (min_corner_cross(mesh, e) > 1.0e-12_dp * longest_edge2(mesh, e))
+      end if
+    end do
+  end function bad_shapes
+
+  !> One message per bad element, `noun E text` at its line in the mesh
+  !> file, for the first five of them: enough to find the defect, not a
+  !> flood from a mesh that has it everywhere.
+  !>   mesh (in)    the mesh (its elements' file lines)
+  !>   file (in)    name for messages
+  !>   bad  (in)    (nelem) the elements to report
+  !>   noun (in)    'element' or 'quadrilateral';  text (in) what is wrong (what was expected)
+  !>   diag (inout) the messages
+  subroutine report_elements(mesh, file, bad, noun, text, diag)
+    type(mesh_t), intent(in) :: mesh
+    character(len=*), intent(in) :: file
+    logical, intent(in) :: bad(:)
+    character(len=*), intent(in) :: noun, text
+    type(diag_t), intent(inout) :: diag
+    integer :: e, n
+    n = 0
+    do e = 1, size(bad)
+      if (.not. bad(e)) cycle
+      n = n + 1
+      if (n > 5) return
+      call add_error(diag, file, source_line(mesh, e), noun // ' ' // int_to_str(e) // text)
+    end do
+  end subroutine report_elements
+
+  !> Smallest Jacobian determinant of element e at its stiffness points and
+  !> nodes (elements' reference_node).
   real(dp) function min_jacobian(mesh, e) result(jmin)
     type(mesh_t), intent(in) :: mesh
     integer, intent(in) :: e
     real(dp), allocatable :: xi(:,:), w(:)
-    real(dp), parameter :: tri_nodes(2, 6) = reshape([0.0_dp, 0.0_dp, 1.0_dp, 0.0_dp, 0.0_dp, 1.0_dp, &
-      0.5_dp, 0.0_dp, 0.5_dp, 0.5_dp, 0.0_dp, 0.5_dp], [2, 6])
-    real(dp), parameter :: quad_nodes(2, 9) = reshape([-1.0_dp, -1.0_dp, 1.0_dp, -1.0_dp, 1.0_dp, 1.0_dp, &
-      -1.0_dp, 1.0_dp, 0.0_dp, -1.0_dp, 1.0_dp, 0.0_dp, 0.0_dp, 1.0_dp, -1.0_dp, 0.0_dp, 0.0_dp, 0.0_dp], [2, 9])
     real(dp) :: xe(2, max_nen), n(max_nen), dndx(2, max_nen), detj
     integer :: q, nen
     nen = mesh%nen(e)
@@ -289,11 +426,7 @@ contains
       jmin = min(jmin, detj)
     end do
     do q = 1, nen
-      if (corner_count(nen) == 3) then
-        call shape_at(nen, xe(:, 1:nen), tri_nodes(:, q), n(1:nen), dndx(:, 1:nen), detj)
-      else
-        call shape_at(nen, xe(:, 1:nen), quad_nodes(:, q), n(1:nen), dndx(:, 1:nen), detj)
-      end if
+      call shape_at(nen, xe(:, 1:nen), reference_node(nen, q), n(1:nen), dndx(:, 1:nen), detj)
       jmin = min(jmin, detj)
     end do
   end function min_jacobian
@@ -304,52 +437,6 @@ contains
     is_quadratic = .false.
     if (allocated(mesh%nen)) is_quadratic = any(mesh%nen > 4)
   end function is_quadratic
-
-  subroutine renumber_boundary(b, newid, nold, file, diag)
-    type(boundary_t), intent(inout) :: b
-    integer, intent(in) :: newid(:), nold
-    character(len=*), intent(in) :: file
-    type(diag_t), intent(inout) :: diag
-    integer :: k, j
-    do k = 1, b%nseg
-      do j = 1, 2
-        if (.not. renumbered(b%seg(j, k))) return
-      end do
-      if (allocated(b%mid)) then          ! the middle of a 3-node edge
-        if (.not. renumbered(b%mid(k))) return
-      end if
-    end do
-    do k = 1, b%npoint
-      if (b%points(k) < 1 .or. b%points(k) > nold) then
-        call add_error(diag, file, 0, 'point set "' // b%name // '" refers to a node that does not exist')
-        return
-      end if
-      if (newid(b%points(k)) == 0) then
-        call add_error(diag, file, 0, 'point set "' // b%name // &
-          '" names a node that belongs to no element (a mesh node expected)')
-        return
-      end if
-      b%points(k) = newid(b%points(k))
-    end do
-  contains
-    !> node = newid(node) for a node of an edge; .false. (and a message) when it
-    !> does not exist or belongs to no element
-    logical function renumbered(node) result(ok)
-      integer, intent(inout) :: node
-      ok = .false.
-      if (node < 1 .or. node > nold) then
-        call add_error(diag, file, 0, 'boundary "' // b%name // '" refers to a node that does not exist')
-        return
-      end if
-      if (newid(node) == 0) then
-        call add_error(diag, file, 0, 'boundary "' // b%name // &
-          '" has an edge whose nodes belong to no element (edges on the body''s boundary expected)')
-        return
-      end if
-      node = newid(node)
-      ok = .true.
-    end function renumbered
-  end subroutine renumber_boundary
 
   !> Renumber the nodes of a finalized mesh in the order of a Hilbert curve
   !> through their positions, and the elements by their lowest node.  A mesh

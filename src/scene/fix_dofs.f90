@@ -17,8 +17,8 @@ module fix_dofs
   use errors, only: diag_t, add_error
   use deck_reader, only: deck_t, body_deck_t
   use mesh, only: boundary_nodes, node_in_file
-  use body, only: body_t, node_elements, edge_outward_normal
-  use deck_boundaries, only: boundary_index
+  use body, only: body_t
+  use deck_boundaries, only: boundary_index, edge_normals, need_any, need_edges
   implicit none
   private
   public :: apply_fixes
@@ -60,9 +60,9 @@ contains
     do k = 1, size(bdeck%fixes)
       associate(fx => bdeck%fixes(k))
         if (fx%local) then
-          ib = boundary_index(deck, fx%line, bd, fx%boundary, 'FIX un=/ut=', .true., diag)
+          ib = boundary_index(deck, fx%line, bd, fx%boundary, 'FIX un=/ut=', need_edges, diag)
         else
-          ib = boundary_index(deck, fx%line, bd, fx%boundary, 'FIX', .false., diag)
+          ib = boundary_index(deck, fx%line, bd, fx%boundary, 'FIX', need_any, diag)
         end if
         if (ib == 0) cycle
         call boundary_nodes(bd%mesh%bnd(ib), nodes)
@@ -146,7 +146,7 @@ contains
   !> 0 at the middle): the mid-side node the normal of the curve there, the
   !> corners the sum over their two edges as on a linear mesh; on a straight
   !> edge every one is the chord's normal.  The side, outward, is the chord's
-  !> (edge_outward_normal).
+  !> (deck_boundaries: edge_normals).
   !>   nodes (in) the boundary's nodes (boundary_nodes: mid-side ones included)
   !>   nn    (out) (2, size(nodes))
   !>   bad   (out) an edge not on the body's outer boundary, or a zero sum
@@ -155,30 +155,28 @@ contains
     integer, intent(in) :: ib, nodes(:)
     real(dp), allocatable, intent(out) :: nn(:,:)
     logical, intent(out) :: bad
-    integer, allocatable :: eptr(:), elist(:), slot(:)
-    integer :: s, na, nb, owner, i, k, nodes3(3)
-    real(dp) :: nrm(2), xe(2, 3), tang(2), nk(2)
+    integer, allocatable :: slot(:)
+    integer :: s, na, nb, i, k, nodes3(3)
+    real(dp) :: xe(2, 3), tang(2), nk(2)
+    real(dp), allocatable :: nrm(:,:)
+    logical :: ok
     ! dN/ds of the 3-node edge (ends -1, 1, middle 0) at s = -1, 1, 0: the tangent at each node
     real(dp), parameter :: dn(3, 3) = reshape([-1.5_dp, -0.5_dp, 2.0_dp, 0.5_dp, 1.5_dp, -2.0_dp, &
                                                -0.5_dp, 0.5_dp, 0.0_dp], [3, 3])
-    call node_elements(bd%mesh, eptr, elist)
     allocate(nn(2, size(nodes)), source=0.0_dp)
+    call edge_normals(bd, ib, nrm, ok)
+    bad = .not. ok
+    if (bad) return
     allocate(slot(bd%mesh%nnode), source=0)
     do i = 1, size(nodes)
       slot(nodes(i)) = i
     end do
-    bad = .false.
     do s = 1, bd%mesh%bnd(ib)%nseg
       na = bd%mesh%bnd(ib)%seg(1, s)
       nb = bd%mesh%bnd(ib)%seg(2, s)
-      call edge_outward_normal(bd%mesh, eptr, elist, na, nb, nrm, owner)
-      if (owner <= 0) then
-        bad = .true.
-        return
-      end if
       if (.not. allocated(bd%mesh%bnd(ib)%mid)) then
-        nn(:, slot(na)) = nn(:, slot(na)) + nrm
-        nn(:, slot(nb)) = nn(:, slot(nb)) + nrm
+        nn(:, slot(na)) = nn(:, slot(na)) + nrm(:, s)
+        nn(:, slot(nb)) = nn(:, slot(nb)) + nrm(:, s)
         cycle
       end if
       nodes3 = [na, nb, bd%mesh%bnd(ib)%mid(s)]
@@ -186,7 +184,7 @@ contains
       do k = 1, 3
         tang = matmul(xe, dn(:, k))                     ! dx/ds at node k
         nk = [tang(2), -tang(1)] / norm2(tang)
-        if (dot_product(nk, nrm) < 0.0_dp) nk = -nk     ! outward, as the chord's normal
+        if (dot_product(nk, nrm(:, s)) < 0.0_dp) nk = -nk     ! outward, as the chord's normal
         nn(:, slot(nodes3(k))) = nn(:, slot(nodes3(k))) + nk
       end do
     end do

@@ -49,21 +49,21 @@ contains
     n = 1
     allocate(list(3, 8))
     list(:, 1) = [0, deck%steps, 0]
-    if (deck%has_gravity) call add(deck%gravity_ramp, deck%gravity_curve)
+    if (deck%has_gravity) call add_path(deck%gravity_ramp, deck%gravity_curve, list, n)
     do b = 1, size(deck%bodies)
       associate(bd => deck%bodies(b))
-        call add_each(bd%fixes%ramp(1), bd%fixes%ramp(2), bd%fixes%curve)
-        call add_each(bd%loads%ramp(1), bd%loads%ramp(2), bd%loads%curve)
+        call add_paths(bd%fixes%ramp(1), bd%fixes%ramp(2), bd%fixes%curve, list, n)
+        call add_paths(bd%loads%ramp(1), bd%loads%ramp(2), bd%loads%curve, list, n)
         do k = 1, size(bd%thermals)
-          call add([0, deck%steps], bd%thermals(k)%curve)
+          call add_path([0, deck%steps], bd%thermals(k)%curve, list, n)
         end do
-        if (bd%has_bodyforce) call add(bd%bodyforce_ramp, bd%bodyforce_curve)
+        if (bd%has_bodyforce) call add_path(bd%bodyforce_ramp, bd%bodyforce_curve, list, n)
       end associate
     end do
     do b = 1, size(deck%rigids)
       associate(rd => deck%rigids(b))
-        call add_each(rd%fixes%ramp(1), rd%fixes%ramp(2), rd%fixes%curve)
-        call add_each(rd%forces%ramp(1), rd%forces%ramp(2), rd%forces%curve)
+        call add_paths(rd%fixes%ramp(1), rd%fixes%ramp(2), rd%fixes%curve, list, n)
+        call add_paths(rd%forces%ramp(1), rd%forces%ramp(2), rd%forces%curve, list, n)
       end associate
     end do
     lg%steps = deck%steps
@@ -71,35 +71,43 @@ contains
     lg%ramp = list(1:2, 1:n)
     lg%group_curve = list(3, 1:n)
     allocate(lg%fgroup(ndof, n), lg%ugroup(ndof, n), source=0.0_dp)
-  contains
-    !> The paths of a list of statements: ramp k0(i):k1(i) or curve c(i).
-    subroutine add_each(k0, k1, c)
-      integer, intent(in) :: k0(:), k1(:), c(:)
-      integer :: i
-      do i = 1, size(c)
-        call add([k0(i), k1(i)], c(i))
-      end do
-    end subroutine add_each
-
-    !> Ramp r, or curve c when c > 0, unless listed already.
-    subroutine add(r, c)
-      integer, intent(in) :: r(2), c
-      integer :: i, key(3)
-      integer, allocatable :: grown(:,:)
-      key = [r, 0]
-      if (c > 0) key = [0, 0, c]
-      do i = 1, n
-        if (all(list(:, i) == key)) return
-      end do
-      if (n == size(list, 2)) then
-        allocate(grown(3, 2 * n))
-        grown(:, 1:n) = list
-        call move_alloc(grown, list)
-      end if
-      n = n + 1
-      list(:, n) = key
-    end subroutine add
   end subroutine collect_groups
+
+  !> The paths of a list of statements, ramp k0(i):k1(i) or curve c(i) > 0,
+  !> each added unless listed already (add_path).
+  subroutine add_paths(k0, k1, c, list, n)
+    integer, intent(in) :: k0(:), k1(:), c(:)
+    integer, allocatable, intent(inout) :: list(:,:)
+    integer, intent(inout) :: n
+    integer :: i
+    do i = 1, size(c)
+      call add_path([k0(i), k1(i)], c(i), list, n)
+    end do
+  end subroutine add_paths
+
+  !> Ramp r, or curve c when c > 0, added to the load paths unless listed already.
+  !>   r, c (in)    the path: ramp k0:k1, or curve c > 0
+  !>   list (inout) (3, capacity) the paths: [k0, k1, 0] or [0, 0, c]; grown when full
+  !>   n    (inout) the paths in list
+  subroutine add_path(r, c, list, n)
+    integer, intent(in) :: r(2), c
+    integer, allocatable, intent(inout) :: list(:,:)
+    integer, intent(inout) :: n
+    integer :: i, key(3)
+    integer, allocatable :: grown(:,:)
+    key = [r, 0]
+    if (c > 0) key = [0, 0, c]
+    do i = 1, n
+      if (all(list(:, i) == key)) return
+    end do
+    if (n == size(list, 2)) then
+      allocate(grown(3, 2 * n))
+      grown(:, 1:n) = list
+      call move_alloc(grown, list)
+    end if
+    n = n + 1
+    list(:, n) = key
+  end subroutine add_path
 
   !> Column of fgroup / ugroup holding ramp r, or curve c when c > 0.
   pure integer function ramp_group(lg, r, c) result(g)

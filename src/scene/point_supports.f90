@@ -15,17 +15,17 @@
 !> body turns the springs' matrices when it assembles them.
 !>
 !> Programming interface
-!>   apply_point_forces(deck, bdeck, bd, lg, diag, any_force)   FORCE: nodal forces in lg%fgroup
+!>   apply_point_forces(deck, bdeck, bd, lg, diag)   FORCE: nodal forces in lg%fgroup
 !>   apply_springs(deck, bdeck, bd, diag)                     SPRING: bd%springs
 module point_supports
   use kinds, only: dp
   use errors, only: diag_t, add_error
   use deck_reader, only: deck_t, body_deck_t, load_point
   use mesh, only: boundary_nodes
-  use body, only: body_t, node_elements, edge_outward_normal
+  use body, only: body_t
   use foundation, only: edge_spring_matrix, add_spring
   use load_groups, only: load_groups_t, ramp_group
-  use deck_boundaries, only: boundary_index
+  use deck_boundaries, only: boundary_index, edge_normals, need_edges, need_points
   implicit none
   private
   public :: apply_point_forces, apply_springs
@@ -39,21 +39,18 @@ contains
   !>   bd        (in)    the body, its mesh and dof0
   !>   lg        (inout) the load groups: fgroup gets the forces
   !>   diag      (inout) unknown names, names that are not point sets
-  !>   any_force (inout) set when the body has a FORCE
-  subroutine apply_point_forces(deck, bdeck, bd, lg, diag, any_force)
+  subroutine apply_point_forces(deck, bdeck, bd, lg, diag)
     type(deck_t), intent(in) :: deck
     type(body_deck_t), intent(in) :: bdeck
     type(body_t), intent(in) :: bd
     class(load_groups_t), intent(inout) :: lg
     type(diag_t), intent(inout) :: diag
-    logical, intent(inout) :: any_force
     integer :: k, ib, i, g, d
     integer, allocatable :: nodes(:)
     do k = 1, size(bdeck%loads)
       associate(ld => bdeck%loads(k))
         if (ld%kind /= load_point) cycle
-        any_force = .true.
-        ib = point_set(deck, ld%line, bd, ld%boundary, 'FORCE', diag)
+        ib = boundary_index(deck, ld%line, bd, ld%boundary, 'FORCE', need_points, diag)
         if (ib == 0) cycle
         call boundary_nodes(bd%mesh%bnd(ib), nodes)
         g = ramp_group(lg, ld%ramp, ld%curve)
@@ -75,15 +72,15 @@ contains
     type(body_deck_t), intent(in) :: bdeck
     type(body_t), intent(inout) :: bd
     type(diag_t), intent(inout) :: diag
-    integer :: j, ib, i, s, na, nb, owner
-    integer, allocatable :: nodes(:), eptr(:), elist(:)
-    real(dp) :: ke(6, 6), nrm(2)
-    logical :: have_topology
-    have_topology = .false.
+    integer :: j, ib, i, s, na, nb
+    integer, allocatable :: nodes(:)
+    real(dp) :: ke(6, 6)
+    real(dp), allocatable :: nrm(:,:)
+    logical :: ok
     do j = 1, size(bdeck%springs)
       associate(sp => bdeck%springs(j), m => bd%mesh)
         if (sp%point) then
-          ib = point_set(deck, sp%line, bd, sp%boundary, 'SPRING kx=/ky=', diag)
+          ib = boundary_index(deck, sp%line, bd, sp%boundary, 'SPRING kx=/ky=', need_points, diag)
           if (ib == 0) cycle
           call boundary_nodes(m%bnd(ib), nodes)
           ke = 0.0_dp
@@ -94,22 +91,18 @@ contains
           end do
           cycle
         end if
-        ib = boundary_index(deck, sp%line, bd, sp%boundary, 'SPRING kn=/kt=', .true., diag)
+        ib = boundary_index(deck, sp%line, bd, sp%boundary, 'SPRING kn=/kt=', need_edges, diag)
         if (ib == 0) cycle
-        if (.not. have_topology) then
-          call node_elements(m, eptr, elist)
-          have_topology = .true.
+        ! each edge of exactly one element: its nodes are in K's pattern together
+        call edge_normals(bd, ib, nrm, ok)
+        if (.not. ok) then
+          call add_error(diag, deck%file, sp%line, 'SPRING on "' // sp%boundary // '": an edge is not on the ' // &
+                         'outer boundary of body "' // bd%name // '" (boundary edges expected)')
+          cycle
         end if
         do s = 1, m%bnd(ib)%nseg
           na = m%bnd(ib)%seg(1, s)
           nb = m%bnd(ib)%seg(2, s)
-          ! an edge of exactly one element: its nodes are in K's pattern together
-          call edge_outward_normal(m, eptr, elist, na, nb, nrm, owner)
-          if (owner <= 0) then
-            call add_error(diag, deck%file, sp%line, 'SPRING on "' // sp%boundary // '": an edge is not on the ' // &
-                           'outer boundary of body "' // bd%name // '" (boundary edges expected)')
-            exit
-          end if
           if (allocated(m%bnd(ib)%mid)) then
             call edge_spring_matrix(3, reshape([m%x(:, na), m%x(:, nb), m%x(:, m%bnd(ib)%mid(s))], [2, 3]), &
                                     sp%kn, sp%kt, bd%thick, bd%axisymmetric, ke)
@@ -123,22 +116,5 @@ contains
       end associate
     end do
   end subroutine apply_springs
-
-  !> The point set `name` of body bd (0 with an error at `line` when the
-  !> name is unknown or names a boundary curve).
-  integer function point_set(deck, line, bd, name, what, diag) result(ib)
-    type(deck_t), intent(in) :: deck
-    integer, intent(in) :: line
-    type(body_t), intent(in) :: bd
-    character(len=*), intent(in) :: name, what
-    type(diag_t), intent(inout) :: diag
-    ib = boundary_index(deck, line, bd, name, what, .false., diag)
-    if (ib == 0) return
-    if (bd%mesh%bnd(ib)%nseg > 0) then
-      call add_error(diag, deck%file, line, what // ': "' // name // '" in body "' // bd%name // &
-                     '" is a boundary curve (a point set expected: a gmsh Physical Point)')
-      ib = 0
-    end if
-  end function point_set
 
 end module point_supports

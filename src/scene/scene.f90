@@ -13,25 +13,40 @@
 !> per distinct ramp k0:k1 or CURVE, with its loads and prescribed values;
 !> scene_t extends load_groups_t, and fext, ubar are the last step's,
 !> step_loads), fix_dofs (the FIX statements' dofs, and the nodes' local axes
-!> of FIX un=/ut=, to which the groups' forces are turned here) and
-!> deck_boundaries (the boundary a statement names), point_supports (FORCE
-!> and SPRING on a body).
+!> of FIX un=/ut=, to which the groups' forces are turned here),
+!> deck_boundaries (the boundary a statement names, its edges' outward
+!> normals), body_loads (TRACTION, PRESSURE, BODYFORCE, GRAVITY, THERMAL on a
+!> body) and point_supports (FORCE and SPRING on a body).
 !>
 !> PLANE axisymmetric: the bodies' kernels on the full circle (body), every
 !> node at r >= 0 (check_radius), u_r = 0 on the axis (apply_axis).
 !>
+!> Thermal strains.  A body's alpha dT of step k is its THERMAL statements'
+!> value at load factor 1 times the factor of their group at k
+!> (step_thermal_strains).  The scene's bodies hold the final step's in
+!> body_t%adt, which the stresses read (body: element_response;
+!> error_estimate).  step_forces and step_thermal_strains give a step's
+!> loads and strains without touching the scene; step_loads, which also
+!> writes the step's strains into the bodies (and is called again with the
+!> final step to put them back), is kept until the callers pass the
+!> strains to the stress routines instead.
+!>
 !> Programming interface
 !>   type(scene_t)                       bodies, dof data, loads, pair specs, effects;
 !>        extends load_groups_t (steps, ramp, fgroup, ugroup: load_groups' procedures take it)
-!>   step_loads(sc, k, fext, ubar)        the loads of step k (and the bodies' thermal strains)
 !>   build_scene(deck, gmsh, sc, diag, err)  gmsh: how .geo files are meshed (trust,
 !>        time limit); errors go to diag with deck lines
+!>   step_forces(sc, k, fext, ubar)       the external forces and prescribed values of step k
+!>   step_thermal_strains(sc, k, adt)     alpha dT of every element at step k, (nelem) in
+!>        output order (body b's element e at elem0 + e), 0 in bodies without THERMAL
+!>   step_loads(sc, k, fext, ubar)        step_forces, and the bodies' adt set to step k's
+!>        (deprecated: it changes the scene)
 module scene
   use kinds, only: dp
   use strings, only: int_to_str, real_to_str
   use errors, only: diag_t, add_error, has_errors, error_t
   use deck_reader, only: deck_t, body_deck_t, LOAD_TRACTION, LOAD_PRESSURE, LOAD_POINT, rigid_deck_t
-  use mesh, only: mesh_t, is_quadratic, finalize_mesh, find_name, order_for_locality, name_list, node_in_file, &
+  use mesh, only: mesh_t, is_quadratic, finalize_mesh, order_for_locality, node_in_file, &
                   locality_min_nodes
   use mesh_rect, only: make_rect_mesh
   use gmsh_reader, only: read_gmsh_file
@@ -40,18 +55,17 @@ module scene
   use geo_screen, only: screen_geo
   use safe_files, only: private_folder, real_path
   use material, only: make_isotropic, make_orthotropic, locking_nu
-  use elements, only: element_body_load, edge_load, edge_load_quadratic, max_nen
-  use axisymmetric_elements, only: axi_element_body_load, axi_edge_load, axi_edge_load_quadratic
-  use body, only: body_t, node_elements, edge_outward_normal, element_dofs, thermal_loads, to_local_axes
+  use body, only: body_t, to_local_axes
   use contact_set, only: pair_spec_t
   use load_groups, only: load_groups_t, collect_groups, ramp_group, group_factors
-  use deck_boundaries, only: boundary_index
+  use deck_boundaries, only: boundary_index, need_edges
   use fix_dofs, only: apply_fixes
   use point_supports, only: apply_point_forces, apply_springs
+  use body_loads, only: apply_edge_loads, apply_body_loads, apply_thermal
   use rigid_obstacle, only: rigid_shape_t, shape_line, shape_circle, shape_polyline
   implicit none
   private
-  public :: scene_t, fix_ref_t, build_scene, step_loads
+  public :: scene_t, fix_ref_t, build_scene, step_forces, step_thermal_strains, step_loads
 
   !> A FIX statement, for its reaction line in the summary.
   type :: fix_ref_t
@@ -79,6 +93,7 @@ module scene
     type(rigid_shape_t), allocatable :: rigids(:)  !< (nrigid) RIGID obstacles; dofs after the bodies'
     character(len=:), allocatable :: effects  !< space-separated effects simulated
     type(thermal_path_t), allocatable :: thermal(:)  !< (nbody) alpha dT at factor 1 and its group
+                                                     !< (adt1 not allocated: the body has no THERMAL)
     type(mesh_entry_t), allocatable :: new_meshes(:) !< the .geo meshes gmsh made, for the mesh cache
                                                      !< once the run has succeeded (mesh_cache)
     integer :: reused_meshes = 0              !< .geo meshes read from the mesh cache
@@ -86,7 +101,9 @@ module scene
 
 contains
 
-  !> Build the scene of a deck read without errors.
+  !> Build the scene of a deck read without errors.  The statements are
+  !> resolved body by body in deck order, so that the input errors come in
+  !> the order of the deck's lines.
   !>   deck    (in)  the deck
   !>   gmsh    (in)  how .geo files are meshed: trusted or screened, time limit
   !>   sc      (out) the scene (incomplete when diag has errors)
@@ -98,166 +115,316 @@ contains
     type(scene_t), intent(out) :: sc
     type(diag_t), intent(inout) :: diag
     type(error_t), allocatable, intent(out) :: err
-    integer :: b, nb, nfix, ifix, ndof, ip, naxis, k
-    logical :: has_traction, has_pressure, has_bforce, has_gravity, has_dirichlet, has_thermal, has_offset, has_axis
-    logical :: has_force
+    integer :: b, ifix, ndof, k
 
-    ! The bodies are read one after the other: gfortran 12 keeps the length of
-    ! a deferred-length character function result (int_to_str, the reader's
-    ! names and messages) in a static variable of the caller, so two threads
-    ! reading meshes garble each other's strings (doc/robustness.md)
-    nb = size(deck%bodies)
-    allocate(sc%bodies(nb), sc%new_meshes(0))
-    do b = 1, nb
-      call make_mesh(deck, b, gmsh, sc, sc%bodies(b)%mesh, diag, err)
-      if (allocated(err)) return
-      call make_body(deck, b, sc%bodies(b), diag)
-    end do
-    if (has_errors(diag)) return
-    ! a large mesh file's numbering is its generator's: renumber for locality
-    ! (the generated rectangles are numbered row by row already)
-    do b = 1, nb
-      if (deck%bodies(b)%mesh%kind /= 'rect' .and. sc%bodies(b)%mesh%nnode > locality_min_nodes) &
-        call order_for_locality(sc%bodies(b)%mesh)
-    end do
-
-    ! dof and element offsets
-    ndof = 0
-    do b = 1, nb
-      sc%bodies(b)%dof0 = ndof
-      sc%bodies(b)%elem0 = sc%nelem
-      ndof = ndof + 2 * sc%bodies(b)%mesh%nnode
-      sc%nnode = sc%nnode + sc%bodies(b)%mesh%nnode
-      sc%nelem = sc%nelem + sc%bodies(b)%mesh%nelem
-    end do
-    ! a RIGID: three dofs (u_x, u_y, theta of its reference point) after the bodies'
-    allocate(sc%rigids(size(deck%rigids)))
-    do b = 1, size(deck%rigids)
-      ! rigid_obstacle's projection of the exact gap carries no radial weight,
-      ! and of the three motions only the axial one is axisymmetric
-      if (deck%axisymmetric) &
-        call add_error(diag, deck%file, deck%rigids(b)%line, 'RIGID obstacles are not available in PLANE ' // &
-                       'axisymmetric (line ' // int_to_str(deck%plane_line) // ') (a meshed body as the master expected)')
-      call make_rigid_shape(deck%rigids(b), sc%rigids(b))
-      sc%rigids(b)%dof0 = ndof
-      ndof = ndof + 3
-    end do
+    call make_bodies(deck, gmsh, sc%bodies, sc%new_meshes, sc%reused_meshes, diag, err)
+    if (allocated(err) .or. has_errors(diag)) return
+    call order_meshes_for_locality(deck, sc%bodies)
+    call number_body_dofs(sc%bodies, ndof, sc%nnode, sc%nelem)
+    call make_rigids(deck, ndof, sc%rigids, diag)
     sc%ndof = ndof
     allocate(sc%fixed(ndof), sc%ubar(ndof), sc%fix_owner(ndof), sc%fext(ndof))
     sc%fixed = .false.; sc%ubar = 0.0_dp; sc%fix_owner = 0; sc%fext = 0.0_dp
     call collect_groups(deck, ndof, sc%load_groups_t)
-    allocate(sc%thermal(nb))
+    allocate(sc%thermal(size(sc%bodies)))
+    call list_fixes(deck, sc%fixes)
 
-    nfix = 0
-    do b = 1, nb
-      nfix = nfix + size(deck%bodies(b)%fixes)
-    end do
-    allocate(sc%fixes(nfix))
     ifix = 0
-    has_dirichlet = .false.
-    has_traction = .false.; has_pressure = .false.; has_bforce = .false.; has_gravity = .false.
-    has_thermal = .false.
-    has_axis = .false.
-    has_force = .false.
-    do b = 1, nb
-      associate(fixes => deck%bodies(b)%fixes)
-        do k = 1, size(fixes)
-          sc%fixes(ifix + k)%body = b
-          sc%fixes(ifix + k)%label = deck%bodies(b)%name // ':' // fixes(k)%boundary
-        end do
-        call apply_fixes(deck, deck%bodies(b), [(ramp_group(sc, fixes(k)%ramp, fixes(k)%curve), k = 1, size(fixes))], &
-                         ifix, sc%bodies(b), sc%fixed, sc%ugroup, sc%fix_owner, diag)
-        ifix = ifix + size(fixes)
+    do b = 1, size(sc%bodies)
+      associate(bdeck => deck%bodies(b), bd => sc%bodies(b))
+        call apply_fixes(deck, bdeck, [(ramp_group(sc, bdeck%fixes(k)%ramp, bdeck%fixes(k)%curve), &
+                                        k = 1, size(bdeck%fixes))], ifix, bd, sc%fixed, sc%ugroup, sc%fix_owner, diag)
+        if (deck%axisymmetric) call apply_axis(deck, bdeck, ifix, bd, sc%fixed, sc%ugroup, sc%fix_owner, diag)
+        ifix = ifix + size(bdeck%fixes)
+        call apply_edge_loads(deck, bdeck, bd, sc%load_groups_t, diag)
+        call apply_body_loads(deck, bdeck, bd, sc%load_groups_t)
+        call apply_point_forces(deck, bdeck, bd, sc%load_groups_t, diag)
+        call apply_springs(deck, bdeck, bd, diag)
+        if (size(bdeck%thermals) > 0) &
+          call apply_thermal(deck, bdeck, bd, sc%load_groups_t, sc%thermal(b)%adt1, sc%thermal(b)%group, diag)
       end associate
-      if (deck%axisymmetric) then
-        call apply_axis(deck, sc, b, naxis, diag)
-        has_axis = has_axis .or. naxis > 0
-      end if
-      call apply_loads(deck, deck%bodies(b), sc, b, diag, has_traction, has_pressure, has_bforce, has_gravity)
-      call apply_point_forces(deck, deck%bodies(b), sc%bodies(b), sc%load_groups_t, diag, has_force)
-      call apply_springs(deck, deck%bodies(b), sc%bodies(b), diag)
-      if (size(deck%bodies(b)%thermals) > 0) then
-        call apply_thermal(deck, deck%bodies(b), sc, b, diag)
-        has_thermal = .true.
-      end if
     end do
-    has_offset = any(deck%bodies(:)%has_offset)
-    call apply_rigid_motions(deck, sc)
-    ! the nodes in local axes (FIX un=/ut=) take their forces in those axes
-    if (any([(allocated(sc%bodies(b)%axes), b = 1, nb)])) then
-      do ip = 1, size(sc%ramp, 2)
-        call to_local_axes(sc%bodies, sc%fgroup(:, ip))
-      end do
-    end if
-    call step_loads(sc, sc%steps, sc%fext, sc%ubar)
-    has_dirichlet = any(sc%fixed .and. sc%ubar /= 0.0_dp)
+    call apply_rigid_motions(deck, sc%rigids, sc%load_groups_t, sc%fixed)
+    call forces_to_local_axes(sc%bodies, sc%fgroup)
+    call step_forces(sc, sc%steps, sc%fext, sc%ubar)
+    call set_body_strains(sc, sc%steps)
+    call make_pair_specs(deck, sc%bodies, sc%rigids, sc%specs, diag)
+    sc%effects = scene_effects(deck, sc)
+  end subroutine build_scene
 
-    ! contact pairs
-    allocate(sc%specs(size(deck%contacts)))
+  !> The external forces and prescribed values of step k: fext = sum_g f_g(k)
+  !> fgroup_g, ubar likewise (eq. (1)'s data at the step's load factors).
+  !>   sc    (in)  the scene
+  !>   k     (in)  the step, 1..steps
+  !>   fext  (out) (ndof) external nodal forces of step k
+  !>   ubar  (out) (ndof) prescribed values of step k
+  subroutine step_forces(sc, k, fext, ubar)
+    type(scene_t), intent(in) :: sc
+    integer, intent(in) :: k
+    real(dp), intent(out) :: fext(:), ubar(:)
+    real(dp) :: f(size(sc%ramp, 2))
+    f = group_factors(sc, k)
+    fext = matmul(sc%fgroup, f)
+    ubar = matmul(sc%ugroup, f)
+  end subroutine step_forces
+
+  !> The thermal strains of step k: alpha dT of each element, its THERMAL's
+  !> value at load factor 1 times its group's factor at k.  What the stresses
+  !> of step k subtract from the strain (sigma = D (eps - alpha dT eth)); the
+  !> nodal forces of the strains are in fgroup already (step_forces).
+  !>   sc  (in)  the scene
+  !>   k   (in)  the step, 1..steps
+  !>   adt (out) (sc%nelem) alpha dT of body b's element e at bodies(b)%elem0 + e
+  !>             (the output order of the stresses); 0 in a body without THERMAL
+  subroutine step_thermal_strains(sc, k, adt)
+    type(scene_t), intent(in) :: sc
+    integer, intent(in) :: k
+    real(dp), intent(out) :: adt(:)
+    real(dp) :: f(size(sc%ramp, 2))
+    integer :: b
+    f = group_factors(sc, k)
+    adt = 0.0_dp
+    do b = 1, size(sc%bodies)
+      if (.not. allocated(sc%thermal(b)%adt1)) cycle
+      associate(e0 => sc%bodies(b)%elem0, ne => sc%bodies(b)%mesh%nelem)
+        adt(e0 + 1:e0 + ne) = sc%thermal(b)%adt1 * f(sc%thermal(b)%group)
+      end associate
+    end do
+  end subroutine step_thermal_strains
+
+  !> The loads of step k (step_forces), and the bodies' thermal strains set
+  !> to step k's (set_body_strains).  It changes the scene: a caller that
+  !> takes an earlier step calls it again with the final step to put the
+  !> strains back.  Kept for the callers that read the strains from the
+  !> bodies; new code takes step_forces and step_thermal_strains.
+  !>   sc (inout) the scene: its bodies' adt set to step k's;  k, fext, ubar as step_forces
+  subroutine step_loads(sc, k, fext, ubar)
+    type(scene_t), intent(inout) :: sc
+    integer, intent(in) :: k
+    real(dp), intent(out) :: fext(:), ubar(:)
+    call step_forces(sc, k, fext, ubar)
+    call set_body_strains(sc, k)
+  end subroutine step_loads
+
+  !> The bodies' adt set to the thermal strains of step k
+  !> (step_thermal_strains), in the bodies with THERMAL.  The scene holds
+  !> the final step's (build_scene), which the stresses read from the bodies.
+  !>   sc (inout) the scene;  k (in) the step, 1..steps
+  subroutine set_body_strains(sc, k)
+    type(scene_t), intent(inout) :: sc
+    integer, intent(in) :: k
+    real(dp), allocatable :: adt(:)
+    integer :: b
+    allocate(adt(sc%nelem))
+    call step_thermal_strains(sc, k, adt)
+    do b = 1, size(sc%bodies)
+      associate(e0 => sc%bodies(b)%elem0, ne => sc%bodies(b)%mesh%nelem)
+        if (allocated(sc%thermal(b)%adt1)) sc%bodies(b)%adt = adt(e0 + 1:e0 + ne)
+      end associate
+    end do
+  end subroutine set_body_strains
+
+  !> The bodies of the deck, each around its mesh (make_mesh, make_body).
+  !> They are read one after the other: gfortran 12 keeps the length of a
+  !> deferred-length character function result (int_to_str, the reader's
+  !> names and messages) in a static variable of the caller, so two threads
+  !> reading meshes garble each other's strings (doc/robustness.md).
+  !>   deck          (in)    the deck
+  !>   gmsh          (in)    how .geo files are meshed (make_mesh)
+  !>   bodies        (out)   (nbody) the bodies, meshes finalized (incomplete when diag has errors)
+  !>   new_meshes    (out)   the .geo meshes gmsh made, for the mesh cache
+  !>   reused_meshes (inout) counts the .geo meshes read from the mesh cache
+  !>   diag          (inout) errors at the deck's MESH lines or in the mesh files
+  !>   err           (out)   allocated when the memory ran out
+  subroutine make_bodies(deck, gmsh, bodies, new_meshes, reused_meshes, diag, err)
+    type(deck_t), intent(in) :: deck
+    type(gmsh_options_t), intent(in) :: gmsh
+    type(body_t), allocatable, intent(out) :: bodies(:)
+    type(mesh_entry_t), allocatable, intent(out) :: new_meshes(:)
+    integer, intent(inout) :: reused_meshes
+    type(diag_t), intent(inout) :: diag
+    type(error_t), allocatable, intent(out) :: err
+    integer :: b
+    allocate(bodies(size(deck%bodies)), new_meshes(0))
+    do b = 1, size(bodies)
+      call make_mesh(deck, b, gmsh, bodies(b)%mesh, new_meshes, reused_meshes, diag, err)
+      if (allocated(err)) return
+      call make_body(deck, b, bodies(b), diag)
+    end do
+  end subroutine make_bodies
+
+  !> A large mesh file's numbering is its generator's: renumbered for
+  !> locality (mesh: order_for_locality) above locality_min_nodes nodes.
+  !> The generated rectangles are numbered row by row already.
+  !>   deck   (in)    the deck (each body's MESH kind)
+  !>   bodies (inout) the bodies, meshes finalized
+  subroutine order_meshes_for_locality(deck, bodies)
+    type(deck_t), intent(in) :: deck
+    type(body_t), intent(inout) :: bodies(:)
+    integer :: b
+    do b = 1, size(bodies)
+      if (deck%bodies(b)%mesh%kind /= 'rect' .and. bodies(b)%mesh%nnode > locality_min_nodes) &
+        call order_for_locality(bodies(b)%mesh)
+    end do
+  end subroutine order_meshes_for_locality
+
+  !> The bodies' dof and element offsets, in body order: body b's node a,
+  !> component c is dof dof0 + 2 (a - 1) + c; its element e is elem0 + e.
+  !>   bodies (inout) dof0 and elem0 set
+  !>   ndof   (out)   the bodies' dofs, 2 x all nodes
+  !>   nnode, nelem (out) totals over the bodies
+  subroutine number_body_dofs(bodies, ndof, nnode, nelem)
+    type(body_t), intent(inout) :: bodies(:)
+    integer, intent(out) :: ndof, nnode, nelem
+    integer :: b
+    ndof = 0; nnode = 0; nelem = 0
+    do b = 1, size(bodies)
+      bodies(b)%dof0 = ndof
+      bodies(b)%elem0 = nelem
+      ndof = ndof + 2 * bodies(b)%mesh%nnode
+      nnode = nnode + bodies(b)%mesh%nnode
+      nelem = nelem + bodies(b)%mesh%nelem
+    end do
+  end subroutine number_body_dofs
+
+  !> The RIGID obstacles: their shapes (make_rigid_shape) and three dofs each
+  !> (u_x, u_y, theta of the reference point) after the bodies'.  In PLANE
+  !> axisymmetric a RIGID is an error: rigid_obstacle's projection of the
+  !> exact gap carries no radial weight, and of the three motions only the
+  !> axial one is axisymmetric.
+  !>   deck   (in)    the deck
+  !>   ndof   (inout) the dofs numbered so far; on exit with the RIGIDs'
+  !>   rigids (out)   (nrigid) the shapes, dof0 set
+  !>   diag   (inout) RIGIDs in PLANE axisymmetric
+  subroutine make_rigids(deck, ndof, rigids, diag)
+    type(deck_t), intent(in) :: deck
+    integer, intent(inout) :: ndof
+    type(rigid_shape_t), allocatable, intent(out) :: rigids(:)
+    type(diag_t), intent(inout) :: diag
+    integer :: r
+    allocate(rigids(size(deck%rigids)))
+    do r = 1, size(deck%rigids)
+      if (deck%axisymmetric) &
+        call add_error(diag, deck%file, deck%rigids(r)%line, 'RIGID obstacles are not available in PLANE ' // &
+                       'axisymmetric (line ' // int_to_str(deck%plane_line) // ') (a meshed body as the master expected)')
+      call make_rigid_shape(deck%rigids(r), rigids(r))
+      rigids(r)%dof0 = ndof
+      ndof = ndof + 3
+    end do
+  end subroutine make_rigids
+
+  !> Every FIX statement of the bodies, in deck order, for its reaction line.
+  !>   deck  (in)  the deck
+  !>   fixes (out) body and label BODY:BOUNDARY of each
+  subroutine list_fixes(deck, fixes)
+    type(deck_t), intent(in) :: deck
+    type(fix_ref_t), allocatable, intent(out) :: fixes(:)
+    integer :: b, k, n
+    allocate(fixes(sum([(size(deck%bodies(b)%fixes), b = 1, size(deck%bodies))])))
+    n = 0
+    do b = 1, size(deck%bodies)
+      do k = 1, size(deck%bodies(b)%fixes)
+        n = n + 1
+        fixes(n)%body = b
+        fixes(n)%label = deck%bodies(b)%name // ':' // deck%bodies(b)%fixes(k)%boundary
+      end do
+    end do
+  end subroutine list_fixes
+
+  !> The nodes in local axes (FIX un=/ut=) take their forces in those axes:
+  !> every load group's forces turned (body: to_local_axes).
+  !>   bodies (in)    the bodies, their axes
+  !>   fgroup (inout) (ndof, ngroup) the groups' forces, x, y on entry
+  subroutine forces_to_local_axes(bodies, fgroup)
+    type(body_t), intent(in) :: bodies(:)
+    real(dp), intent(inout) :: fgroup(:,:)
+    integer :: b, g
+    if (.not. any([(allocated(bodies(b)%axes), b = 1, size(bodies))])) return
+    do g = 1, size(fgroup, 2)
+      call to_local_axes(bodies, fgroup(:, g))
+    end do
+  end subroutine forces_to_local_axes
+
+  !> The CONTACT pairs: slave and master boundaries found in their bodies
+  !> (deck_boundaries), or the RIGID master's exact shape.
+  !>   deck   (in)    the deck
+  !>   bodies (in)    the bodies, meshes finalized
+  !>   rigids (in)    the RIGID shapes (make_rigids)
+  !>   specs  (out)   (npair) the pairs
+  !>   diag   (inout) unknown boundaries, a boundary in contact with itself,
+  !>                  a RIGID against a quadratic mesh
+  subroutine make_pair_specs(deck, bodies, rigids, specs, diag)
+    type(deck_t), intent(in) :: deck
+    type(body_t), intent(in) :: bodies(:)
+    type(rigid_shape_t), intent(in) :: rigids(:)
+    type(pair_spec_t), allocatable, intent(out) :: specs(:)
+    type(diag_t), intent(inout) :: diag
+    integer :: ip
+    allocate(specs(size(deck%contacts)))
     do ip = 1, size(deck%contacts)
-      associate(c => deck%contacts(ip))
-        sc%specs(ip)%slave_body = c%slave_body
-        sc%specs(ip)%master_body = c%master_body
-        sc%specs(ip)%gap_zero = c%gap_zero
-        sc%specs(ip)%interference = c%interference
-        sc%specs(ip)%finite = c%finite
-        if (c%friction == 'coulomb') sc%specs(ip)%mu = c%mu
-        if (c%friction == 'tresca') sc%specs(ip)%tresca = c%tresca
-        sc%specs(ip)%slave_bnd = boundary_index(deck, c%line, sc%bodies(c%slave_body), c%slave_boundary, 'CONTACT slave', &
-                                                .true., diag)
+      associate(c => deck%contacts(ip), sp => specs(ip))
+        sp%slave_body = c%slave_body
+        sp%master_body = c%master_body
+        sp%gap_zero = c%gap_zero
+        sp%interference = c%interference
+        sp%finite = c%finite
+        if (c%friction == 'coulomb') sp%mu = c%mu
+        if (c%friction == 'tresca') sp%tresca = c%tresca
+        sp%slave_bnd = boundary_index(deck, c%line, bodies(c%slave_body), c%slave_boundary, 'CONTACT slave', &
+                                      need_edges, diag)
         if (c%master_rigid > 0) then                   ! against a RIGID: its exact shape, no master mesh
-          sc%specs(ip)%rigid = c%master_rigid
-          sc%specs(ip)%shape = sc%rigids(c%master_rigid)
-          if (is_quadratic(sc%bodies(c%slave_body)%mesh)) call add_error(diag, deck%file, c%line, 'contact on ' // &
+          sp%rigid = c%master_rigid
+          sp%shape = rigids(c%master_rigid)
+          if (is_quadratic(bodies(c%slave_body)%mesh)) call add_error(diag, deck%file, c%line, 'contact on ' // &
             'quadratic elements is not available yet (P1/Q1 boundaries expected)')
           cycle
         end if
-        sc%specs(ip)%master_bnd = boundary_index(deck, c%line, sc%bodies(c%master_body), c%master_boundary, &
-                                                 'CONTACT master', .true., diag)
+        sp%master_bnd = boundary_index(deck, c%line, bodies(c%master_body), c%master_boundary, 'CONTACT master', &
+                                       need_edges, diag)
         if (c%slave_body == c%master_body .and. c%slave_boundary == c%master_boundary) then
           call add_error(diag, deck%file, c%line, 'slave and master are the same boundary (two different boundaries expected)')
         end if
       end associate
     end do
+  end subroutine make_pair_specs
 
-    sc%effects = 'elasticity'
-    if (deck%axisymmetric) sc%effects = 'axisymmetric elasticity'
-    if (has_axis) sc%effects = sc%effects // ' axis_condition'
-    if (has_dirichlet) sc%effects = sc%effects // ' prescribed_displacement'
-    if (has_traction) sc%effects = sc%effects // ' traction'
-    if (has_pressure) sc%effects = sc%effects // ' pressure'
-    if (has_bforce) sc%effects = sc%effects // ' body_force'
-    if (has_gravity) sc%effects = sc%effects // ' gravity'
-    if (has_force) sc%effects = sc%effects // ' point_force'
-    if (any([(sc%bodies(b)%springs%n > 0, b = 1, nb)])) sc%effects = sc%effects // ' spring'
-    if (has_thermal) sc%effects = sc%effects // ' thermal'
-    if (has_offset) sc%effects = sc%effects // ' offset'
-    if (size(sc%specs) > 0) sc%effects = sc%effects // ' contact'
-    if (size(sc%rigids) > 0) sc%effects = sc%effects // ' rigid_obstacle'
-    if (any([(size(deck%rigids(ip)%forces) > 0, ip = 1, size(deck%rigids))])) sc%effects = sc%effects // ' rigid_force'
-    if (any([(deck%contacts(ip)%friction /= 'none', ip = 1, size(deck%contacts))])) &
-      sc%effects = sc%effects // ' friction'
-  end subroutine build_scene
-
-  !> The loads of step k: fext = sum_g f_g(k) fgroup_g, ubar likewise, and the
-  !> bodies' thermal strains alpha dT scaled by their groups' factors.
-  !>   sc    (inout) the scene (its bodies' adt are set for step k)
-  !>   k     (in)    the step, 1..steps
-  !>   fext  (out)   (ndof) external nodal forces of step k
-  !>   ubar  (out)   (ndof) prescribed values of step k
-  subroutine step_loads(sc, k, fext, ubar)
-    type(scene_t), intent(inout) :: sc
-    integer, intent(in) :: k
-    real(dp), intent(out) :: fext(:), ubar(:)
-    real(dp) :: f(size(sc%ramp, 2))
-    integer :: b
-    f = group_factors(sc, k)
-    fext = matmul(sc%fgroup, f)
-    ubar = matmul(sc%ugroup, f)
-    do b = 1, size(sc%bodies)
-      if (allocated(sc%thermal(b)%adt1)) sc%bodies(b)%adt = sc%thermal(b)%adt1 * f(sc%thermal(b)%group)
+  !> The effects the scene simulates, for the run log and the summary: each
+  !> named when the deck asks for it (scene_t%effects).  Read on a scene
+  !> built without errors.
+  !>   deck (in) the deck;  sc (in) its scene, built
+  function scene_effects(deck, sc) result(effects)
+    type(deck_t), intent(in) :: deck
+    type(scene_t), intent(in) :: sc
+    character(len=:), allocatable :: effects
+    integer :: b, ip
+    logical :: axis, traction, pressure, force
+    axis = .false.; traction = .false.; pressure = .false.; force = .false.
+    do b = 1, size(deck%bodies)
+      associate(loads => deck%bodies(b)%loads, m => sc%bodies(b)%mesh)
+        ! u_r = 0 held at the nodes on the axis (apply_axis)
+        if (deck%axisymmetric) axis = axis .or. any(m%x(1, 1:m%nnode) == 0.0_dp)
+        traction = traction .or. any(loads%kind == LOAD_TRACTION)
+        pressure = pressure .or. any(loads%kind == LOAD_PRESSURE)
+        force = force .or. any(loads%kind == LOAD_POINT)
+      end associate
     end do
-  end subroutine step_loads
+    effects = 'elasticity'
+    if (deck%axisymmetric) effects = 'axisymmetric elasticity'
+    if (axis) effects = effects // ' axis_condition'
+    if (any(sc%fixed .and. sc%ubar /= 0.0_dp)) effects = effects // ' prescribed_displacement'
+    if (traction) effects = effects // ' traction'
+    if (pressure) effects = effects // ' pressure'
+    if (any(deck%bodies(:)%has_bodyforce)) effects = effects // ' body_force'
+    if (deck%has_gravity .and. any(deck%bodies(:)%has_density)) effects = effects // ' gravity'
+    if (force) effects = effects // ' point_force'
+    if (any([(sc%bodies(b)%springs%n > 0, b = 1, size(sc%bodies))])) effects = effects // ' spring'
+    if (any([(size(deck%bodies(b)%thermals) > 0, b = 1, size(deck%bodies))])) effects = effects // ' thermal'
+    if (any(deck%bodies(:)%has_offset)) effects = effects // ' offset'
+    if (size(sc%specs) > 0) effects = effects // ' contact'
+    if (size(sc%rigids) > 0) effects = effects // ' rigid_obstacle'
+    if (any([(size(deck%rigids(ip)%forces) > 0, ip = 1, size(deck%rigids))])) effects = effects // ' rigid_force'
+    if (any([(deck%contacts(ip)%friction /= 'none', ip = 1, size(deck%contacts))])) effects = effects // ' friction'
+  end function scene_effects
 
   !> The shape of a RIGID block: kind, points or circle, reference point
   !> (default: the circle's centre, the first point), size.
@@ -287,26 +454,32 @@ contains
   !> The dofs of each RIGID: the directions FIX names are prescribed (their
   !> values in the FIX's load group), the others free and loaded by FORCE (its
   !> load group); no FIX and no FORCE: all three held at 0.
-  subroutine apply_rigid_motions(deck, sc)
+  !>   deck   (in)    the deck's RIGID blocks
+  !>   rigids (in)    their shapes, dof0 (make_rigids)
+  !>   lg     (inout) the load groups: ugroup and fgroup get the values and forces
+  !>   fixed  (inout) (ndof) the Dirichlet dofs
+  subroutine apply_rigid_motions(deck, rigids, lg, fixed)
     type(deck_t), intent(in) :: deck
-    type(scene_t), intent(inout) :: sc
+    type(rigid_shape_t), intent(in) :: rigids(:)
+    class(load_groups_t), intent(inout) :: lg
+    logical, intent(inout) :: fixed(:)
     integer :: r, j, d, i, g
     do r = 1, size(deck%rigids)
       associate (rd => deck%rigids(r))
-        d = sc%rigids(r)%dof0
-        if (size(rd%fixes) == 0 .and. size(rd%forces) == 0) sc%fixed(d + 1:d + 3) = .true.
+        d = rigids(r)%dof0
+        if (size(rd%fixes) == 0 .and. size(rd%forces) == 0) fixed(d + 1:d + 3) = .true.
         do i = 1, size(rd%fixes)
-          g = ramp_group(sc, rd%fixes(i)%ramp, rd%fixes(i)%curve)
+          g = ramp_group(lg, rd%fixes(i)%ramp, rd%fixes(i)%curve)
           do j = 1, 3
             if (.not. rd%fixes(i)%has(j)) cycle
-            sc%fixed(d + j) = .true.
-            sc%ugroup(d + j, g) = sc%ugroup(d + j, g) + rd%fixes(i)%value(j)
+            fixed(d + j) = .true.
+            lg%ugroup(d + j, g) = lg%ugroup(d + j, g) + rd%fixes(i)%value(j)
           end do
         end do
         do i = 1, size(rd%forces)
-          g = ramp_group(sc, rd%forces(i)%ramp, rd%forces(i)%curve)
+          g = ramp_group(lg, rd%forces(i)%ramp, rd%forces(i)%curve)
           do j = 1, 3
-            if (rd%forces(i)%has(j)) sc%fgroup(d + j, g) = sc%fgroup(d + j, g) + rd%forces(i)%value(j)
+            if (rd%forces(i)%has(j)) lg%fgroup(d + j, g) = lg%fgroup(d + j, g) + rd%forces(i)%value(j)
           end do
         end do
       end associate
@@ -317,19 +490,21 @@ contains
   !> .geo file meshed by gmsh into the run's private folder, after the screen
   !> of what the .geo may do (unless trusted), and read.  A .geo mesh of the
   !> same key in the mesh cache (gmsh%cache, mesh_cache) is read from there
-  !> instead; one gmsh made joins sc%new_meshes.
-  !>   deck (in)    the deck;  ib (in) the body
-  !>   gmsh (in)    how .geo files are meshed: trusted or screened, time limit, cache
-  !>   sc   (inout) new_meshes, reused_meshes
-  !>   mesh (out)   the mesh, finalized (incomplete when diag has new errors)
-  !>   diag (inout) errors at the deck's MESH line or in the mesh file
-  !>   err  (out)   allocated when the memory ran out
-  subroutine make_mesh(deck, ib, gmsh, sc, mesh, diag, err)
+  !> instead; one gmsh made joins new_meshes.
+  !>   deck          (in)    the deck;  ib (in) the body
+  !>   gmsh          (in)    how .geo files are meshed: trusted or screened, time limit, cache
+  !>   mesh          (out)   the mesh, finalized (incomplete when diag has new errors)
+  !>   new_meshes    (inout) the .geo meshes gmsh made: this one's key and file added
+  !>   reused_meshes (inout) counts the .geo meshes read from the mesh cache
+  !>   diag          (inout) errors at the deck's MESH line or in the mesh file
+  !>   err           (out)   allocated when the memory ran out
+  subroutine make_mesh(deck, ib, gmsh, mesh, new_meshes, reused_meshes, diag, err)
     type(deck_t), intent(in) :: deck
     integer, intent(in) :: ib
     type(gmsh_options_t), intent(in) :: gmsh
-    type(scene_t), intent(inout) :: sc
     type(mesh_t), intent(out) :: mesh
+    type(mesh_entry_t), allocatable, intent(inout) :: new_meshes(:)
+    integer, intent(inout) :: reused_meshes
     type(diag_t), intent(inout) :: diag
     type(error_t), allocatable, intent(out) :: err
     character(len=:), allocatable :: path, work, deck_folder, log, key
@@ -357,7 +532,7 @@ contains
           if (len(key) > 0) call find_cached_mesh(gmsh%cache, key, path, found)
         end if
         if (found) then
-          sc%reused_meshes = sc%reused_meshes + 1
+          reused_meshes = reused_meshes + 1
         else
           call private_folder(work, step_err)
           if (allocated(step_err)) then
@@ -372,7 +547,7 @@ contains
             call add_error(diag, deck%file, ms%line, 'gmsh could not mesh "' // ms%file // '": ' // step_err%message)
             return
           end if
-          if (len(key) > 0) sc%new_meshes = [sc%new_meshes, mesh_entry_t(key, path)]
+          if (len(key) > 0) new_meshes = [new_meshes, mesh_entry_t(key, path)]
         end if
       end if
       call read_gmsh_file(path, mesh, diag, err)
@@ -380,6 +555,7 @@ contains
       if (diag%count == n0) call finalize_mesh(mesh, ms%path, diag)
     end associate
   end subroutine make_mesh
+
 
   !> Body ib around its mesh: its name, OFFSET, elasticity tensor, thickness
   !> and, axisymmetric, the check that no node is left of the axis.
@@ -438,214 +614,63 @@ contains
     end associate
   end subroutine check_radius
 
+
   !> PLANE axisymmetric: u_r = 0 at every node on the axis (r = 0) of body
-  !> b, a Dirichlet dof owned by no FIX (it has no reaction line).  A node
+  !> bd, a Dirichlet dof owned by no FIX (it has no reaction line).  A node
   !> that a FIX un=/ut= put in local axes is held along the axis of its two
   !> that is r; a FIX that gives such a node u_r /= 0, or local axes along
   !> neither r nor z, is an error at the PLANE line.
-  subroutine apply_axis(deck, sc, b, naxis, diag)
+  !>   deck      (in)    the deck (its file and PLANE line, for the messages)
+  !>   bdeck     (in)    the body's statements (its FIX lines)
+  !>   ifix0     (in)    the FIX statements of the bodies before this one: FIX k is ifix0 + k
+  !>   bd        (in)    the body, its FIX statements applied (apply_fixes)
+  !>   fixed     (inout) (ndof) the Dirichlet dofs: the nodes on the axis held in r
+  !>   ugroup    (in)    (ndof, ngroup) the prescribed values of each load group
+  !>   fix_owner (in)    (ndof) the FIX of each fixed dof
+  !>   diag      (inout) the errors
+  subroutine apply_axis(deck, bdeck, ifix0, bd, fixed, ugroup, fix_owner, diag)
     type(deck_t), intent(in) :: deck
-    type(scene_t), intent(inout) :: sc
-    integer, intent(in) :: b
-    integer, intent(out) :: naxis
+    type(body_deck_t), intent(in) :: bdeck
+    integer, intent(in) :: ifix0
+    type(body_t), intent(in) :: bd
+    logical, intent(inout) :: fixed(:)
+    real(dp), intent(in) :: ugroup(:,:)
+    integer, intent(in) :: fix_owner(:)
     type(diag_t), intent(inout) :: diag
     real(dp), parameter :: same = 1.0e-9_dp
-    integer :: a, slot, dof, j, k
+    integer :: a, slot, dof, k
     real(dp) :: p(2)
-    naxis = 0
-    associate(bd => sc%bodies(b))
-      do a = 1, bd%mesh%nnode
-        if (bd%mesh%x(1, a) /= 0.0_dp) cycle
-        naxis = naxis + 1
-        slot = 1
-        if (allocated(bd%axes)) then
-          if (any(bd%axes(:, a) /= 0.0_dp)) then
-            p = [bd%axes(1, a), -bd%axes(2, a)]             ! e_r in the node's axes (n, t)
-            slot = 0
-            if (abs(abs(p(1)) - 1.0_dp) <= same) slot = 1
-            if (abs(abs(p(2)) - 1.0_dp) <= same) slot = 2
-          end if
+    do a = 1, bd%mesh%nnode
+      if (bd%mesh%x(1, a) /= 0.0_dp) cycle
+      slot = 1
+      if (allocated(bd%axes)) then
+        if (any(bd%axes(:, a) /= 0.0_dp)) then
+          p = [bd%axes(1, a), -bd%axes(2, a)]             ! e_r in the node's axes (n, t)
+          slot = 0
+          if (abs(abs(p(1)) - 1.0_dp) <= same) slot = 1
+          if (abs(abs(p(2)) - 1.0_dp) <= same) slot = 2
         end if
-        if (slot == 0) then
-          call add_error(diag, deck%file, deck%plane_line, 'node ' // int_to_str(node_in_file(bd%mesh, a)) // &
-            ' of body "' // bd%name // '" is on the axis and a FIX un=/ut= put it in local axes along neither ' // &
-            'r nor z (u_r = 0 on the axis: local axes along r and z there expected)')
+      end if
+      if (slot == 0) then
+        call add_error(diag, deck%file, deck%plane_line, 'node ' // int_to_str(node_in_file(bd%mesh, a)) // &
+          ' of body "' // bd%name // '" is on the axis and a FIX un=/ut= put it in local axes along neither ' // &
+          'r nor z (u_r = 0 on the axis: local axes along r and z there expected)')
+        return
+      end if
+      dof = bd%dof0 + 2 * (a - 1) + slot
+      if (fixed(dof)) then
+        if (any(ugroup(dof, :) /= 0.0_dp)) then
+          k = fix_owner(dof) - ifix0                                  ! the FIX in the body's list
+          call add_error(diag, deck%file, bdeck%fixes(k)%line, 'FIX ' // bdeck%fixes(k)%boundary // &
+            ' gives node ' // int_to_str(node_in_file(bd%mesh, a)) // ' of body "' // bd%name // &
+            '", on the axis, a radial displacement (u_r = 0 on the axis of PLANE axisymmetric, line ' // &
+            int_to_str(deck%plane_line) // ', expected)')
           return
         end if
-        dof = bd%dof0 + 2 * (a - 1) + slot
-        if (sc%fixed(dof)) then
-          if (any(sc%ugroup(dof, :) /= 0.0_dp)) then
-            k = sc%fix_owner(dof) - sum([(size(deck%bodies(j)%fixes), j = 1, b - 1)])   ! the FIX in body b's list
-            call add_error(diag, deck%file, deck%bodies(b)%fixes(k)%line, 'FIX ' // deck%bodies(b)%fixes(k)%boundary // &
-              ' gives node ' // int_to_str(node_in_file(bd%mesh, a)) // ' of body "' // bd%name // &
-              '", on the axis, a radial displacement (u_r = 0 on the axis of PLANE axisymmetric, line ' // &
-              int_to_str(deck%plane_line) // ', expected)')
-            return
-          end if
-        else
-          sc%fixed(dof) = .true.
-        end if
-      end do
-    end associate
-  end subroutine apply_axis
-
-  !> alpha dT per element from the THERMAL statements of a body: the one
-  !> without region= sets every element, those with region= set their region's
-  !> elements (a region statement overrides the whole-body one there).  Each
-  !> statement follows its curve= (else the ramp 0:STEPS): its elements' nodal
-  !> forces go to that load group, and sc%thermal(b) keeps alpha dT and the
-  !> group per element for the steps' stresses.
-  subroutine apply_thermal(deck, bdeck, sc, b, diag)
-    type(deck_t), intent(in) :: deck
-    type(body_deck_t), intent(in) :: bdeck
-    type(scene_t), intent(inout) :: sc
-    integer, intent(in) :: b
-    type(diag_t), intent(inout) :: diag
-    integer :: k, ir, g
-    associate(bd => sc%bodies(b), tp => sc%thermal(b))
-    allocate(bd%adt(bd%mesh%nelem), source=0.0_dp)
-    allocate(tp%group(bd%mesh%nelem), source=1)
-    do k = 1, size(bdeck%thermals)
-      if (len(bdeck%thermals(k)%region) == 0) then
-        bd%adt = bdeck%thermals(k)%alpha * bdeck%thermals(k)%dt
-        tp%group = ramp_group(sc, [0, deck%steps], bdeck%thermals(k)%curve)
-      end if
-    end do
-    do k = 1, size(bdeck%thermals)
-      associate(th => bdeck%thermals(k))
-        if (len(th%region) == 0) cycle
-        ir = find_name(bd%mesh%reg, th%region)
-        if (ir == 0) then
-          call add_error(diag, deck%file, th%line, 'THERMAL: unknown region "' // th%region // '" in body "' // &
-                         bd%name // '" (expected one of: ' // &
-                         name_list(bd%mesh%reg, 'none: the mesh names no physical surface') // ')')
-          cycle
-        end if
-        bd%adt(bd%mesh%reg(ir)%elems) = th%alpha * th%dt
-        tp%group(bd%mesh%reg(ir)%elems) = ramp_group(sc, [0, deck%steps], th%curve)
-      end associate
-    end do
-    if (has_errors(diag)) return
-    ! the nodal forces of each group's elements (adt masked to them) go to its column
-    tp%adt1 = bd%adt
-    do g = 1, size(sc%ramp, 2)
-      if (.not. any(tp%group == g)) cycle
-      bd%adt = merge(tp%adt1, 0.0_dp, tp%group == g)
-      call thermal_loads(bd, sc%fgroup(:, g))
-    end do
-    bd%adt = tp%adt1
-    end associate
-  end subroutine apply_thermal
-
-  !> External nodal forces of body b: TRACTION, PRESSURE, BODYFORCE, GRAVITY
-  !> (FORCE: point_supports).
-  subroutine apply_loads(deck, bdeck, sc, b, diag, has_traction, has_pressure, has_bforce, has_gravity)
-    type(deck_t), intent(in) :: deck
-    type(body_deck_t), intent(in) :: bdeck
-    type(scene_t), intent(inout) :: sc
-    integer, intent(in) :: b
-    type(diag_t), intent(inout) :: diag
-    logical, intent(inout) :: has_traction, has_pressure, has_bforce, has_gravity
-    integer :: k, ib, s, na, nb, nm, owner, e, nen
-    integer :: dofs(2 * max_nen)
-    integer, allocatable :: eptr(:), elist(:)
-    real(dp) :: t(2), nrm(2), fe(2 * max_nen), chord(2), pr
-    logical :: have_topology
-
-    have_topology = .false.
-    associate(bd => sc%bodies(b), m => sc%bodies(b)%mesh)
-      do k = 1, size(bdeck%loads)
-        associate(ld => bdeck%loads(k))
-          if (ld%kind == LOAD_POINT) cycle                 ! FORCE: point_supports
-          ib = boundary_index(deck, ld%line, bd, ld%boundary, merge('TRACTION', 'PRESSURE', ld%kind == LOAD_TRACTION), &
-                              .true., diag)
-          if (ib == 0) cycle
-          if ((ld%kind == LOAD_PRESSURE .or. ld%local) .and. .not. have_topology) then
-            call node_elements(m, eptr, elist)
-            have_topology = .true.
-          end if
-          do s = 1, m%bnd(ib)%nseg
-            na = m%bnd(ib)%seg(1, s)
-            nb = m%bnd(ib)%seg(2, s)
-            pr = 0.0_dp
-            if (ld%kind == LOAD_TRACTION .and. .not. ld%local) then
-              t = [ld%tx, ld%ty]
-            else
-              call edge_outward_normal(m, eptr, elist, na, nb, nrm, owner)
-              if (owner <= 0) then
-                call add_error(diag, deck%file, ld%line, merge('PRESSURE', 'TRACTION', ld%kind == LOAD_PRESSURE) // &
-                  ' on "' // ld%boundary // &
-                  '": an edge is not on the outer boundary of body "' // bd%name // '" (boundary edges expected)')
-                exit
-              end if
-              if (ld%kind == LOAD_TRACTION) then    ! tn n + tt t, t = (-n_y, n_x)
-                t = ld%tx * nrm + ld%ty * [-nrm(2), nrm(1)]
-              else
-                t = -ld%p * nrm                   ! positive pressure pushes into the body
-                if (allocated(m%bnd(ib)%mid)) then
-                  ! a curved edge: the pressure follows the edge's normal, outward on the
-                  ! right of na -> nb when the chord's right normal points outward
-                  chord = m%x(:, nb) - m%x(:, na)
-                  pr = -ld%p * sign(1.0_dp, dot_product(nrm, [chord(2), -chord(1)]))
-                  t = 0.0_dp
-                end if
-              end if
-            end if
-            if (allocated(m%bnd(ib)%mid) .and. bd%axisymmetric) then
-              nm = m%bnd(ib)%mid(s)
-              call axi_edge_load_quadratic(reshape([m%x(:, na), m%x(:, nb), m%x(:, nm)], [2, 3]), t, pr, fe(1:6))
-            else if (allocated(m%bnd(ib)%mid)) then       ! 3-node edge, 3-point Gauss
-              nm = m%bnd(ib)%mid(s)
-              call edge_load_quadratic(reshape([m%x(:, na), m%x(:, nb), m%x(:, nm)], [2, 3]), t, pr, bd%thick, fe(1:6))
-            else if (bd%axisymmetric) then                ! per unit area, on the circle 2 pi r
-              call axi_edge_load(m%x(:, na), m%x(:, nb), t, fe(1:4))
-            else
-              call edge_load(m%x(:, na), m%x(:, nb), t, bd%thick, fe(1:4))
-            end if
-            associate(f => sc%fgroup(:, ramp_group(sc, ld%ramp, ld%curve)))
-              f(bd%dof0 + 2 * (na - 1) + [1, 2]) = f(bd%dof0 + 2 * (na - 1) + [1, 2]) + fe(1:2)
-              f(bd%dof0 + 2 * (nb - 1) + [1, 2]) = f(bd%dof0 + 2 * (nb - 1) + [1, 2]) + fe(3:4)
-              if (allocated(m%bnd(ib)%mid)) &
-                f(bd%dof0 + 2 * (nm - 1) + [1, 2]) = f(bd%dof0 + 2 * (nm - 1) + [1, 2]) + fe(5:6)
-            end associate
-          end do
-          if (ld%kind == LOAD_TRACTION) has_traction = .true.
-          if (ld%kind == LOAD_PRESSURE) has_pressure = .true.
-        end associate
-      end do
-
-      ! body force and gravity: one element loop when they share a ramp
-      if (bdeck%has_bodyforce) has_bforce = .true.
-      if (deck%has_gravity .and. bdeck%has_density) has_gravity = .true.
-      if (bdeck%has_bodyforce .and. deck%has_gravity .and. bdeck%has_density .and. &
-          all(bdeck%bodyforce_ramp == deck%gravity_ramp) .and. bdeck%bodyforce_curve == deck%gravity_curve) then
-        call add_body_load([bdeck%fx, bdeck%fy] + bdeck%rho * [deck%gx, deck%gy], deck%gravity_ramp, deck%gravity_curve)
       else
-        if (bdeck%has_bodyforce) call add_body_load([bdeck%fx, bdeck%fy], bdeck%bodyforce_ramp, bdeck%bodyforce_curve)
-        if (deck%has_gravity .and. bdeck%has_density) call add_body_load(bdeck%rho * [deck%gx, deck%gy], &
-                                                                         deck%gravity_ramp, deck%gravity_curve)
+        fixed(dof) = .true.
       end if
-    end associate
-  contains
-    !> Nodal forces of the body force density bf (per unit volume), ramp r or curve c.
-    subroutine add_body_load(bf, r, c)
-      real(dp), intent(in) :: bf(2)
-      integer, intent(in) :: r(2), c
-      integer :: g
-      g = ramp_group(sc, r, c)
-      associate(bd => sc%bodies(b), m => sc%bodies(b)%mesh)
-        do e = 1, m%nelem
-          nen = m%nen(e)
-          if (bd%axisymmetric) then
-            call axi_element_body_load(nen, m%x(:, m%conn(1:nen, e)), bf, fe(1:2 * nen))
-          else
-            call element_body_load(nen, m%x(:, m%conn(1:nen, e)), bf, bd%thick, fe(1:2 * nen))
-          end if
-          call element_dofs(bd, e, dofs)
-          sc%fgroup(dofs(1:2 * nen), g) = sc%fgroup(dofs(1:2 * nen), g) + fe(1:2 * nen)
-        end do
-      end associate
-    end subroutine add_body_load
-  end subroutine apply_loads
+    end do
+  end subroutine apply_axis
 
 end module scene
