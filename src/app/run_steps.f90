@@ -23,7 +23,7 @@ module run_steps
   use problem, only: problem_t, step_label
   use linear_system, only: system_t, recover_solution, step_displacement
   use step_solution, only: step_solution_t
-  use load_steps, only: solve_load_steps, step_recorder_t
+  use load_steps, only: solve_load_steps, step_recorder_t, step_load_t
   use contact_checks, only: check_contact_model
   use post_processing, only: take_solution, contact_measures, state_results
   use run_estimate, only: estimate_results
@@ -31,6 +31,7 @@ module run_steps
   use sparse_cholesky, only: factor_nnz, factor_memory, factor_ordering
   use contact_condensation, only: condensed_report
   use run_outputs, only: write_step
+  use scene, only: step_thermal_strains
   use run_report, only: say_step
   implicit none
   private
@@ -84,31 +85,32 @@ contains
   !> An earlier step of OUTPUT steps=all: its displacement, its results and
   !> error estimate, the slide check, its VTK file, contact table and row of
   !> the step table.
-  subroutine record_step_files(self, kstep, prob, sys, fk, ubk, sol, log, err)
+  subroutine record_step_files(self, prob, sys, load, sol, log, err)
     class(step_files_t), intent(inout) :: self
-    integer, intent(in) :: kstep
     type(problem_t), intent(in) :: prob
     type(system_t), intent(in) :: sys
-    real(dp), intent(in) :: fk(:), ubk(:)
+    type(step_load_t), intent(in) :: load
     type(step_solution_t), intent(in) :: sol
     type(log_t), intent(inout) :: log
     type(error_t), allocatable, intent(out) :: err
     type(results_t) :: step
-    call step_displacement(prob, sys, fk, ubk, sol, step%u, err)
+    call step_displacement(prob, sys, load%f, load%ubar, sol, step%u, err)
     if (allocated(err)) then
-      err%message = step_label(prob, kstep) // err%message
+      err%message = step_label(prob, load%kstep) // err%message
       return
     end if
     call take_solution(prob, sol, step)
+    allocate(step%adt(prob%sc%nelem))
+    call step_thermal_strains(prob%sc, load%t, step%adt)
     if (sys%with_contact) call contact_measures(prob, sys%w, sol, step)
-    call state_results(prob, fk, step, err)
+    call state_results(prob, load%f, step, err)
     if (allocated(err)) return
     call estimate_results(prob, step)                     ! the step's error_indicator
-    call check_contact_model(prob, step%u, step%mu, kstep, log, err)   ! the slide against small sliding
+    call check_contact_model(prob, step%u, step%mu, load%kstep, log, err)   ! the slide against small sliding
     if (allocated(err)) return
-    call write_step(self%out, self%outdir, prob, kstep, step, sol%iterations)
+    call write_step(self%out, self%outdir, prob, load%kstep, step, sol%iterations)
     if (sys%with_contact .and. prob%cs%ntan == 0) &
-      call say_step(log, kstep, prob%sc%steps, step%lcp_method, sol%iterations, step%active_nodes)
+      call say_step(log, load%kstep, prob%sc%steps, step%lcp_method, sol%iterations, step%active_nodes)
   end subroutine record_step_files
 
   !> The final state: u from the final step's multipliers and free motions,
@@ -120,6 +122,8 @@ contains
     call recover_solution(run%prob, run%sys, run%sol, run%log, run%res%u, err)
     if (allocated(err)) return
     call enter_phase('computing the results')
+    allocate(run%res%adt(run%prob%sc%nelem))
+    call step_thermal_strains(run%prob%sc, real(run%prob%sc%steps, dp), run%res%adt)
     call state_results(run%prob, run%prob%sc%fext, run%res, err)
     if (allocated(err)) return
     run%res%factor_nnz = factor_nnz(run%sys%factor)

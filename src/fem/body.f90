@@ -39,7 +39,8 @@
 !>   build_pattern(bodies, eq, nfree, k)            pattern of K_ff, values 0
 !>   assemble_stiffness(bodies, eq, ubar, k, rhs [, overflow])   add K_ff to k, subtract K_fd ubar from rhs
 !>   internal_forces(bodies, u, fint)               fint = K u (all dofs, element by element)
-!>   element_response(bodies, u, fint [, stress, vm])  both in one element loop (OpenMP, reproducible)
+!>   element_response(bodies, u, fint [, stress, vm, adt])  both in one element loop (OpenMP, reproducible);
+!>                                                  adt the state's thermal strains
 !>   thermal_loads(bd, f)                           f += int B' D eps0 t dA (THERMAL), x, y axes
 !>   spring_reactions(bd, u, r)                     r(:, j) = force of SPRING j of bd on it, x, y
 !>   to_global_axes(bodies, v), to_local_axes(bodies, v)   v (ndof) between the solver basis and x, y
@@ -653,11 +654,13 @@ contains
   !> threaded with OpenMP.  The element forces are kept per element and added
   !> into fint afterwards in element order, so the result does not depend on
   !> the threads' timing (bit-for-bit reproducible runs).
-  subroutine element_response(bodies, u, fint, stress, vm)
+  subroutine element_response(bodies, u, fint, stress, vm, adt)
     type(body_t), intent(in) :: bodies(:)
     real(dp), intent(in) :: u(:)
     real(dp), intent(out) :: fint(:)
     real(dp), intent(out), optional :: stress(:,:), vm(:)    !< skipped when absent
+    real(dp), intent(in), optional :: adt(:)      !< (nelem) the state's alpha dT per element (bodies(b)%elem0 + e);
+                                                  !< needed with stress when a body has THERMAL
     integer :: b, e, nen, ge
     integer :: dofs(2 * max_nen)
     real(dp) :: eps(3), eps4(4), xe(2, max_nen), ue(2 * max_nen)
@@ -685,15 +688,15 @@ contains
           if (.not. present(stress)) cycle
           if (bd%axisymmetric) then                     ! (srr, szz, srz, stt) = D4 (eps - alpha dT eth4)
             call axi_element_strain(nen, xe(:, 1:nen), ue(1:2 * nen), eps4, body_pressure_modes(bd, nen))
-            if (allocated(bd%adt)) eps4 = eps4 - bd%adt(e) * axi_thermal_strain
+            if (allocated(bd%adt)) eps4 = eps4 - adt(ge) * axi_thermal_strain
             stress(1:4, ge) = matmul(bd%law%d4, eps4)
             vm(ge) = von_mises_4(stress(1:4, ge))
             cycle
           end if
           call element_strain(nen, xe(:, 1:nen), ue(1:2 * nen), eps, body_pressure_modes(bd, nen))
           if (allocated(bd%adt)) then                   ! sigma = D (eps - alpha dT eth)
-            stress(:, ge) = matmul(bd%law%d, eps - bd%adt(e) * bd%law%eth)
-            vm(ge) = von_mises(bd%law, stress(:, ge), bd%adt(e))
+            stress(:, ge) = matmul(bd%law%d, eps - adt(ge) * bd%law%eth)
+            vm(ge) = von_mises(bd%law, stress(:, ge), adt(ge))
           else
             stress(:, ge) = matmul(bd%law%d, eps)
             vm(ge) = von_mises(bd%law, stress(:, ge))

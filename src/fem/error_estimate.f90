@@ -23,10 +23,10 @@
 !> both bodies, whose stresses are not averaged across it.
 !>
 !> Programming interface
-!>   recover_stress(bd, u, sstar)          sstar(ncomp, nnode): the recovered nodal stresses of body bd
-!>   energy_indicators(bd, u, sstar, eta2, energy2)
+!>   recover_stress(bd, u, adt, sstar)     sstar(ncomp, nnode): the recovered nodal stresses of body bd
+!>   energy_indicators(bd, u, adt, sstar, eta2, energy2)
 !>                                         eta2(nelem) = eta_K^2 and energy2 = ||u_h||_E^2 of bd
-!>   point_stress(bd, e, xe, ue, xi, sig, dv, n)   sigma_h at the reference point xi of element e,
+!>   point_stress(bd, e, xe, ue, xi, sig, dv, n, adt)   sigma_h at the reference point xi of element e,
 !>                                         the volume factor dV / (dxi) and the shape functions there
 !> u is the body's nodal displacement u(2, nnode) in x, y components; ncomp
 !> is 3 (sxx, syy, sxy) in the plane, 4 (srr, szz, srz, stt) in axisymmetry.
@@ -74,10 +74,11 @@ contains
   !>   xi  (in)  (2) reference point
   !>   sig (out) (ncomp) the stress;  dv (out) the volume factor
   !>   n   (out) (nen) the shape functions at xi
-  pure subroutine point_stress(bd, e, xe, ue, xi, sig, dv, n)
+  !>   adt (in)  alpha dT of the element in the state (0 without THERMAL)
+  pure subroutine point_stress(bd, e, xe, ue, xi, sig, dv, n, adt)
     type(body_t), intent(in) :: bd
     integer, intent(in) :: e
-    real(dp), intent(in) :: xe(:,:), ue(:,:), xi(2)
+    real(dp), intent(in) :: xe(:,:), ue(:,:), xi(2), adt
     real(dp), intent(out) :: sig(:), dv, n(:)
     real(dp) :: dndx(2, max_nen), detj, eps(3), eps4(4), r, dvol
     integer :: nen, a, np
@@ -101,7 +102,7 @@ contains
         dvol = (projected_dilatation(nen, xe, ue, np, .true., n(1:nen)) - (eps4(1) + eps4(2) + eps4(4))) / 3
         eps4([1, 2, 4]) = eps4([1, 2, 4]) + dvol
       end if
-      if (allocated(bd%adt)) eps4 = eps4 - bd%adt(e) * axi_thermal_strain
+      if (allocated(bd%adt)) eps4 = eps4 - adt * axi_thermal_strain
       sig(1:4) = matmul(bd%law%d4, eps4)
       dv = detj * radial_weight(r)
     else
@@ -109,7 +110,7 @@ contains
         dvol = (projected_dilatation(nen, xe, ue, np, .false., n(1:nen)) - (eps(1) + eps(2))) / 2
         eps(1:2) = eps(1:2) + dvol
       end if
-      if (allocated(bd%adt)) eps = eps - bd%adt(e) * bd%law%eth
+      if (allocated(bd%adt)) eps = eps - adt * bd%law%eth
       sig(1:3) = matmul(bd%law%d, eps)
       dv = detj * bd%thick
     end if
@@ -136,10 +137,11 @@ contains
   !> sigma*(node a) = sum_K |K| sigma_h|_K(x_a) / sum_K |K| over the elements
   !> K of bd around node a, |K| the element's area.
   !>   bd (in) the body;  u (in) (2, nnode) its displacement, x, y
+  !>   adt (in) (nelem) alpha dT of its elements in the state (0 without THERMAL)
   !>   sstar (out) (ncomp, nnode) the recovered nodal stresses
-  subroutine recover_stress(bd, u, sstar)
+  subroutine recover_stress(bd, u, adt, sstar)
     type(body_t), intent(in) :: bd
-    real(dp), intent(in) :: u(:,:)
+    real(dp), intent(in) :: u(:,:), adt(:)
     real(dp), allocatable, intent(out) :: sstar(:,:)
     real(dp), allocatable :: weight(:), es(:,:,:), area(:)
     type(rules_t) :: rules
@@ -161,7 +163,7 @@ contains
         area(e) = area(e) + rules%w(q, nen) * detj
       end do
       do a = 1, nen
-        call point_stress(bd, e, xe(:, 1:nen), ue(:, 1:nen), reference_node(nen, a), es(:, a, e), dv, n)
+        call point_stress(bd, e, xe(:, 1:nen), ue(:, 1:nen), reference_node(nen, a), es(:, a, e), dv, n, adt(e))
       end do
     end do
     !$omp end parallel do
@@ -180,11 +182,12 @@ contains
   !> element K of bd, and ||u_h||_E^2 = int sigma_h : D^-1 sigma_h dV, by a
   !> rule exact for these integrands on affine elements.
   !>   bd (in) the body;  u (in) (2, nnode);  sstar (in) (ncomp, nnode) from recover_stress
+  !>   adt (in) (nelem) alpha dT of its elements in the state (0 without THERMAL)
   !>   eta2 (out) (nelem) the element indicators squared (energy)
   !>   energy2 (out) the body's energy norm of u_h squared (twice its strain energy)
-  subroutine energy_indicators(bd, u, sstar, eta2, energy2)
+  subroutine energy_indicators(bd, u, adt, sstar, eta2, energy2)
     type(body_t), intent(in) :: bd
-    real(dp), intent(in) :: u(:,:), sstar(:,:)
+    real(dp), intent(in) :: u(:,:), adt(:), sstar(:,:)
     real(dp), intent(out) :: eta2(:), energy2
     type(rules_t) :: rules
     real(dp) :: c(4, 4), sig(4), rec(4), dv, n(max_nen), xe(2, max_nen), ue(2, max_nen)
@@ -205,7 +208,7 @@ contains
       eta2(e) = 0.0_dp
       e2(e) = 0.0_dp
       do q = 1, rules%nq(nen)
-        call point_stress(bd, e, xe(:, 1:nen), ue(:, 1:nen), rules%xi(:, q, nen), sig(1:nc), dv, n(1:nen))
+        call point_stress(bd, e, xe(:, 1:nen), ue(:, 1:nen), rules%xi(:, q, nen), sig(1:nc), dv, n(1:nen), adt(e))
         rec(1:nc) = 0.0_dp
         do a = 1, nen                                   ! sigma*(x_q) = sum_a N_a sigma*_a
           rec(1:nc) = rec(1:nc) + n(a) * sstar(:, bd%mesh%conn(a, e))

@@ -85,6 +85,7 @@ contains
     if (allocated(sol%method)) res%lcp_method = sol%method
     res%lcp_iterations = sol%iterations
     res%lcp_residual = sol%residual
+    res%certificate = [sol%cert%complementarity, sol%cert%cone, sol%cert%equilibrium]
     if (allocated(sol%fallback)) then
       allocate(res%lcp_fallback(size(sol%fallback)))
       do k = 1, size(sol%fallback)
@@ -128,9 +129,9 @@ contains
   !> contact resultants, stresses, energy, reactions, the RIGIDs, the nodal
   !> contact fields and the zones, all checked finite.
   !>   fext (in)    (ndof) the state's external forces (solver basis)
-  !>   res  (inout) u (solver basis) and the multipliers (mu, tau: unallocated
-  !>                without contact), contact measures on entry; the results
-  !>                on exit, u in x, y components
+  !>   res  (inout) u (solver basis), the thermal strains adt and the
+  !>                multipliers (mu, tau: unallocated without contact), contact
+  !>                measures on entry; the results on exit, u in x, y components
   !>   err  (out)   a result is not finite (the loads overflow)
   subroutine state_results(prob, fext, res, err)
     type(problem_t), intent(in) :: prob
@@ -205,7 +206,7 @@ contains
     if (allocated(res%reaction)) deallocate(res%reaction)
     allocate(res%stress(merge(4, 3, prob%deck%axisymmetric), prob%sc%nelem), res%vm(prob%sc%nelem), fint(prob%sc%ndof))
     if (prob%deck%output%fields(4) .or. prob%deck%output%fields(5)) then
-      call element_response(prob%sc%bodies, res%u, fint, res%stress, res%vm)
+      call element_response(prob%sc%bodies, res%u, fint, res%stress, res%vm, res%adt)
     else
       call element_response(prob%sc%bodies, res%u, fint)        ! no stress field asked for: none computed
     end if

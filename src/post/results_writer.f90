@@ -40,6 +40,8 @@ module results_writer
     real(dp), allocatable :: stress(:,:)         !< (3, nelem) sxx syy sxy per element, or
                                                  !< (4, nelem) srr szz srz stt (axisymmetric)
     real(dp), allocatable :: vm(:)               !< (nelem) von Mises
+    real(dp), allocatable :: adt(:)              !< (nelem) the state's thermal strain alpha dT per element
+                                                 !< (0 without THERMAL): what its stresses subtract
     real(dp), allocatable :: node_pressure(:)    !< (ndof/2) contact pressure at nodes (0 elsewhere)
     real(dp), allocatable :: node_gap(:)         !< (ndof/2) final gap at slave nodes (0 elsewhere)
     real(dp), allocatable :: mu(:)               !< (nrow) multipliers (nodal forces)
@@ -94,6 +96,8 @@ module results_writer
     real(dp) :: lcp_residual = 0
     type(string_t), allocatable :: lcp_fallback(:) !< 'STEP FROM TO' of each lcp=auto fallback (step_solver)
     real(dp) :: complementarity = 0, min_gap = 0, min_pressure = 0
+    real(dp) :: certificate(3) = 0               !< the final step's certificate: complementarity, cone,
+                                                 !< equilibrium, relative (certificate; 0 without contact)
     integer :: contact_nodes = 0, active_nodes = 0, redundant = 0
     integer(i8) :: factor_nnz = 0
     integer :: factor_parts = 0                  !< parts of K factorized on their own (the bodies)
@@ -217,6 +221,8 @@ contains
       end do
     end if
     write(u, '(a,a)') 'complementarity ', exact_to_str(r%complementarity)
+    write(u, '(a)') 'certificate complementarity ' // exact_to_str(r%certificate(1)) // ' cone ' // &
+      exact_to_str(r%certificate(2)) // ' equilibrium ' // exact_to_str(r%certificate(3))
     write(u, '(a,a)') 'min_gap ', exact_to_str(r%min_gap)
     write(u, '(a,a)') 'min_pressure ', exact_to_str(r%min_pressure)
     if (allocated(r%tau)) then

@@ -72,7 +72,7 @@ contains
 
   !> The error estimate of one state's results: the final state's, or a
   !> load step's (its VTK file shows error_indicator too).
-  !>   res (inout) u in x, y components and node_pressure on entry; estimated,
+  !>   res (inout) u in x, y components, adt and node_pressure on entry; estimated,
   !>               estimate_energy, error_indicator and estimate_pressure on exit,
   !>               when deck%estimate (else estimated false, no indicators)
   subroutine estimate_results(prob, res)
@@ -95,8 +95,8 @@ contains
         d0 = bd%dof0
         e0 = bd%elem0
         u = reshape(res%u(d0 + 1:d0 + 2 * nn), [2, nn])
-        call recover_stress(bd, u, rec(b)%s)
-        call energy_indicators(bd, u, rec(b)%s, eta2(e0 + 1:e0 + ne), body_energy2)
+        call recover_stress(bd, u, res%adt(e0 + 1:e0 + ne), rec(b)%s)
+        call energy_indicators(bd, u, res%adt(e0 + 1:e0 + ne), rec(b)%s, eta2(e0 + 1:e0 + ne), body_energy2)
         energy2 = energy2 + body_energy2
       end associate
     end do

@@ -55,7 +55,7 @@ contains
     allocate(values(0), whole(0))
     call add('step', real(kstep, dp), .true.)
     do g = 1, size(prob%sc%ramp, 2)
-      call add('factor_' // group_name(prob%sc, g), group_factor(prob%sc, g, kstep), .false.)
+      call add('factor_' // group_name(prob%sc, g), group_factor(prob%sc, g, real(kstep, dp)), .false.)
     end do
     call fix_boundaries(prob, labels, of_fix)
     allocate(reaction(2, size(labels)), source=0.0_dp)
@@ -90,6 +90,9 @@ contains
     end do
     call add('active_nodes', real(res%active_nodes, dp), .true.)
     call add('lcp_iterations', real(iterations, dp), .true.)
+    call add('certificate_complementarity', res%certificate(1), .false.)
+    call add('certificate_cone', res%certificate(2), .false.)
+    call add('certificate_equilibrium', res%certificate(3), .false.)
 
   contains
 

@@ -9,9 +9,10 @@
 !>   collect_groups(deck, ndof, lg)       the deck's distinct load paths, the default ramp
 !>        [0, steps] first; fgroup and ugroup (ndof, ngroup) zero
 !>   ramp_group(lg, r, c)                 the group of ramp r, or of curve c when c > 0
-!>   group_factor(lg, g, k), group_factors(lg, k)   load factor of group g (of every group) at step k
+!>   group_factor(lg, g, t), group_factors(lg, t)   load factor of group g (of every group) at step t
+!>        (t real: a whole step k, or a point between two when a step is split)
 !>   group_name(lg, g)                    the group's name for tables: the curve's or ramp_K0_K1
-!>   load_factor(ramp, k)                 factor of ramp k0:k1 at step k
+!>   load_factor(ramp, t)                 factor of ramp k0:k1 at step t
 module load_groups
   use kinds, only: dp
   use strings, only: int_to_str
@@ -123,25 +124,27 @@ contains
     g = 1
   end function ramp_group
 
-  !> Load factor of group g at step k: its curve's value, or its ramp's.
-  pure real(dp) function group_factor(lg, g, k) result(f)
+  !> Load factor of group g at step t: its curve's value, or its ramp's.
+  !>   t (in) the step: a whole step k, or a point between two (a split step)
+  pure real(dp) function group_factor(lg, g, t) result(f)
     class(load_groups_t), intent(in) :: lg
-    integer, intent(in) :: g, k
+    integer, intent(in) :: g
+    real(dp), intent(in) :: t
     if (lg%group_curve(g) > 0) then
-      f = curve_factor(lg%curves(lg%group_curve(g)), real(k, dp))
+      f = curve_factor(lg%curves(lg%group_curve(g)), t)
     else
-      f = load_factor(lg%ramp(:, g), k)
+      f = load_factor(lg%ramp(:, g), t)
     end if
   end function group_factor
 
-  !> The load factors f_g(k) of every group at step k.
-  pure function group_factors(lg, k) result(f)
+  !> The load factors f_g(t) of every group at step t.
+  pure function group_factors(lg, t) result(f)
     class(load_groups_t), intent(in) :: lg
-    integer, intent(in) :: k
+    real(dp), intent(in) :: t
     real(dp) :: f(size(lg%ramp, 2))
     integer :: g
     do g = 1, size(f)
-      f(g) = group_factor(lg, g, k)
+      f(g) = group_factor(lg, g, t)
     end do
   end function group_factors
 
@@ -157,10 +160,12 @@ contains
     end if
   end function group_name
 
-  !> Load factor of ramp k0:k1 at step k: 0 up to k0, linear to 1 at k1, then 1.
-  pure real(dp) function load_factor(ramp, k) result(f)
-    integer, intent(in) :: ramp(2), k
-    f = min(1.0_dp, max(0.0_dp, real(k - ramp(1), dp) / real(ramp(2) - ramp(1), dp)))
+  !> Load factor of ramp k0:k1 at step t: 0 up to k0, linear to 1 at k1, then 1.
+  !> (t - k0 is exact for a whole step: the same factor as in integers.)
+  pure real(dp) function load_factor(ramp, t) result(f)
+    integer, intent(in) :: ramp(2)
+    real(dp), intent(in) :: t
+    f = min(1.0_dp, max(0.0_dp, (t - real(ramp(1), dp)) / real(ramp(2) - ramp(1), dp)))
   end function load_factor
 
 end module load_groups

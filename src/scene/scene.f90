@@ -12,7 +12,7 @@
 !> Its parts, modules of their own: load_groups (the load history: one group
 !> per distinct ramp k0:k1 or CURVE, with its loads and prescribed values;
 !> scene_t extends load_groups_t, and fext, ubar are the last step's,
-!> step_loads), fix_dofs (the FIX statements' dofs, and the nodes' local axes
+!> step_forces), fix_dofs (the FIX statements' dofs, and the nodes' local axes
 !> of FIX un=/ut=, to which the groups' forces are turned here),
 !> deck_boundaries (the boundary a statement names, its edges' outward
 !> normals), body_loads (TRACTION, PRESSURE, BODYFORCE, GRAVITY, THERMAL on a
@@ -23,24 +23,19 @@
 !>
 !> Thermal strains.  A body's alpha dT of step k is its THERMAL statements'
 !> value at load factor 1 times the factor of their group at k
-!> (step_thermal_strains).  The scene's bodies hold the final step's in
-!> body_t%adt, which the stresses read (body: element_response;
-!> error_estimate).  step_forces and step_thermal_strains give a step's
-!> loads and strains without touching the scene; step_loads, which also
-!> writes the step's strains into the bodies (and is called again with the
-!> final step to put them back), is kept until the callers pass the
-!> strains to the stress routines instead.
+!> (step_thermal_strains); a state's stresses take them as an argument
+!> (body: element_response; error_estimate).  The scene never changes once
+!> built: body_t%adt keeps the value at load factor 1 (allocated: the body
+!> has THERMAL), from which the groups' nodal forces were made.
 !>
 !> Programming interface
 !>   type(scene_t)                       bodies, dof data, loads, pair specs, effects;
 !>        extends load_groups_t (steps, ramp, fgroup, ugroup: load_groups' procedures take it)
 !>   build_scene(deck, gmsh, sc, diag, err)  gmsh: how .geo files are meshed (trust,
 !>        time limit); errors go to diag with deck lines
-!>   step_forces(sc, k, fext, ubar)       the external forces and prescribed values of step k
-!>   step_thermal_strains(sc, k, adt)     alpha dT of every element at step k, (nelem) in
+!>   step_forces(sc, t, fext, ubar)       the external forces and prescribed values of step t
+!>   step_thermal_strains(sc, t, adt)     alpha dT of every element at step t, (nelem) in
 !>        output order (body b's element e at elem0 + e), 0 in bodies without THERMAL
-!>   step_loads(sc, k, fext, ubar)        step_forces, and the bodies' adt set to step k's
-!>        (deprecated: it changes the scene)
 module scene
   use kinds, only: dp
   use strings, only: int_to_str, real_to_str
@@ -65,7 +60,7 @@ module scene
   use rigid_obstacle, only: rigid_shape_t, shape_line, shape_circle, shape_polyline
   implicit none
   private
-  public :: scene_t, fix_ref_t, build_scene, step_forces, step_thermal_strains, step_loads
+  public :: scene_t, fix_ref_t, build_scene, step_forces, step_thermal_strains
 
   !> A FIX statement, for its reaction line in the summary.
   type :: fix_ref_t
@@ -146,8 +141,7 @@ contains
     end do
     call apply_rigid_motions(deck, sc%rigids, sc%load_groups_t, sc%fixed)
     call forces_to_local_axes(sc%bodies, sc%fgroup)
-    call step_forces(sc, sc%steps, sc%fext, sc%ubar)
-    call set_body_strains(sc, sc%steps)
+    call step_forces(sc, real(sc%steps, dp), sc%fext, sc%ubar)
     call make_pair_specs(deck, sc%bodies, sc%rigids, sc%specs, diag)
     sc%effects = scene_effects(deck, sc)
   end subroutine build_scene
@@ -155,15 +149,15 @@ contains
   !> The external forces and prescribed values of step k: fext = sum_g f_g(k)
   !> fgroup_g, ubar likewise (eq. (1)'s data at the step's load factors).
   !>   sc    (in)  the scene
-  !>   k     (in)  the step, 1..steps
-  !>   fext  (out) (ndof) external nodal forces of step k
-  !>   ubar  (out) (ndof) prescribed values of step k
-  subroutine step_forces(sc, k, fext, ubar)
+  !>   t     (in)  the step, 1..steps (a point between two when a step is split)
+  !>   fext  (out) (ndof) external nodal forces of step t
+  !>   ubar  (out) (ndof) prescribed values of step t
+  subroutine step_forces(sc, t, fext, ubar)
     type(scene_t), intent(in) :: sc
-    integer, intent(in) :: k
+    real(dp), intent(in) :: t
     real(dp), intent(out) :: fext(:), ubar(:)
     real(dp) :: f(size(sc%ramp, 2))
-    f = group_factors(sc, k)
+    f = group_factors(sc, t)
     fext = matmul(sc%fgroup, f)
     ubar = matmul(sc%ugroup, f)
   end subroutine step_forces
@@ -176,13 +170,13 @@ contains
   !>   k   (in)  the step, 1..steps
   !>   adt (out) (sc%nelem) alpha dT of body b's element e at bodies(b)%elem0 + e
   !>             (the output order of the stresses); 0 in a body without THERMAL
-  subroutine step_thermal_strains(sc, k, adt)
+  subroutine step_thermal_strains(sc, t, adt)
     type(scene_t), intent(in) :: sc
-    integer, intent(in) :: k
+    real(dp), intent(in) :: t
     real(dp), intent(out) :: adt(:)
     real(dp) :: f(size(sc%ramp, 2))
     integer :: b
-    f = group_factors(sc, k)
+    f = group_factors(sc, t)
     adt = 0.0_dp
     do b = 1, size(sc%bodies)
       if (.not. allocated(sc%thermal(b)%adt1)) cycle
@@ -191,38 +185,6 @@ contains
       end associate
     end do
   end subroutine step_thermal_strains
-
-  !> The loads of step k (step_forces), and the bodies' thermal strains set
-  !> to step k's (set_body_strains).  It changes the scene: a caller that
-  !> takes an earlier step calls it again with the final step to put the
-  !> strains back.  Kept for the callers that read the strains from the
-  !> bodies; new code takes step_forces and step_thermal_strains.
-  !>   sc (inout) the scene: its bodies' adt set to step k's;  k, fext, ubar as step_forces
-  subroutine step_loads(sc, k, fext, ubar)
-    type(scene_t), intent(inout) :: sc
-    integer, intent(in) :: k
-    real(dp), intent(out) :: fext(:), ubar(:)
-    call step_forces(sc, k, fext, ubar)
-    call set_body_strains(sc, k)
-  end subroutine step_loads
-
-  !> The bodies' adt set to the thermal strains of step k
-  !> (step_thermal_strains), in the bodies with THERMAL.  The scene holds
-  !> the final step's (build_scene), which the stresses read from the bodies.
-  !>   sc (inout) the scene;  k (in) the step, 1..steps
-  subroutine set_body_strains(sc, k)
-    type(scene_t), intent(inout) :: sc
-    integer, intent(in) :: k
-    real(dp), allocatable :: adt(:)
-    integer :: b
-    allocate(adt(sc%nelem))
-    call step_thermal_strains(sc, k, adt)
-    do b = 1, size(sc%bodies)
-      associate(e0 => sc%bodies(b)%elem0, ne => sc%bodies(b)%mesh%nelem)
-        if (allocated(sc%thermal(b)%adt1)) sc%bodies(b)%adt = adt(e0 + 1:e0 + ne)
-      end associate
-    end do
-  end subroutine set_body_strains
 
   !> The bodies of the deck, each around its mesh (make_mesh, make_body).
   !> They are read one after the other: gfortran 12 keeps the length of a

@@ -324,7 +324,7 @@ contains
     integer :: g, j
     real(dp), allocatable :: rhsg(:,:), xg(:,:), ug(:), fk(:)
     allocate(sys%cu0(prob%cs%nrow + prob%cs%ntan, size(prob%sc%ramp, 2)))
-    if (size(prob%sc%ramp, 2) == 1 .and. group_factor(prob%sc, 1, prob%sc%steps) == 1.0_dp) then
+    if (size(prob%sc%ramp, 2) == 1 .and. group_factor(prob%sc, 1, real(prob%sc%steps, dp)) == 1.0_dp) then
       call constraint_values(prob%cs, sys%u0, sys%cu0(:, 1))
       return
     end if

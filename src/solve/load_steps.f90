@@ -6,6 +6,10 @@
 !> by step_solver, frictionless or with friction, with the free motions of
 !> what contact alone holds.
 !>
+!> Step k's loads are its forces and prescribed values (scene's
+!> step_forces); its thermal strains are the recorder's to take
+!> (step_thermal_strains): nothing here changes the scene.
+!>
 !> Which steps are solved.  Friction (the answer depends on the path) and
 !> finite sliding (each step starts where the last ended) solve every step in
 !> order; a frictionless small-sliding history solves only its final step,
@@ -31,6 +35,16 @@
 !> to be found again (error_unsolved asking for more STEPS).  A change of
 !> rows restarts the friction multipliers from 0 (they belong to rows).
 !>
+!> A step that fails without a proof that it has no solution (error_unsolved)
+!> in a history whose path matters (friction, finite sliding) is solved again
+!> in two halves, from the last state to the middle of the step, then to its
+!> end (the load factors are linear in between: load_groups' group_factor at
+!> a fractional step), each half split again in turn when it fails, at most
+!> max_splits times deep; each split is said in the run log.  A smaller
+!> increment is what the friction methods and the geometry updates need when
+!> a step crosses too much at once (a side load raised past what friction
+!> holds, a contact zone that moves by more than it is wide).
+!>
 !> Each solved step other than the final one is handed to the caller's
 !> recorder (OUTPUT steps=all), with its loads and solution, before the next
 !> one is solved; the final step's solution is returned.  Nothing here writes
@@ -38,11 +52,12 @@
 !>
 !> Programming interface
 !>   solve_load_steps(prob, sys, log, sol, err, recorder)   every step the history needs
+!>   type(step_load_t)              the loads of a step (or of a point between two)
 !>   type(step_recorder_t)          what keeps the other steps: extended by the caller,
-!>                                  its record(kstep, prob, sys, fk, ubk, sol, log, err) deferred
+!>                                  its record(prob, sys, load, sol, log, err) deferred
 module load_steps
   use kinds, only: dp, i8
-  use strings, only: int_to_str, real_to_str
+  use strings, only: int_to_str, real_to_str, format_number
   use errors, only: error_t, set_error, error_unsolved
   use run_log, only: log_t, say
   use problem, only: problem_t, step_label
@@ -50,7 +65,7 @@ module load_steps
   use step_solution, only: step_solution_t, multipliers
   use step_solver, only: solve_frictionless_step, solve_friction_step
   use held_by_contact, only: split_step_modes
-  use scene, only: step_loads
+  use scene, only: step_forces
   use load_groups, only: group_factor
   use contact_set, only: contact_set_t
   use contact_condensation, only: constraint_values
@@ -66,6 +81,16 @@ module load_steps
 
   !> the relative change of the multipliers below which a finite step settles
   real(dp), parameter :: finite_tol = 1.0e-8_dp
+  !> how many times a failed step is halved, at most (an eighth of a step)
+  integer, parameter :: max_splits = 3
+
+  !> The loads of a load step, or of a point between two (a split step).
+  type, public :: step_load_t
+    integer :: kstep = 0                       !< the deck's step (messages, records)
+    real(dp) :: t = 0                          !< the load point: kstep, or between kstep - 1 and kstep
+    real(dp), allocatable :: f(:)              !< (ndof) external forces at t (solver basis)
+    real(dp), allocatable :: ubar(:)           !< (ndof) prescribed values at t
+  end type step_load_t
 
   !> What keeps the solved steps other than the final one (OUTPUT
   !> steps=all): the caller extends it with what it writes them to.
@@ -76,18 +101,15 @@ module load_steps
 
   abstract interface
     !> A solved load step other than the final one, for the caller to keep:
-    !> its loads, its solution on the rows of prob%cs.
-    !>   kstep   (in) the step, 1 .. steps - 1
-    !>   fk, ubk (in) (ndof) its loads and prescribed values
-    !>   sol     (in) its solution (unallocated multipliers: no contact)
-    !>   err     (out) the step could not be kept (the run then ends)
-    subroutine record_step(self, kstep, prob, sys, fk, ubk, sol, log, err)
-      import :: dp, step_recorder_t, problem_t, system_t, step_solution_t, log_t, error_t
+    !> its loads (load%kstep, 1 .. steps - 1), its solution on the rows of
+    !> prob%cs (unallocated multipliers: no contact); err when it could not
+    !> be kept (the run then ends).
+    subroutine record_step(self, prob, sys, load, sol, log, err)
+      import :: step_recorder_t, problem_t, system_t, step_load_t, step_solution_t, log_t, error_t
       class(step_recorder_t), intent(inout) :: self
-      integer, intent(in) :: kstep
       type(problem_t), intent(in) :: prob
       type(system_t), intent(in) :: sys
-      real(dp), intent(in) :: fk(:), ubk(:)
+      type(step_load_t), intent(in) :: load
       type(step_solution_t), intent(in) :: sol
       type(log_t), intent(inout) :: log
       type(error_t), allocatable, intent(out) :: err
@@ -129,30 +151,30 @@ contains
     class(step_recorder_t), intent(inout), optional :: recorder
     type(history_t) :: past
     type(finite_clock_t) :: clock
-    real(dp), allocatable :: fk(:), ubk(:)
+    type(step_load_t) :: load
     integer :: kstep, first
     logical :: finite, friction, steps_all
 
     finite = any(prob%sc%specs%finite)
     friction = prob%cs%ntan > 0
     steps_all = prob%deck%output%steps_all
-    allocate(fk(prob%sc%ndof), ubk(prob%sc%ndof))
+    allocate(load%f(prob%sc%ndof), load%ubar(prob%sc%ndof))
     first = prob%sc%steps                          ! path-independent: the final step alone
     if (friction) call say_floating(prob, log)
     if (friction .or. finite .or. steps_all) first = 1
     do kstep = first, prob%sc%steps
-      call step_loads(prob%sc, kstep, fk, ubk)
+      load%kstep = kstep
       if (.not. sys%with_contact) then          ! nothing to solve: the loads alone
+        load%t = real(kstep, dp)
+        call step_forces(prob%sc, load%t, load%f, load%ubar)
         sol%step = kstep
         sol%method = 'none'
-      else if (finite) then
-        call solve_finite_step(prob, sys, kstep, fk, ubk, past, log, sol, clock, err)
       else
-        call solve_small_step(prob, sys, kstep, fk, ubk, past, log, sol, err)
+        call solve_increment(prob, sys, real(kstep - 1, dp), real(kstep, dp), 0, load, past, log, sol, clock, err)
       end if
       if (allocated(err)) return
       if (kstep < prob%sc%steps .and. steps_all .and. present(recorder)) then
-        call recorder%record(kstep, prob, sys, fk, ubk, sol, log, err)
+        call recorder%record(prob, sys, load, sol, log, err)
         if (allocated(err)) return
       end if
     end do
@@ -174,13 +196,77 @@ contains
       'Lemke (' // int_to_str(prob%cs%nrow + 3 * prob%cs%ntan + 2 * held) // ' unknowns)')
   end subroutine say_floating
 
-  !> Step k on the initial rows (sliding=small).
+  !> The state at step t1 from the state at t0 (past, sol): one step, or,
+  !> when it fails without a proof and the path matters, two halves, each
+  !> split again when it fails, at most max_splits deep (module header).
+  !>   t0, t1 (in)    where the increment starts and ends (t1 = load%kstep at the top)
+  !>   splits (in)    how many times this increment was halved already
+  !>   load   (inout) the deck's step being solved on entry; its loads at t1 on exit
+  recursive subroutine solve_increment(prob, sys, t0, t1, splits, load, past, log, sol, clock, err)
+    type(problem_t), intent(inout) :: prob
+    type(system_t), intent(inout) :: sys
+    real(dp), intent(in) :: t0, t1
+    integer, intent(in) :: splits
+    type(step_load_t), intent(inout) :: load
+    type(history_t), intent(inout) :: past
+    type(log_t), intent(inout) :: log
+    type(step_solution_t), intent(inout) :: sol
+    type(finite_clock_t), intent(inout) :: clock
+    type(error_t), allocatable, intent(out) :: err
+    type(history_t) :: saved
+    type(step_solution_t) :: saved_sol
+    type(contact_set_t) :: saved_rows
+    logical :: finite, path
+    real(dp) :: tm
+    character(len=:), allocatable :: why
+    finite = any(prob%sc%specs%finite)
+    path = finite .or. prob%cs%ntan > 0
+    if (path) then                                ! the state to go back to
+      saved = past
+      saved_sol = sol
+      if (finite) saved_rows = prob%cs
+    end if
+    load%t = t1
+    call step_forces(prob%sc, t1, load%f, load%ubar)
+    if (finite) then
+      call solve_finite_step(prob, sys, load, past, log, sol, clock, err)
+    else
+      call solve_small_step(prob, sys, load, past, log, sol, err)
+    end if
+    if (.not. allocated(err)) return
+    if (.not. path .or. err%category /= error_unsolved .or. splits >= max_splits) return
+    tm = 0.5_dp * (t0 + t1)
+    why = err%message
+    if (index(why, step_label(prob, load%kstep)) == 1) why = why(len(step_label(prob, load%kstep)) + 1:)
+    call say(log, 'split    ' // step_label(prob, load%kstep) // 'not solved from ' // step_text(t0) // ' to ' // &
+      step_text(t1) // ' at once (' // why // '): solved in two halves, through ' // step_text(tm))
+    deallocate(err)
+    past = saved
+    sol = saved_sol
+    if (finite) prob%cs = saved_rows
+    call solve_increment(prob, sys, t0, tm, splits + 1, load, past, log, sol, clock, err)
+    if (allocated(err)) return
+    call solve_increment(prob, sys, tm, t1, splits + 1, load, past, log, sol, clock, err)
+  end subroutine solve_increment
+
+  !> A step, whole or a fraction of one, as the log says it: 3, 2.5, 2.25.
+  function step_text(t) result(s)
+    real(dp), intent(in) :: t
+    character(len=:), allocatable :: s
+    if (t == aint(t)) then
+      s = int_to_str(nint(t))
+    else
+      s = format_number(t)
+    end if
+  end function step_text
+
+  !> A load point on the initial rows (sliding=small).
+  !>   load (in)    the deck's step, the load point t and its loads
   !>   past (inout) the friction history: the last step's z and T u; this step's on exit
-  subroutine solve_small_step(prob, sys, kstep, fk, ubk, past, log, sol, err)
+  subroutine solve_small_step(prob, sys, load, past, log, sol, err)
     type(problem_t), intent(in) :: prob
     type(system_t), intent(in) :: sys
-    integer, intent(in) :: kstep
-    real(dp), intent(in) :: fk(:), ubk(:)
+    type(step_load_t), intent(in) :: load
     type(history_t), intent(inout) :: past
     type(log_t), intent(inout) :: log
     type(step_solution_t), intent(inout) :: sol
@@ -193,32 +279,32 @@ contains
 
     n = prob%cs%nrow
     nt = prob%cs%ntan
-    sol%step = kstep
+    sol%step = load%kstep
     ! C u0_k: the final loads' from the condensation; with friction each
     ! ramp's combined (no solve); else one solve
     allocate(cu(n + nt))
     if (allocated(sys%cu0)) then
       cu = 0.0_dp
       do g = 1, size(prob%sc%ramp, 2)
-        cu = cu + group_factor(prob%sc, g, kstep) * sys%cu0(:, g)
+        cu = cu + group_factor(prob%sc, g, load%t) * sys%cu0(:, g)
       end do
-    else if (kstep < prob%sc%steps) then
-      call free_constraint_values(prob, sys, fk, ubk, cu, err)
+    else if (load%t < prob%sc%steps) then
+      call free_constraint_values(prob, sys, load%f, load%ubar, cu, err)
       if (allocated(err)) return
     end if
     ! the splits of the free modes: the problem's own are the final loads' on these rows
-    if (kstep < prob%sc%steps) then
-      call split_step_modes(prob, kstep, fk, split, rsplit, err)
+    if (load%t < prob%sc%steps) then
+      call split_step_modes(prob, load%kstep, load%f, split, rsplit, err)
       if (allocated(err)) return
     else
       split = prob%split
       rsplit = prob%rsplit
     end if
     if (nt == 0) then
-      if (kstep < prob%sc%steps) then
-        call solve_frictionless_step(prob, sys%w, prob%cs%g - cu(1:n), kstep, split, rsplit, log, sol, err)
+      if (load%t < prob%sc%steps) then
+        call solve_frictionless_step(prob, sys%w, prob%cs%g - cu(1:n), load%kstep, split, rsplit, log, sol, err)
       else
-        call solve_frictionless_step(prob, sys%w, sys%q, kstep, split, rsplit, log, sol, err)
+        call solve_frictionless_step(prob, sys%w, sys%q, load%kstep, split, rsplit, log, sol, err)
       end if
       sol%total_iterations = sol%total_iterations + sol%iterations
       return
@@ -230,22 +316,23 @@ contains
     ! gaps without contact forces; minus the slip of the step without them
     fp = friction_problem(prob%cs%g - cu(1:n), past%slip - cu(n + 1:), prob%cs%tan_row, prob%cs%tan_mu, &
                           prob%cs%tan_bound)
-    call solve_friction_step(prob, sys%w, fp, kstep, split, rsplit, log, past%z, sol, shift, err)
+    call solve_friction_step(prob, sys%w, fp, load%kstep, split, rsplit, log, past%z, sol, shift, err)
     if (allocated(err)) return
     sol%total_iterations = sol%total_iterations + sol%iterations
     cu = cu + shift                                          ! C u0 + C R alpha: the step's rigid motion
     past%slip = cu(n + 1:) - matmul(sys%w(n + 1:, :), past%z)   ! T u_k = T u0_k - T K^-1 C' z
-    call keep_friction_step(prob, sys%w, fp, kstep, past%z, past%slip, log, sol, err)
+    call keep_friction_step(prob, sys%w, fp, load%kstep, past%z, past%slip, log, sol, err)
   end subroutine solve_small_step
 
-  !> Step k by the fixed point of geometry updates (sliding=finite, module header).
+  !> A load point by the fixed point of geometry updates (sliding=finite,
+  !> module header).
+  !>   load  (in)    the deck's step, the load point t and its loads
   !>   past  (inout) the last step's multipliers and displacement; this step's on exit
   !>   clock (inout) the seconds by part, the updates
-  subroutine solve_finite_step(prob, sys, kstep, fk, ubk, past, log, sol, clock, err)
+  subroutine solve_finite_step(prob, sys, load, past, log, sol, clock, err)
     type(problem_t), intent(inout) :: prob
     type(system_t), intent(inout) :: sys
-    integer, intent(in) :: kstep
-    real(dp), intent(in) :: fk(:), ubk(:)
+    type(step_load_t), intent(in) :: load
     type(history_t), intent(inout) :: past
     type(log_t), intent(inout) :: log
     type(step_solution_t), intent(inout) :: sol
@@ -263,26 +350,26 @@ contains
     logical :: same, friction
 
     friction = prob%cs%ntan > 0
-    sol%step = kstep
+    sol%step = load%kstep
     allocate(u0k(prob%sc%ndof), uc(prob%sc%ndof))
-    call solve_loads(prob, sys, fk, ubk, [real(dp) ::], u0k, err)
+    call solve_loads(prob, sys, load%f, load%ubar, [real(dp) ::], u0k, err)
     if (allocated(err)) return
-    if (kstep > 1) then
+    if (.not. allocated(past%u)) allocate(past%u(prob%sc%ndof), source=0.0_dp)
+    if (allocated(sol%mu)) then
       ! the first configuration of the step: its loads and prescribed motion
       ! on the last step's contact forces, so that the bodies move with what
       ! drives them (a carriage moved alone would drag its body's edge)
-      call solve_loads(prob, sys, fk, ubk, multipliers(sol), uc, err)
+      call solve_loads(prob, sys, load%f, load%ubar, multipliers(sol), uc, err)
       if (allocated(err)) return
       call add_free_motions(prob, sol, uc)
     else
-      uc = u0k                                         ! the step's loads and motion without contact
-      allocate(past%u(prob%sc%ndof), source=0.0_dp)
+      uc = u0k                                         ! the first step's loads and motion without contact
     end if
     same = .false.
     change = huge(1.0_dp)
     do it = 1, prob%deck%solver%updates
       call system_clock(t0, rate)
-      call move_rows(prob, uc, kstep, err)
+      call move_rows(prob, uc, load%kstep, err)
       if (allocated(err)) return
       n = prob%cs%nrow
       nt = prob%cs%ntan
@@ -300,7 +387,7 @@ contains
       if (allocated(err)) return
       allocate(cu(n + nt), cp(n + nt))
       call constraint_values(prob%cs, u0k, cu)
-      call split_step_modes(prob, kstep, fk, split, rsplit, err)
+      call split_step_modes(prob, load%kstep, load%f, split, rsplit, err)
       if (allocated(err)) return
       call system_clock(t0)
       clock%condense = clock%condense + real(t0 - t1, dp) / real(rate, dp)
@@ -310,9 +397,9 @@ contains
         ! gaps without contact forces; minus the step's slip without them, current tangents
         fp = friction_problem(prob%cs%g - cu(1:n), cp(n + 1:) - cu(n + 1:), prob%cs%tan_row, prob%cs%tan_mu, &
                               prob%cs%tan_bound)
-        call solve_friction_step(prob, sys%w, fp, kstep, split, rsplit, log, past%z, sol, shift, err)
+        call solve_friction_step(prob, sys%w, fp, load%kstep, split, rsplit, log, past%z, sol, shift, err)
       else
-        call solve_frictionless_step(prob, sys%w, prob%cs%g - cu(1:n), kstep, split, rsplit, log, sol, err)
+        call solve_frictionless_step(prob, sys%w, prob%cs%g - cu(1:n), load%kstep, split, rsplit, log, sol, err)
         if (.not. allocated(err)) past%z = sol%mu
       end if
       if (allocated(err)) return
@@ -325,11 +412,11 @@ contains
         sol%mu = past%z(1:n)
         sol%tau = past%z(n + 1:)
       end if
-      call solve_loads(prob, sys, fk, ubk, past%z, uc, err)
+      call solve_loads(prob, sys, load%f, load%ubar, past%z, uc, err)
       if (allocated(err)) return
       call add_free_motions(prob, sol, uc)
       if (.not. all(ieee_is_finite(uc))) then
-        call set_error(err, step_label(prob, kstep) // 'the displacement is not finite')
+        call set_error(err, step_label(prob, load%kstep) // 'the displacement is not finite')
         return
       end if
       same = .false.
@@ -344,17 +431,17 @@ contains
       if (same .and. change <= finite_tol) exit
     end do
     if (.not. (same .and. change <= finite_tol)) then
-      call unsettled(prob, kstep, same, change, err)
+      call unsettled(prob, load%kstep, same, change, err)
       return
     end if
     sol%updates = min(it, prob%deck%solver%updates)
-    call say(log, 'finite   load step ' // int_to_str(kstep) // ' of ' // int_to_str(prob%sc%steps) // ': ' // &
+    call say(log, 'finite   load step ' // step_text(load%t) // ' of ' // int_to_str(prob%sc%steps) // ': ' // &
              int_to_str(sol%updates) // ' updates of the contact geometry')
     past%u = uc
     if (.not. friction) return
     allocate(cu(n + nt))
     call constraint_values(prob%cs, uc, cu)
-    call keep_friction_step(prob, sys%w, fp, kstep, past%z, cu(n + 1:), log, sol, err)
+    call keep_friction_step(prob, sys%w, fp, load%kstep, past%z, cu(n + 1:), log, sol, err)
   end subroutine solve_finite_step
 
   !> The contact rows rebuilt at the configuration x + u (finite sliding),

@@ -16,6 +16,7 @@ module step_solution
   use kinds, only: dp
   use text_scan, only: string_t
   use mode_support, only: mode_split_t
+  use certificate, only: certificate_t
   implicit none
   private
   public :: step_solution_t, fallback_t, multipliers, add_fallback
@@ -44,6 +45,7 @@ module step_solution
     integer :: iterations = 0                      !< its iterations (pivots, sweeps, Newton steps)
     integer :: total_iterations = 0                !< iterations of every step so far, this one included
     real(dp) :: residual = 0                       !< its natural residual (scaled)
+    type(certificate_t) :: cert                    !< the answer checked against its conditions (certificate)
     integer :: updates = 0                         !< sliding=finite: geometry updates of the step
     type(fallback_t), allocatable :: fallback(:)   !< every fallback of the steps so far
   end type step_solution_t

@@ -6,10 +6,13 @@
 !>   friction      the friction LCP of the step (friction_lcp, friction_newton),
 !>                 and with bodies or RIGIDs held only by contact the friction
 !>                 LCP that carries their amplitudes (friction_modes, Lemke)
-!> A failure that proves the step has no solution is named (held_by_contact's
-!> diagnoses; category error_no_equilibrium); a failure that proves nothing
-!> ends with what was tried (error_unsolved), so that the caller may split the
-!> step or give up.
+!> Every answer a method returns is checked by its certificate (certificate:
+!> the contact conditions, the cone, the free motions' equilibrium, each
+!> relative to the problem's own scales); one that fails it is a failed
+!> attempt, as a method's own failure is.  A failure that proves the step
+!> has no solution is named (held_by_contact's diagnoses; category
+!> error_no_equilibrium); a failure that proves nothing ends with what was
+!> tried (error_unsolved), so that the caller may split the step or give up.
 !>
 !> Why it exists: the step is the same whatever the kinematics (small or
 !> finite sliding) and whichever step of the history it is; the load-step
@@ -26,6 +29,7 @@ module step_solver
   use run_log, only: log_t, say
   use problem, only: problem_t, step_label
   use step_solution, only: step_solution_t, add_fallback
+  use certificate, only: certificate_t, certify_frictionless, certify_friction, certified, certificate_tol
   use lcp_solvers, only: lcp_options_t, lcp_report_t, info_no_memory
   use lcp_auto, only: lcp_attempt_t, auto_order, friction_order, proves_no_solution, add_attempt
   use contact_lcp, only: contact_solution_t, solve_contact
@@ -40,6 +44,9 @@ module step_solver
   implicit none
   private
   public :: solver_options, solve_frictionless_step, solve_friction_step
+
+  !> rep%info of an answer that fails its certificate (beyond the methods' own codes)
+  integer, parameter :: info_uncertified = 7
 
 contains
 
@@ -119,6 +126,10 @@ contains
     do k = 1, size(methods)
       opts%omega = omegas(k)
       call solve_contact(w, q, h, e, held, trim(methods(k)), opts, lcp, outer)
+      if (lcp%rep%info == 0) then
+        call certify_frictionless(w, q, h, e, held, lcp%mu, lcp%alpha, sol%cert)
+        if (.not. certified(sol%cert)) call uncertified(sol%cert, lcp%rep)
+      end if
       call add_attempt(attempts, trim(methods(k)), omegas(k), lcp%rep)
       if (lcp%rep%info == 0 .or. lcp%rep%info == info_no_memory) exit
       if (proves_no_solution(.false., .false., trim(methods(k)), lcp%rep)) exit
@@ -205,6 +216,13 @@ contains
       end if
       allocate(alpha(kb + kr))
       call solve_friction_floating(w, fp, hh, eh, opts, z, alpha, rep, unbalanced, cause)
+      if (rep%info == 0) then
+        shift = matmul(hh, alpha)                    ! the step's rigid motion in the gaps and slips
+        fp%qn = fp%qn - shift(1:n)
+        fp%qt = fp%qt - shift(n + 1:)
+        call certify_friction(w, fp, z, hh, eh, sol%cert)
+        if (.not. certified(sol%cert)) call uncertified(sol%cert, rep)
+      end if
       sol%method = 'lemke'
       sol%iterations = rep%iterations
       sol%residual = rep%residual
@@ -223,9 +241,6 @@ contains
         end if
         return
       end if
-      shift = matmul(hh, alpha)                      ! the step's rigid motion in the gaps and slips
-      fp%qn = fp%qn - shift(1:n)
-      fp%qt = fp%qt - shift(n + 1:)
       sol%alpha = matmul(split%held, alpha(1:kb))
       if (allocated(sol%rigid_alpha)) deallocate(sol%rigid_alpha)
       if (kr > 0) sol%rigid_alpha = matmul(rsplit%held, alpha(kb + 1:))
@@ -247,6 +262,10 @@ contains
         else
           call solve_friction_lcp(w, fp, trim(methods(k)), opts, z, rep)
         end if
+        if (rep%info == 0) then
+          call certify_friction(w, fp, z, reshape([real(dp) ::], [n + nt, 0]), [real(dp) ::], sol%cert)
+          if (.not. certified(sol%cert)) call uncertified(sol%cert, rep)
+        end if
         call add_attempt(attempts, trim(methods(k)), omegas(k), rep)
         if (rep%info <= 0 .or. rep%info == info_no_memory) exit
         if (proves_no_solution(.true., all(fp%cmu == 0.0_dp), trim(methods(k)), rep)) exit
@@ -263,6 +282,18 @@ contains
     if (.not. all(ieee_is_finite(z))) call set_error(err, step_label(prob, kstep) // &
       'the contact multipliers are not finite')
   end subroutine solve_friction_step
+
+  !> A method's answer that fails its certificate: a failed attempt, its
+  !> report saying by how much.
+  subroutine uncertified(cert, rep)
+    type(certificate_t), intent(in) :: cert
+    type(lcp_report_t), intent(inout) :: rep
+    rep%info = info_uncertified
+    rep%stopped = 'certificate'
+    rep%message = 'the answer fails its certificate (complementarity ' // real_to_str(cert%complementarity) // &
+      ', cone ' // real_to_str(cert%cone) // ', equilibrium ' // real_to_str(cert%equilibrium) // &
+      ', each relative; certified up to ' // real_to_str(certificate_tol) // ')'
+  end subroutine uncertified
 
   !> The error of a step whose last method failed: out of memory as it is;
   !> a proof that there is no solution named by what the load pulls off its
@@ -336,6 +367,8 @@ contains
           why = 'ended with a residual above tol'
         case ('singular')
           why = 'met a singular system at step ' // int_to_str(a%iterations)
+        case ('certificate')
+          why = 'gave an answer that fails its certificate'
         case default
           why = 'failed'
           if (a%info == info_no_memory) why = 'ran out of memory'

@@ -5,7 +5,8 @@ The valid decks of the repository (input/*.deck, tests/**/*.deck) and small
 decks over the gmsh meshes of tests/unit/data and tests/bad/deck_ok_square.msh
 are the seeds.  Each case applies one to four random mutations to one seed
 (tokens dropped, duplicated, swapped; numbers replaced by NaN, Inf, huge,
-empty or garbage text; lines dropped or repeated; truncated files; binary
+empty or garbage text; lines dropped or repeated; the whole deck in other
+units, lengths and stresses scaled with its meshes; truncated files; binary
 garbage; wrong MSH versions; inconsistent node ids; unknown physical groups;
 broken section structure ...) and runs the program on it under a time limit.
 Every outcome must be one of
@@ -50,6 +51,8 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "tests" / "lib"))
+import deck_scale  # noqa: E402  (tests/lib: the deck in other units)
 
 # --------------------------------------------------------------------------- values
 
@@ -677,11 +680,28 @@ def m_msh_element_degenerate(rng, lines, ctx):
         return f"element line {k + 1}: {what}"
 
 
+def m_scale(rng, lines, ctx):
+    """The whole deck in other units: every length times s, every stress
+    (moduli, tractions, Tresca bounds) times t, forces and moments and
+    springs as their dimensions say (tests/lib/deck_scale.py), the meshes
+    scaled with it (make_case): the program must take it as it took the
+    seed, whatever s and t, within the range its checks accept."""
+    s = 10.0 ** rng.choice([-6, -3, -1, 1, 3, 6])
+    t = 10.0 ** rng.choice([-6, -3, 0, 3, 6])
+    try:
+        new = deck_scale.scale_text("\n".join(lines), s, t)
+    except (deck_scale.Unscalable, ValueError, ZeroDivisionError, SyntaxError, NameError, TypeError):
+        return None
+    lines[:] = new.split("\n")
+    ctx["mesh_scale"] = s
+    return f"scaled: lengths x{s:g}, stresses x{t:g}"
+
+
 GENERIC = [(m_drop_token, 3), (m_dup_token, 2), (m_swap_tokens, 2), (m_bad_number, 6), (m_perturb_number, 3),
            (m_drop_line, 2), (m_dup_line, 2), (m_swap_lines, 2), (m_binary, 1), (m_long_line, 0.3),
            (m_crlf, 0.3), (m_blank_words, 1)]
 DECK_OPS = GENERIC + [(m_deck_key, 3), (m_deck_keyword, 2), (m_deck_word, 3), (m_deck_file, 1),
-                      (m_deck_block, 2), (m_local_axes, 2)]
+                      (m_deck_block, 2), (m_local_axes, 2), (m_scale, 2)]
 MSH_OPS = GENERIC + [(m_msh_version, 2), (m_msh_node_id, 4), (m_msh_physical, 3), (m_msh_count, 3),
                      (m_msh_type, 2), (m_msh_coordinate, 3), (m_msh_section, 3), (m_msh_element_degenerate, 2)]
 
@@ -754,6 +774,12 @@ def make_case(seeds, base_seed, k):
             ops = DECK_OPS
         new, log = mutate_text(rng, files[target], ops, ctx, nmut)
         files[target] = new
+        if ctx.get("mesh_scale"):                  # m_scale: the meshes in the deck's new units
+            for name in seed.meshes:
+                try:
+                    files[name] = deck_scale.scale_msh_text(files[name], ctx["mesh_scale"], name)
+                except (deck_scale.Unscalable, ValueError, IndexError):
+                    pass
         if not too_big(files[seed.deck]):
             break
     opts = {"check": rng.random() < 0.08, "quiet": rng.random() < 0.7, "preexisting": rng.random() < 0.5}

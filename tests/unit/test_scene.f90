@@ -6,18 +6,16 @@
 !>   closed form alpha dT f(k), f the ramp k/4 or the curve's value written
 !>   in the deck; 0 in the body without THERMAL; the output order
 !>   (elem0 + e) of the bodies.
-!> - it leaves the scene as it was: the bodies keep the final step's
-!>   strains (build_scene's), bit for bit, after every step was asked for.
-!> - step_forces gives step_loads' fext and ubar bit for bit, and step_loads
-!>   writes step_thermal_strains' values into the bodies (the old interface
-!>   and the new agree).
+!> - it leaves the scene as it was: the bodies keep their strains at load
+!>   factor 1 (build_scene's), bit for bit, after every step was asked for.
+!> - step_forces of the last step gives the scene's fext and ubar.
 !> Run from the repository root.
 program test_scene
   use kinds, only: dp
   use errors, only: diag_t, error_t
   use deck_reader, only: deck_t, read_deck
   use gmsh_runner, only: gmsh_options_t
-  use scene, only: scene_t, build_scene, step_forces, step_thermal_strains, step_loads
+  use scene, only: scene_t, build_scene, step_forces, step_thermal_strains
   use testing, only: check, check_small, finish_tests, tol_round
   implicit none
   character(len=*), parameter :: file = 'tests/unit/data/scene_thermal.deck'
@@ -31,12 +29,12 @@ program test_scene
   type(deck_t) :: deck
   type(diag_t) :: diag
   type(gmsh_options_t) :: gmsh
-  type(scene_t) :: sc, old
+  type(scene_t) :: sc
   type(error_t), allocatable :: err
-  real(dp), allocatable :: adt(:), adt_final(:), fext(:), ubar(:), fold(:), uold(:)
+  real(dp), allocatable :: adt(:), fext(:), ubar(:)
   real(dp) :: worst
   integer :: k, b, e0, ne
-  logical :: same, unchanged
+  logical :: unchanged
 
   call read_deck(file, deck, diag)
   call check(diag%count == 0, 'the deck reads without errors')
@@ -47,11 +45,10 @@ program test_scene
   call check(all(sc%bodies(2:3)%elem0 == sc%bodies(1:2)%elem0 + sc%bodies(1:2)%mesh%nelem) .and. &
              sc%nelem == sum(sc%bodies%mesh%nelem), 'the bodies'' elements numbered one after the other')
 
-  allocate(adt(sc%nelem), adt_final(sc%nelem), fext(sc%ndof), ubar(sc%ndof), fold(sc%ndof), uold(sc%ndof))
-  call step_thermal_strains(sc, steps, adt_final)
+  allocate(adt(sc%nelem), fext(sc%ndof), ubar(sc%ndof))
   unchanged = .true.
   do k = 1, steps
-    call step_thermal_strains(sc, k, adt)
+    call step_thermal_strains(sc, real(k, dp), adt)
     ! alpha dT f(k), each a product of two or three roundings
     worst = 0.0_dp
     do b = 1, 3
@@ -62,30 +59,14 @@ program test_scene
     call check_small(worst, tol_round(4), 'step ' // achar(48 + k) // ': alpha dT of every element is alpha dT f(k)')
     e0 = sc%bodies(3)%elem0
     call check(all(adt(e0 + 1:) == 0.0_dp), 'step ' // achar(48 + k) // ': 0 in the body without THERMAL')
-    ! the scene's bodies still hold the final step's strains
+    ! the scene's bodies still hold their strains at load factor 1
     do b = 1, 2
-      e0 = sc%bodies(b)%elem0
-      ne = sc%bodies(b)%mesh%nelem
-      unchanged = unchanged .and. all(sc%bodies(b)%adt == adt_final(e0 + 1:e0 + ne))
+      unchanged = unchanged .and. all(sc%bodies(b)%adt == sc%thermal(b)%adt1)
     end do
     unchanged = unchanged .and. .not. allocated(sc%bodies(3)%adt)
-
-    ! the old interface: the same loads, and the same strains written into the bodies
-    old = sc
-    call step_forces(sc, k, fext, ubar)
-    call step_loads(old, k, fold, uold)
-    call check(all(fext == fold) .and. all(ubar == uold), 'step ' // achar(48 + k) // &
-               ': step_forces gives step_loads'' fext and ubar')
-    same = .true.
-    do b = 1, 2
-      e0 = old%bodies(b)%elem0
-      ne = old%bodies(b)%mesh%nelem
-      same = same .and. all(old%bodies(b)%adt == adt(e0 + 1:e0 + ne))
-    end do
-    call check(same .and. .not. allocated(old%bodies(3)%adt), 'step ' // achar(48 + k) // &
-               ': step_loads writes step_thermal_strains'' values into the bodies')
+    call step_forces(sc, real(k, dp), fext, ubar)
   end do
-  call check(unchanged, 'step_thermal_strains leaves the bodies'' final-step strains as they were')
+  call check(unchanged, 'step_thermal_strains leaves the bodies'' strains (at load factor 1) as they were')
   call check(all(ubar == sc%ubar) .and. all(fext == sc%fext), 'step_forces of the last step: the scene''s fext and ubar')
   call finish_tests()
 end program test_scene
