@@ -179,99 +179,115 @@ contains
     write(output_unit, '(a)') &
       'usage: contact2d [options] DECK', &
       '', &
-      'Unilateral (Signorini) contact between elastic bodies in 2D by the mortar', &
-      'finite element method: plane strain, plane stress or axisymmetric elasticity', &
-      'on linear (tri3, quad4) and quadratic (tri6, quad8, quad9) elements; contact', &
-      'between bodies and against rigid obstacles, frictionless or with Coulomb or', &
-      'Tresca friction in load steps; the condensed LCP solved by Lemke, projected', &
-      'Gauss-Seidel or a primal-dual active set (semismooth Newton) method.', &
+      'Unilateral (Signorini) contact between elastic bodies in 2D by the mortar finite element method:', &
+      'plane strain, plane stress or axisymmetric elasticity on linear (tri3, quad4) and quadratic (tri6,', &
+      'quad8, quad9) elements; contact between bodies and against rigid obstacles, frictionless or with', &
+      'Coulomb or Tresca friction, under small or finite sliding, in load steps; the condensed LCP solved', &
+      'by Lemke, projected Gauss-Seidel or a primal-dual active set (semismooth Newton) method, each with', &
+      'or without friction.  Every run estimates its own error; ADAPT re-meshes with gmsh to a target.', &
       '', &
       'options:', &
-      '  -o DIR       write all outputs into DIR (created if missing; default .)', &
-      '  -j N         run on N threads (OpenMP and OpenBLAS; default: OMP_NUM_THREADS,', &
+      '  -o DIR       write all outputs into DIR (made with its parents when missing; default .)', &
+      '  -j N         run on N threads, 1 to 9999 (OpenMP and OpenBLAS; default: OMP_NUM_THREADS,', &
       '               else one per core)', &
-      '  --check      read and validate the deck and meshes, print the scene, solve nothing', &
-      '  -q           quiet: only errors on stderr (the summary file is still written)', &
-      '  --trust-geo  let gmsh run a .geo as it is: no screen, no sandbox (it may then run', &
-      '               commands and write files); without it, a .geo that runs commands, writes', &
-      '               files or reads outside the deck''s folder is refused (exit 2)', &
+      '  --check      read and check the deck and meshes, build the contact pairs, print the scene;', &
+      '               solve nothing, write nothing', &
+      '  -q           quiet: nothing on stdout, errors on stderr (the output files are still written)', &
+      '  --trust-geo  let gmsh run a .geo as it is: no screen, no sandbox (it may then run commands and', &
+      '               write files); without it a .geo that runs commands, writes files or reads outside', &
+      '               the deck''s folder is refused (exit 2)', &
       '  --gmsh-timeout SECONDS', &
-      '               time limit of gmsh on each .geo (default 600); gmsh is then stopped', &
-      '  --no-mesh-cache  mesh every .geo with gmsh; by default the meshes gmsh makes are', &
-      '               kept in DIR/.mesh_cache and reused by the runs (the cases of a sweep,', &
-      '               re-runs) with the same .geo, parameters, order and gmsh', &
-      '  -D name=value  replace the default of the deck''s PARAMETER name (repeatable; value a', &
-      '               number or an expression of numbers); an undeclared name is an error', &
-      '  --cases FILE.csv  a sweep: header row = parameter names, one row per case; runs every', &
-      '               case in turn, case N into DIR/case_N (exit status: the worst of the cases)', &
+      '               time limit of gmsh on each .geo (a number > 0, at most 1e6; default 600)', &
+      '  --no-mesh-cache  mesh every .geo with gmsh; by default the meshes gmsh makes are kept in', &
+      '               DIR/.mesh_cache and reused by the runs into DIR (the cases of a sweep, re-runs)', &
+      '               that ask for the same .geo, parameters, order and gmsh', &
+      '  -D name=value  (also -Dname=value; repeatable) replace the default of the deck''s PARAMETER', &
+      '               name by a number or an expression of numbers; an undeclared name is an error', &
+      '  --cases FILE.csv  a sweep: header row = parameter names, one row per case; runs every case', &
+      '               in turn, case N into DIR/case_N (exit status: the worst of the cases)', &
       '  --case N     with --cases: row N only (without it, SLURM_ARRAY_TASK_ID when set)', &
       '  --version    print the version', &
       '  -h, --help   this help', &
       '', &
-      'deck statements (keywords and keys case-insensitive; ! and # start comments):', &
-      '  PARAMETER name=value ...          (then ${name} or ${expression} anywhere in a later', &
-      '                                    line: numbers, parameters, + - * / ^ ( ), pi,', &
-      '                                    sqrt exp log sin cos tan abs min max)', &
-      '  TITLE text', &
-      '  PLANE strain | PLANE stress thickness=T | PLANE axisymmetric   (x = r >= 0, y = z; full-circle forces)', &
-      '  BODY name ... END', &
-      '    MESH rect x0= y0= x1= y1= nx= ny= [elem=tri3|quad4|tri6|quad8|quad9] [diag=right|left|alt]', &
-      '                                      (tri6, quad8 serendipity, quad9 Lagrange: quadratic elements)', &
-      '    MESH gmsh file=F.msh              (MSH 2.2 or 4.1 ASCII; physical groups name boundaries;', &
-      '                                      first or second order: 6-node triangles, 8-/9-node quads)', &
-      '    MESH gmsh file=F.geo [order=1|2] [name=value ...]   (meshed by gmsh -2 -order N', &
-      '                                      -setnumber name value; order=2: curved edges kept)', &
+      'deck statements (keywords, keys and fixed words case-insensitive; ! and # start comments;', &
+      '[optional], with the default where there is one):', &
+      '  PARAMETER name=value ...          then ${name} or ${expression} anywhere in a later line:', &
+      '                                    numbers, parameters, + - * / ^ ( ), pi, sqrt exp log sin', &
+      '                                    cos tan abs min max', &
+      '  TITLE free text', &
+      '  PLANE strain | PLANE stress [thickness=1] | PLANE axisymmetric   (x = r >= 0, y = z;', &
+      '                                    forces of the full circle)', &
+      '  BODY name ... END                 an elastic body (at least one), with:', &
+      '    MESH rect [x0=0] [y0=0] [x1=1] [y1=1] nx=N ny=N [elem=tri3|quad4|tri6|quad8|quad9]', &
+      '              [diag=right|left|alt]  (boundaries left, right, bottom, top)', &
+      '    MESH gmsh file=F.msh            (MSH 2.2 or 4.1 ASCII, first or second order; physical', &
+      '                                    curves name boundaries, physical points point sets)', &
+      '    MESH gmsh file=F.geo [order=1|2] [name=value ...]   (meshed by gmsh -order N', &
+      '                                    -setnumber name value; order=2 keeps curved edges)', &
       '    MATERIAL isotropic E= nu=', &
-      '    MATERIAL orthotropic E1= E2= nu12= G12= [angle=0] [E3= nu13= nu23=]', &
-      '    DENSITY rho=', &
-      '    FIX boundary [ux=] [uy=] [ramp=k0:k1|curve=NAME]', &
-      '    FIX boundary [un=] [ut=] [...]    (local axes: outward normal n, t = (-n_y, n_x))', &
-      '    TRACTION boundary tx= ty= [ramp=k0:k1|curve=NAME]', &
-      '    TRACTION boundary tn= tt= [...]   (along each edge''s outward normal n and t)', &
-      '    PRESSURE boundary p= [ramp=k0:k1|curve=NAME]', &
-      '    BODYFORCE fx= fy= [ramp=k0:k1|curve=NAME]', &
-      '    THERMAL alpha= dT= [region=NAME] [curve=NAME]  (uniform temperature change; per physical surface)', &
-      '    OFFSET dx= dy=                    (rigid shift of the body''s geometry)', &
-      '    FORCE point [fx=] [fy=] [ramp=k0:k1|curve=NAME]  (at each node of a point set: a gmsh Physical Point)', &
-      '    SPRING boundary kn= [kt=0]        (elastic foundation, per unit length (area axisymmetric), n and t)', &
-      '    SPRING point [kx=] [ky=]          (a spring to the ground at each node of a point set)', &
-      '  GRAVITY gx= gy= [ramp=k0:k1|curve=NAME]', &
+      '    MATERIAL orthotropic E1= E2= nu12= G12= [angle=0] [E3=E2] [nu13=nu12] [nu23=nu12]', &
+      '    DENSITY rho=                    (with GRAVITY)', &
+      '    FIX boundary [ux=] [uy=] [ramp=k0:k1|curve=NAME]   (neither ux nor uy: both 0; also a point set)', &
+      '    FIX boundary [un=] [ut=] [ramp=k0:k1|curve=NAME]   (local axes: outward normal n, t = (-n_y, n_x))', &
+      '    TRACTION boundary [tx=0] [ty=0] [ramp=k0:k1|curve=NAME]', &
+      '    TRACTION boundary [tn=0] [tt=0] [ramp=k0:k1|curve=NAME]   (along each edge''s n and t)', &
+      '    PRESSURE boundary p= [ramp=k0:k1|curve=NAME]   (p > 0 pushes into the body)', &
+      '    BODYFORCE [fx=0] [fy=0] [ramp=k0:k1|curve=NAME]   (per unit volume)', &
+      '    THERMAL alpha= dT= [region=NAME] [curve=NAME]   (a temperature change; region: a physical surface)', &
+      '    OFFSET [dx=0] [dy=0]            (a rigid shift of the body''s geometry)', &
+      '    FORCE point [fx=0] [fy=0] [ramp=k0:k1|curve=NAME]   (at each node of a point set: a Physical Point)', &
+      '    SPRING boundary kn= [kt=0]      (an elastic foundation, per unit area of the boundary)', &
+      '    SPRING point [kx=0] [ky=0]      (a spring to the ground at each node of a point set)', &
+      '  GRAVITY [gx=0] [gy=0] [ramp=k0:k1|curve=NAME]   (on the bodies with a DENSITY)', &
       '  CONTACT slave=body:boundary master=body:boundary [gap=geometry|zero] [mu=C | tresca=S]', &
-      '          [interference=allow|reject] [sliding=small]  (a boundary may be a closed curve; an', &
-      '                                    initial penetration deeper than a slave element is refused', &
-      '                                    unless allowed; sliding=small, the pairing and normals of the', &
-      '                                    initial configuration, is the only kinematics: finite is refused)', &
-      '                                    (frictionless unless mu= (Coulomb) or tresca= (slip bound);', &
-      '                                    quadratic elements: frictionless, and not in PLANE axisymmetric)', &
-      '  CONTACT slave=body:boundary master=RIGIDNAME [mu=C | tresca=S]   (against a RIGID''s exact shape)', &
-      '  RIGID name ... END                (a rigid obstacle: its dofs ux, uy, rz of the reference point;', &
-      '                                    not in PLANE axisymmetric)', &
+      '          [interference=allow|reject] [sliding=small|finite]', &
+      '                                    frictionless unless mu= (Coulomb) or tresca= (slip bound);', &
+      '                                    on linear and quadratic elements, plane or axisymmetric; a', &
+      '                                    side may be a closed curve; interference=reject: an initial', &
+      '                                    penetration deeper than a slave element is refused;', &
+      '                                    sliding=small: the pairing and normals of the initial', &
+      '                                    configuration, exit 1 when a slave node slides further;', &
+      '                                    sliding=finite: the contact geometry rebuilt in each load', &
+      '                                    step from the current positions (refused with gap=zero)', &
+      '  CONTACT slave=body:boundary master=RIGIDNAME [mu=C | tresca=S] [interference=...] [sliding=...]', &
+      '                                    against the RIGID''s exact shape', &
+      '  RIGID name ... END                a rigid obstacle, dofs ux, uy, rz of its reference point', &
+      '                                    (refused in PLANE axisymmetric), with:', &
       '    SHAPE line x0= y0= x1= y1=  |  SHAPE circle xc= yc= r= [solid=inside|outside]', &
       '    SHAPE polyline points=x1:y1,x2:y2,...   (solid on the side the slave faces)', &
-      '    REF x= y=                         (default: the circle''s centre, the first point)', &
+      '    REF x= y=                       (default: the circle''s centre, the first point)', &
       '    FIX [ux=] [uy=] [rz=] [ramp=k0:k1|curve=NAME]   (prescribed; FIX alone: all 0)', &
-      '    FORCE [fx=] [fy=] [m=] [ramp=k0:k1|curve=NAME]  (on the directions FIX leaves free)', &
-      '                                    (no FIX and no FORCE: held fixed)', &
-      '  SOLVER lcp=auto|lemke|pgs|pdas [tol=1e-10] [maxit=N] [omega=1.0]   (pdas: frictionless only)', &
-      '         [ordering=auto|metis|amd]  (fill-reducing ordering; auto: AMD up to 5e5 free dofs, METIS above)', &
-      '         [condense=auto|solve|inverse]  (W per body: triangular solves or the block''s inverse)', &
-      '         [cut=auto|off]  (accepted and ignored: no body is cut)', &
-      '  STEPS n                           (load steps; ramp=k0:k1: load 0 at step k0 rising to 1 at k1)', &
-      '  CURVE name t0:v0 t1:v1 ...        (load factor v against the step t, piecewise linear: curve=name)', &
-      '  ESTIMATE [on|off]                 (the run''s own error estimate, on by default)', &
-      '  OUTPUT [vtk=FILE] [contact=FILE.csv] [summary=FILE] [fields=displacement,contact_pressure,gap,stress,von_mises]', &
-      '         [steps=last|all]  (all: FILE_0001.vtu and a contact table per step, FILE.pvd, FILE_steps.csv)', &
-      '         [plot=none|png]  (png: FILE_pressure.png, with steps=all FILE_steps.png, drawn by gnuplot)', &
+      '    FORCE [fx=] [fy=] [m=] [ramp=k0:k1|curve=NAME]   (on the directions FIX leaves free; no FIX,', &
+      '                                    no FORCE: held fixed)', &
+      '  SOLVER [lcp=auto|lemke|pgs|pdas] [tol=1e-10] [maxit=0] [omega=1] [updates=30]', &
+      '         [ordering=auto|metis|amd] [condense=auto|solve|inverse] [cut=auto|off]', &
+      '                                    every lcp method with or without friction; auto: Lemke', &
+      '                                    up to 100 contact rows, PDAS above; with friction PDAS,', &
+      '                                    then Lemke, then PGS; lcp=pgs with friction on a body or', &
+      '                                    a RIGID held only by contact is refused; maxit=0: each', &
+      '                                    method''s own limit; updates: most contact geometry', &
+      '                                    rebuilds in a sliding=finite step; cut: accepted, ignored', &
+      '  STEPS n                           load steps (default 1); ramp=k0:k1: load 0 up to step k0,', &
+      '                                    rising to 1 at k1 (default 0:n)', &
+      '  CURVE name t0:v0 t1:v1 ...        load factor v against the step t, piecewise linear', &
+      '  ESTIMATE [on|off]                 the run''s own error estimate (default on)', &
+      '  ADAPT target=REL [quantity=energy|pressure] [max_steps=10] [max_dofs=2000000]', &
+      '                                    solve, re-mesh every body with gmsh from the error', &
+      '                                    indicators, solve again until the estimate <= target', &
+      '  OUTPUT [vtk=NAME] [contact=NAME] [summary=NAME] [steps=last|all] [plot=none|png]', &
+      '         [fields=all|none|displacement,contact_pressure,gap,stress,von_mises]', &
+      '                                    steps=all: per step STEM_0001.vtu and a contact table,', &
+      '                                    STEM.pvd, STEM_steps.csv; plot=png: STEM_pressure.png (and', &
+      '                                    STEM_steps.png), drawn by gnuplot', &
       '', &
       'outputs (doc/outputs.md): DECK.vtk (ParaView), DECK_contact.csv (a row per slave node),', &
-      'DECK.summary (key value lines: energy, reactions and mean displacement of each FIX boundary,', &
-      'per pair the contact force, the contact zone''s ends and length, the peak pressure and where', &
-      'it is, the centre of pressure, the stick zone with friction; the error estimate, timings);', &
-      'with steps=all DECK_steps.csv, a row per step, columns named reaction_BODY:BOUNDARY_fx,', &
-      'displacement_BODY:BOUNDARY_ux, contact_force_PAIR_fx, contact_zone_PAIR_x0, rigid_NAME_ux, ...', &
+      'DECK.summary (key value lines: energy, reactions of each FIX, per pair the contact force, zone,', &
+      'peak pressure and centre of pressure, the stick zone with friction, the error estimate, warnings,', &
+      'timings); with steps=all DECK_steps.csv, a row per step.', &
       '', &
-      'exit status: 0 solved, 1 solver failure (diagnostic on stderr), 2 bad input.', &
-      'See doc/deck.md for every statement, default and output.'
+      'exit status: 0 solved, 1 solver failure or an answer outside the model (diagnostic on stderr),', &
+      '2 bad input.  Warnings (the answer rests on an assumption the run has left) go to stderr, not', &
+      'with -q, and to the summary.  See doc/deck.md for every statement, key, default and error.'
   end subroutine print_help
 
 end module command_line

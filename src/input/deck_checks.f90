@@ -5,8 +5,8 @@
 !>   compliance in plane strain, rect boundary names, CONTACT bodies and
 !>   RIGIDs resolved, rigid-body modes (every body held by a FIX, directly or
 !>   through CONTACT), ramps within STEPS, curve names resolved, RIGIDs with a
-!>   SHAPE, lcp=pdas without friction, output names distinct and not too long,
-!>   PLANE axisymmetric loads.
+!>   SHAPE, output names distinct and not too long, PLANE axisymmetric loads,
+!>   ADAPT with the error estimate.
 !>
 !> Programming interface
 !>   finish_checks(s, deck)         every check above, reported through deck_syntax
@@ -28,7 +28,7 @@ contains
 
   !> Checks that need the whole deck: open block, bodies complete, rect boundary
   !> names, plane-strain compliance, CONTACT bodies, rigid-body modes, ramps within
-  !> STEPS, lcp=pdas without friction, output names.
+  !> STEPS, curves, RIGIDs, output names, PLANE axisymmetric, ADAPT.
   subroutine finish_checks(s, deck)
     type(state_t), intent(inout) :: s
     type(deck_t), intent(inout) :: deck

@@ -35,13 +35,17 @@
 !>     SPRING boundary kn= [kt=0]        (an elastic foundation, kn, kt >= 0)
 !>     SPRING point [kx=0] [ky=0]        (a spring to the ground, at least one of kx, ky >= 0)
 !>   GRAVITY [gx=0] [gy=0] [ramp=0:STEPS]          (at least one of gx, gy)
-!>   CONTACT slave=body:boundary master=body:boundary [gap=geometry|zero]
+!>   CONTACT slave=body:boundary master=body:boundary|RIGIDNAME [gap=geometry|zero]
 !>           [mu=number | tresca=number]           (default frictionless)
+!>           [interference=allow|reject] [sliding=small|finite]
+!>   RIGID name ... END                  SHAPE, REF, FIX, FORCE (deck_rigid_statements)
 !>   SOLVER [lcp=auto|lemke|pgs|pdas] [tol=1e-10] [maxit=0] [omega=1] [ordering=auto|metis|amd]
-!>          [condense=auto|solve|inverse] [cut=auto|off]
+!>          [condense=auto|solve|inverse] [cut=auto|off] [updates=30]
 !>   STEPS n                             default 1; 1 <= n <= 100000
 !>   CURVE name t0:v0 t1:v1 ...          load factor v against the step t (t increasing)
-!>   OUTPUT [vtk=NAME.vtk] [contact=NAME_contact.csv] [summary=NAME.summary] [steps=last|all]
+!>   ESTIMATE [on|off]                   default on
+!>   ADAPT target= [quantity=energy|pressure] [max_steps=10] [max_dofs=2000000]
+!>   OUTPUT [vtk=NAME.vtk] [contact=NAME_contact.csv] [summary=NAME.summary] [fields=LIST] [steps=last|all]
 !>          [plot=none|png]
 !>                                      (NAME: deck file name without folder and
 !>                                      extension; '.vtk' is appended to vtk= if missing)
@@ -73,8 +77,7 @@
 !> x1 > x0, nx, ny positive integers, 0 < omega < 2, ...); one MESH and one MATERIAL per
 !> body; block structure; gmsh files exist; boundary names of rect meshes; CONTACT
 !> bodies exist and the two sides differ; every body is held by a FIX or a SPRING,
-!> directly or through CONTACT with a held body; every ramp ends at step STEPS at the latest;
-!> lcp=pdas only without friction (no CONTACT with mu > 0 or tresca > 0).  Errors are
+!> directly or through CONTACT with a held body; every ramp ends at step STEPS at the latest.  Errors are
 !> collected (at most max_errors), sorted by line and handed to diag as
 !> `FILE:LINE: what is wrong (what was expected)` with the line echoed.
 !>

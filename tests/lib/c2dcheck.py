@@ -199,7 +199,10 @@ def text_difference(a, b, rtol, scale=None):
 
 
 def small(got, tol, name):
-    check(math.isfinite(got) and got <= tol, name, f"{got:.3e} > {tol:.1e}")
+    """|got| <= tol, as check_small of tests/unit/testing.f90; a NaN or an
+    infinity fails.  A one-sided bound (a penetration, a tension) is passed
+    as its violation, max(0, -x), which is never negative."""
+    check(math.isfinite(got) and abs(got) <= tol, name, f"|{got:.3e}| > {tol:.1e}")
 
 
 def skip(name, why):
