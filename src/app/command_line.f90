@@ -263,10 +263,13 @@ contains
       '         [ordering=auto|metis|amd] [condense=auto|solve|inverse] [cut=auto|off]', &
       '                                    every lcp method with or without friction; auto: Lemke', &
       '                                    up to 100 contact rows, PDAS above; with friction PDAS,', &
-      '                                    then Lemke, then PGS; lcp=pgs with friction on a body or', &
-      '                                    a RIGID held only by contact is refused; maxit=0: each', &
-      '                                    method''s own limit; updates: most contact geometry', &
-      '                                    rebuilds in a sliding=finite step; cut: accepted, ignored', &
+      '                                    then Lemke, then PGS; each next when one fails; every', &
+      '                                    answer checked (summary: certificate); a failing step of', &
+      '                                    a friction or sliding=finite history is split in two;', &
+      '                                    lcp=pgs with friction on a body or a RIGID held only by', &
+      '                                    contact is refused; maxit=0: each method''s own limit;', &
+      '                                    updates: most contact geometry rebuilds in a', &
+      '                                    sliding=finite step; cut: accepted, ignored', &
       '  STEPS n                           load steps (default 1); ramp=k0:k1: load 0 up to step k0,', &
       '                                    rising to 1 at k1 (default 0:n)', &
       '  CURVE name t0:v0 t1:v1 ...        load factor v against the step t, piecewise linear', &
