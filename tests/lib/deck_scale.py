@@ -13,7 +13,9 @@ path and the model ('strain', 'stress', 'axisymmetric'); it raises
 Unscalable naming why a deck cannot be scaled here (a key whose dimension
 this table does not know).  A ${expression} where a length or a force
 stands is evaluated with the PARAMETERs as declared and written as a number
-times s to its power.  dims(model) gives the power of s of each output quantity.
+times s to its power.  dims(model) gives the kind and the power of s of each output quantity;
+compare_runs(...) tells whether two runs, one in the other's units, give
+the same dimensionless answer.
 
 The dimension of each key: L a length, S a stress (force per area), F a
 force (S L per unit thickness in plane strain, S L^2 in plane stress or as
@@ -391,6 +393,10 @@ def dims(model):
     }
 
 
+# each kind's power of the stress scale t
+STRESS_KINDS = {"length": 0, "where": 0, "rotation": 0, "force": 1, "moment": 1, "energy": 1, "pressure": 1}
+
+
 def floors(model, length, modulus):
     """Each kind's smallest scale: what a strain of 1e-6 of the largest
     modulus over the model's size gives (a quantity at round-off of such a
@@ -400,3 +406,81 @@ def floors(model, length, modulus):
     stress = 1e-6 * modulus
     return {"length": length, "where": length, "force": stress * length ** f, "moment": stress * length ** (f + 1),
             "energy": stress * 1e-6 * length ** (f + 1), "pressure": stress * length ** p, "rotation": 1e-6}
+
+
+def summary_numbers(path, d):
+    """[(line's label, [(value, (kind, power)), ...])] of the mechanical lines."""
+    rows = []
+    with open(path) as h:
+        for line in h:
+            w = line.split()
+            if not w or w[0] not in d or w[0] == "table":
+                continue
+            key = w[0]
+            if key in ("reaction", "rigid", "displacement", "spring", "contact_force", "contact_zone",
+                       "stick_zone", "peak_pressure", "center_of_pressure"):
+                label, nums = key + " " + w[1], w[2:]
+            else:
+                label, nums = key, w[1:]
+            rows.append((label, [(float(x), k) for x, k in zip(nums, d[key])]))
+    return rows
+
+
+def table_rows(path):
+    with open(path) as h:
+        head = h.readline().strip().split(",")
+        return [dict(zip(head, line.strip().split(","))) for line in h]
+
+
+def largest_modulus(deck):
+    e = 0.0
+    with open(deck) as h:
+        for line in h:
+            for w in line.split("!")[0].split("#")[0].split():
+                k, _, v = w.partition("=")
+                if k.lower() in ("e", "e1", "e2", "e3", "g12"):
+                    e = max(e, abs(float(v.replace("d", "e").replace("D", "e"))))
+    return e
+
+
+def compare_runs(deck, base_dir, scaled_dir, stem, s, t, model, tol):
+    """None when the run in scaled_dir (lengths times s, stresses times t)
+    gives the dimensionless answer of the run in base_dir (of deck, STEM.summary
+    and STEM_contact.csv) to tol of each kind's scale (the largest of the
+    kind in the base run, at least its floor), else where it does not."""
+    d = dims(model)
+    a = summary_numbers(os.path.join(base_dir, stem + ".summary"), d)
+    b = summary_numbers(os.path.join(scaled_dir, stem + ".summary"), d)
+    if [r[0] for r in a] != [r[0] for r in b]:
+        return f"the summary's lines differ: {[r[0] for r in a]} vs {[r[0] for r in b]}"
+    ta = os.path.join(base_dir, stem + "_contact.csv")
+    ra = table_rows(ta) if os.path.exists(ta) else []
+    rb = table_rows(os.path.join(scaled_dir, stem + "_contact.csv")) if ra else []
+    if len(ra) != len(rb):
+        return "the contact tables differ in length"
+    values = [(v, k) for _, nums in a for v, k in nums]
+    values += [(float(r[c]), k) for r in ra for c, k in d["table"].items() if r[c] != ""]
+    length = max([abs(v) for v, k in values if k[0] == "length"] + [model_size(deck), 1e-300])
+    scale = floors(model, length, largest_modulus(deck))
+    for v, (kind, _) in values:
+        scale[kind] = max(scale[kind], abs(v))
+    worst, where = 0.0, ""
+    for (label, na), (_, nb) in zip(a, b):
+        for (va, (kind, p)), (vb, _) in zip(na, nb):
+            if kind == "where" and label.startswith("peak_pressure"):
+                continue                              # the peak of a uniform pressure is anywhere: a tie
+            e = abs(vb / (s ** p * t ** STRESS_KINDS[kind]) - va) / scale[kind]
+            if e > worst:
+                worst, where = e, f"{label}: {va} vs {vb / (s ** p * t ** STRESS_KINDS[kind])}"
+    for i, (x, y) in enumerate(zip(ra, rb)):
+        for c, (kind, p) in d["table"].items():
+            if (x[c] == "") != (y[c] == ""):
+                return f"contact table row {i + 1}: {c} empty in one run only"
+            if x[c] == "":
+                continue
+            e = abs(float(y[c]) / (s ** p * t ** STRESS_KINDS[kind]) - float(x[c])) / scale[kind]
+            if e > worst:
+                worst, where = e, f"contact table row {i + 1} {c}: {x[c]} vs {float(y[c]) / (s ** p * t ** STRESS_KINDS[kind])}"
+    if worst > tol:
+        return f"largest relative difference {worst:.2e} at {where}"
+    return None
