@@ -176,7 +176,7 @@ contains
     if (npair <= 0) return
     call read_file(table, buf, st)
     if (st /= 0) return
-    ! s_all: the pair's s range; s_zone: that of its rows in contact (status 1)
+    ! s_all: the pair's s range; s_zone: that of its rows in contact (error_numerical)
     allocate(s_all(2, npair), s_zone(2, npair))
     s_all(1, :) = huge(1.0_dp)
     s_all(2, :) = -huge(1.0_dp)

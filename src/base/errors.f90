@@ -16,12 +16,15 @@
 !>                        indented under the message
 !>   has_errors(d)        .true. when at least one message was collected
 !>   print_errors(d)      write every message to stderr, in order
-!>   type(error_t)        a mid-level error: message, exit status (1 or 2), the input line, equation or
+!>   type(error_t)        a mid-level error: message, category, the input line, equation or
 !>                        pair it names, whether K is singular or memory ran out (and how much)
-!>   set_error(err, message [, status])
-!>                        err = message, status 2 (input) or 1 (numerical, the default)
+!>   error_numerical, error_input, error_no_equilibrium, error_unsolved, error_model
+!>                        the categories: what kind of failure (the application maps them
+!>                        to exit statuses: 2 for input, 1 for the others)
+!>   set_error(err, message [, category])
+!>                        err = message, category error_numerical unless given
 !>   set_out_of_memory(err, phase, bytes)
-!>                        err = `out of memory while PHASE (about N MB needed)`, status 1, no_memory
+!>                        err = `out of memory while PHASE (about N MB needed)`, error_numerical, no_memory
 module errors
   use kinds, only: i8
   use strings, only: int_to_str, i8_to_str, printable
@@ -56,7 +59,6 @@ module errors
   !> caller reads them back out of the text.
   type :: error_t
     character(len=:), allocatable :: message  !< text after `contact2d: error: `
-    integer :: status = 1                      !< exit status: 1 numerical, 2 input
     integer :: category = error_numerical      !< error_numerical, error_input, ... (above)
     integer :: equation = 0                    !< the free equation (row of K) it names, 0: none
     integer :: pair = 0                        !< the contact pair (its CONTACT statement, 1-based) it names, 0: none
@@ -122,12 +124,11 @@ contains
     allocate(err)
     err%message = message
     if (present(category)) err%category = category
-    err%status = merge(2, 1, err%category == error_input)
   end subroutine set_error
 
   !> Exhausted memory is a diagnosis, not a crash: the run ends with exit 1 and
   !> `out of memory while PHASE (about N MB needed)`.
-  !>   err    (out) the error, status 1
+  !>   err    (out) the error, error_numerical, no_memory
   !>   phase  (in)  what the program was doing ('meshing body "b"', 'factorizing K')
   !>   bytes  (in)  what that phase needs (an estimate), >= 0
   subroutine set_out_of_memory(err, phase, bytes)
@@ -135,7 +136,7 @@ contains
     character(len=*), intent(in) :: phase
     integer(i8), intent(in) :: bytes
     call set_error(err, 'out of memory while ' // phase // ' (about ' // &
-                   i8_to_str(max(1_i8, (bytes + 1048575_i8) / 1048576_i8)) // ' MB needed)', 1)
+                   i8_to_str(max(1_i8, (bytes + 1048575_i8) / 1048576_i8)) // ' MB needed)', error_numerical)
     err%no_memory = .true.
     err%bytes = bytes
   end subroutine set_out_of_memory

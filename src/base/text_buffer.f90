@@ -23,7 +23,7 @@
 !>   close_text(tb, err)          flush and close; err when a write failed
 module text_buffer
   use kinds, only: dp, i8
-  use errors, only: error_t, set_error
+  use errors, only: error_t, set_error, error_input
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
   implicit none
   private
@@ -66,7 +66,7 @@ contains
     tb%opened = tb%ok
     allocate(character(len=capacity) :: tb%buf)
     tb%used = 0
-    if (ios /= 0) call set_error(err, path // ': cannot open the file for writing', 2)
+    if (ios /= 0) call set_error(err, path // ': cannot open the file for writing', error_input)
   end subroutine open_text
 
   subroutine open_memory(tb)
@@ -277,7 +277,7 @@ contains
       if (ios /= 0) tb%ok = .false.
     end if
     tb%opened = .false.
-    if (.not. tb%ok) call set_error(err, 'cannot write the file (a write or its close failed)', 2)
+    if (.not. tb%ok) call set_error(err, 'cannot write the file (a write or its close failed)', error_input)
   end subroutine close_text
 
 end module text_buffer

@@ -52,7 +52,7 @@ module contact_condensation
   use kinds, only: dp, i8
   use lapack_interfaces, only: dgemv, dpotri, dsyrk, dtrsm, dtrsv
   use strings, only: int_to_str
-  use errors, only: error_t, set_out_of_memory
+  use errors, only: error_t, set_out_of_memory, set_error
   use contact_set, only: contact_set_t
   use sparse_cholesky, only: factor_t, trailing_factor_block, trailing_block_end, solve_backward
   implicit none
@@ -325,10 +325,8 @@ contains
     end if
     call dpotri('L', nb, z, nb, info)
     if (info /= 0) then
-      allocate(err)
-      err%status = 1
-      err%message = 'the contact block of the Cholesky factor is singular (LAPACK dpotri info ' // &
-                    int_to_str(info) // ')'
+      call set_error(err, 'the contact block of the Cholesky factor is singular (LAPACK dpotri info ' // &
+                     int_to_str(info) // ')')
       return
     end if
     call fill_upper(z)

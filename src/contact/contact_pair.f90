@@ -17,7 +17,7 @@
 !>   has_friction(spec)       the pair has tangential rows
 module contact_pair
   use kinds, only: dp
-  use errors, only: error_t, set_error
+  use errors, only: error_t, set_error, error_input
   use mesh, only: is_quadratic
   use body, only: body_t
   use boundary_chain, only: boundary_polyline, trace_chain
@@ -99,7 +99,7 @@ contains
     pr%spec = spec
     call boundary_polyline(bodies(spec%slave_body), spec%slave_bnd, pr%snode, pr%xs, nsl, why)
     if (len(why) > 0) then
-      call set_error(err, 'the slave boundary cannot be used: ' // why, 2)
+      call set_error(err, 'the slave boundary cannot be used: ' // why, error_input)
       return
     end if
     if (spec%rigid > 0) then
@@ -135,7 +135,7 @@ contains
     call orient_shape(pr%spec%shape, pr%xs, nsl)
     call build_rigid_mortar(pr%xs, nsl, pr%spec%shape, pr%mortar, merr)
     if (allocated(merr)) then
-      call set_error(err, merr%message, merr%status)
+      call set_error(err, merr%message, merr%category)
       return
     end if
     allocate(pr%mnode(0), pr%mcov(0))
@@ -152,7 +152,7 @@ contains
   !>                  polyline is opened where the master does not cover it)
   !>   pr     (inout) spec and the slave polyline on entry; the master
   !>                  polyline, the operator, degree and mcov on exit
-  !>   err    (out) an unusable master boundary (status 2), the operator's failure
+  !>   err    (out) an unusable master boundary (error_input), the operator's failure
   subroutine build_mesh_operator(bodies, nsl, pr, err)
     type(body_t), intent(in) :: bodies(:)
     real(dp), intent(inout) :: nsl(:,:)
@@ -167,7 +167,7 @@ contains
     associate(sp => pr%spec, slave => bodies(pr%spec%slave_body), master => bodies(pr%spec%master_body))
       call boundary_polyline(master, sp%master_bnd, mnodes, xm, nms, why)
       if (len(why) > 0) then
-        call set_error(err, 'the master boundary cannot be used: ' // why, 2)
+        call set_error(err, 'the master boundary cannot be used: ' // why, error_input)
         return
       end if
       pr%mnode = mnodes
@@ -200,7 +200,7 @@ contains
       end if
     end associate
     if (allocated(merr)) then
-      call set_error(err, merr%message, merr%status)
+      call set_error(err, merr%message, merr%category)
       return
     end if
     if (pr%quadratic) then
@@ -258,7 +258,7 @@ contains
   end subroutine fold_zone_ends
 
   !> An initial penetration deeper than the slave elements beside the node
-  !> (the mean length of its zone segments) is an input error (status 2): the
+  !> (the mean length of its zone segments) is an input error (error_input): the
   !> bodies overlap by several elements, pass through each other, or the
   !> boundaries face away from each other (the master behind the slave body).
   !> Small interferences (shrink fits) stay legal; interference=allow lifts it.
@@ -286,7 +286,7 @@ contains
       call set_error(err, 'the slave point at ' // trim(buf) // ' starts ' // trim(real_text(-mo%gap0(worst))) // &
         ' inside the master, deeper than its slave elements (' // trim(real_text(element_size(worst))) // &
         '): the bodies overlap, or the two boundaries face away from each other (a gap, or a penetration ' // &
-        'smaller than the slave elements, expected; interference=allow accepts it)', 2)
+        'smaller than the slave elements, expected; interference=allow accepts it)', error_input)
     end associate
   contains
     real(dp) function element_size(i)

@@ -37,7 +37,7 @@
 module mortar_geometry
   use kinds, only: dp
   use strings, only: int_to_str
-  use errors, only: error_t, set_error
+  use errors, only: error_t, set_error, error_input
   use sorting, only: sort_by_key
   use trace_geometry, only: trace_shape, chord_side, trace_normals, ray_hit, cross
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
@@ -337,7 +337,7 @@ contains
     end do
   end subroutine intersect_segments
 
-  !> Check one polyline and its segment normals; err (status 2) on the first defect.
+  !> Check one polyline and its segment normals; err (error_input) on the first defect.
   !>   x     (in)  (2, np) nodes
   !>   nrm   (in)  (2, np-1) outward unit segment normals
   !>   side  (in)  'slave' or 'master', for messages
@@ -351,21 +351,21 @@ contains
 
     np = size(x, 2)
     if (size(x, 1) /= 2 .or. size(nrm, 1) /= 2) then
-      call set_error(err, side // ' boundary coordinates or normals are not 2D (arrays (2, n) expected)', 2)
+      call set_error(err, side // ' boundary coordinates or normals are not 2D (arrays (2, n) expected)', error_input)
       return
     end if
     if (np < 2) then
       call set_error(err, side // ' boundary has ' // int_to_str(np) // &
-        ' node(s) (at least 2 nodes, one segment, expected)', 2)
+        ' node(s) (at least 2 nodes, one segment, expected)', error_input)
       return
     end if
     if (size(nrm, 2) /= np - 1) then
       call set_error(err, side // ' boundary has ' // int_to_str(size(nrm, 2)) // ' segment normals for ' // &
-        int_to_str(np) // ' nodes (one normal per segment, ' // int_to_str(np - 1) // ', expected)', 2)
+        int_to_str(np) // ' nodes (one normal per segment, ' // int_to_str(np - 1) // ', expected)', error_input)
       return
     end if
     if (.not. (all(ieee_is_finite(x)) .and. all(ieee_is_finite(nrm)))) then
-      call set_error(err, side // ' boundary has non-finite coordinates or normals (finite numbers expected)', 2)
+      call set_error(err, side // ' boundary has non-finite coordinates or normals (finite numbers expected)', error_input)
       return
     end if
     scale = max(maxval(x(1, :)) - minval(x(1, :)), maxval(x(2, :)) - minval(x(2, :)))
@@ -375,18 +375,18 @@ contains
       length = norm2(t)
       if (length <= tol_length * scale) then
         call set_error(err, 'zero-length segment on the ' // side // ' boundary at node ' // int_to_str(k) // &
-          ' (distinct consecutive nodes expected)', 2)
+          ' (distinct consecutive nodes expected)', error_input)
         return
       end if
       t = t / length
       if (abs(norm2(nrm(:, k)) - 1.0_dp) > tol_unit) then
         call set_error(err, 'normal of ' // side // ' segment ' // int_to_str(k) // &
-          ' is not a unit vector (outward unit normals expected)', 2)
+          ' is not a unit vector (outward unit normals expected)', error_input)
         return
       end if
       if (abs(dot_product(nrm(:, k), t)) > tol_unit) then
         call set_error(err, 'normal of ' // side // ' segment ' // int_to_str(k) // &
-          ' is not perpendicular to the segment (outward unit normals expected)', 2)
+          ' is not perpendicular to the segment (outward unit normals expected)', error_input)
         return
       end if
       c = cross(t, nrm(:, k))                              ! +1 or -1: the side of the normal
@@ -394,13 +394,13 @@ contains
         orient = c
       else if (c * orient < 0.0_dp) then
         call set_error(err, 'normals of the ' // side // ' boundary change side at segment ' // int_to_str(k) // &
-          ' (outward normals, all on the body''s side, expected)', 2)
+          ' (outward normals, all on the body''s side, expected)', error_input)
         return
       end if
       if (k > 1) then
         if (dot_product(nrm(:, k - 1), nrm(:, k)) <= -1.0_dp + tol_unit) then
           call set_error(err, side // ' boundary turns back on itself at node ' // int_to_str(k) // &
-            ' (a boundary without folds expected)', 2)
+            ' (a boundary without folds expected)', error_input)
           return
         end if
       end if

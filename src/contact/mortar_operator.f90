@@ -73,7 +73,7 @@
 !>   type(mortar_t)        the operator of one pair (fields commented below)
 !>   build_mortar(xs, ns_out, xm, nm_out, gap_zero, mortar, err [, pairing] [, axisymmetric])
 !>                         check the polylines, intersect, build pi_h^1, gaps, weights;
-!>                         err (status 2) for geometric input problems, (status 1) when
+!>                         err (error_input) for geometric input problems, (error_numerical) when
 !>                         the LAPACK solve fails
 !>   segment_rule(xa, xb, s1, s2, degree, axisymmetric, s, w, nq)
 !>                         Gauss-Legendre points and weights on the part [s1, s2] of the
@@ -85,7 +85,7 @@ module mortar_operator
   use kinds, only: dp
   use lapack_interfaces, only: dgtsv
   use strings, only: int_to_str, real_to_str
-  use errors, only: error_t, set_error
+  use errors, only: error_t, set_error, error_input, error_numerical
   use mortar_geometry, only: intersection_t, intersect_segments, check_polyline, &
                              tol_overlap, tol_piece, tol_sliver, arc_digits
   use trace_geometry, only: ray_hit
@@ -145,7 +145,7 @@ contains
   !>   mortar (inout) the operator from start_mortar; out: first, last, constrained
   !>   nelem  (in)    the curve's slave elements, at least 3 (fewer: err)
   !>   what   (in)    the elements' name in the message: 'segment' or 'element'
-  !>   err    (out)   status 2 for fewer than 3 elements
+  !>   err    (out)   error_input for fewer than 3 elements
   subroutine start_periodic(mortar, nelem, what, err)
     type(mortar_t), intent(inout) :: mortar
     integer, intent(in) :: nelem
@@ -153,7 +153,7 @@ contains
     type(error_t), allocatable, intent(out) :: err
     if (nelem < 3) then
       call set_error(err, 'closed slave boundary has ' // int_to_str(nelem) // ' ' // what // &
-        '(s) (at least 3 expected on a closed contact curve)', 2)
+        '(s) (at least 3 expected on a closed contact curve)', error_input)
       return
     end if
     mortar%first = 1
@@ -189,7 +189,7 @@ contains
   !>   nm_out   (in)  (2, nm-1) outward unit normal of each master segment (from the master body)
   !>   gap_zero (in)  .true.: the boundaries coincide (the paper's setting), gap0 = 0
   !>   mortar   (out) the operator; contents unspecified when err is returned
-  !>   err      (out) allocated on failure: status 2 for bad geometry (sizes, zero-length
+  !>   err      (out) allocated on failure: error_input for bad geometry (sizes, zero-length
   !>                  segments, normals, holes or folds in the master cover), 1 when the
   !>                  tridiagonal solve fails
   !>   pairing  (in, optional) (2, ns) the common normals of a frictional pair (7.)
@@ -252,7 +252,7 @@ contains
           call set_error(err, 'master boundary covers the slave boundary twice between arc length ' // &
             real_to_str(mortar%arc(e) + mortar%inter%s(1, k) * seglen(e), arc_digits) // ' and ' // &
             real_to_str(mortar%arc(e) + min(mortar%inter%s(2, k - 1), mortar%inter%s(2, k)) * seglen(e), arc_digits) // &
-            ' (a master boundary that faces the slave once, without folds, expected)', 2)
+            ' (a master boundary that faces the slave once, without folds, expected)', error_input)
           return
         end if
       end if
@@ -273,7 +273,7 @@ contains
         end do
         call set_error(err, 'master boundary leaves a gap opposite the slave boundary between arc length ' // &
           real_to_str(mortar%arc(e), arc_digits) // ' and ' // real_to_str(mortar%arc(k + 1), arc_digits) // &
-          ' (a master that covers the slave contact zone without holes expected)', 2)
+          ' (a master that covers the slave contact zone without holes expected)', error_input)
         return
       end if
       e = e + 1
@@ -358,7 +358,7 @@ contains
     call project_interior(mortar, xs, jlo, jhi, info)
     if (info /= 0) then
       call set_error(err, 'mortar matrix D of the contact zone is singular (LAPACK dgtsv info ' // &
-        int_to_str(info) // ')', 1)
+        int_to_str(info) // ')', error_numerical)
       return
     end if
 
@@ -467,7 +467,7 @@ contains
   !> dgtsv with one more right-hand side.  Row n+1 of P repeats row 1.
   !>   mortar (inout) in: ns, nm, inter, arrays allocated; out: the operator
   !>   xs, xm (in) the polylines;  seglen (in) (ns-1) slave segment lengths
-  !>   gap_zero (in) as build_mortar;  err (out) status 2 for fewer than 3 segments, 1 when D is singular
+  !>   gap_zero (in) as build_mortar;  err (out) error_input for fewer than 3 segments, error_numerical when D is singular
   subroutine build_periodic(mortar, xs, xm, seglen, gap_zero, err)
     type(mortar_t), intent(inout) :: mortar
     real(dp), intent(in) :: xs(:,:), xm(:,:), seglen(:)
@@ -515,7 +515,7 @@ contains
     piv = dd(n) - dot_product(b, rhs(:, nc + 1))          ! Schur complement of T in D
     if (info /= 0 .or. .not. piv > 0.0_dp) then
       call set_error(err, 'mortar matrix D of the closed contact curve is singular (LAPACK dgtsv info ' // &
-        int_to_str(info) // ')', 1)
+        int_to_str(info) // ')', error_numerical)
       return
     end if
     do f = 1, nc

@@ -91,7 +91,7 @@ module mortar_quadratic
   use kinds, only: dp
   use lapack_interfaces, only: dgbsv, dgesv
   use strings, only: int_to_str, real_to_str
-  use errors, only: error_t, set_error
+  use errors, only: error_t, set_error, error_input, error_numerical
   use sorting, only: sort_by_key
   use mortar_geometry, only: tol_overlap, tol_piece, tol_sliver, arc_digits, trace_common_normals
   use trace_geometry, only: trace_point, trace_shape, chord_side, trace_normals, ray_on_element, cross
@@ -138,7 +138,7 @@ contains
   !>   mortar (out) the operator (fields as mortar_operator's mortar_t; cut(1) > 0 or
   !>                cut(2) < 1 where the zone ends inside its first or last element)
   !>   mcov   (out) (nm) int over the covered zone of each master shape function
-  !>   err    (out) status 2 for a master that folds or leaves a hole; 1 when
+  !>   err    (out) error_input for a master that folds or leaves a hole; error_numerical when
   !>                LAPACK finds D singular
   !>   pairing (in, optional) (2, ns) a frictional pair's common normals
   !>                (quadratic_common_normals): points paired and rows along them (6.)
@@ -192,7 +192,7 @@ contains
         if (ov(k - 1)%e == ov(k)%e .and. ov(k)%lo < ov(k - 1)%hi - tol_overlap) then
           call set_error(err, 'master boundary covers the slave boundary twice near arc length ' // &
             real_to_str(mortar%arc(ps * (ov(k)%e - 1) + 1), arc_digits) // &
-            ' (a master boundary that faces the slave once, without folds, expected)', 2)
+            ' (a master boundary that faces the slave once, without folds, expected)', error_input)
           return
         end if
       end if
@@ -207,7 +207,7 @@ contains
         if (ncover(e) == 0) then
           call set_error(err, 'master boundary leaves a gap opposite the slave boundary at arc length ' // &
             real_to_str(mortar%arc(ps * (e - 1) + 1), arc_digits) // &
-            ' (a master that covers the slave contact zone without holes expected)', 2)
+            ' (a master that covers the slave contact zone without holes expected)', error_input)
           return
         end if
       end do
@@ -368,7 +368,7 @@ contains
     call dgbsv(nz, kl, kl, nc, ab, ldab, ipiv, rhs, nz, info)
     if (info /= 0) then
       call set_error(err, 'mortar matrix D of the quadratic contact zone is singular (LAPACK dgbsv info ' // &
-        int_to_str(info) // ')', 1)
+        int_to_str(info) // ')', error_numerical)
       return
     end if
     mortar%P(i0 + klo:i0 + khi, jlo:jhi) = rhs
@@ -431,7 +431,7 @@ contains
     end if
     if (info /= 0) then
       call set_error(err, 'mortar matrix D of the closed quadratic contact curve is singular (LAPACK info ' // &
-        int_to_str(info) // ')', 1)
+        int_to_str(info) // ')', error_numerical)
       return
     end if
     mortar%P(na + 1:z, jlo:jhi) = h(na:z - 1, :)

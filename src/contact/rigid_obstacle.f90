@@ -38,7 +38,7 @@ module rigid_obstacle
   use kinds, only: dp
   use lapack_interfaces, only: dgtsv
   use strings, only: int_to_str
-  use errors, only: error_t, set_error
+  use errors, only: error_t, set_error, error_numerical
   use mortar_operator, only: mortar_t
   implicit none
   private
@@ -186,7 +186,7 @@ contains
   !>   ns_out (in)  (2, ns-1) outward unit normals of the slave segments
   !>   sh     (in)  the obstacle (oriented)
   !>   mortar (out) first = 1, last = ns, normal, gap0, weights, arc
-  !>   err    (out) allocated when the tridiagonal solve fails (status 1)
+  !>   err    (out) allocated when the tridiagonal solve fails (error_numerical)
   subroutine build_rigid_mortar(xs, ns_out, sh, mortar, err)
     real(dp), intent(in) :: xs(:,:), ns_out(:,:)
     type(rigid_shape_t), intent(in) :: sh
@@ -235,7 +235,7 @@ contains
     end if
     if (info /= 0) then
       call set_error(err, 'mortar matrix D of the slave boundary against RIGID ' // sh%name // ' is singular ' // &
-                     '(LAPACK dgtsv info ' // int_to_str(info) // ')', 1)
+                     '(LAPACK dgtsv info ' // int_to_str(info) // ')', error_numerical)
       return
     end if
   end subroutine build_rigid_mortar

@@ -170,7 +170,7 @@ contains
   !>   eq     (in)  (ndof) free equation numbers
   !>   nfree  (in)  number of free equations
   !>   k      (out) n = nfree, colptr, rowind (sorted), val = 0
-  !>   err    (out) allocated when the memory for K ran out (status 1)
+  !>   err    (out) allocated when the memory for K ran out (error_numerical)
   subroutine build_pattern(bodies, eq, nfree, k, err)
     type(body_t), intent(in) :: bodies(:)
     integer, intent(in) :: eq(:), nfree

@@ -87,7 +87,7 @@ module sparse_cholesky
   use kinds, only: dp, i8
   use omp_lib, only: omp_get_wtime
   use strings, only: int_to_str, i8_to_str
-  use errors, only: error_t, set_error, set_out_of_memory
+  use errors, only: error_t, set_error, set_out_of_memory, error_numerical
   use sparse_matrix, only: csc_t, csc_nnz, csc_check
   use cholmod_binding, only: c2d_chol_create, c2d_chol_destroy, c2d_chol_analyze, c2d_chol_factorize_values, &
                              c2d_chol_set_ordering, c2d_order_amd, c2d_order_metis, &
@@ -186,7 +186,7 @@ contains
   !>                f%ready = .true.; on failure f%ready = .false. and the
   !>                statistics of what was done are kept
   !>   A    (in)    symmetric matrix, upper triangle in CSC (sparse_matrix), n >= 1
-  !>   err  (out)   allocated (status 1) when A is malformed, not positive
+  !>   err  (out)   allocated (error_numerical) when A is malformed, not positive
   !>                definite or singular to working precision, or CHOLMOD fails
   !>   last (in, optional) (nlast) distinct dofs 1..n to be ordered last, in
   !>                this order; the other dofs get a METIS ordering of their
@@ -210,7 +210,7 @@ contains
   !>   n      (in)    order, >= 1
   !>   colptr (in)    (n+1) column pointers of the upper triangle (1-based)
   !>   rowind (in)    row indices, sorted per column
-  !>   err    (out)   allocated (status 1) on a bad pattern or `last`, or a CHOLMOD failure
+  !>   err    (out)   allocated (error_numerical) on a bad pattern or `last`, or a CHOLMOD failure
   !>   last   (in, optional) as in factorize
   !>   group  (in, optional) (n) group of each dof, 1 <= group <= n (its mesh
   !>          node): METIS orders the graph of the groups, half the time of
@@ -259,7 +259,7 @@ contains
     if (grouped) then
       if (size(group) /= n .or. any(group < 1) .or. any(group > n)) then
         call set_error(err, 'sparse Cholesky: `group` must give each of the ' // int_to_str(n) // &
-                       ' dofs a group in 1..' // int_to_str(n), 1)
+                       ' dofs a group in 1..' // int_to_str(n), error_numerical)
         return
       end if
     end if
@@ -269,7 +269,7 @@ contains
       if (method == 'amd') then
         ordering = c2d_order_amd
       else if (method /= 'metis') then
-        call set_error(err, 'sparse Cholesky: unknown ordering "' // method // '" (expected metis or amd)', 1)
+        call set_error(err, 'sparse Cholesky: unknown ordering "' // method // '" (expected metis or amd)', error_numerical)
         return
       end if
     end if
@@ -289,7 +289,7 @@ contains
     do p = 1, f%nparts
       f%part(p)%handle = c2d_chol_create()
       if (.not. c_associated(f%part(p)%handle)) then
-        call set_error(err, 'sparse Cholesky: CHOLMOD could not start (out of memory)', 1)
+        call set_error(err, 'sparse Cholesky: CHOLMOD could not start (out of memory)', error_numerical)
         return
       end if
       f%part(p)%status = c2d_chol_set_ordering(f%part(p)%handle, ordering)
@@ -321,7 +321,7 @@ contains
       if (f%part(p)%status == cholmod_ok) cycle
       if (f%part(p)%status == c2d_chol_block_moved) then
         call set_error(err, 'sparse Cholesky: the analysis did not keep the ' // int_to_str(f%nlast) &
-                       // ' dofs given as `last` at the last pivots (' // status_name(f%part(p)%status) // ')', 1)
+                       // ' dofs given as `last` at the last pivots (' // status_name(f%part(p)%status) // ')', error_numerical)
         return
       else if (f%part(p)%status == cholmod_out_of_memory) then
         ! the ordering's graphs and CHOLMOD's symbolic workspace: a few
@@ -333,7 +333,7 @@ contains
       else
         call set_error(err, 'sparse Cholesky analysis failed: ' // status_name(f%part(p)%status) // ' (status ' &
                        // int_to_str(int(f%part(p)%status)) // ') for a matrix of order ' // int_to_str(n) &
-                       // ' with ' // int_to_str(colptr(n + 1) - 1) // ' stored entries', 1)
+                       // ' with ' // int_to_str(colptr(n + 1) - 1) // ' stored entries', error_numerical)
         return
       end if
     end do
@@ -354,7 +354,7 @@ contains
   !> the second half of factorize.
   !>   f   (inout) the factor, analyzed; f%ready = .true. on success
   !>   A   (in)    the matrix with the analyzed pattern, finite values
-  !>   err (out)   allocated (status 1) as in factorize
+  !>   err (out)   allocated (error_numerical) as in factorize
   subroutine factorize_values(f, A, err)
     type(factor_t), intent(inout) :: f
     type(csc_t), intent(in) :: A
@@ -368,14 +368,14 @@ contains
     analyzed = allocated(f%part) .and. f%n == A%n
     if (analyzed) analyzed = all(f%part%status == cholmod_ok)
     if (.not. analyzed) then
-      call set_error(err, 'sparse Cholesky: factorize_values without the analysis of this pattern', 1)
+      call set_error(err, 'sparse Cholesky: factorize_values without the analysis of this pattern', error_numerical)
       return
     end if
     do j = 1, A%n
       do p = A%colptr(j), A%colptr(j + 1) - 1
         if (.not. ieee_is_finite(A%val(p))) then
           call set_error(err, 'stiffness matrix has a non-finite entry at row ' // int_to_str(A%rowind(p)) &
-                         // ', column ' // int_to_str(j), 1)
+                         // ', column ' // int_to_str(j), error_numerical)
           return
         end if
       end do
@@ -417,7 +417,7 @@ contains
       else
         call set_error(err, 'sparse Cholesky factorization failed: ' // status_name(f%part(p)%status) // &
                        ' (status ' // int_to_str(int(f%part(p)%status)) // ') for a matrix of order ' // &
-                       int_to_str(A%n) // ' with ' // int_to_str(csc_nnz(A)) // ' stored entries', 1)
+                       int_to_str(A%n) // ' with ' // int_to_str(csc_nnz(A)) // ' stored entries', error_numerical)
         return
       end if
     end do
@@ -431,7 +431,7 @@ contains
         call set_error(err, 'sparse Cholesky: non-finite pivot at equation ' // &
                        int_to_str(global_equation(f%part(p), equation)) // ' (column ' // &
                        int_to_str(global_pivot(f%n, f%nlast, f%part(p), column)) // &
-                       ' of the permuted matrix): overflow in the factor', 1)
+                       ' of the permuted matrix): overflow in the factor', error_numerical)
         err%equation = global_equation(f%part(p), equation)
         f%min_pivot_ratio = real(ratio, dp)
         return
@@ -461,7 +461,7 @@ contains
     type(factor_t), intent(in) :: f
     type(part_t), intent(in) :: pt
     integer(c_int), intent(in) :: column, equation
-    call set_error(err, singular_message(global_equation(pt, equation), global_pivot(f%n, f%nlast, pt, column)), 1)
+    call set_error(err, singular_message(global_equation(pt, equation), global_pivot(f%n, f%nlast, pt, column)), error_numerical)
     err%equation = global_equation(pt, equation)
     err%singular = .true.
   end subroutine set_singular

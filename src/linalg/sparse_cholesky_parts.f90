@@ -32,7 +32,7 @@ module sparse_cholesky_parts
                      omp_get_max_threads
   use runtime_binding, only: c2d_blas_threads
   use strings, only: int_to_str
-  use errors, only: error_t, set_error
+  use errors, only: error_t, set_error, error_numerical
   use cholmod_binding, only: c2d_chol_solve_half, c2d_chol_trailing_range, c2d_chol_trailing_block_end, &
                              c2d_chol_name, c2d_name_status, &
                              c2d_chol_not_super_ll, c2d_chol_block_moved
@@ -182,17 +182,17 @@ contains
     integer :: j, k
 
     if (n < 1) then
-      call set_error(err, 'sparse Cholesky: empty matrix (order 0)', 1)
+      call set_error(err, 'sparse Cholesky: empty matrix (order 0)', error_numerical)
       return
     end if
     if (size(colptr) /= n + 1) then
       call set_error(err, 'sparse Cholesky: ' // int_to_str(size(colptr)) // ' column pointers for order ' // &
-                     int_to_str(n), 1)
+                     int_to_str(n), error_numerical)
       return
     end if
     do j = 1, n
       if (colptr(j) < 1 .or. colptr(j + 1) < colptr(j) .or. colptr(j + 1) - 1 > size(rowind)) then
-        call set_error(err, 'sparse Cholesky: bad column pointers at column ' // int_to_str(j), 1)
+        call set_error(err, 'sparse Cholesky: bad column pointers at column ' // int_to_str(j), error_numerical)
         return
       end if
     end do
@@ -202,11 +202,11 @@ contains
     do k = 1, size(last)
       if (last(k) < 1 .or. last(k) > n) then
         call set_error(err, 'sparse Cholesky: dof ' // int_to_str(last(k)) // ' in `last` is out of range 1..' &
-                       // int_to_str(n), 1)
+                       // int_to_str(n), error_numerical)
         return
       end if
       if (seen(last(k))) then
-        call set_error(err, 'sparse Cholesky: dof ' // int_to_str(last(k)) // ' appears twice in `last`', 1)
+        call set_error(err, 'sparse Cholesky: dof ' // int_to_str(last(k)) // ' appears twice in `last`', error_numerical)
         return
       end if
       seen(last(k)) = .true.

@@ -11,7 +11,7 @@ contains
   !>   f   (in)  a factor with f%ready
   !>   b   (in)  (n) right-hand side
   !>   x   (out) (n) solution
-  !>   err (out) allocated (status 1) on failure: no valid factor, sizes that
+  !>   err (out) allocated (error_numerical) on failure: no valid factor, sizes that
   !>       do not match, or CHOLMOD's error
   module procedure solve_vector
     call solve_half(f, c2d_solve_whole, b, x, err)
@@ -38,7 +38,7 @@ contains
       msg = solve_status(f, status)
       if (len(msg) == 0) return
     end if
-    call set_error(err, msg, 1)
+    call set_error(err, msg, error_numerical)
   end procedure solve_block
 
   !> y = L^-1 P b, the forward half of a solve.  With `last`, y(n-nlast+1:)
@@ -76,7 +76,7 @@ contains
       msg = solve_status(f, status)
       if (len(msg) == 0) return
     end if
-    call set_error(err, msg, 1)
+    call set_error(err, msg, error_numerical)
   end subroutine solve_half
 
   !> x = the solve or one of its halves for the columns of b, part by part
@@ -201,7 +201,7 @@ contains
       deallocate(Lcc)
       msg = trailing_status_message(status)
     end if
-    call set_error(err, msg, 1)
+    call set_error(err, msg, error_numerical)
   end procedure trailing_factor_block
 
   !> The last row e of the diagonal block of L_cc that starts at row and
@@ -229,7 +229,7 @@ contains
       if (status == cholmod_ok) return
       msg = trailing_status_message(status)
     end if
-    call set_error(err, msg, 1)
+    call set_error(err, msg, error_numerical)
   end procedure trailing_block_end
 
 

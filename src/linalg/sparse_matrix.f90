@@ -19,7 +19,7 @@
 module sparse_matrix
   use kinds, only: dp
   use strings, only: int_to_str
-  use errors, only: error_t, set_error
+  use errors, only: error_t, set_error, error_numerical
   implicit none
   private
   public :: csc_t, csc_nnz, csc_symv, csc_from_triplets, csc_check
@@ -154,54 +154,55 @@ contains
   !> Check the storage of A (see the module header); err describes the first
   !> defect found.
   !>   A   (in)  the matrix
-  !>   err (out) allocated (status 1) when A is malformed
+  !>   err (out) allocated (error_numerical) when A is malformed
   subroutine csc_check(A, err)
     type(csc_t), intent(in) :: A
     type(error_t), allocatable, intent(out) :: err
     integer :: j, p, nnz
 
     if (A%n < 0) then
-      call set_error(err, 'sparse matrix: negative order ' // int_to_str(A%n), 1)
+      call set_error(err, 'sparse matrix: negative order ' // int_to_str(A%n), error_numerical)
       return
     end if
     if (.not. allocated(A%colptr)) then
-      call set_error(err, 'sparse matrix: column pointers not allocated', 1)
+      call set_error(err, 'sparse matrix: column pointers not allocated', error_numerical)
       return
     end if
     if (size(A%colptr) < A%n + 1) then
       call set_error(err, 'sparse matrix: ' // int_to_str(size(A%colptr)) // ' column pointers for order ' &
-                     // int_to_str(A%n) // ' (n+1 expected)', 1)
+                     // int_to_str(A%n) // ' (n+1 expected)', error_numerical)
       return
     end if
     if (A%colptr(1) /= 1) then
-      call set_error(err, 'sparse matrix: colptr(1) = ' // int_to_str(A%colptr(1)) // ' (1 expected)', 1)
+      call set_error(err, 'sparse matrix: colptr(1) = ' // int_to_str(A%colptr(1)) // ' (1 expected)', error_numerical)
       return
     end if
     do j = 1, A%n
       if (A%colptr(j + 1) < A%colptr(j)) then
-        call set_error(err, 'sparse matrix: column pointers decrease at column ' // int_to_str(j), 1)
+        call set_error(err, 'sparse matrix: column pointers decrease at column ' // int_to_str(j), error_numerical)
         return
       end if
     end do
     nnz = A%colptr(A%n + 1) - 1
     if (.not. allocated(A%rowind) .or. .not. allocated(A%val)) then
-      call set_error(err, 'sparse matrix: row indices or values not allocated', 1)
+      call set_error(err, 'sparse matrix: row indices or values not allocated', error_numerical)
       return
     end if
     if (size(A%rowind) < nnz .or. size(A%val) < nnz) then
-      call set_error(err, 'sparse matrix: ' // int_to_str(nnz) // ' entries announced, row indices or values shorter', 1)
+      call set_error(err, 'sparse matrix: ' // int_to_str(nnz) // ' entries announced, row indices or values shorter', &
+        error_numerical)
       return
     end if
     do j = 1, A%n
       do p = A%colptr(j), A%colptr(j + 1) - 1
         if (A%rowind(p) < 1 .or. A%rowind(p) > j) then
           call set_error(err, 'sparse matrix: row ' // int_to_str(A%rowind(p)) // ' in column ' // int_to_str(j) &
-                         // ' (upper triangle expected, 1 <= row <= column)', 1)
+                         // ' (upper triangle expected, 1 <= row <= column)', error_numerical)
           return
         end if
         if (p > A%colptr(j)) then
           if (A%rowind(p) <= A%rowind(p - 1)) then
-            call set_error(err, 'sparse matrix: rows not strictly ascending in column ' // int_to_str(j), 1)
+            call set_error(err, 'sparse matrix: rows not strictly ascending in column ' // int_to_str(j), error_numerical)
             return
           end if
         end if

@@ -55,7 +55,7 @@ contains
   !>   mesh (out)   nodes, elements, named boundaries and regions as in the file;
   !>                empty (nnode = nelem = 0) when an error was found
   !>   diag (inout) receives one message for the first defect of the file
-  !>   err  (out, optional) allocated when memory ran out (exit status 1); when
+  !>   err  (out, optional) allocated when memory ran out (error_numerical); when
   !>                absent, that is a file-level message of diag
   subroutine read_gmsh_file(path, mesh, diag, err)
     character(len=*), intent(in) :: path

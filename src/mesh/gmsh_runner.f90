@@ -26,7 +26,7 @@ module gmsh_runner
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use kinds, only: dp, i8
   use strings, only: int_to_str, real_to_str, printable
-  use errors, only: error_t, set_error
+  use errors, only: error_t, set_error, error_input
   use system_binding, only: c2d_run_program, c_unlink, c2d_run_exited, c2d_run_signaled, &
                             c2d_run_timeout
   use safe_files, only: find_program, read_file, real_path, folder_of, file_kind, c2d_regular, file_stamp
@@ -69,7 +69,7 @@ contains
   !>                     folder the sandbox lets gmsh write)
   !>   log_path    (in)  where gmsh's output goes (made here: must not exist)
   !>   err         (out) unallocated when gmsh exited with status 0 and wrote msh_path;
-  !>                     else its message says what went wrong (status 2)
+  !>                     else its message says what went wrong (error_input)
   !>   background  (in, optional) a gmsh view of the sizes wanted (gmsh -bgm), in
   !>                     msh_path's folder; the .geo's own sizes (points, boundary,
   !>                     curvature) are turned off, so that the view may coarsen too
@@ -94,33 +94,34 @@ contains
 
     if (size(names) /= size(values)) then
       call set_error(err, 'gmsh parameters: ' // int_to_str(size(names)) // ' names but ' // int_to_str(size(values)) // &
-        ' values (one value per name expected)', 2)
+        ' values (one value per name expected)', error_input)
       return
     end if
     do i = 1, size(names)
       if (len_trim(names(i)) == 0) then
-        call set_error(err, 'gmsh parameter ' // int_to_str(i) // ' has an empty name (a name for -setnumber expected)', 2)
+        call set_error(err, 'gmsh parameter ' // int_to_str(i) // ' has an empty name (a name for -setnumber expected)', &
+          error_input)
         return
       end if
       if (.not. ieee_is_finite(values(i))) then
-        call set_error(err, 'gmsh parameter ' // trim(names(i)) // ' is not finite (a finite number expected)', 2)
+        call set_error(err, 'gmsh parameter ' // trim(names(i)) // ' is not finite (a finite number expected)', error_input)
         return
       end if
     end do
     call find_program('gmsh', gmsh, found)
     if (.not. found) then
-      call set_error(err, 'gmsh not found on PATH (install the Debian package gmsh)', 2)
+      call set_error(err, 'gmsh not found on PATH (install the Debian package gmsh)', error_input)
       return
     end if
     ! absolute paths: the same inside the sandbox, and never taken for an option
     call real_path(geo_path, geo, found)
     if (.not. found) then
-      call set_error(err, 'cannot find "' // geo_path // '"', 2)
+      call set_error(err, 'cannot find "' // geo_path // '"', error_input)
       return
     end if
     call real_path(folder_of(msh_path), out_folder, found)
     if (.not. found) then
-      call set_error(err, 'no folder for the mesh "' // msh_path // '"', 2)
+      call set_error(err, 'no folder for the mesh "' // msh_path // '"', error_input)
       return
     end if
     if (c_unlink(msh_path // c_null_char) /= 0) continue    ! a mesh there afterwards is gmsh's
@@ -161,14 +162,14 @@ contains
     select case (how)
     case (c2d_run_timeout)
       call set_error(err, 'gmsh did not finish within ' // real_to_str(opts%timeout) // ' s (--gmsh-timeout): stopped ' // &
-                '(a .geo that ends expected; an endless loop?)', 2)
+                '(a .geo that ends expected; an endless loop?)', error_input)
       return
     case (c2d_run_signaled)
-      call set_error(err, 'gmsh was killed by signal ' // int_to_str(int(status)) // gmsh_errors(log_path, '; '), 2)
+      call set_error(err, 'gmsh was killed by signal ' // int_to_str(int(status)) // gmsh_errors(log_path, '; '), error_input)
       return
     case (c2d_run_exited)
     case default
-      call set_error(err, 'cannot run ' // gmsh // ' (error ' // int_to_str(int(status)) // ')', 2)
+      call set_error(err, 'cannot run ' // gmsh // ' (error ' // int_to_str(int(status)) // ')', error_input)
       return
     end select
     if (file_kind(msh_path) == c2d_regular .and. status == 0) return
@@ -180,7 +181,7 @@ contains
         message = 'gmsh wrote no mesh file'
       end if
     end if
-    call set_error(err, message, 2)
+    call set_error(err, message, error_input)
   end subroutine mesh_geo_file
 
   !> The gmsh that mesh_geo_file runs, as a stamp: its real path, size and

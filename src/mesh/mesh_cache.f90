@@ -31,7 +31,7 @@
 module mesh_cache
   use kinds, only: dp, i8
   use strings, only: int_to_str
-  use errors, only: error_t, set_error
+  use errors, only: error_t, set_error, error_input
   use safe_files, only: read_file, file_kind, c2d_regular, c2d_missing, make_folders, temporary_t, create_temporary, &
                         close_temporary, commit_temporaries, discard_temporaries, real_path, folder_of
   use gmsh_runner, only: gmsh_identity, gmsh_arguments, real_to_text
@@ -118,16 +118,16 @@ contains
     character(len=:), allocatable :: msh
     integer :: status
     if (len(key) == 0) then
-      call set_error(err, 'no key for the mesh', 2)
+      call set_error(err, 'no key for the mesh', error_input)
       return
     end if
     call read_file(msh_path, msh, status)
     if (status /= 0) then
-      call set_error(err, msh_path // ': cannot read the mesh', 2)
+      call set_error(err, msh_path // ': cannot read the mesh', error_input)
       return
     end if
     if (.not. own_folder(folder)) then
-      call set_error(err, folder // ': a symbolic link, not a folder of the run''s', 2)
+      call set_error(err, folder // ': a symbolic link, not a folder of the run''s', error_input)
       return
     end if
     call make_folders(folder, err)
@@ -166,7 +166,7 @@ contains
       write(u, iostat=ios) text
       close(u)
     end if
-    if (ios /= 0) call set_error(err, path // ': cannot write', 2)
+    if (ios /= 0) call set_error(err, path // ': cannot write', error_input)
   end subroutine write_bytes
 
   !> geo-HASH: HASH the 16 hex digits of two 31-bit polynomial hashes of key

@@ -25,7 +25,7 @@
 module mesh_rect
   use kinds, only: dp, i8
   use mesh, only: mesh_t
-  use errors, only: error_t, set_out_of_memory, set_error
+  use errors, only: error_t, set_out_of_memory, set_error, error_numerical
   implicit none
   private
   public :: make_rect_mesh, write_rect_geo
@@ -37,7 +37,7 @@ contains
   !>   elem    (in) 'tri3', 'quad4', 'tri6', 'quad8' or 'quad9'
   !>   diag    (in) 'right', 'left' or 'alt' (triangles only)
   !>   mesh    (out) the mesh, counter-clockwise elements
-  !>   err     (out) allocated when the memory ran out (status 1)
+  !>   err     (out) allocated when the memory ran out (error_numerical)
   subroutine make_rect_mesh(x0, y0, x1, y1, nx, ny, elem, diag, mesh, err)
     real(dp), intent(in) :: x0, y0, x1, y1
     integer, intent(in) :: nx, ny
@@ -198,7 +198,7 @@ contains
     else
       close(u)
     end if
-    if (ios /= 0) call set_error(err, 'cannot write "' // path // '"', 1)
+    if (ios /= 0) call set_error(err, 'cannot write "' // path // '"', error_numerical)
   end subroutine write_rect_geo
 
 end module mesh_rect

@@ -40,7 +40,7 @@
 module msh_text
   use kinds, only: dp, i8
   use strings, only: int_to_str, i8_to_str, printable
-  use errors, only: error_t, set_error, set_out_of_memory
+  use errors, only: error_t, set_error, set_out_of_memory, error_input
   use safe_files, only: read_file
   use text_scan, only: scan_integer, scan_real, line_items, upper
   implicit none
@@ -380,15 +380,15 @@ contains
     type(msh_text_t), intent(in) :: t
     character(len=*), intent(in) :: section
     type(error_t), allocatable, intent(out) :: err
-    call set_error(err, 'unexpected end of file inside $' // section // ' ($End' // section // ' expected)', 2)
+    call set_error(err, 'unexpected end of file inside $' // section // ' ($End' // section // ' expected)', error_input)
     err%line = t%nline
   end subroutine end_of_file
 
-  !> A defect of the file as a whole (no line): err, status 2.
+  !> A defect of the file as a whole (no line): err, error_input.
   subroutine file_error(text, err)
     character(len=*), intent(in) :: text
     type(error_t), allocatable, intent(out) :: err
-    call set_error(err, text, 2)
+    call set_error(err, text, error_input)
   end subroutine file_error
 
   !> A defect at the current line: err, the line echoed.
@@ -406,7 +406,7 @@ contains
     character(len=*), intent(in) :: text
     type(error_t), allocatable, intent(out) :: err
     integer(i8) :: b, e
-    call set_error(err, text, 2)
+    call set_error(err, text, error_input)
     err%line = line
     if (line < 1 .or. line > t%nline) return
     b = t%lbeg(line)
@@ -553,7 +553,7 @@ contains
     if (failed) call out_of_memory(bytes, err)
   end function allocation_failed
 
-  !> An allocation of bytes failed: err (no_memory, status 1), which
+  !> An allocation of bytes failed: err (no_memory, error_numerical), which
   !> read_gmsh_file reports as out of memory while reading the file.
   subroutine out_of_memory(bytes, err)
     integer(i8), intent(in) :: bytes

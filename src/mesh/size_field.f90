@@ -27,7 +27,7 @@
 module size_field
   use kinds, only: dp
   use strings, only: int_to_str
-  use errors, only: error_t, set_error
+  use errors, only: error_t, set_error, error_numerical
   use mesh, only: mesh_t
   use elements, only: corner_count
   implicit none
@@ -144,7 +144,7 @@ contains
     hmax = maxval(hsum, mask=count > 0)
     open(newunit=u, file=path, status='replace', action='write', iostat=ios)
     if (ios /= 0) then
-      call set_error(err, 'cannot write the size field "' // path // '"', 1)
+      call set_error(err, 'cannot write the size field "' // path // '"', error_numerical)
       return
     end if
     write(u, '(a)', iostat=ios) 'View "size" {'
@@ -156,7 +156,8 @@ contains
     end do
     if (ios == 0) write(u, '(a)', iostat=ios) '};'
     close(u)
-    if (ios /= 0) call set_error(err, 'cannot write the size field "' // path // '" (error ' // int_to_str(ios) // ')', 1)
+    if (ios /= 0) call set_error(err, 'cannot write the size field "' // path // '" (error ' // int_to_str(ios) // ')', &
+      error_numerical)
   contains
     subroutine write_triangle(v)
       integer, intent(in) :: v(3)

@@ -12,12 +12,12 @@
 !>   write_summary(path, r, err)
 !>   write_pvd(path, files, times, err)    ParaView collection of the per-step VTK files
 !>   write_step_table(path, header, table, whole, err)   NAME_steps.csv: one row per load step
-!> Each writer returns err (status 2) when its file cannot be opened or written.
+!> Each writer returns err (error_input) when its file cannot be opened or written.
 module results_writer
   use kinds, only: dp, i8
   use contact_set, only: contact_set_t, row_of_node, state_row_of_node, node_rows, node_traction
   use strings, only: int_to_str, i8_to_str, exact_to_str
-  use errors, only: error_t, set_error
+  use errors, only: error_t, set_error, error_input
   use text_scan, only: string_t
   use contact_zones, only: pair_zones_t, zone_t
   use run_log, only: nphase, phase_names
@@ -181,11 +181,11 @@ contains
     if (ios /= 0) call cannot_write(path, err)
   end subroutine write_contact_csv
 
-  !> err: path cannot be written (status 2).
+  !> err: path cannot be written (error_input).
   subroutine cannot_write(path, err)
     character(len=*), intent(in) :: path
     type(error_t), allocatable, intent(out) :: err
-    call set_error(err, path // ': cannot write the file', 2)
+    call set_error(err, path // ': cannot write the file', error_input)
   end subroutine cannot_write
 
 

@@ -19,7 +19,7 @@
 !>                                                       blocks unless compress = .false. or
 !>                                                       the program was built without zlib
 !>     fields (in) (5) displacement, contact_pressure, gap, stress, von_mises (OUTPUT fields=)
-!>     err    (out) allocated (status 2) when the file cannot be written
+!>     err    (out) allocated (error_input) when the file cannot be written
 module vtk_files
   use kinds, only: dp, i8
   use, intrinsic :: iso_fortran_env, only: int8, int32, int64

@@ -103,7 +103,7 @@ contains
   !>   gmsh    (in)  how .geo files are meshed: trusted or screened, time limit
   !>   sc      (out) the scene (incomplete when diag has errors)
   !>   diag    (inout) input errors, FILE:LINE of the deck or the mesh file
-  !>   err     (out) allocated when the memory ran out (status 1)
+  !>   err     (out) allocated when the memory ran out (error_numerical)
   subroutine build_scene(deck, gmsh, sc, diag, err)
     type(deck_t), intent(in) :: deck
     type(gmsh_options_t), intent(in) :: gmsh

@@ -33,13 +33,13 @@
 !>   close_temporary(t)                    done writing it (its descriptor closed)
 !>   commit_temporaries(dir, t, err)       rename each into place, all or none, under
 !>                                         the folder's lock
-!> A call that fails returns an error_t (status 2: the folder does not take
+!> A call that fails returns an error_t (error_input: the folder does not take
 !> the files); the callers say which folder the user should look at.
 !>   discard_temporaries(t)                remove them
 module safe_files
   use, intrinsic :: iso_c_binding, only: c_int, c_long_long, c_null_char
   use kinds, only: i8
-  use errors, only: error_t, set_error
+  use errors, only: error_t, set_error, error_input
   use system_binding, only: c2d_find_program, c2d_file_kind, c2d_open_input, c2d_close, c2d_make_folders, c2d_private_folder, &
                             c2d_create_temporary, c2d_forget_temporary, c2d_lock_folder, c2d_unlock_folder, &
                             c2d_real_path, c2d_file_stamp, c_unlink, c_rename, c2d_regular, c2d_missing, c2d_fifo, c2d_device, &
@@ -152,7 +152,7 @@ contains
   subroutine make_folders(path, err)
     character(len=*), intent(in) :: path
     type(error_t), allocatable, intent(out) :: err
-    if (c2d_make_folders(path // c_null_char) /= 0) call set_error(err, path // ': cannot create the folder', 2)
+    if (c2d_make_folders(path // c_null_char) /= 0) call set_error(err, path // ': cannot create the folder', error_input)
   end subroutine make_folders
 
   !> The run's private folder for temporary files (gmsh's meshes and logs):
@@ -169,7 +169,7 @@ contains
     if (n > 0) then
       path = buf(1:n)
     else
-      call set_error(err, 'cannot make a private folder in $TMPDIR (or /tmp)', 2)
+      call set_error(err, 'cannot make a private folder in $TMPDIR (or /tmp)', error_input)
     end if
   end subroutine private_folder
 
@@ -246,7 +246,7 @@ contains
     t%path = ''
     t%io_path = ''
     if (c2d_create_temporary(dir // c_null_char, name // c_null_char, buf, int(len(buf), c_int), fd) /= 0) then
-      call set_error(err, dir // ': cannot create a file for ' // name, 2)
+      call set_error(err, dir // ': cannot create a file for ' // name, error_input)
       return
     end if
     t%path = buf(1:index(buf, c_null_char) - 1)
@@ -283,13 +283,13 @@ contains
     do i = 1, size(t)                       ! a folder in the way: fail before touching anything
       if (.not. made(t(i))) cycle
       if (file_kind(t(i)%final) == c2d_folder) then
-        call set_error(err, dir // cannot, 2)
+        call set_error(err, dir // cannot, error_input)
         return
       end if
     end do
     lock = c2d_lock_folder(dir // c_null_char)
     if (lock < 0) then
-      call set_error(err, dir // cannot, 2)
+      call set_error(err, dir // cannot, error_input)
       return
     end if
     ok = .true.
@@ -325,7 +325,7 @@ contains
       if (made(aside(j)) .and. .not. saved(j)) call remove_file(aside(j)%path)
     end do
     call c2d_unlock_folder(lock)
-    if (.not. ok) call set_error(err, dir // cannot, 2)
+    if (.not. ok) call set_error(err, dir // cannot, error_input)
   end subroutine commit_temporaries
 
   !> Remove the temporaries that were made (their descriptors closed).

@@ -5,7 +5,7 @@
 !> closed-form gaps), the input errors, and the steps both builders share.
 program test_mortar_operator
   use kinds, only: dp, i8
-  use errors, only: error_t
+  use errors, only: error_t, error_input
   use mortar_operator, only: mortar_t, build_mortar, start_mortar, start_periodic, set_initial_gaps
   use lapack_interfaces, only: dlasrt
   use testing, only: check, check_close, check_small, finish_tests, tol_round
@@ -444,7 +444,7 @@ contains
     call build_mortar(xs, nrm, xm, segment_normals(xm, .false.), .false., m, err)
     call check(allocated(err), 'error: zero-length slave segment detected')
     if (allocated(err)) then
-      call check(err%status == 2 .and. index(err%message, &
+      call check(err%category == error_input .and. index(err%message, &
         'zero-length segment on the slave boundary at node 2 (distinct consecutive nodes expected)') > 0, &
         'error: zero-length segment message and status 2')
     end if
@@ -453,7 +453,7 @@ contains
     xs(:, 1:2) = reshape([0.0_dp, 0.0_dp, 3.0_dp, 0.0_dp], [2, 2])
     call build_mortar(xs(:, 1:2), segment_normals(xs(:, 1:2), .true.), xf, nrm, .false., m, err)
     call check(allocated(err), 'error: zero-length master segment detected')
-    if (allocated(err)) call check(err%status == 2 .and. index(err%message, 'master boundary at node 2') > 0, &
+    if (allocated(err)) call check(err%category == error_input .and. index(err%message, 'master boundary at node 2') > 0, &
       'error: zero-length master segment message')
 
     ! stepped slave: the riser x = 4 has nothing opposite -> a hole at arc length 4..5
@@ -462,7 +462,7 @@ contains
     call build_mortar(xs, nrm, xm, segment_normals(xm, .false.), .false., m, err)
     call check(allocated(err), 'error: hole in the master cover detected')
     if (allocated(err)) then
-      call check(err%status == 2 .and. index(err%message, &
+      call check(err%category == error_input .and. index(err%message, &
         'master boundary leaves a gap opposite the slave boundary between arc length 4.00000E+00 and 5.00000E+00') > 0, &
         'error: hole message (arc lengths 4 and 5 to 6 digits) and status 2')
     end if
@@ -472,7 +472,7 @@ contains
     xf = reshape([0.0_dp, 1.0_dp, 5.0_dp, 1.0_dp, 3.0_dp, 2.0_dp, 8.0_dp, 2.0_dp], [2, 4])
     call build_mortar(xs, segment_normals(xs, .true.), xf, segment_normals(xf, .false.), .false., m, err)
     call check(allocated(err), 'error: master folding back detected')
-    if (allocated(err)) call check(err%status == 2 .and. index(err%message, 'twice') > 0, &
+    if (allocated(err)) call check(err%category == error_input .and. index(err%message, 'twice') > 0, &
       'error: fold message and status 2')
 
     call build_mortar(xs(:, 1:1), nrm(:, 1:0), xm, segment_normals(xm, .false.), .false., m, err)
@@ -510,7 +510,7 @@ contains
     call start_mortar(m, 3, 2)
     call start_periodic(m, 2, 'segment', err)
     call check(allocated(err), 'shared steps: two segments cannot close a curve')
-    if (allocated(err)) call check(err%status == 2 .and. index(err%message, 'has 2 segment(s)') > 0, &
+    if (allocated(err)) call check(err%category == error_input .and. index(err%message, 'has 2 segment(s)') > 0, &
                                    'shared steps: the message names the two segments')
     call start_periodic(m, 3, 'element', err)
     call check(.not. allocated(err), 'shared steps: three elements close a curve')
