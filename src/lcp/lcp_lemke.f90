@@ -21,15 +21,18 @@
 !>  - the drift |qs - B xb| of the basic solution xb, relative to |qs| +
 !>    |B| |xb|, is measured every drift_period pivots and after a small
 !>    pivot; above drift_ratio the tableau is recomputed from the data,
-!>    B^-1 [I, -Ws, -e | qs] by an LU factorization of B (dgesv);
+!>    B^-1 [I, -Ws, -e | qs] by an LU factorization of B (dgesv), at most
+!>    once in m pivots (may_refresh);
 !>  - z0 is preferred among ties: when z0 leaving at its own ratio would
 !>    push no basic value below zero by more than the error of the tableau's
 !>    numbers (an a-posteriori bound from the data, z0_ties), the tie is
 !>    exact but for round-off, and z0 leaves.  Such ties are also built into
 !>    some problems: the two rows w_+ = a'z - b, w_- = b - a'z of an equality
 !>    add up to w_+ + w_- = 2 z0 on every tableau.  The point is refined on
-!>    its basis and kept only when its natural residual is within tol
-!>    (otherwise the pivot is undone and the ordinary row leaves);
+!>    its basis; the run ends there when its natural residual is at
+!>    round-off.  Otherwise the pivot is undone and the ordinary row leaves,
+!>    and the point, when within tol, is kept aside: it is the answer if the
+!>    ordinary path ends on a ray or the pivot limit, or less accurately;
 !>  - a ray is declared only on a tableau recomputed from the data, and not
 !>    when z0 is at round-off there: the point with z0 dropped is refined
 !>    and taken when its natural residual is within tol.
@@ -77,6 +80,12 @@ module lcp_lemke
   ! a pivot below this fraction of its column's largest entry amplifies the
   ! tableau's errors by its inverse: the drift is measured after it
   real(dp), parameter :: small_pivot_ratio = 1.0e-4_dp
+  ! z0's exit at a tie ends the run at once when its refined point's natural
+  ! residual is within a thousand roundings (exact ties measure 2e-16 on the
+  ! skate's LCPs); a point within tol only is kept aside, in case the
+  ! ordinary path fails or ends less accurate (a singular W: the window of
+  ! z0_ties is then wide, 5e-10, and such a point is good to 5e-12 only)
+  real(dp), parameter :: exact_ratio = 1.0e3_dp * epsilon(1.0_dp)
   ! roundings of one entry of the data or of a product |B| |x| in the
   ! a-posteriori error bound of z0_ties
   real(dp), parameter :: tie_roundoffs = 8.0_dp
@@ -90,7 +99,6 @@ module lcp_lemke
     real(dp), allocatable :: t(:, :)      !< (m, 2m+2) B^-1 [I, -Ws, -e | qs]
     integer, allocatable :: basis(:)      !< (m) basic variable of each row: 1..m w, m+1..2m z, 2m+1 z0
     integer :: refreshed = 0              !< pivot count at the last recomputation (0: never)
-    integer :: refreshes = 0              !< recomputations so far
   end type tableau_t
 
 contains
@@ -279,9 +287,9 @@ contains
     type(lcp_report_t), intent(inout) :: rep
     real(dp), intent(out) :: dzs(:)
     type(tableau_t) :: tb
-    real(dp), allocatable :: xb(:)
+    real(dp), allocatable :: xb(:), zs_kept(:)
     integer :: m, jz0, jrhs, i, r, r0, entering, leaving, npiv, st
-    real(dp) :: qmin, qnorm, violation
+    real(dp) :: qmin, qnorm, violation, res_kept
     logical :: done, small_pivot
 
     m = p%m
@@ -318,6 +326,8 @@ contains
     entering = complement(leaving, m)
     small_pivot = .false.
     done = .false.
+    res_kept = huge(1.0_dp)                           ! no z0 exit kept aside yet
+    allocate(zs_kept(m), source=0.0_dp)
 
     do
       if (npiv >= maxit) then
@@ -343,7 +353,7 @@ contains
       violation = z0_exit_violation(tb%t, entering, r0) / qnorm
       if (violation <= near_tie_ratio) then
         if (z0_ties(p, tb, entering, r0)) then
-          call try_z0_exit(p, tb, r0, entering, tol, done)
+          call try_z0_exit(p, tb, r0, entering, tol, done, zs_kept, res_kept)
           if (done) then
             npiv = npiv + 1
             exit
@@ -379,9 +389,18 @@ contains
     allocate(xb(m))
     xb = tb%t(:, jrhs)
     if (rep%info == 0) call refine_basic_solution(p, tb%t(:, 1:m), tb%basis, xb)
-    do i = 1, m
-      if (tb%basis(i) > m .and. tb%basis(i) <= 2 * m) zs(tb%basis(i) - m) = max(0.0_dp, xb(i))
-    end do
+    zs = basic_z(tb%basis, xb, m)
+    ! a z0 exit kept aside: the answer when the run failed or ended less accurate
+    if (res_kept <= tol) then
+      if (rep%info == 1 .or. rep%info == 2) then
+        zs = zs_kept
+        dzs = 0.0_dp
+        rep%info = 0
+        rep%stopped = ''
+      else if (rep%info == 0) then
+        if (res_kept < zs_residual(p, zs)) zs = zs_kept
+      end if
+    end if
   end subroutine lemke_scaled
 
   !> The tableau of the all-w basis, [I, -Ws, -e | qs], e = ones.
@@ -609,36 +628,46 @@ contains
     err = matmul(abs(tb%t(:, 1:m)), abs(res) + tie_roundoffs * epsilon(1.0_dp) * size_bx)
   end function solution_error
 
-  !> Pivot z0 out of row r0 on column e, refine the basic solution on the data
-  !> and keep the pivot when its natural residual is within tol; otherwise
-  !> the tableau is left as it was.
+  !> Pivot z0 out of row r0 on column e and refine the basic solution on the
+  !> data: kept when its natural residual is at round-off (exact_ratio);
+  !> otherwise the tableau is left as it was, and the point, when within
+  !> tol, is kept aside if it is the best so far.
   !>   p     (in)    the scaled problem
   !>   tb    (inout) the tableau
   !>   r0, e (in)    z0's row, the entering column
   !>   tol   (in)    the residual target
   !>   done  (out)   .true. when the pivot is kept (the run ends solved)
-  subroutine try_z0_exit(p, tb, r0, e, tol, done)
+  !>   zs_kept, res_kept (inout) the best point kept aside and its residual
+  subroutine try_z0_exit(p, tb, r0, e, tol, done, zs_kept, res_kept)
     type(scaled_lcp_t), intent(in) :: p
     type(tableau_t), intent(inout) :: tb
     integer, intent(in) :: r0, e
     real(dp), intent(in) :: tol
     logical, intent(out) :: done
-    real(dp), allocatable :: saved(:, :), xb(:)
+    real(dp), intent(inout) :: zs_kept(:), res_kept
+    real(dp), allocatable :: saved(:, :), xb(:), zs(:)
+    real(dp) :: res
     integer :: m, st
 
     done = .false.
     m = tb%m
-    allocate(saved(m, 2 * m + 2), xb(m), stat=st)     ! the pivot must be reversible
+    allocate(saved(m, 2 * m + 2), xb(m), zs(m), stat=st)   ! the pivot must be reversible
     if (st /= 0) return
     saved = tb%t
     call pivot(tb%t, r0, e)
     tb%basis(r0) = e
     xb = tb%t(:, 2 * m + 2)
     call refine_basic_solution(p, tb%t(:, 1:m), tb%basis, xb)
-    done = point_residual(p, tb%basis, xb) <= tol
+    zs = basic_z(tb%basis, xb, m)
+    res = zs_residual(p, zs)
+    done = res <= exact_ratio
     if (.not. done) then
       tb%t = saved
       tb%basis(r0) = 2 * m + 1
+      if (res <= tol .and. res < res_kept) then
+        zs_kept = zs
+        res_kept = res
+      end if
     end if
   end subroutine try_z0_exit
 
@@ -653,27 +682,34 @@ contains
     allocate(xb(tb%m))
     xb = tb%t(:, 2 * tb%m + 2)
     call refine_basic_solution(p, tb%t(:, 1:tb%m), tb%basis, xb)
-    ok = point_residual(p, tb%basis, xb) <= tol
+    ok = zs_residual(p, basic_z(tb%basis, xb, tb%m)) <= tol
   end function solves_without_z0
 
-  !> The natural residual ||min(zs, qs + Ws zs)||_inf / qscale of the point
-  !> whose basic values are xb (z0 and negative z taken as 0).
-  real(dp) function point_residual(p, basis, xb) result(res)
-    type(scaled_lcp_t), intent(in) :: p
-    integer, intent(in) :: basis(:)
+  !> The z part of the basic solution xb, negative values taken as 0 (z0
+  !> and w are not in it).
+  pure function basic_z(basis, xb, m) result(zs)
+    integer, intent(in) :: basis(:), m
     real(dp), intent(in) :: xb(:)
-    real(dp), allocatable :: zs(:), ws(:)
-    integer :: i, m
-    m = p%m
-    allocate(zs(m), ws(m))
+    real(dp) :: zs(m)
+    integer :: i
     zs = 0.0_dp
     do i = 1, m
       if (basis(i) > m .and. basis(i) <= 2 * m) zs(basis(i) - m) = max(0.0_dp, xb(i))
     end do
+  end function basic_z
+
+  !> The natural residual ||min(zs, qs + Ws zs)||_inf / qscale of zs >= 0.
+  real(dp) function zs_residual(p, zs) result(res)
+    type(scaled_lcp_t), intent(in) :: p
+    real(dp), intent(in) :: zs(:)
+    real(dp), allocatable :: ws(:)
+    integer :: m
+    m = p%m
+    allocate(ws(m))
     ws = p%qs
     call dgemv('N', m, m, 1.0_dp, p%ws, m, zs, 1, 1.0_dp, ws, 1)   ! ws = qs + Ws zs
     res = maxval(abs(min(zs, ws))) / p%qscale
-  end function point_residual
+  end function zs_residual
 
   !> The z part of the ray of entering column e: the entering variable grows
   !> by 1, the basic ones by -t(:, e) (>= 0 up to the round-off of ptol).
@@ -690,20 +726,22 @@ contains
     end do
   end subroutine ray_direction
 
-  !> Whether the tableau may be recomputed at pivot npiv: once per pivot, and
-  !> (but for a ray, which ends the run or is refuted) not within a quarter
-  !> of m pivots of the last time, so that its cost, about that of m pivots,
-  !> stays a fraction of the run's.
+  !> Whether the tableau may be recomputed at pivot npiv: once per pivot,
+  !> and (but for a ray, which ends the run or is refuted) only after m
+  !> pivots since the last time or the start: a recomputation costs about
+  !> as much as m pivots (an LU of B and a solve with 2m+2 right-hand
+  !> sides), so it at most doubles a run, and a run shorter than m pivots,
+  !> whose tableau has had no time to drift far, is never recomputed.
   logical function may_refresh(tb, npiv, ray)
     type(tableau_t), intent(in) :: tb
     integer, intent(in) :: npiv
     logical, intent(in) :: ray
     if (tb%refreshed == npiv) then
       may_refresh = .false.
-    else if (ray .or. tb%refreshes == 0) then
+    else if (ray) then
       may_refresh = .true.
     else
-      may_refresh = npiv - tb%refreshed >= max(drift_period, tb%m / 4)
+      may_refresh = npiv - tb%refreshed >= max(drift_period, tb%m)
     end if
   end function may_refresh
 
@@ -752,7 +790,6 @@ contains
       tb%t(k, tb%basis(k)) = 1.0_dp
     end do
     tb%refreshed = npiv
-    tb%refreshes = tb%refreshes + 1
   end subroutine refresh_tableau
 
   !> B: the columns of [I, -Ws, -e] of the basic variables, in row order.
