@@ -64,7 +64,10 @@
 !> M is positive semi-definite (the G part is E'GE, E = [I 0 0; 0 I -I], the I
 !> blocks are skew), so Lemke solves it and ray termination proves that there
 !> is no solution; for Coulomb M is only copositive and ray termination means
-!> that Lemke found none.  Dense, O((n + 3 nt)^2) per pivot.
+!> that Lemke found none: it proves nothing, unless the ray's direction y
+!> is Farkas' certificate that no z >= 0 has q + M z >= 0 (M'y <= 0,
+!> q'y < 0: lcp_scaling's certifies_infeasible), which the message then
+!> says.  Dense, O((n + 3 nt)^2) per pivot.
 !>
 !> PGS (method 'pgs').  Nonsmooth (block projected) Gauss-Seidel (Moreau,
 !> Jean) on the scaled problem, with relaxation omega: the normal rows in
@@ -120,7 +123,8 @@ module friction_lcp
   use lcp_solvers, only: lcp_options_t, lcp_report_t, solve_lcp_lemke, solve_lcp_pgs, pgs_outcome, &
     solve_lcp_lemke_scaled, scale_lcp, set_report, pgs_problem_t, run_pgs, pgs_set_row, pgs_limits, &
     negative_diagonal
-  use lcp_scaling, only: residual_outcome, report_out_of_memory, scaling_vector, lcp_gaps, info_no_memory
+  use lcp_scaling, only: residual_outcome, report_out_of_memory, scaling_vector, lcp_gaps, info_no_memory, &
+    certifies_infeasible
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
   private
@@ -645,11 +649,11 @@ contains
     real(dp), intent(out) :: lam(:)
     type(lcp_report_t), intent(inout) :: rep
     type(lcp_report_t) :: lrep
-    real(dp), allocatable :: m(:, :), q(:), d(:), z(:)
+    real(dp), allocatable :: m(:, :), q(:), d(:), z(:), y(:)
     integer :: nz, st, nbad, first_bad
 
     nz = p%n + 3 * p%nt
-    allocate(m(nz, nz), q(nz), d(nz), z(nz), stat=st)
+    allocate(m(nz, nz), q(nz), d(nz), z(nz), y(nz), stat=st)
     if (st /= 0) then
       call report_out_of_memory(rep, 'solving the friction LCP by Lemke (' // int_to_str(nz) // ' unknowns)', &
                                 8.0_dp * real(nz, dp) * real(nz, dp))
@@ -657,7 +661,7 @@ contains
       return
     end if
     call friction_lcp_system(g, prob, m, q, d)
-    call solve_lcp_lemke_scaled(m, q, d, z, opts, lrep)   ! maxit 0: 10 nz + 100 pivots
+    call solve_lcp_lemke_scaled(m, q, d, z, opts, lrep, y)   ! maxit 0: 10 nz + 100 pivots
     call friction_forces(prob, z, lam)
     call measure_scaled(p, lam / p%d, rep)
     rep%iterations = lrep%iterations
@@ -680,9 +684,15 @@ contains
           int_to_str(nbad) // ' such row(s))'
       else if (all(prob%cmu == 0.0_dp)) then
         rep%message = rep%message // 'no solution (Tresca: the friction LCP is positive semi-definite)'
+      else if (certifies_infeasible(m, q, y)) then
+        ! Farkas: y >= 0, M'y <= 0, q'y < 0, so no z >= 0 has q + M z >= 0
+        rep%message = rep%message // 'no solution (the ray proves that no forces satisfy the ' // &
+          'contact conditions, even without complementarity)'
       else
-        rep%message = rep%message // 'no solution found (Coulomb: large friction coefficients with' // &
-          ' strong normal-tangential coupling in G admit none)'
+        ! Coulomb's M is copositive, not positive semi-definite: its ray is
+        ! no certificate, and the step may well have a solution
+        rep%message = rep%message // 'no solution found (Coulomb: the friction LCP is copositive only, ' // &
+          'so the ray does not prove that the step has none)'
       end if
     case default
       rep%info = lrep%info

@@ -1,27 +1,61 @@
 !> lcp_lemke: LCP(W, q) by Lemke's complementary pivoting.
 !>
-!> Complementary pivoting on the tableau [I, -Ws, -e | qs] of the scaled
-!> problem (lcp_scaling; rows w - Ws zs - e z0 = qs, covering vector e =
-!> ones), dense, one rank-1 update (dger) per pivot, O(n^2) per pivot.  The
-!> minimum ratio test is lexicographic: ties in the ratio are broken by the
-!> rows of the current basis inverse, which the tableau carries in its w
-!> columns; this rules out cycling on degenerate problems.  z0 leaves at once
-!> when it ties.  For a PSD W, termination on a ray proves that the LCP has
-!> no solution.  On success the basic solution is refined by two steps of
-!> iterative refinement with the tableau's basis inverse, tiny negative z are
-!> set to zero, and w = q + W z is recomputed.
+!> Complementary pivoting on the tableau B^-1 [I, -Ws, -e | qs] of the scaled
+!> problem (lcp_scaling; rows w - Ws zs - e z0 = qs, B the columns of the
+!> basic variables), dense, one rank-1 update (dger) per pivot, O(n^2) per
+!> pivot.  The covering vector is e = ones on the scaled rows: positive on
+!> every row, so z0 = -min(qs) makes the first point feasible, and of the
+!> size of the scaled data (unit diagonal), so that no row's ratio is
+!> favoured by its units.  The minimum ratio test is lexicographic: ties in
+!> the ratio are broken by the rows of the current basis inverse, which the
+!> tableau carries in its w columns; this rules out cycling on degenerate
+!> problems.
+!>
+!> Round-off.  Each pivot is a Gauss-Jordan step, and after many of them on
+!> an ill-conditioned basis the tableau's numbers are off by far more than
+!> the rounding of one step (3.4e-8 relative after 26 pivots has been seen
+!> on a friction LCP, where an exact tie between z0's row and another row
+!> then looked like no tie, and the run went past the solution to a ray
+!> with z0 = 2e-13 of the data).  Lemke's decisions are therefore taken on
+!> what the data say:
+!>  - the drift |qs - B xb| of the basic solution xb, relative to |qs| +
+!>    |B| |xb|, is measured every drift_period pivots and after a small
+!>    pivot; above drift_ratio the tableau is recomputed from the data,
+!>    B^-1 [I, -Ws, -e | qs] by an LU factorization of B (dgesv), at most
+!>    once in m pivots (may_refresh);
+!>  - z0 is preferred among ties: when z0 leaving at its own ratio would
+!>    push no basic value below zero by more than the error of the tableau's
+!>    numbers (an a-posteriori bound from the data, z0_ties), the tie is
+!>    exact but for round-off, and z0 leaves.  Such ties are also built into
+!>    some problems: the two rows w_+ = a'z - b, w_- = b - a'z of an equality
+!>    add up to w_+ + w_- = 2 z0 on every tableau.  The point is refined on
+!>    its basis; the run ends there when its natural residual is at
+!>    round-off.  Otherwise the pivot is undone and the ordinary row leaves,
+!>    and the point, when within tol, is kept aside: it is the answer if the
+!>    ordinary path ends on a ray or the pivot limit, or less accurately;
+!>  - a ray is declared only on a tableau recomputed from the data, and not
+!>    when z0 is at round-off there: the point with z0 dropped is refined
+!>    and taken when its natural residual is within tol.
+!> A genuine ray is returned as the direction y >= 0 of its z part (ray):
+!> for a positive semi-definite W it satisfies W'y <= 0 and q'y < 0,
+!> Farkas' proof that no z >= 0 has q + W z >= 0 (lcp_scaling:
+!> certifies_infeasible checks it for any W).
+!> On success the basic solution is refined by two steps of iterative
+!> refinement with the tableau's basis inverse, tiny negative z are set to
+!> zero, and w = q + W z is recomputed.
 !>
 !> Why it exists: the exact pivoting method, kept whole in one file (the
-!> tableau, its pivot, ratio test and refinement).  Who may use it: through
-!> lcp_solvers.
+!> tableau, its pivot, ratio test, recomputation and refinement).  Who may
+!> use it: through lcp_solvers.
 !>
 !> Programming interface
-!>   solve_lcp_lemke(W, q, z, opts, rep)          z intent(out); W PSD, zero rows dropped
-!>   solve_lcp_lemke_scaled(M, q, d, z, opts, rep)  on D M D, D q with the caller's d, no row dropped:
-!>                                                for a non-symmetric M (frictional contact)
+!>   solve_lcp_lemke(W, q, z, opts, rep [, ray])        z intent(out); W PSD, zero rows dropped
+!>   solve_lcp_lemke_scaled(M, q, d, z, opts, rep [, ray])  on D M D, D q with the caller's d, no row
+!>                                                    dropped: for a non-symmetric M (frictional contact)
+!>   ray (out, optional) the ray's direction when rep%info = 1 (ray termination), 0 otherwise
 module lcp_lemke
   use kinds, only: dp
-  use lapack_interfaces, only: daxpy, dgemv, dger
+  use lapack_interfaces, only: daxpy, dgemv, dger, dgesv
   use strings, only: int_to_str
   use lcp_scaling, only: lcp_options_t, lcp_report_t, scaled_lcp_t, prepare_lcp, measure_solution, scale_of, &
                          set_report, report_out_of_memory, residual_outcome, check_lcp_options
@@ -30,8 +64,42 @@ module lcp_lemke
   private
   public :: solve_lcp_lemke, solve_lcp_lemke_scaled
 
-  real(dp), parameter :: pivot_ratio = 1.0e-11_dp          ! smallest pivot, relative to the column
-  real(dp), parameter :: tie_ratio = 1.0e-12_dp            ! relative width of a tie
+  ! Tolerances of the pivoting, on the scaled data (entries of unit size):
+  ! smallest pivot, relative to its column: an entry below it is the
+  ! round-off of a zero
+  real(dp), parameter :: pivot_ratio = 1.0e-11_dp
+  ! relative width of a tie between two blocking rows in the lexicographic test
+  real(dp), parameter :: tie_ratio = 1.0e-12_dp
+  ! z0's exit is weighed (z0_ties, O(m^2)) only when it would push no basic
+  ! value below -near_tie_ratio ||qs||: wider than the tableau's errors seen
+  ! (3.4e-8 after a run of rank-1 updates, 5e-10 on a singular basis)
+  real(dp), parameter :: near_tie_ratio = 1.0e-6_dp
+  ! drift of the basic solution above which the tableau is recomputed: a
+  ! fresh tableau has ~ m eps, and the ratio test must tell ties of 1e-12
+  real(dp), parameter :: drift_ratio = 1.0e-12_dp
+  ! a pivot below this fraction of its column's largest entry amplifies the
+  ! tableau's errors by its inverse: the drift is measured after it
+  real(dp), parameter :: small_pivot_ratio = 1.0e-4_dp
+  ! z0's exit at a tie ends the run at once when its refined point's natural
+  ! residual is within a thousand roundings (exact ties measure 2e-16 on the
+  ! skate's LCPs); a point within tol only is kept aside, in case the
+  ! ordinary path fails or ends less accurate (a singular W: the window of
+  ! z0_ties is then wide, 5e-10, and such a point is good to 5e-12 only)
+  real(dp), parameter :: exact_ratio = 1.0e3_dp * epsilon(1.0_dp)
+  ! roundings of one entry of the data or of a product |B| |x| in the
+  ! a-posteriori error bound of z0_ties
+  real(dp), parameter :: tie_roundoffs = 8.0_dp
+  ! pivots between two measures of the drift (each costs about m * (z basic)
+  ! flops, a fraction of one pivot's 4 m^2)
+  integer, parameter :: drift_period = 16
+
+  !> The tableau of the scaled problem and its basis.
+  type :: tableau_t
+    integer :: m = 0                      !< rows
+    real(dp), allocatable :: t(:, :)      !< (m, 2m+2) B^-1 [I, -Ws, -e | qs]
+    integer, allocatable :: basis(:)      !< (m) basic variable of each row: 1..m w, m+1..2m z, 2m+1 z0
+    integer :: refreshed = 0              !< pivot count at the last recomputation (0: never)
+  end type tableau_t
 
 contains
 
@@ -46,18 +114,29 @@ contains
   !>   rep   (out) info 0 solved, 1 no solution (ray termination or infeasible
   !>               zero row), 2 pivot limit, 4 residual above tol, -k argument k
   !>               invalid; iterations = pivots; residual; complementarity; message
-  subroutine solve_lcp_lemke(W, q, z, opts, rep)
+  !>   ray   (out, optional) (n) on ray termination the ray's z part y >= 0
+  !>               (largest entry 1; W'y <= 0 and q'y < 0 up to round-off, a
+  !>               proof that the LCP has no solution: certifies_infeasible);
+  !>               0 otherwise
+  subroutine solve_lcp_lemke(W, q, z, opts, rep, ray)
     real(dp), intent(in) :: W(:, :)
     real(dp), intent(in) :: q(:)
     real(dp), intent(out) :: z(:)
     type(lcp_options_t), intent(in) :: opts
     type(lcp_report_t), intent(out) :: rep
+    real(dp), intent(out), optional :: ray(:)
     type(scaled_lcp_t) :: p
+    real(dp), allocatable :: y(:)
 
     z = 0.0_dp
+    if (present(ray)) ray = 0.0_dp
     call prepare_lcp(W, q, z, opts, .false., p, rep)
     if (rep%info /= 0) return
-    call lemke_solution(W, q, p, opts, 'W ill-conditioned', z, rep)
+    allocate(y(size(q)))
+    call lemke_solution(W, q, p, opts, 'W ill-conditioned', z, rep, y)
+    if (present(ray)) then
+      if (size(ray) == size(y)) ray = y
+    end if
   end subroutine solve_lcp_lemke
 
   !> Solve LCP(M, q) by Lemke's complementary pivoting (lexicographic, covering
@@ -79,17 +158,25 @@ contains
   !>               copositive-plus, e.g. positive semi-definite; otherwise none
   !>               was found), 2 pivot limit, 4 residual above tol, -k argument k
   !>               invalid; iterations = pivots; residual; complementarity; message
-  subroutine solve_lcp_lemke_scaled(M, q, d, z, opts, rep)
+  !>   ray   (out, optional) (n) on ray termination the ray's z part y >= 0,
+  !>               largest entry 1: q + M (z + s y) stays >= 0 along it for the
+  !>               s Lemke could reach; a proof of infeasibility when
+  !>               certifies_infeasible(M, q, y) (always, to round-off, when M
+  !>               is positive semi-definite); 0 otherwise
+  subroutine solve_lcp_lemke_scaled(M, q, d, z, opts, rep, ray)
     real(dp), intent(in) :: M(:, :)
     real(dp), intent(in) :: q(:)
     real(dp), intent(in) :: d(:)
     real(dp), intent(out) :: z(:)
     type(lcp_options_t), intent(in) :: opts
     type(lcp_report_t), intent(out) :: rep
+    real(dp), intent(out), optional :: ray(:)
     type(scaled_lcp_t) :: p
+    real(dp), allocatable :: y(:)
     integer :: n, i, j, st
 
     z = 0.0_dp
+    if (present(ray)) ray = 0.0_dp
     rep%info = 0
     n = size(q)
     if (size(M, 1) /= n .or. size(M, 2) /= n) then
@@ -130,11 +217,15 @@ contains
     p%qscale = 1.0_dp
     if (n > 0) p%qscale = scale_of(maxval(abs(p%qs)))
 
-    call lemke_solution(M, q, p, opts, 'M ill-conditioned or badly scaled', z, rep)
+    allocate(y(n))
+    call lemke_solution(M, q, p, opts, 'M ill-conditioned or badly scaled', z, rep, y)
     if (rep%info == 1) then
       rep%message = 'Lemke: ray termination after ' // int_to_str(rep%iterations) // &
         ' pivots (no solution found; when M is copositive-plus, e.g. positive semi-definite,' // &
         ' the LCP has none)'
+    end if
+    if (present(ray)) then
+      if (size(ray) == n) ray = y
     end if
   end subroutine solve_lcp_lemke_scaled
 
@@ -147,7 +238,9 @@ contains
   !>   z      (inout) zero on entry; z = D zs on the rows kept on exit
   !>   rep    (inout) info 0 solved, 1 ray, 2 pivot limit, 4 residual above tol;
   !>                  iterations, residual, complementarity, message
-  subroutine lemke_solution(W, q, p, opts, cause, z, rep)
+  !>   y      (out)   (n) the ray's z part, D dzs scaled to a largest entry 1,
+  !>                  when info = 1; 0 otherwise
+  subroutine lemke_solution(W, q, p, opts, cause, z, rep, y)
     real(dp), intent(in) :: W(:, :)
     real(dp), intent(in) :: q(:)
     type(scaled_lcp_t), intent(in) :: p
@@ -155,59 +248,69 @@ contains
     character(len=*), intent(in) :: cause
     real(dp), intent(inout) :: z(:)
     type(lcp_report_t), intent(inout) :: rep
-    real(dp), allocatable :: zs(:)
+    real(dp), intent(out) :: y(:)
+    real(dp), allocatable :: zs(:), dzs(:)
     integer :: maxit
 
     maxit = opts%maxit
     if (maxit == 0) maxit = 10 * p%n + 100
-    allocate(zs(p%m))
-    call lemke_scaled(p, maxit, zs, rep)
+    allocate(zs(p%m), dzs(p%m))
+    call lemke_scaled(p, maxit, opts%tol, zs, rep, dzs)
     z(p%rows) = p%d(p%rows) * zs                      ! z = D zs
     where (z < 0.0_dp) z = 0.0_dp                     ! polish: tiny negatives
+    y = 0.0_dp
+    if (rep%info == 1) then
+      y(p%rows) = p%d(p%rows) * dzs                   ! y = D dzs
+      if (maxval(y) > 0.0_dp) y = y / maxval(y)
+    end if
     call measure_solution(W, q, p%d, z, rep)
 
     if (rep%info == 0) call residual_outcome(rep, opts%tol, 'Lemke: solved in ' // int_to_str(rep%iterations) // &
       ' pivots', 'Lemke: terminated after ' // int_to_str(rep%iterations) // ' pivots', cause)
   end subroutine lemke_solution
 
-  !> Lemke's algorithm on the scaled problem p (p%m > 0 rows).
+  !> Lemke's algorithm on the scaled problem p (p%m > 0 rows), with the
+  !> decisions of the module header (drift, z0's near-ties, rays).
   !>   p      (in)    the scaled problem
   !>   maxit  (in)    pivot limit, > 0
+  !>   tol    (in)    the natural residual a point must reach to end the run
+  !>                  other than by z0's ordinary exit
   !>   zs     (out)   (m) the z part of the final basic solution, >= 0
-  !>   rep    (inout) info (0, 1 ray, 2 limit), iterations, message on failure
-  subroutine lemke_scaled(p, maxit, zs, rep)
+  !>   rep    (inout) info (0, 1 ray, 2 limit, info_no_memory), iterations,
+  !>                  message on failure
+  !>   dzs    (out)   (m) on a ray the z part of its direction (scaled), >= 0
+  subroutine lemke_scaled(p, maxit, tol, zs, rep, dzs)
     type(scaled_lcp_t), intent(in) :: p
     integer, intent(in) :: maxit
+    real(dp), intent(in) :: tol
     real(dp), intent(out) :: zs(:)
     type(lcp_report_t), intent(inout) :: rep
-    real(dp), allocatable :: t(:, :), xb(:)
-    integer, allocatable :: basis(:)
-    integer :: m, jz0, jrhs, i, r, entering, leaving, npiv, st
-    real(dp) :: qmin
+    real(dp), intent(out) :: dzs(:)
+    type(tableau_t) :: tb
+    real(dp), allocatable :: xb(:), zs_kept(:)
+    integer :: m, jz0, jrhs, i, r, r0, entering, leaving, npiv, st
+    real(dp) :: qmin, qnorm, violation, res_kept
+    logical :: done, small_pivot
 
     m = p%m
     zs = 0.0_dp
+    dzs = 0.0_dp
     rep%iterations = 0
     if (m == 0) return
     if (all(p%qs >= 0.0_dp)) return                   ! z = 0, w = q >= 0
 
-    ! Tableau [I, -Ws, -e | qs]: columns 1..m w, m+1..2m z, jz0 z0, jrhs the rhs.
     jz0 = 2 * m + 1
     jrhs = 2 * m + 2
-    allocate(t(m, jrhs), basis(m), stat=st)
+    qnorm = maxval(abs(p%qs))
+    tb%m = m
+    allocate(tb%t(m, jrhs), tb%basis(m), stat=st)
     if (st /= 0) then
       call report_out_of_memory(rep, 'solving the LCP by Lemke (a tableau of ' // int_to_str(m) // ' rows)', &
                                 8.0_dp * real(m, dp) * real(jrhs, dp))
       return
     end if
-    t = 0.0_dp
-    do i = 1, m
-      t(i, i) = 1.0_dp
-      basis(i) = i
-    end do
-    t(:, m + 1:2 * m) = -p%ws
-    t(:, jz0) = -1.0_dp
-    t(:, jrhs) = p%qs
+    call initial_tableau(p, tb%t)
+    tb%basis = [(i, i = 1, m)]
 
     ! First pivot: z0 enters at the row of the most negative q; among exact ties
     ! the last row, which keeps every row (rhs, B^-1 row) lexicographically positive.
@@ -216,11 +319,15 @@ contains
     do i = 1, m
       if (p%qs(i) == qmin) r = i
     end do
-    call pivot(t, r, jz0)
-    leaving = basis(r)
-    basis(r) = jz0
+    call pivot(tb%t, r, jz0)
+    leaving = tb%basis(r)
+    tb%basis(r) = jz0
     npiv = 1
     entering = complement(leaving, m)
+    small_pivot = .false.
+    done = .false.
+    res_kept = huge(1.0_dp)                           ! no z0 exit kept aside yet
+    allocate(zs_kept(m), source=0.0_dp)
 
     do
       if (npiv >= maxit) then
@@ -230,31 +337,86 @@ contains
           ' reached without a solution (degenerate or ill-conditioned W)'
         exit
       end if
-      call lexicographic_ratio_test(t, m, entering, basis, maxval(abs(p%qs)), r)
+      if (mod(npiv, drift_period) == 0 .or. small_pivot) call watch_drift(p, tb, npiv)
+      call lexicographic_ratio_test(tb%t, m, entering, tb%basis, qnorm, r)
+      if (r > 0) then
+        if (tb%basis(r) == jz0) then                 ! z0 leaves: complementary solution
+          call pivot(tb%t, r, entering)
+          tb%basis(r) = entering
+          npiv = npiv + 1
+          exit
+        end if
+      end if
+
+      ! z0 tied with the ordinary row to round-off: z0 leaves
+      r0 = findloc(tb%basis, jz0, dim=1)
+      violation = z0_exit_violation(tb%t, entering, r0) / qnorm
+      if (violation <= near_tie_ratio) then
+        if (z0_ties(p, tb, entering, r0)) then
+          call try_z0_exit(p, tb, r0, entering, tol, done, zs_kept, res_kept)
+          if (done) then
+            npiv = npiv + 1
+            exit
+          end if
+        end if
+      end if
+      ! a ray: decided on a tableau recomputed from the data
+      if (r == 0 .and. may_refresh(tb, npiv, .true.)) then
+        call refresh_tableau(p, tb, npiv)
+        if (tb%refreshed == npiv) cycle                ! redo the ratio test on it
+      end if
+
       if (r == 0) then
+        ! z0 at round-off of the data: the point with z0 dropped may be a solution
+        if (solves_without_z0(p, tb, tol)) exit
         rep%info = 1
         rep%stopped = 'ray'
         rep%message = 'Lemke: ray termination at pivot ' // int_to_str(npiv + 1) // &
           ' (the LCP has no solution: no z >= 0 gives q + W z >= 0 when W is positive' // &
           ' semi-definite; entering ' // variable_name(entering, m, p%rows) // ')'
+        call ray_direction(tb, entering, dzs)
         exit
       end if
-      call pivot(t, r, entering)
+      small_pivot = tb%t(r, entering) < small_pivot_ratio * maxval(abs(tb%t(:, entering)))
+      call pivot(tb%t, r, entering)
       npiv = npiv + 1
-      leaving = basis(r)
-      basis(r) = entering
-      if (leaving == jz0) exit                        ! z0 = 0: complementary solution
+      leaving = tb%basis(r)
+      tb%basis(r) = entering
       entering = complement(leaving, m)
     end do
     rep%iterations = npiv
 
     allocate(xb(m))
-    xb = t(:, jrhs)
-    if (rep%info == 0) call refine_basic_solution(p, t(:, 1:m), basis, xb)
-    do i = 1, m
-      if (basis(i) > m .and. basis(i) <= 2 * m) zs(basis(i) - m) = max(0.0_dp, xb(i))
-    end do
+    xb = tb%t(:, jrhs)
+    if (rep%info == 0) call refine_basic_solution(p, tb%t(:, 1:m), tb%basis, xb)
+    zs = basic_z(tb%basis, xb, m)
+    ! a z0 exit kept aside: the answer when the run failed or ended less accurate
+    if (res_kept <= tol) then
+      if (rep%info == 1 .or. rep%info == 2) then
+        zs = zs_kept
+        dzs = 0.0_dp
+        rep%info = 0
+        rep%stopped = ''
+      else if (rep%info == 0) then
+        if (res_kept < zs_residual(p, zs)) zs = zs_kept
+      end if
+    end if
   end subroutine lemke_scaled
+
+  !> The tableau of the all-w basis, [I, -Ws, -e | qs], e = ones.
+  subroutine initial_tableau(p, t)
+    type(scaled_lcp_t), intent(in) :: p
+    real(dp), intent(out) :: t(:, :)
+    integer :: m, i
+    m = p%m
+    t = 0.0_dp
+    do i = 1, m
+      t(i, i) = 1.0_dp
+    end do
+    t(:, m + 1:2 * m) = -p%ws
+    t(:, 2 * m + 1) = -1.0_dp
+    t(:, 2 * m + 2) = p%qs
+  end subroutine initial_tableau
 
   !> The complement of tableau variable v (w_i <-> z_i); z0 has none.
   pure integer function complement(v, m)
@@ -376,12 +538,285 @@ contains
     end do
   end subroutine lexicographic_ratio_test
 
-  !> Iterative refinement of the final basic solution:  B xb = qs with B the
-  !> basis columns of [I, -Ws] and binv = B^-1 as carried by the tableau;
+  !> How far below zero z0 leaving at its own ratio would push the other
+  !> basic values: max_i (theta0 t(i, e) - rhs_i), theta0 = rhs_r0 / t(r0, e);
+  !> huge when z0 cannot leave on column e (t(r0, e) not positive).
+  !>   t   (in) (m, 2m+2) tableau
+  !>   e   (in) entering column
+  !>   r0  (in) z0's row
+  pure real(dp) function z0_exit_violation(t, e, r0) result(v)
+    real(dp), intent(in) :: t(:, :)
+    integer, intent(in) :: e, r0
+    real(dp) :: theta0
+    integer :: i, jrhs
+    v = huge(1.0_dp)
+    jrhs = size(t, 2)
+    if (.not. t(r0, e) > pivot_ratio * max(1.0_dp, maxval(abs(t(:, e))))) return
+    theta0 = max(t(r0, jrhs), 0.0_dp) / t(r0, e)
+    v = 0.0_dp
+    do i = 1, size(t, 1)
+      if (i /= r0) v = max(v, theta0 * t(i, e) - t(i, jrhs))   ! -(rhs_i - theta0 t(i, e))
+    end do
+  end function z0_exit_violation
+
+  !> Whether z0's exit on column e ties with the ordinary one to round-off:
+  !> every basic value it would push below zero, v_i = theta0 t(i, e) - rhs_i
+  !> (theta0 = rhs_r0 / t(r0, e)), is within the error of the tableau's
+  !> numbers, bounded a posteriori from the data:  for x = rhs or t(:, e),
+  !> solutions of B x = b with b = qs or the entering column of [I, -Ws],
+  !>     |x - x_exact| <= |B^-1| (|b - B x| + c eps (|b| + |B| |x|)),
+  !> c = tie_roundoffs, B^-1 as the tableau carries it.
+  !>   p, tb  (in) the scaled problem and its tableau
+  !>   e, r0  (in) the entering column, z0's row
+  logical function z0_ties(p, tb, e, r0) result(ties)
+    type(scaled_lcp_t), intent(in) :: p
+    type(tableau_t), intent(in) :: tb
+    integer, intent(in) :: e, r0
+    real(dp), allocatable :: b(:), err_rhs(:), err_col(:), rhs(:), col(:)
+    real(dp) :: theta0, err_theta0
+    integer :: m, i
+
+    m = tb%m
+    ties = .false.
+    allocate(rhs(m), col(m), b(m))
+    rhs = tb%t(:, 2 * m + 2)
+    col = tb%t(:, e)
+    if (.not. col(r0) > 0.0_dp) return
+    err_rhs = solution_error(p, tb, p%qs, rhs)
+    b = 0.0_dp
+    if (e <= m) then
+      b(e) = 1.0_dp                                    ! w_e: e_e
+    else
+      b = -p%ws(:, e - m)                              ! z_j: -Ws(:, j)
+    end if
+    err_col = solution_error(p, tb, b, col)
+    theta0 = max(rhs(r0), 0.0_dp) / col(r0)
+    err_theta0 = (err_rhs(r0) + theta0 * err_col(r0)) / col(r0)
+    ties = .true.
+    do i = 1, m
+      if (i == r0) cycle
+      if (theta0 * col(i) - rhs(i) > err_rhs(i) + theta0 * err_col(i) + abs(col(i)) * err_theta0) ties = .false.
+    end do
+  end function z0_ties
+
+  !> The a-posteriori error bound |B^-1| (|b - B x| + c eps (|b| + |B| |x|))
+  !> of x as a solution of B x = b (z0_ties).
+  function solution_error(p, tb, b, x) result(err)
+    type(scaled_lcp_t), intent(in) :: p
+    type(tableau_t), intent(in) :: tb
+    real(dp), intent(in) :: b(:), x(:)
+    real(dp), allocatable :: err(:)
+    real(dp), allocatable :: res(:), size_bx(:)
+    integer :: k, m, j
+    m = tb%m
+    allocate(res(m), size_bx(m))
+    res = b
+    size_bx = abs(b)
+    do k = 1, m
+      j = tb%basis(k)
+      if (j <= m) then
+        res(j) = res(j) - x(k)                                          ! column e_j
+        size_bx(j) = size_bx(j) + abs(x(k))
+      else if (j <= 2 * m) then
+        res = res + x(k) * p%ws(:, j - m)                               ! column -Ws(:, j)
+        size_bx = size_bx + abs(x(k)) * abs(p%ws(:, j - m))
+      else
+        res = res + x(k)                                                ! column -e
+        size_bx = size_bx + abs(x(k))
+      end if
+    end do
+    err = matmul(abs(tb%t(:, 1:m)), abs(res) + tie_roundoffs * epsilon(1.0_dp) * size_bx)
+  end function solution_error
+
+  !> Pivot z0 out of row r0 on column e and refine the basic solution on the
+  !> data: kept when its natural residual is at round-off (exact_ratio);
+  !> otherwise the tableau is left as it was, and the point, when within
+  !> tol, is kept aside if it is the best so far.
+  !>   p     (in)    the scaled problem
+  !>   tb    (inout) the tableau
+  !>   r0, e (in)    z0's row, the entering column
+  !>   tol   (in)    the residual target
+  !>   done  (out)   .true. when the pivot is kept (the run ends solved)
+  !>   zs_kept, res_kept (inout) the best point kept aside and its residual
+  subroutine try_z0_exit(p, tb, r0, e, tol, done, zs_kept, res_kept)
+    type(scaled_lcp_t), intent(in) :: p
+    type(tableau_t), intent(inout) :: tb
+    integer, intent(in) :: r0, e
+    real(dp), intent(in) :: tol
+    logical, intent(out) :: done
+    real(dp), intent(inout) :: zs_kept(:), res_kept
+    real(dp), allocatable :: saved(:, :), xb(:), zs(:)
+    real(dp) :: res
+    integer :: m, st
+
+    done = .false.
+    m = tb%m
+    allocate(saved(m, 2 * m + 2), xb(m), zs(m), stat=st)   ! the pivot must be reversible
+    if (st /= 0) return
+    saved = tb%t
+    call pivot(tb%t, r0, e)
+    tb%basis(r0) = e
+    xb = tb%t(:, 2 * m + 2)
+    call refine_basic_solution(p, tb%t(:, 1:m), tb%basis, xb)
+    zs = basic_z(tb%basis, xb, m)
+    res = zs_residual(p, zs)
+    done = res <= exact_ratio
+    if (.not. done) then
+      tb%t = saved
+      tb%basis(r0) = 2 * m + 1
+      if (res <= tol .and. res < res_kept) then
+        zs_kept = zs
+        res_kept = res
+      end if
+    end if
+  end subroutine try_z0_exit
+
+  !> .true. when the current point with z0 dropped solves the problem to tol:
+  !> the basic solution refined on the data (z0's column included), then
+  !> measured without z0.
+  logical function solves_without_z0(p, tb, tol) result(ok)
+    type(scaled_lcp_t), intent(in) :: p
+    type(tableau_t), intent(in) :: tb
+    real(dp), intent(in) :: tol
+    real(dp), allocatable :: xb(:)
+    allocate(xb(tb%m))
+    xb = tb%t(:, 2 * tb%m + 2)
+    call refine_basic_solution(p, tb%t(:, 1:tb%m), tb%basis, xb)
+    ok = zs_residual(p, basic_z(tb%basis, xb, tb%m)) <= tol
+  end function solves_without_z0
+
+  !> The z part of the basic solution xb, negative values taken as 0 (z0
+  !> and w are not in it).
+  pure function basic_z(basis, xb, m) result(zs)
+    integer, intent(in) :: basis(:), m
+    real(dp), intent(in) :: xb(:)
+    real(dp) :: zs(m)
+    integer :: i
+    zs = 0.0_dp
+    do i = 1, m
+      if (basis(i) > m .and. basis(i) <= 2 * m) zs(basis(i) - m) = max(0.0_dp, xb(i))
+    end do
+  end function basic_z
+
+  !> The natural residual ||min(zs, qs + Ws zs)||_inf / qscale of zs >= 0.
+  real(dp) function zs_residual(p, zs) result(res)
+    type(scaled_lcp_t), intent(in) :: p
+    real(dp), intent(in) :: zs(:)
+    real(dp), allocatable :: ws(:)
+    integer :: m
+    m = p%m
+    allocate(ws(m))
+    ws = p%qs
+    call dgemv('N', m, m, 1.0_dp, p%ws, m, zs, 1, 1.0_dp, ws, 1)   ! ws = qs + Ws zs
+    res = maxval(abs(min(zs, ws))) / p%qscale
+  end function zs_residual
+
+  !> The z part of the ray of entering column e: the entering variable grows
+  !> by 1, the basic ones by -t(:, e) (>= 0 up to the round-off of ptol).
+  subroutine ray_direction(tb, e, dzs)
+    type(tableau_t), intent(in) :: tb
+    integer, intent(in) :: e
+    real(dp), intent(out) :: dzs(:)
+    integer :: i, m
+    m = tb%m
+    dzs = 0.0_dp
+    if (e > m .and. e <= 2 * m) dzs(e - m) = 1.0_dp
+    do i = 1, m
+      if (tb%basis(i) > m .and. tb%basis(i) <= 2 * m) dzs(tb%basis(i) - m) = max(0.0_dp, -tb%t(i, e))
+    end do
+  end subroutine ray_direction
+
+  !> Whether the tableau may be recomputed at pivot npiv: once per pivot,
+  !> and (but for a ray, which ends the run or is refuted) only after m
+  !> pivots since the last time or the start: a recomputation costs about
+  !> as much as m pivots (an LU of B and a solve with 2m+2 right-hand
+  !> sides), so it at most doubles a run, and a run shorter than m pivots,
+  !> whose tableau has had no time to drift far, is never recomputed.
+  logical function may_refresh(tb, npiv, ray)
+    type(tableau_t), intent(in) :: tb
+    integer, intent(in) :: npiv
+    logical, intent(in) :: ray
+    if (tb%refreshed == npiv) then
+      may_refresh = .false.
+    else if (ray) then
+      may_refresh = .true.
+    else
+      may_refresh = npiv - tb%refreshed >= max(drift_period, tb%m)
+    end if
+  end function may_refresh
+
+  !> Measure the drift of the basic solution and recompute the tableau when
+  !> it exceeds drift_ratio (and may_refresh allows it).
+  subroutine watch_drift(p, tb, npiv)
+    type(scaled_lcp_t), intent(in) :: p
+    type(tableau_t), intent(inout) :: tb
+    integer, intent(in) :: npiv
+    real(dp), allocatable :: res(:)
+    real(dp) :: scale
+    if (.not. may_refresh(tb, npiv, .false.)) return
+    allocate(res(tb%m))
+    call basis_residual(p, tb%basis, tb%t(:, 2 * tb%m + 2), res, scale)
+    if (maxval(abs(res)) > drift_ratio * scale) call refresh_tableau(p, tb, npiv)
+  end subroutine watch_drift
+
+  !> Recompute the tableau from the data, t = B^-1 [I, -Ws, -e | qs] with B
+  !> the basis columns of [I, -Ws, -e] (LU with partial pivoting, dgesv).
+  !> Left as it is when B's copy cannot be allocated or B is singular (a
+  !> zero pivot of its LU; the rank-1 updates then carry on).
+  !>   p     (in)    the scaled problem
+  !>   tb    (inout) the tableau; refreshed = npiv when recomputed
+  !>   npiv  (in)    the pivot count
+  subroutine refresh_tableau(p, tb, npiv)
+    type(scaled_lcp_t), intent(in) :: p
+    type(tableau_t), intent(inout) :: tb
+    integer, intent(in) :: npiv
+    real(dp), allocatable :: b(:, :), x(:, :)
+    integer, allocatable :: ipiv(:)
+    integer :: m, k, info, st
+
+    m = tb%m
+    allocate(b(m, m), x(m, 1), ipiv(m), stat=st)
+    if (st /= 0) return
+    ! B singular leaves the tableau alone: try it on one column first
+    call basis_matrix(p, tb%basis, b)
+    x(:, 1) = p%qs
+    call dgesv(m, 1, b, m, ipiv, x, m, info)
+    if (info /= 0) return
+    call basis_matrix(p, tb%basis, b)
+    call initial_tableau(p, tb%t)
+    call dgesv(m, 2 * m + 2, b, m, ipiv, tb%t, m, info)   ! t = B^-1 [I, -Ws, -e | qs]
+    do k = 1, m                                          ! the basic columns exactly
+      tb%t(:, tb%basis(k)) = 0.0_dp
+      tb%t(k, tb%basis(k)) = 1.0_dp
+    end do
+    tb%refreshed = npiv
+  end subroutine refresh_tableau
+
+  !> B: the columns of [I, -Ws, -e] of the basic variables, in row order.
+  subroutine basis_matrix(p, basis, b)
+    type(scaled_lcp_t), intent(in) :: p
+    integer, intent(in) :: basis(:)
+    real(dp), intent(out) :: b(:, :)
+    integer :: k, m
+    m = p%m
+    b = 0.0_dp
+    do k = 1, m
+      if (basis(k) <= m) then
+        b(basis(k), k) = 1.0_dp                       ! w_j: e_j
+      else if (basis(k) <= 2 * m) then
+        b(:, k) = -p%ws(:, basis(k) - m)              ! z_j: -Ws(:, j)
+      else
+        b(:, k) = -1.0_dp                             ! z0: -e
+      end if
+    end do
+  end subroutine basis_matrix
+
+  !> Iterative refinement of the basic solution:  B xb = qs with B the
+  !> basis columns of [I, -Ws, -e] and binv = B^-1 as carried by the tableau;
   !> xb <- xb + binv (qs - B xb), kept only while the residual decreases.
   !>   p      (in)    the scaled problem
   !>   binv   (in)    (m, m) basis inverse
-  !>   basis  (in)    (m) basic variables (no z0)
+  !>   basis  (in)    (m) basic variables
   !>   xb     (inout) (m) basic values
   subroutine refine_basic_solution(p, binv, basis, xb)
     type(scaled_lcp_t), intent(in) :: p
@@ -389,18 +824,18 @@ contains
     integer, intent(in) :: basis(:)
     real(dp), intent(inout) :: xb(:)
     real(dp), allocatable :: res(:), xnew(:)
-    real(dp) :: rnorm, rnew
+    real(dp) :: rnorm, rnew, scale
     integer :: step, m
 
     m = p%m
     allocate(res(m), xnew(m))
-    call basis_residual(p, basis, xb, res)
+    call basis_residual(p, basis, xb, res, scale)
     rnorm = maxval(abs(res))
     do step = 1, 2
       if (rnorm == 0.0_dp) exit
       xnew = xb
       call dgemv('N', m, m, 1.0_dp, binv, m, res, 1, 1.0_dp, xnew, 1)   ! x = x + B^-1 r
-      call basis_residual(p, basis, xnew, res)
+      call basis_residual(p, basis, xnew, res, scale)
       rnew = maxval(abs(res))
       if (.not. rnew < rnorm) exit
       xb = xnew
@@ -408,21 +843,30 @@ contains
     end do
   end subroutine refine_basic_solution
 
-  !> res = qs - B xb, B the basis columns of [I, -Ws].
-  subroutine basis_residual(p, basis, xb, res)
+  !> res = qs - B xb, B the basis columns of [I, -Ws, -e]; scale = ||qs||_inf +
+  !> sum_k |xb_k| ||B(:, k)||_inf, the size of what the residual is a
+  !> difference of.
+  subroutine basis_residual(p, basis, xb, res, scale)
     type(scaled_lcp_t), intent(in) :: p
     integer, intent(in) :: basis(:)
     real(dp), intent(in) :: xb(:)
     real(dp), intent(out) :: res(:)
+    real(dp), intent(out) :: scale
     integer :: k, m
 
     m = p%m
     res = p%qs
+    scale = maxval(abs(p%qs))
     do k = 1, m
       if (basis(k) <= m) then
         res(basis(k)) = res(basis(k)) - xb(k)                       ! column e_j of w_j
-      else
+        scale = scale + abs(xb(k))
+      else if (basis(k) <= 2 * m) then
         call daxpy(m, xb(k), p%ws(:, basis(k) - m), 1, res, 1)     ! column -Ws(:, j) of z_j
+        scale = scale + abs(xb(k)) * maxval(abs(p%ws(:, basis(k) - m)))
+      else
+        res = res + xb(k)                                            ! column -e of z0
+        scale = scale + abs(xb(k))
       end if
     end do
   end subroutine basis_residual

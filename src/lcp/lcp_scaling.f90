@@ -32,6 +32,7 @@
 !>   lcp_gaps(W, q, z, gap)         the gaps w = q + W z (dgemv)
 !>   measure_solution(W, q, d, z, rep)   residual and complementarity of z
 !>   lcp_natural_residual(W, q, z)  the residual r above
+!>   certifies_infeasible(M, q, y)  whether y (Lemke's ray) proves that LCP(M, q) has no feasible point
 !>   max_diagonal(W), negative_diagonal(W), scale_of(qmax)
 !>   check_lcp_sizes(W, q, nz, opts, rep), check_lcp_values(W, q, rep),
 !>   check_lcp_options(opts, info, rep)   the argument checks
@@ -54,6 +55,7 @@ module lcp_scaling
   !> `out of memory while ...`); the methods' own outcomes are 0 to 5
   integer, parameter :: info_no_memory = 6
   public :: prepare_lcp, scale_lcp, scaling_vector, lcp_gaps, measure_solution, lcp_natural_residual
+  public :: certifies_infeasible
   public :: max_diagonal, negative_diagonal, scale_of
   public :: set_report, out_of_memory, report_out_of_memory, check_lcp_sizes, check_lcp_values, check_lcp_options
   public :: residual_outcome
@@ -89,6 +91,10 @@ module lcp_scaling
 
   real(dp), parameter :: diag_zero_ratio = 1.0e-30_dp      ! W_ii below this * max diag: zero row
   real(dp), parameter :: diag_negative_ratio = 1.0e-8_dp   ! W_ii below -this * max diag: not PSD
+  ! Farkas' inequalities of a computed ray, relative to the sizes of their
+  ! terms: the ray carries the round-off of Lemke's tableau, which near-ties
+  ! of 3e-8 relative have shown to reach far beyond eps
+  real(dp), parameter :: certificate_ratio = 1.0e-8_dp
 
 contains
 
@@ -384,6 +390,34 @@ contains
     call measure_solution(W, q, d, z, rep)
     r = rep%residual
   end function lcp_natural_residual
+
+  !> Whether y proves that LCP(M, q) has no solution, not even a feasible
+  !> point: y >= 0, y /= 0, M'y <= 0 and q'y < 0 (Farkas: a z >= 0 with
+  !> q + M z >= 0 would give 0 <= y'(q + M z) = q'y + (M'y)'z < 0).  Lemke's
+  !> ray (solve_lcp_lemke, solve_lcp_lemke_scaled: ray) is such a y when M
+  !> is positive semi-definite; for another M, e.g. the copositive LCP of
+  !> Coulomb friction, it may not be, and then it proves nothing.  The
+  !> inequalities are tested against the round-off of their terms:
+  !> (M'y)_j <= c (|M|'y)_j and q'y < -c |q|'y, c = certificate_ratio.
+  !>   M  (in) (n, n)
+  !>   q  (in) (n)
+  !>   y  (in) (n) the candidate, finite
+  !>   (result) .false. also when the sizes do not match
+  logical function certifies_infeasible(M, q, y) result(ok)
+    real(dp), intent(in) :: M(:, :)
+    real(dp), intent(in) :: q(:)
+    real(dp), intent(in) :: y(:)
+    real(dp), allocatable :: my(:), size_my(:)
+    integer :: n
+    ok = .false.
+    n = size(q)
+    if (size(M, 1) /= n .or. size(M, 2) /= n .or. size(y) /= n .or. n == 0) return
+    if (any(y < 0.0_dp) .or. .not. any(y > 0.0_dp)) return
+    my = matmul(transpose(M), y)                      ! M'y
+    size_my = matmul(transpose(abs(M)), y)            ! |M|'y
+    ok = all(my <= certificate_ratio * size_my) .and. &
+         dot_product(q, y) < -certificate_ratio * dot_product(abs(q), y)
+  end function certifies_infeasible
 
   pure function max_diagonal(W) result(dmax)
     real(dp), intent(in) :: W(:, :)

@@ -697,7 +697,35 @@ contains
     opts%maxit = 3
     call solve_friction_lcp(g, prob, 'lemke', opts, lam, rep)
     call check(rep%info == 2 .and. all(ieee_is_finite(lam)), 'lemke maxit 3: info 2, lam finite')
+    call test_unclosable()
   end subroutine test_failures
+
+  !> Two normal rows that no forces close, Gnn = [1 -1; -1 1] (PSD, no zero
+  !> row), qn = (-1, -1): w1 + w2 = -2 whatever lambda and tau (Gnt = 0), one
+  !> tangential row on node 1, Coulomb mu = 0.3.  Lemke ends on a ray, and
+  !> its direction, y = (1, 1) on lambda, is Farkas' certificate: the message
+  !> says that there is no solution, not that none was found.  The same step
+  !> made feasible (Gnn = [1 -1; -1 1.5], qn = (-1, 1)) is solved.
+  subroutine test_unclosable()
+    real(dp) :: g(3, 3), lam(3)
+    type(friction_problem_t) :: prob
+    type(lcp_options_t) :: opts
+    type(lcp_report_t) :: rep
+    g = 0.0_dp
+    g(1:2, 1:2) = reshape([1.0_dp, -1.0_dp, -1.0_dp, 1.0_dp], [2, 2])
+    g(3, 3) = 1.0_dp
+    prob = friction_problem([-1.0_dp, -1.0_dp], [0.5_dp], [1], [0.3_dp], [0.0_dp])
+    lam = 0.0_dp
+    call solve_friction_lcp(g, prob, 'lemke', opts, lam, rep)
+    call check(rep%info == 1 .and. rep%stopped == 'ray', 'unclosable rows, coulomb lemke: ray termination (info 1)')
+    call check(index(rep%message, 'no solution (the ray proves') > 0 .and. index(rep%message, 'found') == 0, &
+      'unclosable rows, coulomb lemke: the message says the ray proves that there is no solution')
+    g(2, 2) = 1.5_dp
+    prob = friction_problem([-1.0_dp, 1.0_dp], [0.5_dp], [1], [0.3_dp], [0.0_dp])
+    call solve_friction_lcp(g, prob, 'lemke', opts, lam, rep)
+    call check(rep%info == 0, 'closable rows, coulomb lemke: solved')
+    call check_conditions(g, prob, lam, tol_direct, 'closable rows, coulomb lemke')
+  end subroutine test_unclosable
 
   !> Every argument check: info -1 G, -2 the problem (each of its arrays),
   !> -3 method, -4 options, -5 lam; lam unchanged.
