@@ -21,7 +21,7 @@ program test_friction_lcp
     friction_state, state_open, state_stick, state_slip
   use friction_newton, only: solve_friction_newton
   use friction_fixed_point, only: solve_friction_fixed_point
-  use lcp_auto, only: lcp_attempt_t, solve_friction_auto
+  use lcp_auto, only: lcp_attempt_t, solve_friction_auto, method_label
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
 
@@ -540,20 +540,24 @@ contains
     opts%maxit = 1
     lam = 0.0_dp
     call solve_friction_auto(g, prob, 'pgs', opts, lam, rep, att)
-    call check(size(att) == 4, 'auto maxit 1: four attempts')
-    if (size(att) == 4) then
+    call check(size(att) == 5, 'auto maxit 1: five attempts')
+    if (size(att) == 5) then
       call check(att(1)%method == 'pgs' .and. att(1)%omega == 1.0_dp .and. att(2)%method == 'pgs' .and. &
-        att(2)%omega == 0.3_dp .and. att(3)%method == 'pdas' .and. att(4)%method == 'lemke', &
-        'auto maxit 1: pgs (1), pgs (0.3), pdas, lemke')
-      call check(all([(att(i)%rep%info > 0, i = 1, 4)]) .and. rep%info > 0, 'auto maxit 1: every method failed')
+        att(2)%omega == 0.3_dp .and. att(3)%method == 'pdas' .and. att(4)%method == 'lemke' .and. &
+        att(5)%method == 'fixpt', 'auto maxit 1: pgs (1), pgs (0.3), pdas, lemke, fixpt')
+      call check(all([(att(i)%rep%info > 0, i = 1, 5)]) .and. rep%info > 0, 'auto maxit 1: every method failed')
       i = index(rep%message, 'friction PGS: sweep limit')
       j = index(rep%message, 'then friction Lemke')
-      call check(i == 1 .and. j > i .and. index(rep%message, 'then friction Newton') > i, &
-        'auto maxit 1: the message names each failure in turn')
+      call check(i == 1 .and. j > i .and. index(rep%message, 'then friction Newton') > i .and. &
+        index(rep%message, 'then friction fixed point') > j, 'auto maxit 1: the message names each failure in turn')
     end if
+    call check(method_label('fixpt', 1.0_dp) == 'fixed point on the Tresca threshold' .and. &
+      method_label('pgs', 0.3_dp) == 'PGS (omega 0.3)', 'auto: the methods'' names in a log line')
     opts%omega = 0.3_dp
     call solve_friction_auto(g, prob, 'pdas', opts, lam, rep, att)
-    call check(size(att) == 3, 'auto omega 0.3: PGS at 0.3 run once')
+    call check(size(att) == 4, 'auto omega 0.3: PGS at 0.3 run once')
+    if (size(att) == 4) call check(att(3)%method == 'pgs' .and. att(4)%method == 'fixpt', &
+      'auto omega 0.3: pdas, lemke, pgs (0.3), fixpt')
 
     ! a zero normal row with a negative gap: no solution, shown at once
     g = g2
