@@ -5,22 +5,28 @@
 !>
 !> The methods: 'lemke', exact in a finite number of pivots but dense and
 !> O(n^3) in all; 'pdas', the primal-dual active set (semismooth Newton)
-!> method, a few dense solves, convergent near a solution only; 'pgs',
-!> (nonsmooth) Gauss-Seidel, cheap sweeps but thousands of them, and for
-!> Coulomb with a large mu it may stall where the others solve (a plate
-!> sheared on a rigid plane with mu = 1 stalls at omega = 1, 0.7 and 0.5 and
-!> converges at 0.3 on a coarse mesh, stalls at every omega on finer ones:
-!> bench/friction.sh).  The orders (auto_order):
+!> method, a few dense solves, globalised with friction (friction_newton: a
+!> damped Newton method once a partition comes back); 'pgs', (nonsmooth)
+!> Gauss-Seidel, cheap sweeps but thousands of them, and for Coulomb with a
+!> large mu it may stall where the others solve (a plate sheared on a rigid
+!> plane with mu = 1 stalls at omega = 1, 0.7 and 0.5 and converges at 0.3 on
+!> a coarse mesh, stalls at every omega on finer ones: bench/friction.sh);
+!> 'fixpt', friction only, the fixed point on the Tresca threshold
+!> (friction_fixed_point): a Tresca problem, a convex QP, solved exactly for
+!> the bounds of the last normal forces, until they settle; convergent for
+!> Tresca and for a small mu, linear, the slowest.  The orders (auto_order):
 !>   frictionless, up to 100 rows  lemke, pdas, pgs (omega)
 !>   frictionless, above            pdas, lemke, pgs (omega)
-!>   friction                       pdas, lemke, pgs (omega), pgs (fallback_omega)
+!>   friction                       pdas, lemke, pgs (omega), pgs (fallback_omega), fixpt
 !> the measured crossovers of doc/performance.md ("The three LCP solvers":
 !> up to about 100 constraints the three tie and Lemke's exact pivoting is
 !> kept; above, PDAS needs a few Newton steps where the others need many
 !> pivots or sweeps; "The friction solvers": PDAS is 3 to 20 times Lemke from
 !> 68 to 516 unknowns), the second PGS run left out when omega <=
-!> fallback_omega.  A method the deck names (lcp=lemke, pdas, pgs) is tried
-!> alone, first by friction_order with that method first.
+!> fallback_omega, and the fixed point last, as the one method whose
+!> convergence does not depend on round-off (Lemke's ties) or on the
+!> conditioning of G (PGS).  A method the deck names (lcp=lemke, pdas, pgs)
+!> is tried alone, first by friction_order with that method first.
 !>
 !> A failure that proves that the step has no solution ends the sequence
 !> (proves_no_solution): without friction, info 1 of any method (Lemke's ray
@@ -32,7 +38,10 @@
 !>
 !> Why it exists: the choice among the methods and its order are a policy of
 !> their own, above the methods (lcp_lemke, lcp_newton, lcp_pgs,
-!> friction_lcp, friction_newton), which know nothing of each other.
+!> friction_lcp, friction_newton, friction_fixed_point), which know nothing
+!> of each other; solve_friction_method is the one place that maps a
+!> friction method's name to its routine, and method_label to its name in a
+!> log line.
 !>
 !> Programming interface
 !>   type(lcp_attempt_t)     method, omega, rep: one method tried
@@ -40,6 +49,8 @@
 !>   friction_order(first, omega, methods, omegas)     the friction order from a first method
 !>   proves_no_solution(friction, tresca, method, rep) a failure that ends the sequence
 !>   add_attempt(attempts, method, omega, rep)         one attempt more on the list
+!>   solve_friction_method(g, prob, method, opts, lam, rep)   one friction method by its name
+!>   method_label(method, omega)                       its name in a log line
 !>   solve_friction_auto(g, prob, first, opts, lam, rep, attempts)  a friction step by the order
 !>   fallback_omega          the relaxation of the second PGS run (0.3)
 !> No routine prints anything.
@@ -48,9 +59,12 @@ module lcp_auto
   use lcp_scaling, only: lcp_options_t, lcp_report_t
   use friction_lcp, only: friction_problem_t, solve_friction_lcp, check_friction_problem
   use friction_newton, only: solve_friction_newton
+  use friction_fixed_point, only: solve_friction_fixed_point
+  use strings, only: format_number
   implicit none
   private
   public :: lcp_attempt_t, auto_order, friction_order, proves_no_solution, add_attempt, solve_friction_auto
+  public :: solve_friction_method, method_label
   public :: fallback_omega, lemke_max_rows
 
   !> The relaxation of the second PGS run: on the plate sheared on a rigid
@@ -62,7 +76,7 @@ module lcp_auto
 
   !> One method tried, and its outcome.
   type :: lcp_attempt_t
-    character(len=:), allocatable :: method        !< 'lemke', 'pdas' or 'pgs'
+    character(len=:), allocatable :: method        !< 'lemke', 'pdas', 'pgs' or 'fixpt'
     real(dp) :: omega = 1.0_dp                     !< the PGS relaxation it ran with
     type(lcp_report_t) :: rep                      !< its report
   end type lcp_attempt_t
@@ -95,31 +109,35 @@ contains
 
   !> The friction methods from a first one: then the others, PGS at omega
   !> and at fallback_omega (the second left out when omega is no larger: the
-  !> same relaxation twice over would fail twice over).
-  !>   first  (in)  'lemke', 'pdas' or 'pgs'
+  !> same relaxation twice over would fail twice over), the fixed point on
+  !> the Tresca threshold last.
+  !>   first  (in)  'lemke', 'pdas', 'pgs' or 'fixpt'
   subroutine friction_order(first, omega, methods, omegas)
     character(len=*), intent(in) :: first
     real(dp), intent(in) :: omega
     character(len=5), allocatable, intent(out) :: methods(:)
     real(dp), allocatable, intent(out) :: omegas(:)
-    character(len=5) :: order(4)
-    real(dp) :: relax(4), low
+    character(len=5) :: order(5)
+    real(dp) :: relax(5), low
     integer :: k, n
     low = min(omega, fallback_omega)
     select case (first)
     case ('lemke')
-      order = [character(len=5) :: 'lemke', 'pdas', 'pgs', 'pgs']
-      relax = [omega, omega, omega, low]
+      order = [character(len=5) :: 'lemke', 'pdas', 'pgs', 'pgs', 'fixpt']
+      relax = [omega, omega, omega, low, omega]
     case ('pdas')
-      order = [character(len=5) :: 'pdas', 'lemke', 'pgs', 'pgs']
-      relax = [omega, omega, omega, low]
+      order = [character(len=5) :: 'pdas', 'lemke', 'pgs', 'pgs', 'fixpt']
+      relax = [omega, omega, omega, low, omega]
+    case ('fixpt')
+      order = [character(len=5) :: 'fixpt', 'pdas', 'lemke', 'pgs', 'pgs']
+      relax = [omega, omega, omega, omega, low]
     case default
-      order = [character(len=5) :: 'pgs', 'pgs', 'pdas', 'lemke']
-      relax = [omega, low, omega, omega]
+      order = [character(len=5) :: 'pgs', 'pgs', 'pdas', 'lemke', 'fixpt']
+      relax = [omega, low, omega, omega, omega]
     end select
-    allocate(methods(4), omegas(4))
+    allocate(methods(5), omegas(5))
     n = 0
-    do k = 1, 4
+    do k = 1, 5
       if (n > 0) then
         if (order(k) == 'pgs' .and. methods(n) == 'pgs' .and. omegas(n) == relax(k)) cycle
       end if
@@ -168,9 +186,55 @@ contains
     call move_alloc(grown, attempts)
   end subroutine add_attempt
 
+  !> One load step of contact with friction by the method named (module
+  !> header): 'pdas' friction_newton, 'fixpt' friction_fixed_point, 'lemke'
+  !> and 'pgs' friction_lcp.
+  !>   g, prob (in)    the problem, as in friction_lcp's solve_friction_lcp
+  !>   method  (in)    'lemke', 'pdas', 'pgs' or 'fixpt'
+  !>   opts    (in)    tol, maxit (the method's own limit when 0), omega (PGS)
+  !>   lam     (inout) the start of the iterative methods; the solution or
+  !>                   the method's last iterate
+  !>   rep     (out)   the method's report (info -3 for an unknown method)
+  subroutine solve_friction_method(g, prob, method, opts, lam, rep)
+    real(dp), intent(in) :: g(:, :)
+    type(friction_problem_t), intent(in) :: prob
+    character(len=*), intent(in) :: method
+    type(lcp_options_t), intent(in) :: opts
+    real(dp), intent(inout) :: lam(:)
+    type(lcp_report_t), intent(out) :: rep
+    select case (method)
+    case ('pdas')
+      call solve_friction_newton(g, prob, opts, lam, rep)
+    case ('fixpt')
+      call solve_friction_fixed_point(g, prob, opts, lam, rep)
+    case default
+      call solve_friction_lcp(g, prob, method, opts, lam, rep)
+    end select
+  end subroutine solve_friction_method
+
+  !> The name of a method in a log line: 'Lemke', 'PDAS (semismooth
+  !> Newton)', 'PGS (omega 0.3)', 'fixed point on the Tresca threshold'.
+  !>   method (in) 'lemke', 'pdas', 'pgs' or 'fixpt'
+  !>   omega  (in) its PGS relaxation
+  function method_label(method, omega) result(t)
+    character(len=*), intent(in) :: method
+    real(dp), intent(in) :: omega
+    character(len=:), allocatable :: t
+    select case (method)
+    case ('pdas')
+      t = 'PDAS (semismooth Newton)'
+    case ('pgs')
+      t = 'PGS (omega ' // format_number(omega) // ')'
+    case ('fixpt')
+      t = 'fixed point on the Tresca threshold'
+    case default
+      t = 'Lemke'
+    end select
+  end function method_label
+
   !> One load step by the first method, then the others (module header).
   !>   g, prob (in)    the problem, as in friction_lcp's solve_friction_lcp
-  !>   first   (in)    'lemke', 'pdas' or 'pgs': the method tried first
+  !>   first   (in)    'lemke', 'pdas', 'pgs' or 'fixpt': the method tried first
   !>   opts    (in)    tol, maxit (each method's own limit when 0), omega
   !>                   (the first PGS run's relaxation)
   !>   lam     (inout) on entry the starting point of the iterative methods; on
@@ -204,11 +268,7 @@ contains
       o = opts
       o%omega = omegas(k)
       lam = lam0
-      if (methods(k) == 'pdas') then
-        call solve_friction_newton(g, prob, o, lam, rep)
-      else
-        call solve_friction_lcp(g, prob, trim(methods(k)), o, lam, rep)
-      end if
+      call solve_friction_method(g, prob, trim(methods(k)), o, lam, rep)
       call add_attempt(attempts, trim(methods(k)), omegas(k), rep)
       if (rep%info <= 0 .or. proves_no_solution(.true., all(prob%cmu == 0.0_dp), trim(methods(k)), rep)) exit
     end do

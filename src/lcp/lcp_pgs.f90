@@ -6,8 +6,24 @@
 !> kept up to date column by column (daxpy) and recomputed every 50 sweeps;
 !> the natural residual is checked after every sweep.  Divergence (iterates
 !> beyond 1e150 or the residual grown by 1e6 over its minimum) and stagnation
-!> (the best residual not decreased by a factor 0.999 over max(1000, 10 n)
-!> sweeps) stop with info = 3; z then holds the best iterate.
+!> (the smallest residual of a window of max(1000, 10 n) sweeps not 0.1%
+!> below that of the window before, from the third window on) stop with
+!> info = 3; z then holds the
+!> best iterate.  So does a run too slow to end (solve_lcp_pgs; run_pgs's
+!> slow_stop): at the end of every window the rate rho per sweep between
+!> the two minima is measured, and when reaching tol at that rate would
+!> take more than slow_factor = 10 times the sweep limit, the sweeps stop
+!> (and a stagnation is reported as such a stop, with its rate: PGS
+!> converges on a PSD LCP, so no progress means too slow).  Gauss-
+!> Seidel converges at about 1 - 1/cond(Ws) per sweep, and a Ws dominated
+!> by a few large eigenvalues, as a body held only by soft springs makes
+!> it (its rigid motion gives a rank-2 part 1e6 times the elastic one:
+!> doc/theory.md, "Friction near its limit"), gives rho = 1 - 1e-6: the
+!> message names the rate and the cause, and the caller's exact finish on
+!> the best iterate's active set (contact_lcp) or another method takes
+!> over, 100 times sooner than at the sweep limit.  A correction along the
+!> dominant eigenvectors of Ws does not help: the slow error lies in the
+!> small, elastic eigenvalues that the soft part hides.
 !>
 !> Why it exists: the iterative method and its driver (the gaps refreshed,
 !> the convergence test confirmed on fresh gaps, the best iterate, divergence,
@@ -22,10 +38,11 @@
 !> Programming interface
 !>   solve_lcp_pgs(W, q, z, opts, rep)     z intent(inout): initial guess, clipped to >= 0
 !>   type, abstract :: pgs_problem_t       deferred sweep(omega, s, v), residual(s, v)
-!>   run_pgs(prob, a, q, tol, omega, maxit, window, x, sweeps, reason)   the sweeps until a stop
+!>   run_pgs(prob, a, q, tol, omega, maxit, window, x, sweeps, reason [, slow_stop] [, rate])
+!>                                         the sweeps until a stop
 !>   pgs_set_row(a, j, xnew, x, v)         x_j <- xnew with v = q + A x kept up to date
 !>   pgs_limits(maxit_opt, m, maxit, window)   the sweep limit and the stagnation window
-!>   pgs_outcome(reason, maxit, window, tol, label, iterate, problem, rep)   info and message
+!>   pgs_outcome(reason, maxit, window, tol, label, iterate, problem, rep [, rate])   info and message
 module lcp_pgs
   use kinds, only: dp
   use lapack_interfaces, only: daxpy
@@ -39,6 +56,10 @@ module lcp_pgs
   real(dp), parameter :: divergence_factor = 1.0e6_dp      ! residual growth over its minimum
   real(dp), parameter :: stagnation_factor = 0.999_dp      ! decrease expected per window
   real(dp), parameter :: iterate_bound = 1.0e150_dp        ! iterates beyond this diverge
+  !> A run stops as too slow when reaching tol at its measured rate would
+  !> take more than this many times the sweep limit.
+  real(dp), parameter :: slow_factor = 10.0_dp
+  integer, parameter :: reason_too_slow = 5                ! run_pgs's reason: too slow to end
   integer, parameter :: pgs_refresh_sweeps = 50            ! recompute the gaps from scratch
 
   !> A problem that projected Gauss-Seidel solves (run_pgs): its iterate s
@@ -74,14 +95,19 @@ module lcp_pgs
     procedure :: residual => lcp_residual
   end type pgs_lcp_t
 
-  !> The stop tests of run_pgs: the best iterate, divergence, stagnation.
+  !> The stop tests of run_pgs: the best iterate, divergence, stagnation,
+  !> a run too slow to end.
   type :: pgs_monitor_t
     real(dp) :: tol = 0.0_dp               !< residual target
     real(dp) :: best = 0.0_dp              !< smallest residual so far
-    real(dp) :: reference = 0.0_dp         !< best at the start of the stagnation window
-    integer :: window = 0                  !< stagnation window (sweeps)
-    integer :: last_progress = 0           !< sweep of the last 0.1% decrease of best
     real(dp), allocatable :: xbest(:)      !< the iterate of residual best
+    integer :: window = 0                  !< the window of the progress tests (sweeps)
+    integer :: window_start = 0            !< sweep at the start of the current window
+    real(dp) :: window_min = 0.0_dp        !< smallest residual of the current window
+    real(dp) :: last_min = 0.0_dp          !< of the window before (the start's residual at first)
+    real(dp) :: rate = 1.0_dp              !< (window_min / last_min)^(1/window) of the last window
+    logical :: slow_stop = .false.         !< stop a run too slow to end
+    integer :: maxit = 0                   !< the sweep limit
   end type pgs_monitor_t
 
 
@@ -107,6 +133,7 @@ contains
     type(lcp_report_t), intent(out) :: rep
     type(pgs_lcp_t) :: prob
     real(dp), allocatable :: zs(:)
+    real(dp) :: rate
     integer :: maxit, k, window, stop_reason
 
     call prepare_lcp(W, q, z, opts, .true., prob%lcp, rep)
@@ -118,17 +145,18 @@ contains
         zs(k) = 0.0_dp
         if (ieee_is_finite(z(p%rows(k)))) zs(k) = max(0.0_dp, z(p%rows(k)) / p%d(p%rows(k)))
       end do
-      call run_pgs(prob, p%ws, p%qs, opts%tol, opts%omega, maxit, window, zs, rep%iterations, stop_reason)
+      call run_pgs(prob, p%ws, p%qs, opts%tol, opts%omega, maxit, window, zs, rep%iterations, stop_reason, &
+                   slow_stop=.true., rate=rate)
       z = 0.0_dp
       z(p%rows) = p%d(p%rows) * zs
       call measure_solution(W, q, p%d, z, rep)
     end associate
 
-    call pgs_outcome(stop_reason, maxit, window, opts%tol, 'PGS', 'z', 'LCP', rep)
+    call pgs_outcome(stop_reason, maxit, window, opts%tol, 'PGS', 'z', 'LCP', rep, rate)
   end subroutine solve_lcp_pgs
 
   !> info and message of a projected Gauss-Seidel run from its stop reason
-  !> (0 converged, 2 sweep limit, 3 divergence, other: stagnation).
+  !> (0 converged, 2 sweep limit, 3 divergence, 5 too slow, other: stagnation).
   !>   reason  (in)    stop reason
   !>   maxit, window (in) the sweep limit and the stagnation window
   !>   tol     (in)    the residual target
@@ -136,11 +164,15 @@ contains
   !>   iterate (in)    the name of the returned iterate ('z')
   !>   problem (in)    what is solved ('LCP', 'problem'), for the message
   !>   rep     (inout) iterations and residual set on entry; info, message set
-  subroutine pgs_outcome(reason, maxit, window, tol, label, iterate, problem, rep)
+  !>   rate    (in, optional) run_pgs's rate, named in the message of a run
+  !>                   too slow
+  subroutine pgs_outcome(reason, maxit, window, tol, label, iterate, problem, rep, rate)
     integer, intent(in) :: reason, maxit, window
     real(dp), intent(in) :: tol
     character(len=*), intent(in) :: label, iterate, problem
     type(lcp_report_t), intent(inout) :: rep
+    real(dp), intent(in), optional :: rate
+    character(len=:), allocatable :: pace
     select case (reason)
     case (0)
       rep%info = 0
@@ -156,6 +188,24 @@ contains
       rep%stopped = 'diverged'
       rep%message = label // ': divergence at sweep ' // int_to_str(rep%iterations) // '; ' // iterate // &
         ' is the best iterate, residual ' // real_to_str(rep%residual) // not_a_proof(problem)
+    case (reason_too_slow)
+      rep%info = 3
+      rep%stopped = 'stagnated'
+      pace = ''
+      if (present(rate)) then
+        if (rate < 1.0_dp) then
+          pace = ', falling by ' // real_to_str(1.0_dp - rate) // ' of itself per sweep'
+        else
+          pace = ', not falling over the last ' // int_to_str(window) // ' sweeps'
+        end if
+      end if
+      rep%message = label // ': too slow at sweep ' // int_to_str(rep%iterations) // ', residual ' // &
+        real_to_str(rep%residual) // pace // ': at this rate tol ' // real_to_str(tol) // ' needs more than ' // &
+        int_to_str(nint(slow_factor)) // ' times the sweep limit ' // int_to_str(maxit) // &
+        '; Gauss-Seidel converges at about 1 - 1/cond ' // &
+        'per sweep, and this ' // problem // ' is ill-conditioned (a body held only by soft springs, for ' // &
+        'instance); ' // iterate // ' is the best iterate (this does not show that it has no solution: try ' // &
+        'lcp=pdas or lcp=lemke)'
     case default
       rep%info = 3
       rep%stopped = 'stagnated'
@@ -167,14 +217,16 @@ contains
 
   !> The tail of a divergence or stagnation message: PGS that does not
   !> converge proves nothing about the problem (with Coulomb friction and a
-  !> large mu it stalls on problems that Lemke solves), so the message says
-  !> so and what to try instead.
+  !> large mu it stalls on problems that Lemke solves, and on an
+  !> ill-conditioned one it crawls at about 1 - 1/cond per sweep), so the
+  !> message says so and what to try instead.
   !>   problem (in) what is being solved ('LCP', 'problem')
   function not_a_proof(problem) result(t)
     character(len=*), intent(in) :: problem
     character(len=:), allocatable :: t
     t = ' (PGS does not converge on this ' // problem // ', which does not show that it has no solution: ' // &
-      'try lcp=lemke, or PGS with a smaller omega)'
+      'a large friction coefficient or an ill-conditioned matrix (a body held only by soft springs) stalls it; ' // &
+      'try lcp=pdas or lcp=lemke, or PGS with a smaller omega)'
   end function not_a_proof
 
   !> The sweep limit and the stagnation window of a PGS run on m unknowns.
@@ -205,8 +257,13 @@ contains
   !>   x       (inout) the initial guess, feasible; on exit the solution or the
   !>                   best iterate
   !>   sweeps  (out)   sweeps done
-  !>   reason  (out)   0 converged, 2 limit, 3 divergence, 4 stagnation
-  subroutine run_pgs(prob, a, q, tol, omega, maxit, window, x, sweeps, reason)
+  !>   reason  (out)   0 converged, 2 limit, 3 divergence, 4 stagnation, 5 too
+  !>                   slow (only with slow_stop)
+  !>   slow_stop (in, optional) .true.: stop a run too slow to end (module
+  !>                   header); default .false.
+  !>   rate    (out, optional) the factor per sweep of the best residual over
+  !>                   the last window measured (1 when none was)
+  subroutine run_pgs(prob, a, q, tol, omega, maxit, window, x, sweeps, reason, slow_stop, rate)
     class(pgs_problem_t), intent(in) :: prob
     real(dp), intent(in) :: a(:, :)
     real(dp), intent(in) :: q(:)
@@ -214,6 +271,8 @@ contains
     integer, intent(in) :: maxit, window
     real(dp), intent(inout) :: x(:)
     integer, intent(out) :: sweeps, reason
+    logical, intent(in), optional :: slow_stop
+    real(dp), intent(out), optional :: rate
     type(pgs_monitor_t) :: mon
     real(dp), allocatable :: v(:)
     real(dp) :: res
@@ -221,11 +280,14 @@ contains
 
     sweeps = 0
     reason = 0
+    if (present(rate)) rate = 1.0_dp
     if (size(x) == 0) return
     allocate(v(size(x)))
     call lcp_gaps(a, q, x, v)
     res = prob%residual(x, v)
     call pgs_watch_start(mon, tol, window, x, res)
+    mon%maxit = maxit
+    if (present(slow_stop)) mon%slow_stop = slow_stop
     if (res <= tol) return
 
     reason = 2
@@ -250,6 +312,7 @@ contains
       reason = 2
     end do
     if (reason /= 0) x = mon%xbest
+    if (present(rate)) rate = mon%rate
   end subroutine run_pgs
 
   !> The update of one unknown: x_j <- xnew, and the gaps v = q + A x kept up
@@ -299,9 +362,11 @@ contains
     mon%tol = tol
     mon%window = window
     mon%best = res
-    mon%reference = res
-    mon%last_progress = 0
     mon%xbest = x
+    mon%window_start = 0
+    mon%window_min = huge(1.0_dp)
+    mon%last_min = res
+    mon%rate = 1.0_dp
   end subroutine pgs_watch_start
 
   !> After a sweep: 3 (divergence) when the iterate x or its gaps v are not
@@ -322,21 +387,50 @@ contains
   end function pgs_watch_iterate
 
   !> After a sweep that did not converge: 3 (divergence) when the residual
-  !> res grew by divergence_factor over the best, 4 (stagnation) when the best
-  !> fell by less than 0.1% over the last window sweeps, otherwise -1.
+  !> res grew by divergence_factor over the best; at the end of a window of
+  !> mon%window sweeps from the third on, 4 (stagnation; 5 with
+  !> mon%slow_stop) when its smallest residual is not 0.1% below the window
+  !> before's, 5 (too slow, with mon%slow_stop) when at the rate between the
+  !> two reaching tol would take more than slow_factor times the sweep
+  !> limit; otherwise -1.  The windows' minima, not the best so far, and the
+  !> first window ignored: the residual of Gauss-Seidel is not monotone, and
+  !> a dip in the first sweeps below the slow decrease that follows would
+  !> read as no progress at all.
   integer function pgs_watch_progress(mon, sweep, res) result(reason)
     type(pgs_monitor_t), intent(inout) :: mon
     integer, intent(in) :: sweep
     real(dp), intent(in) :: res
+    real(dp) :: need
     reason = -1
     if (res > divergence_factor * max(mon%best, mon%tol)) then
       reason = 3
-    else if (mon%best < stagnation_factor * mon%reference) then
-      mon%reference = mon%best
-      mon%last_progress = sweep
-    else if (sweep - mon%last_progress >= mon%window) then
-      reason = 4
+      return
     end if
+    mon%window_min = min(mon%window_min, res)
+    if (sweep - mon%window_start < mon%window) return
+    if (sweep <= 2 * mon%window) then
+      ! the first window holds the start's transient, the second is the
+      ! first reference
+      mon%last_min = mon%window_min
+      mon%window_min = huge(1.0_dp)
+      mon%window_start = sweep
+      return
+    end if
+    ! the end of a window: window_min = last_min rate^(sweeps)
+    if (mon%window_min > 0.0_dp .and. mon%last_min > 0.0_dp) &
+      mon%rate = (mon%window_min / mon%last_min)**(1.0_dp / real(sweep - mon%window_start, dp))
+    if (.not. (mon%window_min < stagnation_factor * mon%last_min)) then
+      reason = 4
+      ! with slow_stop the problem is one that PGS solves (W PSD): no
+      ! progress is a rate too slow
+      if (mon%slow_stop) reason = reason_too_slow
+    else if (mon%slow_stop .and. mon%rate < 1.0_dp .and. mon%window_min > mon%tol) then
+      need = log(mon%tol / mon%window_min) / log(mon%rate)       ! sweeps to tol at this rate
+      if (need > slow_factor * real(mon%maxit, dp)) reason = reason_too_slow
+    end if
+    mon%last_min = mon%window_min
+    mon%window_min = huge(1.0_dp)
+    mon%window_start = sweep
   end function pgs_watch_progress
 
 end module lcp_pgs

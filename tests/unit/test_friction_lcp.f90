@@ -6,7 +6,12 @@
 !> nt = 0 against lcp_solvers, and the failures that must be reported.  The
 !> primal-dual active set method of friction_newton on the same random
 !> problems (Tresca: Lemke's unique answer; Coulomb: every condition), and
-!> lcp_auto's order (a singular system hands the step to Lemke).
+!> lcp_auto's order (a singular system hands the step to Lemke).  Its
+!> globalisation and the fixed point on the Tresca threshold
+!> (friction_fixed_point) on small problems whose full Newton steps come
+!> back to a partition, with answers in closed form: the Coulomb and the
+!> Tresca branch, the fixed point on Tresca and on Coulomb problems, where it
+!> does not contract, and the same iterations when the units change.
 program test_friction_lcp
   use kinds, only: dp, i8
   use errors, only: error_t
@@ -15,7 +20,8 @@ program test_friction_lcp
   use friction_lcp, only: friction_problem_t, friction_problem, solve_friction_lcp, friction_residual, &
     friction_state, state_open, state_stick, state_slip
   use friction_newton, only: solve_friction_newton
-  use lcp_auto, only: lcp_attempt_t, solve_friction_auto
+  use friction_fixed_point, only: solve_friction_fixed_point
+  use lcp_auto, only: lcp_attempt_t, solve_friction_auto, method_label
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
 
@@ -47,6 +53,10 @@ program test_friction_lcp
   call test_pdas_random(25, 25, 0.2_dp, 0.8_dp, 'coulomb n25 mu 0.8')
   call test_pdas_random(25, 25, 0.0_dp, 0.8_dp, 'coulomb n25 decoupled mu 0.8')
   call test_auto_order()
+  call test_newton_cycle_coulomb()
+  call test_newton_cycle_tresca()
+  call test_fixed_point_coulomb()
+  call test_fixed_point_no_contraction()
   call test_zero_tangential_row()
   call test_frictionless_limits(15)
   call test_failures()
@@ -530,20 +540,24 @@ contains
     opts%maxit = 1
     lam = 0.0_dp
     call solve_friction_auto(g, prob, 'pgs', opts, lam, rep, att)
-    call check(size(att) == 4, 'auto maxit 1: four attempts')
-    if (size(att) == 4) then
+    call check(size(att) == 5, 'auto maxit 1: five attempts')
+    if (size(att) == 5) then
       call check(att(1)%method == 'pgs' .and. att(1)%omega == 1.0_dp .and. att(2)%method == 'pgs' .and. &
-        att(2)%omega == 0.3_dp .and. att(3)%method == 'pdas' .and. att(4)%method == 'lemke', &
-        'auto maxit 1: pgs (1), pgs (0.3), pdas, lemke')
-      call check(all([(att(i)%rep%info > 0, i = 1, 4)]) .and. rep%info > 0, 'auto maxit 1: every method failed')
+        att(2)%omega == 0.3_dp .and. att(3)%method == 'pdas' .and. att(4)%method == 'lemke' .and. &
+        att(5)%method == 'fixpt', 'auto maxit 1: pgs (1), pgs (0.3), pdas, lemke, fixpt')
+      call check(all([(att(i)%rep%info > 0, i = 1, 5)]) .and. rep%info > 0, 'auto maxit 1: every method failed')
       i = index(rep%message, 'friction PGS: sweep limit')
       j = index(rep%message, 'then friction Lemke')
-      call check(i == 1 .and. j > i .and. index(rep%message, 'then friction Newton') > i, &
-        'auto maxit 1: the message names each failure in turn')
+      call check(i == 1 .and. j > i .and. index(rep%message, 'then friction Newton') > i .and. &
+        index(rep%message, 'then friction fixed point') > j, 'auto maxit 1: the message names each failure in turn')
     end if
+    call check(method_label('fixpt', 1.0_dp) == 'fixed point on the Tresca threshold' .and. &
+      method_label('pgs', 0.3_dp) == 'PGS (omega 0.3)', 'auto: the methods'' names in a log line')
     opts%omega = 0.3_dp
     call solve_friction_auto(g, prob, 'pdas', opts, lam, rep, att)
-    call check(size(att) == 3, 'auto omega 0.3: PGS at 0.3 run once')
+    call check(size(att) == 4, 'auto omega 0.3: PGS at 0.3 run once')
+    if (size(att) == 4) call check(att(3)%method == 'pgs' .and. att(4)%method == 'fixpt', &
+      'auto omega 0.3: pdas, lemke, pgs (0.3), fixpt')
 
     ! a zero normal row with a negative gap: no solution, shown at once
     g = g2
@@ -554,6 +568,180 @@ contains
       [0.0_dp, 0.0_dp, 0.0_dp], [0.1_dp, 0.1_dp, 0.1_dp]), 'pgs', opts, lam, rep, att)
     call check(size(att) == 1 .and. rep%info == 1, 'auto zero row: PGS shows there is no solution, nothing more tried')
   end subroutine test_auto_order
+
+  !> Two nodes, Coulomb mu = 0.2, G on the rows (lambda1, lambda2, tau1, tau2)
+  !>     [  1.1 -2.4  1.5 -0.5 ]
+  !>     [ -2.4  8.8 -4.9  0.8 ]     qn = (-0.1, -0.1),  qt = (0.1, 0.5)
+  !>     [  1.5 -4.9  3.2 -0.6 ]
+  !>     [ -0.5  0.8 -0.6  0.4 ]
+  !> (one of the problems of this size with one-decimal entries on which the
+  !> full Newton steps from zero come back to a partition, an endless cycle
+  !> without the globalisation).  Both nodes slip backwards: tau = -lambda/5
+  !> and (Gnn - Gnt/5) lambda = -qn, [0.8 -2.3; -1.42 8.64] lambda = (0.1, 0.1),
+  !> give lambda = (547, 111)/1823, with ds = -(qt + G(3:4, :) lam) < 0.
+  !> The method says that it globalised, ends on that answer, and takes the
+  !> same steps when G is multiplied by 1e3 and q by 1e-3 (units changed).
+  subroutine test_newton_cycle_coulomb()
+    real(dp) :: g(4, 4), lam(4), lam_ref(4)
+    type(friction_problem_t) :: prob
+    type(lcp_options_t) :: opts
+    type(lcp_report_t) :: rep, rep_units
+    g = reshape([1.1_dp, -2.4_dp, 1.5_dp, -0.5_dp, -2.4_dp, 8.8_dp, -4.9_dp, 0.8_dp, &
+                 1.5_dp, -4.9_dp, 3.2_dp, -0.6_dp, -0.5_dp, 0.8_dp, -0.6_dp, 0.4_dp], [4, 4])
+    prob = friction_problem([-0.1_dp, -0.1_dp], [0.1_dp, 0.5_dp], [1, 2], [0.2_dp, 0.2_dp], [0.0_dp, 0.0_dp])
+    lam_ref(1:2) = [547.0_dp, 111.0_dp] / 1823.0_dp
+    lam_ref(3:4) = -lam_ref(1:2) / 5.0_dp
+    lam = 0.0_dp
+    call solve_friction_newton(g, prob, opts, lam, rep)
+    call check(rep%info == 0, 'newton cycle coulomb: info 0')
+    call check(index(rep%message, 'came back') > 0 .and. index(rep%message, 'damped Newton') > 0, &
+      'newton cycle coulomb: the full steps came back to a partition, then damped steps')
+    call check_small(rel_diff(lam, lam_ref), tol_direct, 'newton cycle coulomb: lam = the closed form')
+    call check_conditions(g, prob, lam, tol_direct, 'newton cycle coulomb')
+    ! the same problem in other units: G x 1e3, q x 1e-3, lam x 1e-6
+    prob%qn = prob%qn * 1.0e-3_dp
+    prob%qt = prob%qt * 1.0e-3_dp
+    lam = 0.0_dp
+    call solve_friction_newton(g * 1.0e3_dp, prob, opts, lam, rep_units)
+    call check(rep_units%info == 0 .and. rep_units%iterations == rep%iterations, &
+      'newton cycle coulomb: the same steps in other units')
+    call check_small(rel_diff(lam * 1.0e6_dp, lam_ref), tol_direct, 'newton cycle coulomb: other units, lam scaled')
+  end subroutine test_newton_cycle_coulomb
+
+  !> Two nodes, Tresca bounds 0.5, G on the rows (lambda1, lambda2, tau1, tau2)
+  !>     [ 2.7 2.7 1.2 2.1 ]
+  !>     [ 2.7 2.9 1.6 2.5 ]     qn = (-0.5, -0.2),  qt = (-0.2, -0.1)
+  !>     [ 1.2 1.6 1.8 1.8 ]
+  !>     [ 2.1 2.5 1.8 2.9 ]
+  !> (found as the problem above: the full steps from zero cycle).  Node 1 in
+  !> contact, node 2 open, both tangential rows sticking: G on the rows
+  !> (1, 3, 4) times (lambda1, tau1, tau2) = (0.5, 0.2, 0.1) gives
+  !> lam = (37, 0, 25, -39)/96, |tau| < 0.5, w2 = 23.2/96 > 0; G is SPD,
+  !> the QP strictly convex, so this is the only solution (Lemke's).  The
+  !> method ends by projected Newton on the QP; the fixed point on the Tresca
+  !> threshold solves the one Tresca problem to the same answer.
+  subroutine test_newton_cycle_tresca()
+    real(dp) :: g(4, 4), lam(4), lam_ref(4), lam_l(4)
+    type(friction_problem_t) :: prob
+    type(lcp_options_t) :: opts
+    type(lcp_report_t) :: rep
+    g = reshape([2.7_dp, 2.7_dp, 1.2_dp, 2.1_dp, 2.7_dp, 2.9_dp, 1.6_dp, 2.5_dp, &
+                 1.2_dp, 1.6_dp, 1.8_dp, 1.8_dp, 2.1_dp, 2.5_dp, 1.8_dp, 2.9_dp], [4, 4])
+    prob = friction_problem([-0.5_dp, -0.2_dp], [-0.2_dp, -0.1_dp], [1, 2], [0.0_dp, 0.0_dp], [0.5_dp, 0.5_dp])
+    lam_ref = [37.0_dp, 0.0_dp, 25.0_dp, -39.0_dp] / 96.0_dp
+    lam = 0.0_dp
+    call solve_friction_newton(g, prob, opts, lam, rep)
+    call check(rep%info == 0, 'newton cycle tresca: info 0')
+    call check(index(rep%message, 'came back') > 0 .and. index(rep%message, 'projected Newton') > 0, &
+      'newton cycle tresca: the full steps came back to a partition, then projected Newton')
+    call check_small(rel_diff(lam, lam_ref), tol_direct, 'newton cycle tresca: lam = the closed form')
+    call check_conditions(g, prob, lam, tol_direct, 'newton cycle tresca')
+    call solve_friction_lcp(g, prob, 'lemke', opts, lam_l, rep)
+    call check(rep%info == 0, 'newton cycle tresca: Lemke solves it')
+    call check_small(rel_diff(lam_l, lam_ref), tol_direct, 'newton cycle tresca: Lemke, the same answer')
+    lam = 0.0_dp
+    call solve_friction_fixed_point(g, prob, opts, lam, rep)
+    call check(rep%info == 0 .and. index(rep%message, 'solved in 1 Tresca problems') > 0, &
+      'fixed point tresca: one Tresca problem')
+    call check_small(rel_diff(lam, lam_ref), tol_direct, 'fixed point tresca: lam = the closed form')
+  end subroutine test_newton_cycle_tresca
+
+  !> The fixed point on the Tresca threshold on Coulomb problems with known
+  !> answers.  One node of test_one_node: G = [2 1/2; 1/2 1], qn = -2,
+  !> qt = -1/10: mu = 0.2 slips with lambda = 20/19, tau = -4/19, mu = 0.8
+  !> sticks with lambda = 39/35, tau = -16/35.  Three nodes, mu = 0.5, G on
+  !> the rows (lambda1..3, tau1..3)
+  !>     [ 0.7 0.3 0.9 1.4 0.7 0.8 ]
+  !>     [ 0.3 0.6 0.8 1.2 0.5 0.9 ]
+  !>     [ 0.9 0.8 4.5 3.7 1.9 3.7 ]   qn = (-0.2, -0.4, -0.6)
+  !>     [ 1.4 1.2 3.7 4.2 2.0 3.3 ]   qt = (-0.4, 0.2, 0.2)
+  !>     [ 0.7 0.5 1.9 2.0 1.4 1.8 ]
+  !>     [ 0.8 0.9 3.7 3.3 1.8 3.4 ]
+  !> (found as above; the Newton steps cycle, and the damped steps stop
+  !> short of it): every node slips backwards, tau = -lambda/2, and
+  !> (Gnn - Gnt/2) lambda = -qn gives lambda = (828, 1540, 684)/1325.  Both
+  !> methods end there, the fixed point in the same iterations in other units.
+  subroutine test_fixed_point_coulomb()
+    real(dp) :: g1(2, 2), lam1(2), g(6, 6), lam(6), lam_ref(6)
+    type(friction_problem_t) :: prob
+    type(lcp_options_t) :: opts
+    type(lcp_report_t) :: rep, rep_units
+    g1 = reshape([2.0_dp, 0.5_dp, 0.5_dp, 1.0_dp], [2, 2])
+    lam1 = [5.0_dp, 1.0_dp]
+    call solve_friction_fixed_point(g1, friction_problem([-2.0_dp], [-0.1_dp], [1], [0.2_dp], [0.0_dp]), opts, &
+      lam1, rep)
+    call check(rep%info == 0, 'fixed point one node mu 0.2: info 0')
+    call check_small(rel_diff(lam1, [20.0_dp, -4.0_dp] / 19.0_dp), 1.0e2_dp * opts%tol, &
+      'fixed point one node mu 0.2: slip, lambda = 20/19, tau = -4/19')
+    lam1 = 0.0_dp
+    call solve_friction_fixed_point(g1, friction_problem([-2.0_dp], [-0.1_dp], [1], [0.8_dp], [0.0_dp]), opts, &
+      lam1, rep)
+    call check(rep%info == 0, 'fixed point one node mu 0.8: info 0')
+    call check_small(rel_diff(lam1, [39.0_dp, -16.0_dp] / 35.0_dp), 1.0e2_dp * opts%tol, &
+      'fixed point one node mu 0.8: stick, lambda = 39/35, tau = -16/35')
+
+    g = reshape([0.7_dp, 0.3_dp, 0.9_dp, 1.4_dp, 0.7_dp, 0.8_dp, &
+                 0.3_dp, 0.6_dp, 0.8_dp, 1.2_dp, 0.5_dp, 0.9_dp, &
+                 0.9_dp, 0.8_dp, 4.5_dp, 3.7_dp, 1.9_dp, 3.7_dp, &
+                 1.4_dp, 1.2_dp, 3.7_dp, 4.2_dp, 2.0_dp, 3.3_dp, &
+                 0.7_dp, 0.5_dp, 1.9_dp, 2.0_dp, 1.4_dp, 1.8_dp, &
+                 0.8_dp, 0.9_dp, 3.7_dp, 3.3_dp, 1.8_dp, 3.4_dp], [6, 6])
+    prob = friction_problem([-0.2_dp, -0.4_dp, -0.6_dp], [-0.4_dp, 0.2_dp, 0.2_dp], [1, 2, 3], &
+                            [0.5_dp, 0.5_dp, 0.5_dp], [0.0_dp, 0.0_dp, 0.0_dp])
+    lam_ref(1:3) = [828.0_dp, 1540.0_dp, 684.0_dp] / 1325.0_dp
+    lam_ref(4:6) = -lam_ref(1:3) / 2.0_dp
+    lam = 0.0_dp
+    call solve_friction_fixed_point(g, prob, opts, lam, rep)
+    call check(rep%info == 0, 'fixed point three nodes: info 0')
+    call check_small(rel_diff(lam, lam_ref), 1.0e2_dp * opts%tol, 'fixed point three nodes: lam = the closed form')
+    call check_conditions(g, prob, lam, 1.0e2_dp * opts%tol, 'fixed point three nodes')
+    lam = 0.0_dp
+    call solve_friction_newton(g, prob, opts, lam, rep_units)
+    call check(rep_units%info == 0 .and. index(rep_units%message, 'came back') > 0, &
+      'newton three nodes: solved after a cycle')
+    call check_small(rel_diff(lam, lam_ref), tol_direct, 'newton three nodes: lam = the closed form')
+    ! other units: G x 1e-3, q x 1e3, lam x 1e6
+    prob%qn = prob%qn * 1.0e3_dp
+    prob%qt = prob%qt * 1.0e3_dp
+    lam = 0.0_dp
+    call solve_friction_fixed_point(g * 1.0e-3_dp, prob, opts, lam, rep_units)
+    call check(rep_units%info == 0 .and. rep_units%iterations == rep%iterations .and. &
+      rep_units%message(1:40) == rep%message(1:40), 'fixed point three nodes: the same iterations in other units')
+    call check_small(rel_diff(lam * 1.0e-6_dp, lam_ref), 1.0e2_dp * opts%tol, &
+      'fixed point three nodes: other units, lam scaled')
+  end subroutine test_fixed_point_coulomb
+
+  !> Two nodes, mu = 0.5, G on the rows (lambda1, lambda2, tau1, tau2)
+  !>     [  1.0 0.1 -0.1  1.0 ]
+  !>     [  0.1 0.1  0.1  0.0 ]     qn = (-0.4, -0.3),  qt = (0.5, 0.3)
+  !>     [ -0.1 0.1  0.4 -0.2 ]
+  !>     [  1.0 0.0 -0.2  1.4 ]
+  !> tau2 pushes node 1 as hard as lambda1 does (G(1,4) = G(1,1)): with
+  !> mu = 0.5 the fixed point on the Tresca threshold is no contraction and
+  !> stops so (info 3, 'stagnated') without claiming that there is no
+  !> solution.  The Newton method finds one: both nodes slip backwards,
+  !> tau = -lambda/2, (Gnn - Gnt/2) lambda = -qn gives lambda = (32, 59)/25.
+  subroutine test_fixed_point_no_contraction()
+    real(dp) :: g(4, 4), lam(4), lam_ref(4)
+    type(friction_problem_t) :: prob
+    type(lcp_options_t) :: opts
+    type(lcp_report_t) :: rep
+    g = reshape([1.0_dp, 0.1_dp, -0.1_dp, 1.0_dp, 0.1_dp, 0.1_dp, 0.1_dp, 0.0_dp, &
+                 -0.1_dp, 0.1_dp, 0.4_dp, -0.2_dp, 1.0_dp, 0.0_dp, -0.2_dp, 1.4_dp], [4, 4])
+    prob = friction_problem([-0.4_dp, -0.3_dp], [0.5_dp, 0.3_dp], [1, 2], [0.5_dp, 0.5_dp], [0.0_dp, 0.0_dp])
+    lam_ref(1:2) = [32.0_dp, 59.0_dp] / 25.0_dp
+    lam_ref(3:4) = -lam_ref(1:2) / 2.0_dp
+    lam = 0.0_dp
+    call solve_friction_fixed_point(g, prob, opts, lam, rep)
+    call check(rep%info == 3 .and. trim(rep%stopped) == 'stagnated' .and. all(ieee_is_finite(lam)), &
+      'fixed point no contraction: info 3, stagnated')
+    call check(index(rep%message, 'no contraction') > 0 .and. &
+      index(rep%message, 'does not show that there is no solution') > 0, 'fixed point no contraction: no claim')
+    lam = 0.0_dp
+    call solve_friction_newton(g, prob, opts, lam, rep)
+    call check(rep%info == 0, 'fixed point no contraction: Newton solves it')
+    call check_small(rel_diff(lam, lam_ref), tol_direct, 'fixed point no contraction: Newton, the closed form')
+  end subroutine test_fixed_point_no_contraction
 
   !> A tangential row with a zero row/column in G (ds_k = -qt_k whatever lam):
   !> with qt_k = -0.2 the node slips, tau_k = +b_k.
