@@ -15,14 +15,18 @@
 !> and the step's friction LCP carries alpha_r (friction_modes), as it carries
 !> the free modes of the bodies.
 !> Which combinations of the free directions contact holds is decided from the
-!> SVD of each RIGID's columns of H_r (theta scaled by the shape's size, so
-!> that a singular value is the gap a motion of unit size opens): a right
-!> singular vector with singular value below 1e-8 of the largest column norm
-!> is not held (the rotation of a circle about its centre, a translation
-!> along a flat punch without friction).  The shapes are exact, so the
-!> threshold is a round-off one (no polygon defect as in mode_support).  An
-!> unheld combination must be unloaded, |v'e| <= 1e-10 |e| (scaled), else there
-!> is no equilibrium: exit 1 naming the obstacle and the direction.
+!> SVD of each RIGID's columns of H_r in comparable units: the rotation as
+!> phi = L theta, L the shape's size, so that its column is H_theta / L (the
+!> entries of H_theta are lever arms, a length) and a singular value is the
+!> gap a motion of unit size opens, translation or rotation alike, whatever
+!> the unit of length.  A right singular vector with singular value below
+!> 1e-8 of the largest column norm is not held (the rotation of a circle
+!> about its centre, a translation along a flat punch without friction).
+!> The shapes are exact, so the threshold is a round-off one (no polygon
+!> defect as in mode_support).  An unheld combination must be unloaded: the
+!> load conjugate to phi is m / L, a force like the others, and
+!> |v'(e / scale)| <= 1e-10 |e / scale|, else there is no equilibrium: exit 1
+!> naming the obstacle and the direction.
 !>
 !> Programming interface
 !>   type(rigid_split_t)                            free dofs, H_r, e_r, held / unheld
@@ -44,7 +48,7 @@ module rigid_support
     integer, allocatable :: dof(:)            !< (k) their global dofs
     integer, allocatable :: owner(:)          !< (k) the RIGID of each
     integer, allocatable :: comp(:)           !< (k) 1 u_x, 2 u_y, 3 theta
-    real(dp), allocatable :: scale(:)         !< (k) 1, or the shape's size for theta
+    real(dp), allocatable :: scale(:)         !< (k) 1, or the shape's size L for theta (phi = L theta)
     real(dp), allocatable :: h(:,:)           !< (nrow + ntan, k) C's columns on them (C = [B; T])
     real(dp), allocatable :: e(:)             !< (k) their loads (FORCE)
     real(dp), allocatable :: held(:,:)        !< (k, kh) the combinations contact holds (orthonormal)
@@ -110,7 +114,7 @@ contains
       if (m == 0) cycle
       a = rs%h(:, cols)
       do j = 1, m
-        a(:, j) = a(:, j) * rs%scale(cols(j))      ! theta per unit of the shape's size
+        a(:, j) = a(:, j) / rs%scale(cols(j))      ! d gap / d phi = H_theta / L, phi = L theta
       end do
       ref = maxval(norm2(a, dim=1))
       escale = norm2(rs%e(cols) / rs%scale(cols))
@@ -128,7 +132,7 @@ contains
         deallocate(work)
       end if
       do j = 1, m
-        ! combination v (scaled units) -> in the dofs: v_j * scale_j
+        ! combination v (scaled units) -> in the dofs: theta = phi / L
         if (j <= size(s)) then
           if (s(j) > 1.0e-8_dp * ref .and. ref > 0.0_dp) then
             held = reshape([held, expand(rs%scale, cols, vt(j, :))], [rs%k, size(held, 2) + 1])
@@ -148,14 +152,15 @@ contains
     call move_alloc(uowner, rs%unheld_owner)
     call move_alloc(loaded, rs%loaded)
   contains
-    !> v (on cols, scaled units) as a k-vector in the dofs: v_j scale_j, unit length
+    !> v (on cols, scaled units: phi = L theta) as a k-vector in the dofs,
+    !> v_j / scale_j (theta = phi / L), of unit length
     pure function expand(scale, cols, v) result(x)
       real(dp), intent(in) :: scale(:)
       integer, intent(in) :: cols(:)
       real(dp), intent(in) :: v(:)
       real(dp) :: x(size(scale))
       x = 0.0_dp
-      x(cols) = v * scale(cols)
+      x(cols) = v / scale(cols)
       x = x / norm2(x)
     end function expand
   end subroutine split_rigid_modes
@@ -171,7 +176,7 @@ contains
     integer :: j
     a = 0.0_dp
     do j = 1, rs%k
-      a(rs%comp(j)) = a(rs%comp(j)) + c(j) / rs%scale(j)     ! theta in units of the size
+      a(rs%comp(j)) = a(rs%comp(j)) + c(j) * rs%scale(j)     ! phi = L theta, comparable with a translation
     end do
     tr = norm2(a(1:2))
     t = ''
@@ -188,16 +193,19 @@ contains
 
   !> The first RIGID whose load its contacts cannot balance: min |H_j' mu - e_j|
   !> over mu >= 0 (nonnegative least squares as the LCP(H_j H_j', -H_j e_j),
-  !> Lemke) is not zero.  0 when each can be balanced on its own.
+  !> Lemke) is not zero.  0 when each can be balanced on its own.  The columns
+  !> are those of phi = L theta (H_theta / L, its load m / L), so that the
+  !> residual compares forces with forces whatever the unit of length.
   !>   rs (in) the split;  owner (out) the RIGID, 0 when none;  resid (out) (3) the
-  !>   unbalanced part of its load (u_x, u_y, theta order, 0 on prescribed ones)
+  !>   unbalanced part of its load (fx, fy, m: u_x, u_y, theta order, 0 on
+  !>   prescribed ones)
   subroutine pulled_rigid(rs, owner, resid)
     type(rigid_split_t), intent(in) :: rs
     integer, intent(out) :: owner
     real(dp), intent(out) :: resid(3)
     integer :: r, j
     integer, allocatable :: cols(:)
-    real(dp), allocatable :: hj(:,:), mu(:), rr(:)
+    real(dp), allocatable :: hj(:,:), ej(:), mu(:), rr(:)
     type(lcp_options_t) :: opts
     type(lcp_report_t) :: rep
     owner = 0
@@ -207,13 +215,17 @@ contains
       cols = pack([(j, j = 1, rs%k)], rs%owner == r)
       if (size(cols) == 0) cycle
       hj = rs%h(1:size(rs%h, 1), cols)
+      ej = rs%e(cols) / rs%scale(cols)                 ! m / L: a force
+      do j = 1, size(cols)
+        hj(:, j) = hj(:, j) / rs%scale(cols(j))        ! H_theta / L: per unit phi
+      end do
       allocate(mu(size(hj, 1)), source=0.0_dp)
-      call solve_lcp_lemke(matmul(hj, transpose(hj)), -matmul(hj, rs%e(cols)), mu, opts, rep)
-      rr = matmul(transpose(hj), mu) - rs%e(cols)
-      if (norm2(rr) > 1.0e-8_dp * norm2(rs%e(cols))) then
+      call solve_lcp_lemke(matmul(hj, transpose(hj)), -matmul(hj, ej), mu, opts, rep)
+      rr = matmul(transpose(hj), mu) - ej
+      if (norm2(rr) > 1.0e-8_dp * norm2(ej)) then
         owner = r
         do j = 1, size(cols)
-          resid(rs%comp(cols(j))) = -rr(j)
+          resid(rs%comp(cols(j))) = -rr(j) * rs%scale(cols(j))     ! back to (fx, fy, m)
         end do
         return
       end if

@@ -19,6 +19,17 @@
 !>     held the identity (the modes themselves).
 !> e = R'f is checked against the resultant: e'(R't_y) = the total y load,
 !> R having orthonormal columns for a body without FIX.
+!> The resolution of a curve on a finely meshed flat: the bottom arc of a
+!> sector of the disk of radius 1 about c = (0, 1) (60 degrees in 8
+!> segments, each turning by pi/24) rests on the top of a block meshed at
+!> h = 1/32, the arc the slave.  Its rows turn by pi/24 at 7 nodes, the 33
+!> covered flat nodes by 0: pooled, the median would be 0 and tau 1e-10; the
+!> rougher side decides, tau = pi/24 for both bodies, and the rotation of the
+!> sector about c (every normal passes through c, up to the polygon's
+!> defect) is not held: its motion u(x) is normal to x - c at every node, to
+!> within that defect.
+!> The weight on the sector's top nodes, symmetric about x = 0, does not load
+!> it.
 program test_mode_support
   use kinds, only: dp
   use errors, only: diag_t, error_t
@@ -35,6 +46,7 @@ program test_mode_support
   call run_case(.false., 'weight')
   call run_case(.false., 'side push')
   call run_case(.true., 'weight')
+  call arc_on_fine_flat()
   call finish_tests()
 
 contains
@@ -157,6 +169,79 @@ contains
       call check(sp%loaded(1), name // ': the push loads the slide (no equilibrium)')
     end if
   end subroutine run_case
+
+  !> The sector's arc on the fine flat of the header.
+  subroutine arc_on_fine_flat()
+    real(dp), parameter :: pi = acos(-1.0_dp), span = pi / 3.0_dp, thick = 0.25_dp, c(2) = [0.0_dp, 1.0_dp]
+    character(len=*), parameter :: name = 'arc on a fine flat'
+    type(body_t) :: bd(2)
+    type(diag_t) :: diag
+    type(error_t), allocatable :: err
+    type(pair_spec_t) :: spec(1)
+    type(contact_set_t) :: cs
+    type(floating_t) :: fl
+    type(mode_split_t) :: sp
+    logical, allocatable :: fixed(:)
+    real(dp), allocatable :: fext(:), motion(:)
+    real(dp) :: theta, r, radial
+    integer :: i, n, n2, b
+
+    call make_rect_mesh(-1.0_dp, -0.5_dp, 1.0_dp, 0.0_dp, 64, 4, 'tri3', 'right', bd(1)%mesh, err)
+    if (.not. allocated(err)) call make_rect_mesh(0.0_dp, 0.0_dp, 1.0_dp, 1.0_dp, 8, 2, 'tri3', 'right', bd(2)%mesh, err)
+    call check(.not. allocated(err), name // ': meshes')
+    if (allocated(err)) return
+    ! the unit square (u, v) onto the sector: theta = -pi/2 + (u - 1/2) span,
+    ! radius 1 - thick v about c, so that v = 0 is the arc (the 'bottom')
+    do i = 1, bd(2)%mesh%nnode
+      theta = -0.5_dp * pi + (bd(2)%mesh%x(1, i) - 0.5_dp) * span
+      r = 1.0_dp - thick * bd(2)%mesh%x(2, i)
+      bd(2)%mesh%x(:, i) = c + r * [cos(theta), sin(theta)]
+    end do
+    do b = 1, 2
+      call finalize_mesh(bd(b)%mesh, 'mode_support', diag)
+      call make_isotropic(1000.0_dp, 0.3_dp, .false., bd(b)%law)
+    end do
+    call check(diag%count == 0, name // ': the sector is a valid mesh')
+    if (diag%count /= 0) return
+    bd(2)%dof0 = 2 * bd(1)%mesh%nnode
+    n2 = bd(2)%mesh%nnode
+    n = bd(2)%dof0 + 2 * n2
+    allocate(fixed(n), fext(n))
+    fixed = .false.
+    do i = 1, bd(1)%mesh%nnode
+      if (bd(1)%mesh%x(2, i) == -0.5_dp) fixed(2 * i - 1:2 * i) = .true.
+    end do
+    call find_floating_modes(bd, fixed, fl)
+    call check(fl%k == 3, name // ': the sector floats (three modes)')
+    if (fl%k /= 3) return
+    spec(1)%slave_body = 2
+    spec(1)%slave_bnd = find_name(bd(2)%mesh%bnd, 'bottom')
+    spec(1)%master_body = 1
+    spec(1)%master_bnd = find_name(bd(1)%mesh%bnd, 'top')
+    call build_contact_set(bd, spec, cs, err)
+    call check(.not. allocated(err), name // ': contact set built')
+    if (allocated(err)) return
+    fext = 0.0_dp
+    do i = 1, n2
+      if (abs(norm2(bd(2)%mesh%x(:, i) - c) - (1.0_dp - thick)) < 1.0e-12_dp) fext(bd(2)%dof0 + 2 * i) = -1.0_dp
+    end do
+    call split_free_modes(cs, bd, fl, fext, sp)
+    call check_small(maxval(abs(sp%tau - span / 8.0_dp)) / (span / 8.0_dp), tol_round(64), &
+                     name // ': tau = the arc''s turning angle pi/24 (the rougher side), on both bodies')
+    call check(size(sp%unheld, 2) == 1, name // ': one combination not held')
+    if (size(sp%unheld, 2) /= 1) return
+    motion = matmul(fl%r, sp%unheld(:, 1))
+    radial = 0.0_dp
+    do i = 1, n2
+      radial = max(radial, abs(dot_product(motion(bd(2)%dof0 + 2 * i - 1:bd(2)%dof0 + 2 * i), bd(2)%mesh%x(:, i) - c)))
+    end do
+    ! v is known to within its singular value over the held ones' (Wedin),
+    ! of the order of the polygon's defect: the radial part of its motion is
+    ! below the turning angle, where a slide along x would give 1
+    call check_small(radial / maxval(abs(motion)), span / 8.0_dp, &
+                     name // ': the unheld motion is the rotation about the arc''s centre (|u . (x - c)| < tau |u|)')
+    call check(.not. sp%loaded(1), name // ': the symmetric weight does not load it')
+  end subroutine arc_on_fine_flat
 
   pure real(dp) function determinant2(a)
     real(dp), intent(in) :: a(2, 2)

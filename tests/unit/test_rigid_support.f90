@@ -17,6 +17,12 @@
 !>     is balanced while |M| <= 1/2 (the lever of the half width) and pulls
 !>     the punch off beyond; a FORCE (0, +1) pulls it off with the whole load
 !>     unbalanced, resid = (0, 1, 0).
+!> The same cases at other units of length (every length, the punch's size
+!> among them, times L; forces times L, moments times L^2, as a change of
+!> unit with the stresses kept): the decisions must not change.  The
+!> rotation's column is H_theta / L (phi = L theta), so its singular value
+!> stays that of a translation; scaled by L instead (the old rule) the slide
+!> and the sinking looked unheld at L = 1e5 and the tilting at L = 1e-4.
 program test_rigid_support
   use kinds, only: dp
   use errors, only: diag_t, error_t
@@ -30,6 +36,9 @@ program test_rigid_support
   use testing, only: check, check_small, finish_tests, tol_round
   implicit none
   character(len=*), parameter :: dof_names(3) = ['u_x  ', 'u_y  ', 'theta']
+  real(dp), parameter :: scales(3) = [1.0e-4_dp, 1.0e3_dp, 1.0e5_dp]
+  character(len=32) :: lname
+  integer :: k
 
   call run_case(.false., [.false., .false., .false.], [0.0_dp, -1.0_dp, 0.0_dp], 'free, down')
   call run_case(.false., [.false., .false., .false.], [1.0_dp, -1.0_dp, 0.0_dp], 'free, sideways')
@@ -38,16 +47,30 @@ program test_rigid_support
   call run_case(.false., [.false., .false., .false.], [0.0_dp, -1.0_dp, 0.45_dp], 'free, moment 0.45')
   call run_case(.false., [.false., .false., .false.], [0.0_dp, -1.0_dp, 0.55_dp], 'free, moment 0.55')
   call run_case(.false., [.false., .false., .false.], [0.0_dp, 1.0_dp, 0.0_dp], 'free, up')
+  do k = 1, size(scales)
+    write(lname, '(a, es7.0)') ', L = ', scales(k)
+    call run_case(.false., [.false., .false., .false.], [0.0_dp, -1.0_dp, 0.0_dp], 'free, down' // trim(lname), scales(k))
+    call run_case(.false., [.false., .false., .false.], [1.0_dp, -1.0_dp, 0.0_dp], 'free, sideways' // trim(lname), &
+                  scales(k))
+    call run_case(.false., [.false., .false., .false.], [0.0_dp, -1.0_dp, 0.45_dp], 'free, moment 0.45' // trim(lname), &
+                  scales(k))
+    call run_case(.false., [.false., .false., .false.], [0.0_dp, -1.0_dp, 0.55_dp], 'free, moment 0.55' // trim(lname), &
+                  scales(k))
+    call run_case(.false., [.false., .false., .false.], [0.0_dp, 1.0_dp, 0.0_dp], 'free, up' // trim(lname), scales(k))
+  end do
   call finish_tests()
 
 contains
 
   !> The square, the punch with the given prescribed directions (fix) and
-  !> FORCE (force: F_x, F_y, moment), and the checks that apply.
-  subroutine run_case(friction, fix, force, name)
+  !> FORCE (force: F_x, F_y, moment), and the checks that apply; at the unit
+  !> of length scale (default 1): lengths times it, the force times it, the
+  !> moment times its square.
+  subroutine run_case(friction, fix, force0, name, scale)
     logical, intent(in) :: friction, fix(3)
-    real(dp), intent(in) :: force(3)
+    real(dp), intent(in) :: force0(3)
     character(len=*), intent(in) :: name
+    real(dp), intent(in), optional :: scale
     type(body_t) :: bd(1)
     type(diag_t) :: diag
     type(error_t), allocatable :: err
@@ -57,12 +80,15 @@ contains
     type(rigid_shape_t) :: sh
     logical, allocatable :: fixed(:)
     real(dp), allocatable :: fext(:), expect(:,:)
-    real(dp) :: resid(3), xi
+    real(dp) :: resid(3), xi, el, force(3)
     integer :: i, n, r, j, owner, nfree
     logical :: pulled
     character(len=:), allocatable :: words
 
-    call make_rect_mesh(0.0_dp, 0.0_dp, 1.0_dp, 1.0_dp, 4, 4, 'tri3', 'right', bd(1)%mesh, err)
+    el = 1.0_dp
+    if (present(scale)) el = scale
+    force = force0 * [el, el, el**2]
+    call make_rect_mesh(0.0_dp, 0.0_dp, el, el, 4, 4, 'tri3', 'right', bd(1)%mesh, err)
     call check(.not. allocated(err), name // ': mesh')
     if (allocated(err)) return
     call finalize_mesh(bd(1)%mesh, 'rigid_support', diag)
@@ -70,9 +96,9 @@ contains
 
     sh%name = 'punch'
     sh%kind = shape_line
-    sh%pt = reshape([-0.5_dp, 1.0_dp, 1.5_dp, 1.0_dp], [2, 2])
-    sh%ref = [0.5_dp, 1.0_dp]
-    sh%length = 2.0_dp
+    sh%pt = reshape([-0.5_dp, 1.0_dp, 1.5_dp, 1.0_dp], [2, 2]) * el
+    sh%ref = [0.5_dp, 1.0_dp] * el
+    sh%length = 2.0_dp * el
     sh%dof0 = 2 * bd(1)%mesh%nnode
     n = sh%dof0 + 3
 
@@ -110,11 +136,11 @@ contains
     allocate(expect(cs%nrow, 3))
     do r = 1, cs%nrow
       xi = cs%pair(1)%xs(1, cs%row_node(r))
-      expect(r, :) = -[0.0_dp, 1.0_dp, xi - 0.5_dp]
+      expect(r, :) = -[0.0_dp, 1.0_dp, xi - 0.5_dp * el]
     end do
     call check(cs%nrow == 5, name // ': a row at each of the 5 slave nodes')
     do j = 1, rs%k
-      call check_small(maxval(abs(rs%h(1:cs%nrow, j) - expect(:, rs%comp(j)))), tol_round(8), &
+      call check_small(maxval(abs(rs%h(1:cs%nrow, j) - expect(:, rs%comp(j)))), tol_round(8, merge(el, 1.0_dp, j == 3)), &
                        name // ': H_r column ' // trim(dof_names(rs%comp(j))) // ' by hand')
     end do
 
@@ -137,11 +163,11 @@ contains
     ! F_y <= 0 is balanced by sum mu = -F_y, its moment while |M| <= -F_y / 2;
     ! F_x never (no row sees u_x)
     call pulled_rigid(rs, owner, resid)
-    pulled = force(1) /= 0.0_dp .or. force(2) > 0.0_dp .or. abs(force(3)) > -0.5_dp * force(2)
+    pulled = force(1) /= 0.0_dp .or. force(2) > 0.0_dp .or. abs(force(3)) > -0.5_dp * el * force(2)
     call check(owner == merge(1, 0, pulled), name // ': ' // trim(merge('pulled off its contacts   ', &
                                                                       'balanced by its contacts  ', pulled)))
     if (force(2) > 0.0_dp .and. owner == 1) &
-      call check_small(maxval(abs(resid - [0.0_dp, 1.0_dp, 0.0_dp])), tol_round(8), &
+      call check_small(maxval(abs(resid - [0.0_dp, force(2), 0.0_dp])), tol_round(8, el), &
                        name // ': all of the lift is unbalanced, resid = (0, 1, 0)')
   end subroutine run_case
 
