@@ -23,7 +23,7 @@
 !>   unheld_summary(prob, split, j)       the summary line of unheld mode j
 module held_by_contact
   use kinds, only: dp
-  use strings, only: exact_to_str
+  use strings, only: exact_to_str, real_to_str
   use errors, only: diag_t, add_error, error_t, set_error, error_no_equilibrium
   use problem, only: problem_t, step_label
   use lcp_solvers, only: lcp_options_t, lcp_report_t, solve_lcp_lemke
@@ -198,32 +198,65 @@ contains
   !> the motion of that one alone.
   !>   unbalanced (in) e - H'z at the closest balance, along the held combinations
   !>   cause      (in) 'friction' (the cone is too small) or 'contact'
-  function floating_no_equilibrium(prob, split, rsplit, unbalanced, cause) result(t)
+  !>   capacity   (in) with cause 'friction', the capacity C of friction_modes
+  !>              along the unbalanced load (0: not known)
+  function floating_no_equilibrium(prob, split, rsplit, unbalanced, cause, capacity) result(t)
     type(problem_t), intent(in) :: prob
     type(mode_split_t), intent(in) :: split
     type(rigid_split_t), intent(in) :: rsplit
-    real(dp), intent(in) :: unbalanced(:)
+    real(dp), intent(in) :: unbalanced(:), capacity
     character(len=*), intent(in) :: cause
     character(len=:), allocatable :: t
     real(dp), allocatable :: c(:)
-    integer :: kb, owner
+    real(dp) :: a(3), size_u
+    integer :: kb, owner, j
     logical :: on_body
     kb = size(split%held, 2)
+    size_u = norm2(unbalanced)
     on_body = .false.
     if (kb > 0) on_body = maxval(abs(unbalanced(1:kb))) >= maxval(abs(unbalanced(kb + 1:)), mask=.true.) .or. &
                           size(unbalanced) == kb
+    ! a: the motion along unit u in (u_x, u_y, rotation) of one unit of the
+    ! combination's amplitude, to turn C (per unit amplitude) into a force
+    ! or a moment
+    a = 0.0_dp
     if (on_body) then
       call largest_owner(split%held, unbalanced(1:kb), prob%fl%mode_body, c, owner)
+      do j = 1, prob%fl%k
+        a = a + c(j) / size_u * prob%fl%coef(:, j) / prob%fl%norm(j)
+      end do
+      if (a(3) /= 0.0_dp) a(3) = a(3) / prob%fl%length(maxloc(abs(c), dim=1))   ! r3's rotation is theta L
       t = no_equilibrium_text(cause, 'the loads on body "' // prob%sc%bodies(owner)%name // '" exceed', &
                               'the loads pull body "' // prob%sc%bodies(owner)%name // '"', motion_name(prob%fl, c), &
-                              'the loads')
+                              'the loads', capacity_text(capacity, a))
     else
       call largest_owner(rsplit%held, unbalanced(kb + 1:), rsplit%owner, c, owner)
+      do j = 1, rsplit%k
+        a(rsplit%comp(j)) = a(rsplit%comp(j)) + c(j) / size_u
+      end do
       t = no_equilibrium_text(cause, 'the FORCE on RIGID "' // prob%sc%rigids(owner)%name // '" exceeds', &
                               'the FORCE on RIGID "' // prob%sc%rigids(owner)%name // '" pulls it', &
-                              rigid_direction(rsplit, c), 'its load')
+                              rigid_direction(rsplit, c), 'its load', capacity_text(capacity, a))
     end if
   end function floating_no_equilibrium
+
+  !> The largest load friction holds along the motion, in words: ', a force
+  !> of about F' (a translation) or ', a moment of about M' (a rotation);
+  !> '' when it is not known.  The capacity C is a generalized force along a
+  !> unit combination of the modes, whose motion is a: C = F |a_xy| for a
+  !> translation, M a_theta for a rotation.
+  !>   capacity (in) C, 0 when not known;  a (in) (3) u_x, u_y, theta of the motion
+  function capacity_text(capacity, a) result(t)
+    real(dp), intent(in) :: capacity, a(3)
+    character(len=:), allocatable :: t
+    t = ''
+    if (.not. capacity > 0.0_dp) return
+    if (abs(a(3)) * 1.0e8_dp <= norm2(a(1:2))) then
+      t = ', a force of about ' // real_to_str(capacity / norm2(a(1:2)))
+    else if (norm2(a(1:2)) == 0.0_dp) then
+      t = ', a moment of about ' // real_to_str(capacity / abs(a(3)))
+    end if
+  end function capacity_text
 
   !> The unbalanced load in the modes' (or directions') amplitudes, c = H u,
   !> kept on the owner (body or RIGID) with the largest amplitude.
@@ -249,11 +282,15 @@ contains
   !>   pulled (in) who is pulled off, with the verb: 'the loads pull body "A"'
   !>   motion (in) the motion it would make
   !>   load   (in) what is not balanced: 'the loads', 'its load'
-  function no_equilibrium_text(cause, held, pulled, motion, load) result(t)
+  !>   limit  (in, optional) the largest load friction holds, capacity_text
+  function no_equilibrium_text(cause, held, pulled, motion, load, limit) result(t)
     character(len=*), intent(in) :: cause, held, pulled, motion, load
+    character(len=*), intent(in), optional :: limit
     character(len=:), allocatable :: t
     if (cause == 'friction') then
-      t = 'no equilibrium: ' // held // ' what friction can hold: it would move by ' // motion // &
+      t = 'no equilibrium: ' // held // ' what friction can hold'
+      if (present(limit)) t = t // limit
+      t = t // ': it would move by ' // motion // &
         ' (the contact forces within the friction cone cannot balance ' // load // ')'
     else
       t = 'no equilibrium: ' // pulled // ' away from its contacts: it would move by ' // motion // &

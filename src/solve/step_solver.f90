@@ -194,6 +194,7 @@ contains
     character(len=5), allocatable :: methods(:)
     real(dp), allocatable :: omegas(:), hh(:,:), eh(:), alpha(:), unbalanced(:), z0(:)
     character(len=:), allocatable :: cause
+    real(dp) :: capacity
     integer :: n, nt, kb, kr, k
 
     n = fp%n
@@ -215,7 +216,7 @@ contains
         eh = [eh, matmul(transpose(rsplit%held), rsplit%e)]
       end if
       allocate(alpha(kb + kr))
-      call solve_friction_floating(w, fp, hh, eh, opts, z, alpha, rep, unbalanced, cause)
+      call solve_friction_floating(w, fp, hh, eh, opts, z, alpha, rep, unbalanced, cause, capacity)
       if (rep%info == 0) then
         shift = matmul(hh, alpha)                    ! the step's rigid motion in the gaps and slips
         fp%qn = fp%qn - shift(1:n)
@@ -227,7 +228,8 @@ contains
       sol%iterations = rep%iterations
       sol%residual = rep%residual
       if (rep%info == no_equilibrium) then
-        call set_error(err, step_label(prob, kstep) // floating_no_equilibrium(prob, split, rsplit, unbalanced, cause), &
+        call set_error(err, step_label(prob, kstep) // floating_no_equilibrium(prob, split, rsplit, unbalanced, cause, &
+                       capacity), &
                        error_no_equilibrium)
         return
       end if
