@@ -46,6 +46,8 @@ module rigid_obstacle
   public :: signed_distance, orient_shape, build_rigid_mortar, rigid_terms
 
   integer, parameter :: shape_line = 1, shape_circle = 2, shape_polyline = 3
+  ! two distances within this ratio are a tie (signed_distance)
+  real(dp), parameter :: tie_ratio = 1.0e-12_dp
 
   type :: rigid_shape_t
     character(len=:), allocatable :: name     !< the RIGID's name
@@ -106,7 +108,10 @@ contains
       len2 = dot_product(e, e)
       t = min(1.0_dp, max(0.0_dp, dot_product(x - sh%pt(:, k), e) / len2))
       p = sh%pt(:, k) + t * e
-      if (norm2(x - p) < best) then
+      ! a later segment wins only when nearer by more than round-off: a point
+      ! on the bisector of two segments (above a V's apex) is a tie, and its
+      ! row's normal must not depend on the rounding of the deck's units
+      if (norm2(x - p) < best * (1.0_dp - tie_ratio)) then
         best = norm2(x - p)
         kbest = k
         tbest = t

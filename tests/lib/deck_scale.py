@@ -448,16 +448,28 @@ def compare_runs(deck, base_dir, scaled_dir, stem, s, t, model, tol):
     gives the dimensionless answer of the run in base_dir (of deck, STEM.summary
     and STEM_contact.csv) to tol of each kind's scale (the largest of the
     kind in the base run, at least its floor), else where it does not."""
+    worst, where = largest_difference(deck, base_dir, scaled_dir, stem, s, t, model)
+    if worst == float("inf"):
+        return where
+    if worst > tol:
+        return f"largest relative difference {worst:.2e} at {where}"
+    return None
+
+
+def largest_difference(deck, base_dir, scaled_dir, stem, s, t, model):
+    """(worst, where): the largest difference between the dimensionless
+    answers of the two runs (compare_runs), relative to each kind's scale,
+    and where it is; worst is infinite when the outputs differ in shape."""
     d = dims(model)
     a = summary_numbers(os.path.join(base_dir, stem + ".summary"), d)
     b = summary_numbers(os.path.join(scaled_dir, stem + ".summary"), d)
     if [r[0] for r in a] != [r[0] for r in b]:
-        return f"the summary's lines differ: {[r[0] for r in a]} vs {[r[0] for r in b]}"
+        return float("inf"), f"the summary's lines differ: {[r[0] for r in a]} vs {[r[0] for r in b]}"
     ta = os.path.join(base_dir, stem + "_contact.csv")
     ra = table_rows(ta) if os.path.exists(ta) else []
     rb = table_rows(os.path.join(scaled_dir, stem + "_contact.csv")) if ra else []
     if len(ra) != len(rb):
-        return "the contact tables differ in length"
+        return float("inf"), "the contact tables differ in length"
     values = [(v, k) for _, nums in a for v, k in nums]
     values += [(float(r[c]), k) for r in ra for c, k in d["table"].items() if r[c] != ""]
     length = max([abs(v) for v, k in values if k[0] == "length"] + [model_size(deck), 1e-300])
@@ -475,12 +487,10 @@ def compare_runs(deck, base_dir, scaled_dir, stem, s, t, model, tol):
     for i, (x, y) in enumerate(zip(ra, rb)):
         for c, (kind, p) in d["table"].items():
             if (x[c] == "") != (y[c] == ""):
-                return f"contact table row {i + 1}: {c} empty in one run only"
+                return float("inf"), f"contact table row {i + 1}: {c} empty in one run only"
             if x[c] == "":
                 continue
             e = abs(float(y[c]) / (s ** p * t ** STRESS_KINDS[kind]) - float(x[c])) / scale[kind]
             if e > worst:
                 worst, where = e, f"contact table row {i + 1} {c}: {x[c]} vs {float(y[c]) / (s ** p * t ** STRESS_KINDS[kind])}"
-    if worst > tol:
-        return f"largest relative difference {worst:.2e} at {where}"
-    return None
+    return worst, where
