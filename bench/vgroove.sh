@@ -6,8 +6,8 @@
 # dozen touch), against the same disk with its two lower quarter arcs named
 # as two pairs.  Prints per case the medians over REPEATS runs (default 3)
 # of time_factor and time_lcp (seconds, the summary's), their ratio, the LCP
-# iterations, and the flank force against P / (2 cos 45) (in %).  One
-# thread (-j 1).
+# iterations (the flank forces are tests/hard/vgroove's).  One thread
+# (-j 1).
 set -eu
 top=$(cd "$(dirname "$0")/.." && pwd)
 prog=${CONTACT2D:-$top/bin/contact2d}
@@ -40,6 +40,6 @@ for n in $sizes; do
       r=$((r + 1))
     done
     f=$(median < "$work/f"); l=$(median < "$work/l"); i=$(median < "$work/i")
-    printf '%-6s %-5s %12.4f %12.4f %8.2f %8s\n' "$n" "$slave" "$f" "$l" "$(echo "$l / $f" | bc -l)" "$i"
+    printf '%-6s %-5s %12.4f %12.4f %8.4f %8s\n' "$n" "$slave" "$f" "$l" "$(awk -v l="$l" -v f="$f" 'BEGIN {print l / f}')" "$i"
   done
 done
