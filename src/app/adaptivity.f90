@@ -141,6 +141,13 @@ contains
                     'no pressure error to adapt to; the results are those of the deck''s mesh')
       else if (est <= ad%target) then
         call finish(run, 'reached', '')
+      else if (a%step > 1 .and. est > run%res%adapt(2, a%step - 1) .and. allocated(a%kept)) then
+        ! the new mesh is worse than the last: its outputs would be a step back
+        call restore_kept(run)
+        call finish(run, 'stopped no_progress', 'ADAPT stopped: mesh ' // int_to_str(a%step) // &
+          '''s estimate ' // real_to_str(est, 3) // ' is above mesh ' // int_to_str(a%step - 1) // '''s ' // &
+          real_to_str(run%res%adapt(2, a%step - 1), 3) // ' (the outputs are those of mesh ' // &
+          int_to_str(a%step - 1) // ', the lower estimate)')
       else if (a%capped) then
         call finish(run, 'stopped max_dofs', 'ADAPT stopped at max_dofs=' // int_to_str(ad%max_dofs) // &
           ': the target ' // real_to_str(ad%target, 3) // ' needs more dofs; the estimate reached is ' // &
@@ -348,6 +355,27 @@ contains
       end do
       deallocate(run%out%step_tmp)
     end if
+    call restore_kept(run)
+    call say(run%log, 'adapt    mesh ' // int_to_str(run%adapt%step + 1) // ' failed: ' // err%message)
+    call finish(run, 'stopped solve_failed', 'ADAPT stopped: mesh ' // int_to_str(run%adapt%step + 1) // &
+      ' could not be solved (' // err%message // '); the outputs are those of mesh ' // int_to_str(run%adapt%step) // &
+      ', the last that solved')
+  end subroutine fall_back
+
+  !> Back to the kept mesh (the last that solved before this one): its
+  !> problem, solution, results, step files and warnings become the run's;
+  !> the summary's ADAPT lines stay those of every mesh.  The current
+  !> mesh's step files must be gone already, or are discarded here.
+  !>   run (inout) the current mesh's state on entry; the kept mesh's on exit
+  subroutine restore_kept(run)
+    type(run_t), intent(inout) :: run
+    integer :: k
+    if (allocated(run%out%step_tmp)) then
+      do k = 1, size(run%out%step_tmp, 2)
+        call discard_temporaries(run%out%step_tmp(:, k))
+      end do
+      deallocate(run%out%step_tmp)
+    end if
     associate (kept => run%adapt%kept)
       run%prob = kept%prob
       run%sol = kept%sol
@@ -359,11 +387,7 @@ contains
       if (allocated(kept%warning)) run%log%warning = kept%warning
     end associate
     deallocate(run%adapt%kept)
-    call say(run%log, 'adapt    mesh ' // int_to_str(run%adapt%step + 1) // ' failed: ' // err%message)
-    call finish(run, 'stopped solve_failed', 'ADAPT stopped: mesh ' // int_to_str(run%adapt%step + 1) // &
-      ' could not be solved (' // err%message // '); the outputs are those of mesh ' // int_to_str(run%adapt%step) // &
-      ', the last that solved')
-  end subroutine fall_back
+  end subroutine restore_kept
 
   !> The final meshes next to the outputs, NAME_BODY.msh, when ADAPT made
   !> them (the deck's own meshes are the user's already): a new run can take
