@@ -11,18 +11,22 @@
 !> + eta^2), whose squares add up to estimate_energy^2: the VTK's picture of
 !> where the error is.
 !>
-!> The contact pressure.  On each pair's slave side the mortar pressure p_h
-!> and the normal traction of the recovered stress, p* = max(0, -n.sigma* n),
-!> are two approximations of the same pressure; their difference estimates
-!> the error of p_h:
+!> The contact pressure.  On each pair's slave trace a second approximation
+!> p* is rebuilt from the mortar pressure p_h itself (module
+!> pressure_recovery: a next-order fit inside the zone, a square-root law at
+!> its free ends), and their difference estimates the error of p_h:
 !>     estimate_pressure = ||p_h - p*||_L2(zone) / ||p_h||_L2(zone),
-!> both piecewise linear between the slave trace's nodes, over the segments
-!> of the effective zone (dS = ds, or 2 pi r ds in axisymmetry).  The same
-!> difference enters the energy estimate as the contact term of the slave
-!> element K on each zone segment E,
+!> p_h linear between the slave trace's nodes, over the segments of the
+!> effective zone (dS = ds, or 2 pi r ds in axisymmetry).  Not the normal
+!> traction of the recovered stress: on the boundary that is O(h) wrong where
+!> p_h is nearly exact (a press fit: 20-100 times the true error), and it
+!> smooths away the square root at a zone's end, where most of the error is
+!> (doc/theory.md, "Error estimate").  The same difference enters the energy
+!> estimate as the contact term of the slave element K on each segment E,
 !>     eta_K^2 += (|E| / E_K) int_E (p_h - p*)^2 dS,
 !> the energy of a traction error spread over a depth |E| of a material of
-!> stiffness E_K (its largest Young's modulus).
+!> stiffness E_K (its largest Young's modulus): ADAPT refines where the
+!> pressure is wrong, the zone's ends first.
 !>
 !> The cost of the next digit.  estimate cost_to_halve is the dofs and the
 !> CPU time (cpu_total) of a run with half this run's energy error, on the
@@ -56,17 +60,14 @@ module run_estimate
   use error_estimate, only: recover_stress, energy_indicators
   use body, only: node_elements
   use axisymmetric_elements, only: radial_weight
+  use contact_set, only: row_of_node
+  use pressure_recovery, only: trace_errors
   implicit none
   private
   public :: estimate_results, predict_cost, element_rates
 
   !> how each phase's time grows with the dofs (module header): r^growth
   real(dp), parameter :: growth(ph_output) = [1.0_dp, 1.0_dp, 1.5_dp, 1.5_dp, 1.5_dp, 1.0_dp, 1.0_dp, 1.0_dp]
-
-  !> The recovered nodal stresses of one body.
-  type :: recovered_t
-    real(dp), allocatable :: s(:,:)      !< (ncomp, nnode)
-  end type recovered_t
 
 contains
 
@@ -78,15 +79,13 @@ contains
   subroutine estimate_results(prob, res)
     type(problem_t), intent(in) :: prob
     type(results_t), intent(inout) :: res
-    type(recovered_t), allocatable :: rec(:)
-    real(dp), allocatable :: u(:,:), eta2(:)
+    real(dp), allocatable :: u(:,:), eta2(:), srec(:,:)
     real(dp) :: energy2, body_energy2, total
     integer :: b, nn, d0, e0, ne
     res%estimated = .false.
     if (allocated(res%error_indicator)) deallocate(res%error_indicator)
     if (.not. prob%deck%estimate) return
     allocate(eta2(prob%sc%nelem), source=0.0_dp)
-    allocate(rec(size(prob%sc%bodies)))
     energy2 = 0.0_dp
     do b = 1, size(prob%sc%bodies)
       associate (bd => prob%sc%bodies(b))
@@ -95,12 +94,12 @@ contains
         d0 = bd%dof0
         e0 = bd%elem0
         u = reshape(res%u(d0 + 1:d0 + 2 * nn), [2, nn])
-        call recover_stress(bd, u, res%adt(e0 + 1:e0 + ne), rec(b)%s)
-        call energy_indicators(bd, u, res%adt(e0 + 1:e0 + ne), rec(b)%s, eta2(e0 + 1:e0 + ne), body_energy2)
+        call recover_stress(bd, u, res%adt(e0 + 1:e0 + ne), srec)
+        call energy_indicators(bd, u, res%adt(e0 + 1:e0 + ne), srec, eta2(e0 + 1:e0 + ne), body_energy2)
         energy2 = energy2 + body_energy2
       end associate
     end do
-    call pressure_estimates(prob, res, rec, eta2)
+    call pressure_estimates(prob, res, eta2)
     ! the norm is the whole system's, u'Ku = 2 energy, springs included: on a
     ! body that rides on its springs the elements' own energy is round-off,
     ! and an error relative to it would be noise
@@ -170,61 +169,48 @@ contains
   end function element_rates
 
   !> res%estimate_pressure of every pair, and the contact terms added to the
-  !> slave elements' eta2 (module header).
+  !> slave elements' eta2 (module header; the reconstruction p*: module
+  !> pressure_recovery).
   !>   prob (in)    the contact set
-  !>   res  (inout) node_pressure on entry; estimate_pressure on exit
-  !>   rec  (in)    (nbody) the recovered stresses
+  !>   res  (inout) node_pressure and node_gap on entry; estimate_pressure on exit
   !>   eta2 (inout) (nelem) the element indicators squared
-  subroutine pressure_estimates(prob, res, rec, eta2)
+  subroutine pressure_estimates(prob, res, eta2)
     type(problem_t), intent(in) :: prob
     type(results_t), intent(inout) :: res
-    type(recovered_t), intent(in) :: rec(:)
     real(dp), intent(inout) :: eta2(:)
-    real(dp), allocatable :: ph(:), pstar(:)
+    real(dp), allocatable :: s(:), ph(:), gap(:), wn(:), d2(:), p2(:)
+    logical, allocatable :: zone(:)
     integer, allocatable :: eptr(:), elist(:)
-    real(dp) :: d2, p2, seg_d2, seg_p2, len, dv, sn(2)
-    integer :: ip, k, ns, sb, owner
+    integer :: ip, k, ns, owner, gnode
     if (allocated(res%estimate_pressure)) deallocate(res%estimate_pressure)
     allocate(res%estimate_pressure(prob%cs%npair), source=-1.0_dp)
     do ip = 1, prob%cs%npair
       associate (pr => prob%cs%pair(ip), bd => prob%sc%bodies(prob%cs%pair(ip)%spec%slave_body))
-        sb = pr%spec%slave_body
         ns = size(pr%snode)
-        allocate(ph(ns), pstar(ns))
-        do k = 1, ns                        ! p_h and p* = max(0, -n.sigma* n) at the slave nodes
-          ph(k) = res%node_pressure(bd%dof0 / 2 + pr%snode(k))
-          associate (s => rec(sb)%s(:, pr%snode(k)), n => pr%mortar%normal(:, k))
-            sn = [s(1) * n(1) + s(3) * n(2), s(3) * n(1) + s(2) * n(2)]      ! sigma* n, in-plane
-            pstar(k) = max(0.0_dp, -dot_product(n, sn))
-          end associate
+        if (ns < 2) cycle
+        allocate(s(ns), ph(ns), gap(ns), wn(ns), zone(ns), d2(ns - 1), p2(ns - 1))
+        s(1) = 0.0_dp
+        do k = 1, ns                        ! the trace's nodes: arc length, p_h, gap, measure, in the zone
+          if (k > 1) s(k) = s(k - 1) + norm2(pr%xs(:, k) - pr%xs(:, k - 1))
+          gnode = bd%dof0 / 2 + pr%snode(k)
+          ph(k) = res%node_pressure(gnode)
+          gap(k) = res%node_gap(gnode)
+          wn(k) = merge(radial_weight(pr%xs(1, k)), bd%thick, bd%axisymmetric)
+          zone(k) = row_of_node(prob%cs, ip, k) > 0
         end do
+        call trace_errors(s, ph, gap, wn, zone, pr%quadratic, d2, p2)
         call node_elements(bd%mesh, eptr, elist)
-        d2 = 0.0_dp
-        p2 = 0.0_dp
-        do k = 1, ns - 1
-          if (.not. (pr%mortar%constrained(k) .and. pr%mortar%constrained(k + 1))) cycle
-          len = norm2(pr%xs(:, k + 1) - pr%xs(:, k))
-          dv = merge(radial_weight(0.5_dp * (pr%xs(1, k) + pr%xs(1, k + 1))), bd%thick, bd%axisymmetric)
-          ! int over the segment of a linear function squared: L (a^2 + a b + b^2) / 3
-          seg_d2 = dv * len * linear_square(ph(k) - pstar(k), ph(k + 1) - pstar(k + 1))
-          seg_p2 = dv * len * linear_square(ph(k), ph(k + 1))
-          d2 = d2 + seg_d2
-          p2 = p2 + seg_p2
+        do k = 1, ns - 1                    ! each segment's share to the slave element that owns it
+          if (d2(k) <= 0.0_dp) cycle
           owner = common_element(eptr, elist, pr%snode(k), pr%snode(k + 1))
           if (owner > 0 .and. bd%law%emax > 0.0_dp) &
-            eta2(bd%elem0 + owner) = eta2(bd%elem0 + owner) + len / bd%law%emax * seg_d2
+            eta2(bd%elem0 + owner) = eta2(bd%elem0 + owner) + (s(k + 1) - s(k)) / bd%law%emax * d2(k)
         end do
-        if (p2 > 0.0_dp) res%estimate_pressure(ip) = sqrt(d2 / p2)
-        deallocate(ph, pstar)
+        if (sum(p2) > 0.0_dp) res%estimate_pressure(ip) = sqrt(sum(d2) / sum(p2))
+        deallocate(s, ph, gap, wn, zone, d2, p2)
       end associate
     end do
   end subroutine pressure_estimates
-
-  !> (a^2 + a b + b^2) / 3: the mean square of the linear function from a to b.
-  pure real(dp) function linear_square(a, b)
-    real(dp), intent(in) :: a, b
-    linear_square = (a * a + a * b + b * b) / 3.0_dp
-  end function linear_square
 
   !> An element that has both nodes a and b (0: none), from the lists of
   !> the elements around each node.
