@@ -109,6 +109,7 @@
 !>       4 Lemke terminated with r > tol; -k argument k invalid.  With nt = 0
 !>       the call is solve_lcp_lemke or solve_lcp_pgs on (g, qn), unchanged.
 !>   friction_residual(g, prob, lam)        the residual r
+!>   bounded_residual(n, trow, bs0, mus, qscale, s, v)   r of a scaled iterate
 !>   measure_friction(g, prob, lam, rep)    r and the complementarity measure into rep
 !>                                          (for friction_newton, the PDAS of these steps)
 !>   friction_state(g, prob, lam, state, err)
@@ -130,7 +131,7 @@ module friction_lcp
   private
   public :: friction_problem_t, friction_problem, check_friction_problem, state_open, state_stick, state_slip
   public :: solve_friction_lcp, friction_residual, friction_state, friction_lcp_system, friction_forces
-  public :: measure_friction
+  public :: measure_friction, bounded_residual
 
   integer, parameter :: state_open = 0    !< not in contact, no friction force available
   integer, parameter :: state_stick = 1   !< no slip: ds = 0, |tau| <= b
@@ -581,20 +582,36 @@ contains
     class(scaled_friction_t), intent(in) :: p
     real(dp), intent(in) :: s(:), v(:)
     real(dp) :: r
+    r = bounded_residual(p%n, p%trow, p%bs0, p%mus, p%qscale, s, v)
+  end function scaled_residual
+
+  !> The residual r (module header) of a scaled iterate s with gaps v, for
+  !> the bounds bs_k = max(0, bs0_k + mus_k s_trow(k)): the one formula of
+  !> this module's scaled problem and of tresca_newton's, whose bounds may
+  !> be a Tresca problem's (bs0 and zeros).
+  !>   n        (in)  normal rows; the tangential rows follow them
+  !>   trow     (in)  (nt) the normal row of each tangential row
+  !>   bs0, mus (in)  (nt) the bounds' parts
+  !>   qscale   (in)  the scale r is relative to, > 0
+  !>   s, v     (in)  (n+nt) the iterate and its gaps
+  pure function bounded_residual(n, trow, bs0, mus, qscale, s, v) result(r)
+    integer, intent(in) :: n, trow(:)
+    real(dp), intent(in) :: bs0(:), mus(:), qscale, s(:), v(:)
+    real(dp) :: r
     real(dp) :: bk
     integer :: i, k, j
 
     r = 0.0_dp
-    do i = 1, p%n
+    do i = 1, n
       r = max(r, abs(min(s(i), v(i))))                              ! min(lambda_s, w_s)
     end do
-    do k = 1, p%nt
-      j = p%n + k
-      bk = max(0.0_dp, p%bs0(k) + p%mus(k) * s(p%trow(k)))          ! bs_k
+    do k = 1, size(trow)
+      j = n + k
+      bk = max(0.0_dp, bs0(k) + mus(k) * s(trow(k)))                ! bs_k
       r = max(r, abs(s(j) - min(bk, max(-bk, s(j) - v(j)))))        ! tau - clamp(tau + ds, -b, b)
     end do
-    r = r / p%qscale
-  end function scaled_residual
+    r = r / qscale
+  end function bounded_residual
 
   !> The complementarity measure of (s, v) (module header).
   pure function scaled_complementarity(p, s, v) result(c)

@@ -56,7 +56,7 @@ module tresca_newton
   use kinds, only: dp
   use lapack_interfaces, only: dpotrf, dpotrs
   use lcp_scaling, only: scaling_vector, lcp_gaps
-  use friction_lcp, only: friction_problem_t
+  use friction_lcp, only: friction_problem_t, bounded_residual
   implicit none
   private
   public :: scaled_friction_t, scale_friction_problem, friction_residual_scaled, coulomb_bounds, solve_tresca_qp
@@ -132,18 +132,7 @@ contains
     type(scaled_friction_t), intent(in) :: p
     real(dp), intent(in) :: bs0(:), mus(:), s(:), v(:)
     real(dp) :: r
-    real(dp) :: bk
-    integer :: i, j, k
-    r = 0.0_dp
-    do i = 1, p%n
-      r = max(r, abs(min(s(i), v(i))))                              ! min(lambda_s, w_s)
-    end do
-    do k = 1, p%nt
-      j = p%n + k
-      bk = max(0.0_dp, bs0(k) + mus(k) * s(p%trow(k)))              ! bs_k
-      r = max(r, abs(s(j) - min(bk, max(-bk, s(j) - v(j)))))        ! tau - clamp(tau + ds, -b, b)
-    end do
-    r = r / p%qscale
+    r = bounded_residual(p%n, p%trow, bs0, mus, p%qscale, s, v)
   end function friction_residual_scaled
 
   !> Coulomb's bounds at the normal forces of s: bs_k = max(0, bs0_k + mus_k s_trow(k)).
