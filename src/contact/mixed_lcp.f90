@@ -277,7 +277,7 @@ contains
       mu(rows) = yv
     end if
     ! the load that A leaves along what it does not hold: V_j'(en - Y'y)
-    vs = transpose(pack_rows(vt, .not. held))
+    vs = transpose(vt(pack([(j, j = 1, size(held))], .not. held), :))
     allocate(lam(size(vs, 2)))
     if (size(vs, 2) > 0) then
       if (r > 0) then
@@ -332,20 +332,5 @@ contains
       h(2) = modulo(h(2) * 69621_i8 + int(i, i8), hash_prime(2))
     end do
   end function set_hash
-
-  !> The rows of v where keep is true, as a matrix (count(keep), size(v, 2)).
-  pure function pack_rows(v, keep) result(p)
-    real(dp), intent(in) :: v(:,:)
-    logical, intent(in) :: keep(:)
-    real(dp), allocatable :: p(:,:)
-    integer :: i, n
-    allocate(p(count(keep), size(v, 2)))
-    n = 0
-    do i = 1, size(v, 1)
-      if (.not. keep(i)) cycle
-      n = n + 1
-      p(n, :) = v(i, :)
-    end do
-  end function pack_rows
 
 end module mixed_lcp
