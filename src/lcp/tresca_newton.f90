@@ -56,7 +56,7 @@ module tresca_newton
   use kinds, only: dp
   use lapack_interfaces, only: dpotrf, dpotrs
   use lcp_scaling, only: scaling_vector, lcp_gaps
-  use friction_lcp, only: friction_problem_t, bounded_residual
+  use friction_lcp, only: friction_problem_t, bounded_residual, scale_bounds
   implicit none
   private
   public :: scaled_friction_t, scale_friction_problem, friction_residual_scaled, coulomb_bounds, solve_tresca_qp
@@ -97,7 +97,7 @@ contains
     type(friction_problem_t), intent(in) :: prob
     type(scaled_friction_t), intent(out) :: p
     integer, intent(out) :: info
-    integer :: n, nt, m, j, k
+    integer :: n, nt, m, j
     n = prob%n
     nt = prob%nt
     m = n + nt
@@ -106,23 +106,13 @@ contains
       info = 1
       return
     end if
-    p%n = n
-    p%nt = nt
     call scaling_vector(g, p%d)                        ! d_i = 1/sqrt(G_ii)
     do j = 1, m
       p%gs(:, j) = p%d * g(:, j) * p%d(j)              ! Gs = D G D
     end do
     p%qs(1:n) = p%d(1:n) * prob%qn
     p%qs(n + 1:) = p%d(n + 1:) * prob%qt
-    p%trow = prob%trow
-    do k = 1, nt
-      p%bs0(k) = prob%bound(k) / p%d(n + k)
-      p%mus(k) = prob%cmu(k) * p%d(prob%trow(k)) / p%d(n + k)
-    end do
-    p%qscale = 0.0_dp
-    if (m > 0) p%qscale = maxval(abs(p%qs))
-    if (nt > 0) p%qscale = max(p%qscale, maxval(p%bs0))
-    if (.not. (p%qscale > 0.0_dp)) p%qscale = 1.0_dp
+    call scale_bounds(prob, p%d, p%qs, p%n, p%nt, p%trow, p%bs0, p%mus, p%qscale)
   end subroutine scale_friction_problem
 
   !> friction_lcp's residual r of the scaled iterate s with gaps v = qs + Gs s,
