@@ -25,6 +25,7 @@ module run_report
   use contact_set, only: pair_spec_t, has_friction
   use rigid_modes, only: mode_name, motion_name
   use rigid_support, only: rigid_direction
+  use contact_zones, only: zone_t
   use material, only: locking_nu
   use body, only: body_pressure_modes
   use threads, only: run_threads
@@ -394,10 +395,7 @@ contains
           call say(run%log, 'contact  pair ' // int_to_str(p) // ': no node in contact')
           cycle
         end if
-        write(line, '(a,2(a,es11.4,a,es11.4,a),a,es11.4)') 'contact  pair ' // int_to_str(p) // ': in contact', &
-          ' from (', z%contact%x0(1), ', ', z%contact%x0(2), ')', ' to (', z%contact%x1(1), ', ', z%contact%x1(2), ')', &
-          ', length', z%contact%length
-        if (z%contact%count > 1) line = trim(line) // ' (' // int_to_str(z%contact%count) // ' zones)'
+        line = zone_words(p, 'in contact', z%contact)
         write(line(len_trim(line) + 1:), '(a,es11.4,a,es11.4,a,es11.4,a)') ', peak pressure', z%peak(1), ' at (', &
           z%peak(2), ', ', z%peak(3), ')'
         call say(run%log, trim(line))
@@ -406,14 +404,25 @@ contains
           call say(run%log, 'contact  pair ' // int_to_str(p) // ': no node sticks')
           cycle
         end if
-        write(line, '(a,2(a,es11.4,a,es11.4,a),a,es11.4)') 'contact  pair ' // int_to_str(p) // ': stick', &
-          ' from (', z%stick%x0(1), ', ', z%stick%x0(2), ')', ' to (', z%stick%x1(1), ', ', z%stick%x1(2), ')', &
-          ', length', z%stick%length
-        if (z%stick%count > 1) line = trim(line) // ' (' // int_to_str(z%stick%count) // ' zones)'
-        call say(run%log, trim(line))
+        call say(run%log, trim(zone_words(p, 'stick', z%stick)))
       end associate
     end do
   end subroutine report_zones
+
+  !> A zone of report_zones in words: `contact  pair P: WHAT from (x0, y0)
+  !> to (x1, y1), length L`, and `(N zones)` when it is more than one.
+  !>   p    (in) the pair
+  !>   what (in) 'in contact' or 'stick'
+  !>   zone (in) the zone, count > 0
+  function zone_words(p, what, zone) result(line)
+    integer, intent(in) :: p
+    character(len=*), intent(in) :: what
+    type(zone_t), intent(in) :: zone
+    character(len=240) :: line
+    write(line, '(a,2(a,es11.4,a,es11.4,a),a,es11.4)') 'contact  pair ' // int_to_str(p) // ': ' // what, &
+      ' from (', zone%x0(1), ', ', zone%x0(2), ')', ' to (', zone%x1(1), ', ', zone%x1(2), ')', ', length', zone%length
+    if (zone%count > 1) line = trim(line) // ' (' // int_to_str(zone%count) // ' zones)'
+  end function zone_words
 
   !> How a pair's tangential behaviour is described in the log.
   function friction_law(kind, spec) result(t)

@@ -31,12 +31,13 @@
 !>   type(pair_zones_t)  contact zone, stick zone, peak pressure (p, x, y), centre of pressure
 !>   chain_zone(s, x, inside, f, closed, zone)      the zone of one chain of nodes (the rule above)
 !>   pair_zones(cs, ip, mu, status, tau, fstate, z) the results of pair ip
+!>   true_runs(mask, first, last, nrun)             the runs of true entries of a mask
 module contact_zones
   use kinds, only: dp
   use contact_set, only: contact_set_t, row_of_node, node_rows, node_traction, has_friction
   implicit none
   private
-  public :: zone_t, pair_zones_t, chain_zone, pair_zones
+  public :: zone_t, pair_zones_t, chain_zone, pair_zones, true_runs
 
   !> A zone along the slave boundary (contact or stick).
   type :: zone_t
@@ -131,24 +132,16 @@ contains
     real(dp), intent(in) :: s(:), x(:,:), f(:), g(:)
     logical, intent(in) :: inside(:), edge(:)
     type(zone_t), intent(inout) :: zone
-    integer :: n, a, b
+    integer, allocatable :: first(:), last(:)
+    integer :: n, r, nrun
     real(dp) :: sa, sb, xa(2), xb(2), s_first
     n = size(s)
     s_first = 0.0_dp
     sb = 0.0_dp
-    a = 1
-    do while (a <= n)
-      if (.not. inside(a)) then
-        a = a + 1
-        cycle
-      end if
-      b = a
-      do while (b < n)
-        if (.not. inside(b + 1)) exit
-        b = b + 1
-      end do
-      call zone_end(a, -1, sa, xa)
-      call zone_end(b, +1, sb, xb)
+    call true_runs(inside, first, last, nrun)
+    do r = 1, nrun
+      call zone_end(first(r), -1, sa, xa)
+      call zone_end(last(r), +1, sb, xb)
       zone%count = zone%count + 1
       if (zone%count == 1) then
         zone%x0 = xa
@@ -156,7 +149,6 @@ contains
       end if
       zone%x1 = xb
       zone%total = zone%total + (sb - sa)
-      a = b + 1
     end do
     if (zone%count > 0) zone%length = sb - s_first           ! the first zone's start to the last one's end
 
@@ -199,6 +191,37 @@ contains
     end subroutine zone_end
 
   end subroutine open_chain_zone
+
+  !> The runs of consecutive true entries of mask, in order: run r is
+  !> mask(first(r):last(r)); the zones here, the zones of contact_checks.
+  !>   mask        (in)  (n) the entries
+  !>   first, last (out) (n) the runs' first and last entries, 1 .. nrun
+  !>   nrun        (out) how many runs
+  pure subroutine true_runs(mask, first, last, nrun)
+    logical, intent(in) :: mask(:)
+    integer, allocatable, intent(out) :: first(:), last(:)
+    integer, intent(out) :: nrun
+    integer :: n, a, b
+    n = size(mask)
+    allocate(first(n), last(n))
+    nrun = 0
+    a = 1
+    do while (a <= n)
+      if (.not. mask(a)) then
+        a = a + 1
+        cycle
+      end if
+      b = a
+      do while (b < n)
+        if (.not. mask(b + 1)) exit
+        b = b + 1
+      end do
+      nrun = nrun + 1
+      first(nrun) = a
+      last(nrun) = b
+      a = b + 1
+    end do
+  end subroutine true_runs
 
   !> The contact zone, peak pressure, centre of pressure and (friction) stick
   !> zone of pair ip, from the multipliers of a solved state.

@@ -149,9 +149,7 @@ contains
         end do
         i = minloc(ratio, dim=1)
         if (ratio(i) == huge(1.0_dp)) then           ! a balance exists (the caller's test): round-off
-          rep%info = 3
-          rep%message = 'active-set Newton: no row closes along a combination of the modes the loads pull ' // &
-            'after ' // int_to_str(step) // ' steps'
+          call stalled(rep, 'no row closes along a combination of the modes the loads pull', step)
           return
         end if
         t = ratio(i)
@@ -161,15 +159,13 @@ contains
         moved = .true.
       end if
       if (all(next .eqv. on) .and. .not. moved) then
-        rep%info = 3
-        rep%message = 'active-set Newton: a row stays infeasible that the active set cannot take (' // &
-          'linearly dependent on the others) after ' // int_to_str(step) // ' steps'
+        call stalled(rep, 'a row stays infeasible that the active set cannot take (linearly dependent on the others)', &
+                     step)
         return
       end if
       hash = set_hash(next)
       if (any(seen(1, 1:nseen) == hash(1) .and. seen(2, 1:nseen) == hash(2)) .and. .not. moved) then
-        rep%info = 3
-        rep%message = 'active-set Newton: an active set came back (cycling) after ' // int_to_str(step) // ' steps'
+        call stalled(rep, 'an active set came back (cycling)', step)
         return
       end if
       if (nseen == size(seen, 2)) seen = reshape([seen, 0_i8 * seen], [2, 2 * nseen])
@@ -180,6 +176,19 @@ contains
     rep%info = 2
     rep%message = 'active-set Newton: step limit ' // int_to_str(maxit) // ' reached'
   end subroutine solve_mixed_newton
+
+  !> The report of a Newton run that cannot go on (info 3: the caller turns
+  !> to Lemke), `active-set Newton: WHY after STEP steps`.
+  !>   rep  (inout) info and message set
+  !>   why  (in)    what stopped it
+  !>   step (in)    the steps done
+  subroutine stalled(rep, why, step)
+    type(lcp_report_t), intent(inout) :: rep
+    character(len=*), intent(in) :: why
+    integer, intent(in) :: step
+    rep%info = 3
+    rep%message = 'active-set Newton: ' // why // ' after ' // int_to_str(step) // ' steps'
+  end subroutine stalled
 
   !> One Newton step: the KKT system (1) on the active set, by (2).
   !>   on        (in)    (m) the active set
@@ -277,7 +286,7 @@ contains
       mu(rows) = yv
     end if
     ! the load that A leaves along what it does not hold: V_j'(en - Y'y)
-    vs = transpose(pack_rows(vt, .not. held))
+    vs = transpose(vt(pack([(j, j = 1, size(held))], .not. held), :))
     allocate(lam(size(vs, 2)))
     if (size(vs, 2) > 0) then
       if (r > 0) then
@@ -332,20 +341,5 @@ contains
       h(2) = modulo(h(2) * 69621_i8 + int(i, i8), hash_prime(2))
     end do
   end function set_hash
-
-  !> The rows of v where keep is true, as a matrix (count(keep), size(v, 2)).
-  pure function pack_rows(v, keep) result(p)
-    real(dp), intent(in) :: v(:,:)
-    logical, intent(in) :: keep(:)
-    real(dp), allocatable :: p(:,:)
-    integer :: i, n
-    allocate(p(count(keep), size(v, 2)))
-    n = 0
-    do i = 1, size(v, 1)
-      if (.not. keep(i)) cycle
-      n = n + 1
-      p(n, :) = v(i, :)
-    end do
-  end function pack_rows
 
 end module mixed_lcp

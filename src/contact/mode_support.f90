@@ -141,7 +141,7 @@ contains
       end do
       is_held(i) = s(i) > threshold .and. s(i) > 0.0_dp
     end do
-    sp%unheld = transpose(pack_rows(vt, .not. is_held))
+    sp%unheld = transpose(vt(pack([(i, i = 1, size(is_held))], .not. is_held), :))
     s_unheld = pack(s, .not. is_held)
     s_held = huge(1.0_dp)
     if (any(is_held)) s_held = minval(pack(s, is_held))
@@ -237,20 +237,6 @@ contains
     q = reshape([q, r / norm2(r)], [size(v), size(q, 2) + 1])
   end subroutine add_independent
 
-  !> The rows of v where keep is true, as a matrix (count(keep), size(v, 2)).
-  pure function pack_rows(v, keep) result(p)
-    real(dp), intent(in) :: v(:,:)
-    logical, intent(in) :: keep(:)
-    real(dp), allocatable :: p(:,:)
-    integer :: i, n
-    allocate(p(count(keep), size(v, 2)))
-    n = 0
-    do i = 1, size(v, 1)
-      if (.not. keep(i)) cycle
-      n = n + 1
-      p(n, :) = v(i, :)
-    end do
-  end function pack_rows
 
   !> tau(b) = max(1e-10, the median turning angle between consecutive
   !> segments of the contact polylines of the pairs touching body b, on the

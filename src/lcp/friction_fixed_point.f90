@@ -53,11 +53,10 @@
 module friction_fixed_point
   use kinds, only: dp
   use strings, only: int_to_str, real_to_str
-  use lcp_scaling, only: lcp_options_t, lcp_report_t, lcp_gaps, report_out_of_memory, set_report
-  use friction_lcp, only: friction_problem_t, measure_friction, check_friction_problem
-  use tresca_newton, only: scaled_friction_t, scale_friction_problem, friction_residual_scaled, coulomb_bounds
-  use friction_newton, only: solve_scaled_newton, newton_outcome_t
-  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+  use lcp_scaling, only: lcp_options_t, lcp_report_t, report_out_of_memory
+  use friction_lcp, only: friction_problem_t, measure_friction
+  use tresca_newton, only: scaled_friction_t, friction_residual_scaled, coulomb_bounds
+  use friction_newton, only: solve_scaled_newton, newton_outcome_t, start_scaled
   implicit none
   private
   public :: solve_friction_fixed_point
@@ -92,32 +91,15 @@ contains
     type(newton_outcome_t) :: out
     real(dp), allocatable :: s(:), v(:), bs(:), zero(:)
     real(dp) :: r, best
-    integer :: m, i, maxit, st, steps, outer, last_progress
+    integer :: m, maxit, st, steps, outer, last_progress
 
-    call check_friction_problem(g, prob, rep)
-    if (rep%info < 0) return
+    allocate(bs(prob%nt), zero(prob%nt), stat=st)
+    call start_scaled(g, prob, 'friction fixed point', lam, st, p, s, v, rep)
+    if (rep%info /= 0) return
     m = prob%n + prob%nt
-    if (size(lam) /= m) then
-      call set_report(rep, -4, 'friction fixed point: lam has ' // int_to_str(size(lam)) // &
-        ' entries (expected n + nt = ' // int_to_str(m) // ')')
-      return
-    end if
     maxit = opts%maxit
     if (maxit == 0) maxit = default_steps
-    call scale_friction_problem(g, prob, p, st)
-    if (st == 0) allocate(s(m), v(m), bs(prob%nt), zero(prob%nt), stat=st)
-    if (st /= 0) then
-      call report_out_of_memory(rep, 'scaling the friction LCP (' // int_to_str(m) // ' rows)', &
-                                8.0_dp * real(m, dp) * real(m + 8, dp))
-      return
-    end if
-    do i = 1, m                                        ! s = D^-1 lam, lambda >= 0
-      s(i) = 0.0_dp
-      if (ieee_is_finite(lam(i))) s(i) = lam(i) / p%d(i)
-      if (i <= prob%n) s(i) = max(0.0_dp, s(i))
-    end do
     zero = 0.0_dp
-    call lcp_gaps(p%gs, p%qs, s, v)
     r = friction_residual_scaled(p, p%bs0, p%mus, s, v)
     best = r
     last_progress = 0

@@ -109,6 +109,8 @@
 !>       4 Lemke terminated with r > tol; -k argument k invalid.  With nt = 0
 !>       the call is solve_lcp_lemke or solve_lcp_pgs on (g, qn), unchanged.
 !>   friction_residual(g, prob, lam)        the residual r
+!>   bounded_residual(n, trow, bs0, mus, qscale, s, v)   r of a scaled iterate
+!>   scale_bounds(prob, d, qs, n, nt, trow, bs0, mus, qscale)   a scaled form's sizes and bounds
 !>   measure_friction(g, prob, lam, rep)    r and the complementarity measure into rep
 !>                                          (for friction_newton, the PDAS of these steps)
 !>   friction_state(g, prob, lam, state, err)
@@ -130,7 +132,7 @@ module friction_lcp
   private
   public :: friction_problem_t, friction_problem, check_friction_problem, state_open, state_stick, state_slip
   public :: solve_friction_lcp, friction_residual, friction_state, friction_lcp_system, friction_forces
-  public :: measure_friction
+  public :: measure_friction, bounded_residual, scale_bounds
 
   integer, parameter :: state_open = 0    !< not in contact, no friction force available
   integer, parameter :: state_stick = 1   !< no slip: ds = 0, |tau| <= b
@@ -528,8 +530,6 @@ contains
       info = 1
       return
     end if
-    p%n = n
-    p%nt = nt
     q(1:n) = prob%qn
     q(n + 1:) = prob%qt
     call scale_lcp(g, q, p%d, p%gs, p%qs)              ! Gs = D G D, qs = D q
@@ -541,15 +541,7 @@ contains
       if (.not. p%zero(i)) p%step(i) = 1.0_dp / p%gs(i, i)
     end do
 
-    p%trow = prob%trow
-    do k = 1, nt
-      p%bs0(k) = prob%bound(k) / p%d(n + k)                            ! bound / d_t
-      p%mus(k) = prob%cmu(k) * p%d(prob%trow(k)) / p%d(n + k)          ! cmu d_n / d_t
-    end do
-    p%qscale = 0.0_dp
-    if (nrow > 0) p%qscale = maxval(abs(p%qs))
-    if (nt > 0) p%qscale = max(p%qscale, maxval(p%bs0))
-    if (.not. (p%qscale > 0.0_dp)) p%qscale = 1.0_dp
+    call scale_bounds(prob, p%d, p%qs, p%n, p%nt, p%trow, p%bs0, p%mus, p%qscale)
 
     ! Tangential rows of each normal row, in order (counting sort on trow).
     p%tfirst = 0
@@ -570,6 +562,35 @@ contains
     end block
   end subroutine scale_friction
 
+  !> What every scaled form of a step shares beside D, Gs and qs (module
+  !> header): its sizes, the bounds' parts bs0 = bound / d_t and
+  !> mus = cmu d_n / d_t, and qscale; for this module's scaled problem and
+  !> tresca_newton's.
+  !>   prob    (in)  the step's problem, valid
+  !>   d, qs   (in)  (n+nt) the scaling and the scaled q
+  !>   n, nt   (out) normal and tangential rows
+  !>   trow    (out) (nt) the normal row of each tangential row
+  !>   bs0, mus (out) (nt) the bounds' parts
+  !>   qscale  (out) max(||qs||_inf, max bs0), 1 when 0
+  pure subroutine scale_bounds(prob, d, qs, n, nt, trow, bs0, mus, qscale)
+    type(friction_problem_t), intent(in) :: prob
+    real(dp), intent(in) :: d(:), qs(:)
+    integer, intent(out) :: n, nt, trow(:)
+    real(dp), intent(out) :: bs0(:), mus(:), qscale
+    integer :: k
+    n = prob%n
+    nt = prob%nt
+    trow = prob%trow
+    do k = 1, nt
+      bs0(k) = prob%bound(k) / d(n + k)                                ! bound / d_t
+      mus(k) = prob%cmu(k) * d(prob%trow(k)) / d(n + k)                ! cmu d_n / d_t
+    end do
+    qscale = 0.0_dp
+    if (n + nt > 0) qscale = maxval(abs(qs))
+    if (nt > 0) qscale = max(qscale, maxval(bs0))
+    if (.not. (qscale > 0.0_dp)) qscale = 1.0_dp
+  end subroutine scale_bounds
+
   !> Bytes of the scaled problem of nrow rows: Gs and five vectors.
   pure real(dp) function scaled_bytes(nrow)
     integer, intent(in) :: nrow
@@ -581,20 +602,36 @@ contains
     class(scaled_friction_t), intent(in) :: p
     real(dp), intent(in) :: s(:), v(:)
     real(dp) :: r
+    r = bounded_residual(p%n, p%trow, p%bs0, p%mus, p%qscale, s, v)
+  end function scaled_residual
+
+  !> The residual r (module header) of a scaled iterate s with gaps v, for
+  !> the bounds bs_k = max(0, bs0_k + mus_k s_trow(k)): the one formula of
+  !> this module's scaled problem and of tresca_newton's, whose bounds may
+  !> be a Tresca problem's (bs0 and zeros).
+  !>   n        (in)  normal rows; the tangential rows follow them
+  !>   trow     (in)  (nt) the normal row of each tangential row
+  !>   bs0, mus (in)  (nt) the bounds' parts
+  !>   qscale   (in)  the scale r is relative to, > 0
+  !>   s, v     (in)  (n+nt) the iterate and its gaps
+  pure function bounded_residual(n, trow, bs0, mus, qscale, s, v) result(r)
+    integer, intent(in) :: n, trow(:)
+    real(dp), intent(in) :: bs0(:), mus(:), qscale, s(:), v(:)
+    real(dp) :: r
     real(dp) :: bk
     integer :: i, k, j
 
     r = 0.0_dp
-    do i = 1, p%n
+    do i = 1, n
       r = max(r, abs(min(s(i), v(i))))                              ! min(lambda_s, w_s)
     end do
-    do k = 1, p%nt
-      j = p%n + k
-      bk = max(0.0_dp, p%bs0(k) + p%mus(k) * s(p%trow(k)))          ! bs_k
+    do k = 1, size(trow)
+      j = n + k
+      bk = max(0.0_dp, bs0(k) + mus(k) * s(trow(k)))                ! bs_k
       r = max(r, abs(s(j) - min(bk, max(-bk, s(j) - v(j)))))        ! tau - clamp(tau + ds, -b, b)
     end do
-    r = r / p%qscale
-  end function scaled_residual
+    r = r / qscale
+  end function bounded_residual
 
   !> The complementarity measure of (s, v) (module header).
   pure function scaled_complementarity(p, s, v) result(c)

@@ -101,6 +101,8 @@
 !>     bs0 + mus lambda (friction_fixed_point's Tresca problems: its bounds
 !>     and zeros); type(newton_outcome_t) out: info, the step of the cycle,
 !>     the fixed-point steps, the failure's text.
+!>   start_scaled(g, prob, method, lam, st, p, s, v, rep)
+!>     the arguments checked, p scaled and the start s, v of both methods
 !> No routine prints anything.
 module friction_newton
   use kinds, only: dp
@@ -113,7 +115,7 @@ module friction_newton
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
   private
-  public :: solve_friction_newton, solve_scaled_newton, newton_outcome_t
+  public :: solve_friction_newton, solve_scaled_newton, newton_outcome_t, start_scaled
 
   integer, parameter :: default_steps = 50     ! step limit when opts%maxit = 0
   !> At the start a row within this relative distance of its bound is taken
@@ -159,31 +161,14 @@ contains
     type(scaled_friction_t) :: p
     type(newton_outcome_t) :: out
     real(dp), allocatable :: s(:), v(:)
-    integer :: m, i, maxit, st, steps
+    integer :: m, maxit, st, steps
 
-    call check_friction_problem(g, prob, rep)
-    if (rep%info < 0) return
+    st = 0
+    call start_scaled(g, prob, 'friction Newton', lam, st, p, s, v, rep)
+    if (rep%info /= 0) return
     m = prob%n + prob%nt
-    if (size(lam) /= m) then
-      call set_report(rep, -4, 'friction Newton: lam has ' // int_to_str(size(lam)) // ' entries (expected n + nt = ' // &
-        int_to_str(m) // ')')
-      return
-    end if
     maxit = opts%maxit
     if (maxit == 0) maxit = default_steps
-    call scale_friction_problem(g, prob, p, st)
-    if (st == 0) allocate(s(m), v(m), stat=st)
-    if (st /= 0) then
-      call report_out_of_memory(rep, 'scaling the friction LCP (' // int_to_str(m) // ' rows)', &
-                                8.0_dp * real(m, dp) * real(m + 8, dp))
-      return
-    end if
-    do i = 1, m                                        ! s = D^-1 lam, lambda >= 0
-      s(i) = 0.0_dp
-      if (ieee_is_finite(lam(i))) s(i) = lam(i) / p%d(i)
-      if (i <= prob%n) s(i) = max(0.0_dp, s(i))
-    end do
-    call lcp_gaps(p%gs, p%qs, s, v)
     steps = 0
     call solve_scaled_newton(p, p%bs0, p%mus, opts%tol, maxit, s, v, steps, out)
     rep%iterations = steps
@@ -210,6 +195,53 @@ contains
                                 8.0_dp * real(m, dp) * real(m, dp))
     end select
   end subroutine solve_friction_newton
+
+  !> The start of the methods on the scaled problem, this module's and
+  !> friction_fixed_point's: the arguments checked, the problem scaled, and
+  !> s = D^-1 lam (a non-finite entry and a negative lambda taken as 0) with
+  !> its gaps.
+  !>   g, prob, lam (in) as solve_friction_newton
+  !>   method (in)    the method's name, at the head of an argument error
+  !>   st     (in)    0, or the failed status of the caller's own workspace,
+  !>                  which is then out of memory as the scaling is
+  !>   p      (out)   the scaled problem
+  !>   s, v   (out)   (n+nt) the start and its gaps
+  !>   rep    (inout) info < 0 on an argument error (check_friction_problem;
+  !>                  -4 lam of the wrong size), info_no_memory when out of
+  !>                  memory; else unchanged
+  subroutine start_scaled(g, prob, method, lam, st, p, s, v, rep)
+    real(dp), intent(in) :: g(:, :)
+    type(friction_problem_t), intent(in) :: prob
+    character(len=*), intent(in) :: method
+    real(dp), intent(in) :: lam(:)
+    integer, intent(inout) :: st
+    type(scaled_friction_t), intent(out) :: p
+    real(dp), allocatable, intent(out) :: s(:), v(:)
+    type(lcp_report_t), intent(inout) :: rep
+    integer :: m, i
+
+    call check_friction_problem(g, prob, rep)
+    if (rep%info < 0) return
+    m = prob%n + prob%nt
+    if (size(lam) /= m) then
+      call set_report(rep, -4, method // ': lam has ' // int_to_str(size(lam)) // ' entries (expected n + nt = ' // &
+        int_to_str(m) // ')')
+      return
+    end if
+    if (st == 0) call scale_friction_problem(g, prob, p, st)
+    if (st == 0) allocate(s(m), v(m), stat=st)
+    if (st /= 0) then
+      call report_out_of_memory(rep, 'scaling the friction LCP (' // int_to_str(m) // ' rows)', &
+                                8.0_dp * real(m, dp) * real(m + 8, dp))
+      return
+    end if
+    do i = 1, m                                        ! s = D^-1 lam, lambda >= 0
+      s(i) = 0.0_dp
+      if (ieee_is_finite(lam(i))) s(i) = lam(i) / p%d(i)
+      if (i <= prob%n) s(i) = max(0.0_dp, s(i))
+    end do
+    call lcp_gaps(p%gs, p%qs, s, v)
+  end subroutine start_scaled
 
   !> The note of a message on the globalisation, '' when the full steps did.
   function globalised(out, tresca) result(t)
@@ -302,6 +334,7 @@ contains
         else
           call remember(kind, sg, seen, nseen)
         end if
+        cycle
       else if (tresca) then
         ! the convex QP by projected Newton, from the projection of s
         call solve_tresca_qp(p, max(0.0_dp, bs0), tol, maxit, s, v, steps, info)
@@ -326,15 +359,6 @@ contains
           out%info = info
           return
         end if
-        r = friction_residual_scaled(p, bs0, mus, s, v)
-        if (r <= tol) then
-          out%info = 0
-          return
-        end if
-        if (info /= 0) then
-          fixing = .true.                              ! theta does not decrease
-          stuck = r
-        end if
       else
         ! a step of the fixed point on the Tresca threshold, until r falls
         ! below leave_fixed_point of its value where Newton stopped
@@ -349,12 +373,18 @@ contains
           out%info = info_no_memory
           return
         end if
-        r = friction_residual_scaled(p, bs0, mus, s, v)
-        if (r <= tol) then
-          out%info = 0
-          return
-        end if
+      end if
+      ! after a damped or a fixed-point step: solved, or which of the two comes next
+      r = friction_residual_scaled(p, bs0, mus, s, v)
+      if (r <= tol) then
+        out%info = 0
+        return
+      end if
+      if (fixing) then
         fixing = r > leave_fixed_point * stuck
+      else if (info /= 0) then
+        fixing = .true.                                ! theta does not decrease
+        stuck = r
       end if
     end do
   end subroutine solve_scaled_newton

@@ -49,7 +49,7 @@
 !>   friction_order(first, omega, methods, omegas)     the friction order from a first method
 !>   proves_no_solution(friction, tresca, method, rep) a failure that ends the sequence
 !>   add_attempt(attempts, method, omega, rep)         one attempt more on the list
-!>   solve_friction_method(g, prob, method, opts, lam, rep)   one friction method by its name
+!>   solve_friction_method(g, prob, method, omega, opts, lam, rep)   one attempt by its method's name
 !>   method_label(method, omega)                       its name in a log line
 !>   solve_friction_auto(g, prob, first, opts, lam, rep, attempts)  a friction step by the order
 !>   fallback_omega          the relaxation of the second PGS run (0.3)
@@ -186,29 +186,35 @@ contains
     call move_alloc(grown, attempts)
   end subroutine add_attempt
 
-  !> One load step of contact with friction by the method named (module
-  !> header): 'pdas' friction_newton, 'fixpt' friction_fixed_point, 'lemke'
-  !> and 'pgs' friction_lcp.
+  !> One load step of contact with friction by an attempt of the order, its
+  !> method and relaxation, as lcp_attempt_t names it (module header): 'pdas'
+  !> friction_newton, 'fixpt' friction_fixed_point, 'lemke' and 'pgs'
+  !> friction_lcp.
   !>   g, prob (in)    the problem, as in friction_lcp's solve_friction_lcp
   !>   method  (in)    'lemke', 'pdas', 'pgs' or 'fixpt'
-  !>   opts    (in)    tol, maxit (the method's own limit when 0), omega (PGS)
+  !>   omega   (in)    the attempt's PGS relaxation, in place of opts%omega
+  !>   opts    (in)    tol, maxit (the method's own limit when 0)
   !>   lam     (inout) the start of the iterative methods; the solution or
   !>                   the method's last iterate
   !>   rep     (out)   the method's report (info -3 for an unknown method)
-  subroutine solve_friction_method(g, prob, method, opts, lam, rep)
+  subroutine solve_friction_method(g, prob, method, omega, opts, lam, rep)
     real(dp), intent(in) :: g(:, :)
     type(friction_problem_t), intent(in) :: prob
     character(len=*), intent(in) :: method
+    real(dp), intent(in) :: omega
     type(lcp_options_t), intent(in) :: opts
     real(dp), intent(inout) :: lam(:)
     type(lcp_report_t), intent(out) :: rep
+    type(lcp_options_t) :: o
+    o = opts
+    o%omega = omega
     select case (method)
     case ('pdas')
-      call solve_friction_newton(g, prob, opts, lam, rep)
+      call solve_friction_newton(g, prob, o, lam, rep)
     case ('fixpt')
-      call solve_friction_fixed_point(g, prob, opts, lam, rep)
+      call solve_friction_fixed_point(g, prob, o, lam, rep)
     case default
-      call solve_friction_lcp(g, prob, method, opts, lam, rep)
+      call solve_friction_lcp(g, prob, method, o, lam, rep)
     end select
   end subroutine solve_friction_method
 
@@ -255,7 +261,6 @@ contains
     type(lcp_attempt_t), allocatable, intent(out) :: attempts(:)
     character(len=5), allocatable :: methods(:)
     real(dp), allocatable :: omegas(:), lam0(:)
-    type(lcp_options_t) :: o
     character(len=:), allocatable :: failures
     integer :: k
 
@@ -265,10 +270,8 @@ contains
     call friction_order(first, opts%omega, methods, omegas)
     lam0 = lam
     do k = 1, size(methods)
-      o = opts
-      o%omega = omegas(k)
       lam = lam0
-      call solve_friction_method(g, prob, trim(methods(k)), o, lam, rep)
+      call solve_friction_method(g, prob, trim(methods(k)), omegas(k), opts, lam, rep)
       call add_attempt(attempts, trim(methods(k)), omegas(k), rep)
       if (rep%info <= 0 .or. proves_no_solution(.true., all(prob%cmu == 0.0_dp), trim(methods(k)), rep)) exit
     end do

@@ -126,17 +126,12 @@ contains
     type(lcp_report_t), intent(out) :: rep
     real(dp), intent(out), optional :: ray(:)
     type(scaled_lcp_t) :: p
-    real(dp), allocatable :: y(:)
 
     z = 0.0_dp
     if (present(ray)) ray = 0.0_dp
     call prepare_lcp(W, q, z, opts, .false., p, rep)
     if (rep%info /= 0) return
-    allocate(y(size(q)))
-    call lemke_solution(W, q, p, opts, 'W ill-conditioned', z, rep, y)
-    if (present(ray)) then
-      if (size(ray) == size(y)) ray = y
-    end if
+    call lemke_solution(W, q, p, opts, 'W ill-conditioned', z, rep, ray)
   end subroutine solve_lcp_lemke
 
   !> Solve LCP(M, q) by Lemke's complementary pivoting (lexicographic, covering
@@ -172,7 +167,6 @@ contains
     type(lcp_report_t), intent(out) :: rep
     real(dp), intent(out), optional :: ray(:)
     type(scaled_lcp_t) :: p
-    real(dp), allocatable :: y(:)
     integer :: n, i, j, st
 
     z = 0.0_dp
@@ -217,15 +211,11 @@ contains
     p%qscale = 1.0_dp
     if (n > 0) p%qscale = scale_of(maxval(abs(p%qs)))
 
-    allocate(y(n))
-    call lemke_solution(M, q, p, opts, 'M ill-conditioned or badly scaled', z, rep, y)
+    call lemke_solution(M, q, p, opts, 'M ill-conditioned or badly scaled', z, rep, ray)
     if (rep%info == 1) then
       rep%message = 'Lemke: ray termination after ' // int_to_str(rep%iterations) // &
         ' pivots (no solution found; when M is copositive-plus, e.g. positive semi-definite,' // &
         ' the LCP has none)'
-    end if
-    if (present(ray)) then
-      if (size(ray) == n) ray = y
     end if
   end subroutine solve_lcp_lemke_scaled
 
@@ -238,9 +228,10 @@ contains
   !>   z      (inout) zero on entry; z = D zs on the rows kept on exit
   !>   rep    (inout) info 0 solved, 1 ray, 2 pivot limit, 4 residual above tol;
   !>                  iterations, residual, complementarity, message
-  !>   y      (out)   (n) the ray's z part, D dzs scaled to a largest entry 1,
-  !>                  when info = 1; 0 otherwise
-  subroutine lemke_solution(W, q, p, opts, cause, z, rep, y)
+  !>   ray    (inout, optional) (n) the ray's z part, D dzs scaled to a largest
+  !>                  entry 1, when info = 1, 0 otherwise; left as it is when
+  !>                  of another size (both callers' ray)
+  subroutine lemke_solution(W, q, p, opts, cause, z, rep, ray)
     real(dp), intent(in) :: W(:, :)
     real(dp), intent(in) :: q(:)
     type(scaled_lcp_t), intent(in) :: p
@@ -248,13 +239,13 @@ contains
     character(len=*), intent(in) :: cause
     real(dp), intent(inout) :: z(:)
     type(lcp_report_t), intent(inout) :: rep
-    real(dp), intent(out) :: y(:)
-    real(dp), allocatable :: zs(:), dzs(:)
+    real(dp), intent(inout), optional :: ray(:)
+    real(dp), allocatable :: zs(:), dzs(:), y(:)
     integer :: maxit
 
     maxit = opts%maxit
     if (maxit == 0) maxit = 10 * p%n + 100
-    allocate(zs(p%m), dzs(p%m))
+    allocate(zs(p%m), dzs(p%m), y(size(q)))
     call lemke_scaled(p, maxit, opts%tol, zs, rep, dzs)
     z(p%rows) = p%d(p%rows) * zs                      ! z = D zs
     where (z < 0.0_dp) z = 0.0_dp                     ! polish: tiny negatives
@@ -262,6 +253,9 @@ contains
     if (rep%info == 1) then
       y(p%rows) = p%d(p%rows) * dzs                   ! y = D dzs
       if (maxval(y) > 0.0_dp) y = y / maxval(y)
+    end if
+    if (present(ray)) then
+      if (size(ray) == size(y)) ray = y
     end if
     call measure_solution(W, q, p%d, z, rep)
 

@@ -56,7 +56,7 @@ module tresca_newton
   use kinds, only: dp
   use lapack_interfaces, only: dpotrf, dpotrs
   use lcp_scaling, only: scaling_vector, lcp_gaps
-  use friction_lcp, only: friction_problem_t
+  use friction_lcp, only: friction_problem_t, bounded_residual, scale_bounds
   implicit none
   private
   public :: scaled_friction_t, scale_friction_problem, friction_residual_scaled, coulomb_bounds, solve_tresca_qp
@@ -97,7 +97,7 @@ contains
     type(friction_problem_t), intent(in) :: prob
     type(scaled_friction_t), intent(out) :: p
     integer, intent(out) :: info
-    integer :: n, nt, m, j, k
+    integer :: n, nt, m, j
     n = prob%n
     nt = prob%nt
     m = n + nt
@@ -106,23 +106,13 @@ contains
       info = 1
       return
     end if
-    p%n = n
-    p%nt = nt
     call scaling_vector(g, p%d)                        ! d_i = 1/sqrt(G_ii)
     do j = 1, m
       p%gs(:, j) = p%d * g(:, j) * p%d(j)              ! Gs = D G D
     end do
     p%qs(1:n) = p%d(1:n) * prob%qn
     p%qs(n + 1:) = p%d(n + 1:) * prob%qt
-    p%trow = prob%trow
-    do k = 1, nt
-      p%bs0(k) = prob%bound(k) / p%d(n + k)
-      p%mus(k) = prob%cmu(k) * p%d(prob%trow(k)) / p%d(n + k)
-    end do
-    p%qscale = 0.0_dp
-    if (m > 0) p%qscale = maxval(abs(p%qs))
-    if (nt > 0) p%qscale = max(p%qscale, maxval(p%bs0))
-    if (.not. (p%qscale > 0.0_dp)) p%qscale = 1.0_dp
+    call scale_bounds(prob, p%d, p%qs, p%n, p%nt, p%trow, p%bs0, p%mus, p%qscale)
   end subroutine scale_friction_problem
 
   !> friction_lcp's residual r of the scaled iterate s with gaps v = qs + Gs s,
@@ -132,18 +122,7 @@ contains
     type(scaled_friction_t), intent(in) :: p
     real(dp), intent(in) :: bs0(:), mus(:), s(:), v(:)
     real(dp) :: r
-    real(dp) :: bk
-    integer :: i, j, k
-    r = 0.0_dp
-    do i = 1, p%n
-      r = max(r, abs(min(s(i), v(i))))                              ! min(lambda_s, w_s)
-    end do
-    do k = 1, p%nt
-      j = p%n + k
-      bk = max(0.0_dp, bs0(k) + mus(k) * s(p%trow(k)))              ! bs_k
-      r = max(r, abs(s(j) - min(bk, max(-bk, s(j) - v(j)))))        ! tau - clamp(tau + ds, -b, b)
-    end do
-    r = r / p%qscale
+    r = bounded_residual(p%n, p%trow, bs0, mus, p%qscale, s, v)
   end function friction_residual_scaled
 
   !> Coulomb's bounds at the normal forces of s: bs_k = max(0, bs0_k + mus_k s_trow(k)).

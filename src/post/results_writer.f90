@@ -131,11 +131,8 @@ contains
     character(len=32) :: sx(4)
     character(len=:), allocatable :: extra
     logical :: friction
-    open(newunit=u, file=path, status='replace', action='write', form='formatted', iostat=ios)
-    if (ios /= 0) then
-      call cannot_write(path, err)
-      return
-    end if
+    call open_for_writing(path, u, err)
+    if (allocated(err)) return
     friction = allocated(r%tau)
     if (friction) then
       allocate(tforce(cs%nrow), source=0.0_dp)
@@ -188,6 +185,54 @@ contains
     call set_error(err, path // ': cannot write the file', error_input)
   end subroutine cannot_write
 
+  !> A `KEY TEXT` line of the summary for each text of a list, none when the
+  !> list is not allocated.
+  !>   u     (in) the summary's unit
+  !>   key   (in) the lines' key
+  !>   texts (in) the list
+  subroutine write_lines(u, key, texts)
+    integer, intent(in) :: u
+    character(len=*), intent(in) :: key
+    type(string_t), allocatable, intent(in) :: texts(:)
+    integer :: k
+    if (.not. allocated(texts)) return
+    do k = 1, size(texts)
+      write(u, '(a)') key // ' ' // texts(k)%s
+    end do
+  end subroutine write_lines
+
+  !> A `KEY LABEL X Y` line of the summary for each label, with the two
+  !> components of its column of xy; none when either is not allocated.
+  !>   u      (in) the summary's unit
+  !>   key    (in) the lines' key
+  !>   labels (in) (n) the labels
+  !>   xy     (in) (2, n) the components
+  subroutine write_labelled(u, key, labels, xy)
+    integer, intent(in) :: u
+    character(len=*), intent(in) :: key
+    type(string_t), allocatable, intent(in) :: labels(:)
+    real(dp), allocatable, intent(in) :: xy(:, :)
+    integer :: k
+    if (.not. (allocated(labels) .and. allocated(xy))) return
+    do k = 1, size(labels)
+      write(u, '(a)') key // ' ' // labels(k)%s // ' ' // exact_to_str(xy(1, k)) // ' ' // exact_to_str(xy(2, k))
+    end do
+  end subroutine write_labelled
+
+  !> A new formatted file of every writer here, replacing any at path:
+  !> err (cannot_write) when it cannot be opened.
+  !>   path (in)  the file
+  !>   u    (out) its unit, open for writing when err is not allocated
+  !>   err  (out) the failure
+  subroutine open_for_writing(path, u, err)
+    character(len=*), intent(in) :: path
+    integer, intent(out) :: u
+    type(error_t), allocatable, intent(out) :: err
+    integer :: ios
+    open(newunit=u, file=path, status='replace', action='write', form='formatted', iostat=ios)
+    if (ios /= 0) call cannot_write(path, err)
+  end subroutine open_for_writing
+
 
   !> The summary: one `key value...` per line (DECK.md), plus extra keys.
   subroutine write_summary(path, r, err)
@@ -195,18 +240,11 @@ contains
     type(results_t), intent(in) :: r
     type(error_t), allocatable, intent(out) :: err
     integer :: u, ios, k
-    open(newunit=u, file=path, status='replace', action='write', form='formatted', iostat=ios)
-    if (ios /= 0) then
-      call cannot_write(path, err)
-      return
-    end if
+    call open_for_writing(path, u, err)
+    if (allocated(err)) return
     write(u, '(a)') 'effects ' // r%effects
     write(u, '(a)') 'force_basis ' // trim(merge('full_circle       ', 'per_unit_thickness', r%axisymmetric))
-    if (allocated(r%parameter)) then
-      do k = 1, size(r%parameter)
-        write(u, '(a)') 'parameter ' // r%parameter(k)%s
-      end do
-    end if
+    call write_lines(u, 'parameter', r%parameter)
     write(u, '(a,i0)') 'dofs ', size(r%u)
     write(u, '(a,i0)') 'free_dofs ', r%nfree
     write(u, '(a,i0)') 'contact_nodes ', r%contact_nodes
@@ -215,11 +253,7 @@ contains
     write(u, '(a)') 'lcp_method ' // r%lcp_method
     write(u, '(a,i0)') 'lcp_iterations ', r%lcp_iterations
     write(u, '(a,a)') 'lcp_residual ', exact_to_str(r%lcp_residual)
-    if (allocated(r%lcp_fallback)) then
-      do k = 1, size(r%lcp_fallback)
-        write(u, '(a)') 'lcp_fallback ' // r%lcp_fallback(k)%s
-      end do
-    end if
+    call write_lines(u, 'lcp_fallback', r%lcp_fallback)
     write(u, '(a,a)') 'complementarity ', exact_to_str(r%complementarity)
     write(u, '(a)') 'certificate complementarity ' // exact_to_str(r%certificate(1)) // ' cone ' // &
       exact_to_str(r%certificate(2)) // ' equilibrium ' // exact_to_str(r%certificate(3))
@@ -247,28 +281,15 @@ contains
       end do
     end if
     if (allocated(r%adapt_result)) write(u, '(a)') 'adapt_result ' // r%adapt_result
-    do k = 1, size(r%fix_label)
-      write(u, '(a)') 'reaction ' // r%fix_label(k)%s // ' ' // exact_to_str(r%reaction(1, k)) // ' ' // &
-        exact_to_str(r%reaction(2, k))
-    end do
-    if (allocated(r%spring_label) .and. allocated(r%spring_force)) then
-      do k = 1, size(r%spring_label)
-        write(u, '(a)') 'spring ' // r%spring_label(k)%s // ' ' // exact_to_str(r%spring_force(1, k)) // ' ' // &
-                        exact_to_str(r%spring_force(2, k))
-      end do
-    end if
+    call write_labelled(u, 'reaction', r%fix_label, r%reaction)
+    call write_labelled(u, 'spring', r%spring_label, r%spring_force)
     if (allocated(r%contact_force)) then
       do k = 1, size(r%contact_force, 2)
         write(u, '(a,i0,a)') 'contact_force ', k, ' ' // exact_to_str(r%contact_force(1, k)) // ' ' // &
           exact_to_str(r%contact_force(2, k))
       end do
     end if
-    if (allocated(r%boundary_u)) then
-      do k = 1, size(r%fix_boundary)
-        write(u, '(a)') 'displacement ' // r%fix_boundary(k)%s // ' ' // exact_to_str(r%boundary_u(1, k)) // ' ' // &
-          exact_to_str(r%boundary_u(2, k))
-      end do
-    end if
+    call write_labelled(u, 'displacement', r%fix_boundary, r%boundary_u)
     if (allocated(r%zones)) then
       do k = 1, size(r%zones)
         call write_zone(u, 'contact', k, r%zones(k)%contact)
@@ -290,20 +311,12 @@ contains
             ' ' // exact_to_str(r%rigid(6, k))
       end do
     end if
-    if (allocated(r%unheld_mode)) then
-      do k = 1, size(r%unheld_mode)
-        write(u, '(a)') 'unheld_mode ' // r%unheld_mode(k)%s
-      end do
-    end if
+    call write_lines(u, 'unheld_mode', r%unheld_mode)
     if (allocated(r%max_strain_body)) write(u, '(a)') 'max_strain ' // exact_to_str(r%max_strain(1)) // ' ' // &
       r%max_strain_body // ' ' // exact_to_str(r%max_strain(2)) // ' ' // exact_to_str(r%max_strain(3))
     if (allocated(r%max_rotation_body)) write(u, '(a)') 'max_rotation ' // exact_to_str(r%max_rotation(1)) // ' ' // &
       r%max_rotation_body // ' ' // exact_to_str(r%max_rotation(2)) // ' ' // exact_to_str(r%max_rotation(3))
-    if (allocated(r%warning)) then
-      do k = 1, size(r%warning)
-        write(u, '(a)') 'warning ' // r%warning(k)%s
-      end do
-    end if
+    call write_lines(u, 'warning', r%warning)
     write(u, '(a,i0)') 'factor_nnz ', r%factor_nnz
     if (allocated(r%ordering)) write(u, '(a)') 'factor_ordering ' // r%ordering
     if (allocated(r%condense_block)) then
@@ -350,11 +363,8 @@ contains
     type(error_t), allocatable, intent(out) :: err
     integer :: u, ios, k
     logical :: ok
-    open(newunit=u, file=path, status='replace', action='write', form='formatted', iostat=ios)
-    if (ios /= 0) then
-      call cannot_write(path, err)
-      return
-    end if
+    call open_for_writing(path, u, err)
+    if (allocated(err)) return
     write(u, '(a)', iostat=ios) '<?xml version="1.0"?>'
     write(u, '(a)', iostat=ios) '<VTKFile type="Collection" version="0.1">'
     write(u, '(a)', iostat=ios) '  <Collection>'
@@ -380,11 +390,8 @@ contains
     integer :: u, ios, k, c, nc
     logical :: ok
     character(len=:), allocatable :: line
-    open(newunit=u, file=path, status='replace', action='write', form='formatted', iostat=ios)
-    if (ios /= 0) then
-      call cannot_write(path, err)
-      return
-    end if
+    call open_for_writing(path, u, err)
+    if (allocated(err)) return
     write(u, '(a)', iostat=ios) header
     nc = size(table, 1)
     do k = 1, size(table, 2)

@@ -52,6 +52,7 @@ module contact_checks
   use contact_set, only: row_of_node, contact_pair_t
   use rigid_obstacle, only: rigid_terms, shape_circle
   use mortar_geometry, only: mean_curvature
+  use contact_zones, only: true_runs
   implicit none
   private
   public :: check_contact_model
@@ -101,7 +102,7 @@ contains
     type(error_t), allocatable, intent(out) :: err
     logical, allocatable :: active(:)
     real(dp), allocatable :: arc(:), halfwidth(:)
-    real(dp) :: t(2), nu(2), du(2), slide, cap, h, worst, ratio, mumax
+    real(dp) :: t(2), nu(2), du(2), slide, cap, h, worst, ratio, mumax, worst_slide, worst_cap, worst_h
     integer :: ns, i, r, a, b, iworst
     logical :: edge_on, worst_edge
     associate(pr => prob%cs%pair(ip))
@@ -130,31 +131,24 @@ contains
         t = t / norm2(t)
         nu = [-t(2), t(1)]
         h = element_length(pr, i)
-        du = slave_displacement(prob, u, pr, i) - master_displacement(prob, u, pr, i)
+        du = relative_displacement(prob, u, pr, i)
         slide = abs(dot_product(du, t))
         cap = max(h, zone_fraction * halfwidth(i))
         ratio = slide / cap
         edge_on = abs(dot_product(pr%mortar%normal(:, i), nu)) < edge_on_cos
-        if (edge_on .and. .not. worst_edge) then
-          worst_edge = .true.
+        ! the first edge-on node, else the largest ratio above 1
+        if (.not. worst_edge .and. (edge_on .or. ratio > worst)) then
+          worst_edge = edge_on
           iworst = i
           worst = ratio
-        else if (ratio > worst .and. .not. worst_edge) then
-          worst = ratio
-          iworst = i
+          worst_slide = slide
+          worst_cap = cap
+          worst_h = h
         end if
       end do
       if (iworst == 0) return
-      i = iworst
-      h = element_length(pr, i)
-      call neighbours(pr, i, a, b)
-      t = pr%xs(:, b) - pr%xs(:, a)
-      t = t / norm2(t)
-      du = slave_displacement(prob, u, pr, i) - master_displacement(prob, u, pr, i)
-      slide = abs(dot_product(du, t))
-      cap = max(h, zone_fraction * halfwidth(i))
-      call set_error(err, sliding_text(prob, ip, kstep, pr%xs(:, i), slide, h, halfwidth(i), cap, worst_edge), &
-                     error_model)
+      call set_error(err, sliding_text(prob, ip, kstep, pr%xs(:, iworst), worst_slide, worst_h, halfwidth(iworst), &
+                                       worst_cap, worst_edge), error_model)
     end associate
   end subroutine check_sliding
 
@@ -170,26 +164,8 @@ contains
     real(dp), intent(in) :: arc(:)
     real(dp), intent(out) :: halfwidth(:)
     integer, allocatable :: first(:), last(:)
-    integer :: ns, i, k, nrun, z0
-    ns = size(active)
-    allocate(first(ns), last(ns))
-    nrun = 0
-    i = 1
-    do while (i <= ns)                             ! the runs of active nodes
-      if (.not. active(i)) then
-        i = i + 1
-        cycle
-      end if
-      k = i
-      do while (k < ns)
-        if (.not. active(k + 1)) exit
-        k = k + 1
-      end do
-      nrun = nrun + 1
-      first(nrun) = i
-      last(nrun) = k
-      i = k + 1
-    end do
+    integer :: k, nrun, z0
+    call true_runs(active, first, last, nrun)      ! the runs of active nodes
     halfwidth = 0.0_dp
     z0 = 1
     do k = 1, nrun                                 ! runs z0..k form one zone until a wide hole
@@ -257,22 +233,10 @@ contains
     h = h * real(pr%degree(1), dp)
   end function element_length
 
-  !> u of slave node i (global axes).
-  function slave_displacement(prob, ug, pr, i) result(u)
-    type(problem_t), intent(in) :: prob
-    real(dp), intent(in) :: ug(:)
-    type(contact_pair_t), intent(in) :: pr
-    integer, intent(in) :: i
-    real(dp) :: u(2)
-    integer :: d
-    d = prob%sc%bodies(pr%spec%slave_body)%dof0 + 2 * (pr%snode(i) - 1)
-    u = ug(d + 1:d + 2)
-  end function slave_displacement
-
-  !> u of the master at the point paired with slave node i: a RIGID's motion
-  !> U(x_i); else the master chain's displacement interpolated at its point
-  !> nearest x_i in the initial configuration.
-  function master_displacement(prob, ug, pr, i) result(u)
+  !> u of slave node i (global axes) less the master's at the point paired
+  !> with it: a RIGID's motion U(x_i); else the master chain's displacement
+  !> interpolated at its point nearest x_i in the initial configuration.
+  function relative_displacement(prob, ug, pr, i) result(u)
     type(problem_t), intent(in) :: prob
     real(dp), intent(in) :: ug(:)
     type(contact_pair_t), intent(in) :: pr
@@ -280,6 +244,8 @@ contains
     real(dp) :: u(2)
     real(dp) :: e(2), w(2), y(2), len2, s, dist, best, sbest
     integer :: d0, j, jbest, da, db
+    d0 = prob%sc%bodies(pr%spec%slave_body)%dof0 + 2 * (pr%snode(i) - 1)
+    u = ug(d0 + 1:d0 + 2)
     if (pr%spec%rigid > 0) then
       ! the shape's motion at x_i: a circle's is its centre's (turning about
       ! its centre moves no point of the shape: a rolling cylinder's contact
@@ -287,8 +253,8 @@ contains
       y = pr%xs(:, i)
       if (pr%spec%shape%kind == shape_circle) y = pr%spec%shape%centre
       d0 = pr%spec%shape%dof0
-      u(1) = dot_product(rigid_terms(pr%spec%shape, y, [1.0_dp, 0.0_dp]), ug(d0 + 1:d0 + 3))
-      u(2) = dot_product(rigid_terms(pr%spec%shape, y, [0.0_dp, 1.0_dp]), ug(d0 + 1:d0 + 3))
+      u(1) = u(1) - dot_product(rigid_terms(pr%spec%shape, y, [1.0_dp, 0.0_dp]), ug(d0 + 1:d0 + 3))
+      u(2) = u(2) - dot_product(rigid_terms(pr%spec%shape, y, [0.0_dp, 1.0_dp]), ug(d0 + 1:d0 + 3))
       return
     end if
     associate(x => prob%sc%bodies(pr%spec%master_body)%mesh%x)
@@ -312,8 +278,8 @@ contains
     d0 = prob%sc%bodies(pr%spec%master_body)%dof0
     da = d0 + 2 * (pr%mnode(jbest) - 1)
     db = d0 + 2 * (pr%mnode(min(jbest + 1, size(pr%mnode))) - 1)
-    u = (1.0_dp - sbest) * ug(da + 1:da + 2) + sbest * ug(db + 1:db + 2)
-  end function master_displacement
+    u = u - ((1.0_dp - sbest) * ug(da + 1:da + 2) + sbest * ug(db + 1:db + 2))
+  end function relative_displacement
 
   !> Polygon gaps of pair ip (module header, 2.): a warning when the two
   !> chains are polygons of one curve and the initial gaps are their sags.
