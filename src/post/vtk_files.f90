@@ -104,6 +104,27 @@ contains
     end subroutine add
   end subroutine vtk_arrays
 
+  !> The names ParaView shows for the components of array a (none for a
+  !> scalar): the displacement's (ux, uy, uz; x is r in axisymmetric
+  !> analysis), the stress's in the order of the values (sxx, syy, sxy; in
+  !> axisymmetric analysis srr, szz, srz, stt).
+  function component_names(a) result(names)
+    type(vtk_array_t), intent(in) :: a
+    character(len=3), allocatable :: names(:)
+    select case (a%source)
+    case (from_displacement)
+      names = ['ux ', 'uy ', 'uz ']
+    case (from_stress)
+      if (a%ncomp == 4) then
+        names = ['srr', 'szz', 'srz', 'stt']
+      else
+        names = ['sxx', 'syy', 'sxy']
+      end if
+    case default
+      allocate(names(0))
+    end select
+  end function component_names
+
   !> The values of array a in row order: v%vals (double) or v%ivals (integers).
   subroutine array_values(a, r, v)
     type(vtk_array_t), intent(in) :: a
@@ -136,7 +157,8 @@ contains
     type(text_buffer_t) :: tb
     type(vtk_rows_t) :: v
     type(vtk_array_t), allocatable :: list(:)
-    integer :: nnode, nelem, ncon, k
+    integer :: nnode, nelem, ncon, k, i
+    character(len=3), allocatable :: names(:)
     character(len=256) :: head
     logical :: in_points
 
@@ -176,6 +198,15 @@ contains
           call put_line(tb, 'SCALARS ' // a%name // ' double ' // int_to_str(a%ncomp))
           call put_line(tb, 'LOOKUP_TABLE default')
           call put_rows(tb, row_values, size(v%vals, 2), v)
+        end if
+        names = component_names(a)
+        if (size(names) > 0) then      ! VTK's legacy reader names the components (since VTK 8.1)
+          call put_line(tb, 'METADATA')
+          call put_line(tb, 'COMPONENT_NAMES')
+          do i = 1, size(names)
+            call put_line(tb, trim(names(i)))
+          end do
+          call put_line(tb, '')
         end if
       end associate
     end do
@@ -282,7 +313,8 @@ contains
         if (a%integers) then
           call put_line(tb, data_array('Int32', a%name, 1, offset(k)))
         else
-          call put_line(tb, data_array('Float64', a%name, merge(3, a%ncomp, a%vector), offset(k)))
+          call put_line(tb, data_array('Float64', a%name, merge(3, a%ncomp, a%vector), offset(k), &
+                                       component_names(a)))
         end if
       end associate
     end do
@@ -311,14 +343,22 @@ contains
   end subroutine write_vtu
 
   !> One DataArray element of the XML file (name '': none, the points).
-  function data_array(type, name, ncomp, offset) result(line)
+  !>   names (in, optional) its components' names (ComponentName0, ...)
+  function data_array(type, name, ncomp, offset, names) result(line)
     character(len=*), intent(in) :: type, name
     integer, intent(in) :: ncomp
     integer(i8), intent(in) :: offset
+    character(len=*), intent(in), optional :: names(:)
     character(len=:), allocatable :: line
+    integer :: i
     line = '        <DataArray type="' // type // '"'
     if (len(name) > 0) line = line // ' Name="' // name // '"'
     if (ncomp > 1) line = line // ' NumberOfComponents="' // int_to_str(ncomp) // '"'
+    if (present(names)) then
+      do i = 1, size(names)
+        line = line // ' ComponentName' // int_to_str(i - 1) // '="' // trim(names(i)) // '"'
+      end do
+    end if
     line = line // ' format="appended" offset="' // i8_to_str(offset) // '"/>'
   end function data_array
 

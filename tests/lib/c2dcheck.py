@@ -104,6 +104,10 @@ def vtk(path):
             vals = [float(x) for x in words[i:i + ncomp * count]]
             out[section][name] = [vals[k * ncomp:(k + 1) * ncomp] for k in range(count)]
             i += ncomp * count
+            if i < n and words[i] == "METADATA":         # the array's component names
+                assert words[i + 1] == "COMPONENT_NAMES", f"{path}: METADATA of {name} without COMPONENT_NAMES"
+                out.setdefault("component_names", {})[name] = words[i + 2:i + 2 + ncomp]
+                i += 2 + ncomp
         else:
             # every value belongs to a section of the size its header says:
             # a stray one means a section has more rows than points or cells
