@@ -263,8 +263,9 @@ contains
       '         [ordering=auto|metis|amd] [condense=auto|solve|inverse] [cut=auto|off]', &
       '                                    every lcp method with or without friction; auto: Lemke', &
       '                                    up to 100 contact rows, PDAS above; with friction PDAS,', &
-      '                                    then Lemke, then PGS; each next when one fails; every', &
-      '                                    answer checked (summary: certificate); a failing step of', &
+      '                                    then Lemke, then PGS, then a fixed point on the Tresca', &
+      '                                    threshold; each next when one fails; every answer', &
+      '                                    checked (summary: certificate); a failing step of', &
       '                                    a friction or sliding=finite history is split in two;', &
       '                                    lcp=pgs with friction on a body or a RIGID held only by', &
       '                                    contact is refused; maxit=0: each method''s own limit;', &
