@@ -4,8 +4,9 @@
 !> "Step table"): KEY_LABEL_COMPONENT after the summary line it matches,
 !> reaction_BODY:BOUNDARY_fx for `reaction BODY:BOUNDARY Fx Fy`,
 !> contact_force_PAIR_fx for `contact_force PAIR Fx Fy`, rigid_NAME_ux for
-!> `rigid NAME ux uy rz fx fy m`.  Two FIX statements on one boundary give it
-!> one pair of reaction columns, their sum (the force the boundary takes).
+!> `rigid NAME ux uy rz fx fy m`, spring_BODY:BOUNDARY_fx for `spring
+!> BODY:BOUNDARY Fx Fy`.  Two FIX (or SPRING) statements on one boundary give
+!> it one pair of columns, their sum (the force the boundary takes).
 !>
 !> Why it exists: the application names and commits files; what a step's
 !> row holds is a list of its own that grows with the results.
@@ -88,6 +89,7 @@ contains
         call add('rigid_' // name // '_' // trim(rigid_part(n)), res%rigid(n, j), .false.)
       end do
     end do
+    call add_springs()
     call add('active_nodes', real(res%active_nodes, dp), .true.)
     call add('lcp_iterations', real(iterations, dp), .true.)
     call add('certificate_complementarity', res%certificate(1), .false.)
@@ -105,6 +107,40 @@ contains
       values = [values, value]
       whole = [whole, integral]
     end subroutine add
+
+    !> The SPRINGs' force on their bodies, spring_BODY:BOUNDARY_fx, _fy, in
+    !> the order of the deck's SPRING statements; two statements on one
+    !> boundary give it one pair of columns, their sum (as the reactions).
+    subroutine add_springs()
+      type(string_t), allocatable :: label(:)
+      real(dp), allocatable :: force(:,:)
+      character(len=:), allocatable :: this
+      integer :: b, k, m, nl, j
+      if (.not. allocated(res%spring_force)) return
+      allocate(label(size(res%spring_force, 2)), force(2, size(res%spring_force, 2)))
+      nl = 0
+      m = 0
+      do b = 1, size(prob%deck%bodies)
+        do k = 1, size(prob%deck%bodies(b)%springs)
+          m = m + 1
+          this = prob%deck%bodies(b)%name // ':' // prob%deck%bodies(b)%springs(k)%boundary
+          if (nl > 0) then
+            if (any([(label(j)%s == this, j = 1, nl)])) then
+              j = findloc([(label(j)%s == this, j = 1, nl)], .true., dim=1)
+              force(:, j) = force(:, j) + res%spring_force(:, m)
+              cycle
+            end if
+          end if
+          nl = nl + 1
+          label(nl)%s = this
+          force(:, nl) = res%spring_force(:, m)
+        end do
+      end do
+      do k = 1, nl
+        call add('spring_' // label(k)%s // '_fx', force(1, k), .false.)
+        call add('spring_' // label(k)%s // '_fy', force(2, k), .false.)
+      end do
+    end subroutine add_springs
 
     !> A zone's columns: KIND_zone_P_x0 .. _length, KIND_zones_P_count, _length.
     subroutine add_zone(kind, pair, z)
