@@ -10,15 +10,15 @@
 !> starts again from the scene on the new meshes.
 !>
 !> What it aims at.  quantity=energy: the energy error target, times 0.85
-!> so that one step usually suffices.  quantity=pressure: no indicator of the
-!> pressure error alone spreads over the bodies, so the loop asks the energy
-!> indicators (which carry the contact terms) for the energy error cut in
-!> the ratio (target / estimate_pressure)^(1 / kappa) (the target times
-!> 0.85), kappa how fast the pressure error falls against the energy error:
-!> observed between the last two meshes, else 3/2 on linear elements (L2
-!> of the pressure ~ h^(3/2), energy ~ h) and 1 on quadratic ones.  The rates are the elements'
-!> orders, or the rate observed between the last two meshes when lower (a
-!> singularity's).  One step refines an element at most 8 times and
+!> so that one step usually suffices.  quantity=pressure: the pressure
+!> error is the contact zones' ends', where the energy indicators ask for
+!> little, so the zones are sized as a hand-graded mesh is (refine_zones:
+!> the strip's size cut by target / estimate, growing linearly away from
+!> it), and the bulk keeps the energy indicators' field, aimed at the energy
+!> error cut by the square root of that ratio (bulk_rate; doc/theory.md).
+!> The energy rates are the elements' orders, or the rate observed between
+!> the last two meshes when lower (a singularity's).  One step refines an
+!> element at most 8 times (the zones' strips at most 100 times) and
 !> coarsens it at most 4 times.
 !>
 !> The load history.  Each mesh is solved with the deck's whole history
