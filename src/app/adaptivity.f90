@@ -10,15 +10,15 @@
 !> starts again from the scene on the new meshes.
 !>
 !> What it aims at.  quantity=energy: the energy error target, times 0.85
-!> so that one step usually suffices.  quantity=pressure: no indicator of the
-!> pressure error alone spreads over the bodies, so the loop asks the energy
-!> indicators (which carry the contact terms) for the energy error cut in
-!> the ratio (target / estimate_pressure)^(1 / kappa) (the target times
-!> 0.85), kappa how fast the pressure error falls against the energy error:
-!> observed between the last two meshes, else 3/2 on linear elements (L2
-!> of the pressure ~ h^(3/2), energy ~ h) and 1 on quadratic ones.  The rates are the elements'
-!> orders, or the rate observed between the last two meshes when lower (a
-!> singularity's).  One step refines an element at most 8 times and
+!> so that one step usually suffices.  quantity=pressure: the pressure
+!> error is the contact zones' ends', where the energy indicators ask for
+!> little, so the zones are sized as a hand-graded mesh is (refine_zones:
+!> the strip's size cut by target / estimate, growing linearly away from
+!> it), and the bulk keeps the energy indicators' field, aimed at the energy
+!> error cut by the square root of that ratio (bulk_rate; doc/theory.md).
+!> The energy rates are the elements' orders, or the rate observed between
+!> the last two meshes when lower (a singularity's).  One step refines an
+!> element at most 8 times (the zones' strips at most 100 times) and
 !> coarsens it at most 4 times.
 !>
 !> The load history.  Each mesh is solved with the deck's whole history
@@ -51,6 +51,7 @@ module adaptivity
   use run_phase, only: enter_phase
   use deck_types, only: mesh_spec_t
   use mesh, only: is_quadratic
+  use elements, only: corner_count
   use mesh_rect, only: write_rect_geo
   use geo_screen, only: screen_geo
   use gmsh_runner, only: mesh_geo_file
@@ -69,6 +70,12 @@ module adaptivity
   !> the share of max_dofs a mesh is aimed at: gmsh's meshes come out a few
   !> percent off the count asked (1.1-1.5 % over at 500,000 dofs, bench/peers.sh)
   real(dp), parameter :: dofs_margin = 0.9_dp
+  !> quantity=pressure: the fraction of the target the zone's size aims at (the error at a free end moves by
+  !> some 20 % with where the end falls in its element: aimed lower than aim, one mesh usually suffices), the
+  !> smallest size ratio asked there in one step, the zone size's growth with the distance from the zone (the
+  !> hand-graded mesh's, doc/accuracy-cost.md), and kappa in e_p ~ e_E^kappa for the energy error asked of the
+  !> bulk (measured on Hertz, P1 and P2: the bulk's share of the pressure error falls about as e_E^2)
+  real(dp), parameter :: aim_pressure = 0.75_dp, zone_finest = 0.01_dp, zone_slope = 0.2_dp, bulk_rate = 2.0_dp
   real(dp), parameter :: stall = 0.95_dp               !< an estimate above stall times the last one: no progress
 
 contains
@@ -214,7 +221,7 @@ contains
     type(run_t), intent(inout) :: run
     real(dp), intent(in) :: est
     type(error_t), allocatable :: err
-    real(dp), allocatable :: rate(:), s(:), h(:)
+    real(dp), allocatable :: rate(:), s(:), h(:), cap(:)
     character(len=:), allocatable :: work, stem, deck_folder
     real(dp) :: goal, predicted, hmin, hmax
     integer :: b, e, e0
@@ -225,14 +232,17 @@ contains
       a%cpu0 = c2d_cpu_seconds()                  ! gmsh's re-meshing is the next mesh's cost
       a%time0 = run%log%cpu
       goal = aim * ad%target
-      if (ad%quantity == 'pressure') goal = run%res%estimate_energy * (aim * ad%target / est)**(1 / pressure_rate(run, est))
+      if (ad%quantity == 'pressure') goal = run%res%estimate_energy * (aim * ad%target / est)**(1 / bulk_rate)
       rate = element_rates(run%prob, run%res%estimate_energy, a%energy_prev, a%dofs_prev)
       allocate(s(run%prob%sc%nelem))
       call optimal_scales(run%res%error_indicator**2, rate, goal**2, finest, coarsest, s)
-      if (ad%quantity == 'pressure') call refine_zones(run, max(finest, aim * ad%target / est), s)
+      allocate(cap(run%prob%sc%ndof / 2))
+      cap = huge(1.0_dp)
+      if (ad%quantity == 'pressure') call refine_zones(run, s, cap)
       predicted = run%prob%sc%ndof * element_count(s) / run%prob%sc%nelem
       if (predicted > dofs_margin * ad%max_dofs) then   ! as fine as max_dofs allows, and the loop's last mesh
         s = s * sqrt(predicted / (dofs_margin * ad%max_dofs))
+        cap = huge(1.0_dp)       ! the zones' nodal sizes go too: their count is the rougher, and this mesh must fit
         a%capped = .true.
         call say(run%log, 'adapt    the target asks for about ' // int_to_str(nint(predicted)) // ' dofs: the next ' // &
                  'mesh is made coarser, within max_dofs=' // int_to_str(ad%max_dofs))
@@ -250,7 +260,8 @@ contains
           e0 = bd%elem0
           h = [(s(e0 + e) * element_size(bd%mesh, e), e = 1, bd%mesh%nelem)]
           stem = work // '/adapt' // int_to_str(a%step + 1) // '_' // bdeck%name
-          call write_background(bd%mesh, bdeck%dx, bdeck%dy, h, stem // '.pos', hmin, hmax, err)
+          call write_background(bd%mesh, bdeck%dx, bdeck%dy, h, stem // '.pos', hmin, hmax, err, &
+                                cap(bd%dof0 / 2 + 1:bd%dof0 / 2 + bd%mesh%nnode))
           if (allocated(err)) exit
           if (.not. run%opts%gmsh%trust_geo .and. bdeck%mesh%kind == 'gmsh' .and. .not. bdeck%mesh%is_geo .and. &
               a%step == 1) then
@@ -280,72 +291,87 @@ contains
     done = .true.
   end function remesh
 
-  !> How fast the pressure error falls against the energy error, kappa in
-  !> e_p ~ e_E^kappa (module header): observed between the last two meshes,
-  !> within 1/2 .. 3; before that 3/2 when every element is linear (the
-  !> pressure's L2 error goes as h^(3/2), the energy's as h) and 1 otherwise.
-  real(dp) function pressure_rate(run, est) result(kappa)
+  !> quantity=pressure: the sizes around every contact zone, on both sides,
+  !> as an expert grades them by hand (doc/theory.md, "Adaptive meshes"):
+  !> the pressure error is the zone's free ends' (O(h) at a square-root end,
+  !> on linear and quadratic traces alike, from a/h = 1 to 14 on Hertz),
+  !> where the energy indicators ask for little.  The strip of the zone (its
+  !> slave nodes and one slave segment past each end) is given the size
+  !> h_z = h_now * aim * target / estimate_pair, h_now its longest slave
+  !> element (the rate in h being 1), and the size may grow away from the
+  !> strip at most linearly, h_z + zone_slope * d at the distance d: a band
+  !> along the trace, not a box of the zone's width in depth (which would
+  !> cost that width squared over h_z^2 elements).  An element's ratio is
+  !> only ever lowered here (the energy indicators' ask stays where finer).
+  !> The size is set at the nodes: an element's mean, at its centroid, would
+  !> leave the trace's nodes h_z + zone_slope h / 3, many times h_z when the
+  !> zone is refined much in one step.
+  !>   run (in)    the solved mesh, its node pressures and pressure estimates
+  !>   s   (inout) (nelem, every body) the size ratio of each element, for the count of the next
+  !>               mesh: lowered to sqrt(cap_min cap_max) over its size, cap_min and cap_max its
+  !>               corners' (the count of a size growing linearly across it is within a factor
+  !>               2 of area / (cap_min cap_max); the mean of the caps would miss the fine layer)
+  !>   cap (out)   (ndof / 2, every body) the largest size at each node (huge away from the zones)
+  subroutine refine_zones(run, s, cap)
     type(run_t), intent(in) :: run
-    real(dp), intent(in) :: est
-    integer :: b
-    kappa = 1.5_dp
-    do b = 1, size(run%prob%sc%bodies)
-      if (is_quadratic(run%prob%sc%bodies(b)%mesh)) kappa = 1.0_dp
-    end do
-    associate (a => run%adapt)
-      if (a%pressure_prev > 0.0_dp .and. a%energy_prev > 0.0_dp .and. est > 0.0_dp .and. &
-          run%res%estimate_energy > 0.0_dp) then
-        if (abs(log(a%energy_prev / run%res%estimate_energy)) > 0.1_dp) &
-          kappa = min(3.0_dp, max(0.5_dp, log(a%pressure_prev / est) / log(a%energy_prev / run%res%estimate_energy)))
-      end if
-    end associate
-  end function pressure_rate
-
-  !> quantity=pressure: the elements of both sides around every contact zone
-  !> are made at least `factor` times smaller.  The pressure error is the
-  !> zone's free ends' (doc/theory.md, "Error estimate": O(h) at a
-  !> square-root end, on linear and quadratic traces alike, from a/h = 1 to
-  !> 14 on Hertz), where the energy indicators ask for little: so the strip
-  !> of the zone, one slave element wider at each end, is cut by the ratio
-  !> of the target to the estimate, its rate in h being 1.
-  !>   run    (in)    the solved mesh, its node pressures
-  !>   factor (in)    the size ratio asked of the zone's elements (< 1 refines)
-  !>   s      (inout) (nelem, every body) the size ratio of each element
-  subroutine refine_zones(run, factor, s)
-    type(run_t), intent(in) :: run
-    real(dp), intent(in) :: factor
     real(dp), intent(inout) :: s(:)
-    real(dp) :: lo(2), hi(2), c(2), margin
-    integer :: ip, k, b, e, ns, nc
-    logical :: any_zone
+    real(dp), intent(out) :: cap(:)
+    real(dp), allocatable :: p(:,:)
+    real(dp) :: hz, d, est
+    integer :: ip, k, b, e, ns, nc, np, n, n0
+    logical, allocatable :: seg(:)
+    cap = huge(1.0_dp)
     if (.not. allocated(run%res%node_pressure)) return
     do ip = 1, run%prob%cs%npair
-      associate (pr => run%prob%cs%pair(ip), sb => run%prob%sc%bodies(run%prob%cs%pair(ip)%spec%slave_body))
+      associate (pr => run%prob%cs%pair(ip))
         ns = size(pr%snode)
-        lo = huge(1.0_dp)
-        hi = -huge(1.0_dp)
-        margin = 0.0_dp
-        any_zone = .false.
-        do k = 1, ns                ! the nodes in contact and their neighbours along the trace
-          if (.not. (in_contact(k) .or. in_contact(k - 1) .or. in_contact(k + 1))) cycle
-          any_zone = .true.
-          lo = min(lo, pr%xs(:, k))
-          hi = max(hi, pr%xs(:, k))
-          if (k < ns) margin = max(margin, norm2(pr%xs(:, k + 1) - pr%xs(:, k)))
+        if (ns < 2) cycle
+        est = -1.0_dp
+        if (allocated(run%res%estimate_pressure)) then
+          if (size(run%res%estimate_pressure) >= ip) est = run%res%estimate_pressure(ip)
+        end if
+        if (est <= 0.0_dp) cycle
+        ! the strip: the slave segments with a node in contact, and the next one past each end
+        allocate(seg(ns - 1))
+        do k = 1, ns - 1
+          seg(k) = in_contact(k - 1) .or. in_contact(k) .or. in_contact(k + 1) .or. in_contact(k + 2)
         end do
-        if (.not. any_zone) cycle
-        lo = lo - margin
-        hi = hi + margin
+        if (.not. any(seg)) then
+          deallocate(seg)
+          cycle
+        end if
+        hz = 0.0_dp
+        np = 0
+        allocate(p(4, count(seg)))
+        do k = 1, ns - 1
+          if (.not. seg(k)) cycle
+          np = np + 1
+          p(1:2, np) = pr%xs(:, k)
+          p(3:4, np) = pr%xs(:, k + 1)
+          hz = max(hz, norm2(pr%xs(:, k + 1) - pr%xs(:, k)))
+        end do
+        ! on quadratic elements the trace's nodes are an element's corners and its midpoints
+        if (is_quadratic(run%prob%sc%bodies(pr%spec%slave_body)%mesh)) hz = 2 * hz
+        hz = hz * max(zone_finest, aim_pressure * run%prob%deck%adapt%target / est)
         do b = 1, size(run%prob%sc%bodies)
           if (b /= pr%spec%slave_body .and. b /= pr%spec%master_body) cycle
           associate (m => run%prob%sc%bodies(b)%mesh, e0 => run%prob%sc%bodies(b)%elem0)
+            n0 = run%prob%sc%bodies(b)%dof0 / 2
+            do n = 1, m%nnode
+              d = huge(1.0_dp)
+              do k = 1, np
+                d = min(d, segment_distance(m%x(:, n), p(1:2, k), p(3:4, k)))
+              end do
+              cap(n0 + n) = min(cap(n0 + n), hz + zone_slope * d)
+            end do
             do e = 1, m%nelem
-              nc = count(m%conn(:, e) > 0)
-              c = sum(m%x(:, m%conn(1:nc, e)), dim=2) / nc
-              if (all(c >= lo .and. c <= hi)) s(e0 + e) = min(s(e0 + e), factor)
+              nc = corner_count(m%nen(e))
+              s(e0 + e) = min(s(e0 + e), max(zone_finest, sqrt(minval(cap(n0 + m%conn(1:nc, e))) * &
+                                                          maxval(cap(n0 + m%conn(1:nc, e)))) / element_size(m, e)))
             end do
           end associate
         end do
+        deallocate(seg, p)
       end associate
     end do
   contains
@@ -358,6 +384,15 @@ contains
         in_contact = run%res%node_pressure(sb%dof0 / 2 + pr%snode(k)) > 0.0_dp
       end associate
     end function in_contact
+    !> The distance from x to the segment [a, b].
+    pure real(dp) function segment_distance(x, a, b) result(dist)
+      real(dp), intent(in) :: x(2), a(2), b(2)
+      real(dp) :: t, l2
+      l2 = sum((b - a)**2)
+      t = 0.0_dp
+      if (l2 > 0.0_dp) t = min(1.0_dp, max(0.0_dp, dot_product(x - a, b - a) / l2))
+      dist = norm2(x - a - t * (b - a))
+    end function segment_distance
   end subroutine refine_zones
 
   !> A fresh run on the deck's new meshes: the options of the command line

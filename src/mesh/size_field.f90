@@ -21,9 +21,9 @@
 !>   optimal_scales(eta2, rate, target2, smin, smax, s)   s_K of the fewest elements for the error target2
 !>   element_count(s)                                    sum_K s_K^-2, the new mesh's elements
 !>   element_size(mesh, e)                               mean length of element e's straight corner edges
-!>   write_background(mesh, dx, dy, h, path, hmin, hmax, err)
+!>   write_background(mesh, dx, dy, h, path, hmin, hmax, err[, cap])
 !>        a gmsh post-processing view (.pos) of the nodal sizes of the element sizes h on the mesh
-!>        shifted by -(dx, dy); hmin, hmax the smallest and largest size written
+!>        shifted by -(dx, dy), at most cap at each node; hmin, hmax the smallest and largest size written
 module size_field
   use kinds, only: dp
   use strings, only: int_to_str
@@ -123,9 +123,11 @@ contains
   !>   path   (in)  the .pos file to write
   !>   hmin, hmax (out) the smallest and largest nodal size written
   !>   err    (out) allocated when the file cannot be written
-  subroutine write_background(m, dx, dy, h, path, hmin, hmax, err)
+  !>   cap    (in, optional) (nnode) the largest size at each node, over the elements' mean
+  subroutine write_background(m, dx, dy, h, path, hmin, hmax, err, cap)
     type(mesh_t), intent(in) :: m
     real(dp), intent(in) :: dx, dy, h(:)
+    real(dp), intent(in), optional :: cap(:)
     character(len=*), intent(in) :: path
     real(dp), intent(out) :: hmin, hmax
     type(error_t), allocatable, intent(out) :: err
@@ -140,6 +142,7 @@ contains
       end do
     end do
     where (count > 0) hsum = hsum / count
+    if (present(cap)) hsum = min(hsum, cap)
     hmin = minval(hsum, mask=count > 0)
     hmax = maxval(hsum, mask=count > 0)
     open(newunit=u, file=path, status='replace', action='write', iostat=ios)
