@@ -6,7 +6,7 @@
 !>                 took that body away: without the motion the pair would
 !>                 close.  Named: the body, the motion, the FIX likely missing
 !>   coarse_zone   a zone in contact narrower than zone_elements slave
-!>                 elements; with a units hint when E looks like Pa (E >=
+!>                 elements, some rows of the pair open; with a units hint when E looks like Pa (E >=
 !>                 pa_like_modulus) or the largest strain is implausibly small
 !>   coarse_slave  slave elements more than coarse_ratio times the master's
 !>                 along the zone: make the finer side the slave, or refine it
@@ -230,7 +230,7 @@ contains
     type(results_t), intent(in) :: res
     integer, intent(in) :: ip
     type(log_t), intent(inout) :: log
-    logical, allocatable :: active(:)
+    logical, allocatable :: active(:), has_row(:)
     real(dp), allocatable :: xm(:,:)
     real(dp) :: seg, hs, hm, hs_sum, hm_sum, width, d, dmin, nearest, near_sum, hnode
     integer :: ns, nm, i, j, r, nseg, near
@@ -239,9 +239,10 @@ contains
       if (.not. allocated(res%zones)) return
       width = res%zones(ip)%contact%total
       ns = size(pr%snode)
-      allocate(active(ns), source=.false.)
+      allocate(active(ns), has_row(ns), source=.false.)
       do i = 1, ns
         r = row_of_node(prob%cs, ip, i)
+        has_row(i) = r > 0
         if (r > 0) active(i) = res%status(r) == 1
       end do
       if (.not. any(active)) return
@@ -256,7 +257,9 @@ contains
       if (nseg == 0) return
       hs = hs / nseg
       where = prob%deck%file // ':' // int_to_str(prob%deck%contacts(ip)%line) // ': '
-      if (width < zone_elements * hs .and. .not. pr%closed) &
+      ! a zone that covers every row is the slave's own extent, not a zone the
+      ! contact resolves (a patch pressed all over)
+      if (width < zone_elements * hs .and. .not. pr%closed .and. .not. all(active .or. .not. has_row)) &
         call add_warning(log, 'coarse_zone', where // 'the zone in contact is ' // real_to_str(width) // &
           ' wide, ' // hundredths(width / hs) // ' slave elements of ' // real_to_str(hs) // &
           ': its pressure is not resolved (fewer than ' // format_number(zone_elements) // ' elements across ' // &

@@ -187,7 +187,9 @@ contains
 
   !> Per friction pair, a load step that both made the contact and dragged
   !> it: most of the pair's rows in contact at the step's end came into
-  !> contact during the step, the step ends
+  !> contact during the step across an initial gap (a zone that grows with
+  !> the load; rows of gap 0, a flat pair's, all touch at the first load
+  !> and a proportional load then scales the answer), the step ends
   !> in partial slip, and the pair's tangential force is more than
   !> drag_share of what friction can carry (|sum tau| against sum mu_c mu).
   !> One step from open to a dragged zone gives an answer that depends on
@@ -205,7 +207,7 @@ contains
     integer, allocatable, intent(inout) :: before(:)
     real(dp), parameter :: drag_share = 0.1_dp   ! a symmetric press leaves round-off; a drag, tens of %
     integer :: ip, t, entered, touching, nstick, nslip
-    real(dp) :: q, cap
+    real(dp) :: q, cap, gtol
     if (.not. (allocated(sol%fstate) .and. allocated(sol%tau) .and. allocated(sol%mu))) return
     if (.not. allocated(before)) allocate(before(size(sol%fstate)), source=0)
     if (size(before) /= size(sol%fstate)) then   ! sliding=finite rebuilt the rows: no row to follow
@@ -213,6 +215,9 @@ contains
       return
     end if
     do ip = 1, prob%cs%npair
+      associate (xs => prob%cs%pair(ip)%xs)
+        gtol = 1.0e-9_dp * sum(norm2(xs(:, 2:) - xs(:, :size(xs, 2) - 1), dim=1))   ! round-off of a flat pair's gaps
+      end associate
       entered = 0
       touching = 0
       nstick = 0
@@ -223,7 +228,7 @@ contains
         if (prob%cs%row_pair(prob%cs%tan_row(t)) /= ip) cycle
         if (sol%fstate(t) == 0) cycle
         touching = touching + 1
-        if (before(t) == 0) entered = entered + 1
+        if (before(t) == 0 .and. prob%cs%g(prob%cs%tan_row(t)) > gtol) entered = entered + 1
         if (sol%fstate(t) == 1) nstick = nstick + 1
         if (sol%fstate(t) == 2) nslip = nslip + 1
         q = q + sol%tau(t)
