@@ -6,7 +6,7 @@
 !>                 took that body away: without the motion the pair would
 !>                 close.  Named: the body, the motion, the FIX likely missing
 !>   coarse_zone   a zone in contact narrower than zone_elements slave
-!>                 elements, some rows of the pair open; with a units hint when E looks like Pa (E >=
+!>                 elements, away from the ends of the pair's rows; with a units hint when E looks like Pa (E >=
 !>                 pa_like_modulus) or the largest strain is implausibly small
 !>   coarse_slave  slave elements more than coarse_ratio times the master's
 !>                 along the zone: make the finer side the slave, or refine it
@@ -257,9 +257,11 @@ contains
       if (nseg == 0) return
       hs = hs / nseg
       where = prob%deck%file // ':' // int_to_str(prob%deck%contacts(ip)%line) // ': '
-      ! a zone that covers every row is the slave's own extent, not a zone the
-      ! contact resolves (a patch pressed all over)
-      if (width < zone_elements * hs .and. .not. pr%closed .and. .not. all(active .or. .not. has_row)) &
+      ! a zone that reaches an end of the pair's rows ends at the slave's own
+      ! corner (a patch pressed all over, a tilted flat on a corner): the
+      ! geometry bounds it there, not a pressure falling to zero over elements
+      if (width < zone_elements * hs .and. .not. pr%closed .and. .not. (active(findloc(has_row, .true., dim=1)) &
+          .or. active(findloc(has_row, .true., dim=1, back=.true.)))) &
         call add_warning(log, 'coarse_zone', where // 'the zone in contact is ' // real_to_str(width) // &
           ' wide, ' // hundredths(width / hs) // ' slave elements of ' // real_to_str(hs) // &
           ': its pressure is not resolved (fewer than ' // format_number(zone_elements) // ' elements across ' // &
