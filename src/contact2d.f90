@@ -28,6 +28,7 @@ program contact2d
   use linear_system, only: assemble_system, factorize_system, condense_system
   use run_steps, only: solve_steps, compute_results, check_contact, estimate_error
   use model_checks, only: check_model
+  use setup_checks, only: check_setup
   use adaptivity, only: check_adaptable, adapt_mesh, fall_back, keep_meshes
   use run_outputs, only: write_outputs
   use run_report, only: report_run
@@ -54,6 +55,7 @@ program contact2d
       call solve_steps(run, err);  if (allocated(err)) exit mesh       ! mu (and tau), every load step the deck needs
       call compute_results(run, err);  if (allocated(err)) exit mesh   ! u = K^-1 (f - C'z) + R alpha; stresses, reactions
       call check_model(run%prob, run%res, run%log)                      ! locking, strain, rotation (warnings)
+      call check_setup(run%prob, run%sol, run%res, run%log)             ! set-up mistakes: supports, mesh, steps
       call check_contact(run, err);  if (allocated(err)) exit mesh     ! small sliding (beyond: an error), polygon gaps
       call estimate_error(run)                                          ! the run's own error, element indicators
     end block mesh

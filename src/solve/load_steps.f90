@@ -154,6 +154,7 @@ contains
     type(step_load_t) :: load
     integer :: kstep, first
     logical :: finite, friction, steps_all
+    integer, allocatable :: before(:)
 
     finite = any(prob%sc%specs%finite)
     friction = prob%cs%ntan > 0
@@ -173,6 +174,7 @@ contains
         call solve_increment(prob, sys, real(kstep - 1, dp), real(kstep, dp), 0, load, past, log, sol, clock, err)
       end if
       if (allocated(err)) return
+      if (friction .and. sys%with_contact) call count_slip_entries(prob, kstep, sol, before)
       if (kstep < prob%sc%steps .and. steps_all .and. present(recorder)) then
         call recorder%record(prob, sys, load, sol, log, err)
         if (allocated(err)) return
@@ -182,6 +184,66 @@ contains
       ' geometry updates in ' // int_to_str(prob%sc%steps) // ' steps: rebuild ' // real_to_str(clock%geometry) // &
       ' s, condensation ' // real_to_str(clock%condense) // ' s, LCP ' // real_to_str(clock%lcp) // ' s')
   end subroutine solve_load_steps
+
+  !> Per friction pair, a load step that both made the contact and dragged
+  !> it: most of the pair's rows in contact at the step's end came into
+  !> contact during the step across an initial gap (a zone that grows with
+  !> the load; rows of gap 0, a flat pair's, all touch at the first load
+  !> and a proportional load then scales the answer), the step ends
+  !> in partial slip, and the pair's tangential force is more than
+  !> drag_share of what friction can carry (|sum tau| against sum mu_c mu).
+  !> One step from open to a dragged zone gives an answer that depends on
+  !> how its loads would have followed each other, which one step cannot
+  !> say (setup_checks' few_steps).  A press alone (no net shear) and a drag
+  !> of a zone already made are not counted: the second ends where its steps
+  !> lead, however few (doc/theory.md, "Monitors of the set-up").
+  !>   sol    (inout) the step's mu, tau, fstate on entry; slip_entries, slip_entry_pair,
+  !>                  slip_entry_step: the step and pair with the most rows entered so
+  !>   before (inout) the friction states before the step (unallocated: none); the step's on exit
+  subroutine count_slip_entries(prob, kstep, sol, before)
+    type(problem_t), intent(in) :: prob
+    integer, intent(in) :: kstep
+    type(step_solution_t), intent(inout) :: sol
+    integer, allocatable, intent(inout) :: before(:)
+    real(dp), parameter :: drag_share = 0.1_dp   ! a symmetric press leaves round-off; a drag, tens of %
+    integer :: ip, t, entered, touching, nstick, nslip
+    real(dp) :: q, cap, gtol
+    if (.not. (allocated(sol%fstate) .and. allocated(sol%tau) .and. allocated(sol%mu))) return
+    if (.not. allocated(before)) allocate(before(size(sol%fstate)), source=0)
+    if (size(before) /= size(sol%fstate)) then   ! sliding=finite rebuilt the rows: no row to follow
+      before = sol%fstate
+      return
+    end if
+    do ip = 1, prob%cs%npair
+      associate (xs => prob%cs%pair(ip)%xs)
+        gtol = 1.0e-9_dp * sum(norm2(xs(:, 2:) - xs(:, :size(xs, 2) - 1), dim=1))   ! round-off of a flat pair's gaps
+      end associate
+      entered = 0
+      touching = 0
+      nstick = 0
+      nslip = 0
+      q = 0.0_dp
+      cap = 0.0_dp
+      do t = 1, prob%cs%ntan
+        if (prob%cs%row_pair(prob%cs%tan_row(t)) /= ip) cycle
+        if (sol%fstate(t) == 0) cycle
+        touching = touching + 1
+        if (before(t) == 0 .and. prob%cs%g(prob%cs%tan_row(t)) > gtol) entered = entered + 1
+        if (sol%fstate(t) == 1) nstick = nstick + 1
+        if (sol%fstate(t) == 2) nslip = nslip + 1
+        q = q + sol%tau(t)
+        cap = cap + prob%cs%tan_mu(t) * sol%mu(prob%cs%tan_row(t)) + prob%cs%tan_bound(t)
+      end do
+      if (nstick == 0 .or. nslip == 0 .or. 2 * entered <= touching) cycle
+      if (abs(q) <= drag_share * cap) cycle
+      if (entered > sol%slip_entries) then
+        sol%slip_entries = entered
+        sol%slip_entry_pair = ip
+        sol%slip_entry_step = kstep
+      end if
+    end do
+    before = sol%fstate
+  end subroutine count_slip_entries
 
   !> With friction, what contact alone holds is solved with the contacts:
   !> the run log says how many amplitudes join each step's friction LCP.

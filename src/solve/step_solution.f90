@@ -48,6 +48,10 @@ module step_solution
     type(certificate_t) :: cert                    !< the answer checked against its conditions (certificate)
     integer :: updates = 0                         !< sliding=finite: geometry updates of the step
     type(fallback_t), allocatable :: fallback(:)   !< every fallback of the steps so far
+    integer :: slip_entries = 0                    !< friction: rows of a pair that came into contact in a load
+                                                   !< step that also dragged them into partial slip (load_steps)
+    integer :: slip_entry_pair = 0                 !< that pair
+    integer :: slip_entry_step = 0                 !< that load step (0: none)
   end type step_solution_t
 
 contains
