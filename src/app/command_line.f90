@@ -240,8 +240,10 @@ contains
       '    SPRING point [kx=0] [ky=0]      (a spring to the ground at each node of a point set)', &
       '  GRAVITY [gx=0] [gy=0] [ramp=k0:k1|curve=NAME]   (on the bodies with a DENSITY)', &
       '  CONTACT slave=body:boundary master=body:boundary [gap=geometry|zero] [mu=C | tresca=S]', &
-      '          [interference=allow|reject] [sliding=small|finite]', &
+      '          [interference=allow|reject] [sliding=small|finite] [name=NAME]', &
       '                                    frictionless unless mu= (Coulomb) or tresca= (slip bound);', &
+      '                                    name: a word, the pair''s label in the summary and the', &
+      '                                    tables'' columns (contact_force_NAME_fx; default its number);', &
       '                                    on linear and quadratic elements, plane or axisymmetric; a', &
       '                                    side may be a closed curve; interference=reject: an initial', &
       '                                    penetration deeper than a slave element is refused;', &
