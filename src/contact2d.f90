@@ -38,7 +38,8 @@ program contact2d
   type(error_t), allocatable :: err
 
   call parse_command_line(run%opts%deck_path, run%opts%outdir, run%opts%check_only, run%log%quiet, run%opts%gmsh, &
-                          run%opts%overrides, run%opts%cases_path, run%opts%case_number, run%opts%jobs)
+                          run%opts%overrides, run%opts%cases_path, run%opts%case_number, run%opts%jobs, &
+                          run%opts%collect)
   call start_threads(run%opts%jobs, run%opts%thread_note, err)   ! threads, BLAS threads, malloc arenas, once
   call stop_on(err)
   if (len(run%opts%cases_path) > 0) call select_case(run)   ! --cases: this run's row, or every row in turn

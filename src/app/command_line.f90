@@ -22,7 +22,8 @@ module command_line
 
 contains
 
-  subroutine parse_command_line(deck_path, outdir, check_only, quiet, gmsh, overrides, cases_path, case_number, jobs)
+  subroutine parse_command_line(deck_path, outdir, check_only, quiet, gmsh, overrides, cases_path, case_number, jobs, &
+                                collect)
     character(len=:), allocatable, intent(out) :: deck_path, outdir
     logical, intent(out) :: check_only, quiet
     type(gmsh_options_t), intent(out) :: gmsh
@@ -30,6 +31,7 @@ contains
     character(len=:), allocatable, intent(out) :: cases_path
     integer, intent(out) :: case_number
     integer, intent(out) :: jobs            !< -j N; 0 when not given
+    logical, intent(out) :: collect         !< --collect: the sweep table from what has run
     integer :: n, j, length, ios
     character(len=:), allocatable :: arg
     logical :: keep_meshes
@@ -41,6 +43,7 @@ contains
     deck_path = ''
     cases_path = ''
     case_number = 0
+    collect = .false.
     n = command_argument_count()
     j = 0
     do while (j < n)
@@ -80,6 +83,8 @@ contains
       case ('--case')
         call option_value(j, n, arg, 'option --case needs a case number (--case N)')
         case_number = case_index(arg, '--case')
+      case ('--collect')
+        collect = .true.
       case ('-j')
         call option_value(j, n, arg, 'option -j needs a number of threads (-j N)')
         ios = 1
@@ -104,7 +109,7 @@ contains
         end if
         if (len(arg) > 0) then
           if (arg(1:1) == '-') call usage_error('unknown option "' // arg // '" (expected -o DIR, -j N, --check, -q, ' // &
-                                                '-D name=value, --cases FILE.csv, --case N, ' // &
+                                                '-D name=value, --cases FILE.csv, --case N, --collect, ' // &
                                                 '--trust-geo, --gmsh-timeout SECONDS, --no-mesh-cache, ' // &
                                                 '--version, -h)')
         end if
@@ -121,6 +126,10 @@ contains
     if (keep_meshes) gmsh%cache = outdir // '/.mesh_cache'
     if (case_number > 0 .and. len(cases_path) == 0) &
       call usage_error('option --case N needs --cases FILE.csv (the table the case is a row of)')
+    if (collect .and. len(cases_path) == 0) &
+      call usage_error('option --collect needs --cases FILE.csv (the sweep whose table it writes)')
+    if (collect .and. case_number > 0) &
+      call usage_error('option --collect with --case N (expected one of them: --collect writes the table of every case)')
   end subroutine parse_command_line
 
   !> -D name=value: value is a number or an expression of numbers (no parameters).
@@ -204,8 +213,11 @@ contains
       '  -D name=value  (also -Dname=value; repeatable) replace the default of the deck''s PARAMETER', &
       '               name by a number or an expression of numbers; an undeclared name is an error', &
       '  --cases FILE.csv  a sweep: header row = parameter names, one row per case; runs every case', &
-      '               in turn, case N into DIR/case_N (exit status: the worst of the cases)', &
+      '               in turn, case N into DIR/case_N (exit status: the worst of the cases), then', &
+      '               writes DIR/cases.csv, a row per case; a case whose DIR/case_N holds a complete', &
+      '               summary is not run again', &
       '  --case N     with --cases: row N only (without it, SLURM_ARRAY_TASK_ID when set)', &
+      '  --collect    with --cases: run nothing, write DIR/cases.csv from what has run', &
       '  --version    print the version', &
       '  -h, --help   this help', &
       '', &
@@ -240,8 +252,10 @@ contains
       '    SPRING point [kx=0] [ky=0]      (a spring to the ground at each node of a point set)', &
       '  GRAVITY [gx=0] [gy=0] [ramp=k0:k1|curve=NAME]   (on the bodies with a DENSITY)', &
       '  CONTACT slave=body:boundary master=body:boundary [gap=geometry|zero] [mu=C | tresca=S]', &
-      '          [interference=allow|reject] [sliding=small|finite]', &
+      '          [interference=allow|reject] [sliding=small|finite] [name=NAME]', &
       '                                    frictionless unless mu= (Coulomb) or tresca= (slip bound);', &
+      '                                    name: a word, the pair''s label in the summary and the', &
+      '                                    tables'' columns (contact_force_NAME_fx; default its number);', &
       '                                    on linear and quadratic elements, plane or axisymmetric; a', &
       '                                    side may be a closed curve; interference=reject: an initial', &
       '                                    penetration deeper than a slave element is refused;', &

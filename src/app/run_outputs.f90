@@ -148,6 +148,12 @@ contains
       run%res%time = run%log%time
       run%res%cpu = run%log%cpu
       if (allocated(run%log%warning)) run%res%warning = run%log%warning
+      if (allocated(run%res%pair_label)) deallocate(run%res%pair_label)
+      allocate(run%res%pair_label(size(run%prob%deck%contacts)))     ! CONTACT name=, the summary's PAIR
+      do i = 1, size(run%prob%deck%contacts)
+        run%res%pair_label(i)%s = ''
+        if (allocated(run%prob%deck%contacts(i)%name)) run%res%pair_label(i)%s = run%prob%deck%contacts(i)%name
+      end do
       call write_summary(tmp(3)%io_path, run%res, err)
     end if
     do i = 1, size(tmp)

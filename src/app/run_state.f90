@@ -43,6 +43,7 @@ module run_state
     type(parameter_set_t) :: overrides             !< -D name=value and the --cases row
     character(len=:), allocatable :: cases_path    !< --cases FILE.csv ('' when none)
     integer :: case_number = 0                     !< --case N (0: none given)
+    logical :: collect = .false.                   !< --collect: write DIR/cases.csv from what has run, run nothing
     integer :: jobs = 0                            !< -j N: threads of the run (0: the environment's)
     character(len=:), allocatable :: thread_note   !< what a memory limit changed in the thread count ('' none)
   end type run_options_t

@@ -11,7 +11,7 @@
 !> a bad table: errors are `FILE.csv:LINE: what is wrong (what was expected)`.
 !>
 !> Programming interface
-!>   type(case_table_t)                      names, values, lines of the table
+!>   type(case_table_t)                      names, values (and their text), lines of the table
 !>   read_case_table(path, table, diag)      read and check FILE.csv
 !>   case_parameters(table, n, set)          row n as overrides with origin 'case n'
 module deck_cases
@@ -19,7 +19,7 @@ module deck_cases
   use strings, only: int_to_str
   use errors, only: diag_t, add_error
   use deck_expressions, only: parameter_set_t, add_parameter, is_parameter_name
-  use text_scan, only: parse_real
+  use text_scan, only: parse_real, string_t
   use safe_files, only: read_file
   implicit none
   private
@@ -31,6 +31,8 @@ module deck_cases
     integer :: ncol = 0, ncase = 0
     character(len=64), allocatable :: name(:)   !< (ncol) header names
     real(dp), allocatable :: value(:,:)         !< (ncol, ncase) the rows
+    type(string_t), allocatable :: text(:,:)    !< (ncol, ncase) each value as written, blanks and quotes
+                                                !< around it removed (the sweep table echoes it)
     integer :: header_line = 0                  !< line of the header
     integer, allocatable :: line(:)             !< (ncase) line of each row
   end type case_table_t
@@ -50,15 +52,16 @@ contains
     type(diag_t), intent(inout) :: diag
     character(len=:), allocatable :: buf, line
     character(len=field_len), allocatable :: fields(:)
-    integer :: status, p, q, lineno, nf, k, nerr, cap
+    integer :: status, p, q, lineno, nf, k, nerr, cap, j
     real(dp) :: x
     logical :: ok
     real(dp), allocatable :: grown(:,:)
     integer, allocatable :: grown_line(:)
+    type(string_t), allocatable :: grown_text(:,:)
 
     table%file = path
     nerr = 0
-    allocate(table%name(0), table%value(0, 0), table%line(0))
+    allocate(table%name(0), table%value(0, 0), table%line(0), table%text(0, 0))
     call read_file(path, buf, status)
     if (status /= 0) then
       call add_error(diag, path, 0, 'cannot read the case table (expected a readable CSV file)')
@@ -92,8 +95,8 @@ contains
       if (table%header_line == 0) then                   ! the header
         table%header_line = lineno
         table%ncol = nf
-        deallocate(table%name, table%value)
-        allocate(table%name(nf), table%value(nf, 0))
+        deallocate(table%name, table%value, table%text)
+        allocate(table%name(nf), table%value(nf, 0), table%text(nf, 0))
         do k = 1, nf
           if (.not. is_parameter_name(trim(fields(k)))) then
             call bad(lineno, 'bad parameter name "' // printable_field(fields(k)) // '" in the header (expected ' // &
@@ -114,11 +117,17 @@ contains
       table%ncase = table%ncase + 1
       if (table%ncase > size(table%line)) then
         cap = max(16, 2 * size(table%line))
-        allocate(grown(table%ncol, cap), grown_line(cap))
+        allocate(grown(table%ncol, cap), grown_line(cap), grown_text(table%ncol, cap))
         grown(:, 1:table%ncase - 1) = table%value(:, 1:table%ncase - 1)
         grown_line(1:table%ncase - 1) = table%line(1:table%ncase - 1)
+        do j = 1, table%ncase - 1                      ! (moved, not copied: grow_temporaries says why)
+          do k = 1, table%ncol
+            call move_alloc(table%text(k, j)%s, grown_text(k, j)%s)
+          end do
+        end do
         call move_alloc(grown, table%value)
         call move_alloc(grown_line, table%line)
+        call move_alloc(grown_text, table%text)
       end if
       table%line(table%ncase) = lineno
       do k = 1, nf
@@ -129,6 +138,7 @@ contains
           x = 0
         end if
         table%value(k, table%ncase) = x
+        table%text(k, table%ncase)%s = trim(fields(k))
       end do
     end do
     if (table%header_line == 0) then

@@ -23,7 +23,7 @@ module deck_statements
   use deck_body_statements, only: do_body, do_mesh, do_mesh_rect, do_mesh_gmsh, do_material, do_density, &
                                   do_fix, do_load, do_thermal, do_vector, do_spring
   use deck_rigid_statements, only: do_rigid, do_rigid_shape, do_rigid_ref, do_rigid_load
-  use text_scan, only: parse_real, parse_integer, lower, is_name, ends_with_ci
+  use text_scan, only: parse_real, parse_integer, lower, is_name, is_identifier, ends_with_ci
   implicit none
   private
   public :: define_statements
@@ -45,7 +45,7 @@ contains
                                                  'G12=number [angle=degrees] [E3=number] [nu13=number] [nu23=number]'
     character(len=*), parameter :: contact_usage = 'CONTACT slave=body:boundary master=body:boundary ' // &
                                                    '[gap=geometry|zero] [mu=number|tresca=number] ' // &
-                                                   '[interference=allow|reject] [sliding=small|finite]'
+                                                   '[interference=allow|reject] [sliding=small|finite] [name=NAME]'
     character(len=*), parameter :: solver_usage = 'SOLVER [lcp=auto|lemke|pgs|pdas] [tol=number] [maxit=integer] ' // &
                                                   '[omega=number] [ordering=auto|metis|amd] ' // &
                                                   '[condense=auto|solve|inverse] [cut=auto|off] [updates=integer]'
@@ -114,7 +114,8 @@ contains
                  keys=[text_key('slave', 'body:boundary', required=.true.), &
                        text_key('master', 'body:boundary', required=.true.), choice_key('gap', 'geometry|zero'), &
                        real_key('mu', ge=zero, le=max_mu), real_key('tresca', ge=zero, note=', a shear stress'), &
-                       choice_key('interference', 'allow|reject'), choice_key('sliding', 'small|finite')])
+                       choice_key('interference', 'allow|reject'), choice_key('sliding', 'small|finite'), &
+                       text_key('name', 'NAME')])
     call add_row(table, 'SOLVER', '', do_solver, once=.true., words=0, usage=solver_usage, &
                  keys=[choice_key('lcp', 'auto|lemke|pgs|pdas'), real_key('tol', gt=zero), &
                        integer_key('maxit', at_least=0), real_key('omega', gt=zero, lt=2.0_dp), &
@@ -197,7 +198,10 @@ contains
   end subroutine do_plane
 
   !> CONTACT slave=body:boundary master=body:boundary [gap=geometry|zero] [mu=number | tresca=number]
-  !>         [interference=allow|reject] [sliding=small|finite]
+  !>         [interference=allow|reject] [sliding=small|finite] [name=NAME]
+  !>   s    (inout) the reader's state: errors, the pairs' body names
+  !>   deck (inout) receives the pair
+  !>   st   (in)    the statement
   subroutine do_contact(s, deck, st)
     type(state_t), intent(inout) :: s
     type(deck_t), intent(inout) :: deck
@@ -250,6 +254,7 @@ contains
       c%tresca = v%x(5)
       c%friction = 'tresca'
     end if
+    call contact_name(s, deck, st, v, c)
     c%line = st%line
     if (s%nerr /= nerr0) then
       s%contact_bad = .true.
@@ -269,6 +274,39 @@ contains
     s%slave_name(s%ncontact)%s = sbody
     s%master_name(s%ncontact)%s = mbody
   end subroutine do_contact
+
+  !> name=NAME of a CONTACT: a word (a letter or _, then letters, digits, _)
+  !> that no other CONTACT has, so that the summary's lines and the sweep's
+  !> columns it labels (contact_force_NAME_fx) are one per pair and cannot be
+  !> read as a pair's number.  Without it c%name is '' (the pair's number).
+  !>   s    (inout) the reader's state: receives the errors
+  !>   deck (in)    the CONTACTs read so far
+  !>   st   (in)    the statement
+  !>   v    (in)    its keys (name= the 8th)
+  !>   c    (inout) the pair: c%name set
+  subroutine contact_name(s, deck, st, v, c)
+    type(state_t), intent(inout) :: s
+    type(deck_t), intent(in) :: deck
+    type(stmt_t), intent(in) :: st
+    type(key_values_t), intent(in) :: v
+    type(contact_deck_t), intent(inout) :: c
+    integer :: j
+    c%name = ''
+    if (.not. allocated(v%text(8)%s)) return
+    if (.not. is_identifier(v%text(8)%s)) then
+      call report(s, st%line, 'bad contact name ' // quoted(v%text(8)%s) // ' (expected a word: a letter or _, ' // &
+                  'then letters, digits, _; at most 64)')
+      return
+    end if
+    do j = 1, size(deck%contacts)
+      if (deck%contacts(j)%name == v%text(8)%s) then
+        call report(s, st%line, 'contact name ' // quoted(v%text(8)%s) // ' already names the CONTACT of line ' // &
+                    int_to_str(deck%contacts(j)%line) // ' (expected a name of its own per CONTACT)')
+        return
+      end if
+    end do
+    c%name = v%text(8)%s
+  end subroutine contact_name
 
   !> Split 'body:boundary'; report a bad form.  ok false when absent or bad.
   subroutine split_side(s, st, val, name, body, boundary, ok)

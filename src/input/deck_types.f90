@@ -161,7 +161,7 @@ module deck_types
     type(rigid_load_t), allocatable :: forces(:)  !< FORCE statements (each direction in one at most)
   end type rigid_deck_t
 
-  !> CONTACT slave=body:boundary master=body:boundary|RIGID [gap=] [mu= | tresca=]
+  !> CONTACT slave=body:boundary master=body:boundary|RIGID [gap=] [mu= | tresca=] [name=]
   type :: contact_deck_t
     integer :: slave_body = 0, master_body = 0  !< indices into deck%bodies (master 0 for a RIGID)
     integer :: master_rigid = 0                 !< master=RIGIDNAME: index into deck%rigids
@@ -172,6 +172,7 @@ module deck_types
     character(len=:), allocatable :: friction   !< 'none' (default), 'coulomb' (mu=) or 'tresca' (tresca=)
     real(dp) :: mu = 0                          !< Coulomb coefficient, 0 <= mu <= 1000
     real(dp) :: tresca = 0                      !< Tresca slip bound (a shear stress), >= 0
+    character(len=:), allocatable :: name       !< name=NAME, what the outputs call the pair ('' : its number)
     integer :: line = 0
   end type contact_deck_t
 

@@ -70,6 +70,8 @@ module results_writer
     real(dp), allocatable :: spring_force(:,:)   !< (2, nspring) force of each SPRING on its body, x, y
     type(string_t), allocatable :: fix_boundary(:) !< (nfb) the distinct BODY:BOUNDARY of the FIXes, deck order
     real(dp), allocatable :: boundary_u(:,:)     !< (2, nfb) mean ux, uy of each one's nodes (summary displacement)
+    type(string_t), allocatable :: pair_label(:) !< (npair) each CONTACT's name= ('' or unallocated: its
+                                                 !< number), the PAIR of the summary's per-pair lines
     type(pair_zones_t), allocatable :: zones(:)  !< (npair) contact zone, peak pressure, centre of pressure,
                                                  !< stick zone of each pair (contact_zones)
     type(string_t), allocatable :: rigid_name(:) !< (nrigid) the RIGID obstacles
@@ -269,7 +271,7 @@ contains
       write(u, '(a,a)') 'estimate energy ', exact_to_str(r%estimate_energy)
       do k = 1, size(r%estimate_pressure)
         if (r%estimate_pressure(k) >= 0.0_dp) &
-          write(u, '(a,i0,a)') 'estimate pressure ', k, ' ' // exact_to_str(r%estimate_pressure(k))
+          write(u, '(a)') 'estimate pressure ' // pair_name(r, k) // ' ' // exact_to_str(r%estimate_pressure(k))
       end do
       if (r%cost_dofs > 0.0_dp) write(u, '(a)') 'estimate cost_to_halve ' // exact_to_str(r%cost_seconds) // ' ' // &
         i8_to_str(nint(r%cost_dofs, i8))
@@ -285,22 +287,22 @@ contains
     call write_labelled(u, 'spring', r%spring_label, r%spring_force)
     if (allocated(r%contact_force)) then
       do k = 1, size(r%contact_force, 2)
-        write(u, '(a,i0,a)') 'contact_force ', k, ' ' // exact_to_str(r%contact_force(1, k)) // ' ' // &
+        write(u, '(a)') 'contact_force ' // pair_name(r, k) // ' ' // exact_to_str(r%contact_force(1, k)) // ' ' // &
           exact_to_str(r%contact_force(2, k))
       end do
     end if
     call write_labelled(u, 'displacement', r%fix_boundary, r%boundary_u)
     if (allocated(r%zones)) then
       do k = 1, size(r%zones)
-        call write_zone(u, 'contact', k, r%zones(k)%contact)
+        call write_zone(u, 'contact', pair_name(r, k), r%zones(k)%contact)
         if (r%zones(k)%contact%count > 0) then
-          write(u, '(a,i0,a)') 'peak_pressure ', k, ' ' // exact_to_str(r%zones(k)%peak(1)) // ' ' // &
+          write(u, '(a)') 'peak_pressure ' // pair_name(r, k) // ' ' // exact_to_str(r%zones(k)%peak(1)) // ' ' // &
             exact_to_str(r%zones(k)%peak(2)) // &
             ' ' // exact_to_str(r%zones(k)%peak(3))
-          write(u, '(a,i0,a)') 'center_of_pressure ', k, ' ' // exact_to_str(r%zones(k)%centre(1)) // ' ' // &
+          write(u, '(a)') 'center_of_pressure ' // pair_name(r, k) // ' ' // exact_to_str(r%zones(k)%centre(1)) // ' ' // &
             exact_to_str(r%zones(k)%centre(2))
         end if
-        if (r%zones(k)%friction) call write_zone(u, 'stick', k, r%zones(k)%stick)
+        if (r%zones(k)%friction) call write_zone(u, 'stick', pair_name(r, k), r%zones(k)%stick)
       end do
     end if
     if (allocated(r%rigid_name)) then
@@ -340,15 +342,33 @@ contains
 
   !> A zone's summary lines: `KIND_zone PAIR x0 y0 x1 y1 LENGTH` when any node
   !> is in it, and always `KIND_zones PAIR COUNT TOTAL` (doc/outputs.md).
-  subroutine write_zone(u, kind, k, z)
-    integer, intent(in) :: u, k
-    character(len=*), intent(in) :: kind
+  !>   u    (in) the summary's unit
+  !>   kind (in) 'contact' or 'stick'
+  !>   pair (in) the pair's label (pair_name)
+  !>   z    (in) the zone
+  subroutine write_zone(u, kind, pair, z)
+    integer, intent(in) :: u
+    character(len=*), intent(in) :: kind, pair
     type(zone_t), intent(in) :: z
-    if (z%count > 0) write(u, '(a,i0,a)') kind // '_zone ', k, ' ' // exact_to_str(z%x0(1)) // ' ' // exact_to_str(z%x0(2)) // &
-      ' ' // &
-      exact_to_str(z%x1(1)) // ' ' // exact_to_str(z%x1(2)) // ' ' // exact_to_str(z%length)
-    write(u, '(a,i0,a,i0,a)') kind // '_zones ', k, ' ', z%count, ' ' // exact_to_str(z%total)
+    if (z%count > 0) write(u, '(a)') kind // '_zone ' // pair // ' ' // exact_to_str(z%x0(1)) // ' ' // &
+      exact_to_str(z%x0(2)) // ' ' // exact_to_str(z%x1(1)) // ' ' // exact_to_str(z%x1(2)) // ' ' // exact_to_str(z%length)
+    write(u, '(a,i0,a)') kind // '_zones ' // pair // ' ', z%count, ' ' // exact_to_str(z%total)
   end subroutine write_zone
+
+  !> The PAIR of pair k's summary lines: its CONTACT's name= when it has one,
+  !> else its number (1, 2, ...), so a deck without names keeps its lines.
+  !>   r (in) the results (r%pair_label)
+  !>   k (in) the pair
+  function pair_name(r, k) result(label)
+    type(results_t), intent(in) :: r
+    integer, intent(in) :: k
+    character(len=:), allocatable :: label
+    label = int_to_str(k)
+    if (.not. allocated(r%pair_label)) return
+    if (k > size(r%pair_label)) return
+    if (.not. allocated(r%pair_label(k)%s)) return
+    if (len(r%pair_label(k)%s) > 0) label = r%pair_label(k)%s
+  end function pair_name
 
   !> A ParaView collection (.pvd) of the per-step VTK files: the dataset of
   !> step k is files(k), at time times(k).

@@ -72,7 +72,12 @@ contains
       call add('displacement_' // labels(j)%s // '_uy', res%boundary_u(2, j), .false.)
     end do
     do ip = 1, prob%cs%npair
-      p = int_to_str(ip)
+      p = int_to_str(ip)                      ! the pair's number, or its CONTACT name= (the summary's PAIR)
+      if (ip <= size(prob%deck%contacts)) then
+        if (allocated(prob%deck%contacts(ip)%name)) then
+          if (len(prob%deck%contacts(ip)%name) > 0) p = prob%deck%contacts(ip)%name
+        end if
+      end if
       call add('contact_force_' // p // '_fx', res%contact_force(1, ip), .false.)
       call add('contact_force_' // p // '_fy', res%contact_force(2, ip), .false.)
       call add_zone('contact', p, res%zones(ip)%contact)

@@ -504,7 +504,7 @@ contains
     call expect_error(two // pair // ' tresca=1e999' // nl, 11, 'bad number "1e999" for "tresca"', &
                       'friction: tresca=1e999 refused')
     call expect_error(two // pair // ' friction=0.3' // nl, 11, 'unknown key "friction" for CONTACT (expected ' // &
-                      'slave, master, gap, mu, tresca, interference, sliding)', 'friction: unknown key lists mu, tresca')
+                      'slave, master, gap, mu, tresca, interference, sliding, name)', 'friction: unknown key lists mu, tresca')
   end subroutine test_friction
 
   !> FORCE point ... and SPRING ... in a BODY block.
