@@ -68,7 +68,7 @@ module contact_lcp
     real(dp), allocatable :: alpha(:)        !< (k) amplitudes of the free modes
     real(dp), allocatable :: gap(:)          !< (nc) final gaps q + W mu - H alpha
     type(lcp_report_t) :: rep                !< info 0 solved; else failure and message
-    real(dp) :: equality_residual = 0        !< max_j |(Hh'mu - eh)_j| / (|eh_j| + sum_i |Hh_ij mu_i|)
+    real(dp) :: equality_residual = 0        !< max_j |(Hn'mus - en)_j| / max(|en_j| + sum_i |Hn_ij mus_i|, max|qs|)
     integer :: outer = 0                     !< Newton steps of the mixed solve (all rounds)
     integer :: rows = 0                      !< working rows of the last round (nc: all)
     integer :: rounds = 0                    !< solves on growing working rows
@@ -278,7 +278,11 @@ contains
     sol%alpha = matmul(held, alpha / cn)
     sol%gap = q + matmul(w, sol%mu) - matmul(h, sol%alpha)
     sol%rep%residual = lcp_natural_residual(w, q - matmul(h, sol%alpha), sol%mu)
-    sol%equality_residual = equality_residual(hh, eh, sol%mu)
+    ! in the dimensionless unknowns (mus = mu / d, Hn's unit columns), each
+    ! equation against its own terms or, when the load along it is nil and
+    ! the forces are round-off (a body that only floats off), the scale of
+    ! the gaps qs, the forces' own scale here
+    sol%equality_residual = equality_residual(hn, en, mus, maxval(abs(qs)))
     if (sol%equality_residual > 1.0e3_dp * opts%tol) then
       sol%rep%info = 2
       sol%rep%message = 'the equilibrium of a body held only by contact was not reached (relative residual ' // &
@@ -402,16 +406,19 @@ contains
     if (2 * count(on) > size(g) .or. last) on = .true.
   end subroutine grow_rows
 
-  !> max_j |(H'mu - e)_j| / (|e_j| + sum_i |H_ij mu_i|): each component of the
-  !> equilibrium against the size of its own terms, whatever its unit (a
-  !> force, a moment); 0 where all its terms are 0.
-  pure real(dp) function equality_residual(h, e, mu) result(r)
-    real(dp), intent(in) :: h(:,:), e(:), mu(:)
+  !> max_j |(H'mu - e)_j| / max(|e_j| + sum_i |H_ij mu_i|, floor): each
+  !> component of the equilibrium against the size of its own terms, or the
+  !> problem's force scale when they are smaller (a nil load balanced by
+  !> round-off forces is balanced); 0 where all its terms and floor are 0.
+  !>   h (in) (n, k) the columns;  e (in) (k) the loads;  mu (in) (n) the forces
+  !>   floor (in) the force scale below which terms are round-off
+  pure real(dp) function equality_residual(h, e, mu, floor) result(r)
+    real(dp), intent(in) :: h(:,:), e(:), mu(:), floor
     real(dp) :: sc
     integer :: j
     r = 0.0_dp
     do j = 1, size(e)
-      sc = abs(e(j)) + sum(abs(h(:, j) * mu))
+      sc = max(abs(e(j)) + sum(abs(h(:, j) * mu)), floor)
       if (sc > 0.0_dp) r = max(r, abs(dot_product(h(:, j), mu) - e(j)) / sc)
     end do
   end function equality_residual

@@ -76,7 +76,8 @@ contains
       gap = gap - motion
     end if
     cert%complementarity = contact_conditions(gap, mu, [q, wmu, motion])
-    if (size(held, 2) > 0) cert%equilibrium = mode_equilibrium(matmul(h, held), matmul(transpose(held), e), mu)
+    if (size(held, 2) > 0) cert%equilibrium = mode_equilibrium(matmul(h, held), matmul(transpose(held), e), mu, &
+                                                               force_scale(w, q))
   end subroutine certify_frictionless
 
   !> The certificate of an answer of the friction LCP z = [lambda; tau]: the
@@ -103,7 +104,7 @@ contains
       worst = max(worst, abs(z(n + r)) - (fp%cmu(r) * max(z(fp%trow(r)), 0.0_dp) + fp%bound(r)))
     end do
     cert%cone = worst / fscale
-    cert%equilibrium = mode_equilibrium(h, e, z)
+    cert%equilibrium = mode_equilibrium(h, e, z, force_scale(w(1:n, 1:n), fp%qn))
   end subroutine certify_friction
 
   !> .true. when every figure of cert is within certificate_tol.
@@ -133,17 +134,33 @@ contains
   end function contact_conditions
 
   !> The largest relative residual of the equilibrium along the columns of
-  !> h: |h_j'z - e_j| / max(|e_j|, sum_i |h_ij z_i|), the load along the
-  !> combination or the contact forces that balance each other along it.
-  pure real(dp) function mode_equilibrium(h, e, z) result(c)
-    real(dp), intent(in) :: h(:,:), e(:), z(:)
+  !> h: |h_j'z - e_j| / max(|e_j|, sum_i |h_ij z_i|, f sum_i |h_ij|), the load
+  !> along the combination, the contact forces that balance each other along
+  !> it, or the problem's force scale f along it: a nil load held by forces
+  !> at round-off (a body that floats off its contacts) is in equilibrium.
+  !>   f (in) the force scale (force_scale)
+  pure real(dp) function mode_equilibrium(h, e, z, f) result(c)
+    real(dp), intent(in) :: h(:,:), e(:), z(:), f
     real(dp) :: scale
     integer :: j
     c = 0.0_dp
     do j = 1, size(e)
-      scale = max(abs(e(j)), sum(abs(h(:, j) * z)), tiny(1.0_dp))
+      scale = max(abs(e(j)), sum(abs(h(:, j) * z)), f * sum(abs(h(:, j))), tiny(1.0_dp))
       c = max(c, abs(dot_product(h(:, j), z) - e(j)) / scale)
     end do
   end function mode_equilibrium
+
+  !> The problem's force scale: the largest force a row needs, alone on its
+  !> own stiffness, to close or open its gap without contact forces,
+  !> max_i |q_i| / W_ii over the rows a free dof moves (W_ii > 0).
+  !>   w (in) (n, n) W;  q (in) (n) the gaps without contact forces
+  pure real(dp) function force_scale(w, q) result(f)
+    real(dp), intent(in) :: w(:,:), q(:)
+    integer :: i
+    f = 0.0_dp
+    do i = 1, size(q)
+      if (w(i, i) > 0.0_dp) f = max(f, abs(q(i)) / w(i, i))
+    end do
+  end function force_scale
 
 end module certificate
