@@ -131,7 +131,13 @@ contains
     if (present(ray)) ray = 0.0_dp
     call prepare_lcp(W, q, z, opts, .false., p, rep)
     if (rep%info /= 0) return
-    call lemke_solution(W, q, p, opts, 'W ill-conditioned', z, rep, ray)
+    ! an absent ray is not passed on: gfortran's descriptor of an absent
+    ! assumed-shape array trips the undefined-behaviour sanitizer
+    if (present(ray)) then
+      call lemke_solution(W, q, p, opts, 'W ill-conditioned', z, rep, ray)
+    else
+      call lemke_solution(W, q, p, opts, 'W ill-conditioned', z, rep)
+    end if
   end subroutine solve_lcp_lemke
 
   !> Solve LCP(M, q) by Lemke's complementary pivoting (lexicographic, covering
@@ -211,7 +217,13 @@ contains
     p%qscale = 1.0_dp
     if (n > 0) p%qscale = scale_of(maxval(abs(p%qs)))
 
-    call lemke_solution(M, q, p, opts, 'M ill-conditioned or badly scaled', z, rep, ray)
+    ! an absent ray is not passed on: gfortran's descriptor of an absent
+    ! assumed-shape array trips the undefined-behaviour sanitizer
+    if (present(ray)) then
+      call lemke_solution(M, q, p, opts, 'M ill-conditioned or badly scaled', z, rep, ray)
+    else
+      call lemke_solution(M, q, p, opts, 'M ill-conditioned or badly scaled', z, rep)
+    end if
     if (rep%info == 1) then
       rep%message = 'Lemke: ray termination after ' // int_to_str(rep%iterations) // &
         ' pivots (no solution found; when M is copositive-plus, e.g. positive semi-definite,' // &
@@ -344,7 +356,8 @@ contains
 
       ! z0 tied with the ordinary row to round-off: z0 leaves
       r0 = findloc(tb%basis, jz0, dim=1)
-      violation = z0_exit_violation(tb%t, entering, r0) / qnorm
+      violation = z0_exit_violation(tb%t, entering, r0)
+      if (violation < huge(1.0_dp)) violation = violation / qnorm     ! huge: z0 cannot leave here
       if (violation <= near_tie_ratio) then
         if (z0_ties(p, tb, entering, r0)) then
           call try_z0_exit(p, tb, r0, entering, tol, done, zs_kept, res_kept)

@@ -172,6 +172,10 @@ contains
       jac(:, 2) = jac(:, 2) + xe(:, a) * dndxi(2, a)
     end do
     detj = jac(1, 1) * jac(2, 2) - jac(1, 2) * jac(2, 1)
+    if (detj == 0.0_dp) then             ! a collapsed element (the mesh checks report it): no gradient
+      dndx(:, 1:nen) = 0.0_dp
+      return
+    end if
     jinv(1, 1) = jac(2, 2) / detj
     jinv(2, 2) = jac(1, 1) / detj
     jinv(1, 2) = -jac(1, 2) / detj

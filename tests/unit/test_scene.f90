@@ -68,5 +68,6 @@ program test_scene
   end do
   call check(unchanged, 'step_thermal_strains leaves the bodies'' strains (at load factor 1) as they were')
   call check(all(ubar == sc%ubar) .and. all(fext == sc%fext), 'step_forces of the last step: the scene''s fext and ubar')
+  deallocate(adt, fext, ubar)              ! finish_tests stops: nothing left for the leak check
   call finish_tests()
 end program test_scene
