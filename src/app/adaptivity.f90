@@ -299,7 +299,8 @@ contains
   !> slave nodes and one slave segment past each end) is given the size
   !> h_z = h_now * aim * target / estimate_pair, h_now its longest slave
   !> element (the rate in h being 1), and the size may grow away from the
-  !> strip at most linearly, h_z + zone_slope * d at the distance d: a band
+  !> strip at most linearly, h_z + zone_slope * d at the distance d (measured
+  !> where the solution has moved the nodes, as `moved` says why): a band
   !> along the trace, not a box of the zone's width in depth (which would
   !> cost that width squared over h_z^2 elements).  An element's ratio is
   !> only ever lowered here (the energy indicators' ask stays where finer).
@@ -346,8 +347,8 @@ contains
         do k = 1, ns - 1
           if (.not. seg(k)) cycle
           np = np + 1
-          p(1:2, np) = pr%xs(:, k)
-          p(3:4, np) = pr%xs(:, k + 1)
+          p(1:2, np) = moved(pr%spec%slave_body, pr%snode(k), pr%xs(:, k))
+          p(3:4, np) = moved(pr%spec%slave_body, pr%snode(k + 1), pr%xs(:, k + 1))
           hz = max(hz, norm2(pr%xs(:, k + 1) - pr%xs(:, k)))
         end do
         ! on quadratic elements the trace's nodes are an element's corners and its midpoints
@@ -360,7 +361,7 @@ contains
             do n = 1, m%nnode
               d = huge(1.0_dp)
               do k = 1, np
-                d = min(d, segment_distance(m%x(:, n), p(1:2, k), p(3:4, k)))
+                d = min(d, segment_distance(moved(b, n, m%x(:, n)), p(1:2, k), p(3:4, k)))
               end do
               cap(n0 + n) = min(cap(n0 + n), hz + zone_slope * d)
             end do
@@ -375,6 +376,20 @@ contains
       end associate
     end do
   contains
+    !> Node n of body b where the solution has moved it, x + u: the distances
+    !> to the strip are measured there, where the master's surface lies on the
+    !> slave's over the whole zone.  In the initial configuration a curved
+    !> master leaves the slave's strip by its initial gap (x^2 / 2R on Hertz),
+    !> and its nodes at the zone's ends would be graded as if far from it.
+    pure function moved(b, n, x) result(y)
+      integer, intent(in) :: b, n
+      real(dp), intent(in) :: x(2)
+      real(dp) :: y(2)
+      integer :: i
+      i = run%prob%sc%bodies(b)%dof0 + 2 * n
+      y = x
+      if (allocated(run%res%u)) y = x + run%res%u(i - 1:i)
+    end function moved
     !> Slave node k of the pair in contact (false off the trace's ends).
     pure logical function in_contact(k)
       integer, intent(in) :: k
