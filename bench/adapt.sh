@@ -33,19 +33,8 @@ ref=$top/tests/estimate/hertz/reference_contact.csv
 mkdir -p "$work"
 cp "$top/input/hertz_block.geo" "$top/input/hertz_disk.geo" "$work/"
 
-key() { awk -v k="$2" '$1 == k {print $2; exit}' "$1"; }
 last_adapt() { awk '$1 == "adapt" {d = $4} END {print d}' "$1"; }
-# run NAME: REPEATS runs of $work/NAME.deck; NAME.cpu holds the median cpu_total
-run() {
-  rm -f "$work/$1.t"
-  i=0
-  while [ "$i" -lt "$reps" ]; do
-    "$prog" -q --no-mesh-cache -o "$work/out" "$work/$1.deck"
-    key "$work/out/$1.summary" cpu_total >> "$work/$1.t"
-    i=$((i + 1))
-  done
-  median < "$work/$1.t" > "$work/$1.cpu"
-}
+# run NAME (bench/common.sh): REPEATS runs of $work/NAME.deck; NAME.cpu holds the median cpu_total
 hertz() {   # hertz NAME HC ORDER [STATEMENT]
   sed -e "s/hc=0.01 hf=0.5/hc=$2 hf=0.5 order=$3/" "$top/input/hertz.deck" > "$work/$1.deck"
   [ -z "${4:-}" ] || echo "$4" >> "$work/$1.deck"
