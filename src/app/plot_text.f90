@@ -149,7 +149,7 @@ contains
     if (deck%axisymmetric) then
       text = 'force per unit area'
     else if (deck%plane_stress) then
-      text = 'force per unit length of the contact line, whole thickness ' // format_number(deck%thickness)
+      text = 'force per unit length of the contact line, for the thickness ' // format_number(deck%thickness)
     else
       text = 'force per unit length of the contact line, per unit thickness'
     end if
