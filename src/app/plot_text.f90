@@ -35,7 +35,7 @@ module plot_text
   implicit none
   private
   public :: gnuplot_string, terminal_lines, title_text, csv_field, starts_with, ends_with
-  public :: force_unit, pressure_unit, column_label, is_flat, flat_range, flat_tol
+  public :: force_unit, pressure_unit, column_label, is_flat, flat_range
 
   !> relative variation at or below which a series is round-off, not a
   !> trend: the steps' results agree to some 1e-13 of their scale when
@@ -148,10 +148,8 @@ contains
     character(len=:), allocatable :: text
     if (deck%axisymmetric) then
       text = 'force per unit area'
-    else if (deck%plane_stress) then
-      text = 'force per unit length of the contact line, for the thickness ' // format_number(deck%thickness)
     else
-      text = 'force per unit length of the contact line, per unit thickness'
+      text = 'force per unit length of the contact line, ' // force_unit(deck)
     end if
   end function pressure_unit
 
