@@ -33,19 +33,8 @@ ref=$top/tests/estimate/hertz/reference_contact.csv
 mkdir -p "$work"
 cp "$top/input/hertz_block.geo" "$top/input/hertz_disk.geo" "$work/"
 
-key() { awk -v k="$2" '$1 == k {print $2; exit}' "$1"; }
 last_adapt() { awk '$1 == "adapt" {d = $4} END {print d}' "$1"; }
-# run NAME: REPEATS runs of $work/NAME.deck; NAME.cpu holds the median cpu_total
-run() {
-  rm -f "$work/$1.t"
-  i=0
-  while [ "$i" -lt "$reps" ]; do
-    "$prog" -q --no-mesh-cache -o "$work/out" "$work/$1.deck"
-    key "$work/out/$1.summary" cpu_total >> "$work/$1.t"
-    i=$((i + 1))
-  done
-  median < "$work/$1.t" > "$work/$1.cpu"
-}
+# run NAME (bench/common.sh): REPEATS runs of $work/NAME.deck; NAME.cpu holds the median cpu_total
 hertz() {   # hertz NAME HC ORDER [STATEMENT]
   sed -e "s/hc=0.01 hf=0.5/hc=$2 hf=0.5 order=$3/" "$top/input/hertz.deck" > "$work/$1.deck"
   [ -z "${4:-}" ] || echo "$4" >> "$work/$1.deck"
@@ -110,21 +99,10 @@ hertz c_hertz_p1 0.02 1
 hertz c_hertz_p2 0.05 2
 punch c_punch_p1 0.04 1
 for name in c_hertz_p1 c_hertz_p2 c_punch_p1; do
-  rm -f "$work/$name.p" "$work/$name.m"
-  i=0
-  while [ "$i" -lt "$reps" ]; do
-    "$prog" -q --no-mesh-cache -o "$work/out" "$work/$name.deck"
-    awk '$1 == "estimate" && $2 == "cost_to_halve" {print $3, $4}' "$work/out/$name.summary" >> "$work/$name.p"
-    i=$((i + 1))
-  done
+  runs "$name" "$work/$name.p" '$1 == "estimate" && $2 == "cost_to_halve" {print $3, $4}'
   half=$(awk '$1 == "estimate" && $2 == "energy" {print $3 / 2}' "$work/out/$name.summary")
   { cat "$work/$name.deck"; echo "ADAPT target=$half"; } > "$work/${name}_half.deck"
-  i=0
-  while [ "$i" -lt "$reps" ]; do
-    "$prog" -q --no-mesh-cache -o "$work/out" "$work/${name}_half.deck"
-    awk '$1 == "adapt" {c = $8; d = $4} END {print c, d}' "$work/out/${name}_half.summary" >> "$work/$name.m"
-    i=$((i + 1))
-  done
+  runs "${name}_half" "$work/$name.m" '$1 == "adapt" {c = $8; d = $4} END {print c, d}'
   pc=$(awk '{print $1}' "$work/$name.p" | median); pd=$(awk '{print $2}' "$work/$name.p" | median)
   mc=$(awk '{print $1}' "$work/$name.m" | median); md=$(awk '{print $2}' "$work/$name.m" | median)
   printf '%-14s %12.3f %10.3f %12.0f %10.0f %10.3f %10.3f\n' "$name" "$pc" "$mc" "$pd" "$md" \

@@ -39,20 +39,9 @@ mkdir -p "$work"
 cp "$top/input/hertz_block.geo" "$top/input/hertz_disk.geo" \
    "$top/bench/geo/hertz_block_graded.geo" "$top/bench/geo/hertz_disk_graded.geo" "$work/"
 
-key() { awk -v k="$2" '$1 == k {print $2; exit}' "$1"; }
 true_error() { (cd "$top/tests/lib" && python3 pressure_error.py "$ref" "$work/out/$1_contact.csv"); }
 estimate() { awk '$1 == "estimate" && $2 == "pressure" {print 100 * $4}' "$work/out/$1.summary"; }
-# run NAME [N]: N runs (default REPEATS) of $work/NAME.deck; NAME.cpu holds the median cpu_total
-run() {
-  rm -f "$work/$1.t"
-  i=0
-  while [ "$i" -lt "${2:-$reps}" ]; do
-    "$prog" -q --no-mesh-cache -o "$work/out" "$work/$1.deck"
-    key "$work/out/$1.summary" cpu_total >> "$work/$1.t"
-    i=$((i + 1))
-  done
-  median < "$work/$1.t" > "$work/$1.cpu"
-}
+# run NAME [N] (bench/common.sh): N runs (default REPEATS) of $work/NAME.deck; NAME.cpu holds the median cpu_total
 graded() {  # graded NAME HC ORDER
   hf=0.2; [ "$3" = 2 ] || hf=0.05
   sed -e "s/hertz_block.geo hc=0.01 hf=0.5/hertz_block_graded.geo hc=$2 hf=$hf w=0.1 g=1 order=$3/" \

@@ -293,10 +293,11 @@ contains
       '                                    solve, re-mesh every body with gmsh from the error', &
       '                                    indicators, solve again until the estimate <= target', &
       '  OUTPUT [vtk=NAME] [contact=NAME] [summary=NAME] [steps=last|all] [plot=none|png]', &
-      '         [fields=all|none|displacement,contact_pressure,gap,stress,von_mises]', &
+      '         [x=COLUMN] [fields=all|none|displacement,contact_pressure,gap,stress,von_mises]', &
       '                                    steps=all: per step STEM_0001.vtu and a contact table,', &
       '                                    STEM.pvd, STEM_steps.csv; plot=png: STEM_pressure.png (and', &
-      '                                    STEM_steps.png), drawn by gnuplot', &
+      '                                    STEM_steps.png), drawn by gnuplot; x: the steps picture''s', &
+      '                                    abscissa, a column of STEM_steps.csv (default the load factor)', &
       '', &
       'outputs (doc/outputs.md): DECK.vtk (ParaView), DECK_contact.csv (a row per slave node),', &
       'DECK.summary (key value lines: energy, reactions of each FIX, per pair the contact force, zone,', &

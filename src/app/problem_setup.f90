@@ -24,6 +24,7 @@ module problem_setup
   use problem_builder, only: build_problem
   use post_processing, only: name_results
   use held_by_contact, only: check_unheld_loads
+  use steps_plot, only: check_plot_column
   implicit none
   private
   public :: read_input, setup_problem
@@ -57,6 +58,8 @@ contains
     call build_problem(run%prob, run%opts%gmsh, run%diag, run%log, err)
     call stop_input_errors(run%diag)
     if (allocated(err)) return
+    call check_plot_column(run%prob, run%diag)     ! OUTPUT x=: a column of the steps table, before the solve
+    call stop_input_errors(run%diag)
     run%res%effects = run%prob%sc%effects
     run%res%axisymmetric = run%prob%deck%axisymmetric
     run%res%nfree = run%prob%nfree

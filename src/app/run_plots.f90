@@ -1,9 +1,10 @@
 !> run_plots: the pictures of a run (OUTPUT plot=png; doc/outputs.md,
 !> "Pictures"): STEM_pressure.png, the contact pressure (and with friction
 !> the shear) along the slave boundary of each pair, read from the contact
-!> table just written, and with steps=all STEM_steps.png, each pair's contact
-!> resultant (and the support reactions) against the load factor, read from
-!> STEM_steps.csv.
+!> table just written, and with steps=all STEM_steps.png (steps_plot's
+!> script), the forces and rigid motions against the load factor or the
+!> column OUTPUT x= names, read from STEM_steps.csv.  Axis labels give the
+!> units of the deck's plane and round-off is drawn flat (plot_text).
 !>
 !> gnuplot draws them.  It is started without a shell, with an argument
 !> vector and a time limit (process_runner), on a script written here into
@@ -34,12 +35,13 @@ module run_plots
                         close_temporary, discard_temporaries, grow_temporaries
   use run_state, only: run_t
   use run_log, only: add_warning
+  use plot_text, only: gnuplot_string, terminal_lines, title_text, csv_field, pressure_unit, is_flat, flat_range
+  use steps_plot, only: steps_script
   implicit none
   private
   public :: draw_plots
 
   real(dp), parameter :: gnuplot_timeout = 60.0_dp   !< seconds gnuplot may take for one picture
-  integer, parameter :: most_reactions = 4           !< more FIX boundaries than this: no reaction panel
 
 contains
 
@@ -158,14 +160,21 @@ contains
   !> The script of STEM_pressure.png: a panel per pair, the pressure against
   !> the arc length s along the slave boundary (and with friction the shear
   !> on a second axis), over the zone in contact and a margin either side.
+  !> The pressure axis starts at 0; the shear's holds 0, and a shear that is
+  !> round-off against the pair's largest pressure or shear is drawn flat
+  !> (plot_text's rule).
+  !>   run    (in)  the scene (pairs, PLANE, TITLE)
+  !>   table  (in)  the contact table's path, written
+  !>   png    (in)  the picture's path
   !>   script (out) '' when the table cannot be read
   subroutine pressure_script(run, table, png, script)
     type(run_t), intent(in) :: run
     character(len=*), intent(in) :: table, png
     character(len=:), allocatable, intent(out) :: script
-    character(len=:), allocatable :: buf, header, line
-    real(dp), allocatable :: s_all(:, :), s_zone(:, :)
-    real(dp) :: s, a, b, margin
+    character(len=:), allocatable :: buf, header, line, shear, unit
+    real(dp), allocatable :: s_all(:, :), s_zone(:, :), p_max(:), t_range(:, :), t_sum(:)
+    integer, allocatable :: rows(:)
+    real(dp) :: s, a, b, margin, pressure, t, scale
     integer :: npair, st, k, status
     integer(i8) :: p, q
     logical :: friction
@@ -176,12 +185,18 @@ contains
     if (npair <= 0) return
     call read_file(table, buf, st)
     if (st /= 0) return
-    ! s_all: the pair's s range; s_zone: that of its rows in contact (error_numerical)
-    allocate(s_all(2, npair), s_zone(2, npair))
+    ! s_all: the pair's s range; s_zone: that of its rows in contact (error_numerical);
+    ! p_max, t_range, t_sum: its largest pressure, its shear's range and sum
+    allocate(s_all(2, npair), s_zone(2, npair), t_range(2, npair), p_max(npair), t_sum(npair), rows(npair))
     s_all(1, :) = huge(1.0_dp)
     s_all(2, :) = -huge(1.0_dp)
     s_zone = s_all
+    t_range = s_all
+    p_max = 0.0_dp
+    t_sum = 0.0_dp
+    rows = 0
     header = ''
+    friction = .false.
     p = 1
     do while (p <= len(buf, kind=i8))
       q = index(buf(p:), nl, kind=i8)
@@ -190,27 +205,31 @@ contains
       p = p + q
       if (len(header) == 0) then
         header = line
+        friction = index(header, ',shear,') > 0
         cycle
       end if
-      call read_row(line, k, s, status)
+      call read_row(line, friction, k, s, status, pressure, t)
       if (k < 1 .or. k > npair) cycle
       s_all(:, k) = [min(s_all(1, k), s), max(s_all(2, k), s)]
       if (status == 1) s_zone(:, k) = [min(s_zone(1, k), s), max(s_zone(2, k), s)]
+      p_max(k) = max(p_max(k), abs(pressure))
+      t_range(:, k) = [min(t_range(1, k), t), max(t_range(2, k), t)]
+      t_sum(k) = t_sum(k) + t
+      rows(k) = rows(k) + 1
     end do
-    friction = index(header, ',shear,') > 0
 
+    unit = pressure_unit(run%prob%deck)
     script = terminal_lines(900, 90 + 300 * npair, png) // &
              'set datafile separator '','' ' // nl // &
              'set grid' // nl // &
              'set key top right' // nl // &
              'set multiplot layout ' // int_to_str(npair) // ',1 title ' // &
              gnuplot_string(title_text(run, 'contact pressure along the slave boundary')) // nl // &
-             'set xlabel ''s, arc length along the slave boundary''' // nl // &
-             'set ylabel ''contact pressure (force per unit length)''' // nl // &
+             'set xlabel ''s, arc length along the slave boundary (length)''' // nl // &
+             'set ylabel ' // gnuplot_string('contact pressure (' // unit // ')') // nl // &
              'set yrange [0:*]' // nl
-    ! the shear's axis holds 0 too: a uniform shear is not drawn as round-off
-    if (friction) script = script // 'set ytics nomirror' // nl // 'set y2tics' // nl // 'set y2range [*<0:0<*]' // nl // &
-                           'set y2label ''shear (force per unit length)''' // nl
+    if (friction) script = script // 'set ytics nomirror' // nl // 'set y2tics' // nl // &
+                           'set y2label ' // gnuplot_string('shear (' // unit // ')') // nl
     do k = 1, npair
       if (s_all(1, k) > s_all(2, k)) cycle              ! no row: the table is not the one expected
       if (s_zone(1, k) <= s_zone(2, k)) then
@@ -230,168 +249,55 @@ contains
       else
         script = script // 'set title ''pair ' // int_to_str(k) // '''' // nl
       end if
-      script = script // 'set xrange [' // exact_to_str(a) // ':' // exact_to_str(b) // ']' // nl // &
+      script = script // 'set xrange [' // exact_to_str(a) // ':' // exact_to_str(b) // ']' // nl
+      ! the shear's axis holds 0 too; a round-off shear is drawn flat, at its mean
+      shear = '$9'
+      if (friction) then
+        scale = max(p_max(k), abs(t_range(1, k)), abs(t_range(2, k)))
+        if (is_flat(t_range(1, k), t_range(2, k), scale)) then
+          shear = '(' // exact_to_str(t_sum(k) / rows(k)) // ')'
+          script = script // 'set y2range ' // flat_range(t_sum(k) / rows(k), t_sum(k) / rows(k), scale) // nl
+        else
+          script = script // 'set y2range [*<0:0<*]' // nl
+        end if
+      end if
+      script = script // &
                'plot ' // gnuplot_string(table) // ' skip 1 using 2:($1 == ' // int_to_str(k) // ' ? $7 : NaN) ' // &
                'with linespoints lw 2 pt 7 ps 0.6 title ''pressure'''
-      if (friction) script = script // ', '''' skip 1 using 2:($1 == ' // int_to_str(k) // ' ? $9 : NaN) ' // &
+      if (friction) script = script // ', '''' skip 1 using 2:($1 == ' // int_to_str(k) // ' ? ' // shear // ' : NaN) ' // &
                              'axes x1y2 with linespoints lw 2 pt 5 ps 0.5 title ''shear'''
       script = script // nl
     end do
     script = script // 'unset multiplot' // nl // 'set output' // nl
   end subroutine pressure_script
 
-  !> The script of STEM_steps.png: each pair's contact resultant (fx, fy)
-  !> against the load factor of the default ramp (the table's second column),
-  !> and in a second panel the reactions when at most most_reactions
-  !> boundaries are held.
-  !>   script (out) '' when the table cannot be read or has nothing to draw
-  subroutine steps_script(run, table, png, script)
-    type(run_t), intent(in) :: run
-    character(len=*), intent(in) :: table, png
-    character(len=:), allocatable, intent(out) :: script
-    character(len=:), allocatable :: buf, header, name, forces, reactions
-    integer :: st, c, p, q, nforce, nreaction
-    character(len=*), parameter :: nl = achar(10)
-
-    script = ''
-    call read_file(table, buf, st)
-    if (st /= 0) return
-    q = index(buf, nl)
-    if (q == 0) return
-    header = buf(1:q - 1)
-    ! the header's columns, in order: step, factor_..., ...
-    forces = ''
-    reactions = ''
-    nforce = 0
-    nreaction = 0
-    c = 0
-    p = 1
-    do while (p <= len(header))
-      q = index(header(p:), ',')
-      if (q == 0) q = len(header) - p + 2
-      name = header(p:p + q - 2)
-      p = p + q
-      c = c + 1
-      if (starts_with(name, 'contact_force_') .and. (ends_with(name, '_fx') .or. ends_with(name, '_fy'))) then
-        nforce = nforce + 1
-        forces = forces // plot_item(table, c, name, nforce == 1)
-      else if (starts_with(name, 'reaction_') .and. (ends_with(name, '_fx') .or. ends_with(name, '_fy'))) then
-        nreaction = nreaction + 1
-        reactions = reactions // plot_item(table, c, name, nreaction == 1)
-      end if
-    end do
-    if (c < 2 .or. .not. starts_with(header_column(header, 2), 'factor_')) return
-    if (nreaction > 2 * most_reactions) nreaction = 0
-    if (nforce == 0 .and. nreaction == 0) return
-
-    script = terminal_lines(900, merge(760, 440, nforce > 0 .and. nreaction > 0), png) // &
-             'set datafile separator '','' ' // nl // &
-             'set grid' // nl // &
-             'set key outside right' // nl // &
-             'set multiplot layout ' // merge('2', '1', nforce > 0 .and. nreaction > 0) // ',1 title ' // &
-             gnuplot_string(title_text(run, 'forces against the load factor')) // nl // &
-             'set xlabel ' // gnuplot_string('load factor (' // header_column(header, 2) // ')') // nl
-    if (nforce > 0) script = script // 'set title ''contact resultant on the slave body of each pair''' // nl // &
-                             'set ylabel ''force''' // nl // 'plot ' // forces // nl
-    if (nreaction > 0) script = script // 'set title ''support reactions''' // nl // &
-                                'set ylabel ''force''' // nl // 'plot ' // reactions // nl
-    script = script // 'unset multiplot' // nl // 'set output' // nl
-  end subroutine steps_script
-
-  !> One curve of a plot command: column c of the table against column 2.
-  function plot_item(table, c, name, first) result(item)
-    character(len=*), intent(in) :: table, name
-    integer, intent(in) :: c
-    logical, intent(in) :: first
-    character(len=:), allocatable :: item
-    item = ''
-    if (.not. first) item = ', '
-    item = item // gnuplot_string(table) // ' skip 1 using 2:' // int_to_str(c) // ' with linespoints lw 2 pt 7 ps 0.6 ' // &
-           merge('dt 2', 'dt 1', ends_with(name, '_fx')) // ' title ' // gnuplot_string(name)
-  end function plot_item
-
-  !> The terminal: pngcairo when this gnuplot has it (smoother lines), else png.
-  function terminal_lines(width, height, png) result(text)
-    integer, intent(in) :: width, height
-    character(len=*), intent(in) :: png
-    character(len=:), allocatable :: text
-    character(len=*), parameter :: nl = achar(10)
-    text = 'if (strstrt(GPVAL_TERMINALS, ''pngcairo'') > 0) {' // nl // &
-           '  set terminal pngcairo size ' // int_to_str(width) // ',' // int_to_str(height) // &
-           ' noenhanced font ''sans,10''' // nl // &
-           '} else {' // nl // &
-           '  set terminal png size ' // int_to_str(width) // ',' // int_to_str(height) // ' noenhanced' // nl // &
-           '}' // nl // &
-           'set output ' // gnuplot_string(png) // nl
-  end function terminal_lines
-
-  !> The deck's TITLE, then what the picture shows.
-  function title_text(run, what) result(text)
-    type(run_t), intent(in) :: run
-    character(len=*), intent(in) :: what
-    character(len=:), allocatable :: text
-    text = what
-    if (allocated(run%prob%deck%title)) then
-      if (len_trim(run%prob%deck%title) > 0) text = trim(run%prob%deck%title) // ': ' // what
-    end if
-  end function title_text
-
-  !> s as a gnuplot single-quoted string: nothing inside is substituted (no
-  !> backquote command, no macro), a quote is written twice, and control
-  !> characters (a line's end would end the command) are dropped.
-  pure function gnuplot_string(s) result(q)
-    character(len=*), intent(in) :: s
-    character(len=:), allocatable :: q
-    integer :: i, c
-    q = ''''
-    do i = 1, len(s)
-      c = iachar(s(i:i))
-      if (c < 32 .or. c == 127) cycle
-      if (s(i:i) == '''') then
-        q = q // ''''''
-      else
-        q = q // s(i:i)
-      end if
-    end do
-    q = q // ''''
-  end function gnuplot_string
-
-  !> The pair, the arc length s and the status of a contact table row
-  !> (columns 1, 2 and 8); k = 0 when the row does not read.
-  subroutine read_row(line, k, s, status)
+  !> The pair, the arc length s, the status, the pressure and (with
+  !> friction) the shear of a contact table row (columns 1, 2, 8, 7, 9);
+  !> k = 0 when the row does not read.
+  subroutine read_row(line, friction, k, s, status, pressure, shear)
     character(len=*), intent(in) :: line
+    logical, intent(in) :: friction
     integer, intent(out) :: k, status
-    real(dp), intent(out) :: s
+    real(dp), intent(out) :: s, pressure, shear
     character(len=:), allocatable :: field
     integer :: ios
     k = 0
     s = 0.0_dp
     status = -1
-    field = header_column(line, 1)
+    pressure = 0.0_dp
+    shear = 0.0_dp
+    field = csv_field(line, 1)
     read(field, *, iostat=ios) k
-    field = header_column(line, 2)
+    field = csv_field(line, 2)
     if (ios == 0) read(field, *, iostat=ios) s
-    field = header_column(line, 8)
+    field = csv_field(line, 8)
     if (ios == 0) read(field, *, iostat=ios) status
+    field = csv_field(line, 7)
+    if (ios == 0) read(field, *, iostat=ios) pressure
+    field = csv_field(line, 9)
+    if (ios == 0 .and. friction) read(field, *, iostat=ios) shear
     if (ios /= 0) k = 0
   end subroutine read_row
-
-  !> The n-th comma-separated field of line ('' when it has fewer).
-  function header_column(line, n) result(field)
-    character(len=*), intent(in) :: line
-    integer, intent(in) :: n
-    character(len=:), allocatable :: field
-    integer :: p, q, c
-    field = ''
-    p = 1
-    do c = 1, n
-      if (p > len(line) + 1) return
-      q = index(line(p:), ',')
-      if (q == 0) q = len(line) - p + 2
-      if (c == n) field = line(p:p + q - 2)
-      p = p + q
-    end do
-  end function header_column
 
 
   !> ': ' and the first line of gnuplot's log (printable), '' when empty.
@@ -410,17 +316,5 @@ contains
     if (len_trim(buf) == 0) return
     text = ': ' // trim(printable(buf(1:min(len(buf), 200))))
   end function first_line
-
-  pure logical function starts_with(s, prefix)
-    character(len=*), intent(in) :: s, prefix
-    starts_with = len(s) >= len(prefix)
-    if (starts_with) starts_with = s(1:len(prefix)) == prefix
-  end function starts_with
-
-  pure logical function ends_with(s, suffix)
-    character(len=*), intent(in) :: s, suffix
-    ends_with = len(s) >= len(suffix)
-    if (ends_with) ends_with = s(len(s) - len(suffix) + 1:) == suffix
-  end function ends_with
 
 end module run_plots

@@ -46,7 +46,7 @@
 !>   ESTIMATE [on|off]                   default on
 !>   ADAPT target= [quantity=energy|pressure] [max_steps=10] [max_dofs=2000000]
 !>   OUTPUT [vtk=NAME.vtk] [contact=NAME_contact.csv] [summary=NAME.summary] [fields=LIST] [steps=last|all]
-!>          [plot=none|png]
+!>          [plot=none|png] [x=COLUMN]
 !>                                      (NAME: deck file name without folder and
 !>                                      extension; '.vtk' is appended to vtk= if missing)
 !> TITLE, PLANE, GRAVITY, SOLVER, STEPS, OUTPUT: at most once each, outside BODY blocks.

@@ -132,9 +132,10 @@ contains
                  usage='CURVE name t0:v0 t1:v1 ... with step numbers t0 < t1 < ... and load factors v')
     call add_row(table, 'OUTPUT', '', do_output, once=.true., words=0, &
                  usage='OUTPUT [vtk=NAME] [contact=NAME] [summary=NAME] [fields=LIST] [steps=last|all] ' // &
-                       '[plot=none|png]', &
+                       '[plot=none|png] [x=COLUMN]', &
                  keys=[text_key('vtk', 'NAME'), text_key('contact', 'NAME'), text_key('summary', 'NAME'), &
-                       text_key('fields', 'LIST'), text_key('steps', 'last|all'), choice_key('plot', 'none|png')])
+                       text_key('fields', 'LIST'), text_key('steps', 'last|all'), choice_key('plot', 'none|png'), &
+                       text_key('x', 'COLUMN')])
     call add_row(table, 'PARAMETER', '*', do_parameter)
     call add_row(table, 'RIGID', '', do_rigid, opens='RIGID', usage='RIGID name')
     call add_row(table, 'SHAPE', 'RIGID', do_rigid_shape, once=.true., expected='one SHAPE per RIGID', words=1, &
@@ -475,7 +476,9 @@ contains
     deck%curves = [deck%curves, c]
   end subroutine do_curve
 
-  !> OUTPUT [vtk=] [contact=] [summary=] [fields=] [steps=] [plot=]
+  !> OUTPUT [vtk=] [contact=] [summary=] [fields=] [steps=] [plot=] [x=]
+  !> (x=: a column of the steps table, known only once the scene is built:
+  !> run_plots' check_plot_column checks the name)
   subroutine do_output(s, deck, st)
     type(state_t), intent(inout) :: s
     type(deck_t), intent(inout) :: deck
@@ -544,6 +547,15 @@ contains
         deck%output%summary = v%text(k)%s
       end select
     end do
+    if (allocated(v%text(7)%s)) then
+      ! x= acts on the steps plot only, which needs the steps table
+      if (.not. (deck%output%plot .and. deck%output%steps_all)) then
+        call report(s, st%line, 'x=' // cut(v%text(7)%s) // ' chooses the abscissa of the steps plot, drawn with ' // &
+                    'steps=all and plot=png (expected OUTPUT steps=all plot=png x=COLUMN)')
+      else
+        deck%output%x = v%text(7)%s
+      end if
+    end if
   end subroutine do_output
 
   !> PARAMETER name=value ...: each value an expression of the parameters

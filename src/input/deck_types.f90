@@ -189,13 +189,15 @@ module deck_types
     integer :: line = 0
   end type solver_deck_t
 
-  !> OUTPUT [vtk=] [contact=] [summary=] [fields=] [steps=] [plot=]; names relative to the output folder
+  !> OUTPUT [vtk=] [contact=] [summary=] [fields=] [steps=] [plot=] [x=]; names relative to the output folder
   type :: output_deck_t
     character(len=:), allocatable :: vtk, contact, summary
     !> fields of the VTK file: displacement, contact_pressure, gap, stress, von_mises
     logical :: fields(5) = .true.
     logical :: steps_all = .false.              !< steps=all: VTK per step, .pvd, NAME_steps.csv
     logical :: plot = .false.                   !< plot=png: NAME_pressure.png (and NAME_steps.png) drawn by gnuplot
+    character(len=:), allocatable :: x          !< x=: the steps plot's abscissa, a column of NAME_steps.csv
+                                                !< (unallocated: the default ramp's load factor)
     integer :: line = 0
   end type output_deck_t
 

@@ -15,6 +15,9 @@
 !>   step_columns(prob, kstep, res, iterations, header, values, whole)
 !>        step kstep's row from its results res (engineering_results done) and
 !>        its LCP iterations, the header line and which columns are integers
+!>   step_header(prob)
+!>        the header line alone, from the scene before anything is solved
+!>        (OUTPUT x= names one of its columns: checked before the solve)
 module step_table
   use kinds, only: dp
   use strings, only: int_to_str
@@ -26,7 +29,7 @@ module step_table
   use contact_set, only: has_friction
   implicit none
   private
-  public :: step_columns
+  public :: step_columns, step_header
 
 contains
 
@@ -161,5 +164,28 @@ contains
     end subroutine add_zone
 
   end subroutine step_columns
+
+  !> The header of NAME_steps.csv from the scene alone: step_columns on
+  !> zero results of the sizes the scene gives (the names do not depend on
+  !> the values), so the two cannot differ.
+  !>   prob (in) the scene and contact set, built
+  function step_header(prob) result(header)
+    type(problem_t), intent(in) :: prob
+    character(len=:), allocatable :: header
+    type(results_t) :: res
+    type(string_t), allocatable :: labels(:)
+    integer, allocatable :: of_fix(:)
+    real(dp), allocatable :: values(:)
+    logical, allocatable :: whole(:)
+    integer :: b
+
+    call fix_boundaries(prob, labels, of_fix)
+    allocate(res%reaction(2, size(of_fix)), res%boundary_u(2, size(labels)), res%contact_force(2, prob%cs%npair), &
+             res%rigid(6, size(prob%sc%rigids)), source=0.0_dp)
+    allocate(res%spring_force(2, sum([(size(prob%deck%bodies(b)%springs), b = 1, size(prob%deck%bodies))])), &
+             source=0.0_dp)
+    allocate(res%zones(prob%cs%npair))
+    call step_columns(prob, 1, res, 0, header, values, whole)
+  end function step_header
 
 end module step_table

@@ -444,6 +444,18 @@ contains
     call check_close(curve_factor(d%curves(1), 4.0_dp), 0.5_dp, r, 'curve_factor: at the last point')
     call check_close(curve_factor(d%curves(1), 9.0_dp), 0.5_dp, r, 'curve_factor: after the last point')
     call check_close(curve_factor(d%curves(2), 0.0_dp), 2.0_dp, r, 'curve_factor: one point: constant')
+    ! OUTPUT x=: kept as written (a column name, checked once the scene is built), only with steps=all plot=png
+    call read_text_deck(small_deck('OUTPUT steps=all plot=png x=reaction_b:left_fy'), d, g)
+    call check(g%count == 0 .and. allocated(d%output%x), 'output x=: read with steps=all plot=png')
+    if (allocated(d%output%x)) call check(d%output%x == 'reaction_b:left_fy', 'output x=: the column as written')
+    call read_text_deck(small_deck('OUTPUT steps=all plot=png'), d, g)
+    call check(g%count == 0 .and. .not. allocated(d%output%x), 'output x=: none by default (the load factor)')
+    call expect_error(small_deck('OUTPUT plot=png x=step'), 6, 'x=step chooses the abscissa of the steps plot', &
+                      'output x=: refused without steps=all')
+    call expect_error(small_deck('OUTPUT steps=all x=step'), 6, 'x=step chooses the abscissa of the steps plot', &
+                      'output x=: refused without plot=png')
+    call expect_error(small_deck('OUTPUT steps=all plot=png y=step'), 6, 'unknown key "y" for OUTPUT (expected vtk, ' // &
+                      'contact, summary, fields, steps, plot, x)', 'output: the unknown-key message lists x')
   end subroutine test_curves
 
   !> CONTACT mu= and tresca=: values, the default frictionless contact, errors, and
