@@ -441,6 +441,7 @@ contains
     kept%prob = run%prob
     call move_alloc(run%out%step_tmp, kept%out%step_tmp)
     call move_alloc(run%out%step_table, kept%out%step_table)
+    call move_alloc(run%out%zone_sets, kept%out%zone_sets)
     kept%sol = run%sol
     kept%res = run%res
     if (allocated(kept%warning)) deallocate(kept%warning)
@@ -493,6 +494,7 @@ contains
       run%res = kept%res
       if (allocated(kept%out%step_tmp)) call move_alloc(kept%out%step_tmp, run%out%step_tmp)
       if (allocated(kept%out%step_table)) call move_alloc(kept%out%step_table, run%out%step_table)
+      if (allocated(kept%out%zone_sets)) call move_alloc(kept%out%zone_sets, run%out%zone_sets)
       if (allocated(run%log%warning)) deallocate(run%log%warning)
       if (allocated(kept%warning)) run%log%warning = kept%warning
     end associate

@@ -27,7 +27,7 @@ module run_outputs
   use run_log, only: lap, ph_output
   use problem, only: problem_t
   use deck_reader, only: path_too_long
-  use step_table, only: step_columns
+  use step_table, only: step_columns, zone_sets, widen_rows
   use results_writer, only: results_t, write_contact_csv, write_summary, write_pvd, write_step_table, peak_memory
   use vtk_files, only: write_vtk, write_vtu
   use safe_files, only: make_folders, temporary_t, create_temporary, grow_temporaries, close_temporary, &
@@ -128,7 +128,8 @@ contains
       if (.not. allocated(err)) call write_pvd(tmp(4)%io_path, names, times, err)
       if (.not. allocated(err)) call create_temporary(run%opts%outdir, output_stem(run%prob) // '_steps.csv', tmp(5), err)
       if (.not. allocated(err)) then
-        call step_columns(run%prob, run%prob%sc%steps, run%res, run%sol%iterations, header, row, whole)
+        call step_columns(run%prob, run%prob%sc%steps, run%res, run%sol%iterations, run%out%zone_sets, header, row, &
+                          whole)
         call write_step_table(tmp(5)%io_path, header, run%out%step_table, whole, err)
       end if
     end if
@@ -288,11 +289,20 @@ contains
     type(problem_t), intent(in) :: prob
     integer, intent(in) :: kstep, iterations
     type(results_t), intent(in) :: res
-    character(len=:), allocatable :: header
-    real(dp), allocatable :: row(:)
+    character(len=:), allocatable :: header, old
+    real(dp), allocatable :: row(:), was(:)
     logical, allocatable :: whole(:)
-    call step_columns(prob, kstep, res, iterations, header, row, whole)
-    if (.not. allocated(out%step_table)) allocate(out%step_table(size(row), prob%sc%steps), source=0.0_dp)
+    integer, allocatable :: sets(:,:)
+    if (allocated(out%zone_sets)) sets = out%zone_sets
+    call zone_sets(res, out%zone_sets)
+    call step_columns(prob, kstep, res, iterations, out%zone_sets, header, row, whole)
+    if (.not. allocated(out%step_table)) then
+      allocate(out%step_table(size(row), prob%sc%steps), source=0.0_dp)
+    else if (size(out%step_table, 1) /= size(row)) then
+      ! a pair has more zones than at the steps before: their rows get its new columns
+      call step_columns(prob, kstep, res, iterations, sets, old, was, whole)
+      call widen_rows(old, header, out%step_table)
+    end if
     out%step_table(:, kstep) = row
   end subroutine add_step_row
 

@@ -383,11 +383,12 @@ contains
 
   !> Per pair, the summary's contact_zone, peak_pressure and stick_zone in
   !> words: `contact  pair 1: in contact from (x0, y0) to (x1, y1), length L,
-  !> peak pressure P at (x, y)`, and `stick from ... to ..., length L`.
+  !> peak pressure P at (x, y)`, and `stick from ... to ..., length L`; a line
+  !> per zone, named `pair 1, zone 2 of 3` when there are several.
   subroutine report_zones(run)
     type(run_t), intent(in) :: run
     character(len=240) :: line
-    integer :: p
+    integer :: p, j
     if (.not. allocated(run%res%zones)) return
     do p = 1, size(run%res%zones)
       associate(z => run%res%zones(p))
@@ -395,33 +396,42 @@ contains
           call say(run%log, 'contact  pair ' // int_to_str(p) // ': no node in contact')
           cycle
         end if
-        line = zone_words(p, 'in contact', z%contact)
-        write(line(len_trim(line) + 1:), '(a,es11.4,a,es11.4,a,es11.4,a)') ', peak pressure', z%peak(1), ' at (', &
-          z%peak(2), ', ', z%peak(3), ')'
-        call say(run%log, trim(line))
+        do j = 1, z%contact%count
+          line = zone_words(p, 'in contact', z%contact, j)
+          write(line(len_trim(line) + 1:), '(a,es11.4,a,es11.4,a,es11.4,a)') ', peak pressure', z%peak(1, j), ' at (', &
+            z%peak(2, j), ', ', z%peak(3, j), ')'
+          call say(run%log, trim(line))
+        end do
         if (.not. z%friction) cycle
         if (z%stick%count == 0) then
           call say(run%log, 'contact  pair ' // int_to_str(p) // ': no node sticks')
           cycle
         end if
-        call say(run%log, trim(zone_words(p, 'stick', z%stick)))
+        do j = 1, z%stick%count
+          call say(run%log, trim(zone_words(p, 'stick', z%stick, j)))
+        end do
       end associate
     end do
   end subroutine report_zones
 
-  !> A zone of report_zones in words: `contact  pair P: WHAT from (x0, y0)
-  !> to (x1, y1), length L`, and `(N zones)` when it is more than one.
+  !> Zone j of report_zones in words: `contact  pair P: WHAT from (x0, y0)
+  !> to (x1, y1), length L`, the pair `pair P, zone J of N` when it has
+  !> several.
   !>   p    (in) the pair
   !>   what (in) 'in contact' or 'stick'
-  !>   zone (in) the zone, count > 0
-  function zone_words(p, what, zone) result(line)
-    integer, intent(in) :: p
+  !>   zone (in) the zones, count > 0
+  !>   j    (in) the zone, 1 .. count
+  function zone_words(p, what, zone, j) result(line)
+    integer, intent(in) :: p, j
     character(len=*), intent(in) :: what
     type(zone_t), intent(in) :: zone
     character(len=240) :: line
-    write(line, '(a,2(a,es11.4,a,es11.4,a),a,es11.4)') 'contact  pair ' // int_to_str(p) // ': ' // what, &
-      ' from (', zone%x0(1), ', ', zone%x0(2), ')', ' to (', zone%x1(1), ', ', zone%x1(2), ')', ', length', zone%length
-    if (zone%count > 1) line = trim(line) // ' (' // int_to_str(zone%count) // ' zones)'
+    character(len=:), allocatable :: who
+    who = 'contact  pair ' // int_to_str(p)
+    if (zone%count > 1) who = who // ', zone ' // int_to_str(j) // ' of ' // int_to_str(zone%count)
+    write(line, '(a,2(a,es11.4,a,es11.4,a),a,es11.4)') who // ': ' // what, &
+      ' from (', zone%x0(1, j), ', ', zone%x0(2, j), ')', ' to (', zone%x1(1, j), ', ', zone%x1(2, j), ')', &
+      ', length', zone%length(j)
   end function zone_words
 
   !> How a pair's tangential behaviour is described in the log.

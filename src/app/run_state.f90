@@ -53,6 +53,7 @@ module run_state
   type :: outputs_t
     type(temporary_t), allocatable :: step_tmp(:,:) !< (2, steps) the temporaries of each step's .vtu and contact table
     real(dp), allocatable :: step_table(:,:)       !< (ncol, steps) the rows of NAME_steps.csv
+    integer, allocatable :: zone_sets(:,:)         !< (2, npair) the zones each pair has columns for (step_table)
     character(len=:), allocatable :: wrote(:)      !< the run log's `wrote` lines
   end type outputs_t
 

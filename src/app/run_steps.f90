@@ -80,6 +80,7 @@ contains
     type(outputs_t), intent(inout) :: from, to
     if (allocated(from%step_tmp)) call move_alloc(from%step_tmp, to%step_tmp)
     if (allocated(from%step_table)) call move_alloc(from%step_table, to%step_table)
+    if (allocated(from%zone_sets)) call move_alloc(from%zone_sets, to%zone_sets)
   end subroutine move_out
 
   !> An earlier step of OUTPUT steps=all: its displacement, its results and

@@ -241,7 +241,7 @@ contains
     character(len=*), intent(in) :: path
     type(results_t), intent(in) :: r
     type(error_t), allocatable, intent(out) :: err
-    integer :: u, ios, k
+    integer :: u, ios, k, j
     call open_for_writing(path, u, err)
     if (allocated(err)) return
     write(u, '(a)') 'effects ' // r%effects
@@ -294,15 +294,18 @@ contains
     call write_labelled(u, 'displacement', r%fix_boundary, r%boundary_u)
     if (allocated(r%zones)) then
       do k = 1, size(r%zones)
-        call write_zone(u, 'contact', pair_name(r, k), r%zones(k)%contact)
-        if (r%zones(k)%contact%count > 0) then
-          write(u, '(a)') 'peak_pressure ' // pair_name(r, k) // ' ' // exact_to_str(r%zones(k)%peak(1)) // ' ' // &
-            exact_to_str(r%zones(k)%peak(2)) // &
-            ' ' // exact_to_str(r%zones(k)%peak(3))
-          write(u, '(a)') 'center_of_pressure ' // pair_name(r, k) // ' ' // exact_to_str(r%zones(k)%centre(1)) // ' ' // &
-            exact_to_str(r%zones(k)%centre(2))
-        end if
-        if (r%zones(k)%friction) call write_zone(u, 'stick', pair_name(r, k), r%zones(k)%stick)
+        associate(z => r%zones(k))
+          call write_zone(u, 'contact', pair_name(r, k), z%contact)
+          do j = 1, z%contact%count
+            write(u, '(a)') 'peak_pressure ' // pair_name(r, k) // ' ' // exact_to_str(z%peak(1, j)) // ' ' // &
+              exact_to_str(z%peak(2, j)) // ' ' // exact_to_str(z%peak(3, j))
+          end do
+          do j = 1, z%contact%count
+            write(u, '(a)') 'center_of_pressure ' // pair_name(r, k) // ' ' // exact_to_str(z%centre(1, j)) // ' ' // &
+              exact_to_str(z%centre(2, j))
+          end do
+          if (z%friction) call write_zone(u, 'stick', pair_name(r, k), z%stick)
+        end associate
       end do
     end if
     if (allocated(r%rigid_name)) then
@@ -340,18 +343,23 @@ contains
     if (ios /= 0) call cannot_write(path, err)
   end subroutine write_summary
 
-  !> A zone's summary lines: `KIND_zone PAIR x0 y0 x1 y1 LENGTH` when any node
-  !> is in it, and always `KIND_zones PAIR COUNT TOTAL` (doc/outputs.md).
+  !> A pair's zone lines in the summary: `KIND_zone PAIR x0 y0 x1 y1 LENGTH`
+  !> per zone in order along the slave boundary, then always `KIND_zones PAIR
+  !> COUNT TOTAL` (doc/outputs.md).
   !>   u    (in) the summary's unit
   !>   kind (in) 'contact' or 'stick'
   !>   pair (in) the pair's label (pair_name)
-  !>   z    (in) the zone
+  !>   z    (in) the zones
   subroutine write_zone(u, kind, pair, z)
     integer, intent(in) :: u
     character(len=*), intent(in) :: kind, pair
     type(zone_t), intent(in) :: z
-    if (z%count > 0) write(u, '(a)') kind // '_zone ' // pair // ' ' // exact_to_str(z%x0(1)) // ' ' // &
-      exact_to_str(z%x0(2)) // ' ' // exact_to_str(z%x1(1)) // ' ' // exact_to_str(z%x1(2)) // ' ' // exact_to_str(z%length)
+    integer :: j
+    do j = 1, z%count
+      write(u, '(a)') kind // '_zone ' // pair // ' ' // exact_to_str(z%x0(1, j)) // ' ' // &
+        exact_to_str(z%x0(2, j)) // ' ' // exact_to_str(z%x1(1, j)) // ' ' // exact_to_str(z%x1(2, j)) // ' ' // &
+        exact_to_str(z%length(j))
+    end do
     write(u, '(a,i0,a)') kind // '_zones ' // pair // ' ', z%count, ' ' // exact_to_str(z%total)
   end subroutine write_zone
 

@@ -6,18 +6,26 @@
 !> contact_force_PAIR_fx for `contact_force PAIR Fx Fy`, rigid_NAME_ux for
 !> `rigid NAME ux uy rz fx fy m`, spring_BODY:BOUNDARY_fx for `spring
 !> BODY:BOUNDARY Fx Fy`.  Two FIX (or SPRING) statements on one boundary give
-!> it one pair of columns, their sum (the force the boundary takes).
+!> it one pair of columns, their sum (the force the boundary takes).  A pair
+!> with several zones has, as the sweep table names repeated summary lines,
+!> the first zone's columns under the one-zone names and zone k's with `_k`
+!> after them (contact_zone_PAIR_x0_2, peak_pressure_PAIR_p_2, ...), as many
+!> as the pair's largest count over the steps so far (zone_sets), 0 where a
+!> step has fewer: the header stays one for every step.
 !>
 !> Why it exists: the application names and commits files; what a step's
 !> row holds is a list of its own that grows with the results.
 !>
 !> Programming interface
-!>   step_columns(prob, kstep, res, iterations, header, values, whole)
+!>   step_columns(prob, kstep, res, iterations, sets, header, values, whole)
 !>        step kstep's row from its results res (engineering_results done) and
 !>        its LCP iterations, the header line and which columns are integers
 !>   step_header(prob)
 !>        the header line alone, from the scene before anything is solved
-!>        (OUTPUT x= names one of its columns: checked before the solve)
+!>        (OUTPUT x= names one of its columns: checked before the solve),
+!>        one zone's columns per pair
+!>   zone_sets(res, sets)   the zone columns each pair needs: the most zones so far
+!>   widen_rows(old, new, table)   a table's rows under header old moved to the columns of header new
 module step_table
   use kinds, only: dp
   use strings, only: int_to_str
@@ -29,7 +37,7 @@ module step_table
   use contact_set, only: has_friction
   implicit none
   private
-  public :: step_columns, step_header
+  public :: step_columns, step_header, zone_sets, widen_rows
 
 contains
 
@@ -38,19 +46,21 @@ contains
   !>   kstep  (in)  the step, 1 .. steps
   !>   res    (in)  the step's results: reactions, contact forces, rigid results, zones, boundary_u
   !>   iterations (in) the step's LCP iterations
-  !>   header (out) the header line (the same for every step)
+  !>   sets   (in)  (2, npair) how many contact zones (1, :) and stick zones (2, :)
+  !>                each pair has columns for (zone_sets; at least 1)
+  !>   header (out) the header line (the same for every step with the same sets)
   !>   values (out) (ncol) the row
   !>   whole  (out) (ncol) the column holds integers (step, counts)
-  subroutine step_columns(prob, kstep, res, iterations, header, values, whole)
+  subroutine step_columns(prob, kstep, res, iterations, sets, header, values, whole)
     type(problem_t), intent(in) :: prob
-    integer, intent(in) :: kstep, iterations
+    integer, intent(in) :: kstep, iterations, sets(:,:)
     type(results_t), intent(in) :: res
     character(len=:), allocatable, intent(out) :: header
     real(dp), allocatable, intent(out) :: values(:)
     logical, allocatable, intent(out) :: whole(:)
     type(string_t), allocatable :: labels(:)
     integer, allocatable :: of_fix(:)
-    integer :: g, j, ip, n
+    integer :: g, j, ip, n, k
     character(len=:), allocatable :: p, name
     real(dp), allocatable :: reaction(:,:)
     character(len=2), parameter :: rigid_part(6) = ['ux', 'uy', 'rz', 'fx', 'fy', 'm ']
@@ -83,13 +93,19 @@ contains
       end if
       call add('contact_force_' // p // '_fx', res%contact_force(1, ip), .false.)
       call add('contact_force_' // p // '_fy', res%contact_force(2, ip), .false.)
-      call add_zone('contact', p, res%zones(ip)%contact)
-      call add('peak_pressure_' // p // '_p', res%zones(ip)%peak(1), .false.)
-      call add('peak_pressure_' // p // '_x', res%zones(ip)%peak(2), .false.)
-      call add('peak_pressure_' // p // '_y', res%zones(ip)%peak(3), .false.)
-      call add('center_of_pressure_' // p // '_x', res%zones(ip)%centre(1), .false.)
-      call add('center_of_pressure_' // p // '_y', res%zones(ip)%centre(2), .false.)
-      if (has_friction(prob%cs%pair(ip)%spec)) call add_zone('stick', p, res%zones(ip)%stick)
+      associate(z => res%zones(ip))
+        call add_zone('contact', p, z%contact, sets(1, ip))
+        do k = 1, sets(1, ip)
+          call add('peak_pressure_' // p // '_p' // nth(k), zone_value(z%peak, 1, k), .false.)
+          call add('peak_pressure_' // p // '_x' // nth(k), zone_value(z%peak, 2, k), .false.)
+          call add('peak_pressure_' // p // '_y' // nth(k), zone_value(z%peak, 3, k), .false.)
+        end do
+        do k = 1, sets(1, ip)
+          call add('center_of_pressure_' // p // '_x' // nth(k), zone_value(z%centre, 1, k), .false.)
+          call add('center_of_pressure_' // p // '_y' // nth(k), zone_value(z%centre, 2, k), .false.)
+        end do
+        if (has_friction(prob%cs%pair(ip)%spec)) call add_zone('stick', p, z%stick, sets(2, ip))
+      end associate
     end do
     do j = 1, size(prob%sc%rigids)
       name = prob%sc%rigids(j)%name
@@ -150,15 +166,24 @@ contains
       end do
     end subroutine add_springs
 
-    !> A zone's columns: KIND_zone_P_x0 .. _length, KIND_zones_P_count, _length.
-    subroutine add_zone(kind, pair, z)
+    !> A pair's zone columns: KIND_zone_P_x0 .. _length for each of its m
+    !> zones, then KIND_zones_P_count, _length.
+    subroutine add_zone(kind, pair, z, m)
       character(len=*), intent(in) :: kind, pair
       type(zone_t), intent(in) :: z
-      call add(kind // '_zone_' // pair // '_x0', z%x0(1), .false.)
-      call add(kind // '_zone_' // pair // '_y0', z%x0(2), .false.)
-      call add(kind // '_zone_' // pair // '_x1', z%x1(1), .false.)
-      call add(kind // '_zone_' // pair // '_y1', z%x1(2), .false.)
-      call add(kind // '_zone_' // pair // '_length', z%length, .false.)
+      integer, intent(in) :: m
+      integer :: k
+      do k = 1, m
+        call add(kind // '_zone_' // pair // '_x0' // nth(k), zone_value(z%x0, 1, k), .false.)
+        call add(kind // '_zone_' // pair // '_y0' // nth(k), zone_value(z%x0, 2, k), .false.)
+        call add(kind // '_zone_' // pair // '_x1' // nth(k), zone_value(z%x1, 1, k), .false.)
+        call add(kind // '_zone_' // pair // '_y1' // nth(k), zone_value(z%x1, 2, k), .false.)
+        if (k <= z%count) then
+          call add(kind // '_zone_' // pair // '_length' // nth(k), z%length(k), .false.)
+        else
+          call add(kind // '_zone_' // pair // '_length' // nth(k), 0.0_dp, .false.)
+        end if
+      end do
       call add(kind // '_zones_' // pair // '_count', real(z%count, dp), .true.)
       call add(kind // '_zones_' // pair // '_length', z%total, .false.)
     end subroutine add_zone
@@ -167,7 +192,8 @@ contains
 
   !> The header of NAME_steps.csv from the scene alone: step_columns on
   !> zero results of the sizes the scene gives (the names do not depend on
-  !> the values), so the two cannot differ.
+  !> the values), so the two cannot differ; one zone's columns per pair
+  !> (the zones a step finds add columns COLUMN_k after them).
   !>   prob (in) the scene and contact set, built
   function step_header(prob) result(header)
     type(problem_t), intent(in) :: prob
@@ -177,6 +203,7 @@ contains
     integer, allocatable :: of_fix(:)
     real(dp), allocatable :: values(:)
     logical, allocatable :: whole(:)
+    integer, allocatable :: sets(:,:)
     integer :: b
 
     call fix_boundaries(prob, labels, of_fix)
@@ -185,7 +212,92 @@ contains
     allocate(res%spring_force(2, sum([(size(prob%deck%bodies(b)%springs), b = 1, size(prob%deck%bodies))])), &
              source=0.0_dp)
     allocate(res%zones(prob%cs%npair))
-    call step_columns(prob, 1, res, 0, header, values, whole)
+    allocate(sets(2, prob%cs%npair), source=1)
+    call step_columns(prob, 1, res, 0, sets, header, values, whole)
   end function step_header
+
+  !> The suffix of zone k's columns: none for the first, `_k` after.
+  pure function nth(k) result(suffix)
+    integer, intent(in) :: k
+    character(len=:), allocatable :: suffix
+    suffix = ''
+    if (k > 1) suffix = '_' // int_to_str(k)
+  end function nth
+
+  !> Entry (i, k) of a per-zone array, 0 past its zones (a step with fewer).
+  pure real(dp) function zone_value(a, i, k) result(v)
+    real(dp), allocatable, intent(in) :: a(:,:)
+    integer, intent(in) :: i, k
+    v = 0.0_dp
+    if (.not. allocated(a)) return
+    if (k <= size(a, 2)) v = a(i, k)
+  end function zone_value
+
+  !> The zone columns each pair needs: sets raised to the step's counts.
+  !>   res  (in)    the step's results (zones)
+  !>   sets (inout) (2, npair) the contact (1, :) and stick (2, :) zones each
+  !>                pair has columns for; allocated with 1 each on the first call
+  subroutine zone_sets(res, sets)
+    type(results_t), intent(in) :: res
+    integer, allocatable, intent(inout) :: sets(:,:)
+    integer, allocatable :: grown(:,:)
+    integer :: ip, npair
+    npair = 0
+    if (allocated(res%zones)) npair = size(res%zones)
+    if (.not. allocated(sets)) allocate(sets(2, 0))
+    if (size(sets, 2) < npair) then
+      allocate(grown(2, npair), source=1)
+      grown(:, 1:size(sets, 2)) = sets
+      call move_alloc(grown, sets)
+    end if
+    do ip = 1, npair
+      sets(1, ip) = max(sets(1, ip), res%zones(ip)%contact%count)
+      sets(2, ip) = max(sets(2, ip), res%zones(ip)%stick%count)
+    end do
+  end subroutine zone_sets
+
+  !> The rows of a table written under header old moved to the columns of
+  !> header new, which holds each of old's names (more zone columns); a new
+  !> column is 0 in them.
+  !>   old   (in)    the table's header, names separated by commas
+  !>   new   (in)    the wider header
+  !>   table (inout) (ncol, nrow) the rows: ncol = the names of old on entry, of new on exit
+  subroutine widen_rows(old, new, table)
+    character(len=*), intent(in) :: old, new
+    real(dp), allocatable, intent(inout) :: table(:,:)
+    real(dp), allocatable :: wide(:,:)
+    type(string_t), allocatable :: from(:), to(:)
+    integer :: c, j
+    call split_names(old, from)
+    call split_names(new, to)
+    allocate(wide(size(to), size(table, 2)), source=0.0_dp)
+    do c = 1, size(from)
+      do j = 1, size(to)
+        if (to(j)%s == from(c)%s) then
+          wide(j, :) = table(c, :)
+          exit
+        end if
+      end do
+    end do
+    call move_alloc(wide, table)
+  end subroutine widen_rows
+
+  !> The names of a header line, split at its commas.
+  subroutine split_names(header, names)
+    character(len=*), intent(in) :: header
+    type(string_t), allocatable, intent(out) :: names(:)
+    integer :: a, b, n
+    allocate(names(count([(header(a:a) == ',', a = 1, len(header))]) + 1))
+    a = 1
+    do n = 1, size(names)
+      b = index(header(a:), ',')
+      if (b == 0) then
+        names(n)%s = header(a:)
+      else
+        names(n)%s = header(a:a + b - 2)
+        a = a + b
+      end if
+    end do
+  end subroutine split_names
 
 end module step_table
