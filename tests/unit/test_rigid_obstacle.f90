@@ -7,7 +7,8 @@
 !> int (pi d - d) psi_k = 0 on an open slave, the row's rigid terms; on a
 !> quadratic trace in axisymmetry (weight 2 pi r): a linear distance
 !> reproduced with an end on the axis, the weights adding up to the annulus'
-!> area, and the orthogonality with the quadratic multiplier space.
+!> area, and the orthogonality with the quadratic multiplier space; on a
+!> closed quadratic trace the periodic projection's orthogonality.
 program test_rigid_obstacle
   use kinds, only: dp
   use errors, only: error_t
@@ -26,6 +27,7 @@ program test_rigid_obstacle
   call test_terms()
   call test_quadratic_axis()
   call test_quadratic_orthogonality()
+  call test_quadratic_periodic()
   call finish_tests()
 
 contains
@@ -282,5 +284,52 @@ contains
     ! below 1e-9 here (|d''| <= 1 / 1.2, the line is 1.2 below the centre)
     call check_small(maxval(abs(psi)), 1.0e-8_dp, 'quadratic orthogonality: int (pi d - d) psi_k 2 pi r = 0')
   end subroutine test_quadratic_orthogonality
+
+  !> A closed quadratic trace, 12 elements with their nodes on the unit circle
+  !> (curved), off-centre inside a hole of radius 1.3: the periodic
+  !> projection satisfies int (pi d - d) phi_k = 0 for every node k (the
+  !> closed curve's multiplier space is the whole periodic trace space), by a
+  !> fine midpoint rule, and its last node repeats its first.
+  subroutine test_quadratic_periodic()
+    type(rigid_shape_t) :: sh
+    type(mortar_t) :: mo
+    type(error_t), allocatable :: err
+    integer, parameter :: m = 12, nq = 4000
+    real(dp) :: xs(2, 2 * m + 1), nout(2, m), t, s, x(2), dx(2), nn(3), d, n(2), res(0:2 * m), pi
+    integer :: i, e, q
+    pi = acos(-1.0_dp)
+    do i = 1, 2 * m + 1
+      t = pi * real(i - 1, dp) / m
+      xs(:, i) = [cos(t), sin(t)]
+    end do
+    xs(:, 2 * m + 1) = xs(:, 1)
+    do e = 1, m
+      t = pi * (2 * real(e, dp) - 1) / m
+      nout(:, e) = [cos(t), sin(t)]
+    end do
+    sh%kind = shape_circle
+    sh%centre = [0.1_dp, -0.05_dp]
+    sh%radius = 1.3_dp
+    sh%outside = .true.
+    call build_rigid_mortar(xs, 2, nout, sh, .false., mo, err)
+    call check(.not. allocated(err), 'quadratic periodic: built')
+    call check_close(mo%gap0(2 * m + 1), mo%gap0(1), tol_round(4), 'quadratic periodic: the last node is the first')
+    res = 0.0_dp
+    do e = 1, m
+      do q = 1, nq
+        s = (real(q, dp) - 0.5_dp) / nq
+        call trace_point(xs, 2, e, s, x, dx)
+        call trace_shape(2, s, nn)
+        call signed_distance(sh, x, d, n)
+        i = 2 * (e - 1)
+        res(i:i + 2) = res(i:i + 2) + (dot_product(nn, mo%gap0(i + 1:i + 3)) - d) * nn * norm2(dx) / nq
+      end do
+    end do
+    res(0) = res(0) + res(2 * m)
+    ! the midpoint rule's error on each integral, h^2 / 24 of the second
+    ! derivative's integral over an element (h = 1 / nq of an arc of pi / 6):
+    ! below 1e-9 here
+    call check_small(maxval(abs(res(0:2 * m - 1))), 1.0e-9_dp, 'quadratic periodic: int (pi d - d) phi_k = 0')
+  end subroutine test_quadratic_periodic
 
 end program test_rigid_obstacle
