@@ -264,9 +264,12 @@ contains
       '                                    sliding=finite: the contact geometry rebuilt in each load', &
       '                                    step from the current positions (refused with gap=zero)', &
       '  CONTACT slave=body:boundary master=RIGIDNAME [mu=C | tresca=S] [interference=...] [sliding=...]', &
-      '                                    against the RIGID''s exact shape', &
-      '  RIGID name ... END                a rigid obstacle, dofs ux, uy, rz of its reference point', &
-      '                                    (refused in PLANE axisymmetric), with:', &
+      '                                    against the RIGID''s exact shape; the slave of linear or', &
+      '                                    quadratic elements, plane or axisymmetric', &
+      '  RIGID name ... END                a rigid obstacle, dofs ux, uy, rz of its reference point;', &
+      '                                    in PLANE axisymmetric a solid of revolution (a sphere, a', &
+      '                                    cone, a flat punch) moving along the axis, ux and rz held at 0', &
+      '                                    (FIX ux=/rz= or FORCE fx=/m= other than 0: refused), with:', &
       '    SHAPE line x0= y0= x1= y1=  |  SHAPE circle xc= yc= r= [solid=inside|outside]', &
       '    SHAPE polyline points=x1:y1,x2:y2,...   (solid on the side the slave faces)', &
       '    REF x= y=                       (default: the circle''s centre, the first point)', &

@@ -105,6 +105,9 @@ contains
             call say(run%log, trim(line))
             write(line, '(a,i0,a,i0,a)') 'contact  pair ' // int_to_str(ip) // ': quadratic mortar, slave degree ', &
               pr%degree(1), ', master degree ', pr%degree(2), ': non-penetration at every trace node'
+            if (pr%spec%rigid > 0) write(line, '(a,i0,a)') 'contact  pair ' // int_to_str(ip) // &
+              ': quadratic mortar, slave degree ', pr%degree(1), ' against the exact shape: non-penetration at ' // &
+              'every trace node'
           end if
           if (has_friction(pr%spec)) then
             ! the assumption the frictional rows rest on (doc/theory.md, "Friction on curved surfaces")
@@ -268,7 +271,9 @@ contains
         call say(run%log, 'rigid    ' // sh%name // ': ' // trim(line))
         how = ''
         do j = 1, 3
-          if (run%prob%sc%fixed(sh%dof0 + j)) then
+          if (run%prob%deck%axisymmetric .and. j /= 2) then
+            how = how // ', ' // dname(j) // ' held (PLANE axisymmetric: along the axis only)'
+          else if (run%prob%sc%fixed(sh%dof0 + j)) then
             how = how // ', ' // dname(j) // ' prescribed'
           else
             how = how // ', ' // dname(j) // ' free'

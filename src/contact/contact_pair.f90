@@ -103,7 +103,7 @@ contains
       return
     end if
     if (spec%rigid > 0) then
-      call build_rigid_operator(nsl, pr, err)
+      call build_rigid_operator(bodies, nsl, pr, err)
     else
       call build_mesh_operator(bodies, nsl, pr, err)
     end if
@@ -122,22 +122,33 @@ contains
   end subroutine build_contact_pair
 
   !> The operator of a pair whose master is a RIGID: its exact shape, no
-  !> master mesh (rigid_obstacle).
-  !>   nsl (in) (2, ns-1) the slave segment normals
+  !> master mesh (rigid_obstacle); on a quadratic slave the trace with its
+  !> mid-side nodes, the rows at every trace node.
+  !>   bodies (in) the bodies
+  !>   nsl (in) (2, ns-1) the slave segment normals (one per element)
   !>   pr  (inout) spec and the slave polyline on entry; the shape oriented,
-  !>               the operator, and empty master lists on exit
+  !>               the operator, the trace, and empty master lists on exit
   !>   err (out) the operator's failure
-  subroutine build_rigid_operator(nsl, pr, err)
+  subroutine build_rigid_operator(bodies, nsl, pr, err)
+    type(body_t), intent(in) :: bodies(:)
     real(dp), intent(in) :: nsl(:,:)
     type(contact_pair_t), intent(inout) :: pr
     type(error_t), allocatable, intent(out) :: err
     type(error_t), allocatable :: merr
+    integer :: ps
     call orient_shape(pr%spec%shape, pr%xs, nsl)
-    call build_rigid_mortar(pr%xs, nsl, pr%spec%shape, pr%mortar, merr)
+    associate(slave => bodies(pr%spec%slave_body))
+      call trace_chain(slave%mesh, pr%spec%slave_bnd, pr%snode, ps)
+      pr%xs = slave%mesh%x(:, pr%snode)
+      pr%quadratic = ps == 2
+      pr%degree = [ps, 1]
+      call build_rigid_mortar(pr%xs, ps, nsl, pr%spec%shape, slave%axisymmetric, pr%mortar, merr)
+    end associate
     if (allocated(merr)) then
       call set_error(err, merr%message, merr%category)
       return
     end if
+    pr%axis_fold = pr%mortar%axis_end .and. ps == 2
     allocate(pr%mnode(0), pr%mcov(0))
   end subroutine build_rigid_operator
 

@@ -246,21 +246,35 @@ contains
   end subroutine assemble_rows
 
   !> The bound of each tangential row, in the order of assemble_rows: tangential
-  !> row i of a pair belongs to its normal row row0+i.
+  !> row i of a pair belongs to its normal row row0+i.  Against a RIGID, the
+  !> row of a slave node on the axis (PLANE axisymmetric) acts on held dofs
+  !> alone (the node's u_r, the RIGID's u_x and theta): its shear, zero by
+  !> symmetry, gets the bound 0 (with any other, every value in the cone
+  !> solves the step and the Newton systems are singular).
   !>   cs (inout) the rows and their weights on entry; tan_row, tan_mu, tan_bound on exit
   subroutine set_friction_bounds(cs)
     type(contact_set_t), intent(inout) :: cs
-    integer :: ip, i, t
+    integer :: ip, i, t, node
+    logical :: on_axis
     allocate(cs%tan_row(cs%ntan), cs%tan_mu(cs%ntan), cs%tan_bound(cs%ntan))
     t = 0
     do ip = 1, cs%npair
       if (cs%pair(ip)%nrow == 0 .or. .not. has_friction(cs%pair(ip)%spec)) cycle
-      do i = 1, cs%pair(ip)%nrow
-        t = t + 1
-        cs%tan_row(t) = cs%pair(ip)%row0 + i
-        cs%tan_mu(t) = cs%pair(ip)%spec%mu
-        cs%tan_bound(t) = cs%pair(ip)%spec%tresca * cs%weight(cs%pair(ip)%row0 + i)
-      end do
+      associate(pr => cs%pair(ip))
+        do i = 1, pr%nrow
+          t = t + 1
+          cs%tan_row(t) = pr%row0 + i
+          cs%tan_mu(t) = pr%spec%mu
+          cs%tan_bound(t) = pr%spec%tresca * cs%weight(pr%row0 + i)
+          node = cs%row_node(pr%row0 + i)
+          on_axis = (pr%mortar%axis_end(1) .and. node == pr%mortar%first) .or. &
+                    (pr%mortar%axis_end(2) .and. node == pr%mortar%last)
+          if (pr%spec%rigid > 0 .and. on_axis) then
+            cs%tan_mu(t) = 0.0_dp
+            cs%tan_bound(t) = 0.0_dp
+          end if
+        end do
+      end associate
     end do
   end subroutine set_friction_bounds
 

@@ -86,6 +86,8 @@
 !>         degree = ps; inter is left empty) and mcov(j) = int_cov chi_j
 !>   quadratic_common_normals(xs, ps, sn_out, xm, pm, mn_out, nc, w)
 !>         a frictional pair's pairing directions at the slave trace's nodes
+!>   multiplier_terms(ps, z, axis_end, k, m, c, nt)
+!>         the multiplier basis function psi_k on the zone nodes (3.), its terms
 !>   gauss4   the 4-point Gauss-Legendre rule on [0, 1] of its quadrature (2.)
 module mortar_quadratic
   use kinds, only: dp
@@ -99,7 +101,7 @@ module mortar_quadratic
   use axisymmetric_elements, only: radial_weight
   implicit none
   private
-  public :: build_mortar_quadratic, quadratic_common_normals, gauss4
+  public :: build_mortar_quadratic, quadratic_common_normals, multiplier_terms, gauss4
 
   real(dp), parameter :: min_facing = 0.2_dp       ! -n_master.n_slave of the chords above which they face
 
@@ -441,35 +443,70 @@ contains
 
   !> Coefficients C(k, m) of the multiplier basis psi_k = sum_m C(k, m) phi_m,
   !> k = 0..z (the rows of the unknowns are used: 1..z-1, and a zone end on the
-  !> axis), m = 0..z (module header, 3.): degree p - 1 on an end element that
-  !> is an edge of the zone, the constants on a one-element zone.
+  !> axis), m = 0..z (module header, 3.), row by row from multiplier_terms.
   subroutine multiplier_coefficients(ps, z, axis_end, c)
     integer, intent(in) :: ps, z
     logical, intent(in) :: axis_end(2)
     real(dp), allocatable, intent(out) :: c(:,:)
-    integer :: k
+    integer :: k, m(0:z), nt
+    real(dp) :: ck(0:z)
     allocate(c(0:z, 0:z), source=0.0_dp)
     do k = 0, z
-      c(k, k) = 1.0_dp
+      call multiplier_terms(ps, z, axis_end, k, m, ck, nt)
+      c(k, m(0:nt - 1)) = ck(0:nt - 1)
     end do
+  end subroutine multiplier_coefficients
+
+  !> The multiplier basis function psi_k on the zone nodes 0..z (module header,
+  !> 3.): psi_k = sum_t c(t) phi_m(t), t < nt, the terms on distinct nodes.
+  !> Degree p - 1 on an end element that is an edge of the zone (not on the
+  !> axis), the constants on a one-element zone; at most 3 terms, z + 1 on a
+  !> one-element zone.
+  !>   ps (in) the degree, 1 or 2;  z (in) the last zone node;  axis_end (in) the zone ends on the axis
+  !>   k  (in) 0..z;  m, c (out) (0:) nodes and coefficients, at least z + 1 long;  nt (out) the terms
+  subroutine multiplier_terms(ps, z, axis_end, k, m, c, nt)
+    integer, intent(in) :: ps, z, k
+    logical, intent(in) :: axis_end(2)
+    integer, intent(out) :: m(0:), nt
+    real(dp), intent(out) :: c(0:)
+    integer :: j
+    m(0) = k
+    c(0) = 1.0_dp
+    nt = 1
     if (z == ps .and. .not. any(axis_end)) then  ! one element: the constants
-      c(1, :) = 1.0_dp
+      if (k == 1) then
+        nt = z + 1
+        m(0:z) = [(j, j = 0, z)]
+        c(0:z) = 1.0_dp
+      end if
     else if (ps == 1) then
-      if (.not. axis_end(1)) c(1, 0) = 1.0_dp
-      if (.not. axis_end(2)) c(z - 1, z) = 1.0_dp
+      if (.not. axis_end(1) .and. k == 1) call add_term(0, 1.0_dp)
+      if (.not. axis_end(2) .and. k == z - 1) call add_term(z, 1.0_dp)
     else                                        ! degree 1 on the end elements
       if (.not. axis_end(1)) then
-        c(1, 0) = 1.0_dp
-        c(1, 1) = 0.5_dp
-        c(2, 1) = c(2, 1) + 0.5_dp
+        if (k == 1) then
+          c(0) = 0.5_dp
+          call add_term(0, 1.0_dp)
+        end if
+        if (k == 2) call add_term(1, 0.5_dp)
       end if
       if (.not. axis_end(2)) then
-        c(z - 1, z) = 1.0_dp
-        c(z - 1, z - 1) = 0.5_dp
-        c(z - 2, z - 1) = c(z - 2, z - 1) + 0.5_dp
+        if (k == z - 1) then
+          c(0) = 0.5_dp
+          call add_term(z, 1.0_dp)
+        end if
+        if (k == z - 2) call add_term(z - 1, 0.5_dp)
       end if
     end if
-  end subroutine multiplier_coefficients
+  contains
+    subroutine add_term(node, coef)
+      integer, intent(in) :: node
+      real(dp), intent(in) :: coef
+      m(nt) = node
+      c(nt) = coef
+      nt = nt + 1
+    end subroutine add_term
+  end subroutine multiplier_terms
 
   !> The zone's part [lo, hi] of slave element e (zone elements efirst..elast):
   !> [cut(1), 1] on the first, [0, cut(2)] on the last, [0, 1] elsewhere.

@@ -15,31 +15,48 @@
 !>             the two segments' normals), beyond its ends as for a line
 !>
 !> The mortar side is the deformable slave (the paper's side 1) with its
-!> multiplier space M_h^1 as for two bodies (mortar_operator): P1 hats,
-!> constant on the two end segments of an open slave boundary, periodic on a
-!> closed one; the whole slave boundary is the zone (the obstacle has no end
-!> the slave could pass).  Row i, at slave node x_i with the direction
-!> n_i = -n_r(x_i) (the slave's outward normal as the exact shape makes it):
-!>     B_i u = n_i . u1(x_i) - n_i . U(x_i) <= g_i,   g_i = (pi_h^1 d)(x_i),
-!> pi_h^1 the mortar projection onto the slave trace space (eq. (8)): the end
-!> values pointwise, the interior ones by D v = int psi_k d - E_0 d(a1) - E_n d(a2).
-!> The rigid motion is linear along each slave segment, so pi_h^1 U = U at the
-!> nodes: its part of the row is n_i . U(x_i), three entries on the rigid's dofs,
+!> multiplier space M_h^1 as for two bodies: on a trace of degree p (P1
+!> polylines, or the 3-node edges of quadratic elements, curved as the mesh
+!> places their mid-side nodes: trace_geometry) the space of mortar_quadratic
+!> (3.), continuous of degree p, of degree p - 1 on the two end elements of an
+!> open slave boundary, periodic on a closed one; the whole slave boundary is
+!> the zone (the obstacle has no end the slave could pass).  Row i, at slave
+!> trace node x_i (corners and mid-side nodes: the nodal condition) with the
+!> direction n_i = -n_r(x_i) (the slave's outward normal as the exact shape
+!> makes it):
+!>     B_i u = n_i . u1(x_i) - n_i . U(x_i) <= g_i,   g_i = (pi_h d)(x_i),
+!> pi_h the mortar projection onto the slave trace space (eq. (8)): the end
+!> values pointwise, the interior ones by D v = C (int phi d) - E_0 d(a1) - E_n d(a2)
+!> (D = C G, G the trace's mass matrix, C the multiplier coefficients).
+!> The rigid motion is linear in x, so of degree p along the slave trace, and
+!> pi_h U = U at the nodes: its part of the row is n_i . U(x_i), three entries
+!> on the rigid's dofs,
 !>     -[n_i,x,  n_i,y,  n_i . (-(y_i - y_r), x_i - x_r)].
 !> A frictional row takes t_i = (-n_i,y, n_i,x) instead of n_i.
+!> Axisymmetric (x = r): every integral (G, int phi d, the weights int phi_i)
+!> is over the surface of revolution, ds -> 2 pi r ds, as for two bodies
+!> (mortar_operator, 8.); an end of the slave trace on the axis is a point
+!> inside the contact surface: no end condition, its normal the axis, and a
+!> quadratic corner hat there weighs nothing (its pressure read with its
+!> mid-side neighbour's, contact_set: node_rows).  Of the three motions only
+!> u_y (along the axis) is axisymmetric: the scene holds u_x and theta.
 !>
 !> Programming interface
 !>   type(rigid_shape_t)                         the shape, its reference point and dofs
 !>   signed_distance(sh, x, d, n)                d(x) and n_r(x)
 !>   orient_shape(sh, xs, ns_out)                line/polyline: the solid on the side the slave faces
-!>   build_rigid_mortar(xs, sh, mortar, err)     the mortar_t of a slave polyline against sh
+!>   build_rigid_mortar(xs, ps, ns_out, sh, axisymmetric, mortar, err)
+!>                                               the mortar_t of a slave trace against sh
 !>   rigid_terms(sh, x, v)                       the motion of x along v per unit ux, uy, theta
 module rigid_obstacle
   use kinds, only: dp
-  use lapack_interfaces, only: dgtsv
+  use lapack_interfaces, only: dgbsv, dgesv
   use strings, only: int_to_str
   use errors, only: error_t, set_error, error_numerical
   use mortar_operator, only: mortar_t
+  use mortar_quadratic, only: multiplier_terms
+  use trace_geometry, only: trace_point, trace_shape, trace_normals
+  use axisymmetric_elements, only: radial_weight
   implicit none
   private
   public :: rigid_shape_t, shape_line, shape_circle, shape_polyline
@@ -184,177 +201,213 @@ contains
     c = [v(1), v(2), -v(1) * (x(2) - sh%ref(2)) + v(2) * (x(1) - sh%ref(1))]
   end function rigid_terms
 
-  !> The mortar operator of a slave polyline against a rigid obstacle (module
-  !> header): the whole polyline is the zone, the normals n_i = -n_r(x_i), the
-  !> gaps pi_h^1 d, the weights int phi_i.  P is not allocated (no master mesh).
-  !>   xs     (in)  (2, ns) slave polyline, ns >= 2; closed when xs(:, ns) = xs(:, 1)
-  !>   ns_out (in)  (2, ns-1) outward unit normals of the slave segments
+  !> The mortar operator of a slave trace against a rigid obstacle (module
+  !> header): the whole trace is the zone, the normals n_i = -n_r(x_i), the
+  !> gaps pi_h d, the weights int phi_i (2 pi r) ds.  P is not allocated (no
+  !> master mesh).
+  !>   xs     (in)  (2, ns) slave trace nodes (trace_geometry: corners, and the
+  !>                mid-side nodes between them when ps = 2); closed when
+  !>                xs(:, ns) = xs(:, 1) and it has at least 3 elements
+  !>   ps     (in)  the trace's degree, 1 or 2
+  !>   ns_out (in)  (2, (ns-1)/ps) outward unit chord normals of the slave elements
   !>   sh     (in)  the obstacle (oriented)
-  !>   mortar (out) first = 1, last = ns, normal, gap0, weights, arc
-  !>   err    (out) allocated when the tridiagonal solve fails (error_numerical)
-  subroutine build_rigid_mortar(xs, ns_out, sh, mortar, err)
+  !>   axisymmetric (in) x is the radius: integrals weighted by 2 pi r
+  !>   mortar (out) first = 1, last = ns, normal, gap0, weights, arc, degree, axis_end
+  !>   err    (out) allocated when the banded solve fails (error_numerical)
+  subroutine build_rigid_mortar(xs, ps, ns_out, sh, axisymmetric, mortar, err)
     real(dp), intent(in) :: xs(:,:), ns_out(:,:)
+    integer, intent(in) :: ps
     type(rigid_shape_t), intent(in) :: sh
+    logical, intent(in) :: axisymmetric
     type(mortar_t), intent(out) :: mortar
     type(error_t), allocatable, intent(out) :: err
-    integer :: ns, e, i, info
-    real(dp) :: d, n(2), y(2)
-    real(dp), allocatable :: seglen(:), dnode(:), fint(:,:)
+    integer :: ns, nel, i, info, z
+    real(dp) :: d, n(2)
+    real(dp), allocatable :: gb(:,:), bd(:), dnode(:), hint(:,:)
     logical :: closed
 
     ns = size(xs, 2)
-    closed = ns > 3 .and. all(xs(:, 1) == xs(:, ns))
+    nel = (ns - 1) / ps
+    z = ns - 1
+    closed = nel >= 3 .and. all(xs(:, 1) == xs(:, ns))
     mortar%ns = ns
     mortar%nm = 0
     mortar%first = 1
     mortar%last = ns
-    allocate(mortar%normal(2, ns), mortar%gap0(ns), mortar%weight(ns), mortar%covered_weight(ns), &
-             mortar%zone_weight(ns), mortar%arc(ns), mortar%constrained(ns), seglen(ns - 1), dnode(ns))
+    mortar%degree = ps
+    mortar%axisymmetric = axisymmetric
+    allocate(mortar%normal(2, ns), mortar%gap0(ns), mortar%covered_weight(ns), mortar%zone_weight(ns), &
+             mortar%constrained(ns), dnode(0:z))
     mortar%constrained = .true.
-    mortar%arc(1) = 0.0_dp
-    mortar%weight = 0.0_dp
-    do e = 1, ns - 1
-      seglen(e) = norm2(xs(:, e + 1) - xs(:, e))
-      mortar%arc(e + 1) = mortar%arc(e) + seglen(e)
-      mortar%weight(e:e + 1) = mortar%weight(e:e + 1) + 0.5_dp * seglen(e)
+    call trace_integrals(xs, ps, sh, axisymmetric, gb, bd, mortar%weight, mortar%arc)
+    call trace_normals(xs, ps, ns_out, hint)
+    do i = 1, ns
+      ! the slave's nodal normal: the direction at a node that lies on a corner
+      call signed_distance(sh, xs(:, i), d, n, -hint(:, i))
+      dnode(i - 1) = d
+      mortar%normal(:, i) = -n
     end do
     if (closed) then                          ! node ns is node 1
       mortar%weight(1) = mortar%weight(1) + mortar%weight(ns)
       mortar%weight(ns) = mortar%weight(1)
+      call project_periodic(ps, gb, bd, mortar%gap0, info)
+    else
+      ! a trace end on the axis is a point inside the contact surface
+      ! (mortar_operator, 8.): no end condition there, its normal the axis'
+      mortar%axis_end = axisymmetric .and. nel > 1 .and. [xs(1, 1) == 0.0_dp, xs(1, ns) == 0.0_dp]
+      do i = 1, 2
+        if (.not. mortar%axis_end(i)) cycle
+        associate(nrm => mortar%normal(:, merge(1, ns, i == 1)))
+          nrm = [0.0_dp, sign(1.0_dp, nrm(2))]
+        end associate
+      end do
+      call project_open(ps, mortar%axis_end, gb, bd, dnode, mortar%gap0, info)
     end if
     mortar%covered_weight = mortar%weight
     mortar%zone_weight = mortar%weight
-    do i = 1, ns
-      ! the slave's nodal normal: the direction at a node that lies on a corner
-      y = ns_out(:, max(1, i - 1)) + ns_out(:, min(ns - 1, i))
-      if (closed .and. (i == 1 .or. i == ns)) y = ns_out(:, 1) + ns_out(:, ns - 1)
-      call signed_distance(sh, xs(:, i), d, n, -y / norm2(y))
-      dnode(i) = d
-      mortar%normal(:, i) = -n
-    end do
-    call hat_integrals(xs, sh, fint)          ! fint(1:2, e) = int over segment e of d phi_e, d phi_{e+1}
-    if (closed) then
-      call project_periodic(seglen, fint, mortar%gap0, info)
-    else
-      call project_open(seglen, fint, dnode, mortar%gap0, info)
-    end if
     if (info /= 0) then
       call set_error(err, 'mortar matrix D of the slave boundary against RIGID ' // sh%name // ' is singular ' // &
-                     '(LAPACK dgtsv info ' // int_to_str(info) // ')', error_numerical)
+                     '(LAPACK info ' // int_to_str(info) // ')', error_numerical)
       return
     end if
   end subroutine build_rigid_mortar
 
-  !> fint(1, e), fint(2, e): int over slave segment e of d times the hat of its
-  !> first and second node (composite 4-point Gauss: d has kinks at corners).
-  subroutine hat_integrals(xs, sh, fint)
+  !> The integrals over the slave trace (composite 4-point Gauss, nsub parts an
+  !> element: d has kinks at the obstacle's corners), each with the radial
+  !> weight 2 pi r when axisymmetric:
+  !>   G_kl = int phi_k phi_l  (band: gb(o, k) = G(k, k+o), |o| <= ps, nodes 0..ns-1),
+  !>   b_k = int phi_k d,  weight_k = int phi_k,  arc the arc length from node 1.
+  subroutine trace_integrals(xs, ps, sh, axisymmetric, gb, bd, weight, arc)
     real(dp), intent(in) :: xs(:,:)
+    integer, intent(in) :: ps
     type(rigid_shape_t), intent(in) :: sh
-    real(dp), allocatable, intent(out) :: fint(:,:)
-    integer :: e, j, q
-    real(dp) :: s, x(2), d, n(2), l
-    allocate(fint(2, size(xs, 2) - 1), source=0.0_dp)
-    do e = 1, size(xs, 2) - 1
-      l = norm2(xs(:, e + 1) - xs(:, e))
+    logical, intent(in) :: axisymmetric
+    real(dp), allocatable, intent(out) :: gb(:,:), bd(:), weight(:), arc(:)
+    integer :: ns, e, j, q, a, b, i0
+    real(dp) :: s, x(2), dx(2), d, n(2), w, wl, nn(3), len
+    ns = size(xs, 2)
+    allocate(gb(-ps:ps, 0:ns - 1), bd(0:ns - 1), weight(ns), arc(ns), source=0.0_dp)
+    do e = 1, (ns - 1) / ps
+      i0 = ps * (e - 1)                         ! zone index of the element's first node
+      len = 0.0_dp
       do j = 1, nsub
         do q = 1, 4
           s = (real(j - 1, dp) + gx(q)) / nsub
-          x = (1.0_dp - s) * xs(:, e) + s * xs(:, e + 1)
+          call trace_point(xs, ps, e, s, x, dx)
+          call trace_shape(ps, s, nn)
           call signed_distance(sh, x, d, n)
-          fint(:, e) = fint(:, e) + gw(q) * l / nsub * d * [1.0_dp - s, s]
+          wl = gw(q) / nsub * norm2(dx)
+          w = wl
+          if (axisymmetric) w = radial_weight(wl * x(1))
+          do a = 0, ps
+            do b = 0, ps
+              gb(b - a, i0 + a) = gb(b - a, i0 + a) + w * nn(a + 1) * nn(b + 1)
+            end do
+            bd(i0 + a) = bd(i0 + a) + w * nn(a + 1) * d
+            weight(i0 + a + 1) = weight(i0 + a + 1) + w * nn(a + 1)
+          end do
+          len = len + wl
         end do
+        if (ps == 2 .and. 2 * j == nsub) arc(i0 + 2) = arc(i0 + 1) + len
+      end do
+      arc(i0 + ps + 1) = arc(i0 + 1) + len
+    end do
+  end subroutine trace_integrals
+
+  !> pi_h d on an open slave trace (eq. (8); mortar_quadratic, 3.-4., for the
+  !> multiplier space): v_0 = d(x_0), v_z = d(x_z) (not at an end on the axis),
+  !>     sum_l D_kl v_l = C_k b - C_k G_0 d(x_0) - C_k G_z d(x_z),  D = C G,
+  !> k over the unknowns (the interior nodes, and an end on the axis), C_k the
+  !> coefficients of psi_k (multiplier_terms); D is banded (ps + 1 off-diagonals).
+  !>   ps (in) the degree;  axis_end (in) the ends on the axis
+  !>   gb, bd (in) G's band and b (trace_integrals);  dnode (in) (0:z) d at the nodes
+  !>   v (out) (z+1) pi_h d at the nodes;  info (out) dgbsv's
+  subroutine project_open(ps, axis_end, gb, bd, dnode, v, info)
+    integer, intent(in) :: ps
+    logical, intent(in) :: axis_end(2)
+    real(dp), intent(in) :: gb(-ps:, 0:), bd(0:), dnode(0:)
+    real(dp), intent(out) :: v(:)
+    integer, intent(out) :: info
+    integer :: z, klo, khi, nz, k, l, t, kl, ldab, nt
+    integer, allocatable :: m(:), ipiv(:)
+    real(dp), allocatable :: c(:), ab(:,:), rhs(:,:)
+    z = size(dnode) - 1
+    v = dnode
+    info = 0
+    klo = merge(0, 1, axis_end(1))
+    khi = merge(z, z - 1, axis_end(2))
+    nz = khi - klo + 1
+    if (nz < 1) return
+    kl = ps + 1
+    ldab = 3 * kl + 1
+    allocate(m(0:z), ipiv(nz))
+    allocate(c(0:z), ab(ldab, nz), rhs(nz, 1), source=0.0_dp)
+    do k = klo, khi
+      call multiplier_terms(ps, z, axis_end, k, m, c, nt)
+      do t = 0, nt - 1
+        ! row m(t) of G: its band, the known end values on the right
+        do l = max(0, m(t) - ps), min(z, m(t) + ps)
+          if (l < klo .or. l > khi) then
+            rhs(k - klo + 1, 1) = rhs(k - klo + 1, 1) - c(t) * gb(l - m(t), m(t)) * dnode(l)
+          else
+            ab(2 * kl + 1 + k - l, l - klo + 1) = ab(2 * kl + 1 + k - l, l - klo + 1) + c(t) * gb(l - m(t), m(t))
+          end if
+        end do
+        rhs(k - klo + 1, 1) = rhs(k - klo + 1, 1) + c(t) * bd(m(t))
       end do
     end do
-  end subroutine hat_integrals
-
-  !> pi_h^1 d on an open slave polyline (eq. (8)): v(1) = d(a1), v(ns) = d(a2),
-  !> D v_int = int psi_k d - E_0 d(a1) - E_n d(a2), psi_2 = phi_1 + phi_2,
-  !> psi_{ns-1} = phi_{ns-1} + phi_ns (both when ns = 3), D_kl = int psi_k phi_l.
-  subroutine project_open(seglen, fint, dnode, v, info)
-    real(dp), intent(in) :: seglen(:), fint(:,:), dnode(:)
-    real(dp), intent(out) :: v(:)
-    integer, intent(out) :: info
-    integer :: ns, m, k, j
-    real(dp), allocatable :: mdiag(:), moff(:), bphi(:), dl(:), dd(:), du(:), b(:,:), c(:,:)
-    ns = size(dnode)
-    v = 0.0_dp
-    v(1) = dnode(1)
-    v(ns) = dnode(ns)
-    info = 0
-    m = ns - 2                                 ! interior unknowns, nodes 2..ns-1
-    if (m <= 0) return
-    ! P1 mass matrix of the slave polyline (tridiagonal) and int phi_j d
-    allocate(mdiag(ns), moff(ns - 1), bphi(ns), source=0.0_dp)
-    do j = 1, ns - 1
-      mdiag(j) = mdiag(j) + seglen(j) / 3.0_dp
-      mdiag(j + 1) = mdiag(j + 1) + seglen(j) / 3.0_dp
-      moff(j) = seglen(j) / 6.0_dp
-      bphi(j) = bphi(j) + fint(1, j)
-      bphi(j + 1) = bphi(j + 1) + fint(2, j)
-    end do
-    ! c(k, l) = int psi_k phi_l for the rows k = 2..ns-1, columns l = k-1..k+1
-    ! (and the end columns that the end multipliers add: 1 and ns)
-    allocate(c(2:ns - 1, ns), source=0.0_dp)
-    allocate(b(m, 1))
-    do k = 2, ns - 1
-      c(k, k - 1) = moff(k - 1)
-      c(k, k) = mdiag(k)
-      c(k, k + 1) = moff(k)
-      b(k - 1, 1) = bphi(k)
-    end do
-    ! psi_2 adds phi_1, psi_{ns-1} adds phi_ns
-    c(2, 1) = c(2, 1) + mdiag(1)
-    c(2, 2) = c(2, 2) + moff(1)
-    b(1, 1) = b(1, 1) + bphi(1)
-    c(ns - 1, ns) = c(ns - 1, ns) + mdiag(ns)
-    c(ns - 1, ns - 1) = c(ns - 1, ns - 1) + moff(ns - 1)
-    b(m, 1) = b(m, 1) + bphi(ns)
-    b(:, 1) = b(:, 1) - c(2:ns - 1, 1) * dnode(1) - c(2:ns - 1, ns) * dnode(ns)
-    allocate(dl(max(1, m - 1)), dd(m), du(max(1, m - 1)))
-    do k = 2, ns - 1
-      dd(k - 1) = c(k, k)
-      if (k < ns - 1) du(k - 1) = c(k, k + 1)
-      if (k > 2) dl(k - 2) = c(k, k - 1)
-    end do
-    call dgtsv(m, 1, dl, dd, du, b, m, info)
-    if (info == 0) v(2:ns - 1) = b(:, 1)
+    call dgbsv(nz, kl, kl, 1, ab, ldab, ipiv, rhs, nz, info)
+    if (info == 0) v(klo + 1:khi + 1) = rhs(:, 1)
   end subroutine project_open
 
-  !> pi_h^1 d on a closed slave polyline (node ns = node 1): M v = int phi d with
-  !> M the cyclic P1 mass matrix, solved by Sherman-Morrison on two dgtsv solves.
-  subroutine project_periodic(seglen, fint, v, info)
-    real(dp), intent(in) :: seglen(:), fint(:,:)
+  !> pi_h d on a closed slave trace (node z = node 0): G v = b with G the
+  !> cyclic mass matrix, by bordering: banded dgbsv on the first z - ps nodes,
+  !> a ps x ps Schur complement by dgesv for the last ps.
+  !>   ps (in) the degree;  gb, bd (in) G's band and b on the open nodes 0..z
+  !>   v (out) (z+1) pi_h d at the nodes, v(z+1) = v(1);  info (out) LAPACK's
+  subroutine project_periodic(ps, gb, bd, v, info)
+    integer, intent(in) :: ps
+    real(dp), intent(in) :: gb(-ps:, 0:), bd(0:)
     real(dp), intent(out) :: v(:)
     integer, intent(out) :: info
-    integer :: n, j
-    real(dp), allocatable :: dd(:), dl(:), du(:), b(:,:)
-    real(dp) :: alpha, gamma
-    n = size(seglen)                           ! unknowns: nodes 1..n (node n+1 = node 1)
-    allocate(dd(n), dl(n - 1), du(n - 1), b(n, 2), source=0.0_dp)
-    do j = 1, n
-      dd(j) = dd(j) + seglen(j) / 3.0_dp
-      dd(modulo(j, n) + 1) = dd(modulo(j, n) + 1) + seglen(j) / 3.0_dp
-      b(j, 1) = b(j, 1) + fint(1, j)
-      b(modulo(j, n) + 1, 1) = b(modulo(j, n) + 1, 1) + fint(2, j)
+    integer :: z, na, i, o, k, l, ldab
+    integer, allocatable :: ipiv(:)
+    real(dp), allocatable :: ab(:,:), rhs(:,:), dba(:,:), s(:,:), y(:,:), bc(:)
+    z = size(bd) - 1
+    na = z - ps
+    ldab = 3 * ps + 1
+    allocate(bc(0:z - 1))
+    bc = bd(0:z - 1)
+    bc(0) = bc(0) + bd(z)
+    allocate(ab(ldab, na), rhs(na, 1 + ps), dba(ps, na), s(ps, ps), source=0.0_dp)
+    allocate(ipiv(max(na, ps)))
+    ! G of the closed trace, node z folded onto node 0, in four blocks: the
+    ! first na nodes (banded), the last ps nodes, and the two couplings
+    do i = 0, z
+      do o = max(-ps, -i), min(ps, z - i)
+        k = modulo(i, z)
+        l = modulo(i + o, z)
+        if (k < na .and. l < na) then
+          ab(2 * ps + 1 + k - l, l + 1) = ab(2 * ps + 1 + k - l, l + 1) + gb(o, i)
+        else if (k < na) then
+          rhs(k + 1, 1 + l - na + 1) = rhs(k + 1, 1 + l - na + 1) + gb(o, i)
+        else if (l < na) then
+          dba(k - na + 1, l + 1) = dba(k - na + 1, l + 1) + gb(o, i)
+        else
+          s(k - na + 1, l - na + 1) = s(k - na + 1, l - na + 1) + gb(o, i)
+        end if
+      end do
     end do
-    do j = 1, n - 1
-      dl(j) = seglen(j) / 6.0_dp
-      du(j) = seglen(j) / 6.0_dp
-    end do
-    alpha = seglen(n) / 6.0_dp                 ! the corners M(1, n) = M(n, 1)
-    ! M = T + u u'/gamma with u = (gamma, 0, ..., 0, alpha): T has
-    ! dd(1) - gamma and dd(n) - alpha^2 / gamma on its diagonal
-    gamma = -dd(1)
-    dd(1) = dd(1) - gamma
-    dd(n) = dd(n) - alpha * alpha / gamma
-    b(:, 2) = 0.0_dp
-    b(1, 2) = gamma
-    b(n, 2) = alpha
-    call dgtsv(n, 2, dl, dd, du, b, n, info)
+    rhs(:, 1) = bc(0:na - 1)
+    call dgbsv(na, ps, ps, 1 + ps, ab, ldab, ipiv, rhs, na, info)
     if (info /= 0) return
-    ! x = y - (v'y / (1 + v'z)) z, v = (1, 0, ..., 0, alpha / gamma)
-    v(1:n) = b(:, 1) - (b(1, 1) + alpha / gamma * b(n, 1)) / (1.0_dp + b(1, 2) + alpha / gamma * b(n, 2)) * b(:, 2)
-    v(n + 1) = v(1)
+    s = s - matmul(dba, rhs(:, 2:))                  ! Schur complement (ps, ps)
+    y = reshape(bc(na:z - 1) - matmul(dba, rhs(:, 1)), [ps, 1])
+    call dgesv(ps, 1, s, ps, ipiv, y, ps, info)
+    if (info /= 0) return
+    v(na + 1:z) = y(:, 1)
+    v(1:na) = rhs(:, 1) - matmul(rhs(:, 2:), y(:, 1))
+    v(z + 1) = v(1)
   end subroutine project_periodic
 
 end module rigid_obstacle

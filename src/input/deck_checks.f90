@@ -111,15 +111,45 @@ contains
   end subroutine check_adapt
 
   !> What PLANE axisymmetric cannot take: gravity off the axis (a load that
-  !> depends on the angle theta, not a solid of revolution's).  The bodies'
-  !> r >= 0 is checked with their meshes (scene).
+  !> depends on the angle theta, not a solid of revolution's), and a RIGID
+  !> moved or loaded across the axis or turned (FIX ux=/rz=, FORCE fx=/m=
+  !> other than 0: a solid of revolution moves along its axis only; the
+  !> scene holds u_x and theta at 0).  The bodies' r >= 0 is checked with
+  !> their meshes (scene).
   subroutine check_axisymmetric(s, deck)
     type(state_t), intent(inout) :: s
     type(deck_t), intent(in) :: deck
+    integer :: r, k
     if (deck%gravity_line > 0 .and. deck%gx /= 0.0_dp) &
       call report(s, deck%gravity_line, 'GRAVITY gx= ' // trim(format_number(deck%gx)) // ' across the axis in ' // &
                   'PLANE axisymmetric (line ' // int_to_str(deck%plane_line) // ') (gravity along the axis z ' // &
                   'expected: gx=0, gy=...)')
+    do r = 1, size(deck%rigids)
+      do k = 1, size(deck%rigids(r)%fixes)
+        call check_rigid_axial(deck%rigids(r)%fixes(k), 'FIX', ['ux', 'rz'], deck%rigids(r)%name)
+      end do
+      do k = 1, size(deck%rigids(r)%forces)
+        call check_rigid_axial(deck%rigids(r)%forces(k), 'FORCE', ['fx', 'm '], deck%rigids(r)%name)
+      end do
+    end do
+  contains
+    ! the statement's x and rotation components: absent or 0
+    subroutine check_rigid_axial(ld, what, keys, name)
+      type(rigid_load_t), intent(in) :: ld
+      character(len=*), intent(in) :: what, keys(2), name
+      character(len=:), allocatable :: along
+      integer :: j, c
+      along = 'uy='
+      if (what == 'FORCE') along = 'fy='
+      do j = 1, 2
+        c = merge(1, 3, j == 1)
+        if (ld%has(c) .and. ld%value(c) /= 0.0_dp) &
+          call report(s, ld%line, 'RIGID ' // quoted(name) // ' ' // what // ' ' // trim(keys(j)) // '=' // &
+            trim(format_number(ld%value(c))) // ' in PLANE axisymmetric (line ' // int_to_str(deck%plane_line) // &
+            ') (a RIGID of revolution moves along the axis only: ' // trim(keys(j)) // '=0 or absent, ' // along // &
+            ' along the axis)')
+      end do
+    end subroutine check_rigid_axial
   end subroutine check_axisymmetric
 
   !> BODYFORCE and GRAVITY ramps end at step STEPS at the latest (those of FIX

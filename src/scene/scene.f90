@@ -19,7 +19,8 @@
 !> body) and point_supports (FORCE and SPRING on a body).
 !>
 !> PLANE axisymmetric: the bodies' kernels on the full circle (body), every
-!> node at r >= 0 (check_radius), u_r = 0 on the axis (apply_axis).
+!> node at r >= 0 (check_radius), u_r = 0 on the axis (apply_axis), a
+!> RIGID's u_x and theta held (apply_rigid_motions).
 !>
 !> Thermal strains.  A body's alpha dT of step k is its THERMAL statements'
 !> value at load factor 1 times the factor of their group at k
@@ -41,7 +42,7 @@ module scene
   use strings, only: int_to_str, real_to_str
   use errors, only: diag_t, add_error, has_errors, error_t
   use deck_reader, only: deck_t, body_deck_t, LOAD_TRACTION, LOAD_PRESSURE, LOAD_POINT, rigid_deck_t
-  use mesh, only: mesh_t, is_quadratic, finalize_mesh, order_for_locality, node_in_file, &
+  use mesh, only: mesh_t, finalize_mesh, order_for_locality, node_in_file, &
                   locality_min_nodes
   use mesh_rect, only: make_rect_mesh
   use gmsh_reader, only: read_gmsh_file
@@ -116,7 +117,7 @@ contains
     if (allocated(err) .or. has_errors(diag)) return
     call order_meshes_for_locality(deck, sc%bodies)
     call number_body_dofs(sc%bodies, ndof, sc%nnode, sc%nelem)
-    call make_rigids(deck, ndof, sc%rigids, diag)
+    call make_rigids(deck, ndof, sc%rigids)
     sc%ndof = ndof
     allocate(sc%fixed(ndof), sc%ubar(ndof), sc%fix_owner(ndof), sc%fext(ndof))
     sc%fixed = .false.; sc%ubar = 0.0_dp; sc%fix_owner = 0; sc%fext = 0.0_dp
@@ -250,25 +251,17 @@ contains
   end subroutine number_body_dofs
 
   !> The RIGID obstacles: their shapes (make_rigid_shape) and three dofs each
-  !> (u_x, u_y, theta of the reference point) after the bodies'.  In PLANE
-  !> axisymmetric a RIGID is an error: rigid_obstacle's projection of the
-  !> exact gap carries no radial weight, and of the three motions only the
-  !> axial one is axisymmetric.
+  !> (u_x, u_y, theta of the reference point) after the bodies'.
   !>   deck   (in)    the deck
   !>   ndof   (inout) the dofs numbered so far; on exit with the RIGIDs'
   !>   rigids (out)   (nrigid) the shapes, dof0 set
-  !>   diag   (inout) RIGIDs in PLANE axisymmetric
-  subroutine make_rigids(deck, ndof, rigids, diag)
+  subroutine make_rigids(deck, ndof, rigids)
     type(deck_t), intent(in) :: deck
     integer, intent(inout) :: ndof
     type(rigid_shape_t), allocatable, intent(out) :: rigids(:)
-    type(diag_t), intent(inout) :: diag
     integer :: r
     allocate(rigids(size(deck%rigids)))
     do r = 1, size(deck%rigids)
-      if (deck%axisymmetric) &
-        call add_error(diag, deck%file, deck%rigids(r)%line, 'RIGID obstacles are not available in PLANE ' // &
-                       'axisymmetric (line ' // int_to_str(deck%plane_line) // ') (a meshed body as the master expected)')
       call make_rigid_shape(deck%rigids(r), rigids(r))
       rigids(r)%dof0 = ndof
       ndof = ndof + 3
@@ -313,8 +306,7 @@ contains
   !>   bodies (in)    the bodies, meshes finalized
   !>   rigids (in)    the RIGID shapes (make_rigids)
   !>   specs  (out)   (npair) the pairs
-  !>   diag   (inout) unknown boundaries, a boundary in contact with itself,
-  !>                  a RIGID against a quadratic mesh
+  !>   diag   (inout) unknown boundaries, a boundary in contact with itself
   subroutine make_pair_specs(deck, bodies, rigids, specs, diag)
     type(deck_t), intent(in) :: deck
     type(body_t), intent(in) :: bodies(:)
@@ -337,8 +329,6 @@ contains
         if (c%master_rigid > 0) then                   ! against a RIGID: its exact shape, no master mesh
           sp%rigid = c%master_rigid
           sp%shape = rigids(c%master_rigid)
-          if (is_quadratic(bodies(c%slave_body)%mesh)) call add_error(diag, deck%file, c%line, 'contact on ' // &
-            'quadratic elements is not available yet (P1/Q1 boundaries expected)')
           cycle
         end if
         sp%master_bnd = boundary_index(deck, c%line, bodies(c%master_body), c%master_boundary, 'CONTACT master', &
@@ -415,7 +405,9 @@ contains
 
   !> The dofs of each RIGID: the directions FIX names are prescribed (their
   !> values in the FIX's load group), the others free and loaded by FORCE (its
-  !> load group); no FIX and no FORCE: all three held at 0.
+  !> load group); no FIX and no FORCE: all three held at 0.  In PLANE
+  !> axisymmetric u_x and theta are held at 0 (a solid of revolution moves
+  !> along its axis only; deck_checks refuses a FIX or FORCE across it).
   !>   deck   (in)    the deck's RIGID blocks
   !>   rigids (in)    their shapes, dof0 (make_rigids)
   !>   lg     (inout) the load groups: ugroup and fgroup get the values and forces
@@ -430,6 +422,7 @@ contains
       associate (rd => deck%rigids(r))
         d = rigids(r)%dof0
         if (size(rd%fixes) == 0 .and. size(rd%forces) == 0) fixed(d + 1:d + 3) = .true.
+        if (deck%axisymmetric) fixed([d + 1, d + 3]) = .true.
         do i = 1, size(rd%fixes)
           g = ramp_group(lg, rd%fixes(i)%ramp, rd%fixes(i)%curve)
           do j = 1, 3

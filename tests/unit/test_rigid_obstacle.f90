@@ -4,11 +4,16 @@
 !> independent facts: exact on a distance that is linear along the slave (a
 !> tilted line), the constant gap of a circle about a concentric closed
 !> polygon reproduced by the periodic projection, the defining orthogonality
-!> int (pi d - d) psi_k = 0 on an open slave, the row's rigid terms.
+!> int (pi d - d) psi_k = 0 on an open slave, the row's rigid terms; on a
+!> quadratic trace in axisymmetry (weight 2 pi r): a linear distance
+!> reproduced with an end on the axis, the weights adding up to the annulus'
+!> area, and the orthogonality with the quadratic multiplier space; on a
+!> closed quadratic trace the periodic projection's orthogonality.
 program test_rigid_obstacle
   use kinds, only: dp
   use errors, only: error_t
   use mortar_operator, only: mortar_t
+  use trace_geometry, only: trace_point, trace_shape
   use rigid_obstacle, only: rigid_shape_t, shape_line, shape_circle, shape_polyline, signed_distance, orient_shape, &
                             build_rigid_mortar, rigid_terms
   use testing, only: check, check_close, check_small, finish_tests, tol_round
@@ -20,6 +25,9 @@ program test_rigid_obstacle
   call test_circle_periodic()
   call test_orthogonality()
   call test_terms()
+  call test_quadratic_axis()
+  call test_quadratic_orthogonality()
+  call test_quadratic_periodic()
   call finish_tests()
 
 contains
@@ -90,7 +98,7 @@ contains
     sh%pt = reshape([-1.0_dp, 0.1_dp, 2.0_dp, 0.4_dp], [2, 2])
     sh%length = 3.0_dp
     call orient_shape(sh, xs, nout)
-    call build_rigid_mortar(xs, nout, sh, mo, err)
+    call build_rigid_mortar(xs, 1, nout, sh, .false., mo, err)
     call check(.not. allocated(err), 'tilted line: built')
     do i = 1, 7
       call signed_distance(sh, xs(:, i), d, n)
@@ -125,7 +133,7 @@ contains
     sh%kind = shape_circle
     sh%radius = 1.1_dp
     sh%outside = .true.
-    call build_rigid_mortar(xs, nout, sh, mo, err)
+    call build_rigid_mortar(xs, 1, nout, sh, .false., mo, err)
     call check(.not. allocated(err), 'hole: built')
     ! by symmetry pi d is a constant c with c int phi_k = int phi_k d: c = mean of d
     lseg = norm2(xs(:, 2) - xs(:, 1))
@@ -161,7 +169,7 @@ contains
     sh%kind = shape_circle
     sh%centre = [0.1_dp, 1.2_dp]
     sh%radius = 1.0_dp
-    call build_rigid_mortar(xs, nout, sh, mo, err)
+    call build_rigid_mortar(xs, 1, nout, sh, .false., mo, err)
     call signed_distance(sh, xs(:, 1), d, n)
     call check_close(mo%gap0(1), d, tol_round(4), 'open: the end value is d(a1)')
     call signed_distance(sh, xs(:, ns), d, n)
@@ -200,5 +208,128 @@ contains
     call check_small(norm2(c - [0.6_dp, 0.8_dp, 0.6_dp * (-3.0_dp) + 0.8_dp * 2.0_dp]), tol_round(4), &
                      'terms: the motion of x along v per unit ux, uy, theta')
   end subroutine test_terms
+
+  !> A quadratic slave on r in [0, 1] (4 elements, uneven, the mid-side nodes
+  !> off the middles but on the axis element) under a tilted line, axisymmetric: pi_h d = d at every
+  !> node (d is linear along the trace, in the space whatever the weight),
+  !> the weights add up to int 2 pi r dr = pi, and the end on the axis has
+  !> the axis as its normal and a corner hat of no weight.
+  subroutine test_quadratic_axis()
+    type(rigid_shape_t) :: sh
+    type(mortar_t) :: mo
+    type(error_t), allocatable :: err
+    real(dp) :: xs(2, 9), nout(2, 4), d, n(2), pi
+    integer :: i
+    pi = acos(-1.0_dp)
+    xs(1, :) = [0.0_dp, 0.125_dp, 0.25_dp, 0.3_dp, 0.45_dp, 0.6_dp, 0.7_dp, 0.9_dp, 1.0_dp]
+    xs(2, :) = 0.0_dp
+    nout(1, :) = 0.0_dp
+    nout(2, :) = 1.0_dp
+    sh%kind = shape_line
+    sh%pt = reshape([-1.0_dp, 0.1_dp, 2.0_dp, 0.4_dp], [2, 2])
+    sh%length = 3.0_dp
+    call orient_shape(sh, xs(:, 1:9:2), nout)
+    call build_rigid_mortar(xs, 2, nout, sh, .true., mo, err)
+    call check(.not. allocated(err), 'quadratic axisymmetric: built')
+    do i = 1, 9
+      call signed_distance(sh, xs(:, i), d, n)
+      call check_close(mo%gap0(i), d, tol_round(64), 'quadratic axisymmetric: pi_h d = d at the nodes')
+    end do
+    call check_close(sum(mo%zone_weight), pi, tol_round(16), 'quadratic axisymmetric: the weights add up to pi')
+    call check(mo%axis_end(1) .and. .not. mo%axis_end(2), 'quadratic axisymmetric: the first end is on the axis')
+    call check_small(norm2(mo%normal(:, 1) - [0.0_dp, 1.0_dp]), tol_round(4), 'quadratic axisymmetric: axial normal')
+    call check_small(mo%zone_weight(1), tol_round(4), &
+                     'quadratic axisymmetric: the corner hat on the axis weighs 0 (int (1-s)(1-2s) s ds)')
+  end subroutine test_quadratic_axis
+
+  !> A quadratic slave on r in [0.5, 1.5] (4 elements) under a circle,
+  !> axisymmetric: the end values are d, and int (pi d - d) psi_k 2 pi r ds = 0
+  !> for the quadratic multiplier space (psi_1 = phi_0 + phi_1/2, psi_2 =
+  !> phi_1/2 + phi_2, psi_k = phi_k, psi_6 = phi_6 + phi_7/2, psi_7 = phi_7/2 +
+  !> phi_8), by a fine midpoint rule.
+  subroutine test_quadratic_orthogonality()
+    type(rigid_shape_t) :: sh
+    type(mortar_t) :: mo
+    type(error_t), allocatable :: err
+    integer, parameter :: nq = 4000
+    real(dp) :: xs(2, 9), nout(2, 4), d, n(2), s, x(2), dx(2), nn(3), pid, res(0:8), psi(7), w, pi
+    integer :: e, q, i
+    pi = acos(-1.0_dp)
+    xs(1, :) = [0.5_dp, 0.6_dp, 0.75_dp, 0.85_dp, 0.95_dp, 1.1_dp, 1.2_dp, 1.35_dp, 1.5_dp]
+    xs(2, :) = 0.0_dp
+    nout(1, :) = 0.0_dp
+    nout(2, :) = 1.0_dp
+    sh%kind = shape_circle
+    sh%centre = [0.8_dp, 1.2_dp]
+    sh%radius = 1.0_dp
+    call build_rigid_mortar(xs, 2, nout, sh, .true., mo, err)
+    call check(.not. allocated(err), 'quadratic orthogonality: built')
+    call signed_distance(sh, xs(:, 1), d, n)
+    call check_close(mo%gap0(1), d, tol_round(4), 'quadratic orthogonality: the end value is d(a1)')
+    res = 0.0_dp
+    do e = 1, 4
+      do q = 1, nq
+        s = (real(q, dp) - 0.5_dp) / nq
+        call trace_point(xs, 2, e, s, x, dx)
+        call trace_shape(2, s, nn)
+        call signed_distance(sh, x, d, n)
+        i = 2 * (e - 1)
+        pid = dot_product(nn, mo%gap0(i + 1:i + 3))
+        w = norm2(dx) / nq * 2 * pi * x(1)
+        res(i:i + 2) = res(i:i + 2) + (pid - d) * nn * w
+      end do
+    end do
+    psi = [res(0) + res(1) / 2, res(1) / 2 + res(2), res(3), res(4), res(5), res(6) + res(7) / 2, res(7) / 2 + res(8)]
+    ! the midpoint rule's error, h^2 / 24 of the second derivative's integral:
+    ! below 1e-9 here (|d''| <= 1 / 1.2, the line is 1.2 below the centre)
+    call check_small(maxval(abs(psi)), 1.0e-8_dp, 'quadratic orthogonality: int (pi d - d) psi_k 2 pi r = 0')
+  end subroutine test_quadratic_orthogonality
+
+  !> A closed quadratic trace, 12 elements with their nodes on the unit circle
+  !> (curved), off-centre inside a hole of radius 1.3: the periodic
+  !> projection satisfies int (pi d - d) phi_k = 0 for every node k (the
+  !> closed curve's multiplier space is the whole periodic trace space), by a
+  !> fine midpoint rule, and its last node repeats its first.
+  subroutine test_quadratic_periodic()
+    type(rigid_shape_t) :: sh
+    type(mortar_t) :: mo
+    type(error_t), allocatable :: err
+    integer, parameter :: m = 12, nq = 4000
+    real(dp) :: xs(2, 2 * m + 1), nout(2, m), t, s, x(2), dx(2), nn(3), d, n(2), res(0:2 * m), pi
+    integer :: i, e, q
+    pi = acos(-1.0_dp)
+    do i = 1, 2 * m + 1
+      t = pi * real(i - 1, dp) / m
+      xs(:, i) = [cos(t), sin(t)]
+    end do
+    xs(:, 2 * m + 1) = xs(:, 1)
+    do e = 1, m
+      t = pi * (2 * real(e, dp) - 1) / m
+      nout(:, e) = [cos(t), sin(t)]
+    end do
+    sh%kind = shape_circle
+    sh%centre = [0.1_dp, -0.05_dp]
+    sh%radius = 1.3_dp
+    sh%outside = .true.
+    call build_rigid_mortar(xs, 2, nout, sh, .false., mo, err)
+    call check(.not. allocated(err), 'quadratic periodic: built')
+    call check_close(mo%gap0(2 * m + 1), mo%gap0(1), tol_round(4), 'quadratic periodic: the last node is the first')
+    res = 0.0_dp
+    do e = 1, m
+      do q = 1, nq
+        s = (real(q, dp) - 0.5_dp) / nq
+        call trace_point(xs, 2, e, s, x, dx)
+        call trace_shape(2, s, nn)
+        call signed_distance(sh, x, d, n)
+        i = 2 * (e - 1)
+        res(i:i + 2) = res(i:i + 2) + (dot_product(nn, mo%gap0(i + 1:i + 3)) - d) * nn * norm2(dx) / nq
+      end do
+    end do
+    res(0) = res(0) + res(2 * m)
+    ! the midpoint rule's error on each integral, h^2 / 24 of the second
+    ! derivative's integral over an element (h = 1 / nq of an arc of pi / 6):
+    ! below 1e-9 here
+    call check_small(maxval(abs(res(0:2 * m - 1))), 1.0e-9_dp, 'quadratic periodic: int (pi d - d) phi_k = 0')
+  end subroutine test_quadratic_periodic
 
 end program test_rigid_obstacle
