@@ -23,6 +23,27 @@ module raviart_thomas
 
   real(dp), parameter :: pi = 3.14159265358979323846_dp
 
+  !> The Gauss-Legendre rules of 4, 5 and 6 points on 0..1, the ones the
+  !> reconstruction asks for (gauss_points' own Newton iteration, printed).
+  real(dp), parameter :: x4(4) = [ &
+    0.06943184420297371_dp, 0.33000947820757187_dp, 0.66999052179242813_dp, &
+    0.93056815579702623_dp]
+  real(dp), parameter :: w4(4) = [ &
+    0.17392742256872687_dp, 0.32607257743127305_dp, 0.32607257743127305_dp, &
+    0.17392742256872687_dp]
+  real(dp), parameter :: x5(5) = [ &
+    0.04691007703066802_dp, 0.23076534494715845_dp, 0.50000000000000000_dp, &
+    0.76923465505284150_dp, 0.95308992296933193_dp]
+  real(dp), parameter :: w5(5) = [ &
+    0.11846344252809450_dp, 0.23931433524968324_dp, 0.28444444444444444_dp, &
+    0.23931433524968324_dp, 0.11846344252809450_dp]
+  real(dp), parameter :: x6(6) = [ &
+    0.03376524289842397_dp, 0.16939530676686770_dp, 0.38069040695840151_dp, &
+    0.61930959304159849_dp, 0.83060469323313235_dp, 0.96623475710157603_dp]
+  real(dp), parameter :: w6(6) = [ &
+    0.08566224618958525_dp, 0.18038078652406930_dp, 0.23395696728634552_dp, &
+    0.23395696728634552_dp, 0.18038078652406930_dp, 0.08566224618958525_dp]
+
 contains
 
   !> The RT_m basis in monomials at x: (mu, 0), (0, mu) for the monomials
@@ -117,6 +138,20 @@ contains
     real(dp), intent(out) :: x(:), w(:)
     real(dp) :: z, p0, p1, p2, dp1
     integer :: i, k, it
+    select case (n)
+    case (4)
+      x(1:4) = x4
+      w(1:4) = w4
+      return
+    case (5)
+      x(1:5) = x5
+      w(1:5) = w5
+      return
+    case (6)
+      x(1:6) = x6
+      w(1:6) = w6
+      return
+    end select
     do i = 1, n
       z = cos(pi * (i - 0.25_dp) / (n + 0.5_dp))
       do it = 1, 100
