@@ -48,7 +48,7 @@ module stress_equilibration
   use elements, only: shape_at, stiffness_rule, corner_count, max_nen
   use error_estimate, only: point_stress, compliance
   use axisymmetric_elements, only: radial_weight
-  use lapack_interfaces, only: dsysv, dgesvd
+  use lapack_interfaces, only: dsysv
   use raviart_thomas, only: rt_basis, monomials, triangle_rule, gauss_points
   implicit none
   private
@@ -768,27 +768,35 @@ contains
     end do
   end function straight
 
-  !> kappa: the least eigenvalue of D in the orthonormal strain basis
-  !> (the shear's engineering strain times 1 / sqrt 2), D's singular values.
+  !> kappa: the least eigenvalue of D in the orthonormal strain basis (the
+  !> shear's engineering strain times 1 / sqrt 2): 1 / the largest of
+  !> T^-1 D^-1 T^-1, by the power method (D^-1 from error_estimate's
+  !> compliance; a 3 x 3 or 4 x 4 SPD matrix, whose largest eigenvalue the
+  !> iteration reaches from any start with a component along it).
   real(dp) function least_stiffness(bd, nc) result(kappa)
     type(body_t), intent(in) :: bd
     integer, intent(in) :: nc
-    real(dp) :: d(4, 4), s(4), uu(1, 1), vt(1, 1), work(64), tt(4)
-    integer :: info, i, j
+    real(dp) :: c(4, 4), v(4), tt(4), lambda
+    integer :: i, j, it
     tt = [1.0_dp, 1.0_dp, sqrt(2.0_dp), 1.0_dp]
-    if (nc == 4) then
-      d = bd%law%d4
-    else
-      d(1:3, 1:3) = bd%law%d
-    end if
+    c = 0
+    c(1:nc, 1:nc) = compliance(bd, nc)
     do j = 1, nc
       do i = 1, nc
-        d(i, j) = tt(i) * d(i, j) * tt(j)
+        c(i, j) = c(i, j) / (tt(i) * tt(j))
       end do
     end do
-    call dgesvd('N', 'N', nc, nc, d, 4, s, uu, 1, vt, 1, work, size(work), info)
+    v = [1.0_dp, 0.7_dp, 1.3_dp, 0.9_dp]
+    v(nc + 1:) = 0
+    lambda = 0
+    do it = 1, 500
+      v = matmul(c, v)
+      lambda = norm2(v)
+      if (.not. lambda > 0.0_dp) exit
+      v = v / lambda
+    end do
     kappa = 0
-    if (info == 0) kappa = s(nc)
+    if (lambda > 0.0_dp) kappa = 1 / lambda
   end function least_stiffness
 
 end module stress_equilibration
