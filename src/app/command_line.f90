@@ -291,7 +291,7 @@ contains
       '  STEPS n                           load steps (default 1); ramp=k0:k1: load 0 up to step k0,', &
       '                                    rising to 1 at k1 (default 0:n)', &
       '  CURVE name t0:v0 t1:v1 ...        load factor v against the step t, piecewise linear', &
-      '  ESTIMATE [on|off]                 the run''s own error estimate (default on)', &
+      '  ESTIMATE [on|off|bound]           the run''s own error estimate (default on; bound: guaranteed)', &
       '  ADAPT target=REL [quantity=energy|pressure] [max_steps=10] [max_dofs=2000000]', &
       '                                    solve, re-mesh every body with gmsh from the error', &
       '                                    indicators, solve again until the estimate <= target', &

@@ -27,6 +27,7 @@ module run_steps
   use contact_checks, only: check_contact_model
   use post_processing, only: take_solution, contact_measures, state_results
   use run_estimate, only: estimate_results
+  use energy_bound, only: bound_energy_error
   use results_writer, only: results_t
   use sparse_cholesky, only: factor_nnz, factor_memory, factor_ordering
   use contact_condensation, only: condensed_report
@@ -153,6 +154,7 @@ contains
     call lap(run%log, ph_output)                 ! the results computed so far: output, as before
     if (run%prob%deck%estimate) call enter_phase('estimating the error')
     call estimate_results(run%prob, run%res)
+    if (run%res%estimated .and. run%prob%deck%estimate_bound) call bound_energy_error(run%prob, run%res)
     if (run%res%estimated) call lap(run%log, ph_estimate)
   end subroutine estimate_error
 

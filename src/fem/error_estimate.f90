@@ -28,6 +28,7 @@
 !>                                         eta2(nelem) = eta_K^2 and energy2 = ||u_h||_E^2 of bd
 !>   point_stress(bd, e, xe, ue, xi, sig, dv, n, adt)   sigma_h at the reference point xi of element e,
 !>                                         the volume factor dV / (dxi) and the shape functions there
+!>   compliance(bd, nc)                    D^-1 (nc x nc) of the body's law
 !> u is the body's nodal displacement u(2, nnode) in x, y components; ncomp
 !> is 3 (sxx, syy, sxy) in the plane, 4 (srr, szz, srz, stt) in axisymmetry.
 module error_estimate
@@ -38,7 +39,7 @@ module error_estimate
   use lapack_interfaces, only: dpotrf, dpotri
   implicit none
   private
-  public :: recover_stress, energy_indicators, point_stress
+  public :: recover_stress, energy_indicators, point_stress, compliance
 
   !> The quadrature rule of each element size nen (3, 4, 6, 8, 9), made
   !> once per body rather than once per element.

@@ -43,7 +43,7 @@
 !>          [condense=auto|solve|inverse] [cut=auto|off] [updates=30]
 !>   STEPS n                             default 1; 1 <= n <= 100000
 !>   CURVE name t0:v0 t1:v1 ...          load factor v against the step t (t increasing)
-!>   ESTIMATE [on|off]                   default on
+!>   ESTIMATE [on|off|bound]             default on
 !>   ADAPT target= [quantity=energy|pressure] [max_steps=10] [max_dofs=2000000]
 !>   OUTPUT [vtk=NAME.vtk] [contact=NAME_contact.csv] [summary=NAME.summary] [fields=LIST] [steps=last|all]
 !>          [plot=none|png] [x=COLUMN]

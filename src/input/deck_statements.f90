@@ -122,7 +122,7 @@ contains
                        choice_key('ordering', 'auto|metis|amd'), choice_key('condense', 'auto|solve|inverse'), &
                        choice_key('cut', 'auto|off'), integer_key('updates', at_least=1)])
     call add_row(table, 'STEPS', '', do_steps, once=.true., usage='STEPS n with an integer 1 <= n <= 100000')
-    call add_row(table, 'ESTIMATE', '', do_estimate, once=.true., usage='ESTIMATE [on|off]')
+    call add_row(table, 'ESTIMATE', '', do_estimate, once=.true., usage='ESTIMATE [on|off|bound]')
     call add_row(table, 'ADAPT', '', do_adapt, once=.true., words=0, &
                  usage='ADAPT target=number [quantity=energy|pressure] [max_steps=N] [max_dofs=N]', &
                  keys=[real_key('target', required=.true., gt=zero, lt=1.0_dp, note=', a relative error'), &
@@ -378,8 +378,8 @@ contains
     s%steps_bad = s%nerr /= nerr0
   end subroutine do_steps
 
-  !> ESTIMATE [on|off]: the a posteriori error estimate of the run (on when
-  !> the deck does not say).
+  !> ESTIMATE [on|off|bound]: the a posteriori error estimate of the run (on
+  !> when the deck does not say); bound: on, and the guaranteed bound too.
   subroutine do_estimate(s, deck, st)
     type(state_t), intent(inout) :: s
     type(deck_t), intent(inout) :: deck
@@ -391,6 +391,9 @@ contains
         deck%estimate = .true.
       case ('off')
         deck%estimate = .false.
+      case ('bound')
+        deck%estimate = .true.
+        deck%estimate_bound = .true.
       case default
         call report(s, st%line, 'bad value ' // quoted(st%word(1)%s) // ' (expected ' // st%usage // ')')
       end select

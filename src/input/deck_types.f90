@@ -226,7 +226,8 @@ module deck_types
     type(curve_t), allocatable :: curves(:)     !< (ncurve) CURVE statements, always allocated
     integer :: steps = 1                        !< STEPS n: load steps, 1 <= n <= max_steps
     integer :: steps_line = 0                   !< line of the STEPS statement (0: none)
-    logical :: estimate = .true.                !< ESTIMATE [on|off]: the a posteriori error estimate
+    logical :: estimate = .true.                !< ESTIMATE [on|off|bound]: the a posteriori error estimate
+    logical :: estimate_bound = .false.         !< ESTIMATE bound: its guaranteed upper bound too
     integer :: estimate_line = 0                !< line of the ESTIMATE statement (0: none)
     type(adapt_deck_t) :: adapt                 !< ADAPT (adapt%on false when none)
     type(contact_deck_t), allocatable :: contacts(:)   !< (ncontact), always allocated

@@ -85,6 +85,7 @@ module results_writer
     type(string_t), allocatable :: warning(:)    !< (nwarn) 'CODE text' of each warning (run_report add_warning)
     logical :: estimated = .false.               !< the error was estimated (ESTIMATE, on by default)
     real(dp) :: estimate_energy = 0              !< estimated relative energy-norm error of u_h
+    real(dp) :: estimate_energy_bound = -1       !< its guaranteed upper bound (module energy_bound), -1: none
     real(dp), allocatable :: error_indicator(:)  !< (nelem) each element's share eta_K / ||u||_E of it:
                                                  !< the sum of their squares is estimate_energy^2
     real(dp), allocatable :: estimate_pressure(:) !< (npair) estimated relative L2 error of the contact
@@ -269,6 +270,7 @@ contains
     write(u, '(a,a)') 'energy ', exact_to_str(r%energy)
     if (r%estimated) then
       write(u, '(a,a)') 'estimate energy ', exact_to_str(r%estimate_energy)
+      if (r%estimate_energy_bound >= 0.0_dp) write(u, '(a,a)') 'estimate energy_bound ', exact_to_str(r%estimate_energy_bound)
       do k = 1, size(r%estimate_pressure)
         if (r%estimate_pressure(k) >= 0.0_dp) &
           write(u, '(a)') 'estimate pressure ' // pair_name(r, k) // ' ' // exact_to_str(r%estimate_pressure(k))
