@@ -15,20 +15,24 @@ from the previous one's solution.
 Formulation (why): K/mu = 1000 (nu = 0.4995): pure-displacement triangles
 lock.  A mixed u-p (perturbed Lagrangian) form of the same energy,
     Pi(u, p) = int mu/2 (J^(-2/3) I1 - 3) + p (J - 1) - p^2 / (2 K),
-whose stationary point with p = K (J - 1) is that of W; p is continuous P1,
-u is P2 (Taylor-Hood, DEGREE 2, stable) or P1 + cubic bubble (MINI,
-DEGREE 1, stable).  The first Piola stress mu J^(-2/3) (F - I1/3 F^-T)
+whose stationary point with p = K (J - 1) is that of W.  DEGREE 2: u P2,
+p continuous P1 (Taylor-Hood, inf-sup stable: the reference).  DEGREE 1:
+u P1, p P0 (not inf-sup stable, its pressure oscillates; GetFEM's cheapest
+series for cost comparisons only; MINI is stable but the nodal contact brick
+takes pure Lagrange fems only).  The first Piola stress mu J^(-2/3) (F - I1/3 F^-T)
 + p J F^-T is written in GetFEM's weak-form language; GetFEM derives the
 tangent (exact Newton).  Meshes: DEGREE 2 reads the second-order
 (curved-edge) gmsh mesh, DEGREE 1 the straight one.
 
-Contact: GetFEM's integral contact with a rigid obstacle
-(add_integral_contact_with_rigid_obstacle_brick, non-symmetric Alart-Curnier
-augmented Lagrangian, option 1), the obstacle a signed distance field
-Y_plate - y on the reference configuration, updated per step.  For a flat
-frictionless plate this gap (Y_plate - y - u_y) is exact at any sliding.
-The multiplier is P1 on the arc: the nominal contact stress (force per
-reference length).
+Contact: GetFEM's nodal contact with a rigid obstacle
+(add_nodal_contact_with_rigid_obstacle_brick, signed distance R - y,
+non-symmetric Alart-Curnier augmented Lagrangian, r = 3 ~ E), frictionless,
+on the arc's nodes.  The plate stays at y = R and the squeeze moves the
+y = 0 symmetry line up instead (the same solution up to a rigid
+translation).  For a flat plate the linearised gap R - y - u_y is exact at
+any sliding.  (The integral variant of the brick was left: its multiplier
+oscillates near the edge, and it reads the obstacle field at the deformed
+point, which leaves the mesh when the body moves up.)
 
 Newton: full GetFEM tangent, MUMPS, a hand-written loop so that every
 iteration's residual is printed; backtracking halves the step while the
@@ -62,7 +66,7 @@ TOL_RES, TOL_DU, MAX_IT = 1e-9, 1e-10 * D, 40
 RAUG = 3.0 * MU            # augmentation: about E (GetFEM's advice)
 
 
-def build(mesh_file, degree, contact="nodal"):
+def build(mesh_file, degree):
     """The model: mesh, fems, variables, bricks."""
     m = gf.Mesh("import", "gmsh", mesh_file)
     mfu = gf.MeshFem(m, 2)
@@ -75,10 +79,8 @@ def build(mesh_file, degree, contact="nodal"):
         mfp.set_classical_fem(1)
     else:
         mfp.set_classical_discontinuous_fem(0)
-    mfl = gf.MeshFem(m, 1)
+    mfl = gf.MeshFem(m, 1)                       # the symmetry conditions' multipliers
     mfl.set_classical_fem(1)
-    mfo = gf.MeshFem(m, 1)
-    mfo.set_classical_fem(1)
     mfj = gf.MeshFem(m, 1)                       # discontinuous: J at element nodes
     mfj.set_classical_discontinuous_fem(2)
     mim = gf.MeshIm(m, gf.Integ("IM_TRIANGLE(6)") if degree == 2 else gf.Integ("IM_TRIANGLE(4)"))
@@ -98,23 +100,16 @@ def build(mesh_file, degree, contact="nodal"):
     md.add_initialized_data("uyn", [0.0])
     mx = md.add_normal_Dirichlet_condition_with_multipliers(mim, "u", mfl, XSYM)
     my = md.add_normal_Dirichlet_condition_with_multipliers(mim, "u", mfl, YSYM, "uyn")
-    if contact == "nodal":
-        nn = len(mfu.basic_dof_on_region(ARC)) // 2
-        md.add_variable("lambda_n", nn)
-        md.add_initialized_data("r", [RAUG])
-        md.add_nodal_contact_with_rigid_obstacle_brick(mim, "u", "lambda_n", "r", ARC, f"{R!r}-y", 1)
-    else:
-        md.add_filtered_fem_variable("lambda_n", mfl, ARC)
-        md.add_initialized_fem_data("obstacle", mfo, mfo.eval(f"{R!r}-y"))
-        md.add_initialized_data("r", [RAUG])
-        md.add_integral_contact_with_rigid_obstacle_brick(mim, "u", "lambda_n", "obstacle", "r", ARC, 1)
-    return dict(contact=contact, m=m, mfj=mfj, mfu=mfu, mfp=mfp, mfl=mfl, mfo=mfo, mim=mim, md=md,
+    md.add_variable("lambda_n", len(mfu.basic_dof_on_region(ARC)) // 2)   # one nodal force per arc node
+    md.add_initialized_data("r", [RAUG])
+    md.add_nodal_contact_with_rigid_obstacle_brick(mim, "u", "lambda_n", "r", ARC, f"{R!r}-y", 1)
+    return dict(m=m, mfj=mfj, mfu=mfu, mfp=mfp, mim=mim, md=md,
                 multx=md.mult_varname_Dirichlet(mx), multy=md.mult_varname_Dirichlet(my))
 
 
 def newton(md, log):
     """Newton with backtracking; returns (iterations, residual history, converged)."""
-    hist = []
+    hist, dunorm = [], np.inf
     for it in range(MAX_IT + 1):
         md.assembly("build_all")
         rhs = md.rhs()
@@ -156,40 +151,23 @@ def _weights(sl, degree):
 
 
 def contact_profile(s, degree):
-    """Contact profile on the arc sorted from the top point: current x, nominal
-    and true pressure, and the gaps to the plate y = R of the arc's u nodes."""
-    md, mfu, m = s["md"], s["mfu"], s["m"]
+    """Contact profile on the arc sorted from the top point: current x,
+    nominal and true pressure (nodal force over the lumped weight on the
+    reference and on the current boundary), their ratio, and the gap to the
+    plate y = R.  lambda_n follows the arc's u nodes in dof order."""
+    md, mfu = s["md"], s["mfu"]
     u = md.variable("u")
     du = mfu.basic_dof_on_region(ARC)
-    Xu = mfu.basic_dof_nodes(du[::2])
-    gap_all = R - (Xu[1] + u[du[1::2]])
-    if s["contact"] == "nodal":
-        X = Xu
-        f = -md.variable("lambda_n")                    # nodal forces, compressive positive
-        order = np.argsort(np.arctan2(X[0], X[1]))
-        X, f = X[:, order], f[order]
-        xc = X[0] + u[du[::2]][order]
-        yc = X[1] + u[du[1::2]][order]
-        sref = R * np.arctan2(X[0], X[1])
-        scur = np.concatenate(([0.0], np.cumsum(np.hypot(np.diff(xc), np.diff(yc)))))
-        wref, wcur = _weights(sref, degree), _weights(scur, degree)
-        pnom, ptrue = f / wref, f / wcur
-        return xc, pnom, ptrue, wref / wcur, R - yc
-    mfl = s["mfl"]
-    dofs = mfl.basic_dof_on_region(ARC)
-    X = mfl.basic_dof_nodes(dofs)
-    lam_full = np.zeros(mfl.nbdof())
-    # The filtered variable's values follow the region's dofs in increasing order.
-    lam_full[np.sort(dofs)] = md.variable("lambda_n")
-    lam = -lam_full[dofs]                               # compressive positive
-    U = gf.compute_interpolate_on(mfu, u, X)
-    G = md.interpolation("Grad_u", X, m).reshape(2, 2, -1, order="F")
-    T = np.vstack((-X[1], X[0])) / np.hypot(X[0], X[1])  # arc's unit tangent
-    FT = np.einsum("ijn,jn->in", G, T) + T
-    stretch = np.hypot(FT[0], FT[1])
-    xc = X[0] + U[0]
-    order = np.argsort(xc)
-    return xc[order], lam[order], (lam / stretch)[order], stretch[order], gap_all
+    X = mfu.basic_dof_nodes(du[::2])
+    f = -md.variable("lambda_n")                        # nodal forces, compressive positive
+    order = np.argsort(np.arctan2(X[0], X[1]))
+    X, f = X[:, order], f[order]
+    xc = X[0] + u[du[::2]][order]
+    yc = X[1] + u[du[1::2]][order]
+    sref = R * np.arctan2(X[0], X[1])
+    scur = np.concatenate(([0.0], np.cumsum(np.hypot(np.diff(xc), np.diff(yc)))))
+    wref, wcur = _weights(sref, degree), _weights(scur, degree)
+    return xc, f / wref, f / wcur, wref / wcur, R - yc
 
 
 def half_width(xc, ptrue, gap, pmax):
@@ -215,7 +193,6 @@ def half_width(xc, ptrue, gap, pmax):
 def main():
     mesh_file, degree, out = sys.argv[1], int(sys.argv[2]), sys.argv[3]
     steps = [float(v) for v in sys.argv[4].split(",")] if len(sys.argv) > 4 and sys.argv[4] else list(STEPS)
-    contact = sys.argv[5] if len(sys.argv) > 5 else "nodal"
     gf.util("trace level", 0)
     lines = []
 
@@ -224,10 +201,10 @@ def main():
         lines.append("# " + msg)
 
     t0 = time.process_time()
-    s = build(mesh_file, degree, contact)
+    s = build(mesh_file, degree)
     md = s["md"]
     ndof = md.nbdof()
-    log(f"mesh {mesh_file} degree {degree} contact {contact} convexes {s['m'].nbcvs()} dofs {ndof} "
+    log(f"mesh {mesh_file} degree {degree} convexes {s['m'].nbcvs()} dofs {ndof} "
         f"(u {s['mfu'].nbdof()}, p {s['mfp'].nbdof()})  setup cpu {time.process_time() - t0:.2f} s")
     rows, ok_all = [], True
     for sq in steps:
