@@ -52,7 +52,10 @@ contains
     if (allocated(bd%axes)) call rotate_element_vector(bd, e, ue, .true.)     ! x, y components
     info = 0
     if (bd%finite) then
-      call finite_strain_response(nen, xe(:, 1:nen), ue(1:m), bd%rubber, bd%axisymmetric, bd%thick, fe(1:m), kl, info)
+      ! F-bar where the linear kernels take B-bar's mean dilatation (Q1 of a
+      ! nearly incompressible body); the quadratic elements go without it
+      call finite_strain_response(nen, xe(:, 1:nen), ue(1:m), bd%rubber, bd%axisymmetric, bd%thick, fe(1:m), kl, info, &
+                                  fbar=body_pressure_modes(bd, nen) == 1)
       if (info /= 0) return
     else
       if (bd%axisymmetric) then

@@ -552,8 +552,8 @@ contains
     ! nearly incompressible: the B-bar strain where the elements would lock
     ! (body, doc/theory.md "Nearly incompressible materials"); in plane
     ! stress the through-thickness strain takes up the change of volume
-    bd%bbar = .not. deck%plane_stress .and. deck%bodies(ib)%material%kind == 'isotropic' .and. &
-              deck%bodies(ib)%material%nu > locking_nu
+    if (.not. bd%finite) bd%bbar = .not. deck%plane_stress .and. deck%bodies(ib)%material%kind == 'isotropic' &
+                                   .and. deck%bodies(ib)%material%nu > locking_nu
     if (bd%axisymmetric .and. bd%mesh%nnode > 0) call check_radius(deck, deck%bodies(ib), bd, diag)
   end subroutine make_body
 
@@ -571,6 +571,7 @@ contains
     call make_hyperelastic(mt%c10, mt%c01, mt%bulk, bd%rubber)
     call initial_moduli(bd%rubber, e, nu)
     call make_isotropic(e, nu, deck%plane_stress, bd%law)
+    bd%bbar = nu > locking_nu             ! F-bar on its Q1 (finite_strain_assembly)
     call add_error(diag, deck%file, mt%line, 'MATERIAL ' // mt%kind // ': bodies in finite strain are not ' // &
                    'solved yet (expected a linear law; the small-strain limit of this one is MATERIAL isotropic E=' // &
                    trim(format_number(e)) // ' nu=' // trim(format_number(nu)) // ')')

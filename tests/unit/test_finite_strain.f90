@@ -19,7 +19,7 @@ program test_finite_strain
   use hyperelastic, only: hyperelastic_t, make_hyperelastic, strain_energy, first_piola, second_piola, &
                           cauchy_stress, largest_stretch, reduced_index, initial_moduli
   use finite_strain_elements, only: finite_strain_response, finite_strain_energy, finite_strain_state
-  use elements, only: reference_node
+  use elements, only: reference_node, shape_at
   use testing, only: check, check_close, check_small, finish_tests, tol_round
   implicit none
   real(dp), parameter :: fd_tol = 1.0e-7_dp, h = 1.0e-5_dp
@@ -38,11 +38,17 @@ program test_finite_strain
   call check_objectivity(mooney)
   call check_moduli()
   do kind_index = 1, size(kinds)
-    call check_element(kinds(kind_index), .false.)
-    call check_element(kinds(kind_index), .true.)
+    call check_element(kinds(kind_index), .false., .false.)
+    call check_element(kinds(kind_index), .true., .false.)
   end do
-  call check_patch(.false.)
-  call check_patch(.true.)
+  call check_element(4, .false., .true.)
+  call check_element(4, .true., .true.)
+  call check_element(9, .false., .true.)
+  call check_patch(.false., .false.)
+  call check_patch(.true., .false.)
+  call check_patch(.false., .true.)
+  call check_patch(.true., .true.)
+  call check_fbar_volume()
   call check_inverted()
   call finish_tests()
 
@@ -148,30 +154,31 @@ contains
   end subroutine distorted_element
 
   !> f_int against the differences of the energy, K against those of f_int.
-  subroutine check_element(nen, axisymmetric)
+  subroutine check_element(nen, axisymmetric, fbar)
     integer, intent(in) :: nen
-    logical, intent(in) :: axisymmetric
+    logical, intent(in) :: axisymmetric, fbar
     real(dp) :: xe(2, nen), ue(2 * nen), up(2 * nen), um(2 * nen), fe(2 * nen), fp(2 * nen), fm(2 * nen)
     real(dp) :: ke(2 * nen, 2 * nen), kd(2 * nen, 2 * nen), gd(2 * nen), ep, em
     integer :: j, info, i1, i2
     character(len=40) :: what
-    write(what, '(a, i0, a)') 'element ', nen, merge(' axisymmetric', ' plane strain', axisymmetric)
+    write(what, '(a, i0, a, a)') 'element ', nen, merge(' axisymmetric', ' plane strain', axisymmetric), &
+      merge(' F-bar', '      ', fbar)
     call distorted_element(nen, xe)
     do j = 1, nen                                    ! a smooth large deformation plus a ripple
       ue(2 * j - 1) = 0.2_dp * xe(2, j) - 0.1_dp * (xe(1, j) - 1.5_dp) + 0.02_dp * sin(3.0_dp * j)
       ue(2 * j) = -0.25_dp * (xe(2, j) - 0.3_dp) + 0.1_dp * (xe(1, j) - 1.5_dp)**2 + 0.02_dp * cos(2.0_dp * j)
     end do
-    call finite_strain_response(nen, xe, ue, mooney, axisymmetric, 1.0_dp, fe, ke, info)
+    call finite_strain_response(nen, xe, ue, mooney, axisymmetric, 1.0_dp, fe, ke, info, fbar)
     call check(info == 0, trim(what) // ': no inverted point')
     do j = 1, 2 * nen
       up = ue; um = ue
       up(j) = up(j) + h
       um(j) = um(j) - h
-      call finite_strain_energy(nen, xe, up, mooney, axisymmetric, 1.0_dp, ep, i1)
-      call finite_strain_energy(nen, xe, um, mooney, axisymmetric, 1.0_dp, em, i2)
+      call finite_strain_energy(nen, xe, up, mooney, axisymmetric, 1.0_dp, ep, i1, fbar)
+      call finite_strain_energy(nen, xe, um, mooney, axisymmetric, 1.0_dp, em, i2, fbar)
       gd(j) = (ep - em) / (2 * h)
-      call finite_strain_response(nen, xe, up, mooney, axisymmetric, 1.0_dp, fp, info=i1)
-      call finite_strain_response(nen, xe, um, mooney, axisymmetric, 1.0_dp, fm, info=i2)
+      call finite_strain_response(nen, xe, up, mooney, axisymmetric, 1.0_dp, fp, info=i1, fbar=fbar)
+      call finite_strain_response(nen, xe, um, mooney, axisymmetric, 1.0_dp, fm, info=i2, fbar=fbar)
       kd(:, j) = (fp - fm) / (2 * h)
     end do
     call check_small(maxval(abs(fe - gd)) / maxval(abs(fe)), fd_tol, trim(what) // ': f_int = dE/du')
@@ -186,12 +193,13 @@ contains
   !> Every point has the same P: no force on the interior node, and the
   !> forces on the right edge (X = 2) add up to P11 and P21 times its length
   !> (times 2 pi R in axisymmetry).
-  subroutine check_patch(axisymmetric)
-    logical, intent(in) :: axisymmetric
+  subroutine check_patch(axisymmetric, fbar)
+    logical, intent(in) :: axisymmetric, fbar
     real(dp) :: x(2, 9), u(18), fsum(18), xe(2, 4), ue(8), fe(8), f0(3, 3), p5(5), a5(5, 5), sig4(4), jac, lam
     integer :: conn(4, 4), e, a, info, ierr
     character(len=20) :: what
     what = merge('axisymmetric', 'plane strain', axisymmetric)
+    if (fbar) what = trim(what) // ' F-bar'
     x = reshape([1.0_dp, 0.0_dp, 1.5_dp, 0.0_dp, 2.0_dp, 0.0_dp, 1.0_dp, 0.5_dp, 1.58_dp, 0.43_dp, 2.0_dp, 0.5_dp, &
                  1.0_dp, 1.0_dp, 1.5_dp, 1.0_dp, 2.0_dp, 1.0_dp], [2, 9])
     conn = reshape([1, 2, 5, 4, 2, 3, 6, 5, 4, 5, 8, 7, 5, 6, 9, 8], [4, 4])
@@ -211,7 +219,7 @@ contains
       do a = 1, 4
         ue(2 * a - 1:2 * a) = u(2 * conn(a, e) - 1:2 * conn(a, e))
       end do
-      call finite_strain_response(4, xe, ue, mooney, axisymmetric, 1.0_dp, fe, info=info)
+      call finite_strain_response(4, xe, ue, mooney, axisymmetric, 1.0_dp, fe, info=info, fbar=fbar)
       ierr = max(ierr, info)
       do a = 1, 4
         fsum(2 * conn(a, e) - 1:2 * conn(a, e)) = fsum(2 * conn(a, e) - 1:2 * conn(a, e)) + fe(2 * a - 1:2 * a)
@@ -235,6 +243,49 @@ contains
     call check_close(jac, f0(1, 1) * f0(2, 2) * f0(3, 3) - f0(1, 2) * f0(2, 1) * f0(3, 3), tol_round(16), &
                      'patch ' // trim(what) // ': J of the state')
   end subroutine check_patch
+
+  !> F-bar on a Q1 under a non-homogeneous field: the element energy with
+  !> F-bar equals the one of the same law at every point's F scaled to the
+  !> centre's J (computed here from the definition, plane strain: in-plane
+  !> block times (J0/J)^(1/2)); and a field whose J varies differs from the
+  !> plain energy (F-bar is not a no-op).
+  subroutine check_fbar_volume()
+    real(dp) :: xe(2, 4), ue(8), e_bar, e_plain, e_ref, xi(2, 4), detj, f(3, 3), f0(3, 3), jr
+    integer :: info, q, a
+    xe = reshape([0.0_dp, 0.0_dp, 1.2_dp, 0.1_dp, 1.1_dp, 0.9_dp, -0.1_dp, 1.0_dp], [2, 4])
+    do a = 1, 4
+      ue(2 * a - 1) = 0.1_dp * xe(1, a) * xe(2, a)
+      ue(2 * a) = -0.15_dp * xe(2, a) + 0.05_dp * xe(1, a)
+    end do
+    call finite_strain_energy(4, xe, ue, neo, .false., 1.0_dp, e_bar, info, .true.)
+    call finite_strain_energy(4, xe, ue, neo, .false., 1.0_dp, e_plain, info)
+    f0 = q1_gradient(xe, ue, [0.0_dp, 0.0_dp], detj)
+    xi = reshape([-1.0_dp, -1.0_dp, 1.0_dp, -1.0_dp, -1.0_dp, 1.0_dp, 1.0_dp, 1.0_dp], [2, 4]) / sqrt(3.0_dp)
+    e_ref = 0.0_dp
+    do q = 1, 4
+      f = q1_gradient(xe, ue, xi(:, q), detj)
+      jr = (f0(1, 1) * f0(2, 2) - f0(1, 2) * f0(2, 1)) / (f(1, 1) * f(2, 2) - f(1, 2) * f(2, 1))
+      f(1:2, 1:2) = sqrt(jr) * f(1:2, 1:2)
+      e_ref = e_ref + strain_energy(neo, f) * detj
+    end do
+    call check_close(e_bar, e_ref, tol_round(256), 'F-bar Q1: the energy of F scaled to the centre''s J')
+    call check(abs(e_bar - e_plain) > 1.0e-6_dp * abs(e_plain), 'F-bar Q1: differs from the plain energy when J varies')
+  end subroutine check_fbar_volume
+
+  !> F of a plane-strain Q1 at reference point p, and det J of its map there.
+  function q1_gradient(xe, ue, p, detj) result(g)
+    real(dp), intent(in) :: xe(2, 4), ue(8), p(2)
+    real(dp), intent(out) :: detj
+    real(dp) :: g(3, 3), n(4), dndx(2, 4)
+    integer :: b
+    call shape_at(4, xe, p, n, dndx, detj)
+    g = 0.0_dp
+    g(1, 1) = 1.0_dp; g(2, 2) = 1.0_dp; g(3, 3) = 1.0_dp
+    do b = 1, 4
+      g(1, 1:2) = g(1, 1:2) + ue(2 * b - 1) * dndx(:, b)
+      g(2, 1:2) = g(2, 1:2) + ue(2 * b) * dndx(:, b)
+    end do
+  end function q1_gradient
 
   !> An element turned inside out: info names the point, no NaN.
   subroutine check_inverted()
