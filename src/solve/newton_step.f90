@@ -33,14 +33,26 @@
 !> body it becomes a pressure whose initial-stress stiffness makes the next
 !> tangent indefinite (not factorizable) when the increment is too large.
 !>
-!> Contact is not part of this iteration yet: the scene's hyperelastic bodies
-!> are held by FIX statements and loads alone.
+!> Contact (optional argument specs: the CONTACT pairs, frictionless, each
+!> followed as a sliding=finite pair).  Every iterate rebuilds the rows B and
+!> the gaps g(u) of the current configuration (moved_contact) and solves its
+!> contact problem on the condensed tangent, W = B_f K^-1 B_f', by Lemke's
+!> method (contact_correction): the linear runs' machinery, on the iterate.
+!> Why an LCP per iterate rather than a semismooth Newton on the whole
+!> system: the tangent's factor is there already, the contact rows are few
+!> (a boundary's nodes), and Lemke gives the iterate's exact active set, so
+!> the outer iteration is Newton's on a fixed set near the end (quadratic);
+!> no measured comparison with a semismooth Newton has been made.  The
+!> residual then counts the contact forces -B' lambda; converged also asks
+!> the last correction below tol of the displacement (the gaps of the
+!> linearization are then the true ones to its square), and the result
+!> gives the least linearized gap and the complementarity of the last LCP.
 !>
 !> Programming interface
 !>   type(newton_options_t)   tol, maxit, max_halvings, max_cuts
 !>   type(newton_result_t)    converged, iterations, residual, bad element, reason
-!>   solve_newton_step(bodies, eq, nfree, k, f, ubar, opts, u, res, err)
-!>   solve_newton_increment(bodies, eq, nfree, k, f0, f1, ubar0, ubar1, opts, u, res, err)
+!>   solve_newton_step(bodies, eq, nfree, k, f, ubar, opts, u, res, err [, specs])
+!>   solve_newton_increment(bodies, eq, nfree, k, f0, f1, ubar0, ubar1, opts, u, res, err [, specs])
 !>        from the loads (f0, ubar0) at u to (f1, ubar1), halving what fails
 module newton_step
   use kinds, only: dp
@@ -48,6 +60,10 @@ module newton_step
   use strings, only: int_to_str, real_to_str
   use body, only: body_t
   use finite_strain_assembly, only: assemble_tangent, internal_force_vector
+  use contact_set, only: contact_set_t, pair_spec_t
+  use moved_contact, only: build_moved_contact_set
+  use lcp_scaling, only: lcp_options_t, lcp_report_t
+  use lcp_lemke, only: solve_lcp_lemke
   use sparse_matrix, only: csc_t
   use sparse_cholesky, only: factor_t, factorize, solve_vector, free_factor
   implicit none
@@ -70,6 +86,9 @@ module newton_step
     character(len=:), allocatable :: reason   !< why it did not converge ('' when it did)
     integer :: cuts = 0                       !< solve_newton_increment: halvings made
     integer :: substeps = 0                   !< solve_newton_increment: sub-increments solved
+    real(dp), allocatable :: fcon(:)          !< (ndof) contact forces on the bodies, -B' lambda (contact)
+    real(dp) :: gap = 0.0_dp                  !< contact: the least linearized gap after the last iterate
+    real(dp) :: complementarity = 0.0_dp      !< contact: max lambda_i gap_i / (max lambda size), a length
     character(len=:), allocatable :: notes    !< solve_newton_increment: one line per halving
   end type newton_result_t
 
@@ -86,8 +105,10 @@ contains
   !>                  (when not converged: the last iterate with J > 0)
   !>   res    (out)   the outcome
   !>   err    (out)   an allocation or factorization failure other than a non
-  !>                  positive definite tangent (that one is res%reason)
-  subroutine solve_newton_step(bodies, eq, nfree, k, f, ubar, opts, u, res, err)
+  !>                  positive definite tangent (that one is res%reason), or the
+  !>                  contact rows' failure (build_moved_contact_set)
+  !>   specs  (in, optional) (npair) frictionless CONTACT pairs to follow (module header)
+  subroutine solve_newton_step(bodies, eq, nfree, k, f, ubar, opts, u, res, err, specs)
     type(body_t), intent(in) :: bodies(:)
     integer, intent(in) :: eq(:), nfree
     type(csc_t), intent(inout) :: k
@@ -96,14 +117,18 @@ contains
     real(dp), intent(inout) :: u(:)
     type(newton_result_t), intent(out) :: res
     type(error_t), allocatable, intent(out) :: err
+    type(pair_spec_t), intent(in), optional :: specs(:)
     type(factor_t) :: fac
     type(error_t), allocatable :: ferr
-    real(dp), allocatable :: dubar(:), rhs(:), du_f(:), du(:), trial(:), fint(:)
-    real(dp) :: merit, merit_trial, best, alpha
+    real(dp), allocatable :: dubar(:), rhs(:), du_f(:), du(:), trial(:), fint(:), u_best(:)
+    real(dp) :: merit, merit_trial, best, alpha, step
     integer :: it, i, h, bad(2)
-    logical :: reached, analyzed, accepted
+    logical :: reached, analyzed, accepted, with_contact
 
     allocate(dubar(size(u)), rhs(nfree), du_f(nfree), du(size(u)), trial(size(u)), fint(size(u)))
+    allocate(res%fcon(size(u)), source=0.0_dp)
+    with_contact = present(specs)
+    if (with_contact) with_contact = size(specs) > 0
     allocate(res%history(0))
     res%reason = ''
     analyzed = .false.
@@ -114,8 +139,9 @@ contains
       return
     end if
     res%history = [merit]
+    step = huge(1.0_dp)
     do it = 1, opts%maxit
-      if (reached .and. merit <= opts%tol) exit
+      if (reached .and. merit <= opts%tol .and. (.not. with_contact .or. step <= opts%tol)) exit
       ! the Newton system at u
       dubar = 0.0_dp
       do i = 1, size(u)
@@ -145,6 +171,15 @@ contains
       do i = 1, size(u)
         if (eq(i) > 0) du(i) = du_f(eq(i))
       end do
+      if (with_contact) then
+        call contact_correction(specs, fac, du, res, err)
+        if (allocated(err)) return
+        if (len(res%reason) > 0) exit
+        ! the step's size against the displacement's: the linearized gaps are
+        ! the true ones to its square
+        step = maxval(abs(du)) / max(maxval(abs(u + du)), tiny(1.0_dp))
+        call measure(u, merit, reached, bad)          ! the residual with this iterate's contact forces
+      end if
       res%iterations = it
       ! backtracking: J > 0 always; the Armijo decrease once ubar is reached
       alpha = 1.0_dp
@@ -159,6 +194,7 @@ contains
             accepted = .true.
             exit
           end if
+          if (merit_trial < best) u_best = trial
           best = min(best, merit_trial)
         else
           res%bad = bad
@@ -170,9 +206,7 @@ contains
           res%reason = 'every trial of the line search turns an element inside out (J <= 0)'
           exit
         end if
-        ! no decrease found: take the full step if it keeps J > 0, else the last with J > 0
-        alpha = 2.0_dp**(-opts%max_halvings)
-        trial = u + alpha * du
+        trial = u_best                                 ! no decrease found: the least residual with J > 0
         call measure(trial, merit_trial, reached, bad)
       end if
       res%bad = 0
@@ -182,6 +216,7 @@ contains
     end do
     res%residual = merit
     res%converged = reached .and. merit <= opts%tol .and. len(res%reason) == 0
+    if (with_contact) res%converged = res%converged .and. step <= opts%tol
     if (.not. res%converged .and. len(res%reason) == 0) res%reason = 'no convergence in the iterations allowed'
     res%reason = trim(res%reason)
     if (analyzed) call free_factor(fac)
@@ -203,14 +238,79 @@ contains
       at_target = .true.
       do j = 1, size(v)
         if (eq(j) > 0) then
-          rf = rf + (f(j) - fint(j))**2
+          rf = rf + (f(j) + res%fcon(j) - fint(j))**2
         else
           at_target = at_target .and. ubar(j) == v(j)
         end if
       end do
-      scale = max(norm2(f), norm2(fint), tiny(1.0_dp))
+      scale = max(norm2(f), norm2(fint), norm2(res%fcon), tiny(1.0_dp))
       rel = sqrt(rf) / scale
     end subroutine measure
+
+  !> The contact problem of one Newton iterate (frictionless): the rows B and
+  !> gaps g(u) of the current configuration (build_moved_contact_set, as a
+  !> finite-sliding pair rebuilds them), the iterate's displacement du0 (the
+  !> tangent's solve without contact) corrected by the contact forces -B' lambda:
+  !>     du_f = du0_f - K^-1 B_f' lambda,
+  !>     0 <= lambda  _|_  g(u) - B du = q + W lambda >= 0,
+  !>     W = B_f K^-1 B_f',  q = g(u) - B du0,
+  !> solved by Lemke's method (the LCP machinery of the linear runs, on the
+  !> condensed tangent).  res%fcon = -B' lambda (all dofs), res%gap and
+  !> res%complementarity of the solution; res%reason when the LCP is not solved.
+  !>   specs (in) the pairs;  fac (in) the tangent's factor
+  !>   du    (inout) (ndof) du0 on entry (dubar on the fixed dofs), du on exit
+  subroutine contact_correction(specs, fac, du, res, err)
+    type(pair_spec_t), intent(in) :: specs(:)
+    type(factor_t), intent(in) :: fac
+    real(dp), intent(inout) :: du(:)
+    type(newton_result_t), intent(inout) :: res
+    type(error_t), allocatable, intent(out) :: err
+    type(contact_set_t) :: cs
+    type(lcp_options_t) :: lopts
+    type(lcp_report_t) :: lrep
+    real(dp), allocatable :: c(:,:), y(:,:), w(:,:), q(:), lam(:), gu(:), gap(:)
+    integer :: i, p, d, nrow
+    call build_moved_contact_set(bodies, specs, u, cs, err)
+    if (allocated(err)) return
+    nrow = cs%nrow
+    res%fcon = 0.0_dp
+    res%gap = 0.0_dp
+    res%complementarity = 0.0_dp
+    if (nrow == 0) return
+    allocate(c(nfree, nrow), y(nfree, nrow), gu(nrow), q(nrow), lam(nrow))
+    c = 0.0_dp
+    gu = cs%g(1:nrow)
+    q = 0.0_dp
+    do i = 1, nrow
+      do p = cs%bptr(i), cs%bptr(i + 1) - 1
+        d = cs%cdof(cs%bcol(p))
+        gu(i) = gu(i) - cs%bval(p) * u(d)              ! g(u) = g - B u (the rows' form B v <= g)
+        q(i) = q(i) - cs%bval(p) * du(d)
+        if (eq(d) > 0) c(eq(d), i) = c(eq(d), i) + cs%bval(p)
+      end do
+      call solve_vector(fac, c(:, i), y(:, i), err)
+      if (allocated(err)) return
+    end do
+    q = q + gu
+    w = matmul(transpose(c), y)
+    call solve_lcp_lemke(w, q, lam, lopts, lrep)
+    if (lrep%info /= 0) then
+      res%reason = 'the contact problem of a Newton iterate is not solved (' // lrep%message // ')'
+      return
+    end if
+    do i = 1, size(du)                                 ! du_f -= K^-1 B_f' lambda
+      if (eq(i) > 0) du(i) = du(i) - dot_product(y(eq(i), :), lam)
+    end do
+    do i = 1, nrow                                     ! f_c = -B' lambda
+      do p = cs%bptr(i), cs%bptr(i + 1) - 1
+        d = cs%cdof(cs%bcol(p))
+        res%fcon(d) = res%fcon(d) - cs%bval(p) * lam(i)
+      end do
+    end do
+    gap = q + matmul(w, lam)
+    res%gap = minval(gap)
+    res%complementarity = maxval(abs(lam * gap)) / max(maxval(abs(lam)), tiny(1.0_dp))
+  end subroutine contact_correction
   end subroutine solve_newton_step
 
   !> A load step from (f0, ubar0) to (f1, ubar1) with cut-back (module header).
@@ -221,7 +321,7 @@ contains
   !>                last residual, cuts, substeps, notes; reason and bad of the
   !>                failure that ended it
   !>   other arguments as solve_newton_step
-  subroutine solve_newton_increment(bodies, eq, nfree, k, f0, f1, ubar0, ubar1, opts, u, res, err)
+  subroutine solve_newton_increment(bodies, eq, nfree, k, f0, f1, ubar0, ubar1, opts, u, res, err, specs)
     type(body_t), intent(in) :: bodies(:)
     integer, intent(in) :: eq(:), nfree
     type(csc_t), intent(inout) :: k
@@ -230,6 +330,7 @@ contains
     real(dp), intent(inout) :: u(:)
     type(newton_result_t), intent(out) :: res
     type(error_t), allocatable, intent(out) :: err
+    type(pair_spec_t), intent(in), optional :: specs(:)
     type(newton_result_t) :: sub
     real(dp), allocatable :: u_start(:)
     real(dp) :: t, dt, t1
@@ -244,13 +345,16 @@ contains
       t1 = min(full, t + dt)
       u_start = u
       call solve_newton_step(bodies, eq, nfree, k, (1 - t1) * f0 + t1 * f1, (1 - t1) * ubar0 + t1 * ubar1, opts, &
-                             u, sub, err)
+                             u, sub, err, specs)
       if (allocated(err)) return
       res%iterations = res%iterations + sub%iterations
       res%residual = sub%residual
       if (sub%converged) then
         res%substeps = res%substeps + 1
         res%history = [res%history, sub%history]
+        res%fcon = sub%fcon
+        res%gap = sub%gap
+        res%complementarity = sub%complementarity
         t = t1
         dt = min(2 * dt, full)                       ! the next sub-increment may be larger again
         cycle

@@ -24,7 +24,12 @@
 !>     Timoshenko's deflection, with and without F-bar;
 !>   - Newton's quadratic convergence: the residual's last ratios r_k+1 / r_k^2
 !>     bounded while r falls (the tangent is consistent);
-!>   - a squeeze that inverts the elements fails the step, naming an element.
+!>   - a squeeze that inverts the elements fails the step, naming an element;
+!>   - contact: the block squeezed 20 % by a RIGID plate (a line) in
+!>     frictionless contact, the contact of each Newton iterate solved as an
+!>     LCP on the condensed tangent: the plate force of the closed form;
+!>   - axisymmetric: a thick tube R in [1, 2], Z in [0, 1] squeezed 20 %
+!>     axially between frictionless plates (check_axisymmetric_ring derives it).
 program test_newton_step
   use kinds, only: dp
   use errors, only: error_t, diag_t
@@ -36,6 +41,8 @@ program test_newton_step
   use sparse_matrix, only: csc_t
   use finite_strain_assembly, only: assemble_tangent, internal_force_vector
   use newton_step, only: newton_options_t, newton_result_t, solve_newton_increment
+  use contact_set, only: pair_spec_t
+  use rigid_obstacle, only: shape_line
   use testing, only: check, check_close, check_small, finish_tests
   implicit none
 
@@ -50,6 +57,9 @@ program test_newton_step
   call check_small_squeeze(10.0_dp)
   call check_inversion()
   call check_locking()
+  call check_axisymmetric_ring()
+  call check_rigid_plate(10.0_dp)
+  call check_rigid_plate(1000.0_dp)
   call finish_tests()
 
 contains
@@ -346,6 +356,152 @@ contains
     call check(tip(2) < 0.5_dp * exact, 'locking: Q1 without F-bar locks (tip deflection below half)')
     print '(a, f9.5, a, f9.5, a, f9.5)', '  cantilever tip: F-bar ', tip(1), ' plain ', tip(2), ' Timoshenko ', exact
   end subroutine check_locking
+
+  !> The tube R in [1, 2], Z in [0, 1], neo-Hookean mu = 1, K = 1000 (Q1 4 x 4,
+  !> F-bar), squeezed 20 % along z between frictionless plates, free in r.  The
+  !> deformation is homogeneous, u_r = (l - 1) R: F = diag(l, lz, l) (the hoop
+  !> stretch r / R = l too), lz = 0.8, J = l^2 lz, I1 = 2 l^2 + lz^2; sigma_rr =
+  !> mu J^-5/3 (l^2 - I1/3) + K (J - 1) = 0 on the free faces gives l (bisection),
+  !> and the full-circle plate force is -sigma_zz pi (2^2 - 1^2) l^2, the
+  !> current annulus' area.
+  subroutine check_axisymmetric_ring()
+    type(body_t) :: bodies(1)
+    type(error_t), allocatable :: err
+    type(diag_t) :: diag
+    type(newton_result_t) :: res
+    type(newton_options_t) :: opts
+    logical, allocatable :: fixed(:)
+    real(dp), allocatable :: u(:), f(:), ubar(:), fint(:)
+    integer, allocatable :: eq(:)
+    type(csc_t) :: k
+    real(dp) :: e, nu, lo, hi, l, exact, force
+    integer :: a, nfree, it, bad(2)
+    real(dp), parameter :: lz = 0.8_dp, pi = acos(-1.0_dp)
+    call make_rect_mesh(1.0_dp, 0.0_dp, 2.0_dp, 1.0_dp, 4, 4, 'quad4', 'right', bodies(1)%mesh, err)
+    call finalize_mesh(bodies(1)%mesh, 'tube', diag)
+    call make_hyperelastic(0.5_dp, 0.0_dp, 1000.0_dp, bodies(1)%rubber)
+    call initial_moduli(bodies(1)%rubber, e, nu)
+    call make_isotropic(e, nu, .false., bodies(1)%law)
+    bodies(1)%finite = .true.
+    bodies(1)%axisymmetric = .true.
+    bodies(1)%bbar = .true.
+    associate (x => bodies(1)%mesh%x, nn => bodies(1)%mesh%nnode)
+      allocate(fixed(2 * nn), u(2 * nn), f(2 * nn), ubar(2 * nn), fint(2 * nn))
+      fixed = .false.
+      u = 0.0_dp; f = 0.0_dp; ubar = 0.0_dp
+      do a = 1, nn
+        if (abs(x(2, a)) < 1.0e-12_dp) fixed(2 * a) = .true.
+        if (abs(x(2, a) - 1.0_dp) < 1.0e-12_dp) then
+          fixed(2 * a) = .true.
+          ubar(2 * a) = lz - 1.0_dp
+        end if
+      end do
+      call number_equations(fixed, eq, nfree)
+      call build_pattern(bodies, eq, nfree, k, err)
+      opts%tol = 1.0e-10_dp
+      call solve_newton_increment(bodies, eq, nfree, k, f, f, 0 * ubar, ubar, opts, u, res, err)
+      call check(res%converged, 'tube 20 % axisymmetric: converged')
+      call internal_force_vector(bodies, u, fint, bad)
+      force = 0.0_dp
+      do a = 1, nn
+        if (abs(x(2, a) - 1.0_dp) < 1.0e-12_dp) force = force - fint(2 * a)
+      end do
+    end associate
+    lo = 1.0_dp
+    hi = 2.0_dp
+    do it = 1, 200
+      l = 0.5_dp * (lo + hi)
+      if (tube_stress(l, lz, l) > 0.0_dp) then
+        hi = l
+      else
+        lo = l
+      end if
+    end do
+    exact = -tube_stress(l, lz, lz) * pi * 3.0_dp * l**2
+    call check_close(force, exact, 1.0e-3_dp, 'tube 20 % axisymmetric: full-circle plate force within 0.1 % of ' // &
+                     'the closed form')
+    call check_close(force, exact, 1.0e-7_dp, 'tube 20 % axisymmetric: plate force to the Newton tolerance')
+    print '(a, f12.7, a, f12.7, a, f10.7, a, i0)', '  tube: force ', force, ' closed form ', exact, ' l ', l, &
+          ' cuts ', res%cuts
+  end subroutine check_axisymmetric_ring
+
+  !> The block 1 x 1 (Q1 4 x 4, mu = 1, K = bulk) on a support (u_y = 0 at y = 0,
+  !> u_x = 0 at the origin), squeezed 20 % by a RIGID line y = 1 moved down by
+  !> 0.2 in 4 load steps, frictionless: the top slides outwards along the plate
+  !> (lx = 1.195 at K = 10, 1.249 at K = 1000) while it is pressed.  The plate force (the sum of the contact
+  !> forces) against the closed form of check_block, the least gap and the
+  !> complementarity of the last iterate.
+  subroutine check_rigid_plate(bulk)
+    real(dp), intent(in) :: bulk
+    type(body_t) :: bodies(1)
+    type(pair_spec_t) :: specs(1)
+    type(newton_result_t) :: res
+    type(newton_options_t) :: opts
+    type(error_t), allocatable :: err
+    logical, allocatable :: fixed(:)
+    real(dp), allocatable :: u(:), f(:), ubar(:)
+    integer, allocatable :: eq(:)
+    type(csc_t) :: k
+    real(dp) :: force, lx, exact
+    integer :: a, nfree, s, ndof, b, iters
+    logical :: ok
+    character(len=30) :: what
+    write(what, '(a, i0)') 'rigid plate 20 % K = ', nint(bulk)
+    call make_block('quad4', 4, bulk, .false., bodies)
+    do b = 1, size(bodies(1)%mesh%bnd)
+      if (bodies(1)%mesh%bnd(b)%name == 'top') specs(1)%slave_bnd = b
+    end do
+    specs(1)%slave_body = 1
+    specs(1)%rigid = 1
+    specs(1)%finite = .true.
+    specs(1)%shape%name = 'plate'
+    specs(1)%shape%kind = shape_line
+    specs(1)%shape%pt = reshape([-1.0_dp, 1.0_dp, 2.0_dp, 1.0_dp], [2, 2])
+    specs(1)%shape%ref = [0.5_dp, 1.0_dp]
+    specs(1)%shape%length = 3.0_dp
+    specs(1)%shape%dof0 = 2 * bodies(1)%mesh%nnode
+    ndof = specs(1)%shape%dof0 + 3
+    allocate(fixed(ndof), u(ndof), f(ndof), ubar(ndof))
+    fixed = .false.
+    u = 0.0_dp; f = 0.0_dp; ubar = 0.0_dp
+    do a = 1, bodies(1)%mesh%nnode
+      if (abs(bodies(1)%mesh%x(2, a)) < 1.0e-12_dp) fixed(2 * a) = .true.
+      if (all(abs(bodies(1)%mesh%x(:, a)) < 1.0e-12_dp)) fixed(2 * a - 1) = .true.
+    end do
+    fixed(ndof - 2:ndof) = .true.                      ! the plate's u_x, u_y, theta prescribed
+    ubar(ndof - 1) = -0.2_dp
+    call number_equations(fixed, eq, nfree)
+    call build_pattern(bodies, eq, nfree, k, err)
+    opts%tol = 1.0e-10_dp
+    ok = .true.
+    iters = 0
+    do s = 1, 4
+      call solve_newton_increment(bodies, eq, nfree, k, f, f, ubar * (s - 1) / 4.0_dp, ubar * s / 4.0_dp, opts, u, &
+                                  res, err, specs)
+      ok = ok .and. res%converged .and. .not. allocated(err)
+      if (.not. res%converged) print '(a)', '  plate: ' // res%reason
+      if (allocated(err)) print '(a)', '  plate: ' // err%message
+      iters = iters + res%iterations
+    end do
+    call check(ok, trim(what) // ': every step converged')
+    force = sum(-res%fcon(2:2 * bodies(1)%mesh%nnode:2))
+    call closed_form(1.0_dp, bulk, 0.8_dp, lx, exact)
+    call check_close(force, exact, 1.0e-3_dp, trim(what) // ': contact force within 0.1 % of the closed form')
+    call check(res%gap >= -1.0e-9_dp .and. res%complementarity <= 1.0e-9_dp, &
+               trim(what) // ': gap and complementarity of the last iterate below 1e-9')
+    print '(a, f12.8, a, f12.8, a, es9.2, a, es9.2, a, i0, a, i0)', '  ' // trim(what) // ': force ', force, &
+          ' closed form ', exact, ' gap ', res%gap, ' complementarity ', res%complementarity, ' iterations ', iters, &
+          ' cuts ', res%cuts
+  end subroutine check_rigid_plate
+
+  !> sigma_ll = mu J^-5/3 (ll^2 - I1/3) + K (J - 1) of F = diag(lr, lz, lr), mu = 1, K = 1000.
+  pure real(dp) function tube_stress(lr, lz, ll) result(sg)
+    real(dp), intent(in) :: lr, lz, ll
+    real(dp) :: j, i1
+    j = lr**2 * lz
+    i1 = 2 * lr**2 + lz**2
+    sg = j**(-5.0_dp / 3.0_dp) * (ll**2 - i1 / 3.0_dp) + 1000.0_dp * (j - 1.0_dp)
+  end function tube_stress
 
   !> Squeezing the block by 120 % in one step cannot keep J > 0: the step fails
   !> and names an element.
