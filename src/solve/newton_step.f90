@@ -342,7 +342,9 @@ contains
     t = 0.0_dp
     dt = full
     do while (t < full)
-      t1 = min(full, t + dt)
+      dt = min(dt, full - t)                         ! a halving then always shortens the attempt
+      t1 = t + dt
+      if (full - t1 <= 1.0e-12_dp) t1 = full
       u_start = u
       call solve_newton_step(bodies, eq, nfree, k, (1 - t1) * f0 + t1 * f1, (1 - t1) * ubar0 + t1 * ubar1, opts, &
                              u, sub, err, specs)

@@ -65,17 +65,25 @@ program test_newton_step
 contains
 
   !> A unit block of nx x nx elements of kind elem, neo-Hookean (mu = 1, K =
-  !> bulk), or linear with the law's small-strain limit when linear.
-  subroutine make_block(elem, nx, bulk, linear, bodies)
+  !> bulk), or linear with the law's small-strain limit when linear; box =
+  !> (x0, y0, x1, y1) and ny another rectangle.
+  subroutine make_block(elem, nx, bulk, linear, bodies, box, ny)
     character(len=*), intent(in) :: elem
     integer, intent(in) :: nx
     real(dp), intent(in) :: bulk
     logical, intent(in) :: linear
     type(body_t), intent(out) :: bodies(1)
+    real(dp), intent(in), optional :: box(4)
+    integer, intent(in), optional :: ny
     type(error_t), allocatable :: err
     type(diag_t) :: diag
-    real(dp) :: e, nu
-    call make_rect_mesh(0.0_dp, 0.0_dp, 1.0_dp, 1.0_dp, nx, nx, elem, 'alt', bodies(1)%mesh, err)
+    real(dp) :: e, nu, b(4)
+    integer :: my
+    b = [0.0_dp, 0.0_dp, 1.0_dp, 1.0_dp]
+    if (present(box)) b = box
+    my = nx
+    if (present(ny)) my = ny
+    call make_rect_mesh(b(1), b(2), b(3), b(4), nx, my, elem, 'alt', bodies(1)%mesh, err)
     call finalize_mesh(bodies(1)%mesh, 'block', diag)
     call make_hyperelastic(0.5_dp, 0.0_dp, bulk, bodies(1)%rubber)
     call initial_moduli(bodies(1)%rubber, e, nu)
@@ -312,7 +320,6 @@ contains
   subroutine check_locking()
     type(body_t) :: bodies(1)
     type(error_t), allocatable :: err
-    type(diag_t) :: diag
     type(newton_result_t) :: res
     type(newton_options_t) :: opts
     logical, allocatable :: fixed(:)
@@ -323,12 +330,8 @@ contains
     integer :: pass, a, nfree, ntip
     pload = 1.0e-3_dp
     do pass = 1, 2
-      call make_rect_mesh(0.0_dp, 0.0_dp, 4.0_dp, 1.0_dp, 16, 4, 'quad4', 'right', bodies(1)%mesh, err)
-      call finalize_mesh(bodies(1)%mesh, 'beam', diag)
-      call make_hyperelastic(0.5_dp, 0.0_dp, 1000.0_dp, bodies(1)%rubber)
+      call make_block('quad4', 16, 1000.0_dp, .false., bodies, [0.0_dp, 0.0_dp, 4.0_dp, 1.0_dp], 4)
       call initial_moduli(bodies(1)%rubber, e, nu)
-      call make_isotropic(e, nu, .false., bodies(1)%law)
-      bodies(1)%finite = .true.
       bodies(1)%bbar = pass == 1
       associate (x => bodies(1)%mesh%x, nn => bodies(1)%mesh%nnode)
         if (allocated(fixed)) deallocate(fixed, u, f, ubar)
@@ -367,22 +370,16 @@ contains
   subroutine check_axisymmetric_ring()
     type(body_t) :: bodies(1)
     type(error_t), allocatable :: err
-    type(diag_t) :: diag
     type(newton_result_t) :: res
     type(newton_options_t) :: opts
     logical, allocatable :: fixed(:)
     real(dp), allocatable :: u(:), f(:), ubar(:), fint(:)
     integer, allocatable :: eq(:)
     type(csc_t) :: k
-    real(dp) :: e, nu, lo, hi, l, exact, force
+    real(dp) :: lo, hi, l, exact, force
     integer :: a, nfree, it, bad(2)
     real(dp), parameter :: lz = 0.8_dp, pi = acos(-1.0_dp)
-    call make_rect_mesh(1.0_dp, 0.0_dp, 2.0_dp, 1.0_dp, 4, 4, 'quad4', 'right', bodies(1)%mesh, err)
-    call finalize_mesh(bodies(1)%mesh, 'tube', diag)
-    call make_hyperelastic(0.5_dp, 0.0_dp, 1000.0_dp, bodies(1)%rubber)
-    call initial_moduli(bodies(1)%rubber, e, nu)
-    call make_isotropic(e, nu, .false., bodies(1)%law)
-    bodies(1)%finite = .true.
+    call make_block('quad4', 4, 1000.0_dp, .false., bodies, [1.0_dp, 0.0_dp, 2.0_dp, 1.0_dp])
     bodies(1)%axisymmetric = .true.
     bodies(1)%bbar = .true.
     associate (x => bodies(1)%mesh%x, nn => bodies(1)%mesh%nnode)
