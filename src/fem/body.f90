@@ -46,6 +46,11 @@
 !>   to_global_axes(bodies, v), to_local_axes(bodies, v)   v (ndof) between the solver basis and x, y
 !>   body_pressure_modes(bd, nen)                   the B-bar pressure modes of bd's elements of nen nodes
 !>   node_elements(mesh, ptr, list)                 elements around each node (CSR)
+!>   scatter_element(m, dofs, ke, eq, ubar, k, rhs, ok)   one element matrix into K_ff and rhs
+!>   scatter_springs(bd, eq, ubar, k, rhs, ok)      bd's springs likewise
+!>   element_coordinates(m, e, xe), rotate_element_matrix(bd, e, ke),
+!>   rotate_element_vector(bd, e, v, to_global), add_spring_forces(bd, u, f)
+!>        the pieces of the assembly, for the finite-strain one (finite_strain_assembly)
 !>   edge_outward_normal(mesh, eptr, elist, a, b, nrm, owner)  unit normal of edge a-b
 !>        pointing out of its element; owner = that element, 0 when no element has
 !>        the edge, -1 when two do (an interior edge)
@@ -62,16 +67,22 @@ module body
   use material, only: von_mises_4
   use sparse_matrix, only: csc_t
   use foundation, only: spring_set_t
+  use hyperelastic, only: hyperelastic_t
   implicit none
   private
   public :: body_t, number_equations, build_pattern, assemble_stiffness, internal_forces
   public :: node_elements, element_dofs, edge_outward_normal, element_response
   public :: thermal_loads, to_global_axes, to_local_axes, axi_thermal_strain, body_pressure_modes, spring_reactions
+  public :: scatter_element, scatter_springs, element_coordinates, rotate_element_matrix, rotate_element_vector
+  public :: add_spring_forces
 
   type :: body_t
     character(len=:), allocatable :: name  !< as in the deck
     type(mesh_t) :: mesh                   !< its mesh
-    type(elasticity_t) :: law              !< elasticity tensor
+    type(elasticity_t) :: law              !< elasticity tensor (finite: the law's small-strain limit)
+    logical :: finite = .false.            !< hyperelastic, solved in finite strain (module
+                                           !< finite_strain_elements): rubber holds its law
+    type(hyperelastic_t) :: rubber         !< the hyperelastic law when finite
     real(dp) :: thick = 1.0_dp             !< thickness (1 in plane strain)
     logical :: axisymmetric = .false.      !< x = r, y = z, solid of revolution (PLANE axisymmetric)
     logical :: bbar = .false.              !< B-bar strain on the elements of pressure_modes > 0
@@ -290,9 +301,9 @@ contains
     type(csc_t), intent(inout) :: k
     real(dp), intent(inout) :: rhs(:)
     integer, intent(out), optional :: overflow
-    integer :: b, e, nen, p, q, ep, eq_q, pos
+    integer :: b, e, nen
     integer :: dofs(2 * max_nen)
-    real(dp) :: ke(2 * max_nen, 2 * max_nen), xe(2, max_nen), term
+    real(dp) :: ke(2 * max_nen, 2 * max_nen), xe(2, max_nen)
     logical :: ok
     if (present(overflow)) overflow = 0
     do b = 1, size(bodies)
@@ -308,40 +319,78 @@ contains
           end if
           if (allocated(bodies(b)%axes)) call rotate_element_matrix(bodies(b), e, ke)   ! Q' K Q
           call element_dofs(bodies(b), e, dofs)
-          call scatter
-        end do
-        ! the springs: their nodes share an element (an edge's) or are one node,
-        ! so that their entries are in the elements' pattern
-        do e = 1, bodies(b)%springs%n
-          nen = bodies(b)%springs%nen(e)
-          call spring_matrix(bodies(b), e, ke, dofs)
-          call scatter
-        end do
-      end associate
-    end do
-  contains
-    !> ke (2 nen) into k on the free dofs, f_f -= K_fd ubar_d for the fixed ones.
-    subroutine scatter
-      do q = 1, 2 * nen
-        eq_q = eq(dofs(q))
-        do p = 1, 2 * nen
-          ep = eq(dofs(p))
-          if (ep == 0) cycle
-          if (eq_q == 0) then
-            call in_range(ke(p, q), ubar(dofs(q)), rhs(ep), term, ok)
-            if (ok) then
-              rhs(ep) = rhs(ep) - term                          ! f_f -= K_fd ubar_d
-            else if (present(overflow)) then
-              if (overflow == 0) overflow = b
-            end if
-          else if (ep <= eq_q) then
-            pos = find_row(k, ep, eq_q)
-            k%val(pos) = k%val(pos) + ke(p, q)
+          call scatter_element(2 * nen, dofs, ke, eq, ubar, k, rhs, ok)
+          if (.not. ok .and. present(overflow)) then
+            if (overflow == 0) overflow = b
           end if
         end do
-      end do
-    end subroutine scatter
+        call scatter_springs(bodies(b), eq, ubar, k, rhs, ok)
+        if (.not. ok .and. present(overflow)) then
+          if (overflow == 0) overflow = b
+        end if
+      end associate
+    end do
   end subroutine assemble_stiffness
+
+  !> The springs of bd into k and rhs (scatter_element): their nodes share an
+  !> element (an edge's) or are one node, so that their entries are in the
+  !> elements' pattern.
+  !>   ok (out) .false. when a term of K_fd ubar_d was left out (overflow)
+  subroutine scatter_springs(bd, eq, ubar, k, rhs, ok)
+    type(body_t), intent(in) :: bd
+    integer, intent(in) :: eq(:)
+    real(dp), intent(in) :: ubar(:)
+    type(csc_t), intent(inout) :: k
+    real(dp), intent(inout) :: rhs(:)
+    logical, intent(out) :: ok
+    real(dp) :: ke(2 * max_nen, 2 * max_nen)
+    integer :: dofs(2 * max_nen), i
+    logical :: ok_i
+    ok = .true.
+    do i = 1, bd%springs%n
+      call spring_matrix(bd, i, ke, dofs)
+      call scatter_element(2 * bd%springs%nen(i), dofs, ke, eq, ubar, k, rhs, ok_i)
+      ok = ok .and. ok_i
+    end do
+  end subroutine scatter_springs
+
+  !> An element matrix ke (m x m, on the global dofs dofs) into k on the free
+  !> dofs (the upper triangle), and rhs_f -= K_fd ubar_d for the fixed ones.
+  !>   m    (in)    2 nen
+  !>   dofs (in)    (m) global dofs;  ke (in) (>= m, >= m) the matrix, solver basis
+  !>   eq   (in)    (ndof) free equation numbers;  ubar (in) (ndof) values on the fixed dofs
+  !>   k    (inout) values accumulated (pattern of build_pattern)
+  !>   rhs  (inout) (nfree)
+  !>   ok   (out)   .false. when a term K_fd ubar_d would overflow (left out)
+  subroutine scatter_element(m, dofs, ke, eq, ubar, k, rhs, ok)
+    integer, intent(in) :: m, dofs(:), eq(:)
+    real(dp), intent(in) :: ke(:,:), ubar(:)
+    type(csc_t), intent(inout) :: k
+    real(dp), intent(inout) :: rhs(:)
+    logical, intent(out) :: ok
+    integer :: p, q, ep, eq_q, pos
+    real(dp) :: term
+    logical :: fits
+    ok = .true.
+    do q = 1, m
+      eq_q = eq(dofs(q))
+      do p = 1, m
+        ep = eq(dofs(p))
+        if (ep == 0) cycle
+        if (eq_q == 0) then
+          call in_range(ke(p, q), ubar(dofs(q)), rhs(ep), term, fits)
+          if (fits) then
+            rhs(ep) = rhs(ep) - term                          ! f_f -= K_fd ubar_d
+          else
+            ok = .false.
+          end if
+        else if (ep <= eq_q) then
+          pos = find_row(k, ep, eq_q)
+          k%val(pos) = k%val(pos) + ke(p, q)
+        end if
+      end do
+    end do
+  end subroutine scatter_element
 
   !> Spring element i of bd: its matrix in the solver basis (Q' K Q at the
   !> nodes in local axes) and its dofs, two per node.

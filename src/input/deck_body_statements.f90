@@ -16,7 +16,7 @@
 !>   plane_compliance_ok, strain_compliance_ok   orthotropic compliance positive definite
 module deck_body_statements
   use kinds, only: dp
-  use strings, only: int_to_str
+  use strings, only: int_to_str, format_number
   use safe_files, only: file_kind, kind_name, c2d_regular, c2d_missing, c2d_unreadable
   use deck_types, only: deck_t, body_deck_t, fix_t, load_t, material_t, thermal_t, load_traction, load_pressure, &
                         load_point, spring_deck_t
@@ -240,7 +240,8 @@ contains
   end subroutine do_mesh_gmsh
 
   !> MATERIAL isotropic E= nu= | MATERIAL orthotropic E1= E2= nu12= G12= [angle=]
-  !> [E3=] [nu13=] [nu23=]; on the form-less row, a missing or unknown kind.
+  !> [E3=] [nu13=] [nu23=] | MATERIAL neo_hookean mu= K= | MATERIAL mooney_rivlin
+  !> c10= c01= K=; on the form-less row, a missing or unknown kind.
   subroutine do_material(s, deck, st)
     type(state_t), intent(inout) :: s
     type(deck_t), intent(inout) :: deck
@@ -254,16 +255,35 @@ contains
     nerr0 = s%nerr
     if (st%what == 'MATERIAL') then
       if (len(form_word(s, st, 'material')) > 0) call report(s, st%line, 'unknown material kind ' // &
-        quoted(st%word(1)%s) // ' (expected isotropic or orthotropic)')
+        quoted(st%word(1)%s) // &
+        ' (expected isotropic, orthotropic, neo_hookean or mooney_rivlin)')
       return
     end if
     call read_keys(s, st, v)
     mat%line = st%line
-    if (st%what == 'MATERIAL isotropic') then
+    select case (st%what)
+    case ('MATERIAL isotropic')
       mat%kind = 'isotropic'
       mat%e = v%x(1)
       mat%nu = v%x(2)
-    else
+    case ('MATERIAL neo_hookean')                      ! W = mu/2 (J^-2/3 I1 - 3) + ...: c10 = mu/2
+      mat%kind = 'neo_hookean'
+      mat%c10 = 0.5_dp * v%x(1)
+      mat%bulk = v%x(2)
+    case ('MATERIAL mooney_rivlin')
+      mat%kind = 'mooney_rivlin'
+      mat%c10 = v%x(1)
+      mat%c01 = v%x(2)
+      mat%bulk = v%x(3)
+      ! the initial shear modulus mu = 2 (c10 + c01) must be positive, and so
+      ! must c10 + c01 J^-2/3 (I2 / I1) for W to stay convex in shear at large
+      ! stretches: both hold with c10 >= 0 and c10 + c01 > 0
+      if (all(v%ok(1:2))) then
+        if (.not. (mat%c10 >= 0.0_dp .and. mat%c10 + mat%c01 > 0.0_dp)) call report(s, st%line, &
+          'bad moduli c10=' // trim(format_number(mat%c10)) // ' c01=' // trim(format_number(mat%c01)) // &
+          ' (expected c10 >= 0 and c10 + c01 > 0: the shear modulus 2 (c10 + c01) positive)')
+      end if
+    case default
       mat%kind = 'orthotropic'
       mat%e1 = v%x(1)
       mat%e2 = v%x(2)
@@ -277,7 +297,7 @@ contains
         if (.not. plane_compliance_ok(mat)) call report(s, st%line, 'orthotropic in-plane compliance not ' // &
                                                         'positive definite (expected nu12^2 < E1/E2)')
       end if
-    end if
+    end select
     if (s%nerr == nerr0) deck%bodies(s%cur)%material = mat
   end subroutine do_material
 

@@ -79,6 +79,7 @@ contains
     end do
 
     call resolve_contacts(s, deck, resolved)
+    if (resolved) call check_finite_strain_pairs(s, deck)
     if (resolved .and. .not. s%contact_bad) call check_rigid_modes(s, deck)
     call check_ramps(s, deck)
     call resolve_curves(s, deck)
@@ -96,6 +97,44 @@ contains
       if (.not. s%steps_bad) call check_ramp_end(s, deck, ramp, line)
     end subroutine check_statement
   end subroutine finish_checks
+
+  !> A CONTACT touching a hyperelastic body follows the bodies: sliding=finite
+  !> is implied, sliding=small (the pairing of the initial configuration, a
+  !> small-strain assumption) and gap=zero (the initial gaps) are errors.
+  subroutine check_finite_strain_pairs(s, deck)
+    type(state_t), intent(inout) :: s
+    type(deck_t), intent(inout) :: deck
+    integer :: i, b
+    character(len=:), allocatable :: name
+    do i = 1, s%ncontact
+      associate (c => deck%contacts(i))
+        name = ''
+        do b = 1, 2
+          associate (ib => merge(c%slave_body, c%master_body, b == 1))
+            if (ib < 1 .or. ib > s%nbody) cycle
+            if (is_hyperelastic(deck%bodies(ib)) .and. len(name) == 0) name = deck%bodies(ib)%name
+          end associate
+        end do
+        if (len(name) == 0) cycle
+        if (c%small_given) then
+          call report(s, c%line, 'sliding=small on a pair of the hyperelastic body ' // quoted(name) // &
+                      ' (expected sliding=finite, implied: a body in finite strain moves its contact zone)')
+        else if (c%gap_zero) then
+          call report(s, c%line, 'gap=zero on a pair of the hyperelastic body ' // quoted(name) // &
+                      ' (expected gap=geometry: its pairs measure the gaps in the current configuration)')
+        end if
+        c%finite = .true.
+      end associate
+    end do
+  end subroutine check_finite_strain_pairs
+
+  !> The body's MATERIAL is neo_hookean or mooney_rivlin (solved in finite strain).
+  pure logical function is_hyperelastic(body)
+    type(body_deck_t), intent(in) :: body
+    is_hyperelastic = .false.
+    if (.not. allocated(body%material%kind)) return
+    is_hyperelastic = body%material%kind == 'neo_hookean' .or. body%material%kind == 'mooney_rivlin'
+  end function is_hyperelastic
 
   !> ADAPT against the rest of the deck: it is driven by the error estimate
   !> (not with ESTIMATE off) and quantity=pressure needs a CONTACT.  (That

@@ -43,12 +43,15 @@ contains
     character(len=*), parameter :: iso_usage = 'MATERIAL isotropic E=number nu=number'
     character(len=*), parameter :: ortho_usage = 'MATERIAL orthotropic E1=number E2=number nu12=number ' // &
                                                  'G12=number [angle=degrees] [E3=number] [nu13=number] [nu23=number]'
+    character(len=*), parameter :: neo_usage = 'MATERIAL neo_hookean mu=number K=number'
+    character(len=*), parameter :: mooney_usage = 'MATERIAL mooney_rivlin c10=number c01=number K=number'
     character(len=*), parameter :: contact_usage = 'CONTACT slave=body:boundary master=body:boundary ' // &
                                                    '[gap=geometry|zero] [mu=number|tresca=number] ' // &
                                                    '[interference=allow|reject] [sliding=small|finite] [name=NAME]'
     character(len=*), parameter :: solver_usage = 'SOLVER [lcp=auto|lemke|pgs|pdas] [tol=number] [maxit=integer] ' // &
                                                   '[omega=number] [ordering=auto|metis|amd] ' // &
-                                                  '[condense=auto|solve|inverse] [cut=auto|off] [updates=integer]'
+                                                  '[condense=auto|solve|inverse] [cut=auto|off] [updates=integer] ' // &
+                                                  '[newton_tol=number] [newton_maxit=integer]'
     character(len=*), parameter :: shape_usage = 'SHAPE line x0= y0= x1= y1= | SHAPE circle xc= yc= r= ' // &
                                                  '[solid=inside|outside] | SHAPE polyline points=x1:y1,x2:y2,...'
     real(dp), parameter :: zero = 0.0_dp
@@ -72,7 +75,7 @@ contains
     call add_row(table, 'MESH', 'BODY', do_mesh_gmsh, form='gmsh', &
                  usage='MESH gmsh file=NAME.msh or file=NAME.geo [order=1|2] [name=number ...]')
     call add_row(table, 'MATERIAL', 'BODY', do_material, once=.true., expected='one MATERIAL per body', &
-                 usage=iso_usage // ' or MATERIAL orthotropic ...')
+                 usage=iso_usage // ', MATERIAL orthotropic ..., MATERIAL neo_hookean ... or MATERIAL mooney_rivlin ...')
     call add_row(table, 'MATERIAL', 'BODY', do_material, form='isotropic', words=1, usage=iso_usage, &
                  keys=[real_key('E', required=.true., gt=zero), &
                        real_key('nu', required=.true., gt=-1.0_dp, lt=0.5_dp)])
@@ -80,6 +83,12 @@ contains
                  keys=[real_key('E1', required=.true., gt=zero), real_key('E2', required=.true., gt=zero), &
                        real_key('nu12', required=.true.), real_key('G12', required=.true., gt=zero), &
                        real_key('angle'), real_key('E3', gt=zero), real_key('nu13'), real_key('nu23')])
+    call add_row(table, 'MATERIAL', 'BODY', do_material, form='neo_hookean', words=1, usage=neo_usage, &
+                 keys=[real_key('mu', required=.true., gt=zero, note=', the shear modulus'), &
+                       real_key('K', required=.true., gt=zero, note=', the bulk modulus')])
+    call add_row(table, 'MATERIAL', 'BODY', do_material, form='mooney_rivlin', words=1, usage=mooney_usage, &
+                 keys=[real_key('c10', required=.true.), real_key('c01', required=.true.), &
+                       real_key('K', required=.true., gt=zero, note=', the bulk modulus')])
     call add_row(table, 'DENSITY', 'BODY', do_density, once=.true., words=0, usage='DENSITY rho=number', &
                  keys=[real_key('rho', required=.true., gt=zero)])
     call add_row(table, 'FIX', 'BODY', do_fix, words=1, &
@@ -120,7 +129,9 @@ contains
                  keys=[choice_key('lcp', 'auto|lemke|pgs|pdas'), real_key('tol', gt=zero), &
                        integer_key('maxit', at_least=0), real_key('omega', gt=zero, lt=2.0_dp), &
                        choice_key('ordering', 'auto|metis|amd'), choice_key('condense', 'auto|solve|inverse'), &
-                       choice_key('cut', 'auto|off'), integer_key('updates', at_least=1)])
+                       choice_key('cut', 'auto|off'), integer_key('updates', at_least=1), &
+                       real_key('newton_tol', gt=zero, lt=1.0_dp, note=', a relative residual'), &
+                       integer_key('newton_maxit', at_least=1)])
     call add_row(table, 'STEPS', '', do_steps, once=.true., usage='STEPS n with an integer 1 <= n <= 100000')
     call add_row(table, 'ESTIMATE', '', do_estimate, once=.true., usage='ESTIMATE [on|off|bound]')
     call add_row(table, 'ADAPT', '', do_adapt, once=.true., words=0, &
@@ -238,6 +249,7 @@ contains
     ! run that slides beyond it ending in exit 1 (contact_checks); finite sliding rebuilds them
     ! from the current configuration (contact_solve)
     c%finite = v%ok(7) .and. v%text(7)%s == 'finite'
+    c%small_given = v%ok(7) .and. v%text(7)%s == 'small'
     ! gap=zero sets the gaps of the initial configuration; finite sliding measures them at every step
     if (c%finite .and. v%ok(3)) then
       if (v%text(3)%s == 'zero') call report(s, st%line, 'sliding=finite with gap=zero (expected gap=geometry: ' // &
@@ -334,6 +346,7 @@ contains
   end subroutine split_side
 
   !> SOLVER [lcp=] [tol=] [maxit=] [omega=] [ordering=] [condense=] [cut=] [updates=]
+  !> [newton_tol=] [newton_maxit=]
   subroutine do_solver(s, deck, st)
     type(state_t), intent(inout) :: s
     type(deck_t), intent(inout) :: deck
@@ -350,6 +363,8 @@ contains
     if (v%ok(3)) deck%solver%maxit = v%k(3)
     if (v%ok(4)) deck%solver%omega = v%x(4)
     if (v%ok(8)) deck%solver%updates = v%k(8)
+    if (v%ok(9)) deck%solver%newton_tol = v%x(9)
+    if (v%ok(10)) deck%solver%newton_maxit = v%k(10)
   end subroutine do_solver
 
   !> STEPS n: the number of load steps (the ramps run over steps 0..n)

@@ -146,7 +146,7 @@ module deck_syntax
   !> may stand, how often, its words and keys and the routine that reads it.
   type :: statement_t
     character(len=12) :: keyword = ''          !< upper case
-    character(len=12) :: form = ''             !< the first word that selects this row (lower case), '' none
+    character(len=16) :: form = ''             !< the first word that selects this row (lower case), '' none
     character(len=8) :: block = ''             !< block it stands in: '' the top level, 'BODY', '*' anywhere
     character(len=8) :: opens = ''             !< block it opens, '' none (END closes the open block)
     logical :: once = .false.                  !< at most once: per deck, or per block inside a block

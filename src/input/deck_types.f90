@@ -84,10 +84,12 @@ module deck_types
 
   !> MATERIAL isotropic ... or MATERIAL orthotropic ...
   type :: material_t
-    character(len=:), allocatable :: kind       !< 'isotropic', 'orthotropic' ('' when bad)
+    character(len=:), allocatable :: kind       !< 'isotropic', 'orthotropic', 'neo_hookean',
+                                                !< 'mooney_rivlin' ('' when bad)
     real(dp) :: e = 0, nu = 0                   !< isotropic
     real(dp) :: e1 = 0, e2 = 0, nu12 = 0, g12 = 0, angle = 0   !< orthotropic; angle in degrees
     real(dp) :: e3 = 0, nu13 = 0, nu23 = 0      !< out-of-plane; defaults E3=E2, nu13=nu23=nu12
+    real(dp) :: c10 = 0, c01 = 0, bulk = 0      !< hyperelastic (neo_hookean: c10 = mu/2, c01 = 0), K > 0
     integer :: line = 0                         !< line of the MATERIAL statement (0: none)
   end type material_t
 
@@ -169,6 +171,7 @@ module deck_types
     logical :: gap_zero = .false.               !< gap=zero; default gap=geometry
     logical :: interference = .false.           !< interference=allow: any initial penetration accepted
     logical :: finite = .false.                 !< sliding=finite: the geometry follows the bodies
+    logical :: small_given = .false.            !< sliding=small written (a hyperelastic body refuses it)
     character(len=:), allocatable :: friction   !< 'none' (default), 'coulomb' (mu=) or 'tresca' (tresca=)
     real(dp) :: mu = 0                          !< Coulomb coefficient, 0 <= mu <= 1000
     real(dp) :: tresca = 0                      !< Tresca slip bound (a shear stress), >= 0
@@ -176,7 +179,8 @@ module deck_types
     integer :: line = 0
   end type contact_deck_t
 
-  !> SOLVER [lcp=] [tol=] [maxit=] [omega=] [ordering=] [condense=] [cut=]
+  !> SOLVER [lcp=] [tol=] [maxit=] [omega=] [ordering=] [condense=] [cut=] [updates=]
+  !> [newton_tol=] [newton_maxit=]
   type :: solver_deck_t
     character(len=:), allocatable :: lcp        !< 'auto' (default), 'lemke', 'pgs', 'pdas'
     character(len=:), allocatable :: ordering   !< 'auto' (default), 'metis', 'amd'
@@ -186,6 +190,8 @@ module deck_types
     integer :: maxit = 0                        !< 0: the solver's default
     real(dp) :: omega = 1.0_dp
     integer :: updates = 30                     !< sliding=finite: geometry updates allowed per load step
+    real(dp) :: newton_tol = 1.0e-8_dp          !< finite strain: Newton residual / load scale at convergence
+    integer :: newton_maxit = 25                !< finite strain: Newton iterations before a step is cut
     integer :: line = 0
   end type solver_deck_t
 

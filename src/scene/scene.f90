@@ -39,9 +39,9 @@
 !>        output order (body b's element e at elem0 + e), 0 in bodies without THERMAL
 module scene
   use kinds, only: dp
-  use strings, only: int_to_str, real_to_str
+  use strings, only: int_to_str, real_to_str, format_number
   use errors, only: diag_t, add_error, has_errors, error_t
-  use deck_reader, only: deck_t, body_deck_t, LOAD_TRACTION, LOAD_PRESSURE, LOAD_POINT, rigid_deck_t
+  use deck_reader, only: deck_t, body_deck_t, material_t, LOAD_TRACTION, LOAD_PRESSURE, LOAD_POINT, rigid_deck_t
   use mesh, only: mesh_t, finalize_mesh, order_for_locality, node_in_file, &
                   locality_min_nodes
   use mesh_rect, only: make_rect_mesh
@@ -51,6 +51,7 @@ module scene
   use geo_screen, only: screen_geo
   use safe_files, only: private_folder, real_path
   use material, only: make_isotropic, make_orthotropic, locking_nu
+  use hyperelastic, only: make_hyperelastic, initial_moduli
   use body, only: body_t, to_local_axes
   use contact_set, only: pair_spec_t
   use load_groups, only: load_groups_t, collect_groups, ramp_group, group_factors
@@ -531,6 +532,8 @@ contains
         if (mt%kind == 'orthotropic') then
           call make_orthotropic(mt%e1, mt%e2, mt%e3, mt%nu12, mt%nu13, mt%nu23, mt%g12, mt%angle, deck%plane_stress, &
                                 bd%law)
+        else if (mt%kind == 'neo_hookean' .or. mt%kind == 'mooney_rivlin') then
+          call make_hyperelastic_body(deck, mt, bd, diag)
         else
           call make_isotropic(mt%e, mt%nu, deck%plane_stress, bd%law)
         end if
@@ -542,10 +545,30 @@ contains
     ! nearly incompressible: the B-bar strain where the elements would lock
     ! (body, doc/theory.md "Nearly incompressible materials"); in plane
     ! stress the through-thickness strain takes up the change of volume
-    bd%bbar = .not. deck%plane_stress .and. deck%bodies(ib)%material%kind == 'isotropic' .and. &
-              deck%bodies(ib)%material%nu > locking_nu
+    if (.not. bd%finite) bd%bbar = .not. deck%plane_stress .and. deck%bodies(ib)%material%kind == 'isotropic' &
+                                   .and. deck%bodies(ib)%material%nu > locking_nu
     if (bd%axisymmetric .and. bd%mesh%nnode > 0) call check_radius(deck, deck%bodies(ib), bd, diag)
   end subroutine make_body
+
+  !> A hyperelastic body: its law, and beside it the law's small-strain limit
+  !> (E, nu of the reference state) as bd%law.  No load-step loop of this
+  !> version solves a body in finite strain: the deck is refused at its
+  !> MATERIAL line, with the linear law that is its small-strain limit.
+  subroutine make_hyperelastic_body(deck, mt, bd, diag)
+    type(deck_t), intent(in) :: deck
+    type(material_t), intent(in) :: mt
+    type(body_t), intent(inout) :: bd
+    type(diag_t), intent(inout) :: diag
+    real(dp) :: e, nu
+    bd%finite = .true.
+    call make_hyperelastic(mt%c10, mt%c01, mt%bulk, bd%rubber)
+    call initial_moduli(bd%rubber, e, nu)
+    call make_isotropic(e, nu, deck%plane_stress, bd%law)
+    bd%bbar = nu > locking_nu             ! F-bar on its Q1 (finite_strain_assembly)
+    call add_error(diag, deck%file, mt%line, 'MATERIAL ' // mt%kind // ': bodies in finite strain are not ' // &
+                   'solved yet (expected a linear law; the small-strain limit of this one is MATERIAL isotropic E=' // &
+                   trim(format_number(e)) // ' nu=' // trim(format_number(nu)) // ')')
+  end subroutine make_hyperelastic_body
 
   !> PLANE axisymmetric: every node at r = x >= 0.  A node within 1e-10 of
   !> the body's size from the axis is put on it (r = 0 exactly: it gets

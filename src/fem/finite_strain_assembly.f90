@@ -1,0 +1,148 @@
+!> finite_strain_assembly: the residual and the consistent tangent of a scene
+!> whose bodies are some hyperelastic (body%finite: module
+!> finite_strain_elements) and some linear (their K u and K, as module body),
+!> on K's pattern of build_pattern and with its Dirichlet elimination
+!> (doc/theory.md, "Finite strain: hyperelastic bodies").
+!>
+!> At a displacement u (ndof, solver basis) and a correction dubar of the
+!> prescribed values (the fixed dofs' target minus their current value), the
+!> Newton system of one iterate is
+!>     K_ff du_f = f_f - f_int,f(u) - K_fd dubar_d,
+!> whose matrix and right-hand side assemble_tangent adds; f_int (all dofs)
+!> comes from internal_force_vector (the reactions are its fixed rows).  A
+!> node in local axes (FIX un=/ut=) has its element rows turned as module
+!> body's: ue = Q u to the kernels, Q' fe and Q' K Q back.
+!>
+!> An element with J <= 0 at a point stops the assembly: bad = (body, element)
+!> and the outputs are incomplete; the caller cuts the load step.
+!>
+!> Programming interface
+!>   assemble_tangent(bodies, u, eq, dubar, k, rhs, bad)     k += K_ff(u), rhs -= f_int,f(u) + K_fd dubar_d
+!>   internal_force_vector(bodies, u, fint, bad)             fint = f_int(u) (ndof)
+module finite_strain_assembly
+  use kinds, only: dp
+  use elements, only: element_stiffness, max_nen
+  use axisymmetric_elements, only: axi_element_stiffness
+  use body, only: body_t, element_dofs, element_coordinates, rotate_element_matrix, rotate_element_vector, &
+                  scatter_element, scatter_springs, add_spring_forces, body_pressure_modes
+  use finite_strain_elements, only: finite_strain_response
+  use sparse_matrix, only: csc_t
+  implicit none
+  private
+  public :: assemble_tangent, internal_force_vector
+
+contains
+
+  !> Element e of body bd at u: fe (solver basis) and, when present, ke.
+  !>   info (out) 0; > 0 when J <= 0 at a point of the element
+  subroutine element_response_at(bd, e, u, fe, ke, info)
+    type(body_t), intent(in) :: bd
+    integer, intent(in) :: e
+    real(dp), intent(in) :: u(:)
+    real(dp), intent(out) :: fe(:)
+    real(dp), intent(inout), optional :: ke(:,:)
+    integer, intent(out) :: info
+    real(dp) :: xe(2, max_nen), ue(2 * max_nen), kl(2 * max_nen, 2 * max_nen)
+    integer :: dofs(2 * max_nen), nen, m
+    nen = bd%mesh%nen(e)
+    m = 2 * nen
+    call element_coordinates(bd%mesh, e, xe)
+    call element_dofs(bd, e, dofs)
+    ue(1:m) = u(dofs(1:m))
+    if (allocated(bd%axes)) call rotate_element_vector(bd, e, ue, .true.)     ! x, y components
+    info = 0
+    if (bd%finite) then
+      ! F-bar where the linear kernels take B-bar's mean dilatation (Q1 of a
+      ! nearly incompressible body); the quadratic elements go without it
+      call finite_strain_response(nen, xe(:, 1:nen), ue(1:m), bd%rubber, bd%axisymmetric, bd%thick, fe(1:m), kl, info, &
+                                  fbar=body_pressure_modes(bd, nen) == 1)
+      if (info /= 0) return
+    else
+      if (bd%axisymmetric) then
+        call axi_element_stiffness(nen, xe(:, 1:nen), bd%law%d4, kl, body_pressure_modes(bd, nen))
+      else
+        call element_stiffness(nen, xe(:, 1:nen), bd%law%d, bd%thick, kl, body_pressure_modes(bd, nen))
+      end if
+      fe(1:m) = matmul(kl(1:m, 1:m), ue(1:m))
+    end if
+    if (allocated(bd%axes)) then
+      call rotate_element_vector(bd, e, fe, .false.)                          ! Q' fe
+      call rotate_element_matrix(bd, e, kl)                                   ! Q' K Q
+    end if
+    if (present(ke)) ke(1:m, 1:m) = kl(1:m, 1:m)
+  end subroutine element_response_at
+
+  !> k += K_ff(u), rhs -= f_int,f(u) + K_fd dubar_d over every element and spring.
+  !>   bodies (in)    the bodies, dof0 set
+  !>   u      (in)    (ndof) displacement, solver basis
+  !>   eq     (in)    (ndof) free equation numbers
+  !>   dubar  (in)    (ndof) on the fixed dofs: the correction of their prescribed values
+  !>   k      (inout) values accumulated on build_pattern's pattern
+  !>   rhs    (inout) (nfree) holds f_f on entry
+  !>   bad    (out)   (2) 0, 0; (body, element) of an element with J <= 0 (k, rhs incomplete),
+  !>                  (body, 0) when a term K_fd dubar_d would overflow
+  subroutine assemble_tangent(bodies, u, eq, dubar, k, rhs, bad)
+    type(body_t), intent(in) :: bodies(:)
+    real(dp), intent(in) :: u(:), dubar(:)
+    integer, intent(in) :: eq(:)
+    type(csc_t), intent(inout) :: k
+    real(dp), intent(inout) :: rhs(:)
+    integer, intent(out) :: bad(2)
+    real(dp) :: fe(2 * max_nen), ke(2 * max_nen, 2 * max_nen), fs(size(u))
+    integer :: dofs(2 * max_nen), b, e, m, a, info
+    logical :: ok
+    bad = 0
+    do b = 1, size(bodies)
+      do e = 1, bodies(b)%mesh%nelem
+        m = 2 * bodies(b)%mesh%nen(e)
+        call element_response_at(bodies(b), e, u, fe, ke, info)
+        if (info /= 0) then
+          bad = [b, e]
+          return
+        end if
+        call element_dofs(bodies(b), e, dofs)
+        do a = 1, m                                        ! rhs_f -= f_int,f
+          if (eq(dofs(a)) > 0) rhs(eq(dofs(a))) = rhs(eq(dofs(a))) - fe(a)
+        end do
+        call scatter_element(m, dofs, ke, eq, dubar, k, rhs, ok)
+        if (.not. ok .and. bad(1) == 0) bad = [b, 0]
+      end do
+      if (bodies(b)%springs%n > 0) then                    ! springs: linear, K_s u and K_s
+        fs = 0.0_dp
+        call add_spring_forces(bodies(b), u, fs)
+        do a = 1, size(u)
+          if (eq(a) > 0) rhs(eq(a)) = rhs(eq(a)) - fs(a)
+        end do
+        call scatter_springs(bodies(b), eq, dubar, k, rhs, ok)
+        if (.not. ok .and. bad(1) == 0) bad = [b, 0]
+      end if
+    end do
+  end subroutine assemble_tangent
+
+  !> fint = f_int(u) on every dof (the fixed rows: the reactions), solver basis.
+  !>   bad (out) (2) 0, 0; (body, element) of an element with J <= 0 (fint incomplete)
+  subroutine internal_force_vector(bodies, u, fint, bad)
+    type(body_t), intent(in) :: bodies(:)
+    real(dp), intent(in) :: u(:)
+    real(dp), intent(out) :: fint(:)
+    integer, intent(out) :: bad(2)
+    real(dp) :: fe(2 * max_nen)
+    integer :: dofs(2 * max_nen), b, e, m, info
+    fint = 0.0_dp
+    bad = 0
+    do b = 1, size(bodies)
+      do e = 1, bodies(b)%mesh%nelem
+        m = 2 * bodies(b)%mesh%nen(e)
+        call element_response_at(bodies(b), e, u, fe, info=info)
+        if (info /= 0) then
+          bad = [b, e]
+          return
+        end if
+        call element_dofs(bodies(b), e, dofs)
+        fint(dofs(1:m)) = fint(dofs(1:m)) + fe(1:m)
+      end do
+      call add_spring_forces(bodies(b), u, fint)
+    end do
+  end subroutine internal_force_vector
+
+end module finite_strain_assembly

@@ -1,0 +1,387 @@
+!> newton_step: one load step of a scene with hyperelastic bodies, solved by
+!> Newton's method on the consistent tangent with a backtracking line search
+!> (doc/theory.md, "Finite strain: hyperelastic bodies").  The step's loads
+!> are its external forces f and the prescribed values ubar of the fixed
+!> dofs; the state it starts from is the last step's u.
+!>
+!> Iterate (module finite_strain_assembly):
+!>     K_ff(u) du_f = f_f - f_int,f(u) - K_fd(u) dubar_d,   dubar_d = ubar_d - u_d,
+!>     u <- u + alpha du  (du_d = dubar_d),
+!> alpha = 1, halved while the trial turns an element inside out (J <= 0) or,
+!> once the prescribed values are reached, while it does not decrease the
+!> residual norm by the Armijo fraction 1e-4 alpha (at most max_halvings
+!> times; the last J > 0 trial is then taken).  Converged: the prescribed
+!> values reached and ||f_f - f_int,f|| <= tol * scale, scale = max(||f||,
+!> ||f_int||) over all dofs (the reactions count: a step driven by prescribed
+!> displacements has no f).
+!>
+!> A step that does not converge in maxit iterations, or whose tangent is not
+!> positive definite, or whose every trial inverts an element, returns
+!> converged = .false. with the reason and the element: the caller halves the
+!> step.  Nothing here stops the run or writes a file.
+!>
+!> Cut-back (solve_newton_increment).  A load step from the loads (f0,
+!> ubar0) to (f1, ubar1) is walked in sub-increments of the load factor t,
+!> the loads linear in t: a sub-increment that fails is halved (u restored
+!> to where it started), and after a success the next one may double again,
+!> up to what is left of the step.  A sub-increment below 2^-max_cuts of the
+!> step ends the step unconverged, with the last failure's reason and
+!> element.  Each halving is written as a line into the result's notes for
+!> the caller's log.  Why halving cures: the first iterate of a step moves
+!> the prescribed values by the linear tangent, whose volume error is of
+!> the order of the increment squared; times K of a nearly incompressible
+!> body it becomes a pressure whose initial-stress stiffness makes the next
+!> tangent indefinite (not factorizable) when the increment is too large.
+!>
+!> Contact (optional argument specs: the CONTACT pairs, frictionless, each
+!> followed as a sliding=finite pair).  Every iterate rebuilds the rows B and
+!> the gaps g(u) of the current configuration (moved_contact) and solves its
+!> contact problem on the condensed tangent, W = B_f K^-1 B_f', by Lemke's
+!> method (contact_correction): the linear runs' machinery, on the iterate.
+!> Why an LCP per iterate rather than a semismooth Newton on the whole
+!> system: the tangent's factor is there already, the contact rows are few
+!> (a boundary's nodes), and Lemke gives the iterate's exact active set, so
+!> the outer iteration is Newton's on a fixed set near the end (quadratic);
+!> no measured comparison with a semismooth Newton has been made.  The
+!> residual then counts the contact forces -B' lambda; converged also asks
+!> the last correction below tol of the displacement (the gaps of the
+!> linearization are then the true ones to its square), and the result
+!> gives the least linearized gap and the complementarity of the last LCP.
+!>
+!> Programming interface
+!>   type(newton_options_t)   tol, maxit, max_halvings, max_cuts
+!>   type(newton_result_t)    converged, iterations, residual, bad element, reason
+!>   solve_newton_step(bodies, eq, nfree, k, f, ubar, opts, u, res, err [, specs])
+!>   solve_newton_increment(bodies, eq, nfree, k, f0, f1, ubar0, ubar1, opts, u, res, err [, specs])
+!>        from the loads (f0, ubar0) at u to (f1, ubar1), halving what fails
+module newton_step
+  use kinds, only: dp
+  use errors, only: error_t
+  use strings, only: int_to_str, real_to_str
+  use body, only: body_t
+  use finite_strain_assembly, only: assemble_tangent, internal_force_vector
+  use contact_set, only: contact_set_t, pair_spec_t
+  use moved_contact, only: build_moved_contact_set
+  use lcp_scaling, only: lcp_options_t, lcp_report_t
+  use lcp_lemke, only: solve_lcp_lemke
+  use sparse_matrix, only: csc_t
+  use sparse_cholesky, only: factor_t, factorize, solve_vector, free_factor
+  implicit none
+  private
+  public :: newton_options_t, newton_result_t, solve_newton_step, solve_newton_increment
+
+  type :: newton_options_t
+    real(dp) :: tol = 1.0e-8_dp       !< residual / scale at convergence (SOLVER newton_tol=)
+    integer :: maxit = 25             !< iterations before the step fails (SOLVER newton_maxit=)
+    integer :: max_halvings = 12      !< line-search halvings per iteration
+    integer :: max_cuts = 10          !< halvings of a load step's increment before it fails
+  end type newton_options_t
+
+  type :: newton_result_t
+    logical :: converged = .false.
+    integer :: iterations = 0                 !< Newton iterations made (tangent solves)
+    real(dp) :: residual = 0.0_dp             !< the last ||r_f|| / scale
+    real(dp), allocatable :: history(:)       !< (iterations + 1) ||r_f|| / scale at each iterate
+    integer :: bad(2) = 0                     !< (body, element) that had J <= 0, when that stopped it
+    character(len=:), allocatable :: reason   !< why it did not converge ('' when it did)
+    integer :: cuts = 0                       !< solve_newton_increment: halvings made
+    integer :: substeps = 0                   !< solve_newton_increment: sub-increments solved
+    real(dp), allocatable :: fcon(:)          !< (ndof) contact forces on the bodies, -B' lambda (contact)
+    real(dp) :: gap = 0.0_dp                  !< contact: the least linearized gap after the last iterate
+    real(dp) :: complementarity = 0.0_dp      !< contact: max lambda_i gap_i / (max lambda size), a length
+    character(len=:), allocatable :: notes    !< solve_newton_increment: one line per halving
+  end type newton_result_t
+
+contains
+
+  !> One load step by Newton's method (module header).
+  !>   bodies (in)    the bodies, dof0 set
+  !>   eq     (in)    (ndof) free equation numbers;  nfree (in) their count, > 0
+  !>   k      (inout) K_ff's pattern (build_pattern); its values are overwritten
+  !>   f      (in)    (ndof) external forces of the step, solver basis
+  !>   ubar   (in)    (ndof) the prescribed values of the step on the fixed dofs
+  !>   opts   (in)    tolerances
+  !>   u      (inout) (ndof) the last step's state on entry, this step's on exit
+  !>                  (when not converged: the last iterate with J > 0)
+  !>   res    (out)   the outcome
+  !>   err    (out)   an allocation or factorization failure other than a non
+  !>                  positive definite tangent (that one is res%reason), or the
+  !>                  contact rows' failure (build_moved_contact_set)
+  !>   specs  (in, optional) (npair) frictionless CONTACT pairs to follow (module header)
+  subroutine solve_newton_step(bodies, eq, nfree, k, f, ubar, opts, u, res, err, specs)
+    type(body_t), intent(in) :: bodies(:)
+    integer, intent(in) :: eq(:), nfree
+    type(csc_t), intent(inout) :: k
+    real(dp), intent(in) :: f(:), ubar(:)
+    type(newton_options_t), intent(in) :: opts
+    real(dp), intent(inout) :: u(:)
+    type(newton_result_t), intent(out) :: res
+    type(error_t), allocatable, intent(out) :: err
+    type(pair_spec_t), intent(in), optional :: specs(:)
+    type(factor_t) :: fac
+    type(error_t), allocatable :: ferr
+    real(dp), allocatable :: dubar(:), rhs(:), du_f(:), du(:), trial(:), fint(:), u_best(:)
+    real(dp) :: merit, merit_trial, best, alpha, step
+    integer :: it, i, h, bad(2)
+    logical :: reached, analyzed, accepted, with_contact
+
+    allocate(dubar(size(u)), rhs(nfree), du_f(nfree), du(size(u)), trial(size(u)), fint(size(u)))
+    allocate(res%fcon(size(u)), source=0.0_dp)
+    with_contact = present(specs)
+    if (with_contact) with_contact = size(specs) > 0
+    allocate(res%history(0))
+    res%reason = ''
+    analyzed = .false.
+    call measure(u, merit, reached, bad)
+    if (bad(1) /= 0) then
+      res%bad = bad
+      res%reason = 'the state the step starts from has an element with J <= 0'
+      return
+    end if
+    res%history = [merit]
+    step = huge(1.0_dp)
+    do it = 1, opts%maxit
+      if (reached .and. merit <= opts%tol .and. (.not. with_contact .or. step <= opts%tol)) exit
+      ! the Newton system at u
+      dubar = 0.0_dp
+      do i = 1, size(u)
+        if (eq(i) == 0) dubar(i) = ubar(i) - u(i)
+      end do
+      k%val = 0.0_dp
+      rhs = 0.0_dp
+      do i = 1, size(u)
+        if (eq(i) > 0) rhs(eq(i)) = f(i)
+      end do
+      call assemble_tangent(bodies, u, eq, dubar, k, rhs, bad)
+      if (bad(1) /= 0) then
+        res%bad = bad
+        res%reason = merge('a term of the tangent overflows   ', 'an element has J <= 0             ', bad(2) == 0)
+        exit
+      end if
+      if (analyzed) call free_factor(fac)
+      call factorize(fac, k, ferr)
+      analyzed = .true.
+      if (allocated(ferr)) then
+        res%reason = 'the tangent is not positive definite (' // ferr%message // ')'
+        exit
+      end if
+      call solve_vector(fac, rhs, du_f, err)
+      if (allocated(err)) return
+      du = dubar
+      do i = 1, size(u)
+        if (eq(i) > 0) du(i) = du_f(eq(i))
+      end do
+      if (with_contact) then
+        call contact_correction(specs, fac, du, res, err)
+        if (allocated(err)) return
+        if (len(res%reason) > 0) exit
+        ! the step's size against the displacement's: the linearized gaps are
+        ! the true ones to its square
+        step = maxval(abs(du)) / max(maxval(abs(u + du)), tiny(1.0_dp))
+        call measure(u, merit, reached, bad)          ! the residual with this iterate's contact forces
+      end if
+      res%iterations = it
+      ! backtracking: J > 0 always; the Armijo decrease once ubar is reached
+      alpha = 1.0_dp
+      accepted = .false.
+      best = huge(1.0_dp)
+      do h = 0, opts%max_halvings
+        trial = u + alpha * du
+        if (h == 0) where (eq == 0) trial = ubar                ! the full step reaches ubar exactly
+        call measure(trial, merit_trial, reached, bad)
+        if (bad(1) == 0) then
+          if (.not. all(dubar == 0.0_dp) .or. merit_trial <= (1.0_dp - 1.0e-4_dp * alpha) * merit) then
+            accepted = .true.
+            exit
+          end if
+          if (merit_trial < best) u_best = trial
+          best = min(best, merit_trial)
+        else
+          res%bad = bad
+        end if
+        alpha = 0.5_dp * alpha
+      end do
+      if (.not. accepted) then
+        if (best == huge(1.0_dp)) then
+          res%reason = 'every trial of the line search turns an element inside out (J <= 0)'
+          exit
+        end if
+        trial = u_best                                 ! no decrease found: the least residual with J > 0
+        call measure(trial, merit_trial, reached, bad)
+      end if
+      res%bad = 0
+      u = trial
+      merit = merit_trial
+      res%history = [res%history, merit]
+    end do
+    res%residual = merit
+    res%converged = reached .and. merit <= opts%tol .and. len(res%reason) == 0
+    if (with_contact) res%converged = res%converged .and. step <= opts%tol
+    if (.not. res%converged .and. len(res%reason) == 0) res%reason = 'no convergence in the iterations allowed'
+    res%reason = trim(res%reason)
+    if (analyzed) call free_factor(fac)
+  contains
+    !> The relative residual at v, whether v's fixed dofs have their values,
+    !> and the element with J <= 0 if any.
+    subroutine measure(v, rel, at_target, bad_elem)
+      real(dp), intent(in) :: v(:)
+      real(dp), intent(out) :: rel
+      logical, intent(out) :: at_target
+      integer, intent(out) :: bad_elem(2)
+      real(dp) :: rf, scale
+      integer :: j
+      call internal_force_vector(bodies, v, fint, bad_elem)
+      rel = huge(1.0_dp)
+      at_target = .false.
+      if (bad_elem(1) /= 0) return
+      rf = 0.0_dp
+      at_target = .true.
+      do j = 1, size(v)
+        if (eq(j) > 0) then
+          rf = rf + (f(j) + res%fcon(j) - fint(j))**2
+        else
+          at_target = at_target .and. ubar(j) == v(j)
+        end if
+      end do
+      scale = max(norm2(f), norm2(fint), norm2(res%fcon), tiny(1.0_dp))
+      rel = sqrt(rf) / scale
+    end subroutine measure
+
+  !> The contact problem of one Newton iterate (frictionless): the rows B and
+  !> gaps g(u) of the current configuration (build_moved_contact_set, as a
+  !> finite-sliding pair rebuilds them), the iterate's displacement du0 (the
+  !> tangent's solve without contact) corrected by the contact forces -B' lambda:
+  !>     du_f = du0_f - K^-1 B_f' lambda,
+  !>     0 <= lambda  _|_  g(u) - B du = q + W lambda >= 0,
+  !>     W = B_f K^-1 B_f',  q = g(u) - B du0,
+  !> solved by Lemke's method (the LCP machinery of the linear runs, on the
+  !> condensed tangent).  res%fcon = -B' lambda (all dofs), res%gap and
+  !> res%complementarity of the solution; res%reason when the LCP is not solved.
+  !>   specs (in) the pairs;  fac (in) the tangent's factor
+  !>   du    (inout) (ndof) du0 on entry (dubar on the fixed dofs), du on exit
+  subroutine contact_correction(specs, fac, du, res, err)
+    type(pair_spec_t), intent(in) :: specs(:)
+    type(factor_t), intent(in) :: fac
+    real(dp), intent(inout) :: du(:)
+    type(newton_result_t), intent(inout) :: res
+    type(error_t), allocatable, intent(out) :: err
+    type(contact_set_t) :: cs
+    type(lcp_options_t) :: lopts
+    type(lcp_report_t) :: lrep
+    real(dp), allocatable :: c(:,:), y(:,:), w(:,:), q(:), lam(:), gu(:), gap(:)
+    integer :: i, p, d, nrow
+    call build_moved_contact_set(bodies, specs, u, cs, err)
+    if (allocated(err)) return
+    nrow = cs%nrow
+    res%fcon = 0.0_dp
+    res%gap = 0.0_dp
+    res%complementarity = 0.0_dp
+    if (nrow == 0) return
+    allocate(c(nfree, nrow), y(nfree, nrow), gu(nrow), q(nrow), lam(nrow))
+    c = 0.0_dp
+    gu = cs%g(1:nrow)
+    q = 0.0_dp
+    do i = 1, nrow
+      do p = cs%bptr(i), cs%bptr(i + 1) - 1
+        d = cs%cdof(cs%bcol(p))
+        gu(i) = gu(i) - cs%bval(p) * u(d)              ! g(u) = g - B u (the rows' form B v <= g)
+        q(i) = q(i) - cs%bval(p) * du(d)
+        if (eq(d) > 0) c(eq(d), i) = c(eq(d), i) + cs%bval(p)
+      end do
+      call solve_vector(fac, c(:, i), y(:, i), err)
+      if (allocated(err)) return
+    end do
+    q = q + gu
+    w = matmul(transpose(c), y)
+    call solve_lcp_lemke(w, q, lam, lopts, lrep)
+    if (lrep%info /= 0) then
+      res%reason = 'the contact problem of a Newton iterate is not solved (' // lrep%message // ')'
+      return
+    end if
+    do i = 1, size(du)                                 ! du_f -= K^-1 B_f' lambda
+      if (eq(i) > 0) du(i) = du(i) - dot_product(y(eq(i), :), lam)
+    end do
+    do i = 1, nrow                                     ! f_c = -B' lambda
+      do p = cs%bptr(i), cs%bptr(i + 1) - 1
+        d = cs%cdof(cs%bcol(p))
+        res%fcon(d) = res%fcon(d) - cs%bval(p) * lam(i)
+      end do
+    end do
+    gap = q + matmul(w, lam)
+    res%gap = minval(gap)
+    res%complementarity = maxval(abs(lam * gap)) / max(maxval(abs(lam)), tiny(1.0_dp))
+  end subroutine contact_correction
+  end subroutine solve_newton_step
+
+  !> A load step from (f0, ubar0) to (f1, ubar1) with cut-back (module header).
+  !>   f0, f1, ubar0, ubar1 (in) (ndof) the loads at its start (u balances them) and end
+  !>   u    (inout) (ndof) the state at the start; on exit at the end (converged) or
+  !>                where the last sub-increment that converged left it
+  !>   res  (out)   converged, the iterations summed over the sub-increments, the
+  !>                last residual, cuts, substeps, notes; reason and bad of the
+  !>                failure that ended it
+  !>   other arguments as solve_newton_step
+  subroutine solve_newton_increment(bodies, eq, nfree, k, f0, f1, ubar0, ubar1, opts, u, res, err, specs)
+    type(body_t), intent(in) :: bodies(:)
+    integer, intent(in) :: eq(:), nfree
+    type(csc_t), intent(inout) :: k
+    real(dp), intent(in) :: f0(:), f1(:), ubar0(:), ubar1(:)
+    type(newton_options_t), intent(in) :: opts
+    real(dp), intent(inout) :: u(:)
+    type(newton_result_t), intent(out) :: res
+    type(error_t), allocatable, intent(out) :: err
+    type(pair_spec_t), intent(in), optional :: specs(:)
+    type(newton_result_t) :: sub
+    real(dp), allocatable :: u_start(:)
+    real(dp) :: t, dt, t1
+    real(dp), parameter :: full = 1.0_dp
+
+    res%notes = ''
+    res%reason = ''
+    allocate(res%history(0))
+    t = 0.0_dp
+    dt = full
+    do while (t < full)
+      dt = min(dt, full - t)                         ! a halving then always shortens the attempt
+      t1 = t + dt
+      if (full - t1 <= 1.0e-12_dp) t1 = full
+      u_start = u
+      call solve_newton_step(bodies, eq, nfree, k, (1 - t1) * f0 + t1 * f1, (1 - t1) * ubar0 + t1 * ubar1, opts, &
+                             u, sub, err, specs)
+      if (allocated(err)) return
+      res%iterations = res%iterations + sub%iterations
+      res%residual = sub%residual
+      if (sub%converged) then
+        res%substeps = res%substeps + 1
+        res%history = [res%history, sub%history]
+        res%fcon = sub%fcon
+        res%gap = sub%gap
+        res%complementarity = sub%complementarity
+        t = t1
+        dt = min(2 * dt, full)                       ! the next sub-increment may be larger again
+        cycle
+      end if
+      u = u_start
+      res%bad = sub%bad
+      res%reason = sub%reason
+      if (dt <= 2.0_dp**(-opts%max_cuts)) return      ! cutting no longer helps
+      dt = 0.5_dp * dt
+      res%cuts = res%cuts + 1
+      res%notes = res%notes // 'Newton: ' // sub%reason // trim(element_note(sub%bad)) // &
+                  ' at load factor ' // real_to_str(t1) // ' of the step: the increment is halved to ' // &
+                  real_to_str(dt) // new_line('a')
+    end do
+    res%converged = .true.
+    res%reason = ''
+    res%bad = 0
+  end subroutine solve_newton_increment
+
+  !> ' (body B element E)' when bad names an element, else ''.
+  function element_note(bad) result(s)
+    integer, intent(in) :: bad(2)
+    character(len=:), allocatable :: s
+    s = ''
+    if (bad(1) > 0 .and. bad(2) > 0) s = ' (body ' // int_to_str(bad(1)) // ' element ' // int_to_str(bad(2)) // ')'
+  end function element_note
+
+end module newton_step
