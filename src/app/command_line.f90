@@ -238,6 +238,9 @@ contains
       '                                    -setnumber name value; order=2 keeps curved edges)', &
       '    MATERIAL isotropic E= nu=', &
       '    MATERIAL orthotropic E1= E2= nu12= G12= [angle=0] [E3=E2] [nu13=nu12] [nu23=nu12]', &
+      '    MATERIAL neo_hookean mu= K=  |  MATERIAL mooney_rivlin c10= c01= K=   (finite strain:', &
+      '                                    read and checked; refused, with the linear law of its', &
+      '                                    small-strain limit: no load-step loop solves it yet)', &
       '    DENSITY rho=                    (with GRAVITY)', &
       '    FIX boundary [ux=] [uy=] [ramp=k0:k1|curve=NAME]   (neither ux nor uy: both 0; also a point set)', &
       '    FIX boundary [un=] [ut=] [ramp=k0:k1|curve=NAME]   (local axes: outward normal n, t = (-n_y, n_x))', &
@@ -278,6 +281,7 @@ contains
       '                                    no FORCE: held fixed)', &
       '  SOLVER [lcp=auto|lemke|pgs|pdas] [tol=1e-10] [maxit=0] [omega=1] [updates=30]', &
       '         [ordering=auto|metis|amd] [condense=auto|solve|inverse] [cut=auto|off]', &
+      '         [newton_tol=1e-8] [newton_maxit=25]   (hyperelastic bodies)', &
       '                                    every lcp method with or without friction; auto: Lemke', &
       '                                    up to 100 contact rows, PDAS above; with friction PDAS,', &
       '                                    then Lemke, then PGS, then a fixed point on the Tresca', &
