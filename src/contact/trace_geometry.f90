@@ -87,7 +87,7 @@ contains
     real(dp), intent(in) :: x(:,:), nout(:,:)
     integer, intent(in) :: p
     real(dp), allocatable, intent(out) :: n(:,:)
-    real(dp) :: sigma, y(2), dy(2)
+    real(dp) :: sigma, y(2), dy(2), t(2)
     integer :: np, e, k, i
     np = size(x, 2)
     allocate(n(2, np), source=0.0_dp)
@@ -95,7 +95,16 @@ contains
       sigma = chord_side(x, p, e, nout(:, e))
       do k = 0, p
         call trace_point(x, p, e, real(k, dp) / p, y, dy)
-        n(:, p * (e - 1) + 1 + k) = n(:, p * (e - 1) + 1 + k) + sigma * [dy(2), -dy(1)] / norm2(dy)
+        t = sigma * [dy(2), -dy(1)]
+        if (dot_product(t, nout(:, e)) > 16 * epsilon(1.0_dp) * norm2(x(:, p * e + 1) - x(:, p * (e - 1) + 1))) then
+          n(:, p * (e - 1) + 1 + k) = n(:, p * (e - 1) + 1 + k) + t / norm2(t)
+        else
+          ! a quadratic element whose mid-side node sits at a quarter point
+          ! has x' = 0 at its corner (the map is singular there, as crack-tip
+          ! elements are made), and round-off may turn x' there either way:
+          ! its chord's normal stands in for the tangent's
+          n(:, p * (e - 1) + 1 + k) = n(:, p * (e - 1) + 1 + k) + nout(:, e)
+        end if
       end do
     end do
     if (all(x(:, 1) == x(:, np))) then
