@@ -18,7 +18,7 @@ module run_steps
   use kinds, only: dp
   use errors, only: error_t
   use run_state, only: run_t, outputs_t
-  use run_log, only: log_t, lap, ph_lcp, ph_output, ph_estimate
+  use run_log, only: log_t, lap, say, ph_lcp, ph_output, ph_estimate
   use run_phase, only: enter_phase
   use problem, only: problem_t, step_label
   use linear_system, only: system_t, recover_solution, step_displacement
@@ -151,10 +151,15 @@ contains
   !> The error estimate of the run's final state, timed as phase estimate.
   subroutine estimate_error(run)
     type(run_t), intent(inout) :: run
+    character(len=:), allocatable :: why
     call lap(run%log, ph_output)                 ! the results computed so far: output, as before
     if (run%prob%deck%estimate) call enter_phase('estimating the error')
     call estimate_results(run%prob, run%res)
-    if (run%res%estimated .and. run%prob%deck%estimate_bound) call bound_energy_error(run%prob, run%res)
+    if (run%res%estimated .and. run%prob%deck%estimate_bound) then
+      call bound_energy_error(run%prob, run%res, why)
+      ! ESTIMATE bound asked for a figure: its absence is said, with why
+      if (len(why) > 0) call say(run%log, 'estimate energy_bound not computed: ' // why)
+    end if
     if (run%res%estimated) call lap(run%log, ph_estimate)
   end subroutine estimate_error
 

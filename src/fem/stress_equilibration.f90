@@ -37,6 +37,10 @@
 !> orthogonality: sum over the patch of the sources = the force of the
 !> hat = int psi_a g).
 !>
+!> Why it exists, as one file: the patch problem (its unknowns, its
+!> constraints, its source) is one construction; its parts have no use apart.
+!> The Raviart-Thomas basis is raviart_thomas's, the contact data energy_bound's.
+!>
 !> Programming interface
 !>   type(edge_traction_t)     the loaded edges of a body and their line forces
 !>   equilibrate_body(bd, u, fixed, loads, eta_sym2, eta_skew2, energy2, info)

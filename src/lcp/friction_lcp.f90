@@ -95,6 +95,13 @@
 !>     slip  (2)  otherwise, when |v_{n+k}| = d |ds_k| > state_tol qscale;
 !>     stick (1)  otherwise.
 !>
+!> Why it exists, as one file: the frictional contact problem of a step in
+!> its one scaled form, with the two solvers that read that form directly
+!> (Lemke on its LCP, PGS on its sweeps) and the residual, state and forces
+!> every friction solver is judged by; splitting the form from its measures
+!> would put the one definition of r in two places.  friction_newton and
+!> friction_fixed_point build on it.
+!>
 !> Programming interface
 !>   type(friction_problem_t)   one step's problem beside G: n, nt, qn, qt,
 !>       trow, cmu, bound (the symbols above); built by

@@ -47,15 +47,18 @@ contains
 
   !> res%estimate_energy_bound (module header), -1 where not computed.
   !>   res (inout) u (x, y), mu, tau, adt on entry; estimate_energy_bound on exit
-  subroutine bound_energy_error(prob, res)
+  !>   why (out)   '' when computed, else why not (for the run log)
+  subroutine bound_energy_error(prob, res, why)
     type(problem_t), intent(in) :: prob
     type(results_t), intent(inout) :: res
+    character(len=:), allocatable, intent(out) :: why
     type(edge_traction_t), allocatable :: loads(:)
     real(dp), allocatable :: fc(:), fint(:), u(:,:)
     logical, allocatable :: fixed(:,:)
     real(dp) :: sym2, skew2, e2, eta2, energy2, scale
     integer :: b, nn, d0, info
     res%estimate_energy_bound = -1
+    why = 'a support in local axes, a spring or a thermal strain'
     do b = 1, size(prob%sc%bodies)
       associate (bd => prob%sc%bodies(b))
         if (allocated(bd%axes) .or. bd%springs%n > 0) return
@@ -67,7 +70,9 @@ contains
     allocate(fint(prob%sc%ndof))
     call internal_forces(prob%sc%bodies, res%u, fint)
     scale = maxval(abs(fint))
+    why = 'no internal force'
     if (.not. scale > 0.0_dp) return
+    why = 'a load other than the contact forces (body, edge or point load)'
     if (any(.not. prob%sc%fixed .and. abs(fint - fc(1:prob%sc%ndof)) > 1.0e-7_dp * scale)) return
     eta2 = 0
     energy2 = 0
@@ -78,11 +83,15 @@ contains
         u = reshape(res%u(d0 + 1:d0 + 2 * nn), [2, nn])
         fixed = reshape(prob%sc%fixed(d0 + 1:d0 + 2 * nn), [2, nn])
         call equilibrate_body(bd, u, fixed, loads(b), sym2, skew2, e2, info)
+        why = 'body ' // trim(bd%name) // ': its elements or supports are not covered (8- or 9-node, ' // &
+              'curved, B-bar, a support on one node)'
+        if (info == 2) why = 'body ' // trim(bd%name) // ': a patch problem could not be solved'
         if (info /= 0) return
         eta2 = eta2 + (sqrt(sym2) + korn * sqrt(skew2))**2
         energy2 = energy2 + e2
       end associate
     end do
+    why = ''
     if (energy2 + eta2 > 0.0_dp) then
       res%estimate_energy_bound = sqrt(eta2 / (energy2 + eta2))
     else
