@@ -21,7 +21,6 @@
 !>   terminal_lines(w, h, png)     the terminal and output lines of a w x h picture
 !>   title_text(run, what)         the deck's TITLE, then what the picture shows
 !>   csv_field(line, n)            the n-th comma-separated field of line
-!>   starts_with(s, p), ends_with(s, p)
 !>   force_unit(deck)              what a force is for in this plane ('per unit thickness' ...)
 !>   pressure_unit(deck)           what a contact pressure is in this plane
 !>   column_label(name, deck)      the axis label of a steps-table column, with its unit
@@ -29,12 +28,12 @@
 !>   flat_range(vmin, vmax, scale) '[lo:hi]' of an axis whose series are all flat
 module plot_text
   use kinds, only: dp
-  use strings, only: int_to_str, format_number, exact_to_str
+  use strings, only: int_to_str, format_number, exact_to_str, starts_with, ends_with
   use deck_types, only: deck_t
   use run_state, only: run_t
   implicit none
   private
-  public :: gnuplot_string, terminal_lines, title_text, csv_field, starts_with, ends_with
+  public :: gnuplot_string, terminal_lines, title_text, csv_field
   public :: force_unit, pressure_unit, column_label, is_flat, flat_range
 
   !> relative variation at or below which a series is round-off, not a
@@ -112,18 +111,6 @@ contains
       p = p + q
     end do
   end function csv_field
-
-  pure logical function starts_with(s, prefix)
-    character(len=*), intent(in) :: s, prefix
-    starts_with = len(s) >= len(prefix)
-    if (starts_with) starts_with = s(1:len(prefix)) == prefix
-  end function starts_with
-
-  pure logical function ends_with(s, suffix)
-    character(len=*), intent(in) :: s, suffix
-    ends_with = len(s) >= len(suffix)
-    if (ends_with) ends_with = s(len(s) - len(suffix) + 1:) == suffix
-  end function ends_with
 
   !> What a force of the outputs is for, in the deck's plane (module header):
   !> 'per unit thickness', 'for the thickness T', 'full circle'.

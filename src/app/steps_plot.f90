@@ -20,13 +20,13 @@
 !>                                      there is nothing to draw)
 module steps_plot
   use kinds, only: dp, i8
-  use strings, only: int_to_str, exact_to_str
+  use strings, only: int_to_str, exact_to_str, starts_with, ends_with
   use errors, only: diag_t, add_error
   use problem, only: problem_t
   use step_table, only: step_header
   use safe_files, only: read_file
   use run_state, only: run_t
-  use plot_text, only: gnuplot_string, terminal_lines, title_text, csv_field, starts_with, ends_with, force_unit, &
+  use plot_text, only: gnuplot_string, terminal_lines, title_text, csv_field, force_unit, &
                        column_label, is_flat, flat_range
   implicit none
   private

@@ -13,11 +13,13 @@
 !>   format_number(x)     the shortest decimal that reads back to x (deck values
 !>                        echoed: 0.25, 1e-7, 200000)
 !>   printable(text)      text with control and non-ASCII bytes replaced by '?'
+!>   starts_with(s, prefix), ends_with(s, suffix)   whether s begins / ends with it
 module strings
   use kinds, only: dp, i8
   implicit none
   private
   public :: int_to_str, i8_to_str, real_to_str, exact_to_str, fixed_to_str, format_number, printable
+  public :: starts_with, ends_with
 
 contains
 
@@ -156,5 +158,19 @@ contains
       s = s // 'e' // trim(buf)
     end if
   end function format_number
+
+  !> Whether s begins with prefix (case and blanks as they are).
+  pure logical function starts_with(s, prefix)
+    character(len=*), intent(in) :: s, prefix
+    starts_with = len(s) >= len(prefix)
+    if (starts_with) starts_with = s(1:len(prefix)) == prefix
+  end function starts_with
+
+  !> Whether s ends with suffix (case and blanks as they are).
+  pure logical function ends_with(s, suffix)
+    character(len=*), intent(in) :: s, suffix
+    ends_with = len(s) >= len(suffix)
+    if (ends_with) ends_with = s(len(s) - len(suffix) + 1:) == suffix
+  end function ends_with
 
 end module strings

@@ -23,7 +23,7 @@
 !>        (absolute, links resolved) its Include/Merge may read; errors to diag
 module geo_screen
   use kinds, only: i8
-  use strings, only: int_to_str
+  use strings, only: int_to_str, ends_with
   use errors, only: diag_t, add_error
   use safe_files, only: read_file, real_path, folder_of
   implicit none
@@ -320,11 +320,5 @@ contains
       if (s(i:i) == achar(10)) count_lines = count_lines + 1
     end do
   end function count_lines
-
-  pure logical function ends_with(s, tail)
-    character(len=*), intent(in) :: s, tail
-    ends_with = .false.
-    if (len(s) >= len(tail)) ends_with = s(len(s) - len(tail) + 1:) == tail
-  end function ends_with
 
 end module geo_screen
