@@ -52,7 +52,7 @@ contains
   subroutine report_scene(run)
     type(run_t), intent(inout) :: run
     integer :: b, ip
-    character(len=:), allocatable :: how, family
+    character(len=:), allocatable :: how, family, kinematics
     character(len=160) :: line
     call say(run%log, 'contact2d ' // version // ': ' // run%prob%deck%file)
     if (len(run%prob%deck%title) > 0) call say(run%log, 'title    ' // run%prob%deck%title)
@@ -62,13 +62,16 @@ contains
     if (any([(is_quadratic(run%prob%sc%bodies(b)%mesh), b = 1, size(run%prob%sc%bodies))])) family = 'quadratic (P2/Q8/Q9)'
     if (any([(is_quadratic(run%prob%sc%bodies(b)%mesh), b = 1, size(run%prob%sc%bodies))]) .and. &
         .not. all([(is_quadratic(run%prob%sc%bodies(b)%mesh), b = 1, size(run%prob%sc%bodies))])) family = 'P1/Q1 and quadratic'
+    kinematics = 'small deformation'
+    if (any(run%prob%sc%bodies(:)%finite)) kinematics = 'finite strain of the hyperelastic bodies ' // &
+      '(total Lagrangian, Newton), small deformation of the others'
     if (run%prob%deck%axisymmetric) then
-      call say(run%log, 'model    axisymmetric (x = r, y = z), ' // family // ' elasticity, small deformation; ' // &
+      call say(run%log, 'model    axisymmetric (x = r, y = z), ' // family // ' elasticity, ' // kinematics // '; ' // &
                'loads per unit area and volume, u_r = 0 on the axis; every force is for the full circle (2 pi r)')
     else if (run%prob%deck%plane_stress) then
-      call say(run%log, 'model    plane stress, ' // family // ' elasticity, small deformation')
+      call say(run%log, 'model    plane stress, ' // family // ' elasticity, ' // kinematics)
     else
-      call say(run%log, 'model    plane strain, ' // family // ' elasticity, small deformation')
+      call say(run%log, 'model    plane strain, ' // family // ' elasticity, ' // kinematics)
     end if
     do b = 1, size(run%prob%sc%bodies)
       ! the body name is as long as the deck made it: not part of the buffer
@@ -121,7 +124,11 @@ contains
         call say(run%log, trim(line))
       end associate
     end do
-    if (run%prob%sc%steps > 1 .and. run%prob%cs%ntan > 0) then
+    if (any(run%prob%sc%bodies(:)%finite)) then
+      call say(run%log, 'steps    ' // int_to_str(run%prob%sc%steps) // ' load steps in order (finite strain: ' // &
+        'Newton''s method from the last step''s state, a new tangent and contact geometry at each iterate; ' // &
+        'a step that fails is halved)')
+    else if (run%prob%sc%steps > 1 .and. run%prob%cs%ntan > 0) then
       call say(run%log, 'steps    ' // int_to_str(run%prob%sc%steps) // &
         ' load steps (friction: the answer depends on the load path)')
     else if (run%prob%sc%steps > 1 .and. any(run%prob%sc%specs%finite)) then

@@ -155,6 +155,8 @@ contains
     call lap(run%log, ph_output)                 ! the results computed so far: output, as before
     if (run%prob%deck%estimate) call enter_phase('estimating the error')
     call estimate_results(run%prob, run%res)
+    if (run%prob%deck%estimate .and. any(run%prob%sc%bodies(:)%finite)) call say(run%log, 'estimate not computed: ' // &
+      'the estimators are those of linear elasticity, and a hyperelastic body is solved in finite strain')
     if (run%res%estimated .and. run%prob%deck%estimate_bound) then
       call bound_energy_error(run%prob, run%res, why)
       ! ESTIMATE bound asked for a figure: its absence is said, with why

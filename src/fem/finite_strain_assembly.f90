@@ -19,17 +19,20 @@
 !> Programming interface
 !>   assemble_tangent(bodies, u, eq, dubar, k, rhs, bad)     k += K_ff(u), rhs -= f_int,f(u) + K_fd dubar_d
 !>   internal_force_vector(bodies, u, fint, bad)             fint = f_int(u) (ndof)
+!>   finite_strain_fields(bodies, u, energy, jac, stretch, stress, vm)
+!>        the hyperelastic bodies' energy, J, largest stretch and Cauchy stress per element
 module finite_strain_assembly
   use kinds, only: dp
   use elements, only: element_stiffness, max_nen
   use axisymmetric_elements, only: axi_element_stiffness
   use body, only: body_t, element_dofs, element_coordinates, rotate_element_matrix, rotate_element_vector, &
                   scatter_element, scatter_springs, add_spring_forces, body_pressure_modes
-  use finite_strain_elements, only: finite_strain_response
+  use finite_strain_elements, only: finite_strain_response, finite_strain_energy, finite_strain_state
+  use material, only: von_mises_4
   use sparse_matrix, only: csc_t
   implicit none
   private
-  public :: assemble_tangent, internal_force_vector
+  public :: assemble_tangent, internal_force_vector, finite_strain_fields
 
 contains
 
@@ -54,8 +57,13 @@ contains
     if (bd%finite) then
       ! F-bar where the linear kernels take B-bar's mean dilatation (Q1 of a
       ! nearly incompressible body); the quadratic elements go without it
-      call finite_strain_response(nen, xe(:, 1:nen), ue(1:m), bd%rubber, bd%axisymmetric, bd%thick, fe(1:m), kl, info, &
-                                  fbar=body_pressure_modes(bd, nen) == 1)
+      if (present(ke)) then
+        call finite_strain_response(nen, xe(:, 1:nen), ue(1:m), bd%rubber, bd%axisymmetric, bd%thick, fe(1:m), kl, &
+                                    info, fbar=body_pressure_modes(bd, nen) == 1)
+      else                                   ! the forces alone (the line search's residuals): no tangent
+        call finite_strain_response(nen, xe(:, 1:nen), ue(1:m), bd%rubber, bd%axisymmetric, bd%thick, fe(1:m), &
+                                    info=info, fbar=body_pressure_modes(bd, nen) == 1)
+      end if
       if (info /= 0) return
     else
       if (bd%axisymmetric) then
@@ -65,11 +73,10 @@ contains
       end if
       fe(1:m) = matmul(kl(1:m, 1:m), ue(1:m))
     end if
-    if (allocated(bd%axes)) then
-      call rotate_element_vector(bd, e, fe, .false.)                          ! Q' fe
-      call rotate_element_matrix(bd, e, kl)                                   ! Q' K Q
-    end if
-    if (present(ke)) ke(1:m, 1:m) = kl(1:m, 1:m)
+    if (allocated(bd%axes)) call rotate_element_vector(bd, e, fe, .false.)   ! Q' fe
+    if (.not. present(ke)) return
+    if (allocated(bd%axes)) call rotate_element_matrix(bd, e, kl)             ! Q' K Q
+    ke(1:m, 1:m) = kl(1:m, 1:m)
   end subroutine element_response_at
 
   !> k += K_ff(u), rhs -= f_int,f(u) + K_fd dubar_d over every element and spring.
@@ -144,5 +151,47 @@ contains
       call add_spring_forces(bodies(b), u, fint)
     end do
   end subroutine internal_force_vector
+
+  !> The hyperelastic bodies' results at u (solver basis): their stored
+  !> energy int W dV0, and per element (global numbering, bodies(b)%elem0 + e)
+  !> J and the largest principal stretch at the element's centre, and there
+  !> the Cauchy stress (xx, yy, xy, or rr, zz, rz, tt in axisymmetric
+  !> analysis) and its von Mises value when stress is present.  Elements of
+  !> linear bodies keep what the caller put there (jac, stretch: 1).
+  !>   energy (out) the hyperelastic bodies' energy (the linear ones' is the caller's)
+  !>   jac, stretch (inout) (nelem)
+  !>   stress (inout, optional) (3 or 4, nelem);  vm (inout, optional) (nelem)
+  subroutine finite_strain_fields(bodies, u, energy, jac, stretch, stress, vm)
+    type(body_t), intent(in) :: bodies(:)
+    real(dp), intent(in) :: u(:)
+    real(dp), intent(out) :: energy
+    real(dp), intent(inout) :: jac(:), stretch(:)
+    real(dp), intent(inout), optional :: stress(:,:), vm(:)
+    real(dp) :: xe(2, max_nen), ue(2 * max_nen), sig4(4), we
+    integer :: dofs(2 * max_nen), b, e, nen, ge, info
+    energy = 0.0_dp
+    do b = 1, size(bodies)
+      if (.not. bodies(b)%finite) cycle
+      associate (bd => bodies(b))
+        do e = 1, bd%mesh%nelem
+          nen = bd%mesh%nen(e)
+          ge = bd%elem0 + e
+          call element_coordinates(bd%mesh, e, xe)
+          call element_dofs(bd, e, dofs)
+          ue(1:2 * nen) = u(dofs(1:2 * nen))
+          if (allocated(bd%axes)) call rotate_element_vector(bd, e, ue, .true.)
+          call finite_strain_energy(nen, xe(:, 1:nen), ue(1:2 * nen), bd%rubber, bd%axisymmetric, bd%thick, we, &
+                                    info, fbar=body_pressure_modes(bd, nen) == 1)
+          energy = energy + we
+          call finite_strain_state(nen, xe(:, 1:nen), ue(1:2 * nen), bd%rubber, bd%axisymmetric, sig4, jac(ge), &
+                                   stretch(ge), info)
+          if (present(stress)) then
+            stress(:, ge) = sig4(1:size(stress, 1))
+            vm(ge) = von_mises_4(sig4)
+          end if
+        end do
+      end associate
+    end do
+  end subroutine finite_strain_fields
 
 end module finite_strain_assembly

@@ -153,7 +153,7 @@ contains
     fe = 0.0_dp
     if (present(ke)) ke(1:m, 1:m) = 0.0_dp
     info = 0
-    if (bar) call centre_state(nen, xe, ue, axisymmetric, c0, info)
+    if (bar) call centre_state(nen, xe, ue, axisymmetric, c0, info, hessian=present(ke))
     if (info /= 0) return
     do q = 1, nq
       call point_state(nen, xe, ue, xi(:, q), w(q), axisymmetric, thick, bar, c0, f, d(:, 1:m), dv, k)
@@ -182,14 +182,19 @@ contains
   !> What F-bar needs of the element: its mean dilatation J0 = int J dV0 / V0
   !> on the stiffness rule, dJ0/du and d2 J0 / du2 (the means of G' dJ/dF and
   !> G' d2J/dF2 G).  info 1 when J0 <= 0 or J <= 0 at a point.
-  pure subroutine centre_state(nen, xe, ue, axisymmetric, c0, info)
+  !>   hessian (in, optional) .false.: d2 J0 / du2 left out (forces only; default .true.)
+  pure subroutine centre_state(nen, xe, ue, axisymmetric, c0, info, hessian)
     integer, intent(in) :: nen
     real(dp), intent(in) :: xe(2, nen), ue(2 * nen)
     logical, intent(in) :: axisymmetric
     type(centre_t), intent(out) :: c0
     integer, intent(out) :: info
+    logical, intent(in), optional :: hessian
     real(dp) :: xi(2, 9), w(9), dv, g(5, 2 * max_nen), f(3, 3), f5(5), vol, jac
     integer :: m, q, nq
+    logical :: want
+    want = .true.
+    if (present(hessian)) want = hessian
     m = 2 * nen
     call stiffness_rule(nen, nq, xi, w)
     vol = 0.0_dp
@@ -204,7 +209,8 @@ contains
       vol = vol + dv
       c0%jac = c0%jac + dv * jac
       c0%dj(1:m) = c0%dj(1:m) + dv * matmul(jacobian_gradient(f5), g(:, 1:m))
-      c0%d2j(1:m, 1:m) = c0%d2j(1:m, 1:m) + dv * matmul(transpose(g(:, 1:m)), matmul(jacobian_hessian(f5), g(:, 1:m)))
+      if (want) c0%d2j(1:m, 1:m) = c0%d2j(1:m, 1:m) + &
+                                   dv * matmul(transpose(g(:, 1:m)), matmul(jacobian_hessian(f5), g(:, 1:m)))
     end do
     c0%jac = c0%jac / vol
     c0%dj(1:m) = c0%dj(1:m) / vol

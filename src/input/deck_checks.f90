@@ -79,7 +79,7 @@ contains
     end do
 
     call resolve_contacts(s, deck, resolved)
-    if (resolved) call check_finite_strain_pairs(s, deck)
+    if (resolved) call check_finite_strain_scene(s, deck)
     if (resolved .and. .not. s%contact_bad) call check_rigid_modes(s, deck)
     call check_ramps(s, deck)
     call resolve_curves(s, deck)
@@ -98,35 +98,53 @@ contains
     end subroutine check_statement
   end subroutine finish_checks
 
-  !> A CONTACT touching a hyperelastic body follows the bodies: sliding=finite
-  !> is implied, sliding=small (the pairing of the initial configuration, a
-  !> small-strain assumption) and gap=zero (the initial gaps) are errors.
-  subroutine check_finite_strain_pairs(s, deck)
+  !> A scene with a hyperelastic body is solved by Newton's method on the
+  !> whole scene (doc/theory.md, "Hyperelastic bodies in finite strain"):
+  !> every CONTACT follows the bodies (sliding=finite implied; sliding=small,
+  !> the pairing of the initial configuration, and gap=zero, the initial
+  !> gaps, are errors), frictionless in this version; every RIGID moves by
+  !> FIX (a RIGID moved by FORCE has no stiffness in the Newton tangent);
+  !> the laws need F33 (plane strain or axisymmetric, not plane stress); and
+  !> ADAPT, whose estimators are linear elasticity's, is not available.
+  subroutine check_finite_strain_scene(s, deck)
     type(state_t), intent(inout) :: s
     type(deck_t), intent(inout) :: deck
-    integer :: i, b
+    integer :: i, b, k
     character(len=:), allocatable :: name
+    name = ''
+    do b = 1, s%nbody
+      if (.not. is_hyperelastic(deck%bodies(b))) cycle
+      if (len(name) == 0) name = deck%bodies(b)%name
+      if (deck%plane_stress) call report(s, deck%bodies(b)%material%line, 'MATERIAL ' // &
+        deck%bodies(b)%material%kind // ' in PLANE stress (expected PLANE strain or axisymmetric: the law needs ' // &
+        'the through-thickness stretch F33, which plane stress leaves unknown)')
+    end do
+    if (len(name) == 0) return
     do i = 1, s%ncontact
       associate (c => deck%contacts(i))
-        name = ''
-        do b = 1, 2
-          associate (ib => merge(c%slave_body, c%master_body, b == 1))
-            if (ib < 1 .or. ib > s%nbody) cycle
-            if (is_hyperelastic(deck%bodies(ib)) .and. len(name) == 0) name = deck%bodies(ib)%name
-          end associate
-        end do
-        if (len(name) == 0) cycle
         if (c%small_given) then
-          call report(s, c%line, 'sliding=small on a pair of the hyperelastic body ' // quoted(name) // &
+          call report(s, c%line, 'sliding=small in a scene with the hyperelastic body ' // quoted(name) // &
                       ' (expected sliding=finite, implied: a body in finite strain moves its contact zone)')
         else if (c%gap_zero) then
-          call report(s, c%line, 'gap=zero on a pair of the hyperelastic body ' // quoted(name) // &
+          call report(s, c%line, 'gap=zero in a scene with the hyperelastic body ' // quoted(name) // &
                       ' (expected gap=geometry: its pairs measure the gaps in the current configuration)')
+        else if (c%friction /= 'none') then
+          call report(s, c%line, 'friction in a scene with the hyperelastic body ' // quoted(name) // &
+                      ': its Newton iteration is frictionless in this version (expected mu=0)')
         end if
         c%finite = .true.
       end associate
     end do
-  end subroutine check_finite_strain_pairs
+    do i = 1, size(deck%rigids)
+      do k = 1, size(deck%rigids(i)%forces)
+        call report(s, deck%rigids(i)%forces(k)%line, 'RIGID ' // quoted(deck%rigids(i)%name) // ' FORCE in a ' // &
+          'scene with the hyperelastic body ' // quoted(name) // ': the Newton tangent has no stiffness along a ' // &
+          'RIGID''s free motion (expected FIX ux= uy= rz=, the motion prescribed)')
+      end do
+    end do
+    if (deck%adapt%on) call report(s, deck%adapt%line, 'ADAPT in a scene with the hyperelastic body ' // &
+      quoted(name) // ' (its error estimators are those of linear elasticity)')
+  end subroutine check_finite_strain_scene
 
   !> The body's MATERIAL is neo_hookean or mooney_rivlin (solved in finite strain).
   pure logical function is_hyperelastic(body)

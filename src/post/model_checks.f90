@@ -117,6 +117,7 @@ contains
     res%max_rotation_body = prob%sc%bodies(1)%name
     rule_nen = 0
     do b = 1, size(prob%sc%bodies)
+      if (prob%sc%bodies(b)%finite) cycle      ! solved in finite strain: its strain is simulated, not linearized
       associate (bd => prob%sc%bodies(b), m => prob%sc%bodies(b)%mesh)
         area = 0.0_dp
         do e = 1, m%nelem

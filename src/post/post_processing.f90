@@ -30,6 +30,7 @@ module post_processing
   use step_solution, only: step_solution_t
   use results_writer, only: results_t
   use body, only: element_response, to_global_axes, spring_reactions
+  use finite_strain_assembly, only: finite_strain_fields, internal_force_vector
   use contact_set, only: row_of_node, state_row_of_node, node_rows, node_traction
   use contact_condensation, only: contact_forces
   use contact_zones, only: pair_zones
@@ -83,6 +84,7 @@ contains
     if (allocated(sol%alpha)) res%alpha = sol%alpha
     if (allocated(sol%unheld_mode)) res%unheld_mode = sol%unheld_mode
     if (allocated(sol%method)) res%lcp_method = sol%method
+    if (allocated(sol%newton)) res%newton = sol%newton
     res%lcp_iterations = sol%iterations
     res%lcp_residual = sol%residual
     res%certificate = [sol%cert%complementarity, sol%cert%cone, sol%cert%equilibrium]
@@ -205,12 +207,13 @@ contains
     if (allocated(res%stress)) deallocate(res%stress, res%vm)
     if (allocated(res%reaction)) deallocate(res%reaction)
     allocate(res%stress(merge(4, 3, prob%deck%axisymmetric), prob%sc%nelem), res%vm(prob%sc%nelem), fint(prob%sc%ndof))
-    if (prob%deck%output%fields(4) .or. prob%deck%output%fields(5)) then
+    if (prob%deck%output%fields(4) .or. prob%deck%output%fields(5) .or. any(prob%sc%bodies%finite)) then
       call element_response(prob%sc%bodies, res%u, fint, res%stress, res%vm, res%adt)
     else
       call element_response(prob%sc%bodies, res%u, fint)        ! no stress field asked for: none computed
     end if
     res%energy = 0.5_dp * dot_product(res%u, fint)
+    if (any(prob%sc%bodies%finite)) call finite_strain_results(prob, res, fint)
     allocate(res%reaction(2, size(prob%sc%fixes)), source=0.0_dp)
     ! the direction of each dof: e_x, e_y, or n, t at a node in local axes
     allocate(axis(2, prob%sc%ndof), source=0.0_dp)
@@ -244,6 +247,32 @@ contains
     end do
     call to_global_axes(prob%sc%bodies, res%u)
   end subroutine post_process
+
+  !> A scene with hyperelastic bodies: their internal forces f_int(u) in
+  !> fint (the reactions' f_int - f_ext - f_c), the stored energy (the
+  !> linear bodies' u'K u / 2 plus the hyperelastic ones' int W dV0), J and
+  !> the largest stretch of every element (1 in the linear bodies), and the
+  !> hyperelastic elements' Cauchy stress in place of the linear one.
+  !>   fint (inout) (ndof) the linear K u of every body on entry
+  subroutine finite_strain_results(prob, res, fint)
+    type(problem_t), intent(in) :: prob
+    type(results_t), intent(inout) :: res
+    real(dp), intent(inout) :: fint(:)
+    real(dp) :: we
+    integer :: b, d0, nd, bad(2)
+    res%energy = 0.0_dp
+    do b = 1, size(prob%sc%bodies)
+      if (prob%sc%bodies(b)%finite) cycle
+      d0 = prob%sc%bodies(b)%dof0
+      nd = 2 * prob%sc%bodies(b)%mesh%nnode
+      res%energy = res%energy + 0.5_dp * dot_product(res%u(d0 + 1:d0 + nd), fint(d0 + 1:d0 + nd))
+    end do
+    if (allocated(res%jacobian)) deallocate(res%jacobian, res%stretch)
+    allocate(res%jacobian(prob%sc%nelem), res%stretch(prob%sc%nelem), source=1.0_dp)
+    call finite_strain_fields(prob%sc%bodies, res%u, we, res%jacobian, res%stretch, res%stress, res%vm)
+    res%energy = res%energy + we
+    call internal_force_vector(prob%sc%bodies, res%u, fint, bad)
+  end subroutine finite_strain_results
 
   !> Each RIGID's motion (u_x, u_y, theta of its reference point, res%u) and
   !> the contact force on it (fc = -C' z on its dofs: force x, y, moment about

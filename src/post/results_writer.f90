@@ -40,6 +40,10 @@ module results_writer
     real(dp), allocatable :: stress(:,:)         !< (3, nelem) sxx syy sxy per element, or
                                                  !< (4, nelem) srr szz srz stt (axisymmetric)
     real(dp), allocatable :: vm(:)               !< (nelem) von Mises
+    real(dp), allocatable :: jacobian(:)         !< (nelem) finite strain: J = det F at each element's centre
+                                                 !< (unallocated: no hyperelastic body)
+    real(dp), allocatable :: stretch(:)          !< (nelem) finite strain: the largest principal stretch there
+    real(dp), allocatable :: newton(:,:)         !< (3, steps) finite strain: step, Newton iterations, residual
     real(dp), allocatable :: adt(:)              !< (nelem) the state's thermal strain alpha dT per element
                                                  !< (0 without THERMAL): what its stresses subtract
     real(dp), allocatable :: node_pressure(:)    !< (ndof/2) contact pressure at nodes (0 elsewhere)
@@ -257,6 +261,12 @@ contains
     write(u, '(a,i0)') 'lcp_iterations ', r%lcp_iterations
     write(u, '(a,a)') 'lcp_residual ', exact_to_str(r%lcp_residual)
     call write_lines(u, 'lcp_fallback', r%lcp_fallback)
+    if (allocated(r%newton)) then
+      do k = 1, size(r%newton, 2)
+        write(u, '(a,i0,a,i0,a)') 'newton ', nint(r%newton(1, k)), ' ', nint(r%newton(2, k)), ' ' // &
+          exact_to_str(r%newton(3, k))
+      end do
+    end if
     write(u, '(a,a)') 'complementarity ', exact_to_str(r%complementarity)
     write(u, '(a)') 'certificate complementarity ' // exact_to_str(r%certificate(1)) // ' cone ' // &
       exact_to_str(r%certificate(2)) // ' equilibrium ' // exact_to_str(r%certificate(3))

@@ -85,6 +85,8 @@ contains
     res%estimated = .false.
     if (allocated(res%error_indicator)) deallocate(res%error_indicator)
     if (.not. prob%deck%estimate) return
+    ! the estimators are linear elasticity's: none for a state in finite strain (run_steps says so)
+    if (any(prob%sc%bodies(:)%finite)) return
     allocate(eta2(prob%sc%nelem), source=0.0_dp)
     energy2 = 0.0_dp
     do b = 1, size(prob%sc%bodies)

@@ -116,6 +116,8 @@ contains
     call add_springs()
     call add('active_nodes', real(res%active_nodes, dp), .true.)
     call add('lcp_iterations', real(iterations, dp), .true.)
+    ! finite strain: the step's Newton iterations (the solve's iterations above are these)
+    if (allocated(res%newton)) call add('newton_iterations', res%newton(2, size(res%newton, 2)), .true.)
     call add('certificate_complementarity', res%certificate(1), .false.)
     call add('certificate_cone', res%certificate(2), .false.)
     call add('certificate_equilibrium', res%certificate(3), .false.)

@@ -39,7 +39,8 @@ module vtk_files
   ! where an array's values come from (vtk_arrays, array_values)
   integer, parameter :: from_displacement = 1, from_pressure = 2, from_gap = 3, from_shear = 4, &
                         from_friction_state = 5, from_slip = 6, from_body = 7, from_stress = 8, &
-                        from_von_mises = 9, from_error_indicator = 10
+                        from_von_mises = 9, from_error_indicator = 10, from_jacobian = 11, &
+                        from_stretch = 12
 
   !> One array of the VTK files.
   type :: vtk_array_t
@@ -79,7 +80,7 @@ contains
     type(results_t), intent(in) :: r
     logical, intent(in) :: fields(5)
     type(vtk_array_t), allocatable, intent(out) :: list(:)
-    type(vtk_array_t) :: all(10)
+    type(vtk_array_t) :: all(12)
     integer :: n
     n = 0
     if (fields(1)) call add(vtk_array_t('displacement', vector=.true., ncomp=2, source=from_displacement))
@@ -91,10 +92,18 @@ contains
       call add(vtk_array_t('friction_state', integers=.true., source=from_friction_state))
     if (fields(3) .and. allocated(r%node_slip)) call add(vtk_array_t('slip', source=from_slip))
     call add(vtk_array_t('body', on_points=.false., integers=.true., source=from_body))
-    if (fields(4)) call add(vtk_array_t('stress', on_points=.false., ncomp=size(r%stress, 1), source=from_stress))
+    ! with a hyperelastic body the stress is the Cauchy stress (the linear bodies': theirs, equal to first order)
+    if (allocated(r%jacobian)) then
+      call add(vtk_array_t('cauchy_stress', on_points=.false., ncomp=size(r%stress, 1), source=from_stress))
+    else if (fields(4)) then
+      call add(vtk_array_t('stress', on_points=.false., ncomp=size(r%stress, 1), source=from_stress))
+    end if
     if (fields(5)) call add(vtk_array_t('von_mises', on_points=.false., source=from_von_mises))
     if (allocated(r%error_indicator)) &
       call add(vtk_array_t('error_indicator', on_points=.false., source=from_error_indicator))
+    ! finite strain: the change of volume and the largest stretch (inversion, strain limits)
+    if (allocated(r%jacobian)) call add(vtk_array_t('J', on_points=.false., source=from_jacobian))
+    if (allocated(r%stretch)) call add(vtk_array_t('stretch_max', on_points=.false., source=from_stretch))
     list = all(1:n)
   contains
     subroutine add(a)
@@ -142,6 +151,8 @@ contains
     case (from_stress);          call gather(r%stress, size(r%stress, 1), v%elem_index, v)
     case (from_von_mises);       call gather(r%vm, 1, v%elem_index, v)
     case (from_error_indicator); call gather(r%error_indicator, 1, v%elem_index, v)
+    case (from_jacobian);        call gather(r%jacobian, 1, v%elem_index, v)
+    case (from_stretch);         call gather(r%stretch, 1, v%elem_index, v)
     end select
   end subroutine array_values
 

@@ -373,6 +373,7 @@ contains
     if (any([(sc%bodies(b)%springs%n > 0, b = 1, size(sc%bodies))])) effects = effects // ' spring'
     if (any([(size(deck%bodies(b)%thermals) > 0, b = 1, size(deck%bodies))])) effects = effects // ' thermal'
     if (any(deck%bodies(:)%has_offset)) effects = effects // ' offset'
+    if (any(sc%bodies(:)%finite)) effects = effects // ' finite_strain'
     if (size(sc%specs) > 0) effects = effects // ' contact'
     if (size(sc%rigids) > 0) effects = effects // ' rigid_obstacle'
     if (any([(size(deck%rigids(ip)%forces) > 0, ip = 1, size(deck%rigids))])) effects = effects // ' rigid_force'
@@ -533,7 +534,7 @@ contains
           call make_orthotropic(mt%e1, mt%e2, mt%e3, mt%nu12, mt%nu13, mt%nu23, mt%g12, mt%angle, deck%plane_stress, &
                                 bd%law)
         else if (mt%kind == 'neo_hookean' .or. mt%kind == 'mooney_rivlin') then
-          call make_hyperelastic_body(deck, mt, bd, diag)
+          call make_hyperelastic_body(deck, mt, bd)
         else
           call make_isotropic(mt%e, mt%nu, deck%plane_stress, bd%law)
         end if
@@ -551,23 +552,18 @@ contains
   end subroutine make_body
 
   !> A hyperelastic body: its law, and beside it the law's small-strain limit
-  !> (E, nu of the reference state) as bd%law.  No load-step loop of this
-  !> version solves a body in finite strain: the deck is refused at its
-  !> MATERIAL line, with the linear law that is its small-strain limit.
-  subroutine make_hyperelastic_body(deck, mt, bd, diag)
+  !> (E, nu of the reference state) as bd%law, the initial tangent (the
+  !> first factorization, the condensation and the rigid modes use it).
+  subroutine make_hyperelastic_body(deck, mt, bd)
     type(deck_t), intent(in) :: deck
     type(material_t), intent(in) :: mt
     type(body_t), intent(inout) :: bd
-    type(diag_t), intent(inout) :: diag
     real(dp) :: e, nu
     bd%finite = .true.
     call make_hyperelastic(mt%c10, mt%c01, mt%bulk, bd%rubber)
     call initial_moduli(bd%rubber, e, nu)
     call make_isotropic(e, nu, deck%plane_stress, bd%law)
     bd%bbar = nu > locking_nu             ! F-bar on its Q1 (finite_strain_assembly)
-    call add_error(diag, deck%file, mt%line, 'MATERIAL ' // mt%kind // ': bodies in finite strain are not ' // &
-                   'solved yet (expected a linear law; the small-strain limit of this one is MATERIAL isotropic E=' // &
-                   trim(format_number(e)) // ' nu=' // trim(format_number(nu)) // ')')
   end subroutine make_hyperelastic_body
 
   !> PLANE axisymmetric: every node at r = x >= 0.  A node within 1e-10 of

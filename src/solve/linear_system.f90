@@ -273,7 +273,11 @@ contains
     type(error_t), allocatable, intent(out) :: err
     integer(i8) :: t_solve, t_now, t_rate
     call enter_phase('recovering the displacements')
-    if (sys%with_contact) then
+    if (allocated(sol%u)) then                        ! the solve gave it whole (finite strain)
+      u = sol%u
+      if (allocated(sys%w)) deallocate(sys%w)
+      if (allocated(sys%q)) deallocate(sys%q)
+    else if (sys%with_contact) then
       deallocate(sys%w, sys%q)
       allocate(u(prob%sc%ndof))
       call system_clock(t_solve)
@@ -304,6 +308,10 @@ contains
     type(step_solution_t), intent(in) :: sol
     real(dp), allocatable, intent(out) :: u(:)
     type(error_t), allocatable, intent(out) :: err
+    if (allocated(sol%u)) then                        ! the solve gave it whole (finite strain)
+      u = sol%u
+      return
+    end if
     allocate(u(prob%sc%ndof))
     if (allocated(sol%mu)) then
       call solve_loads(prob, sys, fk, ubk, multipliers(sol), u, err)

@@ -45,6 +45,11 @@
 !> a step crosses too much at once (a side load raised past what friction
 !> holds, a contact zone that moves by more than it is wide).
 !>
+!> A scene with a hyperelastic body solves every step in order by Newton's
+!> method on the whole scene (hyperelastic_step), each step from the last
+!> one's state; Newton halves its own steps, so such a step is not split
+!> here.
+!>
 !> Each solved step other than the final one is handed to the caller's
 !> recorder (OUTPUT steps=all), with its loads and solution, before the next
 !> one is solved; the final step's solution is returned.  Nothing here writes
@@ -74,6 +79,7 @@ module load_steps
   use mode_support, only: mode_split_t
   use rigid_support, only: rigid_split_t
   use friction_lcp, only: friction_problem_t, friction_problem, friction_state
+  use hyperelastic_step, only: check_hyperelastic_scene, solve_hyperelastic_step
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
   private
@@ -121,6 +127,7 @@ module load_steps
     real(dp), allocatable :: z(:)              !< (n + nt) the last step's multipliers (the start)
     real(dp), allocatable :: slip(:)           !< (nt) T u of the last step along its rows (small sliding)
     real(dp), allocatable :: u(:)              !< (ndof) the last step's displacement (finite sliding)
+    real(dp), allocatable :: u_prior(:)        !< (ndof) finite strain: where the last step started
     integer(i8), allocatable :: keys(:)        !< the last update's rows (finite sliding: row_keys)
   end type history_t
 
@@ -153,19 +160,24 @@ contains
     type(finite_clock_t) :: clock
     type(step_load_t) :: load
     integer :: kstep, first
-    logical :: finite, friction, steps_all
+    logical :: finite, friction, steps_all, hyper
     integer, allocatable :: before(:)
 
     finite = any(prob%sc%specs%finite)
     friction = prob%cs%ntan > 0
+    hyper = any(prob%sc%bodies%finite)
     steps_all = prob%deck%output%steps_all
+    if (hyper) then
+      call check_hyperelastic_scene(prob, err)
+      if (allocated(err)) return
+    end if
     allocate(load%f(prob%sc%ndof), load%ubar(prob%sc%ndof))
     first = prob%sc%steps                          ! path-independent: the final step alone
     if (friction) call say_floating(prob, log)
-    if (friction .or. finite .or. steps_all) first = 1
+    if (friction .or. finite .or. steps_all .or. hyper) first = 1
     do kstep = first, prob%sc%steps
       load%kstep = kstep
-      if (.not. sys%with_contact) then          ! nothing to solve: the loads alone
+      if (.not. (sys%with_contact .or. hyper)) then   ! nothing to solve: the loads alone
         load%t = real(kstep, dp)
         call step_forces(prob%sc, load%t, load%f, load%ubar)
         sol%step = kstep
@@ -180,7 +192,7 @@ contains
         if (allocated(err)) return
       end if
     end do
-    if (finite .and. sys%with_contact) call say(log, 'finite   ' // int_to_str(clock%updates) // &
+    if (finite .and. sys%with_contact .and. .not. hyper) call say(log, 'finite   ' // int_to_str(clock%updates) // &
       ' geometry updates in ' // int_to_str(prob%sc%steps) // ' steps: rebuild ' // real_to_str(clock%geometry) // &
       ' s, condensation ' // real_to_str(clock%condense) // ' s, LCP ' // real_to_str(clock%lcp) // ' s')
   end subroutine solve_load_steps
@@ -281,6 +293,13 @@ contains
     logical :: finite, path
     real(dp) :: tm
     character(len=:), allocatable :: why
+    if (any(prob%sc%bodies%finite)) then          ! Newton's method, which halves its own steps
+      load%t = t1
+      call step_forces(prob%sc, t1, load%f, load%ubar)
+      if (.not. allocated(past%u)) allocate(past%u(prob%sc%ndof), source=0.0_dp)
+      call solve_hyperelastic_step(prob, sys, t0, load%kstep, load%f, load%ubar, past%u, past%u_prior, log, sol, err)
+      return
+    end if
     finite = any(prob%sc%specs%finite)
     path = finite .or. prob%cs%ntan > 0
     if (path) then                                ! the state to go back to

@@ -15,10 +15,21 @@
 !> ||f_int||) over all dofs (the reactions count: a step driven by prescribed
 !> displacements has no f).
 !>
-!> A step that does not converge in maxit iterations, or whose tangent is not
-!> positive definite, or whose every trial inverts an element, returns
-!> converged = .false. with the reason and the element: the caller halves the
-!> step.  Nothing here stops the run or writes a file.
+!> An iterate whose tangent is not positive definite is the last update
+!> gone too far (the first update of a new load in a nearly incompressible
+!> body, below): that update is halved again (at most max_halvings times)
+!> and the iteration goes on from there.  A step that does not converge in
+!> maxit iterations, or whose tangent stays indefinite, or whose every trial
+!> inverts an element, returns converged = .false. with the reason and the
+!> element: the caller halves the step.  Nothing here stops the run or
+!> writes a file.
+!>
+!> Predictor (solve_newton_increment's u_prior, solve_newton_step's guess).
+!> A sub-increment starts from the last one's displacement per unit of load
+!> factor times its own (the secant predictor), its fixed dofs at their
+!> values, unless an element is inside out there; when the predicted start
+!> fails, the same sub-increment is solved again from where it started
+!> before it is halved.
 !>
 !> Cut-back (solve_newton_increment).  A load step from the loads (f0,
 !> ubar0) to (f1, ubar1) is walked in sub-increments of the load factor t,
@@ -62,6 +73,7 @@ module newton_step
   use finite_strain_assembly, only: assemble_tangent, internal_force_vector
   use contact_set, only: contact_set_t, pair_spec_t
   use moved_contact, only: build_moved_contact_set
+  use local_axes, only: rotate_constraint_rows
   use lcp_scaling, only: lcp_options_t, lcp_report_t
   use lcp_lemke, only: solve_lcp_lemke
   use sparse_matrix, only: csc_t
@@ -89,6 +101,11 @@ module newton_step
     real(dp), allocatable :: fcon(:)          !< (ndof) contact forces on the bodies, -B' lambda (contact)
     real(dp) :: gap = 0.0_dp                  !< contact: the least linearized gap after the last iterate
     real(dp) :: complementarity = 0.0_dp      !< contact: max lambda_i gap_i / (max lambda size), a length
+    type(contact_set_t) :: cs                 !< contact: the rows of the last iterate (its configuration)
+    real(dp), allocatable :: lambda(:)        !< contact: (cs%nrow) their multipliers (nodal forces)
+    real(dp), allocatable :: w(:,:)           !< contact: (nrow, nrow) W of the last iterate's tangent
+    real(dp), allocatable :: q(:)             !< contact: (nrow) its gaps without contact forces
+    real(dp), allocatable :: gaps(:)          !< contact: (nrow) its linearized gaps, q + W lambda
     character(len=:), allocatable :: notes    !< solve_newton_increment: one line per halving
   end type newton_result_t
 
@@ -108,7 +125,9 @@ contains
   !>                  positive definite tangent (that one is res%reason), or the
   !>                  contact rows' failure (build_moved_contact_set)
   !>   specs  (in, optional) (npair) frictionless CONTACT pairs to follow (module header)
-  subroutine solve_newton_step(bodies, eq, nfree, k, f, ubar, opts, u, res, err, specs)
+  !>   guess  (in, optional) (ndof) where to start instead of u (its fixed dofs at ubar),
+  !>                  unless an element is inside out there
+  subroutine solve_newton_step(bodies, eq, nfree, k, f, ubar, opts, u, res, err, specs, guess)
     type(body_t), intent(in) :: bodies(:)
     integer, intent(in) :: eq(:), nfree
     type(csc_t), intent(inout) :: k
@@ -118,11 +137,13 @@ contains
     type(newton_result_t), intent(out) :: res
     type(error_t), allocatable, intent(out) :: err
     type(pair_spec_t), intent(in), optional :: specs(:)
+    real(dp), intent(in), optional :: guess(:)
     type(factor_t) :: fac
     type(error_t), allocatable :: ferr
     real(dp), allocatable :: dubar(:), rhs(:), du_f(:), du(:), trial(:), fint(:), u_best(:)
-    real(dp) :: merit, merit_trial, best, alpha, step
-    integer :: it, i, h, bad(2)
+    real(dp), allocatable :: u_prev(:), du_prev(:)
+    real(dp) :: merit, merit_trial, best, alpha, step, alpha_prev
+    integer :: it, i, h, bad(2), back
     logical :: reached, analyzed, accepted, with_contact
 
     allocate(dubar(size(u)), rhs(nfree), du_f(nfree), du(size(u)), trial(size(u)), fint(size(u)))
@@ -132,6 +153,10 @@ contains
     allocate(res%history(0))
     res%reason = ''
     analyzed = .false.
+    if (present(guess)) then                          ! a predicted start, when no element is inside out there
+      call measure(guess, merit, reached, bad)
+      if (bad(1) == 0) u = guess
+    end if
     call measure(u, merit, reached, bad)
     if (bad(1) /= 0) then
       res%bad = bad
@@ -140,6 +165,8 @@ contains
     end if
     res%history = [merit]
     step = huge(1.0_dp)
+    back = 0
+    alpha_prev = 1.0_dp
     do it = 1, opts%maxit
       if (reached .and. merit <= opts%tol .and. (.not. with_contact .or. step <= opts%tol)) exit
       ! the Newton system at u
@@ -162,9 +189,22 @@ contains
       call factorize(fac, k, ferr)
       analyzed = .true.
       if (allocated(ferr)) then
-        res%reason = 'the tangent is not positive definite (' // ferr%message // ')'
+        deallocate(ferr)
+        ! the last update went past where the tangent is positive definite (a
+        ! nearly incompressible body's first update from a new load): half
+        ! of it again, up to max_halvings times, before the step is given up
+        if (allocated(u_prev) .and. back < opts%max_halvings) then
+          back = back + 1
+          alpha_prev = 0.5_dp * alpha_prev
+          u = u_prev + alpha_prev * du_prev
+          call measure(u, merit, reached, bad)
+          if (bad(1) == 0) cycle
+        end if
+        ! the factorization's own text speaks of rigid modes: here it is the iterate
+        res%reason = 'the tangent is not positive definite at the iterate'
         exit
       end if
+      back = 0
       call solve_vector(fac, rhs, du_f, err)
       if (allocated(err)) return
       du = dubar
@@ -210,6 +250,9 @@ contains
         call measure(trial, merit_trial, reached, bad)
       end if
       res%bad = 0
+      u_prev = u
+      du_prev = trial - u
+      alpha_prev = 1.0_dp
       u = trial
       merit = merit_trial
       res%history = [res%history, merit]
@@ -272,10 +315,16 @@ contains
     integer :: i, p, d, nrow
     call build_moved_contact_set(bodies, specs, u, cs, err)
     if (allocated(err)) return
+    call rotate_constraint_rows(cs, bodies)          ! nodes in local axes (FIX un=/ut=): rows on their dofs
     nrow = cs%nrow
     res%fcon = 0.0_dp
     res%gap = 0.0_dp
     res%complementarity = 0.0_dp
+    res%cs = cs
+    res%lambda = [real(dp) ::]
+    res%q = [real(dp) ::]
+    res%gaps = [real(dp) ::]
+    res%w = reshape([real(dp) ::], [0, 0])
     if (nrow == 0) return
     allocate(c(nfree, nrow), y(nfree, nrow), gu(nrow), q(nrow), lam(nrow))
     c = 0.0_dp
@@ -310,6 +359,10 @@ contains
     gap = q + matmul(w, lam)
     res%gap = minval(gap)
     res%complementarity = maxval(abs(lam * gap)) / max(maxval(abs(lam)), tiny(1.0_dp))
+    res%lambda = lam
+    res%q = q
+    res%gaps = gap
+    call move_alloc(w, res%w)
   end subroutine contact_correction
   end subroutine solve_newton_step
 
@@ -320,8 +373,10 @@ contains
   !>   res  (out)   converged, the iterations summed over the sub-increments, the
   !>                last residual, cuts, substeps, notes; reason and bad of the
   !>                failure that ended it
+  !>   u_prior (in, optional) (ndof) the state the previous load step started from:
+  !>                its increment u - u_prior predicts this step's first one
   !>   other arguments as solve_newton_step
-  subroutine solve_newton_increment(bodies, eq, nfree, k, f0, f1, ubar0, ubar1, opts, u, res, err, specs)
+  subroutine solve_newton_increment(bodies, eq, nfree, k, f0, f1, ubar0, ubar1, opts, u, res, err, specs, u_prior)
     type(body_t), intent(in) :: bodies(:)
     integer, intent(in) :: eq(:), nfree
     type(csc_t), intent(inout) :: k
@@ -331,14 +386,23 @@ contains
     type(newton_result_t), intent(out) :: res
     type(error_t), allocatable, intent(out) :: err
     type(pair_spec_t), intent(in), optional :: specs(:)
+    real(dp), intent(in), optional :: u_prior(:)
     type(newton_result_t) :: sub
-    real(dp), allocatable :: u_start(:)
+    real(dp), allocatable :: u_start(:), rate(:), guess(:), ubar_t(:)
     real(dp) :: t, dt, t1
     real(dp), parameter :: full = 1.0_dp
+    logical :: predict
 
     res%notes = ''
     res%reason = ''
     allocate(res%history(0))
+    ! the secant predictor: the last increment's displacement per unit of
+    ! load factor, its volume change already that of the body's response
+    ! (a first iterate from u alone moves the prescribed values through the
+    ! linear tangent, whose volume error times K can make the next tangent
+    ! indefinite in a nearly incompressible body)
+    if (present(u_prior)) rate = u - u_prior
+    predict = allocated(rate)
     t = 0.0_dp
     dt = full
     do while (t < full)
@@ -346,22 +410,42 @@ contains
       t1 = t + dt
       if (full - t1 <= 1.0e-12_dp) t1 = full
       u_start = u
-      call solve_newton_step(bodies, eq, nfree, k, (1 - t1) * f0 + t1 * f1, (1 - t1) * ubar0 + t1 * ubar1, opts, &
-                             u, sub, err, specs)
+      ubar_t = (1 - t1) * ubar0 + t1 * ubar1
+      if (predict) then
+        guess = u + (t1 - t) * rate
+        where (eq == 0) guess = ubar_t
+        call solve_newton_step(bodies, eq, nfree, k, (1 - t1) * f0 + t1 * f1, ubar_t, opts, u, sub, err, specs, guess)
+      else
+        call solve_newton_step(bodies, eq, nfree, k, (1 - t1) * f0 + t1 * f1, ubar_t, opts, u, sub, err, specs)
+      end if
       if (allocated(err)) return
       res%iterations = res%iterations + sub%iterations
       res%residual = sub%residual
       if (sub%converged) then
         res%substeps = res%substeps + 1
-        res%history = [res%history, sub%history]
+        res%history = sub%history                    ! the last sub-increment's (its convergence)
         res%fcon = sub%fcon
         res%gap = sub%gap
         res%complementarity = sub%complementarity
+        if (allocated(sub%lambda)) then                ! the last iterate's contact problem
+          res%cs = sub%cs
+          res%lambda = sub%lambda
+          res%w = sub%w
+          res%q = sub%q
+          res%gaps = sub%gaps
+        end if
+        rate = (u - u_start) / (t1 - t)
+        predict = .true.
         t = t1
         dt = min(2 * dt, full)                       ! the next sub-increment may be larger again
         cycle
       end if
       u = u_start
+      if (predict) then                              ! the prediction first: the same increment from u
+        predict = .false.
+        cycle
+      end if
+      predict = allocated(rate)
       res%bad = sub%bad
       res%reason = sub%reason
       if (dt <= 2.0_dp**(-opts%max_cuts)) return      ! cutting no longer helps

@@ -52,6 +52,10 @@ module step_solution
                                                    !< step that also dragged them into partial slip (load_steps)
     integer :: slip_entry_pair = 0                 !< that pair
     integer :: slip_entry_step = 0                 !< that load step (0: none)
+    real(dp), allocatable :: u(:)                  !< (ndof) the step's displacement when its solve gives it
+                                                   !< whole (finite strain); unallocated: recovered from mu
+    real(dp), allocatable :: newton(:,:)           !< (3, steps so far) finite strain: step, Newton
+                                                   !< iterations, residual of each step
   end type step_solution_t
 
 contains

@@ -1,0 +1,179 @@
+!> hyperelastic_step: one load step of a scene with a hyperelastic body, for
+!> the load-step loop (load_steps): Newton's method on the whole scene from
+!> the last step's state (newton_step, with its cut-back), every CONTACT
+!> pair following the bodies, and the step's answer put where the linear
+!> steps put theirs (doc/theory.md, "Hyperelastic bodies in finite strain").
+!>
+!> What a step hands on: its displacement whole (sol%u: it is not the
+!> linear recovery's K^-1 (f - C'mu)), the contact rows of its last iterate
+!> as prob%cs with their multipliers, gaps and W (sys%w, sys%q: what the
+!> contact measures of the linear steps read), its Newton figures (one row
+!> of sol%newton per step) and its certificate: the complementarity of the
+!> last LCP, and as equilibrium the Newton residual (the contact forces
+!> included), both relative.
+!>
+!> What it does not solve, said before the first step (error_input): a
+!> body held only by contact (the tangent has no stiffness along its free
+!> motion: a FIX must hold it; symmetry supports do).  The deck's checks
+!> refuse friction and a RIGID moved by FORCE in such a scene.
+!>
+!> Programming interface
+!>   check_hyperelastic_scene(prob, err)        a body held only by contact, named
+!>   solve_hyperelastic_step(prob, sys, t0, kstep, f1, ubar1, u, u_prior, log, sol, err)
+!>                                              the state at t1 from u at t0
+module hyperelastic_step
+  use kinds, only: dp
+  use strings, only: int_to_str, real_to_str
+  use errors, only: error_t, set_error, error_input, error_unsolved
+  use run_log, only: log_t, say
+  use problem, only: problem_t, step_label
+  use linear_system, only: system_t
+  use step_solution, only: step_solution_t
+  use scene, only: step_forces
+  use body, only: build_pattern
+  use sparse_matrix, only: csc_t
+  use newton_step, only: newton_options_t, newton_result_t, solve_newton_increment
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+  implicit none
+  private
+  public :: check_hyperelastic_scene, solve_hyperelastic_step
+
+contains
+
+  !> A body held only by contact in a scene with a hyperelastic body: the
+  !> Newton tangent has no stiffness along its free motion (the deck's checks
+  !> refuse the other scenes it does not solve: friction, a RIGID moved by
+  !> FORCE).  An input error at the body's MATERIAL line.
+  subroutine check_hyperelastic_scene(prob, err)
+    type(problem_t), intent(in) :: prob
+    type(error_t), allocatable, intent(out) :: err
+    integer :: b
+    if (prob%fl%k == 0) return
+    b = prob%fl%mode_body(1)
+    call set_error(err, prob%deck%file // ':' // int_to_str(prob%deck%bodies(b)%material%line) // ': body ' // &
+      prob%deck%bodies(b)%name // ' is held only by contact in a scene with a hyperelastic body: Newton''s ' // &
+      'tangent has no stiffness along its free motion (expected a FIX that holds it, e.g. on a symmetry line)', &
+      error_input)
+  end subroutine check_hyperelastic_scene
+
+  !> The state at the load point of f1, ubar1 from the one at t0 (module header).
+  !>   t0    (in)    where the step starts (u balances its loads)
+  !>   kstep (in)    the deck's step (messages, sol%newton)
+  !>   f1, ubar1 (in) the loads where it ends (solver basis)
+  !>   u     (inout) (ndof) the state at t0; at t1 on exit
+  !>   u_prior (inout) where the last step started (unallocated: none; its
+  !>                 increment predicts this one's); where this one started on exit
+  !>   sol   (inout) the step's answer (module header)
+  !>   err   (out)   the step not solved (error_unsolved: Newton's reason and
+  !>                 the element that stopped it), or a failure of the solve
+  subroutine solve_hyperelastic_step(prob, sys, t0, kstep, f1, ubar1, u, u_prior, log, sol, err)
+    type(problem_t), intent(inout) :: prob
+    type(system_t), intent(inout) :: sys
+    real(dp), intent(in) :: t0, f1(:), ubar1(:)
+    integer, intent(in) :: kstep
+    real(dp), intent(inout) :: u(:)
+    real(dp), allocatable, intent(inout) :: u_prior(:)
+    type(log_t), intent(inout) :: log
+    type(step_solution_t), intent(inout) :: sol
+    type(error_t), allocatable, intent(out) :: err
+    type(newton_options_t) :: opts
+    type(newton_result_t) :: res
+    type(csc_t) :: k
+    real(dp), allocatable :: f0(:), ubar0(:), u_start(:)
+    integer :: i, n
+    character(len=:), allocatable :: line
+
+    allocate(f0(size(u)), ubar0(size(u)))
+    call step_forces(prob%sc, t0, f0, ubar0)
+    call build_pattern(prob%sc%bodies, prob%eq, prob%nfree, k, err)
+    if (allocated(err)) return
+    opts%tol = prob%deck%solver%newton_tol
+    opts%maxit = prob%deck%solver%newton_maxit
+    u_start = u
+    if (allocated(u_prior)) then                    ! the last step's increment predicts this one's
+      call solve_newton_increment(prob%sc%bodies, prob%eq, prob%nfree, k, f0, f1, ubar0, ubar1, opts, u, res, err, &
+                                  prob%sc%specs, u_prior)
+    else
+      call solve_newton_increment(prob%sc%bodies, prob%eq, prob%nfree, k, f0, f1, ubar0, ubar1, opts, u, res, err, &
+                                  prob%sc%specs)
+    end if
+    if (allocated(err)) then
+      err%message = step_label(prob, kstep) // err%message
+      return
+    end if
+    call move_alloc(u_start, u_prior)
+    ! each halving of the step, as it was made
+    if (len(res%notes) > 0) then
+      line = res%notes
+      do while (len(line) > 0)
+        i = index(line, new_line('a'))
+        call say(log, 'newton   ' // step_label(prob, kstep) // line(1:i - 1))
+        line = line(i + 1:)
+      end do
+    end if
+    if (.not. res%converged) then
+      call set_error(err, step_label(prob, kstep) // 'Newton''s method did not converge: ' // res%reason // &
+        trim(element_text(prob, res%bad)) // ', with the increment halved down to 1/' // &
+        int_to_str(2**opts%max_cuts) // ' of the step (expected more STEPS, or a motion the mesh can take)', &
+        error_unsolved)
+      return
+    end if
+    if (.not. all(ieee_is_finite(u))) then
+      call set_error(err, step_label(prob, kstep) // 'the displacement is not finite')
+      return
+    end if
+    call say(log, 'newton   load step ' // int_to_str(kstep) // ' of ' // int_to_str(prob%sc%steps) // ': ' // &
+      int_to_str(res%iterations) // ' iterations in ' // int_to_str(res%substeps) // ' increments, residual ' // &
+      real_to_str(res%residual) // '; its last residuals:' // history_text(res%history))
+    ! the answer where the linear steps put theirs
+    sol%step = kstep
+    sol%u = u
+    sol%method = 'newton'
+    sol%iterations = res%iterations
+    sol%total_iterations = sol%total_iterations + res%iterations
+    sol%residual = res%residual
+    sol%cert%equilibrium = res%residual
+    sol%cert%cone = 0.0_dp
+    sol%cert%complementarity = 0.0_dp
+    if (.not. allocated(sol%newton)) allocate(sol%newton(3, 0))
+    sol%newton = reshape([sol%newton, real(kstep, dp), real(res%iterations, dp), res%residual], &
+                         [3, size(sol%newton, 2) + 1])
+    if (allocated(res%lambda)) then
+      prob%cs = res%cs
+      n = res%cs%nrow
+      sol%mu = res%lambda
+      sol%gap = res%gaps
+      sol%q = res%q
+      sys%w = res%w
+      sys%q = res%q
+      if (n > 0) sol%cert%complementarity = res%complementarity / max(maxval(abs(res%q)), tiny(1.0_dp))
+    end if
+  end subroutine solve_hyperelastic_step
+
+  !> ' (body NAME element E)' when bad names an element, else ''.
+  function element_text(prob, bad) result(s)
+    type(problem_t), intent(in) :: prob
+    integer, intent(in) :: bad(2)
+    character(len=:), allocatable :: s
+    s = ''
+    if (bad(1) > 0 .and. bad(2) > 0) s = ' (body ' // prob%deck%bodies(bad(1))%name // ', element ' // &
+                                         int_to_str(bad(2)) // ')'
+  end function element_text
+
+  !> ' 1.2e-02 3.4e-05 ...': the relative residuals of the step's last
+  !> iterates (quadratic convergence reads as the exponent doubling).
+  function history_text(h) result(s)
+    real(dp), allocatable, intent(in) :: h(:)
+    character(len=:), allocatable :: s
+    character(len=12) :: w
+    integer :: i, first
+    s = ''
+    if (.not. allocated(h)) return
+    first = max(1, size(h) - 7)
+    do i = first, size(h)
+      write(w, '(es9.2)') h(i)
+      s = s // ' ' // trim(adjustl(w))
+    end do
+  end function history_text
+
+end module hyperelastic_step
