@@ -157,7 +157,13 @@ contains
     if (info /= 0) return
     do q = 1, nq
       call point_state(nen, xe, ue, xi(:, q), w(q), axisymmetric, thick, bar, c0, f, d(:, 1:m), dv, k)
-      if (k == 0) call first_piola(law, f, p5, a5, k)
+      if (k == 0) then
+        if (present(ke)) then
+          call first_piola(law, f, p5, a5, k)
+        else
+          call first_piola(law, f, p5, info=k)
+        end if
+      end if
       if (k /= 0) then
         info = q
         return

@@ -162,23 +162,29 @@ contains
   !>   law  (in)  the law
   !>   f    (in)  (3, 3) deformation gradient, F13 = F23 = F31 = F32 = 0
   !>   p5   (out) (5) P11, P12, P21, P22, P33
-  !>   a5   (out) (5, 5) dP_m / dF_n (symmetric)
+  !>   a5   (out, optional) (5, 5) dP_m / dF_n (symmetric); absent: P alone
   !>   info (out) 0; 1 when det F <= 0 (p5, a5 zero)
   pure subroutine first_piola(law, f, p5, a5, info)
     type(hyperelastic_t), intent(in) :: law
     real(dp), intent(in) :: f(3, 3)
-    real(dp), intent(out) :: p5(5), a5(5, 5)
+    real(dp), intent(out) :: p5(5)
+    real(dp), intent(out), optional :: a5(5, 5)
     integer, intent(out) :: info
     real(dp) :: s(3, 3), cc(3, 3, 3, 3), p(3, 3), t
     integer :: m, n, i, bj, k, bl, ii, kk
-    call second_piola(law, f, s, cc, info)
+    if (present(a5)) then
+      call second_piola(law, f, s, cc, info)
+      a5 = 0.0_dp
+    else
+      call second_piola(law, f, s, info=info)
+    end if
     p5 = 0.0_dp
-    a5 = 0.0_dp
     if (info /= 0) return
     p = matmul(f, s)
     do m = 1, 5
       p5(m) = p(reduced_index(1, m), reduced_index(2, m))
     end do
+    if (.not. present(a5)) return
     do n = 1, 5
       k = reduced_index(1, n)
       bl = reduced_index(2, n)

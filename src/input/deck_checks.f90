@@ -102,7 +102,7 @@ contains
   !> whole scene (doc/theory.md, "Hyperelastic bodies in finite strain"):
   !> every CONTACT follows the bodies (sliding=finite implied; sliding=small,
   !> the pairing of the initial configuration, and gap=zero, the initial
-  !> gaps, are errors), frictionless in this version; every RIGID moves by
+  !> gaps, are errors); every RIGID moves by
   !> FIX (a RIGID moved by FORCE has no stiffness in the Newton tangent);
   !> the laws need F33 (plane strain or axisymmetric, not plane stress); and
   !> ADAPT, whose estimators are linear elasticity's, is not available.
@@ -128,9 +128,6 @@ contains
         else if (c%gap_zero) then
           call report(s, c%line, 'gap=zero in a scene with the hyperelastic body ' // quoted(name) // &
                       ' (expected gap=geometry: its pairs measure the gaps in the current configuration)')
-        else if (c%friction /= 'none') then
-          call report(s, c%line, 'friction in a scene with the hyperelastic body ' // quoted(name) // &
-                      ': its Newton iteration is frictionless in this version (expected mu=0)')
         end if
         c%finite = .true.
       end associate

@@ -302,8 +302,12 @@ int c2d_chol_factorize_values(void *handle, int n, const int *colptr, const int 
     int status;
 
     if (h == NULL) return C2D_CHOL_NO_HANDLE;
-    if (h->L == NULL || h->valid) return C2D_CHOL_NO_FACTOR;
+    if (h->L == NULL) return C2D_CHOL_NO_FACTOR;
     if (n != h->n || val == NULL) return C2D_CHOL_BAD_ARGUMENT;
+    /* a factor of earlier values is factorized again on the same analysis
+     * (CHOLMOD refactorizes a numeric supernodal L in place): Newton's
+     * tangents keep one pattern */
+    h->valid = 0;
     c = &h->common;
     adiag = cholmod_malloc((size_t) n, sizeof(double), c);
     if (adiag == NULL) return (c->status < 0) ? c->status : CHOLMOD_OUT_OF_MEMORY;

@@ -15,7 +15,9 @@
 !> What it does not solve, said before the first step (error_input): a
 !> body held only by contact (the tangent has no stiffness along its free
 !> motion: a FIX must hold it; symmetry supports do).  The deck's checks
-!> refuse friction and a RIGID moved by FORCE in such a scene.
+!> refuse a RIGID moved by FORCE in such a scene.  With friction the step's
+!> tangential forces, states and slips (those of its last sub-increment) and
+!> the cone's violation in the certificate.
 !>
 !> Programming interface
 !>   check_hyperelastic_scene(prob, err)        a body held only by contact, named
@@ -33,6 +35,7 @@ module hyperelastic_step
   use body, only: build_pattern
   use sparse_matrix, only: csc_t
   use newton_step, only: newton_options_t, newton_result_t, solve_newton_increment
+  use contact_set, only: contact_set_t
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
   private
@@ -42,8 +45,8 @@ contains
 
   !> A body held only by contact in a scene with a hyperelastic body: the
   !> Newton tangent has no stiffness along its free motion (the deck's checks
-  !> refuse the other scenes it does not solve: friction, a RIGID moved by
-  !> FORCE).  An input error at the body's MATERIAL line.
+  !> refuse the other scene it does not solve: a RIGID moved by FORCE).  An
+  !> input error at the body's MATERIAL line.
   subroutine check_hyperelastic_scene(prob, err)
     type(problem_t), intent(in) :: prob
     type(error_t), allocatable, intent(out) :: err
@@ -141,14 +144,42 @@ contains
     if (allocated(res%lambda)) then
       prob%cs = res%cs
       n = res%cs%nrow
-      sol%mu = res%lambda
+      sol%mu = res%lambda(1:n)
       sol%gap = res%gaps
       sol%q = res%q
       sys%w = res%w
       sys%q = res%q
-      if (n > 0) sol%cert%complementarity = res%complementarity / max(maxval(abs(res%q)), tiny(1.0_dp))
+      if (n > 0) sol%cert%complementarity = res%complementarity / max(maxval(abs(res%q(1:n))), tiny(1.0_dp))
+      if (res%cs%ntan > 0) then
+        ! friction: the tangential forces, the last sub-increment's slips and
+        ! states, and the cone's violation relative to the largest bound
+        sol%tau = res%lambda(n + 1:)
+        sol%slip = res%slip
+        sol%fstate = res%fstate
+        sol%cert%cone = cone_violation(res%cs, res%lambda)
+      else
+        if (allocated(sol%tau)) deallocate(sol%tau, sol%slip, sol%fstate)
+      end if
     end if
   end subroutine solve_hyperelastic_step
+
+  !> max_k (|tau_k| - b_k)+ / max_k b_k, b_k = mu_k lambda_trow(k) + bound_k:
+  !> how far the friction forces leave Coulomb's (or Tresca's) cone.
+  pure real(dp) function cone_violation(cs, lam) result(v)
+    type(contact_set_t), intent(in) :: cs
+    real(dp), intent(in) :: lam(:)
+    real(dp) :: b(cs%ntan)
+    integer :: k
+    do k = 1, cs%ntan
+      b(k) = cs%tan_mu(k) * lam(cs%tan_row(k)) + cs%tan_bound(k)
+    end do
+    v = 0.0_dp
+    if (maxval(b) <= 0.0_dp) return
+    do k = 1, cs%ntan
+      v = max(v, abs(lam(cs%nrow + k)) - b(k))
+    end do
+    v = v / maxval(b)
+  end function cone_violation
 
   !> ' (body NAME element E)' when bad names an element, else ''.
   function element_text(prob, bad) result(s)

@@ -44,17 +44,19 @@
 !> body it becomes a pressure whose initial-stress stiffness makes the next
 !> tangent indefinite (not factorizable) when the increment is too large.
 !>
-!> Contact (optional argument specs: the CONTACT pairs, frictionless, each
-!> followed as a sliding=finite pair).  Every iterate rebuilds the rows B and
-!> the gaps g(u) of the current configuration (moved_contact) and solves its
-!> contact problem on the condensed tangent, W = B_f K^-1 B_f', by Lemke's
-!> method (contact_correction): the linear runs' machinery, on the iterate.
+!> Contact (optional argument specs: the CONTACT pairs, each followed as a
+!> sliding=finite pair, frictionless or with friction).  Every iterate
+!> rebuilds the rows C = [B; T] and the gaps g(u) of the current
+!> configuration (moved_contact) and solves its contact problem on the
+!> condensed tangent, W = C_f K^-1 C_f', by Lemke's method (contact_correction;
+!> with friction friction_lcp's Lemke method, the slips measured from the
+!> sub-increment's start): the linear runs' machinery, on the iterate.
 !> Why an LCP per iterate rather than a semismooth Newton on the whole
 !> system: the tangent's factor is there already, the contact rows are few
 !> (a boundary's nodes), and Lemke gives the iterate's exact active set, so
 !> the outer iteration is Newton's on a fixed set near the end (quadratic);
 !> no measured comparison with a semismooth Newton has been made.  The
-!> residual then counts the contact forces -B' lambda; converged also asks
+!> residual then counts the contact forces -C' lam; converged also asks
 !> the last correction below tol of the displacement (the gaps of the
 !> linearization are then the true ones to its square), and the result
 !> gives the least linearized gap and the complementarity of the last LCP.
@@ -76,8 +78,9 @@ module newton_step
   use local_axes, only: rotate_constraint_rows
   use lcp_scaling, only: lcp_options_t, lcp_report_t
   use lcp_lemke, only: solve_lcp_lemke
+  use friction_lcp, only: friction_problem_t, friction_problem, solve_friction_lcp, friction_state
   use sparse_matrix, only: csc_t
-  use sparse_cholesky, only: factor_t, factorize, solve_vector, free_factor
+  use sparse_cholesky, only: factor_t, analyze_pattern, factorize_values, solve_vector, free_factor
   implicit none
   private
   public :: newton_options_t, newton_result_t, solve_newton_step, solve_newton_increment
@@ -102,10 +105,14 @@ module newton_step
     real(dp) :: gap = 0.0_dp                  !< contact: the least linearized gap after the last iterate
     real(dp) :: complementarity = 0.0_dp      !< contact: max lambda_i gap_i / (max lambda size), a length
     type(contact_set_t) :: cs                 !< contact: the rows of the last iterate (its configuration)
-    real(dp), allocatable :: lambda(:)        !< contact: (cs%nrow) their multipliers (nodal forces)
-    real(dp), allocatable :: w(:,:)           !< contact: (nrow, nrow) W of the last iterate's tangent
-    real(dp), allocatable :: q(:)             !< contact: (nrow) its gaps without contact forces
+    real(dp), allocatable :: lambda(:)        !< contact: (nrow + ntan) their multipliers, normal then
+                                              !< tangential (nodal forces)
+    real(dp), allocatable :: w(:,:)           !< contact: (nrow + ntan)^2 W of the last iterate's tangent
+    real(dp), allocatable :: q(:)             !< contact: (nrow + ntan) its qn (gaps without contact
+                                              !< forces) and qt (contact_correction)
     real(dp), allocatable :: gaps(:)          !< contact: (nrow) its linearized gaps, q + W lambda
+    real(dp), allocatable :: slip(:)          !< friction: (ntan) the slip of the sub-increment, -(qt + W_t lambda)
+    integer, allocatable :: fstate(:)         !< friction: (ntan) 0 open, 1 stick, 2 slip
     character(len=:), allocatable :: notes    !< solve_newton_increment: one line per halving
   end type newton_result_t
 
@@ -141,7 +148,7 @@ contains
     type(factor_t) :: fac
     type(error_t), allocatable :: ferr
     real(dp), allocatable :: dubar(:), rhs(:), du_f(:), du(:), trial(:), fint(:), u_best(:)
-    real(dp), allocatable :: u_prev(:), du_prev(:)
+    real(dp), allocatable :: u_prev(:), du_prev(:), u_entry(:)
     real(dp) :: merit, merit_trial, best, alpha, step, alpha_prev
     integer :: it, i, h, bad(2), back
     logical :: reached, analyzed, accepted, with_contact
@@ -153,6 +160,7 @@ contains
     allocate(res%history(0))
     res%reason = ''
     analyzed = .false.
+    u_entry = u                                       ! the slips of the sub-increment are measured from here
     if (present(guess)) then                          ! a predicted start, when no element is inside out there
       call measure(guess, merit, reached, bad)
       if (bad(1) == 0) u = guess
@@ -185,9 +193,21 @@ contains
         res%reason = merge('a term of the tangent overflows   ', 'an element has J <= 0             ', bad(2) == 0)
         exit
       end if
-      if (analyzed) call free_factor(fac)
-      call factorize(fac, k, ferr)
-      analyzed = .true.
+      ! the pattern is the same at every iterate: one ordering and symbolic
+      ! analysis, a numeric factorization per iterate (again after a failure)
+      if (.not. analyzed) then
+        call analyze_pattern(fac, k%n, k%colptr, k%rowind, ferr)
+        if (allocated(ferr)) then
+          call move_alloc(ferr, err)
+          return
+        end if
+        analyzed = .true.
+      end if
+      call factorize_values(fac, k, ferr)
+      if (allocated(ferr)) then
+        call free_factor(fac)
+        analyzed = .false.
+      end if
       if (allocated(ferr)) then
         deallocate(ferr)
         ! the last update went past where the tangent is positive definite (a
@@ -212,7 +232,7 @@ contains
         if (eq(i) > 0) du(i) = du_f(eq(i))
       end do
       if (with_contact) then
-        call contact_correction(specs, fac, du, res, err)
+        call contact_correction(specs, fac, u_entry, du, res, err)
         if (allocated(err)) return
         if (len(res%reason) > 0) exit
         ! the step's size against the displacement's: the linearized gaps are
@@ -290,33 +310,42 @@ contains
       rel = sqrt(rf) / scale
     end subroutine measure
 
-  !> The contact problem of one Newton iterate (frictionless): the rows B and
+  !> The contact problem of one Newton iterate: the rows C = [B; T] and the
   !> gaps g(u) of the current configuration (build_moved_contact_set, as a
   !> finite-sliding pair rebuilds them), the iterate's displacement du0 (the
-  !> tangent's solve without contact) corrected by the contact forces -B' lambda:
-  !>     du_f = du0_f - K^-1 B_f' lambda,
-  !>     0 <= lambda  _|_  g(u) - B du = q + W lambda >= 0,
-  !>     W = B_f K^-1 B_f',  q = g(u) - B du0,
-  !> solved by Lemke's method (the LCP machinery of the linear runs, on the
-  !> condensed tangent).  res%fcon = -B' lambda (all dofs), res%gap and
-  !> res%complementarity of the solution; res%reason when the LCP is not solved.
+  !> tangent's solve without contact) corrected by the contact forces -C' lam:
+  !>     du_f = du0_f - K^-1 C_f' lam,   W = C_f K^-1 C_f',
+  !>     qn = g(u) - B du0,   qt = T u_s - T (u + du0),
+  !> u_s the state the sub-increment started from, so that the slip of the
+  !> sub-increment along the current tangents is ds = -(qt + W_t lam).
+  !> Frictionless: the LCP 0 <= lam _|_ qn + W lam >= 0 by Lemke's method;
+  !> with friction (tangential rows): the frictional problem of friction_lcp
+  !> (Coulomb or Tresca) by its Lemke method.  res%fcon = -C' lam (all dofs),
+  !> res%gap and res%complementarity of the normal rows, the rows and their
+  !> multipliers, W, q = [qn; qt], the gaps, and with friction each
+  !> tangential row's state and slip; res%reason when the problem is not
+  !> solved.
   !>   specs (in) the pairs;  fac (in) the tangent's factor
+  !>   u_s   (in) (ndof) where the sub-increment started (the slips' origin)
   !>   du    (inout) (ndof) du0 on entry (dubar on the fixed dofs), du on exit
-  subroutine contact_correction(specs, fac, du, res, err)
+  subroutine contact_correction(specs, fac, u_s, du, res, err)
     type(pair_spec_t), intent(in) :: specs(:)
     type(factor_t), intent(in) :: fac
+    real(dp), intent(in) :: u_s(:)
     real(dp), intent(inout) :: du(:)
     type(newton_result_t), intent(inout) :: res
     type(error_t), allocatable, intent(out) :: err
     type(contact_set_t) :: cs
     type(lcp_options_t) :: lopts
     type(lcp_report_t) :: lrep
-    real(dp), allocatable :: c(:,:), y(:,:), w(:,:), q(:), lam(:), gu(:), gap(:)
-    integer :: i, p, d, nrow
+    type(friction_problem_t) :: fp
+    real(dp), allocatable :: c(:,:), y(:,:), w(:,:), q(:), lam(:), gap(:)
+    integer :: i, p, d, nrow, nall
     call build_moved_contact_set(bodies, specs, u, cs, err)
     if (allocated(err)) return
     call rotate_constraint_rows(cs, bodies)          ! nodes in local axes (FIX un=/ut=): rows on their dofs
     nrow = cs%nrow
+    nall = nrow + cs%ntan
     res%fcon = 0.0_dp
     res%gap = 0.0_dp
     res%complementarity = 0.0_dp
@@ -324,41 +353,65 @@ contains
     res%lambda = [real(dp) ::]
     res%q = [real(dp) ::]
     res%gaps = [real(dp) ::]
+    res%slip = [real(dp) ::]
+    res%fstate = [integer ::]
     res%w = reshape([real(dp) ::], [0, 0])
     if (nrow == 0) return
-    allocate(c(nfree, nrow), y(nfree, nrow), gu(nrow), q(nrow), lam(nrow))
-    c = 0.0_dp
-    gu = cs%g(1:nrow)
-    q = 0.0_dp
-    do i = 1, nrow
+    allocate(c(nfree, 1), y(nfree, nall), q(nall), lam(nall), w(nall, nall))
+    do i = 1, nall
+      c = 0.0_dp
+      q(i) = 0.0_dp
       do p = cs%bptr(i), cs%bptr(i + 1) - 1
         d = cs%cdof(cs%bcol(p))
-        gu(i) = gu(i) - cs%bval(p) * u(d)              ! g(u) = g - B u (the rows' form B v <= g)
-        q(i) = q(i) - cs%bval(p) * du(d)
-        if (eq(d) > 0) c(eq(d), i) = c(eq(d), i) + cs%bval(p)
+        if (i <= nrow) then
+          q(i) = q(i) - cs%bval(p) * (u(d) + du(d))      ! g(u) - B du0 = g - B (u + du0) (rows B v <= g)
+        else
+          q(i) = q(i) + cs%bval(p) * (u_s(d) - u(d) - du(d))
+        end if
+        if (eq(d) > 0) c(eq(d), 1) = c(eq(d), 1) + cs%bval(p)
       end do
-      call solve_vector(fac, c(:, i), y(:, i), err)
+      call solve_vector(fac, c(:, 1), y(:, i), err)
       if (allocated(err)) return
     end do
-    q = q + gu
-    w = matmul(transpose(c), y)
-    call solve_lcp_lemke(w, q, lam, lopts, lrep)
+    q(1:nrow) = q(1:nrow) + cs%g(1:nrow)
+    ! W = C_f Y, C sparse: a row's few entries times Y's rows
+    w = 0.0_dp
+    do i = 1, nall
+      do p = cs%bptr(i), cs%bptr(i + 1) - 1
+        d = cs%cdof(cs%bcol(p))
+        if (eq(d) > 0) w(i, :) = w(i, :) + cs%bval(p) * y(eq(d), :)
+      end do
+    end do
+    if (cs%ntan == 0) then
+      call solve_lcp_lemke(w, q, lam, lopts, lrep)
+    else
+      fp = friction_problem(q(1:nrow), q(nrow + 1:), cs%tan_row, cs%tan_mu, cs%tan_bound)
+      lam = 0.0_dp
+      call solve_friction_lcp(w, fp, 'lemke', lopts, lam, lrep)
+    end if
     if (lrep%info /= 0) then
       res%reason = 'the contact problem of a Newton iterate is not solved (' // lrep%message // ')'
       return
     end if
-    do i = 1, size(du)                                 ! du_f -= K^-1 B_f' lambda
+    do i = 1, size(du)                                 ! du_f -= K^-1 C_f' lam
       if (eq(i) > 0) du(i) = du(i) - dot_product(y(eq(i), :), lam)
     end do
-    do i = 1, nrow                                     ! f_c = -B' lambda
+    do i = 1, nall                                     ! f_c = -C' lam
       do p = cs%bptr(i), cs%bptr(i + 1) - 1
         d = cs%cdof(cs%bcol(p))
         res%fcon(d) = res%fcon(d) - cs%bval(p) * lam(i)
       end do
     end do
-    gap = q + matmul(w, lam)
+    gap = q(1:nrow) + matmul(w(1:nrow, :), lam)
     res%gap = minval(gap)
-    res%complementarity = maxval(abs(lam * gap)) / max(maxval(abs(lam)), tiny(1.0_dp))
+    res%complementarity = maxval(abs(lam(1:nrow) * gap)) / max(maxval(abs(lam(1:nrow))), tiny(1.0_dp))
+    if (cs%ntan > 0) then
+      res%slip = -(q(nrow + 1:) + matmul(w(nrow + 1:, :), lam))
+      deallocate(res%fstate)
+      allocate(res%fstate(cs%ntan))
+      call friction_state(w, fp, lam, res%fstate, err)
+      if (allocated(err)) return
+    end if
     res%lambda = lam
     res%q = q
     res%gaps = gap
@@ -433,6 +486,10 @@ contains
           res%w = sub%w
           res%q = sub%q
           res%gaps = sub%gaps
+          if (allocated(sub%fstate)) then
+            res%fstate = sub%fstate
+            res%slip = sub%slip
+          end if
         end if
         rate = (u - u_start) / (t1 - t)
         predict = .true.
