@@ -32,32 +32,53 @@ module hyperelastic_step
   use linear_system, only: system_t
   use step_solution, only: step_solution_t
   use scene, only: step_forces
-  use body, only: build_pattern
+  use body, only: build_pattern, number_equations
   use sparse_matrix, only: csc_t
   use newton_step, only: newton_options_t, newton_result_t, solve_newton_increment
   use contact_set, only: contact_set_t
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
   private
-  public :: check_hyperelastic_scene, solve_hyperelastic_step
+  public :: newton_equations, solve_hyperelastic_step
 
 contains
 
-  !> A body held only by contact in a scene with a hyperelastic body: the
-  !> Newton tangent has no stiffness along its free motion (the deck's checks
-  !> refuse the other scene it does not solve: a RIGID moved by FORCE).  An
-  !> input error at the body's MATERIAL line.
-  subroutine check_hyperelastic_scene(prob, err)
+  !> The Newton iteration's equations: every dof a FIX does not hold (the
+  !> linear runs' pins of a body held only by contact are not supports), and
+  !> soft, the pinned dofs of the bodies held only by contact (newton_step
+  !> stiffens their diagonal in the linear solves), said in the log; a body
+  !> with a rigid motion neither FIX nor contact holds is an input error at
+  !> its MATERIAL line.
+  subroutine newton_equations(prob, log, eq, nfree, soft, err)
     type(problem_t), intent(in) :: prob
+    type(log_t), intent(inout) :: log
+    integer, allocatable, intent(out) :: eq(:)
+    integer, intent(out) :: nfree
+    logical, allocatable, intent(out) :: soft(:)
     type(error_t), allocatable, intent(out) :: err
-    integer :: b
-    if (prob%fl%k == 0) return
-    b = prob%fl%mode_body(1)
-    call set_error(err, prob%deck%file // ':' // int_to_str(prob%deck%bodies(b)%material%line) // ': body ' // &
-      prob%deck%bodies(b)%name // ' is held only by contact in a scene with a hyperelastic body: Newton''s ' // &
-      'tangent has no stiffness along its free motion (expected a FIX that holds it, e.g. on a symmetry line)', &
-      error_input)
-  end subroutine check_hyperelastic_scene
+    integer :: k, b
+    if (allocated(prob%split%unheld)) then
+      if (size(prob%split%unheld, 2) > 0) then
+        ! a motion that neither FIX nor contact holds: no tangent, however stiffened, decides it
+        b = prob%split%unheld_body(1)
+        call set_error(err, prob%deck%file // ':' // int_to_str(prob%deck%bodies(b)%material%line) // ': body ' // &
+          prob%deck%bodies(b)%name // ' has a rigid motion that neither FIX nor contact holds, in a scene with a ' // &
+          'hyperelastic body: Newton''s method cannot decide it (expected a FIX that holds it, e.g. on a ' // &
+          'symmetry line)', error_input)
+        return
+      end if
+    end if
+    call number_equations(prob%sc%fixed, eq, nfree)
+    allocate(soft(prob%sc%ndof), source=.false.)
+    do k = 1, prob%fl%k
+      soft(prob%fl%pin(k)) = .true.
+      b = prob%fl%mode_body(k)
+      if (count(prob%fl%mode_body(1:k) == b) > 1) cycle
+      call say(log, 'newton   body ' // prob%sc%bodies(b)%name // ' is held by contact alone: in the linear ' // &
+        'solves its pinned dofs get a stiffness (a share of the tangent''s largest diagonal), so that each ' // &
+        'tangent is definite (the residual, and so the answer, are those of the exact equilibrium)')
+    end do
+  end subroutine newton_equations
 
   !> The state at the load point of f1, ubar1 from the one at t0 (module header).
   !>   t0    (in)    where the step starts (u balances its loads)
@@ -83,22 +104,26 @@ contains
     type(newton_result_t) :: res
     type(csc_t) :: k
     real(dp), allocatable :: f0(:), ubar0(:), u_start(:)
-    integer :: i, n
+    integer, allocatable :: eq(:)
+    logical, allocatable :: soft(:)
+    integer :: i, n, nfree
     character(len=:), allocatable :: line
 
     allocate(f0(size(u)), ubar0(size(u)))
     call step_forces(prob%sc, t0, f0, ubar0)
-    call build_pattern(prob%sc%bodies, prob%eq, prob%nfree, k, err)
+    call newton_equations(prob, log, eq, nfree, soft, err)
+    if (allocated(err)) return
+    call build_pattern(prob%sc%bodies, eq, nfree, k, err)
     if (allocated(err)) return
     opts%tol = prob%deck%solver%newton_tol
     opts%maxit = prob%deck%solver%newton_maxit
     u_start = u
     if (allocated(u_prior)) then                    ! the last step's increment predicts this one's
-      call solve_newton_increment(prob%sc%bodies, prob%eq, prob%nfree, k, f0, f1, ubar0, ubar1, opts, u, res, err, &
-                                  prob%sc%specs, u_prior)
+      call solve_newton_increment(prob%sc%bodies, eq, nfree, k, f0, f1, ubar0, ubar1, opts, u, res, err, &
+                                  prob%sc%specs, u_prior, soft)
     else
-      call solve_newton_increment(prob%sc%bodies, prob%eq, prob%nfree, k, f0, f1, ubar0, ubar1, opts, u, res, err, &
-                                  prob%sc%specs)
+      call solve_newton_increment(prob%sc%bodies, eq, nfree, k, f0, f1, ubar0, ubar1, opts, u, res, err, &
+                                  prob%sc%specs, soft=soft)
     end if
     if (allocated(err)) then
       err%message = step_label(prob, kstep) // err%message

@@ -79,7 +79,7 @@ module load_steps
   use mode_support, only: mode_split_t
   use rigid_support, only: rigid_split_t
   use friction_lcp, only: friction_problem_t, friction_problem, friction_state
-  use hyperelastic_step, only: check_hyperelastic_scene, solve_hyperelastic_step
+  use hyperelastic_step, only: solve_hyperelastic_step
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
   private
@@ -167,10 +167,6 @@ contains
     friction = prob%cs%ntan > 0
     hyper = any(prob%sc%bodies%finite)
     steps_all = prob%deck%output%steps_all
-    if (hyper) then
-      call check_hyperelastic_scene(prob, err)
-      if (allocated(err)) return
-    end if
     allocate(load%f(prob%sc%ndof), load%ubar(prob%sc%ndof))
     first = prob%sc%steps                          ! path-independent: the final step alone
     if (friction) call say_floating(prob, log)

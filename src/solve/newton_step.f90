@@ -134,7 +134,7 @@ contains
   !>   specs  (in, optional) (npair) frictionless CONTACT pairs to follow (module header)
   !>   guess  (in, optional) (ndof) where to start instead of u (its fixed dofs at ubar),
   !>                  unless an element is inside out there
-  subroutine solve_newton_step(bodies, eq, nfree, k, f, ubar, opts, u, res, err, specs, guess)
+  subroutine solve_newton_step(bodies, eq, nfree, k, f, ubar, opts, u, res, err, specs, guess, soft)
     type(body_t), intent(in) :: bodies(:)
     integer, intent(in) :: eq(:), nfree
     type(csc_t), intent(inout) :: k
@@ -145,6 +145,7 @@ contains
     type(error_t), allocatable, intent(out) :: err
     type(pair_spec_t), intent(in), optional :: specs(:)
     real(dp), intent(in), optional :: guess(:)
+    logical, intent(in), optional :: soft(:)
     type(factor_t) :: fac
     type(error_t), allocatable :: ferr
     real(dp), allocatable :: dubar(:), rhs(:), du_f(:), du(:), trial(:), fint(:), u_best(:)
@@ -193,6 +194,7 @@ contains
         res%reason = merge('a term of the tangent overflows   ', 'an element has J <= 0             ', bad(2) == 0)
         exit
       end if
+      if (present(soft)) call stiffen(soft)
       ! the pattern is the same at every iterate: one ordering and symbolic
       ! analysis, a numeric factorization per iterate (again after a failure)
       if (.not. analyzed) then
@@ -284,6 +286,32 @@ contains
     res%reason = trim(res%reason)
     if (analyzed) call free_factor(fac)
   contains
+    !> k(i, i) += soft_share max_j k(j, j) on the soft dofs' equations: a
+    !> body held only by contact gets a definite tangent; the residual, and
+    !> so the converged answer, are untouched.
+    subroutine stiffen(mask)
+      logical, intent(in) :: mask(:)
+      ! 1e-8 left the residual's last digits to round-off in W (it stalled
+      ! near 1e-8), 1e-3 slowed the iteration past its limit, on a floating
+      ! ring in a groove; 1e-6 converged like a held one
+      real(dp), parameter :: soft_share = 1.0e-6_dp
+      real(dp) :: big
+      integer :: j, p
+      if (.not. any(mask)) return
+      big = 0.0_dp
+      do j = 1, k%n
+        do p = k%colptr(j), k%colptr(j + 1) - 1
+          if (k%rowind(p) == j) big = max(big, k%val(p))
+        end do
+      end do
+      do j = 1, size(mask)
+        if (.not. mask(j) .or. eq(j) == 0) cycle
+        do p = k%colptr(eq(j)), k%colptr(eq(j) + 1) - 1
+          if (k%rowind(p) == eq(j)) k%val(p) = k%val(p) + soft_share * big
+        end do
+      end do
+    end subroutine stiffen
+
     !> The relative residual at v, whether v's fixed dofs have their values,
     !> and the element with J <= 0 if any.
     subroutine measure(v, rel, at_target, bad_elem)
@@ -429,7 +457,8 @@ contains
   !>   u_prior (in, optional) (ndof) the state the previous load step started from:
   !>                its increment u - u_prior predicts this step's first one
   !>   other arguments as solve_newton_step
-  subroutine solve_newton_increment(bodies, eq, nfree, k, f0, f1, ubar0, ubar1, opts, u, res, err, specs, u_prior)
+  subroutine solve_newton_increment(bodies, eq, nfree, k, f0, f1, ubar0, ubar1, opts, u, res, err, specs, u_prior, &
+                                    soft)
     type(body_t), intent(in) :: bodies(:)
     integer, intent(in) :: eq(:), nfree
     type(csc_t), intent(inout) :: k
@@ -440,6 +469,7 @@ contains
     type(error_t), allocatable, intent(out) :: err
     type(pair_spec_t), intent(in), optional :: specs(:)
     real(dp), intent(in), optional :: u_prior(:)
+    logical, intent(in), optional :: soft(:)
     type(newton_result_t) :: sub
     real(dp), allocatable :: u_start(:), rate(:), guess(:), ubar_t(:)
     real(dp) :: t, dt, t1
@@ -467,9 +497,11 @@ contains
       if (predict) then
         guess = u + (t1 - t) * rate
         where (eq == 0) guess = ubar_t
-        call solve_newton_step(bodies, eq, nfree, k, (1 - t1) * f0 + t1 * f1, ubar_t, opts, u, sub, err, specs, guess)
+        call solve_newton_step(bodies, eq, nfree, k, (1 - t1) * f0 + t1 * f1, ubar_t, opts, u, sub, err, specs, guess, &
+                               soft)
       else
-        call solve_newton_step(bodies, eq, nfree, k, (1 - t1) * f0 + t1 * f1, ubar_t, opts, u, sub, err, specs)
+        call solve_newton_step(bodies, eq, nfree, k, (1 - t1) * f0 + t1 * f1, ubar_t, opts, u, sub, err, specs, &
+                               soft=soft)
       end if
       if (allocated(err)) return
       res%iterations = res%iterations + sub%iterations
