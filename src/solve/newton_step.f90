@@ -12,8 +12,9 @@
 !> residual norm by the Armijo fraction 1e-4 alpha (at most max_halvings
 !> times; the last J > 0 trial is then taken).  Converged: the prescribed
 !> values reached and ||f_f - f_int,f|| <= tol * scale, scale = max(||f||,
-!> ||f_int||) over all dofs (the reactions count: a step driven by prescribed
-!> displacements has no f).
+!> ||f_int||, ||f_c||) over the bodies' dofs (the reactions count: a step
+!> driven by prescribed displacements has no f; a RIGID's force and moment
+!> do not, a moment not being a force).
 !>
 !> An iterate whose tangent is not positive definite is the last update
 !> gone too far (the first update of a new load in a nearly incompressible
@@ -151,11 +152,16 @@ contains
     real(dp), allocatable :: dubar(:), rhs(:), du_f(:), du(:), trial(:), fint(:), u_best(:)
     real(dp), allocatable :: u_prev(:), du_prev(:), u_entry(:)
     real(dp) :: merit, merit_trial, best, alpha, step, alpha_prev
-    integer :: it, i, h, bad(2), back
+    integer :: it, i, h, bad(2), back, nb
     logical :: reached, analyzed, accepted, with_contact
 
     allocate(dubar(size(u)), rhs(nfree), du_f(nfree), du(size(u)), trial(size(u)), fint(size(u)))
     allocate(res%fcon(size(u)), source=0.0_dp)
+    ! the bodies' dofs come first, the RIGIDs' after them: the scales of the
+    ! residual and of the correction are taken over the bodies' alone (a
+    ! RIGID's moment and rotation have other units than forces and lengths,
+    ! and mixed in they would make the tolerances depend on the unit of length)
+    nb = maxval([(bodies(i)%dof0 + 2 * bodies(i)%mesh%nnode, i = 1, size(bodies))])
     with_contact = present(specs)
     if (with_contact) with_contact = size(specs) > 0
     allocate(res%history(0))
@@ -239,7 +245,7 @@ contains
         if (len(res%reason) > 0) exit
         ! the step's size against the displacement's: the linearized gaps are
         ! the true ones to its square
-        step = maxval(abs(du)) / max(maxval(abs(u + du)), tiny(1.0_dp))
+        step = maxval(abs(du(1:nb))) / max(maxval(abs(u(1:nb) + du(1:nb))), tiny(1.0_dp))
         call measure(u, merit, reached, bad)          ! the residual with this iterate's contact forces
       end if
       res%iterations = it
@@ -334,7 +340,7 @@ contains
           at_target = at_target .and. ubar(j) == v(j)
         end if
       end do
-      scale = max(norm2(f), norm2(fint), norm2(res%fcon), tiny(1.0_dp))
+      scale = max(norm2(f(1:nb)), norm2(fint(1:nb)), norm2(res%fcon(1:nb)), tiny(1.0_dp))
       rel = sqrt(rf) / scale
     end subroutine measure
 
