@@ -21,7 +21,8 @@
 !>
 !> Programming interface
 !>   check_hyperelastic_scene(prob, err)        a body held only by contact, named
-!>   solve_hyperelastic_step(prob, sys, t0, kstep, f1, ubar1, u, u_prior, log, sol, err)
+!>   type(newton_history_t)                     what the steps of a history share
+!>   solve_hyperelastic_step(prob, sys, t0, kstep, f1, ubar1, u, hist, log, sol, err)
 !>                                              the state at t1 from u at t0
 module hyperelastic_step
   use kinds, only: dp
@@ -34,12 +35,24 @@ module hyperelastic_step
   use scene, only: step_forces
   use body, only: build_pattern, number_equations
   use sparse_matrix, only: csc_t
-  use newton_step, only: newton_options_t, newton_result_t, solve_newton_increment
+  use newton_step, only: newton_options_t, newton_result_t, solve_newton_increment, element_note
   use contact_set, only: contact_set_t
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
   private
   public :: newton_equations, solve_hyperelastic_step
+
+  !> What the steps of a history share: Newton's equations, the soft dofs and
+  !> the tangent's pattern (made once, at the first step), and where the last
+  !> step started (its increment predicts the next one's).
+  type, public :: newton_history_t
+    logical :: ready = .false.
+    integer, allocatable :: eq(:)              !< (ndof) Newton's equation of each dof, 0 when fixed
+    integer :: nfree = 0
+    logical, allocatable :: soft(:)            !< (ndof) pinned dofs of bodies held only by contact
+    type(csc_t) :: k                           !< the tangent's pattern
+    real(dp), allocatable :: u_prior(:)        !< (ndof) where the last step started (unallocated: none)
+  end type newton_history_t
 
 contains
 
@@ -85,51 +98,53 @@ contains
   !>   kstep (in)    the deck's step (messages, sol%newton)
   !>   f1, ubar1 (in) the loads where it ends (solver basis)
   !>   u     (inout) (ndof) the state at t0; at t1 on exit
-  !>   u_prior (inout) where the last step started (unallocated: none; its
-  !>                 increment predicts this one's); where this one started on exit
+  !>   hist  (inout) the history's Newton equations and pattern (made at the first
+  !>                 step) and where the last step started; where this one started on exit
   !>   sol   (inout) the step's answer (module header)
   !>   err   (out)   the step not solved (error_unsolved: Newton's reason and
   !>                 the element that stopped it), or a failure of the solve
-  subroutine solve_hyperelastic_step(prob, sys, t0, kstep, f1, ubar1, u, u_prior, log, sol, err)
+  subroutine solve_hyperelastic_step(prob, sys, t0, kstep, f1, ubar1, u, hist, log, sol, err)
     type(problem_t), intent(inout) :: prob
     type(system_t), intent(inout) :: sys
     real(dp), intent(in) :: t0, f1(:), ubar1(:)
     integer, intent(in) :: kstep
     real(dp), intent(inout) :: u(:)
-    real(dp), allocatable, intent(inout) :: u_prior(:)
+    type(newton_history_t), intent(inout) :: hist
     type(log_t), intent(inout) :: log
     type(step_solution_t), intent(inout) :: sol
     type(error_t), allocatable, intent(out) :: err
     type(newton_options_t) :: opts
     type(newton_result_t) :: res
-    type(csc_t) :: k
     real(dp), allocatable :: f0(:), ubar0(:), u_start(:)
-    integer, allocatable :: eq(:)
-    logical, allocatable :: soft(:)
-    integer :: i, n, nfree
+    integer :: i, n
     character(len=:), allocatable :: line
 
     allocate(f0(size(u)), ubar0(size(u)))
     call step_forces(prob%sc, t0, f0, ubar0)
-    call newton_equations(prob, log, eq, nfree, soft, err)
-    if (allocated(err)) return
-    call build_pattern(prob%sc%bodies, eq, nfree, k, err)
-    if (allocated(err)) return
+    if (.not. hist%ready) then
+      call newton_equations(prob, log, hist%eq, hist%nfree, hist%soft, err)
+      if (allocated(err)) return
+      call build_pattern(prob%sc%bodies, hist%eq, hist%nfree, hist%k, err)
+      if (allocated(err)) return
+      hist%ready = .true.
+    end if
     opts%tol = prob%deck%solver%newton_tol
     opts%maxit = prob%deck%solver%newton_maxit
     u_start = u
-    if (allocated(u_prior)) then                    ! the last step's increment predicts this one's
-      call solve_newton_increment(prob%sc%bodies, eq, nfree, k, f0, f1, ubar0, ubar1, opts, u, res, err, &
-                                  prob%sc%specs, u_prior, soft)
-    else
-      call solve_newton_increment(prob%sc%bodies, eq, nfree, k, f0, f1, ubar0, ubar1, opts, u, res, err, &
-                                  prob%sc%specs, soft=soft)
-    end if
+    associate (eq => hist%eq, nfree => hist%nfree, k => hist%k, soft => hist%soft)
+      if (allocated(hist%u_prior)) then              ! the last step's increment predicts this one's
+        call solve_newton_increment(prob%sc%bodies, eq, nfree, k, f0, f1, ubar0, ubar1, opts, u, res, err, &
+                                    prob%sc%specs, hist%u_prior, soft)
+      else
+        call solve_newton_increment(prob%sc%bodies, eq, nfree, k, f0, f1, ubar0, ubar1, opts, u, res, err, &
+                                    prob%sc%specs, soft=soft)
+      end if
+    end associate
     if (allocated(err)) then
       err%message = step_label(prob, kstep) // err%message
       return
     end if
-    call move_alloc(u_start, u_prior)
+    call move_alloc(u_start, hist%u_prior)
     ! each halving of the step, as it was made
     if (len(res%notes) > 0) then
       line = res%notes
@@ -141,7 +156,7 @@ contains
     end if
     if (.not. res%converged) then
       call set_error(err, step_label(prob, kstep) // 'Newton''s method did not converge: ' // res%reason // &
-        trim(element_text(prob, res%bad)) // ', with the increment halved down to 1/' // &
+        trim(element_note(prob%sc%bodies, res%bad)) // ', with the increment halved down to 1/' // &
         int_to_str(2**opts%max_cuts) // ' of the step (expected more STEPS, or a motion the mesh can take)', &
         error_unsolved)
       return
@@ -206,15 +221,6 @@ contains
     v = v / maxval(b)
   end function cone_violation
 
-  !> ' (body NAME element E)' when bad names an element, else ''.
-  function element_text(prob, bad) result(s)
-    type(problem_t), intent(in) :: prob
-    integer, intent(in) :: bad(2)
-    character(len=:), allocatable :: s
-    s = ''
-    if (bad(1) > 0 .and. bad(2) > 0) s = ' (body ' // prob%deck%bodies(bad(1))%name // ', element ' // &
-                                         int_to_str(bad(2)) // ')'
-  end function element_text
 
   !> ' 1.2e-02 3.4e-05 ...': the relative residuals of the step's last
   !> iterates (quadratic convergence reads as the exponent doubling).

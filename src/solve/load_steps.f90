@@ -79,7 +79,7 @@ module load_steps
   use mode_support, only: mode_split_t
   use rigid_support, only: rigid_split_t
   use friction_lcp, only: friction_problem_t, friction_problem, friction_state
-  use hyperelastic_step, only: solve_hyperelastic_step
+  use hyperelastic_step, only: solve_hyperelastic_step, newton_history_t
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
   private
@@ -127,7 +127,7 @@ module load_steps
     real(dp), allocatable :: z(:)              !< (n + nt) the last step's multipliers (the start)
     real(dp), allocatable :: slip(:)           !< (nt) T u of the last step along its rows (small sliding)
     real(dp), allocatable :: u(:)              !< (ndof) the last step's displacement (finite sliding)
-    real(dp), allocatable :: u_prior(:)        !< (ndof) finite strain: where the last step started
+    type(newton_history_t) :: newton           !< finite strain: Newton's equations, pattern, last start
     integer(i8), allocatable :: keys(:)        !< the last update's rows (finite sliding: row_keys)
   end type history_t
 
@@ -293,7 +293,7 @@ contains
       load%t = t1
       call step_forces(prob%sc, t1, load%f, load%ubar)
       if (.not. allocated(past%u)) allocate(past%u(prob%sc%ndof), source=0.0_dp)
-      call solve_hyperelastic_step(prob, sys, t0, load%kstep, load%f, load%ubar, past%u, past%u_prior, log, sol, err)
+      call solve_hyperelastic_step(prob, sys, t0, load%kstep, load%f, load%ubar, past%u, past%newton, log, sol, err)
       return
     end if
     finite = any(prob%sc%specs%finite)

@@ -65,9 +65,11 @@
 !> Programming interface
 !>   type(newton_options_t)   tol, maxit, max_halvings, max_cuts
 !>   type(newton_result_t)    converged, iterations, residual, bad element, reason
-!>   solve_newton_step(bodies, eq, nfree, k, f, ubar, opts, u, res, err [, specs])
-!>   solve_newton_increment(bodies, eq, nfree, k, f0, f1, ubar0, ubar1, opts, u, res, err [, specs])
+!>   solve_newton_step(bodies, eq, nfree, k, f, ubar, opts, u, res, err [, specs] [, guess] [, soft])
+!>   solve_newton_increment(bodies, eq, nfree, k, f0, f1, ubar0, ubar1, opts, u, res, err [, specs]
+!>                          [, u_prior] [, soft])
 !>        from the loads (f0, ubar0) at u to (f1, ubar1), halving what fails
+!>   element_note(bodies, bad)  ' (body NAME, element E)' for a message, '' when bad names none
 module newton_step
   use kinds, only: dp
   use errors, only: error_t
@@ -84,7 +86,7 @@ module newton_step
   use sparse_cholesky, only: factor_t, analyze_pattern, factorize_values, solve_vector, free_factor
   implicit none
   private
-  public :: newton_options_t, newton_result_t, solve_newton_step, solve_newton_increment
+  public :: newton_options_t, newton_result_t, solve_newton_step, solve_newton_increment, element_note
 
   type :: newton_options_t
     real(dp) :: tol = 1.0e-8_dp       !< residual / scale at convergence (SOLVER newton_tol=)
@@ -546,7 +548,7 @@ contains
       if (dt <= 2.0_dp**(-opts%max_cuts)) return      ! cutting no longer helps
       dt = 0.5_dp * dt
       res%cuts = res%cuts + 1
-      res%notes = res%notes // 'Newton: ' // sub%reason // trim(element_note(sub%bad)) // &
+      res%notes = res%notes // 'Newton: ' // sub%reason // trim(element_note(bodies, sub%bad)) // &
                   ' at load factor ' // real_to_str(t1) // ' of the step: the increment is halved to ' // &
                   real_to_str(dt) // new_line('a')
     end do
@@ -555,12 +557,13 @@ contains
     res%bad = 0
   end subroutine solve_newton_increment
 
-  !> ' (body B element E)' when bad names an element, else ''.
-  function element_note(bad) result(s)
+  !> ' (body NAME, element E)' when bad names an element, else ''.
+  function element_note(bodies, bad) result(s)
+    type(body_t), intent(in) :: bodies(:)
     integer, intent(in) :: bad(2)
     character(len=:), allocatable :: s
     s = ''
-    if (bad(1) > 0 .and. bad(2) > 0) s = ' (body ' // int_to_str(bad(1)) // ' element ' // int_to_str(bad(2)) // ')'
+    if (bad(1) > 0 .and. bad(2) > 0) s = ' (body ' // bodies(bad(1))%name // ', element ' // int_to_str(bad(2)) // ')'
   end function element_note
 
 end module newton_step
