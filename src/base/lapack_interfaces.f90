@@ -8,13 +8,13 @@
 !>
 !> Programming interface: the routines below, by their standard names.
 !>   BLAS    daxpy, drot, dgemv, dger, dtrsv, dtrsm, dsyrk
-!>   LAPACK  dgtsv, dgbsv, dgesv, dpotrf, dpotri, dpotrs, dpstrf, dsysv, dgesvd, dgeqp3, dlasrt
+!>   LAPACK  dgtsv, dgbsv, dgesv, dpotrf, dpotri, dpotrs, dpstrf, dsysv, dsyev, dgesvd, dgeqp3, dlasrt
 module lapack_interfaces
   use kinds, only: dp
   implicit none
   private
   public :: daxpy, drot, dgemv, dger, dtrsv, dtrsm, dsyrk, dgtsv, dpotrf, dpotri, dpotrs, dpstrf, &
-            dsysv, dgesvd, dgeqp3, dgbsv, dgesv, dlasrt
+            dsysv, dsyev, dgesvd, dgeqp3, dgbsv, dgesv, dlasrt
 
   !> The argument list that dpotrf and dpotri share: the triangle uplo of
   !> a(lda, n) replaced in place, info = 0 or the failing column.
@@ -143,6 +143,16 @@ module lapack_interfaces
       real(dp), intent(inout) :: a(lda, *), b(ldb, *)
       real(dp), intent(out) :: work(*)
     end subroutine dsysv
+    !> LAPACK: the eigenvalues w (ascending) and, jobz = 'V', the eigenvectors
+    !> (in a's columns) of a symmetric matrix, from its triangle uplo.
+    subroutine dsyev(jobz, uplo, n, a, lda, w, work, lwork, info)
+      import :: dp
+      character, intent(in) :: jobz, uplo
+      integer, intent(in) :: n, lda, lwork
+      integer, intent(out) :: info
+      real(dp), intent(inout) :: a(lda, *)
+      real(dp), intent(out) :: w(*), work(*)
+    end subroutine dsyev
     !> LAPACK: the singular value decomposition A = U S V'.
     subroutine dgesvd(jobu, jobvt, m, n, a, lda, s, u, ldu, vt, ldvt, work, lwork, info)
       import :: dp

@@ -51,6 +51,8 @@
 !>   element_coordinates(m, e, xe), rotate_element_matrix(bd, e, ke),
 !>   rotate_element_vector(bd, e, v, to_global), add_spring_forces(bd, u, f)
 !>        the pieces of the assembly, for the finite-strain one (finite_strain_assembly)
+!>   find_row(k, row, col)                          position of K's entry (row, col), row <= col in
+!>                                                  the pattern (else where it would go)
 !>   edge_outward_normal(mesh, eptr, elist, a, b, nrm, owner)  unit normal of edge a-b
 !>        pointing out of its element; owner = that element, 0 when no element has
 !>        the edge, -1 when two do (an interior edge)
@@ -74,7 +76,7 @@ module body
   public :: node_elements, element_dofs, edge_outward_normal, element_response
   public :: thermal_loads, to_global_axes, to_local_axes, axi_thermal_strain, body_pressure_modes, spring_reactions
   public :: scatter_element, scatter_springs, element_coordinates, rotate_element_matrix, rotate_element_vector
-  public :: add_spring_forces
+  public :: add_spring_forces, find_row
 
   type :: body_t
     character(len=:), allocatable :: name  !< as in the deck

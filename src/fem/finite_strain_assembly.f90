@@ -14,10 +14,14 @@
 !> body's: ue = Q u to the kernels, Q' fe and Q' K Q back.
 !>
 !> An element with J <= 0 at a point stops the assembly: bad = (body, element)
-!> and the outputs are incomplete; the caller cuts the load step.
+!> and the outputs are incomplete; the caller cuts the load step.  With
+!> definite, each hyperelastic element's tangent is cut to its positive part
+!> (its negative eigenvalues set to zero): the matrix of a descent direction
+!> where the consistent tangent is not positive definite (newton_step).
 !>
 !> Programming interface
-!>   assemble_tangent(bodies, u, eq, dubar, k, rhs, bad)     k += K_ff(u), rhs -= f_int,f(u) + K_fd dubar_d
+!>   assemble_tangent(bodies, u, eq, dubar, k, rhs, bad [, definite])
+!>        k += K_ff(u), rhs -= f_int,f(u) + K_fd dubar_d
 !>   internal_force_vector(bodies, u, fint, bad)             fint = f_int(u) (ndof)
 !>   finite_strain_fields(bodies, u, energy, jac, stretch, stress, vm)
 !>        the hyperelastic bodies' energy, J, largest stretch and Cauchy stress per element
@@ -30,6 +34,7 @@ module finite_strain_assembly
   use finite_strain_elements, only: finite_strain_response, finite_strain_energy, finite_strain_state
   use material, only: von_mises_4
   use sparse_matrix, only: csc_t
+  use lapack_interfaces, only: dsyev
   implicit none
   private
   public :: assemble_tangent, internal_force_vector, finite_strain_fields
@@ -88,13 +93,16 @@ contains
   !>   rhs    (inout) (nfree) holds f_f on entry
   !>   bad    (out)   (2) 0, 0; (body, element) of an element with J <= 0 (k, rhs incomplete),
   !>                  (body, 0) when a term K_fd dubar_d would overflow
-  subroutine assemble_tangent(bodies, u, eq, dubar, k, rhs, bad)
+  !>   definite (in, optional) .true.: the hyperelastic elements' tangents cut to
+  !>                  their positive parts (module header)
+  subroutine assemble_tangent(bodies, u, eq, dubar, k, rhs, bad, definite)
     type(body_t), intent(in) :: bodies(:)
     real(dp), intent(in) :: u(:), dubar(:)
     integer, intent(in) :: eq(:)
     type(csc_t), intent(inout) :: k
     real(dp), intent(inout) :: rhs(:)
     integer, intent(out) :: bad(2)
+    logical, intent(in), optional :: definite
     real(dp) :: fe(2 * max_nen), ke(2 * max_nen, 2 * max_nen), fs(size(u))
     integer :: dofs(2 * max_nen), b, e, m, a, info
     logical :: ok
@@ -106,6 +114,9 @@ contains
         if (info /= 0) then
           bad = [b, e]
           return
+        end if
+        if (present(definite)) then
+          if (definite .and. bodies(b)%finite) call definite_part(ke(1:m, 1:m))
         end if
         call element_dofs(bodies(b), e, dofs)
         do a = 1, m                                        ! rhs_f -= f_int,f
@@ -125,6 +136,20 @@ contains
       end if
     end do
   end subroutine assemble_tangent
+
+  !> ke's positive semi-definite part: its negative eigenvalues set to zero
+  !> (the iterate's descent matrix where the consistent tangent is not
+  !> definite: assemble_tangent's definite).
+  subroutine definite_part(ke)
+    real(dp), intent(inout) :: ke(:,:)
+    real(dp) :: v(size(ke, 1), size(ke, 1)), lam(size(ke, 1)), work(34 * size(ke, 1))
+    integer :: info, n
+    n = size(ke, 1)
+    v = ke
+    call dsyev('V', 'U', n, v, n, lam, work, size(work), info)
+    if (info /= 0 .or. lam(1) >= 0.0_dp) return
+    ke = matmul(v * spread(max(lam, 0.0_dp), 1, n), transpose(v))
+  end subroutine definite_part
 
   !> fint = f_int(u) on every dof (the fixed rows: the reactions), solver basis.
   !>   bad (out) (2) 0, 0; (body, element) of an element with J <= 0 (fint incomplete)

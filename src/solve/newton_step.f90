@@ -16,10 +16,15 @@
 !> driven by prescribed displacements has no f; a RIGID's force and moment
 !> do not, a moment not being a force).
 !>
-!> An iterate whose tangent is not positive definite is the last update
-!> gone too far (the first update of a new load in a nearly incompressible
-!> body, below): that update is halved again (at most max_halvings times)
-!> and the iteration goes on from there.  A step that does not converge in
+!> An iterate whose tangent is not positive definite is assembled again
+!> with each hyperelastic element's tangent cut to its positive part
+!> (finite_strain_assembly's definite): a direction that lowers the stored
+!> energy where Newton's has none (far from the equilibrium; the next
+!> iterate tries the consistent tangent again).  When even that is not
+!> definite, the last update went too far (the first update of a new load
+!> in a nearly incompressible body, below): it is halved again (at most
+!> max_halvings times) and the iteration goes on from there.  The
+!> iterations counted are the solves.  A step that does not converge in
 !> maxit iterations, or whose tangent stays indefinite, or whose every trial
 !> inverts an element, returns converged = .false. with the reason and the
 !> element: the caller halves the step.  Nothing here stops the run or
@@ -48,7 +53,10 @@
 !> Contact (optional argument specs: the CONTACT pairs, each followed as a
 !> sliding=finite pair, frictionless or with friction).  Every iterate
 !> rebuilds the rows C = [B; T] and the gaps g(u) of the current
-!> configuration (moved_contact) and solves its contact problem on the
+!> configuration (moved_contact), adds the rows that hold the iterate to
+!> its tangent (augmented_tangent: a section that only its contacts hold
+!> has a tangent that is not definite by itself; where those rows stay
+!> closed the iterate is unchanged) and solves its contact problem on the
 !> condensed tangent, W = C_f K^-1 C_f', by Lemke's method (contact_correction;
 !> with friction friction_lcp's Lemke method, the slips measured from the
 !> sub-increment's start): the linear runs' machinery, on the iterate.
@@ -71,13 +79,14 @@
 !>        from the loads (f0, ubar0) at u to (f1, ubar1), halving what fails
 !>   element_note(bodies, bad)  ' (body NAME, element E)' for a message, '' when bad names none
 module newton_step
-  use kinds, only: dp
+  use kinds, only: dp, i8
   use errors, only: error_t
   use strings, only: int_to_str, real_to_str
   use body, only: body_t
   use finite_strain_assembly, only: assemble_tangent, internal_force_vector
   use contact_set, only: contact_set_t, pair_spec_t
-  use moved_contact, only: build_moved_contact_set
+  use moved_contact, only: build_moved_contact_set, row_keys
+  use augmented_tangent, only: cover_rows, augment_rows
   use local_axes, only: rotate_constraint_rows
   use lcp_scaling, only: lcp_options_t, lcp_report_t
   use lcp_lemke, only: solve_lcp_lemke
@@ -155,7 +164,11 @@ contains
     real(dp), allocatable :: u_prev(:), du_prev(:), u_entry(:)
     real(dp) :: merit, merit_trial, best, alpha, step, alpha_prev
     integer :: it, i, h, bad(2), back, nb
-    logical :: reached, analyzed, accepted, with_contact
+    logical :: reached, analyzed, accepted, with_contact, grown, descent
+    type(contact_set_t) :: cs
+    logical, allocatable :: holds(:)
+    real(dp), allocatable :: target(:)
+    integer(i8), allocatable :: held_keys(:)
 
     allocate(dubar(size(u)), rhs(nfree), du_f(nfree), du(size(u)), trial(size(u)), fint(size(u)))
     allocate(res%fcon(size(u)), source=0.0_dp)
@@ -184,25 +197,42 @@ contains
     step = huge(1.0_dp)
     back = 0
     alpha_prev = 1.0_dp
-    do it = 1, opts%maxit
+    descent = .false.
+    it = 0
+    do                                                ! it counts the solves; a refactorization is not one
       if (reached .and. merit <= opts%tol .and. (.not. with_contact .or. step <= opts%tol)) exit
+      if (it >= opts%maxit) exit
       ! the Newton system at u
       dubar = 0.0_dp
       do i = 1, size(u)
         if (eq(i) == 0) dubar(i) = ubar(i) - u(i)
       end do
+      if (with_contact) then
+        ! the iterate's rows, and those that hold it, before K is made: they
+        ! are added to it (module augmented_tangent)
+        call build_moved_contact_set(bodies, specs, u, cs, err)
+        if (allocated(err)) return
+        call rotate_constraint_rows(cs, bodies)      ! nodes in local axes (FIX un=/ut=): rows on their dofs
+        call cover_rows(cs, eq, k, grown)
+        if (grown .and. analyzed) then
+          call free_factor(fac)
+          analyzed = .false.
+        end if
+        call holding_rows(cs, held_keys, u, dubar, holds, target)
+      end if
       k%val = 0.0_dp
       rhs = 0.0_dp
       do i = 1, size(u)
         if (eq(i) > 0) rhs(eq(i)) = f(i)
       end do
-      call assemble_tangent(bodies, u, eq, dubar, k, rhs, bad)
+      call assemble_tangent(bodies, u, eq, dubar, k, rhs, bad, descent)
       if (bad(1) /= 0) then
         res%bad = bad
         res%reason = merge('a term of the tangent overflows   ', 'an element has J <= 0             ', bad(2) == 0)
         exit
       end if
       if (present(soft)) call stiffen(soft)
+      if (with_contact) call augment_rows(cs, holds, target, eq, dubar, k, rhs)
       ! the pattern is the same at every iterate: one ordering and symbolic
       ! analysis, a numeric factorization per iterate (again after a failure)
       if (.not. analyzed) then
@@ -220,7 +250,16 @@ contains
       end if
       if (allocated(ferr)) then
         deallocate(ferr)
-        ! the last update went past where the tangent is positive definite (a
+        ! not positive definite at this iterate: first each hyperelastic
+        ! element's tangent cut to its positive part (a descent direction of
+        ! the stored energy, where the consistent tangent has none: far from
+        ! the equilibrium, or a compressed section's turn that only the
+        ! contacts hold, module augmented_tangent)
+        if (.not. descent) then
+          descent = .true.
+          cycle
+        end if
+        ! then the last update went past where even that is definite (a
         ! nearly incompressible body's first update from a new load): half
         ! of it again, up to max_halvings times, before the step is given up
         if (allocated(u_prev) .and. back < opts%max_halvings) then
@@ -235,6 +274,8 @@ contains
         exit
       end if
       back = 0
+      descent = .false.
+      it = it + 1
       call solve_vector(fac, rhs, du_f, err)
       if (allocated(err)) return
       du = dubar
@@ -242,8 +283,10 @@ contains
         if (eq(i) > 0) du(i) = du_f(eq(i))
       end do
       if (with_contact) then
-        call contact_correction(specs, fac, u_entry, du, res, err)
+        call contact_correction(cs, fac, u_entry, du, res, err)
         if (allocated(err)) return
+        held_keys = row_keys(res%cs)                  ! the rows the next iterate keeps closed
+        held_keys = pack(held_keys, res%lambda(1:res%cs%nrow) > 0.0_dp)
         if (len(res%reason) > 0) exit
         ! the step's size against the displacement's: the linearized gaps are
         ! the true ones to its square
@@ -320,6 +363,41 @@ contains
       end do
     end subroutine stiffen
 
+    !> The rows that hold the iterate at v (augmented_tangent) and their
+    !> targets c_i du: a normal row the last iterate's contact problem closed
+    !> (keys: its rows with lambda > 0), or, at a sub-increment's first
+    !> iterate, one whose gap with the fixed dofs moved is closed or
+    !> negative; its target closes its gap, h_i = g_i - c_i v.
+    subroutine holding_rows(rows, keys, v, dv, mask, h)
+      type(contact_set_t), intent(in) :: rows
+      integer(i8), allocatable, intent(in) :: keys(:)
+      real(dp), intent(in) :: v(:), dv(:)
+      logical, allocatable, intent(out) :: mask(:)
+      real(dp), allocatable, intent(out) :: h(:)
+      integer(i8), allocatable :: now(:)
+      integer :: r, p, d
+      real(dp) :: moved
+      allocate(mask(rows%nrow + rows%ntan), h(rows%nrow + rows%ntan))
+      mask = .false.
+      h = 0.0_dp
+      now = row_keys(rows)
+      do r = 1, rows%nrow
+        h(r) = rows%g(r)
+        moved = rows%g(r)
+        do p = rows%bptr(r), rows%bptr(r + 1) - 1
+          d = rows%cdof(rows%bcol(p))
+          h(r) = h(r) - rows%bval(p) * v(d)
+          moved = moved - rows%bval(p) * (v(d) + dv(d))
+        end do
+        if (allocated(keys)) then
+          mask(r) = any(keys == now(r))
+        else
+          ! closed to round-off of the row's length
+          mask(r) = moved <= 1.0e-10_dp * rows%weight(r)
+        end if
+      end do
+    end subroutine holding_rows
+
     !> The relative residual at v, whether v's fixed dofs have their values,
     !> and the element with J <= 0 if any.
     subroutine measure(v, rel, at_target, bad_elem)
@@ -364,22 +442,18 @@ contains
   !>   specs (in) the pairs;  fac (in) the tangent's factor
   !>   u_s   (in) (ndof) where the sub-increment started (the slips' origin)
   !>   du    (inout) (ndof) du0 on entry (dubar on the fixed dofs), du on exit
-  subroutine contact_correction(specs, fac, u_s, du, res, err)
-    type(pair_spec_t), intent(in) :: specs(:)
+  subroutine contact_correction(cs, fac, u_s, du, res, err)
+    type(contact_set_t), intent(in) :: cs
     type(factor_t), intent(in) :: fac
     real(dp), intent(in) :: u_s(:)
     real(dp), intent(inout) :: du(:)
     type(newton_result_t), intent(inout) :: res
     type(error_t), allocatable, intent(out) :: err
-    type(contact_set_t) :: cs
     type(lcp_options_t) :: lopts
     type(lcp_report_t) :: lrep
     type(friction_problem_t) :: fp
     real(dp), allocatable :: c(:,:), y(:,:), w(:,:), q(:), lam(:), gap(:)
     integer :: i, p, d, nrow, nall
-    call build_moved_contact_set(bodies, specs, u, cs, err)
-    if (allocated(err)) return
-    call rotate_constraint_rows(cs, bodies)          ! nodes in local axes (FIX un=/ut=): rows on their dofs
     nrow = cs%nrow
     nall = nrow + cs%ntan
     res%fcon = 0.0_dp
