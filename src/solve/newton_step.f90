@@ -25,7 +25,9 @@
 !> in a nearly incompressible body, below): it is halved again (at most
 !> max_halvings times) and the iteration goes on from there.  The
 !> iterations counted are the solves.  A step that does not converge in
-!> maxit iterations, or whose tangent stays indefinite, or whose every trial
+!> maxit iterations, or whose line search finds no decrease of the residual
+!> twice running (a stalled iteration: the caller starts it again without
+!> the predictor, or halves it), or whose tangent stays indefinite, or whose every trial
 !> inverts an element, returns converged = .false. with the reason and the
 !> element: the caller halves the step.  Nothing here stops the run or
 !> writes a file.
@@ -163,7 +165,8 @@ contains
     real(dp), allocatable :: dubar(:), rhs(:), du_f(:), du(:), trial(:), fint(:), u_best(:)
     real(dp), allocatable :: u_prev(:), du_prev(:), u_entry(:)
     real(dp) :: merit, merit_trial, best, alpha, step, alpha_prev
-    integer :: it, i, h, bad(2), back, nb
+    integer :: it, i, h, bad(2), back, nb, stalled
+    integer, parameter :: max_stalls = 2
     logical :: reached, analyzed, accepted, with_contact, grown, descent
     type(contact_set_t) :: cs
     logical, allocatable :: holds(:)
@@ -196,6 +199,7 @@ contains
     res%history = [merit]
     step = huge(1.0_dp)
     back = 0
+    stalled = 0
     alpha_prev = 1.0_dp
     descent = .false.
     it = 0
@@ -319,8 +323,18 @@ contains
           res%reason = 'every trial of the line search turns an element inside out (J <= 0)'
           exit
         end if
-        trial = u_best                                 ! no decrease found: the least residual with J > 0
+        ! no decrease found: a stalled iteration (twice running) is given
+        ! up, so that the caller starts the sub-increment again without the
+        ! predictor, or halves it, instead of spending its iterations here
+        stalled = stalled + 1
+        if (stalled >= max_stalls) then
+          res%reason = 'the line search finds no decrease of the residual'
+          exit
+        end if
+        trial = u_best                                 ! the least residual with J > 0
         call measure(trial, merit_trial, reached, bad)
+      else
+        stalled = 0
       end if
       res%bad = 0
       u_prev = u
