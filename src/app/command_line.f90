@@ -280,7 +280,8 @@ contains
       '                                    no FORCE: held fixed)', &
       '  SOLVER [lcp=auto|lemke|pgs|pdas] [tol=1e-10] [maxit=0] [omega=1] [updates=30]', &
       '         [ordering=auto|metis|amd] [condense=auto|solve|inverse] [cut=auto|off]', &
-      '         [newton_tol=1e-8] [newton_maxit=25]   (hyperelastic bodies)', &
+      '         [newton_tol=1e-8] [newton_maxit=25] [newton_lcp=lemke|active_set]', &
+      '                                    (hyperelastic bodies; active_set: frictionless pairs)', &
       '                                    every lcp method with or without friction; auto: Lemke', &
       '                                    up to 100 contact rows, PDAS above; with friction PDAS,', &
       '                                    then Lemke, then PGS, then a fixed point on the Tresca', &

@@ -130,6 +130,12 @@ contains
                       ' (expected gap=geometry: its pairs measure the gaps in the current configuration)')
         end if
         c%finite = .true.
+        if (allocated(deck%solver%newton_lcp)) then
+          if (deck%solver%newton_lcp == 'active_set' .and. (c%mu > 0 .or. c%tresca > 0)) &
+            call report(s, deck%solver%line, 'newton_lcp=active_set with the ' // c%friction // &
+                        ' friction of the CONTACT at line ' // int_to_str(c%line) // ' (expected frictionless pairs, ' // &
+                        'or newton_lcp=lemke: the active-set iteration has no friction cone)')
+        end if
       end associate
     end do
     do i = 1, size(deck%rigids)

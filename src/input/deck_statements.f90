@@ -51,7 +51,8 @@ contains
     character(len=*), parameter :: solver_usage = 'SOLVER [lcp=auto|lemke|pgs|pdas] [tol=number] [maxit=integer] ' // &
                                                   '[omega=number] [ordering=auto|metis|amd] ' // &
                                                   '[condense=auto|solve|inverse] [cut=auto|off] [updates=integer] ' // &
-                                                  '[newton_tol=number] [newton_maxit=integer]'
+                                                  '[newton_tol=number] [newton_maxit=integer] ' // &
+                                                  '[newton_lcp=lemke|active_set]'
     character(len=*), parameter :: shape_usage = 'SHAPE line x0= y0= x1= y1= | SHAPE circle xc= yc= r= ' // &
                                                  '[solid=inside|outside] | SHAPE polyline points=x1:y1,x2:y2,...'
     real(dp), parameter :: zero = 0.0_dp
@@ -131,7 +132,7 @@ contains
                        choice_key('ordering', 'auto|metis|amd'), choice_key('condense', 'auto|solve|inverse'), &
                        choice_key('cut', 'auto|off'), integer_key('updates', at_least=1), &
                        real_key('newton_tol', gt=zero, lt=1.0_dp, note=', a relative residual'), &
-                       integer_key('newton_maxit', at_least=1)])
+                       integer_key('newton_maxit', at_least=1), choice_key('newton_lcp', 'lemke|active_set')])
     call add_row(table, 'STEPS', '', do_steps, once=.true., usage='STEPS n with an integer 1 <= n <= 100000')
     call add_row(table, 'ESTIMATE', '', do_estimate, once=.true., usage='ESTIMATE [on|off|bound]')
     call add_row(table, 'ADAPT', '', do_adapt, once=.true., words=0, &
@@ -346,7 +347,7 @@ contains
   end subroutine split_side
 
   !> SOLVER [lcp=] [tol=] [maxit=] [omega=] [ordering=] [condense=] [cut=] [updates=]
-  !> [newton_tol=] [newton_maxit=]
+  !> [newton_tol=] [newton_maxit=] [newton_lcp=]
   subroutine do_solver(s, deck, st)
     type(state_t), intent(inout) :: s
     type(deck_t), intent(inout) :: deck
@@ -365,6 +366,7 @@ contains
     if (v%ok(8)) deck%solver%updates = v%k(8)
     if (v%ok(9)) deck%solver%newton_tol = v%x(9)
     if (v%ok(10)) deck%solver%newton_maxit = v%k(10)
+    if (v%ok(11)) deck%solver%newton_lcp = v%text(11)%s
   end subroutine do_solver
 
   !> STEPS n: the number of load steps (the ramps run over steps 0..n)

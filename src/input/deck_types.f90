@@ -180,7 +180,7 @@ module deck_types
   end type contact_deck_t
 
   !> SOLVER [lcp=] [tol=] [maxit=] [omega=] [ordering=] [condense=] [cut=] [updates=]
-  !> [newton_tol=] [newton_maxit=]
+  !> [newton_tol=] [newton_maxit=] [newton_lcp=]
   type :: solver_deck_t
     character(len=:), allocatable :: lcp        !< 'auto' (default), 'lemke', 'pgs', 'pdas'
     character(len=:), allocatable :: ordering   !< 'auto' (default), 'metis', 'amd'
@@ -192,6 +192,7 @@ module deck_types
     integer :: updates = 30                     !< sliding=finite: geometry updates allowed per load step
     real(dp) :: newton_tol = 1.0e-8_dp          !< finite strain: Newton residual / load scale at convergence
     integer :: newton_maxit = 25                !< finite strain: Newton iterations before a step is cut
+    character(len=:), allocatable :: newton_lcp  !< finite strain: 'lemke' (default) or 'active_set' when given
     integer :: line = 0
   end type solver_deck_t
 

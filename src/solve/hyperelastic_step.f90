@@ -130,6 +130,7 @@ contains
     end if
     opts%tol = prob%deck%solver%newton_tol
     opts%maxit = prob%deck%solver%newton_maxit
+    if (allocated(prob%deck%solver%newton_lcp)) opts%contact = prob%deck%solver%newton_lcp
     u_start = u
     associate (eq => hist%eq, nfree => hist%nfree, k => hist%k, soft => hist%soft)
       if (allocated(hist%u_prior)) then              ! the last step's increment predicts this one's

@@ -65,15 +65,19 @@
 !> Why an LCP per iterate rather than a semismooth Newton on the whole
 !> system: the tangent's factor is there already, the contact rows are few
 !> (a boundary's nodes), and Lemke gives the iterate's exact active set, so
-!> the outer iteration is Newton's on a fixed set near the end (quadratic);
-!> no measured comparison with a semismooth Newton has been made.  The
+!> the outer iteration is Newton's on a fixed set near the end (quadratic).
+!> Measured against a semismooth Newton (opts%contact = 'active_set', one
+!> active-set step per iterate, contact_correction's active_set_step;
+!> bench/newton_lcp.sh): the same answers; more iterations and CPU on the
+!> O-ring, fewer on a frictionless section in its groove; W, built either
+!> way, is most of an iterate's cost.  The
 !> residual then counts the contact forces -C' lam; converged also asks
 !> the last correction below tol of the displacement (the gaps of the
 !> linearization are then the true ones to its square), and the result
 !> gives the least linearized gap and the complementarity of the last LCP.
 !>
 !> Programming interface
-!>   type(newton_options_t)   tol, maxit, max_halvings, max_cuts
+!>   type(newton_options_t)   tol, maxit, max_halvings, max_cuts, contact (lemke or active_set)
 !>   type(newton_result_t)    converged, iterations, residual, bad element, reason
 !>   solve_newton_step(bodies, eq, nfree, k, f, ubar, opts, u, res, err [, specs] [, guess] [, soft])
 !>   solve_newton_increment(bodies, eq, nfree, k, f0, f1, ubar0, ubar1, opts, u, res, err [, specs]
@@ -92,6 +96,7 @@ module newton_step
   use local_axes, only: rotate_constraint_rows
   use lcp_scaling, only: lcp_options_t, lcp_report_t
   use lcp_lemke, only: solve_lcp_lemke
+  use lapack_interfaces, only: dgesv
   use friction_lcp, only: friction_problem_t, friction_problem, solve_friction_lcp, friction_state
   use sparse_matrix, only: csc_t
   use sparse_cholesky, only: factor_t, analyze_pattern, factorize_values, solve_vector, free_factor
@@ -104,6 +109,10 @@ module newton_step
     integer :: maxit = 25             !< iterations before the step fails (SOLVER newton_maxit=)
     integer :: max_halvings = 12      !< line-search halvings per iteration
     integer :: max_cuts = 10          !< halvings of a load step's increment before it fails
+    !> each iterate's contact problem: 'lcp' (Lemke's method on its LCP) or
+    !> 'active_set' (semismooth Newton: the rows of the last iterate's
+    !> active set as equalities, frictionless pairs only; SOLVER newton_lcp=)
+    character(len=16) :: contact = 'lcp'
   end type newton_options_t
 
   type :: newton_result_t
@@ -169,7 +178,8 @@ contains
     integer, parameter :: max_stalls = 2
     logical :: reached, analyzed, accepted, with_contact, grown, descent
     type(contact_set_t) :: cs
-    logical, allocatable :: holds(:)
+    logical, allocatable :: holds(:), closing(:)
+    logical :: active_set, settled
     real(dp), allocatable :: target(:)
     integer(i8), allocatable :: held_keys(:)
 
@@ -182,6 +192,7 @@ contains
     nb = maxval([(bodies(i)%dof0 + 2 * bodies(i)%mesh%nnode, i = 1, size(bodies))])
     with_contact = present(specs)
     if (with_contact) with_contact = size(specs) > 0
+    active_set = opts%contact == 'active_set'
     allocate(res%history(0))
     res%reason = ''
     analyzed = .false.
@@ -289,12 +300,21 @@ contains
       if (with_contact) then
         call contact_correction(cs, fac, u_entry, du, res, err)
         if (allocated(err)) return
-        held_keys = row_keys(res%cs)                  ! the rows the next iterate keeps closed
-        held_keys = pack(held_keys, res%lambda(1:res%cs%nrow) > 0.0_dp)
         if (len(res%reason) > 0) exit
+        ! the rows the next iterate keeps closed: those pressed (lambda > 0),
+        ! and with the active-set iteration those its step leaves penetrating
+        settled = .true.
+        if (active_set) then
+          closing = res%lambda(1:res%cs%nrow) > 0.0_dp .or. res%gaps < 0.0_dp
+          settled = all(closing .eqv. holds(1:res%cs%nrow))
+        else
+          closing = res%lambda(1:res%cs%nrow) > 0.0_dp
+        end if
+        held_keys = pack(row_keys(res%cs), closing)
         ! the step's size against the displacement's: the linearized gaps are
-        ! the true ones to its square
+        ! the true ones to its square (an active set still moving is no answer)
         step = maxval(abs(du(1:nb))) / max(maxval(abs(u(1:nb) + du(1:nb))), tiny(1.0_dp))
+        if (.not. settled) step = huge(1.0_dp)
         call measure(u, merit, reached, bad)          ! the residual with this iterate's contact forces
       end if
       res%iterations = it
@@ -506,7 +526,9 @@ contains
         if (eq(d) > 0) w(i, :) = w(i, :) + cs%bval(p) * y(eq(d), :)
       end do
     end do
-    if (cs%ntan == 0) then
+    if (cs%ntan == 0 .and. active_set) then
+      call active_set_step(w, q, holds(1:nrow), lam, lrep)
+    else if (cs%ntan == 0) then
       call solve_lcp_lemke(w, q, lam, lopts, lrep)
     else
       fp = friction_problem(q(1:nrow), q(nrow + 1:), cs%tan_row, cs%tan_mu, cs%tan_bound)
@@ -541,6 +563,38 @@ contains
     res%gaps = gap
     call move_alloc(w, res%w)
   end subroutine contact_correction
+
+  !> One semismooth Newton step on the iterate's contact problem (the
+  !> primal-dual active set method's, Hintermueller, Ito and Kunisch): the
+  !> rows of A closed, W_AA lam_A = -q_A, the others open, lam = 0; no sign
+  !> asked of lam_A nor of the other rows' gaps: the next iterate's A is
+  !> {lam > 0} and {gap < 0} (the caller), and the iteration has converged
+  !> only once A no longer changes.
+  !>   w (in) W;  q (in) q;  a (in) A;  lam (out);  rep (out) info /= 0 when W_AA is singular
+  subroutine active_set_step(w, q, a, lam, rep)
+    real(dp), intent(in) :: w(:,:), q(:)
+    logical, intent(in) :: a(:)
+    real(dp), intent(out) :: lam(:)
+    type(lcp_report_t), intent(out) :: rep
+    integer, allocatable :: rows(:), piv(:)
+    real(dp), allocatable :: waa(:,:), x(:,:)
+    integer :: n, i, info
+    lam = 0.0_dp
+    rep%info = 0
+    rows = pack([(i, i = 1, size(a))], a)
+    n = size(rows)
+    if (n == 0) return
+    waa = w(rows, rows)
+    x = reshape(-q(rows), [n, 1])
+    allocate(piv(n))
+    call dgesv(n, 1, waa, n, piv, x, n, info)
+    if (info /= 0) then
+      rep%info = 1
+      rep%message = 'its active rows are dependent (W_AA singular)'
+      return
+    end if
+    lam(rows) = x(:, 1)
+  end subroutine active_set_step
   end subroutine solve_newton_step
 
   !> A load step from (f0, ubar0) to (f1, ubar1) with cut-back (module header).
