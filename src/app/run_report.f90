@@ -175,7 +175,9 @@ contains
   !> The run log's line of the formulation of body b when its material is
   !> nearly incompressible (isotropic, nu > locking_nu): B-bar on the
   !> element kinds that take it (body, elements' pressure_modes), and why
-  !> the others are left as they are.  Nothing for the other bodies.
+  !> the others are left as they are; a hyperelastic body whose initial nu
+  !> is above locking_nu (bd%bbar): F-bar on every kind but the 3-node
+  !> triangle (finite_strain_assembly).  Nothing for the other bodies.
   subroutine report_formulation(run, b)
     type(run_t), intent(inout) :: run
     integer, intent(in) :: b
@@ -186,6 +188,20 @@ contains
                                                    '9-node quadrangles', '3-node triangles', '6-node triangles']
     associate (mat => run%prob%deck%bodies(b)%material, bd => run%prob%sc%bodies(b))
       if (.not. allocated(mat%kind)) return
+      if (bd%finite .and. bd%bbar) then
+        text = ''
+        do k = 1, size(kinds_nen)
+          count_k = count(bd%mesh%nen == kinds_nen(k))
+          if (count_k == 0) cycle
+          if (len(text) > 0) text = text // '; '
+          text = text // merge('displacement on           ', 'F-bar (mean dilatation) on', kinds_nen(k) == 3)
+          text = trim(text) // ' ' // int_to_str(count_k) // ' ' // trim(kind_name(k))
+          if (kinds_nen(k) == 3) text = text // ' (they lock as K / mu grows)'
+        end do
+        call say(run%log, 'body     ' // bd%name // ': formulation: ' // text // ', finite strain, initial nu > ' // &
+                 format_number(locking_nu))
+        return
+      end if
       if (mat%kind /= 'isotropic' .or. mat%nu <= locking_nu) return
       nu = 'nu = ' // format_number(mat%nu) // ' > ' // format_number(locking_nu)
       if (.not. bd%bbar) then

@@ -64,10 +64,10 @@ contains
       ! nearly incompressible body); the quadratic elements go without it
       if (present(ke)) then
         call finite_strain_response(nen, xe(:, 1:nen), ue(1:m), bd%rubber, bd%axisymmetric, bd%thick, fe(1:m), kl, &
-                                    info, fbar=body_pressure_modes(bd, nen) == 1)
+                                    info, fbar=with_fbar(bd, nen))
       else                                   ! the forces alone (the line search's residuals): no tangent
         call finite_strain_response(nen, xe(:, 1:nen), ue(1:m), bd%rubber, bd%axisymmetric, bd%thick, fe(1:m), &
-                                    info=info, fbar=body_pressure_modes(bd, nen) == 1)
+                                    info=info, fbar=with_fbar(bd, nen))
       end if
       if (info /= 0) return
     else
@@ -151,6 +151,16 @@ contains
     ke = matmul(v * spread(max(lam, 0.0_dp), 1, n), transpose(v))
   end subroutine definite_part
 
+  !> Whether bd's elements of nen nodes take F-bar: a nearly incompressible
+  !> body (bd%bbar, initial nu > 0.45), on Q1 and on the quadratic elements
+  !> (P2, Q8, Q9: the mean dilatation as P2/P0, Q2/P0; doc/theory.md says
+  !> what it gains); a 3-node triangle has one point, where F-bar is nothing.
+  pure logical function with_fbar(bd, nen)
+    type(body_t), intent(in) :: bd
+    integer, intent(in) :: nen
+    with_fbar = bd%bbar .and. nen >= 4
+  end function with_fbar
+
   !> fint = f_int(u) on every dof (the fixed rows: the reactions), solver basis.
   !>   bad (out) (2) 0, 0; (body, element) of an element with J <= 0 (fint incomplete)
   subroutine internal_force_vector(bodies, u, fint, bad)
@@ -206,7 +216,7 @@ contains
           ue(1:2 * nen) = u(dofs(1:2 * nen))
           if (allocated(bd%axes)) call rotate_element_vector(bd, e, ue, .true.)
           call finite_strain_energy(nen, xe(:, 1:nen), ue(1:2 * nen), bd%rubber, bd%axisymmetric, bd%thick, we, &
-                                    info, fbar=body_pressure_modes(bd, nen) == 1)
+                                    info, fbar=with_fbar(bd, nen))
           energy = energy + we
           call finite_strain_state(nen, xe(:, 1:nen), ue(1:2 * nen), bd%rubber, bd%axisymmetric, sig4, jac(ge), &
                                    stretch(ge), info)

@@ -15,8 +15,8 @@
 !> consistent tangent of f_int: the material and the geometric (initial
 !> stress) stiffness together, symmetric.
 !>
-!> F-bar (optional argument fbar; meant for Q1, the element whose full
-!> integration locks as K / mu grows).  The volume change of every point is
+!> F-bar (optional argument fbar; for Q1, whose full integration locks as
+!> K / mu grows, and the quadratic elements, where it is P2/P0 and Q2/P0).  The volume change of every point is
 !> replaced by the element's mean dilatation J0 = int J dV0 / V0 (on the same
 !> rule; rather than J at the centre, as de Souza Neto et al. take it, because
 !> the mean keeps the axisymmetric patch test: there dV0 = 2 pi R dA weighs

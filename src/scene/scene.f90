@@ -563,7 +563,7 @@ contains
     call make_hyperelastic(mt%c10, mt%c01, mt%bulk, bd%rubber)
     call initial_moduli(bd%rubber, e, nu)
     call make_isotropic(e, nu, deck%plane_stress, bd%law)
-    bd%bbar = nu > locking_nu             ! F-bar on its Q1 (finite_strain_assembly)
+    bd%bbar = nu > locking_nu             ! F-bar on its Q1 and quadratic elements (finite_strain_assembly)
   end subroutine make_hyperelastic_body
 
   !> PLANE axisymmetric: every node at r = x >= 0.  A node within 1e-10 of
