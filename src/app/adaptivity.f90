@@ -18,7 +18,7 @@
 !> error cut by the square root of that ratio (bulk_rate; doc/theory.md).
 !> The energy rates are the elements' orders, or the rate observed between
 !> the last two meshes when lower (a singularity's).  One step refines an
-!> element at most 8 times (the zones' strips at most 100 times) and
+!> element at most 8 times (the zones' strips at most 200 times) and
 !> coarsens it at most 4 times.
 !>
 !> The load history.  Each mesh is solved with the deck's whole history
@@ -70,12 +70,19 @@ module adaptivity
   !> the share of max_dofs a mesh is aimed at: gmsh's meshes come out a few
   !> percent off the count asked (1.1-1.5 % over at 500,000 dofs, bench/peers.sh)
   real(dp), parameter :: dofs_margin = 0.9_dp
-  !> quantity=pressure: the fraction of the target the zone's size aims at (the error at a free end moves by
-  !> some 20 % with where the end falls in its element: aimed lower than aim, one mesh usually suffices), the
-  !> smallest size ratio asked there in one step, the zone size's growth with the distance from the zone (the
-  !> hand-graded mesh's, doc/accuracy-cost.md), and kappa in e_p ~ e_E^kappa for the energy error asked of the
+  !> quantity=pressure: the fraction of the target the zone's size aims at, on linear and on quadratic
+  !> traces (the error at a free end moves with where the end falls in its elements, the coarse first
+  !> mesh's estimate included: aimed this low, the next mesh lands below the target, and a further mesh,
+  !> which costs as much as the one before, is rarely needed; a quadratic trace's estimate is the end's
+  !> alone and swings the most, a linear trace's has the bulk's share, which bulk_rate takes below the
+  !> target), the smallest size ratio asked there in one step (low enough not to cap a first step from a
+  !> coarse quadratic zone to a target 100 times below its estimate), the zone size's growth with the
+  !> distance from the zone on linear and on quadratic traces (the hand-graded mesh's 0.2 on linear ones,
+  !> doc/accuracy-cost.md; a quadratic trace's end error does not change when its neighbours grow twice
+  !> as fast, for a third fewer dofs), and kappa in e_p ~ e_E^kappa for the energy error asked of the
   !> bulk (measured on Hertz, P1 and P2: the bulk's share of the pressure error falls about as e_E^2)
-  real(dp), parameter :: aim_pressure = 0.75_dp, zone_finest = 0.01_dp, zone_slope = 0.2_dp, bulk_rate = 2.0_dp
+  real(dp), parameter :: aim_linear = 0.75_dp, aim_quadratic = 0.6_dp, zone_finest = 0.005_dp, &
+                         slope_linear = 0.2_dp, slope_quadratic = 0.4_dp, bulk_rate = 2.0_dp
   real(dp), parameter :: stall = 0.95_dp               !< an estimate above stall times the last one: no progress
 
 contains
@@ -297,15 +304,17 @@ contains
   !> on linear and quadratic traces alike, from a/h = 1 to 14 on Hertz),
   !> where the energy indicators ask for little.  The strip of the zone (its
   !> slave nodes and one slave segment past each end) is given the size
-  !> h_z = h_now * aim * target / estimate_pair, h_now its longest slave
-  !> element (the rate in h being 1), and the size may grow away from the
-  !> strip at most linearly, h_z + zone_slope * d at the distance d (measured
+  !> h_z = h_now * aim_zone * target / estimate_pair, h_now its longest slave
+  !> element (the rate in h being 1; aim_zone is aim_linear or aim_quadratic
+  !> by the slave's elements), and the size may grow away from the
+  !> strip at most linearly, h_z + slope * d at the distance d (slope_linear
+  !> or slope_quadratic likewise; measured
   !> where the solution has moved the nodes, as `moved` says why): a band
   !> along the trace, not a box of the zone's width in depth (which would
   !> cost that width squared over h_z^2 elements).  An element's ratio is
   !> only ever lowered here (the energy indicators' ask stays where finer).
   !> The size is set at the nodes: an element's mean, at its centroid, would
-  !> leave the trace's nodes h_z + zone_slope h / 3, many times h_z when the
+  !> leave the trace's nodes h_z + slope h / 3, many times h_z when the
   !> zone is refined much in one step.
   !>   run (in)    the solved mesh, its node pressures and pressure estimates
   !>   s   (inout) (nelem, every body) the size ratio of each element, for the count of the next
@@ -318,7 +327,7 @@ contains
     real(dp), intent(inout) :: s(:)
     real(dp), intent(out) :: cap(:)
     real(dp), allocatable :: p(:,:)
-    real(dp) :: hz, d, est
+    real(dp) :: hz, d, est, aim_zone, slope
     integer :: ip, k, b, e, ns, nc, np, n, n0
     logical, allocatable :: seg(:)
     cap = huge(1.0_dp)
@@ -352,8 +361,14 @@ contains
           hz = max(hz, norm2(pr%xs(:, k + 1) - pr%xs(:, k)))
         end do
         ! on quadratic elements the trace's nodes are an element's corners and its midpoints
-        if (is_quadratic(run%prob%sc%bodies(pr%spec%slave_body)%mesh)) hz = 2 * hz
-        hz = hz * max(zone_finest, aim_pressure * run%prob%deck%adapt%target / est)
+        aim_zone = aim_linear
+        slope = slope_linear
+        if (is_quadratic(run%prob%sc%bodies(pr%spec%slave_body)%mesh)) then
+          hz = 2 * hz
+          aim_zone = aim_quadratic
+          slope = slope_quadratic
+        end if
+        hz = hz * max(zone_finest, aim_zone * run%prob%deck%adapt%target / est)
         do b = 1, size(run%prob%sc%bodies)
           if (b /= pr%spec%slave_body .and. b /= pr%spec%master_body) cycle
           associate (m => run%prob%sc%bodies(b)%mesh, e0 => run%prob%sc%bodies(b)%elem0)
@@ -363,7 +378,7 @@ contains
               do k = 1, np
                 d = min(d, segment_distance(moved(b, n, m%x(:, n)), p(1:2, k), p(3:4, k)))
               end do
-              cap(n0 + n) = min(cap(n0 + n), hz + zone_slope * d)
+              cap(n0 + n) = min(cap(n0 + n), hz + slope * d)
             end do
             do e = 1, m%nelem
               nc = corner_count(m%nen(e))
