@@ -52,7 +52,7 @@ contains
   subroutine report_scene(run)
     type(run_t), intent(inout) :: run
     integer :: b, ip
-    character(len=:), allocatable :: how, family, kinematics
+    character(len=:), allocatable :: how, family, kinematics, method
     character(len=160) :: line
     call say(run%log, 'contact2d ' // version // ': ' // run%prob%deck%file)
     if (len(run%prob%deck%title) > 0) call say(run%log, 'title    ' // run%prob%deck%title)
@@ -128,6 +128,14 @@ contains
       call say(run%log, 'steps    ' // int_to_str(run%prob%sc%steps) // ' load steps in order (finite strain: ' // &
         'Newton''s method from the last step''s state, a new tangent and contact geometry at each iterate; ' // &
         'a step that fails is halved)')
+      associate (sv => run%prob%deck%solver)
+        method = 'lemke'
+        if (allocated(sv%newton_lcp)) method = sv%newton_lcp
+        call say(run%log, 'newton   converged: residual <= newton_tol = ' // format_number(sv%newton_tol) // &
+          ' of the load, the last correction <= ' // format_number(sv%newton_tol) // ' of the displacement' // &
+          ' (the linearized gaps then exact to its square), within newton_maxit = ' // int_to_str(sv%newton_maxit) // &
+          ' iterations; each iterate''s contact problem by newton_lcp = ' // method)
+      end associate
     else if (run%prob%sc%steps > 1 .and. run%prob%cs%ntan > 0) then
       call say(run%log, 'steps    ' // int_to_str(run%prob%sc%steps) // &
         ' load steps (friction: the answer depends on the load path)')
