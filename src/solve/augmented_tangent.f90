@@ -11,13 +11,15 @@
 !> it: the equilibrium is stable, K alone is not positive definite, and a
 !> Cholesky factor of K does not exist.  The rows that hold the iterate,
 !>     K~ = K + sum_{i in A} rho_i c_i' c_i,   r~ = r + sum_{i in A} rho_i c_i' h_i,
-!> with h_i = c_i du the row's target (a closed normal row's gap, a sticking
-!> tangential row's slip of the sub-increment), make K~ positive definite on
-!> the modes the rows hold (Finsler's lemma: K~ is definite for rho large
-!> enough when K is definite on the rows' kernel, which a stable equilibrium
-!> is).  The contact problem on K~ has the same solution as on K whenever its
-!> rows in A stay closed (sticking): there c_i du = h_i and the added terms
-!> vanish (an augmented Lagrangian).  A row of A that the contact problem
+!> with h_i = c_i du the row's target, the gap a closed normal row closes,
+!> make K~ positive definite on the modes the rows hold (Finsler's lemma: K~
+!> is definite for rho large enough when K is definite on the rows' kernel,
+!> which a stable equilibrium is).  The contact problem on K~ has the same
+!> solution as on K whenever its rows in A stay closed: there c_i du = h_i
+!> and the added terms vanish (an augmented Lagrangian).  The caller marks
+!> normal rows only (newton_step's holding_rows): the turn and the axial
+!> shift are held by the normal rows, and a sticking tangential row may
+!> reach its cone within the iterate.  A row of A that the contact problem
 !> opens only changes the iterate's direction; the residual, and so the
 !> answer, are K's.
 !>
