@@ -341,6 +341,9 @@ contains
           if (size(run%res%estimate_pressure) >= ip) est = run%res%estimate_pressure(ip)
         end if
         if (est <= 0.0_dp) cycle
+        ! the zone's own term: the bodies' share (estimate_energy^2, run_estimate)
+        ! is the bulk goal's to cut, not the strip's
+        est = sqrt(max(est**2 - run%res%estimate_energy**4, (1.0e-3_dp * est)**2))
         ! the strip: the slave segments with a node in contact, and the next one past each end
         allocate(seg(ns - 1))
         do k = 1, ns - 1
