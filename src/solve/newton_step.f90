@@ -109,10 +109,10 @@ module newton_step
     integer :: maxit = 25             !< iterations before the step fails (SOLVER newton_maxit=)
     integer :: max_halvings = 12      !< line-search halvings per iteration
     integer :: max_cuts = 10          !< halvings of a load step's increment before it fails
-    !> each iterate's contact problem: 'lcp' (Lemke's method on its LCP) or
+    !> each iterate's contact problem: 'lemke' (Lemke's method on its LCP) or
     !> 'active_set' (semismooth Newton: the rows of the last iterate's
     !> active set as equalities, frictionless pairs only; SOLVER newton_lcp=)
-    character(len=16) :: contact = 'lcp'
+    character(len=16) :: contact = 'lemke'
   end type newton_options_t
 
   type :: newton_result_t
