@@ -337,13 +337,12 @@ contains
         ns = size(pr%snode)
         if (ns < 2) cycle
         est = -1.0_dp
-        if (allocated(run%res%estimate_pressure)) then
-          if (size(run%res%estimate_pressure) >= ip) est = run%res%estimate_pressure(ip)
+        ! the zone's own term: the bodies' share of estimate pressure
+        ! (estimate_energy^2, run_estimate) is the bulk goal's to cut, not the strip's
+        if (allocated(run%res%estimate_zone)) then
+          if (size(run%res%estimate_zone) >= ip) est = run%res%estimate_zone(ip)
         end if
         if (est <= 0.0_dp) cycle
-        ! the zone's own term: the bodies' share (estimate_energy^2, run_estimate)
-        ! is the bulk goal's to cut, not the strip's
-        est = sqrt(max(est**2 - run%res%estimate_energy**4, (1.0e-3_dp * est)**2))
         ! the strip: the slave segments with a node in contact, and the next one past each end
         allocate(seg(ns - 1))
         do k = 1, ns - 1

@@ -92,6 +92,8 @@ module results_writer
     real(dp) :: estimate_energy_bound = -1       !< its guaranteed upper bound (module energy_bound), -1: none
     real(dp), allocatable :: error_indicator(:)  !< (nelem) each element's share eta_K / ||u||_E of it:
                                                  !< the sum of their squares is estimate_energy^2
+    real(dp), allocatable :: estimate_zone(:)     !< (npair) its zone's own term, -1 where no zone
+                                                  !< (run_estimate; ADAPT sizes a zone's strip on it)
     real(dp), allocatable :: estimate_pressure(:) !< (npair) estimated relative L2 error of the contact
                                                  !< pressure over the pair's zone; < 0: no zone in contact
     real(dp) :: cost_seconds = -1, cost_dofs = -1  !< estimate cost_to_halve: predicted cpu_total and dofs

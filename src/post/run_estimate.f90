@@ -123,9 +123,9 @@ contains
       res%estimate_energy = 0.0_dp
       allocate(res%error_indicator(prob%sc%nelem), source=0.0_dp)
     end if
-    ! the bodies' stiffness's share of the pressure's error (module header)
-    where (res%estimate_pressure >= 0.0_dp) &
-      res%estimate_pressure = sqrt(res%estimate_pressure**2 + res%estimate_energy**4)
+    ! the zone's own term with the bodies' stiffness's share (module header)
+    res%estimate_pressure = res%estimate_zone
+    where (res%estimate_zone >= 0.0_dp) res%estimate_pressure = sqrt(res%estimate_zone**2 + res%estimate_energy**4)
     res%estimated = .true.
   end subroutine estimate_results
 
@@ -183,11 +183,11 @@ contains
     end if
   end function element_rates
 
-  !> res%estimate_pressure of every pair, and the contact terms added to the
-  !> slave elements' eta2 (module header; the reconstruction p*: module
-  !> pressure_recovery).
+  !> res%estimate_zone of every pair (e_zone, -1 where the pair has no zone),
+  !> and the contact terms added to the slave elements' eta2 (module header;
+  !> the reconstruction p*: module pressure_recovery).
   !>   prob (in)    the contact set
-  !>   res  (inout) node_pressure and node_gap on entry; estimate_pressure on exit
+  !>   res  (inout) node_pressure and node_gap on entry; estimate_zone on exit
   !>   eta2 (inout) (nelem) the element indicators squared
   subroutine pressure_estimates(prob, res, eta2)
     type(problem_t), intent(in) :: prob
@@ -197,8 +197,8 @@ contains
     logical, allocatable :: zone(:)
     integer, allocatable :: eptr(:), elist(:)
     integer :: ip, k, ns, owner, gnode
-    if (allocated(res%estimate_pressure)) deallocate(res%estimate_pressure)
-    allocate(res%estimate_pressure(prob%cs%npair), source=-1.0_dp)
+    if (allocated(res%estimate_zone)) deallocate(res%estimate_zone)
+    allocate(res%estimate_zone(prob%cs%npair), source=-1.0_dp)
     do ip = 1, prob%cs%npair
       associate (pr => prob%cs%pair(ip), bd => prob%sc%bodies(prob%cs%pair(ip)%spec%slave_body))
         ns = size(pr%snode)
@@ -221,7 +221,7 @@ contains
           if (owner > 0 .and. bd%law%emax > 0.0_dp) &
             eta2(bd%elem0 + owner) = eta2(bd%elem0 + owner) + (s(k + 1) - s(k)) / bd%law%emax * d2(k)
         end do
-        if (sum(p2) > 0.0_dp) res%estimate_pressure(ip) = sqrt(sum(d2) / sum(p2))
+        if (sum(p2) > 0.0_dp) res%estimate_zone(ip) = sqrt(sum(d2) / sum(p2))
         deallocate(s, ph, gap, wn, zone, d2, p2)
       end associate
     end do

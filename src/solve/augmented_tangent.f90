@@ -125,7 +125,7 @@ contains
     type(csc_t), intent(inout) :: k
     real(dp), intent(inout) :: rhs(:)
     real(dp) :: rho, cc, diag, target
-    integer :: i, p, q, a, b, nf
+    integer :: i, p, q, a, b, nf, pos
     do i = 1, cs%nrow + cs%ntan
       if (.not. active(i)) cycle
       cc = 0.0_dp
@@ -151,7 +151,8 @@ contains
         do q = cs%bptr(i), cs%bptr(i + 1) - 1
           b = eq(cs%cdof(cs%bcol(q)))
           if (b == 0 .or. b < a) cycle               ! K's upper triangle (a row's dofs are distinct)
-          k%val(find_row(k, a, b)) = k%val(find_row(k, a, b)) + rho * cs%bval(p) * cs%bval(q)
+          pos = find_row(k, a, b)
+          k%val(pos) = k%val(pos) + rho * cs%bval(p) * cs%bval(q)
         end do
       end do
     end do

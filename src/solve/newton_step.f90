@@ -179,7 +179,7 @@ contains
     logical :: reached, analyzed, accepted, with_contact, grown, descent
     type(contact_set_t) :: cs
     logical, allocatable :: holds(:), closing(:)
-    logical :: active_set, settled
+    logical :: active_set, settled, same_u
     real(dp), allocatable :: target(:)
     integer(i8), allocatable :: held_keys(:)
 
@@ -213,6 +213,7 @@ contains
     stalled = 0
     alpha_prev = 1.0_dp
     descent = .false.
+    same_u = .false.
     it = 0
     do                                                ! it counts the solves; a refactorization is not one
       if (reached .and. merit <= opts%tol .and. (.not. with_contact .or. step <= opts%tol)) exit
@@ -222,9 +223,10 @@ contains
       do i = 1, size(u)
         if (eq(i) == 0) dubar(i) = ubar(i) - u(i)
       end do
-      if (with_contact) then
+      if (with_contact .and. .not. same_u) then
         ! the iterate's rows, and those that hold it, before K is made: they
-        ! are added to it (module augmented_tangent)
+        ! are added to it (module augmented_tangent); a retry with the
+        ! elements' positive parts is at the same u, and keeps them
         call build_moved_contact_set(bodies, specs, u, cs, err)
         if (allocated(err)) return
         call rotate_constraint_rows(cs, bodies)      ! nodes in local axes (FIX un=/ut=): rows on their dofs
@@ -235,6 +237,7 @@ contains
         end if
         call holding_rows(cs, held_keys, u, dubar, holds, target)
       end if
+      same_u = .false.
       k%val = 0.0_dp
       rhs = 0.0_dp
       do i = 1, size(u)
@@ -272,6 +275,7 @@ contains
         ! contacts hold, module augmented_tangent)
         if (.not. descent) then
           descent = .true.
+          same_u = .true.
           cycle
         end if
         ! then the last update went past where even that is definite (a
