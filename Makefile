@@ -24,6 +24,9 @@ else
 PROGRAM := $(BIN)/contact2d-$(MODE)$(TAG)
 endif
 
+MESHER  := $(BIN)/contact2d-mesher
+MESHER_CFLAGS := -O2 -std=c11 -Wall -Wextra
+
 # The tests and studies that build a Fortran program of their own use this
 # compiler (tests/robust/unchecked_alloc, studies/run-all).
 export FC FC_FAMILY
@@ -42,7 +45,7 @@ UNITBIN := $(patsubst tests/unit/%.f90,$(BUILD)/tests/%,$(UNITSRC))
 .PHONY: all deps demo test check unit unit-build study bench clean distclean help names
 # Building installs nothing: `make deps` (and `make demo`, the first command
 # of the README) install what is missing.
-all: $(PROGRAM)
+all: $(PROGRAM) $(MESHER)
 
 # Debian packages, installed when missing (needs root on a fresh machine).
 deps:
@@ -50,6 +53,11 @@ deps:
 
 $(PROGRAM): $(BUILD)/contact2d.o $(LIBOBJ) | $(BIN)
 	$(FC) $(FFLAGS) -o $@ $^ $(LIBS)
+
+# gmsh's batch program kept running between a run's meshes (src/mesh/gmsh_runner.f90
+# says why); one for every MODE and compiler, which find it beside them.
+$(MESHER): src/mesher/gmsh_mesher.c | $(BIN)
+	$(CC) $(MESHER_CFLAGS) -o $@ $< -lgmsh
 
 # One pair of rules per folder: src/LAYER/NAME.f90 or .c -> BUILD/NAME.o.
 define layer_rules

@@ -8,7 +8,9 @@
  * process is gone, even by SIGKILL.
  *
  * One program at a time: the running watchdog is process state, read by the
- * signal handler, so calls must not overlap (the gmsh runs are sequential). */
+ * signal handler, so calls must not overlap (the gmsh runs are sequential).
+ * A server (c2d_server_start) is such a program, kept running between
+ * requests: starting another program stops it first. */
 #ifndef CONTACT2D_PROCESS_RUNNER_H
 #define CONTACT2D_PROCESS_RUNNER_H
 
@@ -32,13 +34,37 @@ int c2d_find_program(const char *name, char *path, int len);
  * timeout: seconds (> 0).  Returns 0; *how and *status as above. */
 int c2d_run_program(const char *args, int nargs, const char *log_path, double timeout, int *how, int *status);
 
+/* Start a server: args' program, watched as c2d_run_program's, its stdin
+ * and stdout pipes to this process, its stderr to log_path (created).  It
+ * runs until c2d_server_stop, c2d_kill_running or the next c2d_run_program
+ * or c2d_server_start.  Returns 0 when started, else 1 with *status an
+ * errno. */
+int c2d_server_start(const char *args, int nargs, const char *log_path, int *status);
+
+/* 1 while a server started by c2d_server_start runs, else 0. */
+int c2d_server_running(void);
+
+/* Send the server a request (len bytes) and read its reply, one line
+ * "HOW STATUS CPU" (HOW and STATUS as *how and *status above for the run it
+ * made, CPU its seconds so far, which c2d_cpu_seconds then counts) within
+ * timeout seconds.  Returns 0 with the reply read, 1 at the time limit, 2
+ * when the server has ended or answered out of protocol (the caller then
+ * stops it). */
+int c2d_server_call(const char *request, int len, double timeout, int *how, int *status);
+
+/* Stop the server and everything it started (end of file on its stdin, then
+ * the watchdog's end); nothing when none runs.  Its CPU time is then the
+ * children's of this process. */
+void c2d_server_stop(void);
+
 /* End the running program and everything it started (the watchdog kills
  * them, then is reaped); nothing when none runs.  Async-signal-safe. */
 void c2d_kill_running(void);
 
-/* CPU seconds (user + system) of this process and of every program it has
- * run and waited for (gmsh, through its watchdog): what a run costs, where
- * the elapsed time would also count the waits. */
+/* CPU seconds (user + system) of this process, of every program it has
+ * run and waited for (gmsh, through its watchdog) and of a running server
+ * (its last reply's figure): what a run costs, where the elapsed time would
+ * also count the waits. */
 double c2d_cpu_seconds(void);
 
 #endif

@@ -30,6 +30,7 @@ program contact2d
   use model_checks, only: check_model
   use setup_checks, only: check_setup
   use adaptivity, only: check_adaptable, adapt_mesh, fall_back, keep_meshes
+  use gmsh_runner, only: stop_mesher
   use run_outputs, only: write_outputs
   use run_report, only: report_run
   implicit none
@@ -66,6 +67,7 @@ program contact2d
     end if
     if (.not. adapt_mesh(run)) exit   ! ADAPT: below target or at a limit; else every body re-meshed, solve again
   end do
+  call stop_mesher()             ! gmsh's, every mesh made
   call write_outputs(run)        ! VTK, contact table, summary (and the steps' files)
   call keep_meshes(run)          ! ADAPT: the final meshes next to the outputs
   call report_run(run)           ! the run log: results, factor, timings, files written

@@ -30,6 +30,7 @@ module run_report
   use body, only: body_pressure_modes
   use threads, only: run_threads
   use command_line, only: version
+  use gmsh_runner, only: gmsh_runs
   implicit none
   private
   public :: say_step, report_scene, report_run, friction_law
@@ -84,6 +85,7 @@ contains
     if (run%prob%sc%reused_meshes > 0) call say(run%log, 'mesh     ' // int_to_str(run%prob%sc%reused_meshes) // &
       ' .geo mesh(es) ' // &
       'read from the mesh cache ' // run%opts%gmsh%cache // ' (the same .geo, parameters and gmsh; --no-mesh-cache: mesh again)')
+    call report_gmsh(run)
     call report_rigids(run)
     do ip = 1, run%prob%cs%npair
       write(line, '(a,i0,a,i0,a,i0,a,i0,a)') 'contact  pair ', ip, ': ', size(run%prob%cs%pair(ip)%snode), &
@@ -490,5 +492,28 @@ contains
     end select
   end function friction_law
 
+
+  !> How gmsh made the run's meshes (module gmsh_runner): through the mesher
+  !> or a process each, and in which sandbox.
+  subroutine report_gmsh(run)
+    type(run_t), intent(in) :: run
+    integer :: served, alone
+    logical :: sandboxed
+    character(len=:), allocatable :: how
+    call gmsh_runs(served, alone, sandboxed)
+    if (served + alone == 0) return
+    how = ''
+    if (served > 0) how = int_to_str(served) // ' by contact2d-mesher (libgmsh, one process for them)'
+    if (served > 0 .and. alone > 0) how = how // ', '
+    if (alone > 0) how = how // int_to_str(alone) // ' by a gmsh process each'
+    if (sandboxed) then
+      how = how // '; in the sandbox (bubblewrap)'
+    else if (run%opts%gmsh%trust_geo) then
+      how = how // '; no sandbox (--trust-geo)'
+    else
+      how = how // '; no sandbox (bubblewrap cannot make namespaces here; the .geo screen alone)'
+    end if
+    call say(run%log, 'mesh     ' // int_to_str(served + alone) // ' .geo mesh(es) made by gmsh: ' // how)
+  end subroutine report_gmsh
 
 end module run_report

@@ -43,7 +43,9 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <poll.h>
+#include <pthread.h>
 #include <signal.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/prctl.h>
@@ -128,11 +130,12 @@ static void set_job_signals(void (*disposition)(int))
 
 /* The program's process: own group, dies with the watchdog, signals as a
  * fresh process has them, stdin /dev/null, stdout and stderr to log (kept
- * as they are when log < 0); reports exec's errno on the close-on-exec
- * report pipe. */
-static void start_program(char **argv, int log, int report, pid_t watchdog, int stop)
+ * as they are when log < 0); a server's stdin and stdout are the pipes in
+ * and out instead (each -1 when none); reports exec's errno on the
+ * close-on-exec report pipe. */
+static void start_program(char **argv, int log, int in, int out, int report, pid_t watchdog, int stop)
 {
-    int null = open("/dev/null", O_RDONLY | O_CLOEXEC);
+    int null = in >= 0 ? in : open("/dev/null", O_RDONLY | O_CLOEXEC);
     struct report r = {C2D_RUN_NOT_STARTED, 0};
     sigset_t none;
     setpgid(0, 0);
@@ -142,7 +145,8 @@ static void start_program(char **argv, int log, int report, pid_t watchdog, int 
     signal(SIGCHLD, SIG_DFL);
     sigemptyset(&none);
     sigprocmask(SIG_SETMASK, &none, NULL);
-    if (null < 0 || dup2(null, 0) < 0 || (log >= 0 && (dup2(log, 1) < 0 || dup2(log, 2) < 0))) {
+    if (null < 0 || dup2(null, 0) < 0 || (log >= 0 && (dup2(log, 1) < 0 || dup2(log, 2) < 0)) ||
+        (out >= 0 && dup2(out, 1) < 0)) {
         r.status = errno;
     } else {
         if (stop == STOP_EXEC) raise(SIGSTOP);
@@ -221,7 +225,7 @@ static void close_others(int *keep, int n)
 {
     unsigned int from = 3;
     int i, j;
-    for (i = 0; i < n; i++)                         /* sort: n is 3 */
+    for (i = 0; i < n; i++)                         /* sort: n is 5 */
         for (j = i + 1; j < n; j++)
             if (keep[j] < keep[i]) {
                 int t = keep[i];
@@ -237,7 +241,7 @@ static void close_others(int *keep, int n)
 }
 
 /* The watchdog (module header): never returns. */
-static void run_watchdog(char **argv, int log, int control, int report, int stop)
+static void run_watchdog(char **argv, int log, int in, int out, int control, int report, int stop)
 {
     struct report r = {C2D_RUN_NOT_STARTED, 0};
     pid_t program, self = getpid();
@@ -249,15 +253,17 @@ static void run_watchdog(char **argv, int log, int control, int report, int stop
     signal(SIGCHLD, SIG_DFL);                       /* SIG_IGN would reap the program unasked */
     prctl(PR_SET_CHILD_SUBREAPER, 1);
     {
-        int keep[3];
+        int keep[5];
         keep[0] = log;
         keep[1] = control;
         keep[2] = report;
-        close_others(keep, 3);
+        keep[3] = in;
+        keep[4] = out;
+        close_others(keep, 5);
     }
     if (stop == STOP_WATCHDOG) raise(SIGSTOP);
     program = fork();
-    if (program == 0) start_program(argv, log, report, self, stop);
+    if (program == 0) start_program(argv, log, in, out, report, self, stop);
     if (program < 0) {
         r.status = errno;
         if (write(report, &r, sizeof r) < 0) _exit(1);
@@ -265,6 +271,8 @@ static void run_watchdog(char **argv, int log, int control, int report, int stop
     }
     setpgid(program, program);                      /* both sides: no race with kill(-program) */
     if (log >= 0) close(log);
+    if (in >= 0) close(in);                         /* the program's own now: its end is contact2d's */
+    if (out >= 0) close(out);
     pidfd = (int)syscall(SYS_pidfd_open, program, 0);
     for (;;) {
         struct pollfd fds[2];
@@ -328,68 +336,85 @@ static int read_report(int fd, double timeout, struct report *r)
     }
 }
 
-int c2d_run_program(const char *args, int nargs, const char *log_path, double timeout, int *how, int *status)
+/* Start args' program under a watchdog (module header): the log opened
+ * (O_EXCL), the control and report pipes made, the watchdog forked and
+ * recorded as the running one.  in and out: a server's stdin and stdout
+ * (the program's ends of its pipes, closed here), -1 for /dev/null and the
+ * log.  0 and *report set (the report pipe's read end), or 1 with *status
+ * an errno. */
+static int start_watched(const char *args, int nargs, const char *log_path, int in, int out, int *report_fd,
+                         int *status)
 {
     char **argv = calloc((size_t)nargs + 1, sizeof *argv);
     const char *p = args, *hook = getenv("CONTACT2D_TEST_STOP_AT");
-    int log, control[2], report[2], i, got, stop = STOP_NONE, wstatus = 0;
+    int log = -1, control[2] = {-1, -1}, report[2] = {-1, -1}, i, stop = STOP_NONE;
     pid_t watchdog;
-    struct report r;
 
-    *how = C2D_RUN_NOT_STARTED;
     *status = ENOMEM;
-    if (argv == NULL) return 0;
-    for (i = 0; i < nargs; i++) {                   /* the packed strings, in place */
-        argv[i] = (char *)p;
-        p += strlen(p) + 1;
+    if (argv != NULL) {
+        for (i = 0; i < nargs; i++) {               /* the packed strings, in place */
+            argv[i] = (char *)p;
+            p += strlen(p) + 1;
+        }
+        if (hook != NULL) {
+            if (strcmp(hook, "spawn") == 0) stop = STOP_SPAWN;
+            if (strcmp(hook, "watchdog") == 0) stop = STOP_WATCHDOG;
+            if (strcmp(hook, "exec") == 0) stop = STOP_EXEC;
+        }
+        if (log_path[0] != '\0') log = open(log_path, O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
+        if ((log < 0 && log_path[0] != '\0') || pipe2(control, O_CLOEXEC) != 0 || pipe2(report, O_CLOEXEC) != 0) {
+            *status = errno;
+            argv = (free(argv), NULL);
+        }
     }
-    if (hook != NULL) {
-        if (strcmp(hook, "spawn") == 0) stop = STOP_SPAWN;
-        if (strcmp(hook, "watchdog") == 0) stop = STOP_WATCHDOG;
-        if (strcmp(hook, "exec") == 0) stop = STOP_EXEC;
-    }
-    log = log_path[0] == '\0' ? -1 : open(log_path, O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
-    if (log < 0 && log_path[0] != '\0') {
-        *status = errno;
-        free(argv);
-        return 0;
-    }
-    if (pipe2(control, O_CLOEXEC) != 0) {
-        *status = errno;
-        if (log >= 0) close(log);
-        free(argv);
-        return 0;
-    }
-    if (pipe2(report, O_CLOEXEC) != 0) {
-        *status = errno;
-        close(control[0]);
-        close(control[1]);
-        if (log >= 0) close(log);
-        free(argv);
-        return 0;
+    if (argv == NULL) {
+        int fds[7] = {log, control[0], control[1], report[0], report[1], in, out};
+        for (i = 0; i < 7; i++)
+            if (fds[i] >= 0) close(fds[i]);
+        return 1;
     }
     watchdog = fork();
     if (watchdog == 0) {
         close(control[1]);                          /* contact2d's alone: its end is the signal */
         close(report[0]);
-        run_watchdog(argv, log, control[0], report[1], stop);
+        run_watchdog(argv, log, in, out, control[0], report[1], stop);
     }
+    *status = errno;
     close(control[0]);
     close(report[1]);
     if (log >= 0) close(log);
+    if (in >= 0) close(in);
+    if (out >= 0) close(out);
     free(argv);
     if (watchdog < 0) {
-        *status = errno;
         close(control[1]);
         close(report[0]);
-        return 0;
+        return 1;
     }
     setpgid(watchdog, watchdog);                    /* both sides, as for the program */
     __atomic_store_n(&running_watchdog, watchdog, __ATOMIC_SEQ_CST);
     __atomic_store_n(&running_control, control[1], __ATOMIC_SEQ_CST);
     if (stop == STOP_SPAWN) raise(SIGSTOP);
-    got = read_report(report[0], timeout, &r);
-    close(report[0]);
+    *report_fd = report[0];
+    return 0;
+}
+
+/* the running server (c2d_server_start): its stdin's write end, its
+ * stdout's read end, the watchdog's report pipe, its CPU seconds so far
+ * (its last reply's) */
+static int server_in = -1, server_out = -1, server_report = -1;
+static double server_cpu = 0.0;
+
+int c2d_run_program(const char *args, int nargs, const char *log_path, double timeout, int *how, int *status)
+{
+    int report, got, wstatus = 0;
+    struct report r;
+
+    c2d_server_stop();                              /* one watched program at a time */
+    *how = C2D_RUN_NOT_STARTED;
+    if (start_watched(args, nargs, log_path, -1, -1, &report, status) != 0) return 0;
+    got = read_report(report, timeout, &r);
+    close(report);
     end_run(&wstatus);
     if (got == 1) {
         *how = r.how;
@@ -404,6 +429,109 @@ int c2d_run_program(const char *args, int nargs, const char *log_path, double ti
         *status = ECHILD;
     }
     return 0;
+}
+
+int c2d_server_start(const char *args, int nargs, const char *log_path, int *status)
+{
+    int to[2], from[2];
+    c2d_server_stop();
+    if (pipe2(to, O_CLOEXEC) != 0) {
+        *status = errno;
+        return 1;
+    }
+    if (pipe2(from, O_CLOEXEC) != 0) {
+        *status = errno;
+        close(to[0]);
+        close(to[1]);
+        return 1;
+    }
+    if (start_watched(args, nargs, log_path, to[0], from[1], &server_report, status) != 0) {
+        close(to[1]);
+        close(from[0]);
+        return 1;
+    }
+    server_in = to[1];
+    server_out = from[0];
+    server_cpu = 0.0;
+    return 0;
+}
+
+int c2d_server_running(void)
+{
+    return server_in >= 0;
+}
+
+/* Write len bytes to the pipe fd, which a partial write may need; 0 when
+ * all went, 1 when the reader is gone.  SIGPIPE, whose default action would
+ * end contact2d, is blocked in this thread meanwhile, and one it raised is
+ * taken (sigtimedwait) before the mask is restored. */
+static int write_unsignaled(int fd, const char *bytes, int len)
+{
+    sigset_t pipe_only, old;
+    struct timespec none = {0, 0};
+    int at = 0, broken = 0;
+    sigemptyset(&pipe_only);
+    sigaddset(&pipe_only, SIGPIPE);
+    pthread_sigmask(SIG_BLOCK, &pipe_only, &old);
+    while (at < len) {
+        ssize_t put = write(fd, bytes + at, (size_t)(len - at));
+        if (put < 0 && errno == EINTR) continue;
+        if (put <= 0) {
+            broken = 1;
+            if (errno == EPIPE) sigtimedwait(&pipe_only, NULL, &none);
+            break;
+        }
+        at += (int)put;
+    }
+    pthread_sigmask(SIG_SETMASK, &old, NULL);
+    return broken;
+}
+
+int c2d_server_call(const char *request, int len, double timeout, int *how, int *status)
+{
+    char line[128];
+    size_t have = 0;
+    double end = now_seconds() + timeout;
+
+    if (server_in < 0) return 2;
+    if (write_unsignaled(server_in, request, len) != 0) return 2;
+    for (;;) {
+        struct pollfd fds[2];
+        double left = end - now_seconds();
+        ssize_t got;
+        char *nl;
+        if (left <= 0.0) return 1;
+        fds[0].fd = server_out;
+        fds[0].events = POLLIN;
+        fds[1].fd = server_report;                  /* readable: the server ended */
+        fds[1].events = POLLIN;
+        if (poll(fds, 2, left > 1000.0 ? 1000000 : (int)(1000.0 * left) + 1) <= 0) continue;
+        if (fds[0].revents == 0) return 2;
+        got = read(server_out, line + have, sizeof line - 1 - have);
+        if (got < 0 && errno == EINTR) continue;
+        if (got <= 0) return 2;
+        have += (size_t)got;
+        line[have] = '\0';
+        nl = strchr(line, '\n');
+        if (nl != NULL) {
+            double cpu;
+            if (sscanf(line, "%d %d %lf", how, status, &cpu) != 3) return 2;
+            server_cpu = cpu;
+            return 0;
+        }
+        if (have == sizeof line - 1) return 2;
+    }
+}
+
+void c2d_server_stop(void)
+{
+    if (server_in < 0) return;
+    close(server_in);                               /* end of file: the server's loop ends */
+    end_run(NULL);                                  /* the watchdog ends the rest; reaped */
+    close(server_out);
+    close(server_report);
+    server_in = server_out = server_report = -1;
+    server_cpu = 0.0;                               /* reaped: in RUSAGE_CHILDREN now */
 }
 
 void c2d_kill_running(void)
@@ -422,5 +550,5 @@ double c2d_cpu_seconds(void)
     if (getrusage(RUSAGE_CHILDREN, &children) == 0)
         t += children.ru_utime.tv_sec + 1e-6 * children.ru_utime.tv_usec + children.ru_stime.tv_sec +
              1e-6 * children.ru_stime.tv_usec;
-    return t;
+    return t + server_cpu;                          /* a running server's, not reaped yet */
 }

@@ -9,7 +9,8 @@ module system_binding
   private
   public :: c2d_file_kind, c2d_open_input, c2d_close, c2d_make_folders, c2d_private_folder, &
             c2d_create_temporary, c2d_forget_temporary, c2d_lock_folder, c2d_unlock_folder, c2d_real_path, &
-            c2d_file_stamp, c2d_find_program, c2d_run_program, c2d_cpu_seconds, c_unlink, c_rename
+            c2d_file_stamp, c2d_find_program, c2d_run_program, c2d_cpu_seconds, &
+            c2d_server_start, c2d_server_running, c2d_server_call, c2d_server_stop, c_unlink, c_rename
   public :: c2d_regular, c2d_missing, c2d_fifo, c2d_device, c2d_folder, c2d_socket, c2d_unreadable
   public :: c2d_run_exited, c2d_run_signaled, c2d_run_timeout, c2d_run_not_started
 
@@ -97,6 +98,28 @@ module system_binding
       real(c_double), value :: timeout
       integer(c_int), intent(out) :: how, status
     end function c2d_run_program
+
+    integer(c_int) function c2d_server_start(args, nargs, log_path, status) bind(c, name='c2d_server_start')
+      import :: c_int, c_char
+      character(kind=c_char), intent(in) :: args(*), log_path(*)
+      integer(c_int), value :: nargs
+      integer(c_int), intent(out) :: status
+    end function c2d_server_start
+
+    integer(c_int) function c2d_server_running() bind(c, name='c2d_server_running')
+      import :: c_int
+    end function c2d_server_running
+
+    integer(c_int) function c2d_server_call(request, length, timeout, how, status) bind(c, name='c2d_server_call')
+      import :: c_int, c_char, c_double
+      character(kind=c_char), intent(in) :: request(*)
+      integer(c_int), value :: length
+      real(c_double), value :: timeout
+      integer(c_int), intent(out) :: how, status
+    end function c2d_server_call
+
+    subroutine c2d_server_stop() bind(c, name='c2d_server_stop')
+    end subroutine c2d_server_stop
 
     real(c_double) function c2d_cpu_seconds() bind(c, name='c2d_cpu_seconds')
       import :: c_double
