@@ -56,8 +56,8 @@ $(PROGRAM): $(BUILD)/contact2d.o $(LIBOBJ) | $(BIN)
 
 # gmsh's batch program kept running between a run's meshes (src/mesh/gmsh_runner.f90
 # says why); one for every MODE and compiler, which find it beside them.
-$(MESHER): src/mesher/gmsh_mesher.c | $(BIN)
-	$(CC) $(MESHER_CFLAGS) -o $@ $< -lgmsh
+$(MESHER): src/mesher/gmsh_mesher.c include/cpu_seconds.h | $(BIN)
+	$(CC) $(MESHER_CFLAGS) -Iinclude -o $@ $< -lgmsh
 
 # One pair of rules per folder: src/LAYER/NAME.f90 or .c -> BUILD/NAME.o.
 define layer_rules

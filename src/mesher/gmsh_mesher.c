@@ -45,6 +45,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "cpu_seconds.h"
+
 extern int gmsh_main_batch(int argc, char **argv) __asm__("_Z13GmshMainBatchiPPc");
 
 enum { HOW_EXITED = 0, HOW_SIGNALED = 1, HOW_TIMEOUT = 2, HOW_NOT_STARTED = 3 };
@@ -85,23 +87,10 @@ static char *string_at(int i)
     return p;
 }
 
-/* CPU seconds of this process and of its reaped children. */
-static double cpu_so_far(void)
-{
-    struct rusage self, children;
-    double t = 0.0;
-    if (getrusage(RUSAGE_SELF, &self) == 0)
-        t += self.ru_utime.tv_sec + 1e-6 * self.ru_utime.tv_usec + self.ru_stime.tv_sec + 1e-6 * self.ru_stime.tv_usec;
-    if (getrusage(RUSAGE_CHILDREN, &children) == 0)
-        t += children.ru_utime.tv_sec + 1e-6 * children.ru_utime.tv_usec + children.ru_stime.tv_sec +
-             1e-6 * children.ru_stime.tv_usec;
-    return t;
-}
-
 static int reply(int how, int status)
 {
     char line[96];
-    int n = snprintf(line, sizeof line, "%d %d %.6f\n", how, status, cpu_so_far());
+    int n = snprintf(line, sizeof line, "%d %d %.6f\n", how, status, c2d_own_and_reaped_seconds());
     return write(1, line, (size_t)n) == n ? 0 : 1;
 }
 

@@ -57,6 +57,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "cpu_seconds.h"
 #include "process_runner.h"
 
 /* the running program's watchdog, read by the signal handler
@@ -543,12 +544,5 @@ void c2d_kill_running(void)
 
 double c2d_cpu_seconds(void)
 {
-    struct rusage self, children;
-    double t = 0.0;
-    if (getrusage(RUSAGE_SELF, &self) == 0)
-        t += self.ru_utime.tv_sec + 1e-6 * self.ru_utime.tv_usec + self.ru_stime.tv_sec + 1e-6 * self.ru_stime.tv_usec;
-    if (getrusage(RUSAGE_CHILDREN, &children) == 0)
-        t += children.ru_utime.tv_sec + 1e-6 * children.ru_utime.tv_usec + children.ru_stime.tv_sec +
-             1e-6 * children.ru_stime.tv_usec;
-    return t + server_cpu;                          /* a running server's, not reaped yet */
+    return c2d_own_and_reaped_seconds() + server_cpu;   /* a running server's, not reaped yet */
 }
