@@ -150,7 +150,7 @@ contains
   !>               new meshes when the result is .true.
   logical function adapt_mesh(run) result(again)
     type(run_t), intent(inout) :: run
-    real(dp) :: est, cpu, dofs
+    real(dp) :: est, cpu, dofs, prev
     again = .false.
     if (.not. run%prob%deck%adapt%on) return
     associate (a => run%adapt, ad => run%prob%deck%adapt)
@@ -159,17 +159,19 @@ contains
       cpu = c2d_cpu_seconds() - a%cpu0
       dofs = real(run%prob%sc%ndof, dp)
       call record_step(run, dofs, est, cpu)
+      prev = huge(1.0_dp)                      ! the last mesh's estimate (none before the first)
+      if (a%step > 1) prev = run%res%adapt(2, a%step - 1)
       if (est < 0.0_dp) then
         call finish(run, 'stopped no_estimate', 'ADAPT quantity=pressure: no pair has a zone in contact, ' // &
                     'no pressure error to adapt to; the results are those of the deck''s mesh')
       else if (est <= ad%target) then
         call finish(run, 'reached', '')
-      else if (a%step > 1 .and. est > run%res%adapt(2, a%step - 1) .and. allocated(a%kept)) then
+      else if (est > prev .and. allocated(a%kept)) then
         ! the new mesh is worse than the last: its outputs would be a step back
         call restore_kept(run)
         call finish(run, 'stopped no_progress', 'ADAPT stopped: mesh ' // int_to_str(a%step) // &
           '''s estimate ' // real_to_str(est, 3) // ' is above mesh ' // int_to_str(a%step - 1) // '''s ' // &
-          real_to_str(run%res%adapt(2, a%step - 1), 3) // ' (the outputs are those of mesh ' // &
+          real_to_str(prev, 3) // ' (the outputs are those of mesh ' // &
           int_to_str(a%step - 1) // ', the lower estimate)')
       else if (a%capped) then
         call finish(run, 'stopped max_dofs', 'ADAPT stopped at max_dofs=' // int_to_str(ad%max_dofs) // &
@@ -179,9 +181,9 @@ contains
         call finish(run, 'stopped max_steps', 'ADAPT stopped after max_steps=' // int_to_str(ad%max_steps) // &
           ' meshes above the target ' // real_to_str(ad%target, 3) // ': the estimate reached is ' // &
           real_to_str(est, 3) // ' (the outputs are this last mesh''s)')
-      else if (a%step > 1 .and. est > stall * run%res%adapt(2, a%step - 1)) then
+      else if (a%step > 1 .and. est > stall * prev) then
         call finish(run, 'stopped no_progress', 'ADAPT stopped: the estimate ' // real_to_str(est, 3) // &
-          ' fell by less than 5 % from the last mesh''s ' // real_to_str(run%res%adapt(2, a%step - 1), 3) // &
+          ' fell by less than 5 % from the last mesh''s ' // real_to_str(prev, 3) // &
           ' (the outputs are this last mesh''s)')
       else
         again = remesh(run, est)

@@ -504,7 +504,7 @@ contains
             call add_error(diag, deck%file, ms%line, 'gmsh could not mesh "' // ms%file // '": ' // step_err%message)
             return
           end if
-          if (len(key) > 0) new_meshes = [new_meshes, mesh_entry_t(key, path)]
+          if (len(key) > 0) call add_entry(new_meshes, key, path)
         end if
       end if
       call read_gmsh_file(path, mesh, diag, err)
@@ -646,5 +646,23 @@ contains
       end if
     end do
   end subroutine apply_axis
+
+  !> Append a mesh cache entry.  Element by element: an array constructor
+  !> of a type with allocatable components leaks its temporaries under
+  !> gfortran 12 (the sanitizer's leak check on a two-.geo run).
+  subroutine add_entry(list, key, path)
+    type(mesh_entry_t), allocatable, intent(inout) :: list(:)
+    character(len=*), intent(in) :: key, path
+    type(mesh_entry_t), allocatable :: longer(:)
+    integer :: i
+    allocate(longer(size(list) + 1))
+    do i = 1, size(list)
+      call move_alloc(list(i)%key, longer(i)%key)
+      call move_alloc(list(i)%msh_path, longer(i)%msh_path)
+    end do
+    longer(size(longer))%key = key
+    longer(size(longer))%msh_path = path
+    call move_alloc(longer, list)
+  end subroutine add_entry
 
 end module scene
