@@ -181,7 +181,7 @@ contains
         call finish(run, 'stopped max_steps', 'ADAPT stopped after max_steps=' // int_to_str(ad%max_steps) // &
           ' meshes above the target ' // real_to_str(ad%target, 3) // ': the estimate reached is ' // &
           real_to_str(est, 3) // ' (the outputs are this last mesh''s)')
-      else if (a%step > 1 .and. est > stall * prev) then
+      else if (est > stall * prev) then
         call finish(run, 'stopped no_progress', 'ADAPT stopped: the estimate ' // real_to_str(est, 3) // &
           ' fell by less than 5 % from the last mesh''s ' // real_to_str(prev, 3) // &
           ' (the outputs are this last mesh''s)')

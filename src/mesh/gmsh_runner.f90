@@ -118,7 +118,7 @@ contains
     type(error_t), allocatable, intent(out) :: err
     character(len=*), intent(in), optional :: background
     real(dp), intent(in), optional :: size_range(2)
-    character(len=:), allocatable :: gmsh, bwrap, geo, out_folder, message
+    character(len=:), allocatable :: gmsh, bwrap, geo, out_folder, message, shown
     type(argv_t) :: argv, gmsh_argv
     integer(c_int) :: how, status
     integer :: i
@@ -191,10 +191,10 @@ contains
       mesher%served = mesher%served + 1
     else
       mesher%alone = mesher%alone + 1
-      bwrap = ''
-      if (.not. opts%trust_geo) bwrap = sandbox_program(log_path)
-      if (len(bwrap) > 0) call sandbox_arguments(bwrap, gmsh, read_folder, [geo], out_folder, argv)
-      mesher%sandboxed = mesher%sandboxed .and. len(bwrap) > 0
+      bwrap = sandbox_for(opts, log_path)
+      shown = ''                                ! a gmsh installed outside /usr: its prefix (libraries, share/)
+      if (gmsh(1:min(5, len(gmsh))) /= '/usr/') shown = folder_of(folder_of(gmsh))
+      if (len(bwrap) > 0) call sandbox_arguments(bwrap, shown, read_folder, [geo], out_folder, argv)
       if (.not. allocated(argv%packed)) argv%packed = ''
       argv%packed = argv%packed // gmsh_argv%packed
       argv%n = argv%n + gmsh_argv%n
@@ -244,6 +244,18 @@ contains
     if (found) identity = real // ' ' // stamp
   end subroutine gmsh_identity
 
+  !> bwrap for a gmsh run (the mesher's or a process of its own), '' when the
+  !> run has none (--trust-geo, or bubblewrap cannot run here: then
+  !> gmsh_runs says so).
+  function sandbox_for(opts, log_path) result(bwrap)
+    type(gmsh_options_t), intent(in) :: opts
+    character(len=*), intent(in) :: log_path
+    character(len=:), allocatable :: bwrap
+    bwrap = ''
+    if (.not. opts%trust_geo) bwrap = sandbox_program(log_path)
+    mesher%sandboxed = mesher%sandboxed .and. len(bwrap) > 0
+  end function sandbox_for
+
   !> bubblewrap's path when it can make its namespaces here (not in every
   !> container), else ''; probed once per run (the probe is a program run,
   !> which would stop a running mesher).
@@ -275,13 +287,13 @@ contains
 
   !> bwrap's arguments up to the program: a new namespace of every kind (no
   !> network, no other processes), a new session, the process dies with
-  !> contact2d; the system read-only, the program (a gmsh installed outside
-  !> /usr: its prefix), the deck's folder and the .geo files read-only, the
-  !> output folder writable, the environment cleared.
-  subroutine sandbox_arguments(bwrap, program, read_folder, geos, out_folder, argv)
-    character(len=*), intent(in) :: bwrap, program, read_folder, geos(:), out_folder
+  !> contact2d; the system read-only, shown (when not ''; the program's
+  !> files outside the system's folders), the deck's folder and the .geo
+  !> files read-only, the output folder writable, the environment cleared.
+  subroutine sandbox_arguments(bwrap, shown, read_folder, geos, out_folder, argv)
+    character(len=*), intent(in) :: bwrap, shown, read_folder, geos(:), out_folder
     type(argv_t), intent(inout) :: argv
-    character(len=:), allocatable :: deck_folder, prefix
+    character(len=:), allocatable :: deck_folder
     logical :: found
     integer :: i
     call push(argv, bwrap)
@@ -306,12 +318,10 @@ contains
     call push(argv, '/dev')
     call push(argv, '--tmpfs')
     call push(argv, '/tmp')
-    if (program(1:min(5, len(program))) /= '/usr/') then
-      prefix = program                                   ! the mesher: the file alone
-      if (index(program, '/contact2d-mesher', back=.true.) /= len(program) - 16) prefix = folder_of(folder_of(program))
+    if (len(shown) > 0) then
       call push(argv, '--ro-bind')
-      call push(argv, prefix)
-      call push(argv, prefix)
+      call push(argv, shown)
+      call push(argv, shown)
     end if
     call real_path(read_folder, deck_folder, found)
     if (found) then
@@ -411,10 +421,8 @@ contains
     character(len=:), allocatable :: bwrap, deck_folder, server_log
     integer(c_int) :: status
     logical :: found
-    bwrap = ''
-    if (.not. opts%trust_geo) bwrap = sandbox_program(log_path)
+    bwrap = sandbox_for(opts, log_path)
     if (len(bwrap) > 0) call sandbox_arguments(bwrap, mesher%program, read_folder, mesher%geos, out_folder, argv)
-    mesher%sandboxed = mesher%sandboxed .and. len(bwrap) > 0
     call push(argv, mesher%program)
     server_log = out_folder // '/contact2d-mesher.log'
     if (c_unlink(server_log // c_null_char) /= 0) continue
