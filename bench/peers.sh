@@ -4,7 +4,7 @@
 # against GetFEM 5.4 (Debian python3-getfem, nodal contact brick, P1 and P2)
 # and CalculiX 2.20 (Debian calculix-ccx, surface-to-surface penalty, CPE3
 # and CPE6), on even meshes and on meshes graded toward the zone's ends, and
-# contact2d's ADAPT quantity=pressure (P1 and P2, from the coarsest even mesh,
+# contact2d's ADAPT quantity=pressure (P1 and P2, from the even mesh at hc 0.08,
 # one run per target: 3 %, 1 %, 0.3 %, 0.1 %; its time the whole adaptive
 # run's, gmsh's re-meshings included).
 # Error = pressure L2 error along the contact line and energy (H1) error near
@@ -24,7 +24,8 @@
 # PEERS_SERIES_STOP the CPU time (s, default 30) after which a series runs no
 # finer point, PEERS_A the zone's half-width (default: located),
 # PEERS_ADAPT_TARGETS the adaptive series' targets (comma-separated relative
-# pressure errors), PEERS_ADAPT_MAX_DOFS their ADAPT max_dofs (500000).
+# pressure errors), PEERS_ADAPT_MAX_DOFS their ADAPT max_dofs (500000),
+# PEERS_ADAPT_HC the even mesh size they start from (0.08).
 # PEERS_DOC=doc/accuracy-cost.md puts the tables (printed in markdown) into
 # that page between its "bench/peers.sh" markers.
 set -eu
@@ -57,5 +58,6 @@ set -- --prog "$prog" --out "$out" --series "$keep" --reps "$reps" --threads "${
 [ -z "${PEERS_TIMEOUT:-}" ] || set -- "$@" --timeout "$PEERS_TIMEOUT"
 [ -z "${PEERS_ADAPT_TARGETS:-}" ] || set -- "$@" --adapt-targets "$PEERS_ADAPT_TARGETS"
 [ -z "${PEERS_ADAPT_MAX_DOFS:-}" ] || set -- "$@" --adapt-max-dofs "$PEERS_ADAPT_MAX_DOFS"
+[ -z "${PEERS_ADAPT_HC:-}" ] || set -- "$@" --adapt-hc "$PEERS_ADAPT_HC"
 [ -z "${PEERS_DOC:-}" ] || set -- "$@" --doc "$(cd "$(dirname "$PEERS_DOC")" && pwd)/$(basename "$PEERS_DOC")"
 exec "$py" "$top/bench/peers/driver.py" "$@"

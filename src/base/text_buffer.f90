@@ -29,7 +29,7 @@ module text_buffer
   private
   public :: text_buffer_t, open_text, open_memory, put_text, put_line, put_real, put_int, put_newline, close_text
 
-  integer, parameter :: capacity = 1048576
+  integer, parameter :: capacity = 262144
   character(len=2), parameter :: digit_pairs(0:99) = [character(len=2) :: &
     '00', '01', '02', '03', '04', '05', '06', '07', '08', '09', '10', '11', '12', '13', '14', '15', '16', '17', &
     '18', '19', '20', '21', '22', '23', '24', '25', '26', '27', '28', '29', '30', '31', '32', '33', '34', '35', &

@@ -9,8 +9,10 @@
  * through Fortran interoperable types.  The ordering is src/linalg/fill_ordering.c's,
  * reading the factor src/linalg/factor_inspection.c's.
  */
+#define _GNU_SOURCE
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
 
 #include "cholmod.h"
 #include "cholmod_factor.h"
@@ -62,11 +64,60 @@ static void clear_factor(struct c2d_chol *h)
     h->pivot_equation = 0;
 }
 
+/* CHOLMOD's large blocks (the factor's values and row indices, the
+ * update workspace) on transparent huge pages.  The factor is zeroed
+ * supernode by supernode as it is computed, the first touch of each of its
+ * pages, and a page fault each is costly on a virtual machine that backs
+ * its memory lazily: in a small run the factor's page faults are a good
+ * part of the factorization (doc/performance.md, "A small run's fixed
+ * costs").  A block of at least hp_min bytes is allocated 2 MB-aligned, its
+ * size rounded up to whole 2 MB pages (at most 2 MB more, and only for
+ * these few blocks), and marked MADV_HUGEPAGE: one fault per 2 MB.  Where
+ * the kernel gives no huge pages (transparent_hugepage=never) the advice is
+ * a no-op; when the aligned allocation fails (an address-space limit) the
+ * block is allocated as usual.  free and realloc are the C library's:
+ * posix_memalign's blocks are ordinary ones to them. */
+static const size_t huge_page = (size_t) 2 << 20;
+static const size_t hp_min = (size_t) 512 << 10;
+
+static void *large_malloc(size_t size)
+{
+    void *p = NULL;
+    size_t n;
+    if (size < hp_min) return malloc(size);
+    n = (size + huge_page - 1) / huge_page * huge_page;
+    if (n < size || posix_memalign(&p, huge_page, n) != 0) return malloc(size);
+    (void) madvise(p, n, MADV_HUGEPAGE);
+    return p;
+}
+
+static void *large_calloc(size_t count, size_t size)
+{
+    void *p;
+    if (size == 0 || count < hp_min / size) return calloc(count, size);
+    if (count > ((size_t) -1) / size) return NULL;
+    p = large_malloc(count * size);
+    if (p != NULL) memset(p, 0, count * size);
+    return p;
+}
+
+static void use_large_pages(void)
+{
+#if defined(SUITESPARSE_MAIN_VERSION) && SUITESPARSE_MAIN_VERSION >= 7
+    SuiteSparse_config_malloc_func_set(large_malloc);
+    SuiteSparse_config_calloc_func_set(large_calloc);
+#else
+    SuiteSparse_config.malloc_func = large_malloc;
+    SuiteSparse_config.calloc_func = large_calloc;
+#endif
+}
+
 void *c2d_chol_create(void)
 {
     struct c2d_chol *h = malloc(sizeof(struct c2d_chol));
     if (h == NULL) return NULL;
     memset(h, 0, sizeof(struct c2d_chol));
+    use_large_pages();
     if (!cholmod_start(&h->common))
     {
         free(h);
@@ -267,6 +318,29 @@ static int factorize_numeric(struct c2d_chol *h, cholmod_sparse *A, const double
     return CHOLMOD_OK;
 }
 
+/* Supernodal amalgamation (CHOLMOD's nrelax and zrelax: how many explicit
+ * zeros a supernode may take to merge with its parent).  CHOLMOD's numeric
+ * factorization opens OpenMP regions per supernode and per update between
+ * two supernodes, and libgomp ends each region with a futex system call
+ * even on a team of one thread (its barrier's wake): in a small factor
+ * these calls, not the arithmetic, take most of the time.  Up to relax_max
+ * rows a factor takes larger supernodes, fewer regions for some more
+ * memory in L, which is small there; above it CHOLMOD's defaults keep L's
+ * memory (doc/performance.md, "A small run's fixed costs"). */
+static const int relax_max = 50000;
+
+static void set_relaxation(cholmod_common *c, int n)
+{
+    static const size_t nrelax_small[3] = {16, 48, 128}, nrelax_default[3] = {4, 16, 48};
+    static const double zrelax_small[3] = {0.8, 0.2, 0.1}, zrelax_default[3] = {0.8, 0.1, 0.05};
+    int small = n <= relax_max, i;
+    for (i = 0; i < 3; i++)
+    {
+        c->nrelax[i] = small ? nrelax_small[i] : nrelax_default[i];
+        c->zrelax[i] = small ? zrelax_small[i] : zrelax_default[i];
+    }
+}
+
 int c2d_chol_analyze(void *handle, int n, const int *colptr, const int *rowind, int offset,
                      int nlast, const int *last, int ngroup, const int *group)
 {
@@ -282,6 +356,7 @@ int c2d_chol_analyze(void *handle, int n, const int *colptr, const int *rowind, 
     {
         return C2D_CHOL_BAD_ARGUMENT;
     }
+    set_relaxation(c, n);
     A = c2d_copy_pattern(n, colptr, rowind, offset, c, &status);
     if (A != NULL)
     {

@@ -8,9 +8,10 @@
 !> solution) and puts about s_K^-2 elements in its place.  The fewest
 !> elements for a total error T^2 are (Lagrange)
 !>     s_K = (mu / eta_K^2)^(1 / (2 p_K + 2)),   mu such that sum_K eta_K^2 s_K^(2 p_K) = T^2,
-!> and mu is found by bisection on log mu, since that sum grows with mu
-!> (also with the bounds smin <= s_K <= smax of one step, and with orders
-!> that differ from body to body, where no closed form is left).
+!> and mu is found by Newton's method on log mu, kept in a bracket by
+!> bisection, since that sum grows with mu (also with the bounds smin <= s_K
+!> <= smax of one step, and with orders that differ from body to body, where
+!> no closed form is left).
 !>
 !> Why it exists: the adaptive loop (app/adaptivity) and the prediction of
 !> the cost of the next digit (app/run_estimate) ask the same question, how
@@ -48,27 +49,51 @@ contains
   pure subroutine optimal_scales(eta2, rate, target2, smin, smax, s)
     real(dp), intent(in) :: eta2(:), rate(:), target2, smin, smax
     real(dp), intent(out) :: s(:)
-    real(dp) :: lo, hi, mid
+    real(dp) :: leta(size(eta2)), lo, hi, t, f, df, dt, ltarget
     integer :: it
+    ! in logarithms: element k leaves exp(leta_k + 2 p_k log s_k), with
+    ! log s_k = (log mu - leta_k) / (2 p_k + 2) within [log smin, log smax];
+    ! an element without error (eta2 = 0) leaves none at any size
+    where (eta2 > 0.0_dp)
+      leta = log(eta2)
+    elsewhere
+      leta = -huge(1.0_dp)
+    end where
+    ltarget = log(target2)
     ! log mu spans what the indicators and the bounds can ask for
     lo = log(tiny(1.0_dp)) / 2
     hi = -lo
-    if (error_at(lo) >= target2) then
+    call error_at(lo, f, df)
+    if (f >= target2) then
       s = smin
       return
     end if
-    if (error_at(hi) <= target2) then
+    call error_at(hi, f, df)
+    if (f <= target2) then
       s = smax
       return
     end if
-    do it = 1, 200                          ! to the resolution of log mu, far below any mesh size's
-      mid = 0.5_dp * (lo + hi)
-      if (error_at(mid) > target2) then
-        hi = mid
+    ! Newton on log f(log mu) - log target2 (f increases with mu, and its
+    ! logarithm is nearly linear in log mu: a few steps), kept inside the
+    ! bracket [lo, hi] by bisection, to the resolution of log mu, far below
+    ! any mesh size's; lo always leaves at most the target
+    t = 0.5_dp * (lo + hi)
+    do it = 1, 200
+      call error_at(t, f, df)
+      if (f > target2) then
+        hi = t
       else
-        lo = mid
+        lo = t
       end if
       if (hi - lo < 1.0e-12_dp) exit
+      if (f > 0.0_dp .and. df > 0.0_dp) then
+        dt = (ltarget - log(f)) * f / df
+        if (abs(dt) < 0.25e-12_dp) dt = sign(0.25e-12_dp, dt)   ! close the bracket around a converged t
+        t = t + dt
+        if (.not. (t > lo .and. t < hi)) t = 0.5_dp * (lo + hi)
+      else                                  ! every element at a bound: f is flat here
+        t = 0.5_dp * (lo + hi)
+      end if
     end do
     call scales(lo, s)
   contains
@@ -78,18 +103,35 @@ contains
       integer :: k
       do k = 1, size(eta2)
         if (eta2(k) > 0.0_dp) then
-          sk(k) = min(smax, max(smin, exp((log_mu - log(eta2(k))) / (2 * rate(k) + 2))))
+          sk(k) = min(smax, max(smin, exp((log_mu - leta(k)) / (2 * rate(k) + 2))))
         else
           sk(k) = smax                      ! no error there: as coarse as one step allows
         end if
       end do
     end subroutine scales
-    pure real(dp) function error_at(log_mu) result(e2)
+    !> The error the scales of log_mu leave, f, and its derivative in log mu, df.
+    pure subroutine error_at(log_mu, f, df)
       real(dp), intent(in) :: log_mu
-      real(dp) :: sk(size(eta2))
-      call scales(log_mu, sk)
-      e2 = sum(eta2 * sk**(2 * rate))
-    end function error_at
+      real(dp), intent(out) :: f, df
+      real(dp) :: ls, c, term
+      integer :: k
+      f = 0.0_dp
+      df = 0.0_dp
+      do k = 1, size(eta2)
+        if (.not. eta2(k) > 0.0_dp) cycle
+        c = 1.0_dp / (2 * rate(k) + 2)
+        ls = (log_mu - leta(k)) * c
+        if (ls <= log(smin)) then
+          term = exp(leta(k) + 2 * rate(k) * log(smin))
+        else if (ls >= log(smax)) then
+          term = exp(leta(k) + 2 * rate(k) * log(smax))
+        else
+          term = exp(leta(k) + 2 * rate(k) * ls)
+          df = df + term * 2 * rate(k) * c
+        end if
+        f = f + term
+      end do
+    end subroutine error_at
   end subroutine optimal_scales
 
   !> The elements of the mesh the scales ask for: sum_K s_K^-2.

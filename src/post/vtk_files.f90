@@ -28,6 +28,7 @@ module vtk_files
   use strings, only: int_to_str, i8_to_str
   use errors, only: error_t, set_error
   use text_scan, only: string_t
+  use threads, only: run_threads
   use text_buffer, only: text_buffer_t, open_text, open_memory, put_text, put_line, put_real, put_int, put_newline, &
                          close_text
   use compression, only: zlib_available, compress_blocks
@@ -553,7 +554,9 @@ contains
 
   !> Rows 1..n of one section of the legacy file (kind: row_*), formatted in
   !> chunks on the run's threads and written in order: the text is the same as
-  !> one thread's, the formatting (most of the output time) is shared.
+  !> one thread's, the formatting (most of the output time) is shared.  On one
+  !> thread, or for one chunk, the rows go straight to the file's buffer: a
+  !> chunk's own buffer would only add a copy and its fresh pages.
   subroutine put_rows(tb, kind, n, v)
     type(text_buffer_t), intent(inout) :: tb
     integer, intent(in) :: kind, n
@@ -561,6 +564,12 @@ contains
     integer, parameter :: chunk = 4096
     type(text_buffer_t) :: part
     integer :: c, i
+    if (n <= chunk .or. run_threads() == 1) then
+      do i = 1, n
+        call put_row(tb, kind, i, v)
+      end do
+      return
+    end if
     !$omp parallel do ordered schedule(static, 1) private(part, i) &
     !$omp if(n > chunk)
     do c = 0, (n - 1) / chunk
