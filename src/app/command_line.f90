@@ -239,7 +239,7 @@ contains
       '    MATERIAL isotropic E= nu=', &
       '    MATERIAL orthotropic E1= E2= nu12= G12= [angle=0] [E3=E2] [nu13=nu12] [nu23=nu12]', &
       '    MATERIAL neo_hookean mu= K=  |  MATERIAL mooney_rivlin c10= c01= K=   (finite strain, Newton;', &
-      '                                    RIGIDs moved by FIX, not plane stress: the rest refused)', &
+      '                                    not plane stress: refused)', &
       '    DENSITY rho=                    (with GRAVITY)', &
       '    FIX boundary [ux=] [uy=] [ramp=k0:k1|curve=NAME]   (neither ux nor uy: both 0; also a point set)', &
       '    FIX boundary [un=] [ut=] [ramp=k0:k1|curve=NAME]   (local axes: outward normal n, t = (-n_y, n_x))', &

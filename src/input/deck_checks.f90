@@ -102,14 +102,13 @@ contains
   !> whole scene (doc/theory.md, "Hyperelastic bodies in finite strain"):
   !> every CONTACT follows the bodies (sliding=finite implied; sliding=small,
   !> the pairing of the initial configuration, and gap=zero, the initial
-  !> gaps, are errors); every RIGID moves by
-  !> FIX (a RIGID moved by FORCE has no stiffness in the Newton tangent);
-  !> the laws need F33 (plane strain or axisymmetric, not plane stress); and
-  !> ADAPT, whose estimators are linear elasticity's, is not available.
+  !> gaps, are errors); the laws need F33 (plane strain or axisymmetric, not
+  !> plane stress); and ADAPT, whose estimators are linear elasticity's, is
+  !> not available.
   subroutine check_finite_strain_scene(s, deck)
     type(state_t), intent(inout) :: s
     type(deck_t), intent(inout) :: deck
-    integer :: i, b, k
+    integer :: i, b
     character(len=:), allocatable :: name
     name = ''
     do b = 1, s%nbody
@@ -137,13 +136,6 @@ contains
                         'or newton_lcp=lemke: the active-set iteration has no friction cone)')
         end if
       end associate
-    end do
-    do i = 1, size(deck%rigids)
-      do k = 1, size(deck%rigids(i)%forces)
-        call report(s, deck%rigids(i)%forces(k)%line, 'RIGID ' // quoted(deck%rigids(i)%name) // ' FORCE in a ' // &
-          'scene with the hyperelastic body ' // quoted(name) // ': the Newton tangent has no stiffness along a ' // &
-          'RIGID''s free motion (expected FIX ux= uy= rz=, the motion prescribed)')
-      end do
     end do
     if (deck%adapt%on) call report(s, deck%adapt%line, 'ADAPT in a scene with the hyperelastic body ' // &
       quoted(name) // ' (its error estimators are those of linear elasticity)')

@@ -23,13 +23,17 @@
 !> opens only changes the iterate's direction; the residual, and so the
 !> answer, are K's.
 !>
-!> rho_i = the mean of K's diagonal over the row's free dofs / |c_i,f|^2: the
-!> row as stiff as the body at its nodes, so that K~'s conditioning stays K's.
+!> rho_i = the mean of K's diagonal over the row's free dofs of bodies /
+!> |c_i|^2 over them: the row as stiff as the body at its nodes, so that
+!> K~'s conditioning stays K's.  A RIGID's free dofs on the row (one that its
+!> FORCE moves) get the row's terms but no say in rho: a rotation's entries
+!> have another unit, and their diagonal is only the soft dofs' share.
 !>
 !> Programming interface
 !>   cover_rows(cs, eq, k, grown)   K's pattern grown to hold every row's couplings
 !>                                  (grown = .true. when it had to be rebuilt)
-!>   augment_rows(cs, active, h, eq, dubar, k, rhs)
+!>   cover_dofs(dofs, eq, k, grown) K's pattern grown to couple the given dofs (a RIGID's)
+!>   augment_rows(cs, active, h, eq, dubar, nbody, k, rhs)
 !>                                  K~ and r~ for the rows marked active
 module augmented_tangent
   use kinds, only: dp
@@ -38,7 +42,7 @@ module augmented_tangent
   use body, only: find_row
   implicit none
   private
-  public :: cover_rows, augment_rows
+  public :: cover_rows, cover_dofs, augment_rows
 
 contains
 
@@ -107,6 +111,47 @@ contains
     end subroutine missing
   end subroutine cover_rows
 
+  !> Grow K's pattern, when it lacks them, by the couplings between the
+  !> given dofs that are free (a RIGID's three: no element couples them, and
+  !> the soft dofs' stiffness needs their diagonal).
+  !>   dofs  (in)    the dofs
+  !>   eq    (in)    (ndof) free equation numbers
+  !>   k     (inout) K's pattern
+  !>   grown (out)   .true. when the pattern was rebuilt
+  subroutine cover_dofs(dofs, eq, k, grown)
+    integer, intent(in) :: dofs(:), eq(:)
+    type(csc_t), intent(inout) :: k
+    logical, intent(out) :: grown
+    integer, allocatable :: rows(:), cols(:)
+    type(csc_t) :: wider
+    integer :: i, j, a, b, nold, p, pos
+    nold = k%colptr(k%n + 1) - 1
+    allocate(rows(nold), cols(nold))
+    do j = 1, k%n
+      rows(k%colptr(j):k%colptr(j + 1) - 1) = k%rowind(k%colptr(j):k%colptr(j + 1) - 1)
+      cols(k%colptr(j):k%colptr(j + 1) - 1) = j
+    end do
+    grown = .false.
+    do i = 1, size(dofs)
+      a = eq(dofs(i))
+      if (a == 0) cycle
+      do j = 1, size(dofs)
+        b = eq(dofs(j))
+        if (b < a) cycle                               ! K's upper triangle (b = 0 is fixed)
+        if (k%colptr(b + 1) > k%colptr(b)) then
+          pos = find_row(k, a, b)
+          if (k%rowind(pos) == a) cycle
+        end if
+        rows = [rows, a]
+        cols = [cols, b]
+        grown = .true.
+      end do
+    end do
+    if (.not. grown) return
+    call csc_from_triplets(k%n, rows, cols, [(0.0_dp, p = 1, size(rows))], wider)
+    k = wider
+  end subroutine cover_dofs
+
   !> K~ = K + sum rho_i c_i,f' c_i,f and r~ = r + sum rho_i c_i,f' (h_i - c_i,d dubar_d)
   !> over the rows marked active (module header); K's pattern holds the rows'
   !> couplings (cover_rows).
@@ -115,13 +160,14 @@ contains
   !>   h      (in)    (nrow + ntan) each active row's target c_i du
   !>   eq     (in)    (ndof) free equation numbers
   !>   dubar  (in)    (ndof) the fixed dofs' increments
+  !>   nbody  (in)    the bodies' dofs are 1..nbody (the RIGIDs' follow)
   !>   k      (inout) K's values, K~'s on exit
   !>   rhs    (inout) (nfree) r, r~ on exit
-  subroutine augment_rows(cs, active, h, eq, dubar, k, rhs)
+  subroutine augment_rows(cs, active, h, eq, dubar, nbody, k, rhs)
     type(contact_set_t), intent(in) :: cs
     logical, intent(in) :: active(:)
     real(dp), intent(in) :: h(:), dubar(:)
-    integer, intent(in) :: eq(:)
+    integer, intent(in) :: eq(:), nbody
     type(csc_t), intent(inout) :: k
     real(dp), intent(inout) :: rhs(:)
     real(dp) :: rho, cc, diag, target
@@ -136,7 +182,7 @@ contains
         a = eq(cs%cdof(cs%bcol(p)))
         if (a == 0) then
           target = target - cs%bval(p) * dubar(cs%cdof(cs%bcol(p)))
-        else
+        else if (cs%cdof(cs%bcol(p)) <= nbody) then
           cc = cc + cs%bval(p)**2
           diag = diag + k%val(find_row(k, a, a))
           nf = nf + 1

@@ -13,9 +13,11 @@
 !> included), both relative.
 !>
 !> What it does not solve, said before the first step (error_input): a
-!> body held only by contact (the tangent has no stiffness along its free
-!> motion: a FIX must hold it; symmetry supports do).  The deck's checks
-!> refuse a RIGID moved by FORCE in such a scene.  With friction the step's
+!> body with a rigid motion that neither FIX nor contact holds.  A body held
+!> only by contact, and a RIGID moved by its FORCE, have their free dofs
+!> among Newton's equations as soft dofs (newton_step); a step whose loads
+!> push a RIGID along a direction that nothing holds has no equilibrium
+!> (error_no_equilibrium, as in a linear step).  With friction the step's
 !> tangential forces, states and slips (those of its last sub-increment) and
 !> the cone's violation in the certificate.
 !>
@@ -37,6 +39,10 @@ module hyperelastic_step
   use sparse_matrix, only: csc_t
   use newton_step, only: newton_options_t, newton_result_t, solve_newton_increment, element_note
   use contact_set, only: contact_set_t
+  use augmented_tangent, only: cover_dofs
+  use held_by_contact, only: split_step_modes
+  use mode_support, only: mode_split_t
+  use rigid_support, only: rigid_split_t
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
   private
@@ -49,7 +55,7 @@ module hyperelastic_step
     logical :: ready = .false.
     integer, allocatable :: eq(:)              !< (ndof) Newton's equation of each dof, 0 when fixed
     integer :: nfree = 0
-    logical, allocatable :: soft(:)            !< (ndof) pinned dofs of bodies held only by contact
+    logical, allocatable :: soft(:)            !< (ndof) pinned dofs of bodies held only by contact, free dofs of RIGIDs
     type(csc_t) :: k                           !< the tangent's pattern
     real(dp), allocatable :: u_prior(:)        !< (ndof) where the last step started (unallocated: none)
   end type newton_history_t
@@ -69,7 +75,7 @@ contains
     integer, intent(out) :: nfree
     logical, allocatable, intent(out) :: soft(:)
     type(error_t), allocatable, intent(out) :: err
-    integer :: k, b
+    integer :: k, b, r
     if (allocated(prob%split%unheld)) then
       if (size(prob%split%unheld, 2) > 0) then
         ! a motion that neither FIX nor contact holds: no tangent, however stiffened, decides it
@@ -83,6 +89,17 @@ contains
     end if
     call number_equations(prob%sc%fixed, eq, nfree)
     allocate(soft(prob%sc%ndof), source=.false.)
+    do r = 1, size(prob%sc%rigids)
+      associate (d => prob%sc%rigids(r)%dof0)
+        if (all(eq(d + 1:d + 3) == 0)) cycle
+        soft(d + 1:d + 3) = eq(d + 1:d + 3) > 0
+        call say(log, 'newton   RIGID ' // prob%sc%rigids(r)%name // ' is moved by its FORCE along ' // &
+          free_words(eq(d + 1:d + 3) > 0) // ': those dofs are among Newton''s equations; in the linear solves ' // &
+          'they get a stiffness (a share of the tangent''s largest diagonal, times the RIGID''s size squared ' // &
+          'for the rotation) until a closed contact holds them, so that each tangent is definite (the ' // &
+          'residual, and so the answer, are those of the exact equilibrium)')
+      end associate
+    end do
     do k = 1, prob%fl%k
       soft(prob%fl%pin(k)) = .true.
       b = prob%fl%mode_body(k)
@@ -91,6 +108,27 @@ contains
         'solves its pinned dofs get a stiffness (a share of the tangent''s largest diagonal), so that each ' // &
         'tangent is definite (the residual, and so the answer, are those of the exact equilibrium)')
     end do
+  contains
+    !> 'ux, uy and rz' of the free ones
+    function free_words(free) result(w)
+      logical, intent(in) :: free(3)
+      character(len=:), allocatable :: w
+      character(len=2), parameter :: names(3) = ['ux', 'uy', 'rz']
+      integer :: j, m
+      w = ''
+      m = 0
+      do j = 1, 3
+        if (.not. free(j)) cycle
+        m = m + 1
+        if (m == 1) then
+          w = names(j)
+        else if (m == count(free)) then
+          w = w // ' and ' // names(j)
+        else
+          w = w // ', ' // names(j)
+        end if
+      end do
+    end function free_words
   end subroutine newton_equations
 
   !> The state at the load point of f1, ubar1 from the one at t0 (module header).
@@ -117,7 +155,10 @@ contains
     type(newton_result_t) :: res
     real(dp), allocatable :: f0(:), ubar0(:), u_start(:)
     integer :: i, n
+    logical :: grown
     character(len=:), allocatable :: line
+    type(mode_split_t) :: split
+    type(rigid_split_t) :: rsplit
 
     allocate(f0(size(u)), ubar0(size(u)))
     call step_forces(prob%sc, t0, f0, ubar0)
@@ -126,7 +167,17 @@ contains
       if (allocated(err)) return
       call build_pattern(prob%sc%bodies, hist%eq, hist%nfree, hist%k, err)
       if (allocated(err)) return
+      do i = 1, size(prob%sc%rigids)                 ! a RIGID's free dofs: no element gives their diagonal
+        n = prob%sc%rigids(i)%dof0
+        call cover_dofs([n + 1, n + 2, n + 3], hist%eq, hist%k, grown)
+      end do
       hist%ready = .true.
+    end if
+    ! a load along a RIGID's direction that neither its FIX nor the contacts
+    ! hold (the rows of the initial configuration) has no equilibrium
+    if (prob%rsplit%k > 0) then
+      call split_step_modes(prob, kstep, f1, split, rsplit, err)
+      if (allocated(err)) return
     end if
     opts%tol = prob%deck%solver%newton_tol
     opts%maxit = prob%deck%solver%newton_maxit

@@ -13,8 +13,12 @@
 !> times; the last J > 0 trial is then taken).  Converged: the prescribed
 !> values reached and ||f_f - f_int,f|| <= tol * scale, scale = max(||f||,
 !> ||f_int||, ||f_c||) over the bodies' dofs (the reactions count: a step
-!> driven by prescribed displacements has no f; a RIGID's force and moment
-!> do not, a moment not being a force).
+!> driven by prescribed displacements has no f) and the FORCE of the RIGIDs
+!> it moves; a RIGID's moment and rotation enter divided and multiplied by
+!> its size, so that every term is a force or a length and the tolerance
+!> does not depend on the unit of length.  A RIGID moved by FORCE has its
+!> free dofs among the equations: no element stiffens them, so they are
+!> soft dofs (below) until a closed contact row holds them (augmented_tangent).
 !>
 !> An iterate whose tangent is not positive definite is assembled again
 !> with each hyperelastic element's tangent cut to its positive part
@@ -96,7 +100,7 @@ module newton_step
   use local_axes, only: rotate_constraint_rows
   use lcp_scaling, only: lcp_options_t, lcp_report_t
   use lcp_lemke, only: solve_lcp_lemke
-  use lapack_interfaces, only: dgesv
+  use lapack_interfaces, only: dgesv, dsyev
   use friction_lcp, only: friction_problem_t, friction_problem, solve_friction_lcp, friction_state
   use sparse_matrix, only: csc_t
   use sparse_cholesky, only: factor_t, analyze_pattern, factorize_values, solve_vector, free_factor
@@ -180,7 +184,8 @@ contains
     type(contact_set_t) :: cs
     logical, allocatable :: holds(:), closing(:)
     logical :: active_set, settled, same_u
-    real(dp), allocatable :: target(:)
+    real(dp), allocatable :: target(:), arm(:)
+    logical, allocatable :: soft_now(:)
     integer(i8), allocatable :: held_keys(:)
 
     allocate(dubar(size(u)), rhs(nfree), du_f(nfree), du(size(u)), trial(size(u)), fint(size(u)))
@@ -192,6 +197,14 @@ contains
     nb = maxval([(bodies(i)%dof0 + 2 * bodies(i)%mesh%nnode, i = 1, size(bodies))])
     with_contact = present(specs)
     if (with_contact) with_contact = size(specs) > 0
+    ! a RIGID's rotation times its size is a length, its moment over it a
+    ! force: the scale that puts a free RIGID's equations among the bodies'
+    allocate(arm(size(u)), source=1.0_dp)
+    if (with_contact) then
+      do i = 1, size(specs)
+        if (specs(i)%rigid > 0) arm(specs(i)%shape%dof0 + 3) = specs(i)%shape%length
+      end do
+    end if
     active_set = opts%contact == 'active_set'
     allocate(res%history(0))
     res%reason = ''
@@ -249,8 +262,12 @@ contains
         res%reason = merge('a term of the tangent overflows   ', 'an element has J <= 0             ', bad(2) == 0)
         exit
       end if
-      if (present(soft)) call stiffen(soft)
-      if (with_contact) call augment_rows(cs, holds, target, eq, dubar, k, rhs)
+      if (present(soft)) then
+        soft_now = soft
+        if (with_contact) call held_rigids(soft_now)
+        call stiffen(soft_now)
+      end if
+      if (with_contact) call augment_rows(cs, holds, target, eq, dubar, nb, k, rhs)
       ! the pattern is the same at every iterate: one ordering and symbolic
       ! analysis, a numeric factorization per iterate (again after a failure)
       if (.not. analyzed) then
@@ -375,9 +392,10 @@ contains
     res%reason = trim(res%reason)
     if (analyzed) call free_factor(fac)
   contains
-    !> k(i, i) += soft_share max_j k(j, j) on the soft dofs' equations: a
-    !> body held only by contact gets a definite tangent; the residual, and
-    !> so the converged answer, are untouched.
+    !> k(i, i) += soft_share max_j k(j, j) on the soft dofs' equations (times
+    !> the size squared on a RIGID's rotation): a body held only by contact,
+    !> and a RIGID that its FORCE moves, get a definite tangent; the
+    !> residual, and so the converged answer, are untouched.
     subroutine stiffen(mask)
       logical, intent(in) :: mask(:)
       ! 1e-8 left the residual's last digits to round-off in W (it stalled
@@ -396,10 +414,42 @@ contains
       do j = 1, size(mask)
         if (.not. mask(j) .or. eq(j) == 0) cycle
         do p = k%colptr(eq(j)), k%colptr(eq(j) + 1) - 1
-          if (k%rowind(p) == eq(j)) k%val(p) = k%val(p) + soft_share * big
+          if (k%rowind(p) == eq(j)) k%val(p) = k%val(p) + soft_share * big * arm(j)**2
         end do
       end do
     end subroutine stiffen
+
+    !> A RIGID whose free dofs the rows that hold the iterate hold all (the
+    !> rows' columns on them, the rotation's times the RIGID's size, of full
+    !> rank) needs no soft stiffness: K~ is definite along its motion, and
+    !> without the soft share the iterate is Newton's own (quadratic).
+    subroutine held_rigids(mask)
+      logical, intent(inout) :: mask(:)
+      real(dp) :: a(3, 3), ev(3), work(64)
+      integer :: ip, d, r, p, c, info, m
+      logical :: free(3)
+      do ip = 1, size(specs)
+        if (specs(ip)%rigid == 0) cycle
+        d = specs(ip)%shape%dof0
+        free = mask(d + 1:d + 3)
+        if (.not. any(free)) cycle
+        a = 0.0_dp                                     ! sum over the holding rows of v v', v the row on the free dofs
+        do r = 1, cs%nrow
+          if (.not. holds(r)) cycle
+          ev = 0.0_dp
+          do p = cs%bptr(r), cs%bptr(r + 1) - 1
+            c = cs%cdof(cs%bcol(p)) - d
+            if (c >= 1 .and. c <= 3) ev(c) = ev(c) + cs%bval(p) / arm(d + c)
+          end do
+          where (.not. free) ev = 0.0_dp
+          a = a + spread(ev, 2, 3) * spread(ev, 1, 3)
+        end do
+        m = count(free)
+        a(1:m, 1:m) = reshape(pack(a, spread(free, 2, 3) .and. spread(free, 1, 3)), [m, m])
+        call dsyev('N', 'U', m, a, 3, ev, work, size(work), info)
+        if (info == 0 .and. ev(1) > 1.0e-8_dp * ev(m)) mask(d + 1:d + 3) = .false.
+      end do
+    end subroutine held_rigids
 
     !> The rows that hold the iterate at v (augmented_tangent) and their
     !> targets c_i du: a normal row the last iterate's contact problem closed
@@ -453,12 +503,16 @@ contains
       at_target = .true.
       do j = 1, size(v)
         if (eq(j) > 0) then
-          rf = rf + (f(j) + res%fcon(j) - fint(j))**2
+          rf = rf + ((f(j) + res%fcon(j) - fint(j)) / arm(j))**2
         else
           at_target = at_target .and. ubar(j) == v(j)
         end if
       end do
-      scale = max(norm2(f(1:nb)), norm2(fint(1:nb)), norm2(res%fcon(1:nb)), tiny(1.0_dp))
+      ! a RIGID that its FORCE moves: its force and moment over its size
+      ! count among the forces (one it moves by FIX has none: its reaction
+      ! is no load)
+      scale = max(norm2(f(1:nb)), norm2(fint(1:nb)), norm2(res%fcon(1:nb)), &
+                  norm2(pack(f(nb + 1:) / arm(nb + 1:), eq(nb + 1:) > 0)), tiny(1.0_dp))
       rel = sqrt(rf) / scale
     end subroutine measure
 
