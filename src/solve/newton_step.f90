@@ -336,7 +336,9 @@ contains
         ! the true ones to its square (an active set still moving is no answer)
         step = maxval(abs(du(1:nb))) / max(maxval(abs(u(1:nb) + du(1:nb))), tiny(1.0_dp))
         if (.not. settled) step = huge(1.0_dp)
-        call measure(u, merit, reached, bad)          ! the residual with this iterate's contact forces
+        ! the residual with this iterate's contact forces: u has not moved
+        ! since the last measure, whose internal forces are u's
+        call measure(u, merit, reached, bad, fint_known=.true.)
       end if
       res%iterations = it
       ! backtracking: J > 0 always; the Armijo decrease once ubar is reached
@@ -488,14 +490,20 @@ contains
 
     !> The relative residual at v, whether v's fixed dofs have their values,
     !> and the element with J <= 0 if any.
-    subroutine measure(v, rel, at_target, bad_elem)
+    subroutine measure(v, rel, at_target, bad_elem, fint_known)
       real(dp), intent(in) :: v(:)
       real(dp), intent(out) :: rel
       logical, intent(out) :: at_target
       integer, intent(out) :: bad_elem(2)
+      logical, intent(in), optional :: fint_known     !< fint is v's already (from the last call)
       real(dp) :: rf, scale
       integer :: j
-      call internal_force_vector(bodies, v, fint, bad_elem)
+      bad_elem = 0
+      if (.not. present(fint_known)) then
+        call internal_force_vector(bodies, v, fint, bad_elem)
+      else if (.not. fint_known) then
+        call internal_force_vector(bodies, v, fint, bad_elem)
+      end if
       rel = huge(1.0_dp)
       at_target = .false.
       if (bad_elem(1) /= 0) return
