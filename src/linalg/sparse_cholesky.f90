@@ -122,6 +122,9 @@ module sparse_cholesky
     character(len=24) :: ordering = 'none' !< "metis" or "amd", "(nodes)" when grouped, "+last" with a block last
     integer(i8) :: memory_peak = 0_i8     !< peak memory of CHOLMOD, bytes
     real(dp) :: min_pivot_ratio = 0.0_dp  !< min over pivots of L(k,k)^2 / A(p_k,p_k)
+    !> an analysis has freed its workspace since the last numeric
+    !> factorization (what it freed goes back to the system before the next)
+    logical, private :: analyzed_since = .false.
   contains
     final :: finalize_factor
   end type factor_t
@@ -314,6 +317,7 @@ contains
     end if
     call parts_end(levels, blas)
     f%time_analyze = omp_get_wtime() - t0
+    f%analyzed_since = .true.
     call read_statistics(f)
 
     do p = 1, f%nparts
@@ -388,8 +392,12 @@ contains
                              ' MB available)', factor_bytes(f))
       return
     end if
-    ! what the orderings freed goes back before the factors take their memory
-    call c2d_malloc_trim()
+    ! what the orderings freed goes back before the factors take their memory;
+    ! a refactorization on the same analysis (Newton's tangents) keeps the
+    ! free pages its last iterate used: returned, every iterate would fault
+    ! them in again (hundreds of page faults per iterate)
+    if (f%analyzed_since) call c2d_malloc_trim()
+    f%analyzed_since = .false.
     t0 = omp_get_wtime()
     call parts_begin(f%part, nthreads, levels, blas)
     !$omp parallel do num_threads(nthreads) schedule(dynamic, 1) if (nthreads > 1)
