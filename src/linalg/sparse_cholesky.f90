@@ -369,8 +369,10 @@ contains
     real(dp) :: t0, worst_ratio
     logical :: analyzed
 
+    ! a factorization that met a pivot that is not positive leaves the
+    ! analysis as it was: the next values are factorized on it
     analyzed = allocated(f%part) .and. f%n == A%n
-    if (analyzed) analyzed = all(f%part%status == cholmod_ok)
+    if (analyzed) analyzed = all(f%part%status == cholmod_ok .or. f%part%status == cholmod_not_posdef)
     if (.not. analyzed) then
       call set_error(err, 'sparse Cholesky: factorize_values without the analysis of this pattern', error_numerical)
       return

@@ -278,10 +278,16 @@ contains
         end if
         analyzed = .true.
       end if
+      ! a tangent that is not positive definite (or singular) leaves the
+      ! analysis as it was: the next values (the elements' positive parts,
+      ! a shorter update) are factorized on it; any other failure analyzes
+      ! again
       call factorize_values(fac, k, ferr)
       if (allocated(ferr)) then
-        call free_factor(fac)
-        analyzed = .false.
+        if (.not. ferr%singular) then
+          call free_factor(fac)
+          analyzed = .false.
+        end if
       end if
       if (allocated(ferr)) then
         deallocate(ferr)

@@ -39,6 +39,7 @@ program test_sparse_cholesky
   call test_fill_with_last()
   call test_node_groups()
   call test_singular_equation()
+  call test_refactor_after_not_posdef()
   call test_status_names()
   call finish_tests()
 
@@ -946,6 +947,39 @@ contains
     print '(a, f7.3)', 'INFO nnz(L) ratio last/metis = ', real(factor_nnz(g), dp) / real(factor_nnz(f), dp)
     print '(a, i0, a, i0)', 'INFO peak memory (bytes): metis ', factor_memory(f), ', last ', factor_memory(g)
   end subroutine test_fill_with_last
+
+  !> Newton's iterates: values that are not positive definite, then
+  !> definite ones with the same pattern, factorized on the one analysis (no
+  !> analyze_pattern between them): the first fails as singular, naming its
+  !> equation, the second solves A x = b to round-off.
+  subroutine test_refactor_after_not_posdef()
+    type(csc_t) :: A, B
+    type(factor_t) :: f
+    type(error_t), allocatable :: err
+    integer, allocatable :: dof_of(:,:)
+    real(dp), allocatable :: x(:), rhs(:)
+    integer :: p
+    call elasticity(12, 8, .true., A, dof_of)
+    B = A
+    do p = B%colptr(5), B%colptr(6) - 1                 ! column 5's diagonal made negative
+      if (B%rowind(p) == 5) B%val(p) = -B%val(p)
+    end do
+    call analyze_pattern(f, A%n, A%colptr, A%rowind, err)
+    call check(.not. allocated(err), 'refactorization: analyze_pattern')
+    if (allocated(err)) return
+    call factorize_values(f, B, err)
+    call check(allocated(err), 'refactorization: values not positive definite fail')
+    if (.not. allocated(err)) return
+    call check(err%singular .and. err%equation > 0, 'refactorization: the failure is singular, with its equation')
+    deallocate(err)
+    call factorize_values(f, A, err)
+    call check(.not. allocated(err), 'refactorization: definite values on the same analysis factorize')
+    if (allocated(err)) return
+    allocate(x(A%n))
+    rhs = smooth_rhs(A%n, 2)
+    call solve(f, rhs, x, err)
+    call check_small(residual_ratio(A, x, rhs), tol_round(16), 'refactorization: scaled residual < 16 eps')
+  end subroutine test_refactor_after_not_posdef
 
   !> The graph of dof groups (the mesh nodes) ordered by METIS and by AMD, in
   !> two halves (analyze_pattern, factorize_values), without and with a block
