@@ -20,9 +20,10 @@
 !> where the consistent tangent is not positive definite (newton_step).
 !>
 !> Programming interface
-!>   assemble_tangent(bodies, u, eq, dubar, k, rhs, bad [, definite])
+!>   assemble_tangent(bodies, u, eq, dubar, k, rhs, bad [, definite, theta])
 !>        k += K_ff(u), rhs -= f_int,f(u) + K_fd dubar_d
 !>   internal_force_vector(bodies, u, fint, bad)             fint = f_int(u) (ndof)
+!>   element_dilatations(bodies, u, du, j0, dj0, bad)        F-bar's J0 and dJ0/du du per element
 !>   finite_strain_fields(bodies, u, energy, jac, stretch, stress, vm)
 !>        the hyperelastic bodies' energy, J, largest stretch and Cauchy stress per element
 module finite_strain_assembly
@@ -31,25 +32,27 @@ module finite_strain_assembly
   use axisymmetric_elements, only: axi_element_stiffness
   use body, only: body_t, element_dofs, element_coordinates, rotate_element_matrix, rotate_element_vector, &
                   scatter_element, scatter_springs, add_spring_forces, body_pressure_modes
-  use finite_strain_elements, only: finite_strain_response, finite_strain_energy, finite_strain_state
+  use finite_strain_elements, only: finite_strain_response, finite_strain_energy, finite_strain_state, &
+                                    finite_strain_dilatation
   use material, only: von_mises_4
   use sparse_matrix, only: csc_t
   use lapack_interfaces, only: dsyev
   implicit none
   private
-  public :: assemble_tangent, internal_force_vector, finite_strain_fields
+  public :: assemble_tangent, internal_force_vector, finite_strain_fields, element_dilatations
 
 contains
 
   !> Element e of body bd at u: fe (solver basis) and, when present, ke.
   !>   info (out) 0; > 0 when J <= 0 at a point of the element
-  subroutine element_response_at(bd, e, u, fe, ke, info)
+  subroutine element_response_at(bd, e, u, fe, ke, info, theta)
     type(body_t), intent(in) :: bd
     integer, intent(in) :: e
     real(dp), intent(in) :: u(:)
     real(dp), intent(out) :: fe(:)
     real(dp), intent(inout), optional :: ke(:,:)
     integer, intent(out) :: info
+    real(dp), intent(in), optional :: theta
     real(dp) :: xe(2, max_nen), ue(2 * max_nen), kl(2 * max_nen, 2 * max_nen)
     integer :: dofs(2 * max_nen), nen, m
     nen = bd%mesh%nen(e)
@@ -64,7 +67,7 @@ contains
       ! nearly incompressible body); the quadratic elements go without it
       if (present(ke)) then
         call finite_strain_response(nen, xe(:, 1:nen), ue(1:m), bd%rubber, bd%axisymmetric, bd%thick, fe(1:m), kl, &
-                                    info, fbar=with_fbar(bd, nen))
+                                    info, fbar=with_fbar(bd, nen), theta=theta)
       else                                   ! the forces alone (the line search's residuals): no tangent
         call finite_strain_response(nen, xe(:, 1:nen), ue(1:m), bd%rubber, bd%axisymmetric, bd%thick, fe(1:m), &
                                     info=info, fbar=with_fbar(bd, nen))
@@ -95,7 +98,9 @@ contains
   !>                  (body, 0) when a term K_fd dubar_d would overflow
   !>   definite (in, optional) .true.: the hyperelastic elements' tangents cut to
   !>                  their positive parts (module header)
-  subroutine assemble_tangent(bodies, u, eq, dubar, k, rhs, bad, definite)
+  !>   theta  (in, optional) (nelem, global numbering) the F-bar elements'
+  !>                  dilatation states, the pressure of their tangents (newton_step)
+  subroutine assemble_tangent(bodies, u, eq, dubar, k, rhs, bad, definite, theta)
     type(body_t), intent(in) :: bodies(:)
     real(dp), intent(in) :: u(:), dubar(:)
     integer, intent(in) :: eq(:)
@@ -103,6 +108,7 @@ contains
     real(dp), intent(inout) :: rhs(:)
     integer, intent(out) :: bad(2)
     logical, intent(in), optional :: definite
+    real(dp), intent(in), optional :: theta(:)
     real(dp) :: fe(2 * max_nen), ke(2 * max_nen, 2 * max_nen), fs(size(u))
     integer :: dofs(2 * max_nen), b, e, m, a, info
     logical :: ok
@@ -110,7 +116,11 @@ contains
     do b = 1, size(bodies)
       do e = 1, bodies(b)%mesh%nelem
         m = 2 * bodies(b)%mesh%nen(e)
-        call element_response_at(bodies(b), e, u, fe, ke, info)
+        if (present(theta)) then
+          call element_response_at(bodies(b), e, u, fe, ke, info, theta(bodies(b)%elem0 + e))
+        else
+          call element_response_at(bodies(b), e, u, fe, ke, info)
+        end if
         if (info /= 0) then
           bad = [b, e]
           return
@@ -160,6 +170,44 @@ contains
     integer, intent(in) :: nen
     with_fbar = bd%bbar .and. nen >= 4
   end function with_fbar
+
+  !> Per element (bodies(b)%elem0 + e) of a hyperelastic body with F-bar:
+  !> its mean dilatation J0 at u and dJ0/du du; the others' 1 and 0.
+  !>   bad (out) (2) 0, 0; (body, element) of an element with J <= 0
+  subroutine element_dilatations(bodies, u, du, j0, dj0, bad)
+    type(body_t), intent(in) :: bodies(:)
+    real(dp), intent(in) :: u(:), du(:)
+    real(dp), intent(out) :: j0(:), dj0(:)
+    integer, intent(out) :: bad(2)
+    real(dp) :: xe(2, max_nen), ue(2 * max_nen), due(2 * max_nen)
+    integer :: dofs(2 * max_nen), b, e, m, nen, info, ge
+    j0 = 1.0_dp
+    dj0 = 0.0_dp
+    bad = 0
+    do b = 1, size(bodies)
+      if (.not. bodies(b)%finite) cycle
+      do e = 1, bodies(b)%mesh%nelem
+        nen = bodies(b)%mesh%nen(e)
+        if (.not. with_fbar(bodies(b), nen)) cycle
+        m = 2 * nen
+        ge = bodies(b)%elem0 + e
+        call element_coordinates(bodies(b)%mesh, e, xe)
+        call element_dofs(bodies(b), e, dofs)
+        ue(1:m) = u(dofs(1:m))
+        due(1:m) = du(dofs(1:m))
+        if (allocated(bodies(b)%axes)) then
+          call rotate_element_vector(bodies(b), e, ue, .true.)
+          call rotate_element_vector(bodies(b), e, due, .true.)
+        end if
+        call finite_strain_dilatation(nen, xe(:, 1:nen), ue(1:m), due(1:m), bodies(b)%axisymmetric, j0(ge), dj0(ge), &
+                                      info)
+        if (info /= 0) then
+          bad = [b, e]
+          return
+        end if
+      end do
+    end do
+  end subroutine element_dilatations
 
   !> fint = f_int(u) on every dof (the fixed rows: the reactions), solver basis.
   !>   bad (out) (2) 0, 0; (body, element) of an element with J <= 0 (fint incomplete)

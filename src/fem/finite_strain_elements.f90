@@ -40,8 +40,10 @@
 !> load step.
 !>
 !> Programming interface
-!>   finite_strain_response(nen, xe, ue, law, axisymmetric, thick, fe, ke, info [, fbar])
+!>   finite_strain_response(nen, xe, ue, law, axisymmetric, thick, fe, ke, info [, fbar, theta])
 !>        fe = f_int(ue) (2 nen) and, when present, ke = K(ue) (2 nen, 2 nen)
+!>   finite_strain_dilatation(nen, xe, ue, due, axisymmetric, j0, dj0, info)
+!>        F-bar's mean dilatation J0 and dJ0/du due
 !>   finite_strain_energy(nen, xe, ue, law, axisymmetric, thick, energy, info [, fbar])
 !>        int W dV0, the potential whose gradient is f_int
 !>   finite_strain_state(nen, xe, ue, law, axisymmetric, sig4, jac, stretch, info)
@@ -55,6 +57,7 @@ module finite_strain_elements
   implicit none
   private
   public :: finite_strain_response, finite_strain_energy, finite_strain_state, deformation_gradient
+  public :: finite_strain_dilatation
 
   !> F-bar's data of the element's mean dilatation (centre_state).
   type :: centre_t
@@ -131,7 +134,10 @@ contains
   !>   ke           (out, optional) at least (2 nen, 2 nen): its leading block is K
   !>   info         (out) 0; q > 0 when J <= 0 at point q (fe, ke incomplete)
   !>   fbar         (in, optional) .true.: F-bar (module header); absent: .false.
-  pure subroutine finite_strain_response(nen, xe, ue, law, axisymmetric, thick, fe, ke, info, fbar)
+  !>   theta        (in, optional) with fbar and ke: the element's dilatation
+  !>                state, whose pressure K (theta - 1) the tangent's initial-stress
+  !>                terms take instead of K (J0 - 1) (newton_step); fe is F-bar's
+  pure subroutine finite_strain_response(nen, xe, ue, law, axisymmetric, thick, fe, ke, info, fbar, theta)
     integer, intent(in) :: nen
     real(dp), intent(in) :: xe(2, nen), ue(2 * nen), thick
     type(hyperelastic_t), intent(in) :: law
@@ -140,7 +146,8 @@ contains
     real(dp), intent(inout), optional :: ke(:,:)
     integer, intent(out) :: info
     logical, intent(in), optional :: fbar
-    real(dp) :: xi(2, 9), w(9), dv, f(3, 3), p5(5), a5(5, 5)
+    real(dp), intent(in), optional :: theta
+    real(dp) :: xi(2, 9), w(9), dv, f(3, 3), p5(5), a5(5, 5), pt5(5)
     real(dp) :: d(5, 2 * max_nen), ad(5, 2 * max_nen), extra(2 * max_nen, 2 * max_nen)
     type(centre_t) :: c0
     integer :: q, nq, m, j, k
@@ -158,8 +165,13 @@ contains
     do q = 1, nq
       call point_state(nen, xe, ue, xi(:, q), w(q), axisymmetric, thick, bar, c0, f, d(:, 1:m), dv, k)
       if (k == 0) then
-        if (present(ke)) then
+        if (present(ke) .and. present(theta) .and. bar) then
+          ! the tangent's pressure: the element's dilatation state's (module header)
+          call first_piola(law, f, p5, info=k)
+          if (k == 0) call first_piola(law, f, pt5, a5, k, pvol=law%bulk * (theta - 1.0_dp))
+        else if (present(ke)) then
           call first_piola(law, f, p5, a5, k)
+          pt5 = p5
         else
           call first_piola(law, f, p5, info=k)
         end if
@@ -179,11 +191,25 @@ contains
         end do
       end do
       if (bar) then                                  ! K += P : d2 F_bar / du2 dV0
-        call fbar_second_term(nen, xe, ue, xi(:, q), axisymmetric, c0, p5, extra(1:m, 1:m))
+        call fbar_second_term(nen, xe, ue, xi(:, q), axisymmetric, c0, pt5, extra(1:m, 1:m))
         ke(1:m, 1:m) = ke(1:m, 1:m) + dv * extra(1:m, 1:m)
       end if
     end do
   end subroutine finite_strain_response
+
+  !> The element's mean dilatation J0 at ue and its derivative along due,
+  !> dJ0/du due (F-bar's J0, centre_state); info 1 when J <= 0 at a point.
+  pure subroutine finite_strain_dilatation(nen, xe, ue, due, axisymmetric, j0, dj0, info)
+    integer, intent(in) :: nen
+    real(dp), intent(in) :: xe(2, nen), ue(2 * nen), due(2 * nen)
+    logical, intent(in) :: axisymmetric
+    real(dp), intent(out) :: j0, dj0
+    integer, intent(out) :: info
+    type(centre_t) :: c0
+    call centre_state(nen, xe, ue, axisymmetric, c0, info, hessian=.false.)
+    j0 = c0%jac
+    dj0 = dot_product(c0%dj(1:2 * nen), due)
+  end subroutine finite_strain_dilatation
 
   !> What F-bar needs of the element: its mean dilatation J0 = int J dV0 / V0
   !> on the stiffness rule, dJ0/du and d2 J0 / du2 (the means of G' dJ/dF and

@@ -98,14 +98,18 @@ contains
   !>   s    (out) (3, 3) S, symmetric (0 when info /= 0)
   !>   cc   (out, optional) (3, 3, 3, 3) CC, with the minor and major symmetries
   !>   info (out) 0; 1 when det F <= 0 (nothing else computed)
-  pure subroutine second_piola(law, f, s, cc, info)
+  !>   pvol (in, optional) the pressure that stands for U'(J) = K (J - 1) in S
+  !>        and CC (U'' = K is kept): the Newton tangent's pressure of a
+  !>        dilatation state (newton_step); absent: U'(J)
+  pure subroutine second_piola(law, f, s, cc, info, pvol)
     type(hyperelastic_t), intent(in) :: law
     real(dp), intent(in) :: f(3, 3)
     real(dp), intent(out) :: s(3, 3)
     real(dp), intent(out), optional :: cc(3, 3, 3, 3)
     integer, intent(out) :: info
+    real(dp), intent(in), optional :: pvol
     real(dp) :: c(3, 3), cinv(3, 3), eye(3, 3), a2(3, 3), a3(3, 3)
-    real(dp) :: i1, i2, i3, jac, w1, w2, w3, w13, w23, w33, ia, ib, ic
+    real(dp) :: i1, i2, i3, jac, w1, w2, w3, w13, w23, w33, ia, ib, ic, up
     integer :: i, j, k, l
 
     s = 0.0_dp
@@ -131,8 +135,10 @@ contains
     ic = 1.0_dp / i3                                 ! I3^-1
     w1 = law%c10 * ia
     w2 = law%c01 * ib
+    up = law%bulk * (jac - 1.0_dp)                   ! U'(J) of U = K/2 (J - 1)^2
+    if (present(pvol)) up = pvol
     w3 = -one_third * law%c10 * i1 * ia * ic - 2.0_dp * one_third * law%c01 * i2 * ib * ic &
-         + 0.5_dp * law%bulk * (jac - 1.0_dp) / jac   ! d/dI3 of K/2 (J - 1)^2, dJ/dI3 = 1 / (2 J)
+         + 0.5_dp * up / jac                          ! d/dI3 of U, dJ/dI3 = 1 / (2 J)
     a2 = i1 * eye - c
     a3 = i3 * cinv
     s = 2.0_dp * (w1 * eye + w2 * a2 + w3 * a3)     ! S = 2 sum_i W_i dI_i/dC
@@ -140,7 +146,7 @@ contains
     w13 = -one_third * law%c10 * ia * ic
     w23 = -2.0_dp * one_third * law%c01 * ib * ic
     w33 = 4.0_dp / 9.0_dp * law%c10 * i1 * ia * ic**2 + 10.0_dp / 9.0_dp * law%c01 * i2 * ib * ic**2 &
-          + 0.25_dp * law%bulk / jac**3
+          + 0.25_dp * (law%bulk * jac - up) / jac**3   ! (U'' J - U') / (4 J^3)
     do l = 1, 3
       do k = 1, 3
         do j = 1, 3
@@ -164,19 +170,21 @@ contains
   !>   p5   (out) (5) P11, P12, P21, P22, P33
   !>   a5   (out, optional) (5, 5) dP_m / dF_n (symmetric); absent: P alone
   !>   info (out) 0; 1 when det F <= 0 (p5, a5 zero)
-  pure subroutine first_piola(law, f, p5, a5, info)
+  !>   pvol (in, optional) as second_piola's
+  pure subroutine first_piola(law, f, p5, a5, info, pvol)
     type(hyperelastic_t), intent(in) :: law
     real(dp), intent(in) :: f(3, 3)
     real(dp), intent(out) :: p5(5)
     real(dp), intent(out), optional :: a5(5, 5)
     integer, intent(out) :: info
+    real(dp), intent(in), optional :: pvol
     real(dp) :: s(3, 3), cc(3, 3, 3, 3), p(3, 3), t
     integer :: m, n, i, bj, k, bl, ii, kk
     if (present(a5)) then
-      call second_piola(law, f, s, cc, info)
+      call second_piola(law, f, s, cc, info, pvol)
       a5 = 0.0_dp
     else
-      call second_piola(law, f, s, info=info)
+      call second_piola(law, f, s, info=info, pvol=pvol)
     end if
     p5 = 0.0_dp
     if (info /= 0) return

@@ -58,6 +58,7 @@ module hyperelastic_step
     logical, allocatable :: soft(:)            !< (ndof) pinned dofs of bodies held only by contact, free dofs of RIGIDs
     type(csc_t) :: k                           !< the tangent's pattern
     real(dp), allocatable :: u_prior(:)        !< (ndof) where the last step started (unallocated: none)
+    logical :: predict = .true.                !< .false. once a predicted start failed (newton_step)
   end type newton_history_t
 
 contains
@@ -196,7 +197,14 @@ contains
       err%message = step_label(prob, kstep) // err%message
       return
     end if
+    ! a predicted start that failed: the path's later steps start from the last state
+    if (res%unpredicted .and. hist%predict) then
+      hist%predict = .false.
+      call say(log, 'newton   ' // step_label(prob, kstep) // 'the tangent at the start the last step''s increment ' // &
+        'predicts is not positive definite: this step and the later ones start from the last state')
+    end if
     call move_alloc(u_start, hist%u_prior)
+    if (.not. hist%predict) deallocate(hist%u_prior)
     ! each halving of the step, as it was made
     if (len(res%notes) > 0) then
       line = res%notes

@@ -9,7 +9,7 @@
 !>     u <- u + alpha du  (du_d = dubar_d),
 !> alpha = 1, halved while the trial turns an element inside out (J <= 0) or,
 !> once the prescribed values are reached, while it does not decrease the
-!> residual norm by the Armijo fraction 1e-4 alpha (at most max_halvings
+!> residual's norm by the Armijo fraction 1e-4 alpha (at most max_halvings
 !> times; the last J > 0 trial is then taken).  Converged: the prescribed
 !> values reached and ||f_f - f_int,f|| <= tol * scale, scale = max(||f||,
 !> ||f_int||, ||f_c||) over the bodies' dofs (the reactions count: a step
@@ -36,12 +36,23 @@
 !> element: the caller halves the step.  Nothing here stops the run or
 !> writes a file.
 !>
+!> The tangent's pressure (doc/theory.md, "The tangent's pressure").  Each
+!> element with F-bar keeps a dilatation theta, updated along the
+!> linearization as the condensed mixed (u, theta, p) method of the mean
+!> dilatation does, theta <- theta + alpha (J0(u) - theta + dJ0/du du); the
+!> tangent's initial-stress terms take K (theta - 1) where F-bar's take
+!> K (J0 - 1), whose error after an update is K times its square.  The
+!> residual is F-bar's; theta - J0 falls as the update squared, so the last
+!> iterates are Newton's.
+!>
 !> Predictor (solve_newton_increment's u_prior, solve_newton_step's guess).
 !> A sub-increment starts from the last one's displacement per unit of load
 !> factor times its own (the secant predictor), its fixed dofs at their
 !> values, unless an element is inside out there; when the predicted start
 !> fails, the same sub-increment is solved again from where it started
-!> before it is halved.
+!> before it is halved.  A predicted start whose first tangent is not
+!> definite sets res%unpredicted: the increment's later sub-increments go
+!> without the predictor, and so do the caller's later steps.
 !>
 !> Cut-back (solve_newton_increment).  A load step from the loads (f0,
 !> ubar0) to (f1, ubar1) is walked in sub-increments of the load factor t,
@@ -93,7 +104,7 @@ module newton_step
   use errors, only: error_t
   use strings, only: int_to_str, real_to_str
   use body, only: body_t
-  use finite_strain_assembly, only: assemble_tangent, internal_force_vector
+  use finite_strain_assembly, only: assemble_tangent, internal_force_vector, element_dilatations
   use contact_set, only: contact_set_t, pair_spec_t
   use moved_contact, only: build_moved_contact_set, row_keys
   use augmented_tangent, only: cover_rows, augment_rows
@@ -128,6 +139,7 @@ module newton_step
     character(len=:), allocatable :: reason   !< why it did not converge ('' when it did)
     integer :: cuts = 0                       !< solve_newton_increment: halvings made
     integer :: substeps = 0                   !< solve_newton_increment: sub-increments solved
+    logical :: unpredicted = .false.          !< the tangent at a predicted start was not definite (module header)
     real(dp), allocatable :: fcon(:)          !< (ndof) contact forces on the bodies, -B' lambda (contact)
     real(dp) :: gap = 0.0_dp                  !< contact: the least linearized gap after the last iterate
     real(dp) :: complementarity = 0.0_dp      !< contact: max lambda_i gap_i / (max lambda size), a length
@@ -176,14 +188,14 @@ contains
     type(factor_t) :: fac
     type(error_t), allocatable :: ferr
     real(dp), allocatable :: dubar(:), rhs(:), du_f(:), du(:), trial(:), fint(:), u_best(:)
-    real(dp), allocatable :: u_prev(:), du_prev(:), u_entry(:)
-    real(dp) :: merit, merit_trial, best, alpha, step, alpha_prev
+    real(dp), allocatable :: u_prev(:), du_prev(:), u_entry(:), theta(:), j0(:), dj0(:)
+    real(dp) :: merit, merit_trial, best, alpha, step, alpha_prev, rnorm, rnorm_trial, alpha_best
     integer :: it, i, h, bad(2), back, nb, stalled
     integer, parameter :: max_stalls = 2
     logical :: reached, analyzed, accepted, with_contact, grown, descent
     type(contact_set_t) :: cs
     logical, allocatable :: holds(:), closing(:)
-    logical :: active_set, settled, same_u
+    logical :: active_set, settled, same_u, predicted
     real(dp), allocatable :: target(:), arm(:)
     logical, allocatable :: soft_now(:)
     integer(i8), allocatable :: held_keys(:)
@@ -210,16 +222,24 @@ contains
     res%reason = ''
     analyzed = .false.
     u_entry = u                                       ! the slips of the sub-increment are measured from here
+    predicted = .false.
     if (present(guess)) then                          ! a predicted start, when no element is inside out there
-      call measure(guess, merit, reached, bad)
+      call measure(guess, merit, reached, bad, norm=rnorm)
       if (bad(1) == 0) u = guess
+      predicted = bad(1) == 0
     end if
-    call measure(u, merit, reached, bad)
+    call measure(u, merit, reached, bad, norm=rnorm)
     if (bad(1) /= 0) then
       res%bad = bad
       res%reason = 'the state the step starts from has an element with J <= 0'
       return
     end if
+    ! the elements' dilatation state: J0 where the step starts, moved to the
+    ! predicted start along its linearization
+    i = maxval([(bodies(h)%elem0 + bodies(h)%mesh%nelem, h = 1, size(bodies))])
+    allocate(theta(i), j0(i), dj0(i))
+    call element_dilatations(bodies, u_entry, u - u_entry, j0, dj0, bad)
+    theta = j0 + dj0
     res%history = [merit]
     step = huge(1.0_dp)
     back = 0
@@ -256,7 +276,7 @@ contains
       do i = 1, size(u)
         if (eq(i) > 0) rhs(eq(i)) = f(i)
       end do
-      call assemble_tangent(bodies, u, eq, dubar, k, rhs, bad, descent)
+      call assemble_tangent(bodies, u, eq, dubar, k, rhs, bad, descent, theta)
       if (bad(1) /= 0) then
         res%bad = bad
         res%reason = merge('a term of the tangent overflows   ', 'an element has J <= 0             ', bad(2) == 0)
@@ -291,6 +311,14 @@ contains
       end if
       if (allocated(ferr)) then
         deallocate(ferr)
+        ! a predicted start whose first tangent is not definite: the
+        ! prediction went wrong (an extrapolated contact zone); the caller
+        ! solves the sub-increment again from where it started
+        if (it == 0 .and. predicted) then
+          res%reason = 'the tangent at the predicted start is not positive definite'
+          res%unpredicted = .true.
+          exit
+        end if
         ! not positive definite at this iterate: first each hyperelastic
         ! element's tangent cut to its positive part (a descent direction of
         ! the stored energy, where the consistent tangent has none: far from
@@ -308,8 +336,11 @@ contains
           back = back + 1
           alpha_prev = 0.5_dp * alpha_prev
           u = u_prev + alpha_prev * du_prev
-          call measure(u, merit, reached, bad)
-          if (bad(1) == 0) cycle
+          call measure(u, merit, reached, bad, norm=rnorm)
+          if (bad(1) == 0) then
+            call element_dilatations(bodies, u, 0.0_dp * u, theta, dj0, bad)
+            cycle
+          end if
         end if
         ! the factorization's own text speaks of rigid modes: here it is the iterate
         res%reason = 'the tangent is not positive definite at the iterate'
@@ -344,9 +375,10 @@ contains
         if (.not. settled) step = huge(1.0_dp)
         ! the residual with this iterate's contact forces: u has not moved
         ! since the last measure, whose internal forces are u's
-        call measure(u, merit, reached, bad, fint_known=.true.)
+        call measure(u, merit, reached, bad, fint_known=.true., norm=rnorm)
       end if
       res%iterations = it
+      call element_dilatations(bodies, u, du, j0, dj0, bad)
       ! backtracking: J > 0 always; the Armijo decrease once ubar is reached
       alpha = 1.0_dp
       accepted = .false.
@@ -354,14 +386,20 @@ contains
       do h = 0, opts%max_halvings
         trial = u + alpha * du
         if (h == 0) where (eq == 0) trial = ubar                ! the full step reaches ubar exactly
-        call measure(trial, merit_trial, reached, bad)
+        call measure(trial, merit_trial, reached, bad, norm=rnorm_trial)
         if (bad(1) == 0) then
-          if (.not. all(dubar == 0.0_dp) .or. merit_trial <= (1.0_dp - 1.0e-4_dp * alpha) * merit) then
+          ! on the residual's norm, not on the relative residual: the
+          ! latter's scale (the internal forces) moves with the trial, and
+          ! falls with the residual when a large volume error is corrected
+          if (.not. all(dubar == 0.0_dp) .or. rnorm_trial <= (1.0_dp - 1.0e-4_dp * alpha) * rnorm) then
             accepted = .true.
             exit
           end if
-          if (merit_trial < best) u_best = trial
-          best = min(best, merit_trial)
+          if (rnorm_trial < best) then
+            u_best = trial
+            alpha_best = alpha
+          end if
+          best = min(best, rnorm_trial)
         else
           res%bad = bad
         end if
@@ -381,16 +419,19 @@ contains
           exit
         end if
         trial = u_best                                 ! the least residual with J > 0
-        call measure(trial, merit_trial, reached, bad)
+        alpha = alpha_best
+        call measure(trial, merit_trial, reached, bad, norm=rnorm_trial)
       else
         stalled = 0
       end if
       res%bad = 0
+      theta = theta + alpha * (j0 - theta + dj0)      ! the mixed update of the dilatation (module header)
       u_prev = u
       du_prev = trial - u
       alpha_prev = 1.0_dp
       u = trial
       merit = merit_trial
+      rnorm = rnorm_trial
       res%history = [res%history, merit]
     end do
     res%residual = merit
@@ -496,12 +537,13 @@ contains
 
     !> The relative residual at v, whether v's fixed dofs have their values,
     !> and the element with J <= 0 if any.
-    subroutine measure(v, rel, at_target, bad_elem, fint_known)
+    subroutine measure(v, rel, at_target, bad_elem, fint_known, norm)
       real(dp), intent(in) :: v(:)
       real(dp), intent(out) :: rel
       logical, intent(out) :: at_target
       integer, intent(out) :: bad_elem(2)
       logical, intent(in), optional :: fint_known     !< fint is v's already (from the last call)
+      real(dp), intent(out), optional :: norm         !< the residual's norm itself
       real(dp) :: rf, scale
       integer :: j
       bad_elem = 0
@@ -528,6 +570,7 @@ contains
       scale = max(norm2(f(1:nb)), norm2(fint(1:nb)), norm2(res%fcon(1:nb)), &
                   norm2(pack(f(nb + 1:) / arm(nb + 1:), eq(nb + 1:) > 0)), tiny(1.0_dp))
       rel = sqrt(rf) / scale
+      if (present(norm)) norm = sqrt(rf)
     end subroutine measure
 
   !> The contact problem of one Newton iterate: the rows C = [B; T] and the
@@ -746,7 +789,7 @@ contains
           end if
         end if
         rate = (u - u_start) / (t1 - t)
-        predict = .true.
+        predict = .not. res%unpredicted
         t = t1
         dt = min(2 * dt, full)                       ! the next sub-increment may be larger again
         cycle
@@ -754,9 +797,13 @@ contains
       u = u_start
       if (predict) then                              ! the prediction first: the same increment from u
         predict = .false.
+        ! a predicted start whose tangent is not definite: the prediction
+        ! misleads on this path (an extrapolated contact zone); the rest of
+        ! it starts from the last state
+        if (sub%unpredicted) res%unpredicted = .true.
         cycle
       end if
-      predict = allocated(rate)
+      predict = allocated(rate) .and. .not. res%unpredicted
       res%bad = sub%bad
       res%reason = sub%reason
       if (dt <= 2.0_dp**(-opts%max_cuts)) return      ! cutting no longer helps

@@ -7,6 +7,11 @@
 !>     under a large rigid rotation Q of a stretched state;
 !>   - f_int = d(int W dV0)/du and K = d f_int / du against central differences
 !>     on every element kind, plane strain and axisymmetric, distorted elements;
+!>   - the tangent with the volumetric pressure of a dilatation state (the
+!>     mixed iteration's, pvol and theta): P and A move by (pvol - U'(J)) times
+!>     dJ/dF and d2J/dF2 (central differences of J), the element's tangent
+!>     with theta = J0 is the consistent one, and its J0 and dJ0/du du
+!>     against central differences;
 !>   - the patch test in finite strain: a homogeneous deformation of a distorted
 !>     four-element patch leaves no force on its interior node, and the edge's
 !>     nodal forces add up to the nominal stress times the reference length.
@@ -18,7 +23,8 @@ program test_finite_strain
   use kinds, only: dp
   use hyperelastic, only: hyperelastic_t, make_hyperelastic, strain_energy, first_piola, second_piola, &
                           cauchy_stress, largest_stretch, reduced_index, initial_moduli
-  use finite_strain_elements, only: finite_strain_response, finite_strain_energy, finite_strain_state
+  use finite_strain_elements, only: finite_strain_response, finite_strain_energy, finite_strain_state, &
+                                    finite_strain_dilatation
   use elements, only: reference_node, shape_at
   use testing, only: check, check_close, check_small, finish_tests, tol_round
   implicit none
@@ -53,6 +59,11 @@ program test_finite_strain
   call check_patch(.false., .true.)
   call check_patch(.true., .true.)
   call check_fbar_volume()
+  call check_pressure_state(neo, f, 'neo-Hookean')
+  call check_pressure_state(mooney, f, 'Mooney-Rivlin')
+  call check_theta_element(4, .false.)
+  call check_theta_element(4, .true.)
+  call check_theta_element(9, .false.)
   call check_inverted()
   call finish_tests()
 
@@ -83,6 +94,95 @@ contains
     call second_piola(law, f, s, info=info)
     call check_small(maxval(abs(s - transpose(s))) / maxval(abs(s)), tol_round(16), what // ': S symmetric')
   end subroutine check_law
+
+  !> With pvol in place of U'(J) = K (J - 1): P + (pvol - U') dJ/dF and
+  !> A + (pvol - U') d2J/dF2, dJ/dF and d2J/dF2 by central differences of J.
+  subroutine check_pressure_state(law, f, what)
+    type(hyperelastic_t), intent(in) :: law
+    real(dp), intent(in) :: f(3, 3)
+    character(len=*), intent(in) :: what
+    real(dp) :: p5(5), a5(5, 5), pt(5), at(5, 5), dj(5), d2j(5, 5), fp(3, 3), fm(3, 3), jac, pvol, dp5
+    integer :: n, m, info
+    ! J is linear in each component of F: central differences of any step
+    ! are exact but for round-off, O(eps / hj^2) on the second ones
+    real(dp), parameter :: hj = 0.1_dp
+    jac = jacobian3(f)
+    pvol = law%bulk * (jac - 1.0_dp) + 0.7_dp * law%bulk
+    call first_piola(law, f, p5, a5, info)
+    call first_piola(law, f, pt, at, info, pvol=pvol)
+    dp5 = pvol - law%bulk * (jac - 1.0_dp)
+    do n = 1, 5
+      fp = f
+      fm = f
+      fp(reduced_index(1, n), reduced_index(2, n)) = fp(reduced_index(1, n), reduced_index(2, n)) + hj
+      fm(reduced_index(1, n), reduced_index(2, n)) = fm(reduced_index(1, n), reduced_index(2, n)) - hj
+      dj(n) = (jacobian3(fp) - jacobian3(fm)) / (2 * hj)
+      do m = 1, 5
+        d2j(m, n) = (cofactor(fp, m) - cofactor(fm, m)) / (2 * hj)
+      end do
+    end do
+    call check_small(maxval(abs(pt - p5 - dp5 * dj)) / maxval(abs(pt)), tol_round(1024), &
+                     what // ': P with a pressure state = P + (p - U'') dJ/dF')
+    call check_small(maxval(abs(at - a5 - dp5 * d2j)) / maxval(abs(at)), tol_round(1024), &
+                     what // ': A with a pressure state = A + (p - U'') d2J/dF2')
+    call first_piola(law, f, pt, at, info, pvol=law%bulk * (jac - 1.0_dp))
+    call check_small(maxval(abs(at - a5)) / maxval(abs(a5)), tol_round(256), &
+                     what // ': A with the pressure U''(J) is the consistent one')
+  end subroutine check_pressure_state
+
+  !> det F of a plane or axisymmetric F (F13 = F23 = F31 = F32 = 0).
+  pure real(dp) function jacobian3(f) result(jac)
+    real(dp), intent(in) :: f(3, 3)
+    jac = (f(1, 1) * f(2, 2) - f(1, 2) * f(2, 1)) * f(3, 3)
+  end function jacobian3
+
+  !> dJ/dF's reduced component m, by central differences of J (exact: J is
+  !> linear in each component).
+  pure real(dp) function cofactor(f, m) result(c)
+    real(dp), intent(in) :: f(3, 3)
+    integer, intent(in) :: m
+    real(dp) :: fp(3, 3), fm(3, 3)
+    real(dp), parameter :: hj = 0.1_dp
+    fp = f
+    fm = f
+    fp(reduced_index(1, m), reduced_index(2, m)) = fp(reduced_index(1, m), reduced_index(2, m)) + hj
+    fm(reduced_index(1, m), reduced_index(2, m)) = fm(reduced_index(1, m), reduced_index(2, m)) - hj
+    c = (jacobian3(fp) - jacobian3(fm)) / (2 * hj)
+  end function cofactor
+
+  !> An F-bar element: J0 and dJ0/du du against central differences of J0
+  !> (theta itself), the tangent with theta = J0 the consistent one, with
+  !> another theta the same forces and a different tangent.
+  subroutine check_theta_element(nen, axisymmetric)
+    integer, intent(in) :: nen
+    logical, intent(in) :: axisymmetric
+    real(dp) :: xe(2, nen), ue(2 * nen), due(2 * nen), fe(2 * nen), ft(2 * nen), ke(2 * nen, 2 * nen)
+    real(dp) :: kt(2 * nen, 2 * nen), j0, dj0, jp, jm, dum
+    integer :: j, info
+    character(len=40) :: what
+    write(what, '(a, i0, a)') 'element ', nen, merge(' axisymmetric', ' plane strain', axisymmetric)
+    call distorted_element(nen, xe)
+    do j = 1, nen
+      ue(2 * j - 1) = 0.2_dp * xe(2, j) - 0.1_dp * (xe(1, j) - 1.5_dp) + 0.02_dp * sin(3.0_dp * j)
+      ue(2 * j) = -0.25_dp * (xe(2, j) - 0.3_dp) + 0.1_dp * (xe(1, j) - 1.5_dp)**2 + 0.02_dp * cos(2.0_dp * j)
+      due(2 * j - 1) = 0.03_dp * cos(1.7_dp * j)
+      due(2 * j) = -0.02_dp * sin(2.3_dp * j)
+    end do
+    call finite_strain_dilatation(nen, xe, ue, due, axisymmetric, j0, dj0, info)
+    call check(info == 0, trim(what) // ': J0 at a deformed state')
+    call finite_strain_dilatation(nen, xe, ue + h * due, due, axisymmetric, jp, dum, info)
+    call finite_strain_dilatation(nen, xe, ue - h * due, due, axisymmetric, jm, dum, info)
+    call check_small(abs(dj0 - (jp - jm) / (2 * h)) / abs(dj0), fd_tol, trim(what) // ': dJ0/du du')
+    call finite_strain_response(nen, xe, ue, mooney, axisymmetric, 1.0_dp, fe, ke, info, .true.)
+    call finite_strain_response(nen, xe, ue, mooney, axisymmetric, 1.0_dp, ft, kt, info, .true., theta=j0)
+    call check_small(maxval(abs(kt - ke)) / maxval(abs(ke)), tol_round(1024), &
+                     trim(what) // ': the tangent with theta = J0 is the consistent one')
+    call finite_strain_response(nen, xe, ue, mooney, axisymmetric, 1.0_dp, ft, kt, info, .true., theta=j0 + 0.1_dp)
+    call check_small(maxval(abs(ft - fe)) / maxval(abs(fe)), tol_round(16), trim(what) // ': theta leaves f_int as it is')
+    call check(maxval(abs(kt - ke)) > 1.0e-3_dp * maxval(abs(ke)), trim(what) // ': theta moves the tangent')
+    call check_small(maxval(abs(kt - transpose(kt))) / maxval(abs(kt)), tol_round(256), &
+                     trim(what) // ': the tangent with theta symmetric')
+  end subroutine check_theta_element
 
   !> F = I: no stress, and A the linear law (lambda = K - 2 mu/3): A_1111 =
   !> K + 4 mu/3, A_1122 = K - 2 mu/3, A_1212 = A_1221 = mu.
