@@ -37,7 +37,8 @@ module hyperelastic_step
   use scene, only: step_forces
   use body, only: build_pattern, number_equations
   use sparse_matrix, only: csc_t
-  use newton_step, only: newton_options_t, newton_result_t, solve_newton_increment, element_note
+  use newton_step, only: newton_options_t, newton_result_t, solve_newton_increment, element_note, start_predicted, &
+                         start_plain, start_through
   use contact_set, only: contact_set_t
   use augmented_tangent, only: cover_dofs
   use held_by_contact, only: split_step_modes
@@ -58,7 +59,7 @@ module hyperelastic_step
     logical, allocatable :: soft(:)            !< (ndof) pinned dofs of bodies held only by contact, free dofs of RIGIDs
     type(csc_t) :: k                           !< the tangent's pattern
     real(dp), allocatable :: u_prior(:)        !< (ndof) where the last step started (unallocated: none)
-    logical :: predict = .true.                !< .false. once a predicted start failed (newton_step)
+    integer :: start = start_predicted         !< how the last step's sub-increments started (newton_step)
   end type newton_history_t
 
 contains
@@ -187,7 +188,7 @@ contains
     associate (eq => hist%eq, nfree => hist%nfree, k => hist%k, soft => hist%soft)
       if (allocated(hist%u_prior)) then              ! the last step's increment predicts this one's
         call solve_newton_increment(prob%sc%bodies, eq, nfree, k, f0, f1, ubar0, ubar1, opts, u, res, err, &
-                                    prob%sc%specs, hist%u_prior, soft)
+                                    prob%sc%specs, hist%u_prior, soft, hist%start)
       else
         call solve_newton_increment(prob%sc%bodies, eq, nfree, k, f0, f1, ubar0, ubar1, opts, u, res, err, &
                                     prob%sc%specs, soft=soft)
@@ -197,14 +198,22 @@ contains
       err%message = step_label(prob, kstep) // err%message
       return
     end if
-    ! a predicted start that failed: the path's later steps start from the last state
-    if (res%unpredicted .and. hist%predict) then
-      hist%predict = .false.
-      call say(log, 'newton   ' // step_label(prob, kstep) // 'the tangent at the start the last step''s increment ' // &
-        'predicts is not positive definite: this step and the later ones start from the last state')
+    ! a step that started otherwise than the last: said, and the next starts so
+    if (allocated(hist%u_prior) .and. res%converged .and. res%start /= hist%start) then
+      select case (res%start)
+      case (start_plain)
+        line = 'from the last state (the tangent at the start the last step''s increment predicts is not positive ' // &
+               'definite)'
+      case (start_through)
+        line = 'from the prediction, through its tangent that is not positive definite (from the last state ' // &
+               'Newton''s method did not converge)'
+      case default
+        line = 'from the prediction'
+      end select
+      call say(log, 'newton   ' // step_label(prob, kstep) // 'started ' // line // '; the next steps start so')
+      hist%start = res%start
     end if
     call move_alloc(u_start, hist%u_prior)
-    if (.not. hist%predict) deallocate(hist%u_prior)
     ! each halving of the step, as it was made
     if (len(res%notes) > 0) then
       line = res%notes

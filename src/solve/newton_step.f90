@@ -50,9 +50,14 @@
 !> factor times its own (the secant predictor), its fixed dofs at their
 !> values, unless an element is inside out there; when the predicted start
 !> fails, the same sub-increment is solved again from where it started
-!> before it is halved.  A predicted start whose first tangent is not
-!> definite sets res%unpredicted: the increment's later sub-increments go
-!> without the predictor, and so do the caller's later steps.
+!> before it is halved.  Three starts (start_*): the prediction, given up at
+!> once when its first tangent is not definite (an extrapolated contact
+!> zone can make it so, on the O-ring); the last state; the prediction
+!> again, through that indefinite tangent (the elements' positive parts; on
+!> a section held by its hoop it is the start that converges).  A failed
+!> start tries the next untried one before the increment is halved, and the
+!> one that converged is where the next sub-increment, and through
+!> res%start the caller's next step, begin.
 !>
 !> Cut-back (solve_newton_increment).  A load step from the loads (f0,
 !> ubar0) to (f1, ubar1) is walked in sub-increments of the load factor t,
@@ -94,9 +99,9 @@
 !> Programming interface
 !>   type(newton_options_t)   tol, maxit, max_halvings, max_cuts, contact (lemke or active_set)
 !>   type(newton_result_t)    converged, iterations, residual, bad element, reason
-!>   solve_newton_step(bodies, eq, nfree, k, f, ubar, opts, u, res, err [, specs] [, guess] [, soft])
+!>   solve_newton_step(bodies, eq, nfree, k, f, ubar, opts, u, res, err [, specs] [, guess] [, soft] [, strict])
 !>   solve_newton_increment(bodies, eq, nfree, k, f0, f1, ubar0, ubar1, opts, u, res, err [, specs]
-!>                          [, u_prior] [, soft])
+!>                          [, u_prior] [, soft] [, start])
 !>        from the loads (f0, ubar0) at u to (f1, ubar1), halving what fails
 !>   element_note(bodies, bad)  ' (body NAME, element E)' for a message, '' when bad names none
 module newton_step
@@ -118,6 +123,12 @@ module newton_step
   implicit none
   private
   public :: newton_options_t, newton_result_t, solve_newton_step, solve_newton_increment, element_note
+  public :: start_predicted, start_plain, start_through
+
+  !> How a sub-increment starts (module header, "Predictor"): from the
+  !> prediction, given up when its first tangent is not definite; from the
+  !> last state; from the prediction, through an indefinite first tangent
+  integer, parameter :: start_predicted = 0, start_plain = 1, start_through = 2
 
   type :: newton_options_t
     real(dp) :: tol = 1.0e-8_dp       !< residual / scale at convergence (SOLVER newton_tol=)
@@ -139,7 +150,8 @@ module newton_step
     character(len=:), allocatable :: reason   !< why it did not converge ('' when it did)
     integer :: cuts = 0                       !< solve_newton_increment: halvings made
     integer :: substeps = 0                   !< solve_newton_increment: sub-increments solved
-    logical :: unpredicted = .false.          !< the tangent at a predicted start was not definite (module header)
+    logical :: start_refused = .false.        !< solve_newton_step: strict, and the tangent at the guess not definite
+    integer :: start = start_predicted        !< solve_newton_increment: how its last sub-increment started (module header)
     real(dp), allocatable :: fcon(:)          !< (ndof) contact forces on the bodies, -B' lambda (contact)
     real(dp) :: gap = 0.0_dp                  !< contact: the least linearized gap after the last iterate
     real(dp) :: complementarity = 0.0_dp      !< contact: max lambda_i gap_i / (max lambda size), a length
@@ -173,7 +185,9 @@ contains
   !>   specs  (in, optional) (npair) frictionless CONTACT pairs to follow (module header)
   !>   guess  (in, optional) (ndof) where to start instead of u (its fixed dofs at ubar),
   !>                  unless an element is inside out there
-  subroutine solve_newton_step(bodies, eq, nfree, k, f, ubar, opts, u, res, err, specs, guess, soft)
+  !>   strict (in, optional) .true.: a guess whose first tangent is not definite
+  !>                  ends the step at once (res%start_refused)
+  subroutine solve_newton_step(bodies, eq, nfree, k, f, ubar, opts, u, res, err, specs, guess, soft, strict)
     type(body_t), intent(in) :: bodies(:)
     integer, intent(in) :: eq(:), nfree
     type(csc_t), intent(inout) :: k
@@ -185,6 +199,7 @@ contains
     type(pair_spec_t), intent(in), optional :: specs(:)
     real(dp), intent(in), optional :: guess(:)
     logical, intent(in), optional :: soft(:)
+    logical, intent(in), optional :: strict
     type(factor_t) :: fac
     type(error_t), allocatable :: ferr
     real(dp), allocatable :: dubar(:), rhs(:), du_f(:), du(:), trial(:), fint(:), u_best(:)
@@ -311,13 +326,14 @@ contains
       end if
       if (allocated(ferr)) then
         deallocate(ferr)
-        ! a predicted start whose first tangent is not definite: the
-        ! prediction went wrong (an extrapolated contact zone); the caller
-        ! solves the sub-increment again from where it started
-        if (it == 0 .and. predicted) then
-          res%reason = 'the tangent at the predicted start is not positive definite'
-          res%unpredicted = .true.
-          exit
+        ! strict: a predicted start whose first tangent is not definite is
+        ! given up (the caller starts from the last state instead)
+        if (it == 0 .and. predicted .and. present(strict)) then
+          if (strict) then
+            res%reason = 'the tangent at the predicted start is not positive definite'
+            res%start_refused = .true.
+            exit
+          end if
         end if
         ! not positive definite at this iterate: first each hyperelastic
         ! element's tangent cut to its positive part (a descent direction of
@@ -721,9 +737,11 @@ contains
   !>                failure that ended it
   !>   u_prior (in, optional) (ndof) the state the previous load step started from:
   !>                its increment u - u_prior predicts this step's first one
+  !>   start  (in, optional) start_*: how a predicted sub-increment starts first
+  !>                (default start_predicted); res%start: how the last one did
   !>   other arguments as solve_newton_step
   subroutine solve_newton_increment(bodies, eq, nfree, k, f0, f1, ubar0, ubar1, opts, u, res, err, specs, u_prior, &
-                                    soft)
+                                    soft, start)
     type(body_t), intent(in) :: bodies(:)
     integer, intent(in) :: eq(:), nfree
     type(csc_t), intent(inout) :: k
@@ -735,11 +753,13 @@ contains
     type(pair_spec_t), intent(in), optional :: specs(:)
     real(dp), intent(in), optional :: u_prior(:)
     logical, intent(in), optional :: soft(:)
+    integer, intent(in), optional :: start
     type(newton_result_t) :: sub
     real(dp), allocatable :: u_start(:), rate(:), guess(:), ubar_t(:)
     real(dp) :: t, dt, t1
     real(dp), parameter :: full = 1.0_dp
-    logical :: predict
+    integer :: kind, pref
+    logical :: tried(start_predicted:start_through)
 
     res%notes = ''
     res%reason = ''
@@ -750,7 +770,10 @@ contains
     ! linear tangent, whose volume error times K can make the next tangent
     ! indefinite in a nearly incompressible body)
     if (present(u_prior)) rate = u - u_prior
-    predict = allocated(rate)
+    pref = start_predicted                           ! the start a sub-increment with a prediction tries first
+    if (present(start)) pref = start
+    kind = merge(pref, start_plain, allocated(rate))
+    tried = .false.
     t = 0.0_dp
     dt = full
     do while (t < full)
@@ -759,11 +782,14 @@ contains
       if (full - t1 <= 1.0e-12_dp) t1 = full
       u_start = u
       ubar_t = (1 - t1) * ubar0 + t1 * ubar1
-      if (predict) then
+      tried(kind) = .true.
+      if (kind /= start_plain) then
         guess = u + (t1 - t) * rate
         where (eq == 0) guess = ubar_t
         call solve_newton_step(bodies, eq, nfree, k, (1 - t1) * f0 + t1 * f1, ubar_t, opts, u, sub, err, specs, guess, &
-                               soft)
+                               soft, strict=kind == start_predicted)
+        ! a strict start that iterated is a start through: not worth another try
+        if (kind == start_predicted .and. .not. sub%start_refused) tried(start_through) = .true.
       else
         call solve_newton_step(bodies, eq, nfree, k, (1 - t1) * f0 + t1 * f1, ubar_t, opts, u, sub, err, specs, &
                                soft=soft)
@@ -788,22 +814,29 @@ contains
             res%slip = sub%slip
           end if
         end if
+        if (allocated(rate)) pref = kind             ! the next sub-increment starts as this one did
+        res%start = pref
         rate = (u - u_start) / (t1 - t)
-        predict = .not. res%unpredicted
+        kind = pref
+        tried = .false.
         t = t1
         dt = min(2 * dt, full)                       ! the next sub-increment may be larger again
         cycle
       end if
       u = u_start
-      if (predict) then                              ! the prediction first: the same increment from u
-        predict = .false.
-        ! a predicted start whose tangent is not definite: the prediction
-        ! misleads on this path (an extrapolated contact zone); the rest of
-        ! it starts from the last state
-        if (sub%unpredicted) res%unpredicted = .true.
-        cycle
+      ! the other starts of the same increment, before it is halved: from the
+      ! last state, then through the prediction's indefinite tangent
+      if (allocated(rate)) then
+        if (.not. tried(start_plain)) then
+          kind = start_plain
+          cycle
+        else if (.not. tried(start_through)) then
+          kind = start_through
+          cycle
+        end if
       end if
-      predict = allocated(rate) .and. .not. res%unpredicted
+      kind = merge(pref, start_plain, allocated(rate))
+      tried = .false.
       res%bad = sub%bad
       res%reason = sub%reason
       if (dt <= 2.0_dp**(-opts%max_cuts)) return      ! cutting no longer helps
