@@ -1,8 +1,10 @@
-!> finite_strain_assembly: the residual and the consistent tangent of a scene
+!> finite_strain_assembly: the residual and the tangent of a scene
 !> whose bodies are some hyperelastic (body%finite: module
 !> finite_strain_elements) and some linear (their K u and K, as module body),
 !> on K's pattern of build_pattern and with its Dirichlet elimination
-!> (doc/theory.md, "Finite strain: hyperelastic bodies").
+!> (doc/theory.md, "Finite strain: hyperelastic bodies").  The tangent is
+!> the consistent one, but that with theta the F-bar elements' initial-stress
+!> terms take the pressure of their dilatation state (newton_step).
 !>
 !> At a displacement u (ndof, solver basis) and a correction dubar of the
 !> prescribed values (the fixed dofs' target minus their current value), the

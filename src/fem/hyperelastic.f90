@@ -28,8 +28,9 @@
 !>   initial_moduli(law, e, nu)            Young's modulus and Poisson's ratio of the
 !>                                         reference state (the small-strain limit)
 !>   strain_energy(law, f)                 W(F), F (3, 3); huge when J <= 0
-!>   second_piola(law, f, s [, cc], info)  S (3, 3) and CC (3, 3, 3, 3); info 1 when J <= 0
-!>   first_piola(law, f, p5, a5, info)     P and dP/dF in the five reduced components
+!>   second_piola(law, f, s [, cc], info [, pvol])  S (3, 3) and CC (3, 3, 3, 3); info 1 when J <= 0;
+!>                                         pvol: the pressure that stands for U'(J)
+!>   first_piola(law, f, p5, a5, info [, pvol])  P and dP/dF in the five reduced components
 !>   cauchy_stress(law, f, sig4, info)     sigma = P F' / J as (xx, yy, xy, zz)
 !>   largest_stretch(f)                    the largest principal stretch sqrt(max eig C)
 module hyperelastic

@@ -38,7 +38,7 @@ module hyperelastic_step
   use body, only: build_pattern, number_equations
   use sparse_matrix, only: csc_t
   use newton_step, only: newton_options_t, newton_result_t, solve_newton_increment, element_note, start_predicted, &
-                         start_plain, start_through
+                         start_through
   use contact_set, only: contact_set_t
   use augmented_tangent, only: cover_dofs
   use held_by_contact, only: split_step_modes
@@ -200,16 +200,13 @@ contains
     end if
     ! a step that started otherwise than the last: said, and the next starts so
     if (allocated(hist%u_prior) .and. res%converged .and. res%start /= hist%start) then
-      select case (res%start)
-      case (start_plain)
-        line = 'from the last state (the tangent at the start the last step''s increment predicts is not positive ' // &
-               'definite)'
-      case (start_through)
+      if (res%start == start_through) then
         line = 'from the prediction, through its tangent that is not positive definite (from the last state ' // &
                'Newton''s method did not converge)'
-      case default
-        line = 'from the prediction'
-      end select
+      else
+        line = 'from the last state (from the start the last step''s increment predicts, the tangent was not ' // &
+               'positive definite or Newton''s method did not converge)'
+      end if
       call say(log, 'newton   ' // step_label(prob, kstep) // 'started ' // line // '; the next steps start so')
       hist%start = res%start
     end if

@@ -151,7 +151,9 @@ module newton_step
     integer :: cuts = 0                       !< solve_newton_increment: halvings made
     integer :: substeps = 0                   !< solve_newton_increment: sub-increments solved
     logical :: start_refused = .false.        !< solve_newton_step: strict, and the tangent at the guess not definite
-    integer :: start = start_predicted        !< solve_newton_increment: how its last sub-increment started (module header)
+    logical :: from_guess = .false.           !< solve_newton_step: it started from the guess (no element inside out there)
+    integer :: start = start_predicted        !< solve_newton_increment: how its last sub-increment with a
+                                              !< prediction started (module header)
     real(dp), allocatable :: fcon(:)          !< (ndof) contact forces on the bodies, -B' lambda (contact)
     real(dp) :: gap = 0.0_dp                  !< contact: the least linearized gap after the last iterate
     real(dp) :: complementarity = 0.0_dp      !< contact: max lambda_i gap_i / (max lambda size), a length
@@ -203,7 +205,7 @@ contains
     type(factor_t) :: fac
     type(error_t), allocatable :: ferr
     real(dp), allocatable :: dubar(:), rhs(:), du_f(:), du(:), trial(:), fint(:), u_best(:)
-    real(dp), allocatable :: u_prev(:), du_prev(:), u_entry(:), theta(:), j0(:), dj0(:)
+    real(dp), allocatable :: u_prev(:), du_prev(:), u_entry(:), theta(:), j0(:), dj0(:), theta_prev(:), dtheta_prev(:)
     real(dp) :: merit, merit_trial, best, alpha, step, alpha_prev, rnorm, rnorm_trial, alpha_best
     integer :: it, i, h, bad(2), back, nb, stalled
     integer, parameter :: max_stalls = 2
@@ -242,6 +244,7 @@ contains
       call measure(guess, merit, reached, bad, norm=rnorm)
       if (bad(1) == 0) u = guess
       predicted = bad(1) == 0
+      res%from_guess = predicted
     end if
     call measure(u, merit, reached, bad, norm=rnorm)
     if (bad(1) /= 0) then
@@ -253,7 +256,7 @@ contains
     ! predicted start along its linearization
     i = maxval([(bodies(h)%elem0 + bodies(h)%mesh%nelem, h = 1, size(bodies))])
     allocate(theta(i), j0(i), dj0(i))
-    call element_dilatations(bodies, u_entry, u - u_entry, j0, dj0, bad)
+    call element_dilatations(bodies, u_entry, u - u_entry, j0, dj0, bad)   ! J > 0 at u_entry: a state reached
     theta = j0 + dj0
     res%history = [merit]
     step = huge(1.0_dp)
@@ -352,11 +355,9 @@ contains
           back = back + 1
           alpha_prev = 0.5_dp * alpha_prev
           u = u_prev + alpha_prev * du_prev
+          theta = theta_prev + alpha_prev * dtheta_prev   ! the dilatation state goes back with it
           call measure(u, merit, reached, bad, norm=rnorm)
-          if (bad(1) == 0) then
-            call element_dilatations(bodies, u, 0.0_dp * u, theta, dj0, bad)
-            cycle
-          end if
+          if (bad(1) == 0) cycle
         end if
         ! the factorization's own text speaks of rigid modes: here it is the iterate
         res%reason = 'the tangent is not positive definite at the iterate'
@@ -394,7 +395,7 @@ contains
         call measure(u, merit, reached, bad, fint_known=.true., norm=rnorm)
       end if
       res%iterations = it
-      call element_dilatations(bodies, u, du, j0, dj0, bad)
+      call element_dilatations(bodies, u, du, j0, dj0, bad)    ! J > 0 at u (measured)
       ! backtracking: J > 0 always; the Armijo decrease once ubar is reached
       alpha = 1.0_dp
       accepted = .false.
@@ -441,7 +442,11 @@ contains
         stalled = 0
       end if
       res%bad = 0
-      theta = theta + alpha * (j0 - theta + dj0)      ! the mixed update of the dilatation (module header)
+      ! the mixed update of the dilatation (module header); u and theta are
+      ! where the last update started, so that one going too far can be halved
+      theta_prev = theta
+      dtheta_prev = alpha * (j0 - theta + dj0)
+      theta = theta + dtheta_prev
       u_prev = u
       du_prev = trial - u
       alpha_prev = 1.0_dp
@@ -788,8 +793,10 @@ contains
         where (eq == 0) guess = ubar_t
         call solve_newton_step(bodies, eq, nfree, k, (1 - t1) * f0 + t1 * f1, ubar_t, opts, u, sub, err, specs, guess, &
                                soft, strict=kind == start_predicted)
-        ! a strict start that iterated is a start through: not worth another try
+        ! a strict start that iterated is a start through: not worth another
+        ! try; one whose guess had an element inside out was a plain start
         if (kind == start_predicted .and. .not. sub%start_refused) tried(start_through) = .true.
+        if (.not. sub%from_guess) tried = .true.
       else
         call solve_newton_step(bodies, eq, nfree, k, (1 - t1) * f0 + t1 * f1, ubar_t, opts, u, sub, err, specs, &
                                soft=soft)
