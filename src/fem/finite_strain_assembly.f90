@@ -45,6 +45,20 @@ module finite_strain_assembly
 
 contains
 
+  !> ve = element e's values of v (solver basis) in x, y components (a node in
+  !> local axes turned back, as module body's kernels take them).
+  subroutine element_values(bd, e, v, ve)
+    type(body_t), intent(in) :: bd
+    integer, intent(in) :: e
+    real(dp), intent(in) :: v(:)
+    real(dp), intent(out) :: ve(:)
+    integer :: dofs(2 * max_nen), m
+    m = 2 * bd%mesh%nen(e)
+    call element_dofs(bd, e, dofs)
+    ve(1:m) = v(dofs(1:m))
+    if (allocated(bd%axes)) call rotate_element_vector(bd, e, ve, .true.)
+  end subroutine element_values
+
   !> Element e of body bd at u: fe (solver basis) and, when present, ke.
   !>   info (out) 0; > 0 when J <= 0 at a point of the element
   subroutine element_response_at(bd, e, u, fe, ke, info, theta)
@@ -56,13 +70,11 @@ contains
     integer, intent(out) :: info
     real(dp), intent(in), optional :: theta
     real(dp) :: xe(2, max_nen), ue(2 * max_nen), kl(2 * max_nen, 2 * max_nen)
-    integer :: dofs(2 * max_nen), nen, m
+    integer :: nen, m
     nen = bd%mesh%nen(e)
     m = 2 * nen
     call element_coordinates(bd%mesh, e, xe)
-    call element_dofs(bd, e, dofs)
-    ue(1:m) = u(dofs(1:m))
-    if (allocated(bd%axes)) call rotate_element_vector(bd, e, ue, .true.)     ! x, y components
+    call element_values(bd, e, u, ue)
     info = 0
     if (bd%finite) then
       ! F-bar where the linear kernels take B-bar's mean dilatation (Q1 of a
@@ -182,7 +194,7 @@ contains
     real(dp), intent(out) :: j0(:), dj0(:)
     integer, intent(out) :: bad(2)
     real(dp) :: xe(2, max_nen), ue(2 * max_nen), due(2 * max_nen)
-    integer :: dofs(2 * max_nen), b, e, m, nen, info, ge
+    integer :: b, e, m, nen, info, ge
     j0 = 1.0_dp
     dj0 = 0.0_dp
     bad = 0
@@ -194,13 +206,8 @@ contains
         m = 2 * nen
         ge = bodies(b)%elem0 + e
         call element_coordinates(bodies(b)%mesh, e, xe)
-        call element_dofs(bodies(b), e, dofs)
-        ue(1:m) = u(dofs(1:m))
-        due(1:m) = du(dofs(1:m))
-        if (allocated(bodies(b)%axes)) then
-          call rotate_element_vector(bodies(b), e, ue, .true.)
-          call rotate_element_vector(bodies(b), e, due, .true.)
-        end if
+        call element_values(bodies(b), e, u, ue)
+        call element_values(bodies(b), e, du, due)
         call finite_strain_dilatation(nen, xe(:, 1:nen), ue(1:m), due(1:m), bodies(b)%axisymmetric, j0(ge), dj0(ge), &
                                       info)
         if (info /= 0) then
@@ -253,7 +260,7 @@ contains
     real(dp), intent(inout) :: jac(:), stretch(:)
     real(dp), intent(inout), optional :: stress(:,:), vm(:)
     real(dp) :: xe(2, max_nen), ue(2 * max_nen), sig4(4), we
-    integer :: dofs(2 * max_nen), b, e, nen, ge, info
+    integer :: b, e, nen, ge, info
     energy = 0.0_dp
     do b = 1, size(bodies)
       if (.not. bodies(b)%finite) cycle
@@ -262,9 +269,7 @@ contains
           nen = bd%mesh%nen(e)
           ge = bd%elem0 + e
           call element_coordinates(bd%mesh, e, xe)
-          call element_dofs(bd, e, dofs)
-          ue(1:2 * nen) = u(dofs(1:2 * nen))
-          if (allocated(bd%axes)) call rotate_element_vector(bd, e, ue, .true.)
+          call element_values(bd, e, u, ue)
           call finite_strain_energy(nen, xe(:, 1:nen), ue(1:2 * nen), bd%rubber, bd%axisymmetric, bd%thick, we, &
                                     info, fbar=with_fbar(bd, nen))
           energy = energy + we
