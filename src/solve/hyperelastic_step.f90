@@ -37,8 +37,8 @@ module hyperelastic_step
   use scene, only: step_forces
   use body, only: build_pattern, number_equations
   use sparse_matrix, only: csc_t
-  use newton_step, only: newton_options_t, newton_result_t, solve_newton_increment, element_note, start_predicted, &
-                         start_through
+  use newton_step, only: newton_options_t, newton_result_t, element_note, start_predicted, start_through
+  use newton_increment, only: solve_newton_increment
   use contact_set, only: contact_set_t
   use augmented_tangent, only: cover_dofs
   use held_by_contact, only: split_step_modes

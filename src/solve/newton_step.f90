@@ -45,32 +45,9 @@
 !> residual is F-bar's; theta - J0 falls as the update squared, so the last
 !> iterates are Newton's.
 !>
-!> Predictor (solve_newton_increment's u_prior, solve_newton_step's guess).
-!> A sub-increment starts from the last one's displacement per unit of load
-!> factor times its own (the secant predictor), its fixed dofs at their
-!> values, unless an element is inside out there; when the predicted start
-!> fails, the same sub-increment is solved again from where it started
-!> before it is halved.  Three starts (start_*): the prediction, given up at
-!> once when its first tangent is not definite (an extrapolated contact
-!> zone can make it so, on the O-ring); the last state; the prediction
-!> again, through that indefinite tangent (the elements' positive parts; on
-!> a section held by its hoop it is the start that converges).  A failed
-!> start tries the next untried one before the increment is halved, and the
-!> one that converged is where the next sub-increment, and through
-!> res%start the caller's next step, begin.
-!>
-!> Cut-back (solve_newton_increment).  A load step from the loads (f0,
-!> ubar0) to (f1, ubar1) is walked in sub-increments of the load factor t,
-!> the loads linear in t: a sub-increment that fails is halved (u restored
-!> to where it started), and after a success the next one may double again,
-!> up to what is left of the step.  A sub-increment below 2^-max_cuts of the
-!> step ends the step unconverged, with the last failure's reason and
-!> element.  Each halving is written as a line into the result's notes for
-!> the caller's log.  Why halving cures: the first iterate of a step moves
-!> the prescribed values by the linear tangent, whose volume error is of
-!> the order of the increment squared; times K of a nearly incompressible
-!> body it becomes a pressure whose initial-stress stiffness makes the next
-!> tangent indefinite (not factorizable) when the increment is too large.
+!> A load step is walked in sub-increments, each started in one of three
+!> ways (start_*), by module newton_increment; solve_newton_step's guess
+!> and strict are what it needs of one solve.
 !>
 !> Contact (optional argument specs: the CONTACT pairs, each followed as a
 !> sliding=finite pair, frictionless or with friction).  Every iterate
@@ -89,7 +66,7 @@
 !> Measured against a semismooth Newton (opts%contact = 'active_set', one
 !> active-set step per iterate, contact_correction's active_set_step;
 !> bench/newton_lcp.sh): the same answers; more iterations and CPU on the
-!> O-ring, fewer on a frictionless section in its groove; W, built either
+!> O-ring and on a frictionless section in its groove; W, built either
 !> way, is most of an iterate's cost.  The
 !> residual then counts the contact forces -C' lam; converged also asks
 !> the last correction below tol of the displacement (the gaps of the
@@ -100,14 +77,11 @@
 !>   type(newton_options_t)   tol, maxit, max_halvings, max_cuts, contact (lemke or active_set)
 !>   type(newton_result_t)    converged, iterations, residual, bad element, reason
 !>   solve_newton_step(bodies, eq, nfree, k, f, ubar, opts, u, res, err [, specs] [, guess] [, soft] [, strict])
-!>   solve_newton_increment(bodies, eq, nfree, k, f0, f1, ubar0, ubar1, opts, u, res, err [, specs]
-!>                          [, u_prior] [, soft] [, start])
-!>        from the loads (f0, ubar0) at u to (f1, ubar1), halving what fails
 !>   element_note(bodies, bad)  ' (body NAME, element E)' for a message, '' when bad names none
 module newton_step
   use kinds, only: dp, i8
   use errors, only: error_t
-  use strings, only: int_to_str, real_to_str
+  use strings, only: int_to_str
   use body, only: body_t
   use finite_strain_assembly, only: assemble_tangent, internal_force_vector, element_dilatations
   use contact_set, only: contact_set_t, pair_spec_t
@@ -122,10 +96,10 @@ module newton_step
   use sparse_cholesky, only: factor_t, analyze_pattern, factorize_values, solve_vector, free_factor
   implicit none
   private
-  public :: newton_options_t, newton_result_t, solve_newton_step, solve_newton_increment, element_note
+  public :: newton_options_t, newton_result_t, solve_newton_step, element_note
   public :: start_predicted, start_plain, start_through
 
-  !> How a sub-increment starts (module header, "Predictor"): from the
+  !> How a sub-increment starts (module newton_increment): from the
   !> prediction, given up when its first tangent is not definite; from the
   !> last state; from the prediction, through an indefinite first tangent
   integer, parameter :: start_predicted = 0, start_plain = 1, start_through = 2
@@ -212,7 +186,7 @@ contains
     logical :: reached, analyzed, accepted, with_contact, grown, descent
     type(contact_set_t) :: cs
     logical, allocatable :: holds(:), closing(:)
-    logical :: active_set, settled, same_u, predicted
+    logical :: active_set, settled, same_u, refuse
     real(dp), allocatable :: target(:), arm(:)
     logical, allocatable :: soft_now(:)
     integer(i8), allocatable :: held_keys(:)
@@ -239,13 +213,13 @@ contains
     res%reason = ''
     analyzed = .false.
     u_entry = u                                       ! the slips of the sub-increment are measured from here
-    predicted = .false.
     if (present(guess)) then                          ! a predicted start, when no element is inside out there
       call measure(guess, merit, reached, bad, norm=rnorm)
       if (bad(1) == 0) u = guess
-      predicted = bad(1) == 0
-      res%from_guess = predicted
+      res%from_guess = bad(1) == 0
     end if
+    refuse = .false.                                  ! strict: such a start given up at its first tangent
+    if (present(strict)) refuse = strict .and. res%from_guess
     call measure(u, merit, reached, bad, norm=rnorm)
     if (bad(1) /= 0) then
       res%bad = bad
@@ -331,12 +305,10 @@ contains
         deallocate(ferr)
         ! strict: a predicted start whose first tangent is not definite is
         ! given up (the caller starts from the last state instead)
-        if (it == 0 .and. predicted .and. present(strict)) then
-          if (strict) then
-            res%reason = 'the tangent at the predicted start is not positive definite'
-            res%start_refused = .true.
-            exit
-          end if
+        if (it == 0 .and. refuse) then
+          res%reason = 'the tangent at the predicted start is not positive definite'
+          res%start_refused = .true.
+          exit
         end if
         ! not positive definite at this iterate: first each hyperelastic
         ! element's tangent cut to its positive part (a descent direction of
@@ -567,12 +539,11 @@ contains
       real(dp), intent(out), optional :: norm         !< the residual's norm itself
       real(dp) :: rf, scale
       integer :: j
+      logical :: known
+      known = .false.
+      if (present(fint_known)) known = fint_known
       bad_elem = 0
-      if (.not. present(fint_known)) then
-        call internal_force_vector(bodies, v, fint, bad_elem)
-      else if (.not. fint_known) then
-        call internal_force_vector(bodies, v, fint, bad_elem)
-      end if
+      if (.not. known) call internal_force_vector(bodies, v, fint, bad_elem)
       rel = huge(1.0_dp)
       at_target = .false.
       if (bad_elem(1) /= 0) return
@@ -732,131 +703,6 @@ contains
     lam(rows) = x(:, 1)
   end subroutine active_set_step
   end subroutine solve_newton_step
-
-  !> A load step from (f0, ubar0) to (f1, ubar1) with cut-back (module header).
-  !>   f0, f1, ubar0, ubar1 (in) (ndof) the loads at its start (u balances them) and end
-  !>   u    (inout) (ndof) the state at the start; on exit at the end (converged) or
-  !>                where the last sub-increment that converged left it
-  !>   res  (out)   converged, the iterations summed over the sub-increments, the
-  !>                last residual, cuts, substeps, notes; reason and bad of the
-  !>                failure that ended it
-  !>   u_prior (in, optional) (ndof) the state the previous load step started from:
-  !>                its increment u - u_prior predicts this step's first one
-  !>   start  (in, optional) start_*: how a predicted sub-increment starts first
-  !>                (default start_predicted); res%start: how the last one did
-  !>   other arguments as solve_newton_step
-  subroutine solve_newton_increment(bodies, eq, nfree, k, f0, f1, ubar0, ubar1, opts, u, res, err, specs, u_prior, &
-                                    soft, start)
-    type(body_t), intent(in) :: bodies(:)
-    integer, intent(in) :: eq(:), nfree
-    type(csc_t), intent(inout) :: k
-    real(dp), intent(in) :: f0(:), f1(:), ubar0(:), ubar1(:)
-    type(newton_options_t), intent(in) :: opts
-    real(dp), intent(inout) :: u(:)
-    type(newton_result_t), intent(out) :: res
-    type(error_t), allocatable, intent(out) :: err
-    type(pair_spec_t), intent(in), optional :: specs(:)
-    real(dp), intent(in), optional :: u_prior(:)
-    logical, intent(in), optional :: soft(:)
-    integer, intent(in), optional :: start
-    type(newton_result_t) :: sub
-    real(dp), allocatable :: u_start(:), rate(:), guess(:), ubar_t(:)
-    real(dp) :: t, dt, t1
-    real(dp), parameter :: full = 1.0_dp
-    integer :: kind, pref
-    logical :: tried(start_predicted:start_through)
-
-    res%notes = ''
-    res%reason = ''
-    allocate(res%history(0))
-    ! the secant predictor: the last increment's displacement per unit of
-    ! load factor, its volume change already that of the body's response
-    ! (a first iterate from u alone moves the prescribed values through the
-    ! linear tangent, whose volume error times K can make the next tangent
-    ! indefinite in a nearly incompressible body)
-    if (present(u_prior)) rate = u - u_prior
-    pref = start_predicted                           ! the start a sub-increment with a prediction tries first
-    if (present(start)) pref = start
-    kind = merge(pref, start_plain, allocated(rate))
-    tried = .false.
-    t = 0.0_dp
-    dt = full
-    do while (t < full)
-      dt = min(dt, full - t)                         ! a halving then always shortens the attempt
-      t1 = t + dt
-      if (full - t1 <= 1.0e-12_dp) t1 = full
-      u_start = u
-      ubar_t = (1 - t1) * ubar0 + t1 * ubar1
-      tried(kind) = .true.
-      if (kind /= start_plain) then
-        guess = u + (t1 - t) * rate
-        where (eq == 0) guess = ubar_t
-        call solve_newton_step(bodies, eq, nfree, k, (1 - t1) * f0 + t1 * f1, ubar_t, opts, u, sub, err, specs, guess, &
-                               soft, strict=kind == start_predicted)
-        ! a strict start that iterated is a start through: not worth another
-        ! try; one whose guess had an element inside out was a plain start
-        if (kind == start_predicted .and. .not. sub%start_refused) tried(start_through) = .true.
-        if (.not. sub%from_guess) tried = .true.
-      else
-        call solve_newton_step(bodies, eq, nfree, k, (1 - t1) * f0 + t1 * f1, ubar_t, opts, u, sub, err, specs, &
-                               soft=soft)
-      end if
-      if (allocated(err)) return
-      res%iterations = res%iterations + sub%iterations
-      res%residual = sub%residual
-      if (sub%converged) then
-        res%substeps = res%substeps + 1
-        res%history = sub%history                    ! the last sub-increment's (its convergence)
-        res%fcon = sub%fcon
-        res%gap = sub%gap
-        res%complementarity = sub%complementarity
-        if (allocated(sub%lambda)) then                ! the last iterate's contact problem
-          res%cs = sub%cs
-          res%lambda = sub%lambda
-          res%w = sub%w
-          res%q = sub%q
-          res%gaps = sub%gaps
-          if (allocated(sub%fstate)) then
-            res%fstate = sub%fstate
-            res%slip = sub%slip
-          end if
-        end if
-        if (allocated(rate)) pref = kind             ! the next sub-increment starts as this one did
-        res%start = pref
-        rate = (u - u_start) / (t1 - t)
-        kind = pref
-        tried = .false.
-        t = t1
-        dt = min(2 * dt, full)                       ! the next sub-increment may be larger again
-        cycle
-      end if
-      u = u_start
-      ! the other starts of the same increment, before it is halved: from the
-      ! last state, then through the prediction's indefinite tangent
-      if (allocated(rate)) then
-        if (.not. tried(start_plain)) then
-          kind = start_plain
-          cycle
-        else if (.not. tried(start_through)) then
-          kind = start_through
-          cycle
-        end if
-      end if
-      kind = merge(pref, start_plain, allocated(rate))
-      tried = .false.
-      res%bad = sub%bad
-      res%reason = sub%reason
-      if (dt <= 2.0_dp**(-opts%max_cuts)) return      ! cutting no longer helps
-      dt = 0.5_dp * dt
-      res%cuts = res%cuts + 1
-      res%notes = res%notes // 'Newton: ' // sub%reason // trim(element_note(bodies, sub%bad)) // &
-                  ' at load factor ' // real_to_str(t1) // ' of the step: the increment is halved to ' // &
-                  real_to_str(dt) // new_line('a')
-    end do
-    res%converged = .true.
-    res%reason = ''
-    res%bad = 0
-  end subroutine solve_newton_increment
 
   !> ' (body NAME, element E)' when bad names an element, else ''.
   function element_note(bodies, bad) result(s)

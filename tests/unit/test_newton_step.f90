@@ -1,4 +1,4 @@
-!> Newton's method on hyperelastic bodies (newton_step, finite_strain_assembly)
+!> Newton's method on hyperelastic bodies (newton_step, newton_increment, finite_strain_assembly)
 !> against closed forms:
 !>   - the global tangent against central differences of the global internal
 !>     forces (a Q1 block, part of its dofs fixed, a large deformation);
@@ -40,7 +40,8 @@ program test_newton_step
   use body, only: body_t, number_equations, build_pattern
   use sparse_matrix, only: csc_t
   use finite_strain_assembly, only: assemble_tangent, internal_force_vector
-  use newton_step, only: newton_options_t, newton_result_t, solve_newton_increment
+  use newton_step, only: newton_options_t, newton_result_t
+  use newton_increment, only: solve_newton_increment
   use contact_set, only: pair_spec_t
   use rigid_obstacle, only: shape_line
   use testing, only: check, check_close, check_small, finish_tests
